@@ -1,0 +1,240 @@
+"""The ``ehl`` command line.
+
+The core defines ``scenes``, ``show``, ``fits``, ``run`` and ``solve``; the layers above
+(thermal, mixed) add their own subcommands through the ``ehl.commands`` entry-point group,
+so this module never imports them. An entry point names a callable
+``register(subparsers) -> None`` that adds one subparser whose ``func(args) -> dict``
+returns the JSON payload (and prints human-readable text when ``args.json`` is false).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from collections.abc import Callable, Sequence
+from importlib.metadata import entry_points
+from typing import Any
+
+import numpy as np
+
+from .errors import ConvergenceError, InputError
+
+EXIT_INPUT = 2
+EXIT_CONVERGENCE = 3
+
+
+def add_common_options(p: argparse.ArgumentParser, out_default: str = "ehl_out") -> None:
+    """Options every subcommand that writes results shares: ``--json``, ``--out``, ``--no-plots``."""
+    p.add_argument("--json", action="store_true", help="print the main scalars as one JSON object")
+    p.add_argument("--out", default=out_default, help="output folder for HDF5 and PNG (default: %(default)s)")
+    p.add_argument("--no-plots", action="store_true", help="skip PNG output")
+
+
+def jsonable(obj: Any) -> Any:
+    """Turn numpy scalars/arrays into plain types; non-finite floats become ``None``."""
+    if isinstance(obj, dict):
+        return {str(k): jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return jsonable(obj.tolist())
+    if isinstance(obj, (np.bool_, bool)):
+        return bool(obj)
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, (float, np.floating)):
+        f = float(obj)
+        return f if math.isfinite(f) else None
+    return obj
+
+
+def print_payload(payload: dict[str, Any]) -> None:
+    print(json.dumps(jsonable(payload), indent=None, sort_keys=False))
+
+
+def print_table(payload: dict[str, Any]) -> None:
+    width = max((len(k) for k in payload), default=0)
+    for k, v in payload.items():
+        if isinstance(v, float):
+            s = f"{v:.6g}"
+        elif isinstance(v, (list, tuple, np.ndarray)) and len(v) > 8:
+            s = f"[{len(v)} values: {v[0]:.4g} ... {v[-1]:.4g}]"
+        else:
+            s = str(v)
+        print(f"  {k:<{width}}  {s}")
+
+
+# -- core subcommands ------------------------------------------------------------------------
+def _cmd_scenes(args: argparse.Namespace) -> dict:
+    from .scene import builtin_scene_names, load_scene
+
+    rows = []
+    for name in builtin_scene_names():
+        sc = load_scene(name)
+        rows.append({"name": name, "contact": sc.kind, "description": sc.description})
+    if not args.json:
+        w = max(len(r["name"]) for r in rows)
+        for r in rows:
+            print(f"{r['name']:<{w}}  {r['contact']:<8}  {r['description']}")
+    return {"scenes": rows}
+
+
+def _cmd_show(args: argparse.Namespace) -> dict:
+    from .scene import load_scene
+
+    sc = load_scene(args.scene)
+    summary = sc.summary()
+    if not args.json:
+        print(f"# scene {sc.name}: {sc.description}")
+        if sc.source:
+            print(f"# source: {sc.source}")
+        print(sc.to_toml())
+        print("# derived")
+        print_table(summary)
+    return summary
+
+
+def _cmd_fits(args: argparse.Namespace) -> dict:
+    from . import fits, groups
+
+    if args.contact == "line":
+        if args.ellipticity != 1.0:
+            raise InputError("--ellipticity applies to point contacts only")
+        Hc = fits.moes_line_central(args.M, args.L, args.gamma1)
+        terms = fits.moes_line_terms(args.M, args.L)
+        lam, abar = groups.venner_line(args.M, args.L)
+        Hc_v = groups.venner_from_moes_line(Hc, args.M)
+    else:
+        Hc = fits.nijenbanning_central(args.M, args.L, args.ellipticity, args.gamma1)
+        terms = fits.nijenbanning_terms(args.M, args.L, args.ellipticity)
+        lam, abar = groups.venner_point(args.M, args.L)
+        Hc_v = groups.venner_from_moes_point(Hc, args.M)
+    out = {
+        "contact": args.contact, "M": args.M, "L": args.L, "theta": args.ellipticity,
+        "gamma1": args.gamma1, "Hc": Hc, "Hc_venner": Hc_v,
+        "lambda_venner": lam, "alpha_bar": abar,
+    }
+    out.update({k: float(v) for k, v in terms.items()})
+    if not args.json:
+        print_table(out)
+    return out
+
+
+def _cmd_run(args: argparse.Namespace) -> dict:
+    from .mainjob import run_main_job
+
+    return run_main_job(args)
+
+
+def _cmd_solve(args: argparse.Namespace) -> dict:
+    from .solve_cli import run_solve
+
+    return run_solve(args)
+
+
+def _positive_float(s: str) -> float:
+    try:
+        v = float(s)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{s!r} is not a number") from None
+    return v
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="ehl",
+        description="Film thickness, pressure, temperature and friction in lubricated concentrated contacts.",
+    )
+    parser.add_argument("--version", action="store_true", help="print the package version")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    p = sub.add_parser("scenes", help="list the built-in scenes")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=_cmd_scenes)
+
+    p = sub.add_parser("show", help="print a resolved scene with derived quantities (Hertz, Moes groups, fitted film)")
+    p.add_argument("scene", help="built-in scene name or TOML file")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=_cmd_show)
+
+    p = sub.add_parser("fits", help="evaluate the Moes (line) or Nijenbanning (point) central-film fit")
+    p.add_argument("--contact", choices=["line", "point", "elliptic"], required=True)
+    p.add_argument("--M", type=_positive_float, required=True, help="Moes load parameter")
+    p.add_argument("--L", type=_positive_float, required=True, help="Moes lubricant parameter")
+    p.add_argument("--ellipticity", type=_positive_float, default=1.0, help="theta = Rx/Ry (point contacts)")
+    p.add_argument("--gamma1", type=_positive_float, default=1.0, help="fluid load-sharing factor P/Ph (>= 1)")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=_cmd_fits)
+
+    p = sub.add_parser("run", help="the main job on a scene (default: the built-in default scene)")
+    p.add_argument("scene", nargs="?", default=None, help="built-in scene name or TOML file")
+    add_common_options(p)
+    p.set_defaults(func=_cmd_run)
+
+    p = sub.add_parser("solve", help="multigrid EHL solve of a scene or of Moes (M, L)")
+    from .solve_cli import add_solve_arguments
+
+    add_solve_arguments(p)
+    add_common_options(p)
+    p.set_defaults(func=_cmd_solve)
+
+    for ep in _plugin_entry_points():
+        _register_plugin(sub, ep.name, ep.load)
+    return parser
+
+
+def _plugin_entry_points() -> list[Any]:
+    try:
+        return sorted(entry_points(group="ehl.commands"), key=lambda e: e.name)
+    except TypeError:  # pragma: no cover - Python < 3.10 API
+        return []
+
+
+def _register_plugin(sub: Any, name: str, loader: Callable[[], Callable]) -> None:
+    try:
+        register = loader()
+    except Exception as exc:  # the layer is not installed or broken: say so when called
+        msg = f"subcommand {name!r} is unavailable: {type(exc).__name__}: {exc}"
+        p = sub.add_parser(name, help=f"(unavailable: {exc})")
+        p.add_argument("rest", nargs=argparse.REMAINDER)
+        p.add_argument("--json", action="store_true")
+
+        def _unavailable(args: argparse.Namespace, _msg: str = msg) -> dict:
+            raise InputError(_msg)
+
+        p.set_defaults(func=_unavailable)
+        return
+    register(sub)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.version:
+        from .results import package_version
+
+        print(package_version())
+        return 0
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return 0
+    try:
+        payload = args.func(args)
+    except InputError as exc:
+        print(f"ehl {args.command}: error: {exc}", file=sys.stderr)
+        return EXIT_INPUT
+    except ConvergenceError as exc:
+        print(f"ehl {args.command}: did not converge: {exc}", file=sys.stderr)
+        return EXIT_CONVERGENCE
+    except KeyboardInterrupt:
+        print(f"ehl {args.command}: interrupted; finished work was kept", file=sys.stderr)
+        return 130
+    if getattr(args, "json", False) and payload is not None:
+        print_payload(payload)
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

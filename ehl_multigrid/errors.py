@@ -1,0 +1,94 @@
+"""Error types shared by every layer.
+
+Bad input raises :class:`InputError` naming the field, the value, the units and the allowed
+range; a numerical failure raises :class:`ConvergenceError` carrying the solver's report.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+
+class InputError(ValueError):
+    """A value outside its allowed range, an unknown key, or an unknown preset."""
+
+
+class ConvergenceError(RuntimeError):
+    """A solver diverged, stalled or produced NaN.
+
+    Attributes
+    ----------
+    report : object
+        The solver's convergence report at the time of failure (may be ``None``).
+    hint : str
+        What to try (more levels, W cycles, smaller H0 factor, longer inlet ...).
+    """
+
+    def __init__(self, message: str, report: Any = None, hint: str = "") -> None:
+        full = message if not hint else f"{message}\n  what to try: {hint}"
+        super().__init__(full)
+        self.report = report
+        self.hint = hint
+
+
+def _fmt(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return repr(value)
+
+
+def require_range(
+    field: str,
+    value: Any,
+    lo: float = -math.inf,
+    hi: float = math.inf,
+    units: str = "-",
+    lo_open: bool = False,
+    hi_open: bool = False,
+) -> float:
+    """Return ``float(value)`` or raise :class:`InputError` naming field, value, units and range."""
+    lb = "(" if lo_open else "["
+    rb = ")" if hi_open else "]"
+    allowed = f"{lb}{_fmt(lo)}, {_fmt(hi)}{rb}"
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        try:
+            import numpy as np
+
+            if isinstance(value, np.generic) and np.isreal(value):
+                value = float(value)
+            else:
+                raise TypeError
+        except TypeError:
+            raise InputError(
+                f"{field} = {_fmt(value)} is not a number; expected a number in {allowed} {units}"
+            ) from None
+    v = float(value)
+    bad = (
+        math.isnan(v)
+        or (v <= lo if lo_open else v < lo)
+        or (v >= hi if hi_open else v > hi)
+    )
+    if bad:
+        raise InputError(f"{field} = {_fmt(v)} {units} is outside the allowed range {allowed} {units}")
+    return v
+
+
+def require_positive(field: str, value: Any, units: str = "-", allow_inf: bool = False) -> float:
+    """Strictly positive, finite unless ``allow_inf``."""
+    hi = math.inf
+    return require_range(field, value, 0.0, hi, units, lo_open=True, hi_open=not allow_inf)
+
+
+def require_choice(field: str, value: Any, choices: list[str] | tuple[str, ...]) -> str:
+    if value not in choices:
+        raise InputError(f"{field} = {value!r} is not one of the allowed values {list(choices)}")
+    return value
+
+
+def reject_unknown_keys(section: str, given: dict, allowed: set[str] | list[str]) -> None:
+    unknown = sorted(set(given) - set(allowed))
+    if unknown:
+        raise InputError(
+            f"unknown key(s) {unknown} in [{section}]; allowed keys are {sorted(allowed)}"
+        )

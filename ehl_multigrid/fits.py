@@ -1,0 +1,121 @@
+"""Central film-thickness fits (MODEL.md section 6).
+
+* Moes line fit (2.17-2.22) and its mixed-lubrication form (4.23-4.24);
+* Nijenbanning elliptic fit (2.23-2.29) and its mixed-lubrication form (4.25-4.26).
+
+All take Moes groups (M, L) built on the sum velocity and return the Moes-scaled central film
+``Hc`` (``h = Hc R sqrt(eta0 us/(E' R))``, see :func:`ehl_multigrid.groups.moes_film_scale`).
+``gamma1 >= 1`` is the fluid load-sharing factor ``P/Ph``; ``gamma1 = 1`` is the smooth fit.
+Vectorised: arguments broadcast against each other.
+
+The fits were built on Barus-type, incompressible solutions; see MODEL.md 6 "What the fits
+are and are not".
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import InputError
+
+ArrayLike = float | np.ndarray
+
+
+def _prep(M: ArrayLike, L: ArrayLike, gamma1: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    M, L, g = np.broadcast_arrays(
+        np.asarray(M, dtype=float), np.asarray(L, dtype=float), np.asarray(gamma1, dtype=float)
+    )
+    if np.any(~(M > 0)) or not np.all(np.isfinite(M)):
+        raise InputError(f"M = {M[~(M > 0) | ~np.isfinite(M)].ravel()[:3]} must be finite and > 0")
+    if np.any(~(L >= 0)) or not np.all(np.isfinite(L)):
+        raise InputError(f"L = {L[~(L >= 0) | ~np.isfinite(L)].ravel()[:3]} must be finite and >= 0")
+    if np.any(~(g >= 1)):
+        raise InputError(f"gamma1 = {g[~(g >= 1)].ravel()[:3]} must be >= 1 (gamma1 = P/Ph)")
+    return M, L, g
+
+
+def _out(x: np.ndarray) -> ArrayLike:
+    return float(x) if x.ndim == 0 else x
+
+
+def moes_line_terms(M: ArrayLike, L: ArrayLike) -> dict[str, np.ndarray]:
+    """Asymptotes of the Moes line fit (2.18-2.21): HRI, HEI, HRP, HEP."""
+    M = np.asarray(M, dtype=float)
+    L = np.asarray(L, dtype=float)
+    return {
+        "HRI": 3.0 / M,
+        "HEI": 2.621 * M ** (-1.0 / 5.0),
+        "HRP": 1.287 * L ** (2.0 / 3.0),
+        "HEP": 1.311 * M ** (-1.0 / 8.0) * L ** (3.0 / 4.0),
+    }
+
+
+def moes_line_central(M: ArrayLike, L: ArrayLike, gamma1: ArrayLike = 1.0) -> ArrayLike:
+    """Moes line central film (2.17, 2.22); with ``gamma1`` the mixed form (4.23-4.24).
+
+    ``Hc = [gamma1^s (HRI^(7/3) + gamma1^(-14/15) HEI^(7/3))^(3s/7)
+    + (HRP^(-7/2) + HEP^(-7/2))^(-2s/7)]^(1/s)``,
+    ``s = (7 + 8 exp(-2 (HEI/HRI) gamma1^(-2/5)))/5``.
+
+    At ``L = 0`` the piezoviscous term vanishes (limit of ``HRP, HEP -> 0``).
+
+    Examples
+    --------
+    >>> round(moes_line_central(1e-3, 0.0) * 1e-3, 3)   # rigid-isoviscous asymptote 3/M
+    3.0
+    """
+    M, L, g = _prep(M, L, gamma1)
+    t = moes_line_terms(M, L)
+    s = (7.0 + 8.0 * np.exp(-2.0 * (t["HEI"] / t["HRI"]) * g ** (-2.0 / 5.0))) / 5.0
+    iso = g**s * (t["HRI"] ** (7.0 / 3.0) + g ** (-14.0 / 15.0) * t["HEI"] ** (7.0 / 3.0)) ** (3.0 * s / 7.0)
+    with np.errstate(divide="ignore"):
+        inner = t["HRP"] ** (-3.5) + t["HEP"] ** (-3.5)
+        piezo = np.where(L > 0, inner ** (-2.0 * s / 7.0), 0.0)
+    return _out((iso + piezo) ** (1.0 / s))
+
+
+def nijenbanning_terms(M: ArrayLike, L: ArrayLike, theta: ArrayLike = 1.0) -> dict[str, np.ndarray]:
+    """Asymptotes of the Nijenbanning fit (2.24-2.29) for ellipticity ``theta = Rx/Ry``."""
+    M = np.asarray(M, dtype=float)
+    L = np.asarray(L, dtype=float)
+    th = np.asarray(theta, dtype=float)
+    c = 1.0 + 0.006 * np.log(th) + 0.63 * th ** (4.0 / 7.0)
+    return {
+        "HRI": 145.0 * (1.0 + 0.796 * th ** (14.0 / 15.0)) ** (-15.0 / 7.0) / th * M**-2.0,
+        "HEI": 3.18 * c ** (-14.0 / 25.0) * th ** (-1.0 / 15.0) * M ** (-2.0 / 15.0),
+        "HRP": 1.29 * (1.0 + 0.691 * th) ** (-2.0 / 3.0) * L ** (2.0 / 3.0),
+        "HEP": 1.48 * c ** (-7.0 / 20.0) * th ** (-1.0 / 24.0) * M ** (-1.0 / 12.0) * L ** 0.75,
+        "H00": 1.8 / th,
+    }
+
+
+def nijenbanning_central(
+    M: ArrayLike, L: ArrayLike, theta: ArrayLike = 1.0, gamma1: ArrayLike = 1.0
+) -> ArrayLike:
+    """Nijenbanning central film (2.23); with ``gamma1`` the mixed form (4.25-4.26).
+
+    ``Hc = gamma1^(1/2) [(gamma1^(9/4) HRI^(3/2) + (gamma1^(-2/5) HEI^(-4) + H00^(-4))^(-3/8))^(2s/3)
+    + (gamma1^4 HRP^(-8) + gamma1^4 HEP^(-8))^(-s/8)]^(1/s)``,
+    ``s = 1.5 (1 + exp(-1.2 (HEI/HRI) gamma1^(-7/5)))``.
+    """
+    M, L, g = _prep(M, L, gamma1)
+    th = np.broadcast_to(np.asarray(theta, dtype=float), M.shape)
+    if np.any(~(th > 0)):
+        raise InputError(f"theta = {th[~(th > 0)].ravel()[:3]} must be > 0 (theta = Rx/Ry)")
+    t = nijenbanning_terms(M, L, th)
+    s = 1.5 * (1.0 + np.exp(-1.2 * (t["HEI"] / t["HRI"]) * g ** (-7.0 / 5.0)))
+    ei = (g ** (-2.0 / 5.0) * t["HEI"] ** -4.0 + t["H00"] ** -4.0) ** (-3.0 / 8.0)
+    iso = (g ** (9.0 / 4.0) * t["HRI"] ** 1.5 + ei) ** (2.0 * s / 3.0)
+    with np.errstate(divide="ignore"):
+        inner = g**4 * t["HRP"] ** -8.0 + g**4 * t["HEP"] ** -8.0
+        piezo = np.where(L > 0, inner ** (-s / 8.0), 0.0)
+    return _out(np.sqrt(g) * (iso + piezo) ** (1.0 / s))
+
+
+def central_film_fit(contact: str, M: ArrayLike, L: ArrayLike, theta: ArrayLike = 1.0, gamma1: ArrayLike = 1.0) -> ArrayLike:
+    """Moes fit for ``contact == 'line'``, Nijenbanning otherwise."""
+    if contact == "line":
+        return moes_line_central(M, L, gamma1)
+    if contact in ("point", "circular", "elliptic"):
+        return nijenbanning_central(M, L, theta, gamma1)
+    raise InputError(f"contact = {contact!r} is not one of ['line', 'point', 'elliptic']")

@@ -1,0 +1,247 @@
+"""One result type and one HDF5 layout for every layer.
+
+A :class:`Result` carries coordinates, fields (each with units and the names of the
+coordinates it is defined on), scalars with units, convergence histories, the scene it was
+computed for and the package version.
+
+HDF5 layout (written by :meth:`Result.save`, read by :meth:`Result.load`)::
+
+    /                    attrs: kind, package, package_version, created, format_version
+    /scene               attrs: toml (resolved scene, TOML text), name; absent if no scene
+    /coords/<name>       dataset, attrs: units, long_name; HDF5 dimension scale
+    /fields/<name>       dataset, attrs: units, long_name, dims (coordinate names);
+                         dimension scales of /coords attached
+    /scalars             attrs: one per scalar (numbers, strings, bools); attrs
+                         ``units.<name>`` give units
+    /history/<name>      1-D datasets (residual per cycle, load error, ...)
+    /meta                attrs: free text (solver options used, notes); JSON-encoded values
+
+Files are written to a temporary file beside the target and renamed, so a crash never
+leaves a half-written result.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import os
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+
+from .errors import InputError
+
+FORMAT_VERSION = 1
+
+
+def package_version() -> str:
+    try:
+        from importlib.metadata import version
+
+        return version("ehl-multigrid")
+    except Exception:  # not installed (running from a source tree)
+        return "0+unknown"
+
+
+@dataclass
+class Variable:
+    data: np.ndarray
+    units: str = "-"
+    dims: tuple[str, ...] = ()
+    long_name: str = ""
+
+
+@dataclass
+class Result:
+    """Container for any solver output.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> r = Result("demo")
+    >>> r.add_coord("X", np.linspace(-1, 1, 5), "-", "x / b")
+    >>> r.add_field("P", np.zeros(5), "-", ("X",), "p / pmax")
+    >>> r.scalars["Hc"] = 0.5
+    >>> r["P"].shape
+    (5,)
+    """
+
+    kind: str
+    scene: Any = None  # ehl_multigrid.scene.Scene | None (kept loose: results may be scene-free)
+    coords: dict[str, Variable] = field(default_factory=dict)
+    fields: dict[str, Variable] = field(default_factory=dict)
+    scalars: dict[str, Any] = field(default_factory=dict)
+    scalar_units: dict[str, str] = field(default_factory=dict)
+    history: dict[str, np.ndarray] = field(default_factory=dict)
+    meta: dict[str, Any] = field(default_factory=dict)
+    package_version: str = field(default_factory=package_version)
+
+    # -- building -----------------------------------------------------------------------------
+    def add_coord(self, name: str, data: np.ndarray, units: str = "-", long_name: str = "") -> None:
+        arr = np.asarray(data)
+        if arr.ndim != 1:
+            raise InputError(f"coordinate {name!r} must be 1-D, got shape {arr.shape}")
+        self.coords[name] = Variable(arr, units, (name,), long_name)
+
+    def add_field(self, name: str, data: np.ndarray, units: str = "-", dims: tuple[str, ...] = (), long_name: str = "") -> None:
+        arr = np.asarray(data)
+        if dims:
+            if len(dims) != arr.ndim:
+                raise InputError(f"field {name!r}: dims {dims} do not match shape {arr.shape}")
+            for ax, d in enumerate(dims):
+                if d not in self.coords:
+                    raise InputError(f"field {name!r}: unknown coordinate {d!r}")
+                if self.coords[d].data.shape[0] != arr.shape[ax]:
+                    raise InputError(
+                        f"field {name!r}: axis {ax} has {arr.shape[ax]} points, coordinate {d!r} has "
+                        f"{self.coords[d].data.shape[0]}"
+                    )
+        self.fields[name] = Variable(arr, units, tuple(dims), long_name)
+
+    def set_scalar(self, name: str, value: Any, units: str = "-") -> None:
+        self.scalars[name] = value
+        self.scalar_units[name] = units
+
+    def add_report(self, report: Any) -> None:
+        """Store a :class:`~ehl_multigrid.convergence.ConvergenceReport`."""
+        for k, v in report.scalars().items():
+            self.scalars[k] = v
+        self.scalar_units.setdefault("wall_s", "s")
+        for k, v in report.histories().items():
+            self.history[k] = np.asarray(v)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        if name in self.fields:
+            return self.fields[name].data
+        if name in self.coords:
+            return self.coords[name].data
+        if name in self.history:
+            return self.history[name]
+        raise KeyError(name)
+
+    # -- I/O --------------------------------------------------------------------------------
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write atomically to ``path`` (HDF5). Returns the path."""
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+        os.close(fd)
+        try:
+            with h5py.File(tmp, "w") as f:
+                self._write(f)
+            os.replace(tmp, path)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+            raise
+        return path
+
+    def _write(self, f: h5py.File) -> None:
+        f.attrs["kind"] = self.kind
+        f.attrs["package"] = "ehl-multigrid"
+        f.attrs["package_version"] = self.package_version
+        f.attrs["format_version"] = FORMAT_VERSION
+        f.attrs["created"] = _dt.datetime.now(_dt.timezone.utc).isoformat()
+        if self.scene is not None:
+            g = f.create_group("scene")
+            g.attrs["toml"] = self.scene.to_toml()
+            g.attrs["name"] = self.scene.name
+        gc = f.create_group("coords")
+        for name, v in self.coords.items():
+            ds = gc.create_dataset(name, data=v.data)
+            ds.attrs["units"] = v.units
+            ds.attrs["long_name"] = v.long_name
+            ds.make_scale(name)
+        gf = f.create_group("fields")
+        for name, v in self.fields.items():
+            ds = gf.create_dataset(name, data=v.data, compression="gzip" if v.data.size > 4096 else None)
+            ds.attrs["units"] = v.units
+            ds.attrs["long_name"] = v.long_name
+            ds.attrs["dims"] = json.dumps(list(v.dims))
+            for ax, d in enumerate(v.dims):
+                ds.dims[ax].attach_scale(gc[d])
+        gs = f.create_group("scalars")
+        for name, val in self.scalars.items():
+            gs.attrs[name] = _attr_value(name, val)
+            if name in self.scalar_units:
+                gs.attrs[f"units.{name}"] = self.scalar_units[name]
+        gh = f.create_group("history")
+        for name, arr in self.history.items():
+            gh.create_dataset(name, data=np.asarray(arr))
+        gm = f.create_group("meta")
+        for name, val in self.meta.items():
+            gm.attrs[name] = json.dumps(val, default=_json_default)
+
+    @classmethod
+    def load(cls, path: str | os.PathLike) -> Result:
+        """Read a file written by :meth:`save`, scene included."""
+        path = Path(path)
+        if not path.is_file():
+            raise InputError(f"result file {str(path)!r} does not exist")
+        with h5py.File(path, "r") as f:
+            if f.attrs.get("package") != "ehl-multigrid":
+                raise InputError(f"{path} is not an ehl-multigrid result file")
+            scene = None
+            if "scene" in f:
+                from .scene import Scene, tomllib
+
+                scene = Scene.from_dict(tomllib.loads(_str(f["scene"].attrs["toml"])), origin=str(path))
+            res = cls(kind=_str(f.attrs["kind"]), scene=scene, package_version=_str(f.attrs["package_version"]))
+            for name, ds in f["coords"].items():
+                res.coords[name] = Variable(ds[()], _str(ds.attrs["units"]), (name,), _str(ds.attrs["long_name"]))
+            for name, ds in f["fields"].items():
+                dims = tuple(json.loads(_str(ds.attrs["dims"])))
+                res.fields[name] = Variable(ds[()], _str(ds.attrs["units"]), dims, _str(ds.attrs["long_name"]))
+            for key, val in f["scalars"].attrs.items():
+                if key.startswith("units."):
+                    res.scalar_units[key[6:]] = _str(val)
+                else:
+                    res.scalars[key] = _from_attr(val)
+            for name, ds in f["history"].items():
+                res.history[name] = ds[()]
+            for key, val in f["meta"].attrs.items():
+                res.meta[key] = json.loads(_str(val))
+        return res
+
+
+def _json_default(o: Any) -> Any:
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    if isinstance(o, np.generic):
+        return o.item()
+    return str(o)
+
+
+def _attr_value(name: str, val: Any) -> Any:
+    if val is None:
+        return "None"
+    if isinstance(val, (bool, np.bool_)):
+        return np.bool_(val)
+    if isinstance(val, (int, float, str, np.integer, np.floating)):
+        return val
+    arr = np.asarray(val)
+    if arr.dtype.kind in "fiub":
+        return arr
+    raise InputError(f"scalar {name!r} has unsupported type {type(val).__name__}")
+
+
+def _str(v: Any) -> str:
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def _from_attr(v: Any) -> Any:
+    if isinstance(v, bytes):
+        return v.decode()
+    if isinstance(v, np.bool_):
+        return bool(v)
+    if isinstance(v, np.integer):
+        return int(v)
+    if isinstance(v, np.floating):
+        return float(v)
+    if isinstance(v, str):
+        return None if v == "None" else v
+    return v

@@ -1,0 +1,558 @@
+"""Scenes: one contact situation as a plain data object, loaded from TOML.
+
+Every layer reads the same :class:`Scene`. Loading validates every value and raises
+:class:`~ehl_multigrid.errors.InputError` naming the field, value, units and allowed range;
+nothing is half-loaded. Built-in scenes live in ``ehl_multigrid/scenes/*.toml``.
+
+TOML layout (all SI, temperatures in degC)::
+
+    name = "my_contact"
+    description = "..."
+    [contact]     kind = "line" | "point" | "elliptic";  length = B [m] (line only)
+    [geometry]    Rx, Ry [m] (reduced)  or  R1x, R2x, R1y, R2y [m] (inf = flat)
+    [solids]      body1, body2 = preset name or table {preset, E, nu, rho, k, cp, hardness};
+                  E_reduced [Pa] overrides the value computed from the bodies
+    [lubricant]   preset = "T9" | "T9-point" | "HVI-160" plus overrides (eta0, alpha or z, tau0, ...)
+    [operating]   load [N] or pmax [Pa]; us [m/s] (sum velocity); slip [-] (S = 2(u1-u2)/us);
+                  T_oil, T_surface1, T_surface2 [degC]
+    [ranges]      us, slip, load: a list, or {min, max, n, log}
+    [roughness]   Rq, Ra, sigma_s, dd [m]; n [1/m^2]; beta [m]; fc [-]; hardness [Pa]
+    [supply]      hoil [m] (inf = flooded); hoil_over_sigma (list); delta [-]
+    [solver.*]    free-form option tables per layer (ehl, thermal, mixed), validated there
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import sys
+from dataclasses import dataclass, field
+from functools import cached_property
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from . import fits, groups, hertz
+from .errors import (
+    InputError,
+    reject_unknown_keys,
+    require_choice,
+    require_positive,
+    require_range,
+)
+from .lubricant import T_MAX_C, T_MIN_C, Lubricant, lubricant_preset
+from .solids import Solid, reduced_modulus_of, solid_preset
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+CONTACT_KINDS = ("line", "point", "elliptic")
+TOP_KEYS = {
+    "name", "description", "source", "contact", "geometry", "solids", "lubricant",
+    "operating", "ranges", "roughness", "supply", "solver",
+}
+
+
+@dataclass(frozen=True)
+class Range:
+    """A list of values or a ``{min, max, n, log}`` span, resolved to an array by :meth:`values`."""
+
+    field: str
+    explicit: tuple[float, ...] | None = None
+    min: float = math.nan
+    max: float = math.nan
+    n: int = 0
+    log: bool = False
+
+    def values(self) -> np.ndarray:
+        if self.explicit is not None:
+            return np.array(self.explicit, dtype=float)
+        if self.log:
+            return np.geomspace(self.min, self.max, self.n)
+        return np.linspace(self.min, self.max, self.n)
+
+    def to_toml_value(self) -> Any:
+        if self.explicit is not None:
+            return list(self.explicit)
+        return {"min": self.min, "max": self.max, "n": self.n, "log": self.log}
+
+
+@dataclass(frozen=True)
+class Roughness:
+    """Equivalent rough surface (Greenwood-Williamson, MODEL.md 7-8). Lengths in metres.
+
+    Rq (= sigma) and the summit parameters; Whitehouse-Archard defaults (sigma_s = 0.7 sigma,
+    dd = 0.82 sigma) fill in what is missing when only Rq is given.
+    """
+
+    Rq: float
+    sigma_s: float
+    dd: float
+    n: float = math.nan
+    beta: float = math.nan
+    Ra: float = math.nan
+    fc: float = 0.13
+    hardness: float = 5e9
+
+
+@dataclass(frozen=True)
+class Supply:
+    """Oil supply: ``hoil`` inlet oil film [m] (inf = fully flooded), optional list of
+    ``hoil/sigma`` values for starvation studies, and Chevalier's exponent ``delta``."""
+
+    hoil: float = math.inf
+    hoil_over_sigma: tuple[float, ...] = ()
+    delta: float = 3.5
+
+
+@dataclass(frozen=True)
+class Scene:
+    """One contact situation. Build with :func:`load_scene` or :meth:`Scene.from_dict`.
+
+    Derived quantities (Hertz, inlet viscosity, Moes groups, fitted film) are properties.
+    """
+
+    name: str
+    description: str
+    source: str
+    kind: str
+    length: float  # B [m], line only (nan otherwise)
+    Rx: float
+    Ry: float
+    body1: Solid
+    body2: Solid
+    E_reduced: float
+    lubricant: Lubricant
+    load: float
+    us: float
+    slip: float
+    T_oil: float
+    T_surface1: float
+    T_surface2: float
+    ranges: dict[str, Range] = field(default_factory=dict)
+    roughness: Roughness | None = None
+    supply: Supply = field(default_factory=Supply)
+    solver: dict[str, dict[str, Any]] = field(default_factory=dict)
+    raw: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
+
+    # -- derived ------------------------------------------------------------------------------
+    @property
+    def R(self) -> float:
+        """Reduced radius in the rolling direction [m] (``Rx``)."""
+        return self.Rx
+
+    @property
+    def theta(self) -> float:
+        """Ellipticity parameter ``Rx/Ry`` (0 for a line contact)."""
+        return self.Rx / self.Ry
+
+    @property
+    def u1(self) -> float:
+        """Velocity of surface 1 [m/s]: ``us (1 + S/2) / 2``."""
+        return 0.5 * self.us * (1.0 + 0.5 * self.slip)
+
+    @property
+    def u2(self) -> float:
+        return 0.5 * self.us * (1.0 - 0.5 * self.slip)
+
+    @cached_property
+    def hertz(self) -> hertz.HertzContact:
+        if self.kind == "line":
+            return hertz.hertz_line(self.load, self.length, self.Rx, self.E_reduced)
+        return hertz.hertz_point(self.load, self.Rx, self.Ry, self.E_reduced)
+
+    @property
+    def eta0(self) -> float:
+        """Ambient-pressure viscosity at the oil inlet temperature [Pa s] (Roelands T term)."""
+        return float(self.lubricant.eta_at(self.T_oil))
+
+    @property
+    def alpha(self) -> float:
+        """Roelands-equivalent pressure-viscosity coefficient at the inlet temperature [1/Pa]."""
+        return float(self.lubricant.alpha(self.T_oil))
+
+    def moes(self, us: float | None = None, load: float | None = None) -> tuple[float, float]:
+        """Moes (M, L) at the scene's operating point (or the given ``us``/``load``)."""
+        us = self.us if us is None else us
+        load = self.load if load is None else load
+        if self.kind == "line":
+            return groups.moes_line(load / self.length, us, self.eta0, self.alpha, self.E_reduced, self.Rx)
+        return groups.moes_point(load, us, self.eta0, self.alpha, self.E_reduced, self.Rx)
+
+    def film_scale(self, us: float | None = None) -> float:
+        """Metres per unit Moes film H at sum velocity ``us`` [m]."""
+        return groups.moes_film_scale(self.us if us is None else us, self.eta0, self.E_reduced, self.Rx)
+
+    def central_film_fit(self, us: float | None = None, load: float | None = None, gamma1: float = 1.0) -> tuple[float, float]:
+        """``(Hc, hc)``: fitted Moes central film and its value in metres (Moes line or
+        Nijenbanning)."""
+        M, L = self.moes(us, load)
+        Hc = float(fits.central_film_fit(self.kind, M, L, 1.0 if self.kind == "line" else self.theta, gamma1))
+        return Hc, Hc * self.film_scale(us)
+
+    def summary(self) -> dict[str, Any]:
+        """Main scalars as a flat dict (what ``ehl show --json`` prints)."""
+        hz = self.hertz
+        M, L = self.moes()
+        Hc, hc = self.central_film_fit()
+        out: dict[str, Any] = {
+            "name": self.name,
+            "contact": self.kind,
+            "load": self.load,
+            "us": self.us,
+            "slip": self.slip,
+            "T_oil": self.T_oil,
+            "E_reduced": self.E_reduced,
+            "Rx": self.Rx,
+            "Ry": self.Ry,
+            "eta0": self.eta0,
+            "alpha": self.alpha,
+            "pmax": hz.pmax,
+            "mean_pressure": hz.mean_pressure,
+            "area": hz.area,
+            "M": M,
+            "L": L,
+            "Hc_fit": Hc,
+            "hc_fit": hc,
+        }
+        if self.kind == "line":
+            out["b"] = hz.b
+            out["length"] = self.length
+            lam, abar = groups.venner_line(M, L)
+        else:
+            out["a"] = hz.a
+            out["b"] = hz.b
+            out["theta"] = self.theta
+            lam, abar = groups.venner_point(M, L)
+        out["lambda_venner"] = lam
+        out["alpha_bar"] = abar
+        if self.roughness is not None:
+            out["Lambda_fit"] = hc / self.roughness.Rq
+        return out
+
+    # -- (de)serialisation -----------------------------------------------------------------
+    @classmethod
+    def from_dict(cls, data: dict[str, Any], origin: str = "<dict>") -> Scene:
+        """Validate and resolve a scene dictionary (the parsed TOML)."""
+        return _build_scene(copy.deepcopy(data), origin)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The resolved scene as a TOML-ready dictionary (round-trips through :meth:`from_dict`)."""
+        d: dict[str, Any] = {
+            "name": self.name,
+            "description": self.description,
+            "source": self.source,
+            "contact": {"kind": self.kind},
+            "geometry": {"Rx": self.Rx, "Ry": self.Ry},
+            "solids": {
+                "body1": self.body1.to_dict(),
+                "body2": self.body2.to_dict(),
+                "E_reduced": self.E_reduced,
+            },
+            "lubricant": self.lubricant.to_dict(),
+            "operating": {
+                "load": self.load, "us": self.us, "slip": self.slip, "T_oil": self.T_oil,
+                "T_surface1": self.T_surface1, "T_surface2": self.T_surface2,
+            },
+            "supply": {
+                "hoil": self.supply.hoil,
+                "hoil_over_sigma": list(self.supply.hoil_over_sigma),
+                "delta": self.supply.delta,
+            },
+        }
+        if self.kind == "line":
+            d["contact"]["length"] = self.length
+        if self.ranges:
+            d["ranges"] = {k: r.to_toml_value() for k, r in self.ranges.items()}
+        if self.roughness is not None:
+            d["roughness"] = {k: v for k, v in vars(self.roughness).items() if not _isnan(v)}
+        if self.solver:
+            d["solver"] = copy.deepcopy(self.solver)
+        return d
+
+    def to_toml(self) -> str:
+        import tomli_w
+
+        return tomli_w.dumps(self.to_dict())
+
+    def with_operating(self, **changes: float) -> Scene:
+        """A copy at another operating point (load, us, slip, temperatures); re-validated."""
+        d = self.to_dict()
+        reject_unknown_keys("operating", changes, {"load", "us", "slip", "T_oil", "T_surface1", "T_surface2", "pmax"})
+        if "pmax" in changes:
+            d["operating"].pop("load", None)
+        d["operating"].update(changes)
+        return Scene.from_dict(d, origin=f"{self.name} (modified)")
+
+
+def _isnan(v: Any) -> bool:
+    return isinstance(v, float) and math.isnan(v)
+
+
+# -- building and validation ----------------------------------------------------------------
+def _section(data: dict, key: str, required: bool = True) -> dict:
+    sec = data.get(key)
+    if sec is None:
+        if required:
+            raise InputError(f"scene is missing the [{key}] table")
+        return {}
+    if not isinstance(sec, dict):
+        raise InputError(f"[{key}] must be a table, got {type(sec).__name__}")
+    return sec
+
+
+def _temperature(field_name: str, value: Any) -> float:
+    return require_range(field_name, value, T_MIN_C, T_MAX_C, "degC")
+
+
+def _solid(field_name: str, spec: Any) -> Solid:
+    if isinstance(spec, str):
+        return solid_preset(spec)
+    if isinstance(spec, dict):
+        base = solid_preset(spec.get("preset", "steel"))
+        try:
+            return base.with_changes(**{k: v for k, v in spec.items()})
+        except InputError as exc:
+            raise InputError(f"solids.{field_name}: {exc}") from None
+    raise InputError(f"solids.{field_name} = {spec!r} must be a preset name or a table")
+
+
+def _range(field_name: str, spec: Any, lo: float, hi: float, units: str, lo_open: bool) -> Range:
+    name = f"ranges.{field_name}"
+    if isinstance(spec, list):
+        if not spec:
+            raise InputError(f"{name} is an empty list")
+        vals = tuple(require_range(f"{name}[{i}]", v, lo, hi, units, lo_open=lo_open) for i, v in enumerate(spec))
+        return Range(field_name, explicit=vals)
+    if isinstance(spec, dict):
+        reject_unknown_keys(name, spec, {"min", "max", "n", "log"})
+        for k in ("min", "max", "n"):
+            if k not in spec:
+                raise InputError(f"{name} needs '{k}' (a table {{min, max, n, log}} or a list)")
+        vmin = require_range(f"{name}.min", spec["min"], lo, hi, units, lo_open=lo_open)
+        vmax = require_range(f"{name}.max", spec["max"], vmin, hi, units)
+        n = spec["n"]
+        if not isinstance(n, int) or isinstance(n, bool) or n < 1 or n > 100000:
+            raise InputError(f"{name}.n = {n!r} must be an integer in [1, 100000]")
+        log = bool(spec.get("log", False))
+        if log and vmin <= 0:
+            raise InputError(f"{name}.min = {vmin:.6g} {units} must be > 0 for a log range")
+        return Range(field_name, None, vmin, vmax, n, log)
+    raise InputError(f"{name} = {spec!r} must be a list or a table {{min, max, n, log}}")
+
+
+def _build_scene(data: dict[str, Any], origin: str) -> Scene:
+    if not isinstance(data, dict):
+        raise InputError(f"scene {origin} must be a table")
+    reject_unknown_keys("scene top level", data, TOP_KEYS)
+    name = str(data.get("name", Path(origin).stem))
+    description = str(data.get("description", ""))
+    source = str(data.get("source", ""))
+
+    contact = _section(data, "contact")
+    reject_unknown_keys("contact", contact, {"kind", "length"})
+    kind = require_choice("contact.kind", contact.get("kind"), CONTACT_KINDS)
+    if kind == "line":
+        if "length" not in contact:
+            raise InputError("contact.length (B, m) is required for a line contact")
+        length = require_positive("contact.length", contact["length"], "m")
+    else:
+        if "length" in contact:
+            raise InputError(f"contact.length is only meaningful for a line contact, not {kind!r}")
+        length = math.nan
+
+    geo = _section(data, "geometry")
+    reject_unknown_keys("geometry", geo, {"Rx", "Ry", "R1x", "R2x", "R1y", "R2y"})
+    Rx, Ry = _reduced_radii(geo, kind)
+
+    solids = _section(data, "solids", required=False)
+    reject_unknown_keys("solids", solids, {"body1", "body2", "E_reduced"})
+    body1 = _solid("body1", solids.get("body1", "steel"))
+    body2 = _solid("body2", solids.get("body2", "steel"))
+    if "E_reduced" in solids:
+        E_red = require_range("solids.E_reduced", solids["E_reduced"], 1e6, 4e12, "Pa")
+    else:
+        E_red = reduced_modulus_of(body1, body2)
+
+    lub_spec = _section(data, "lubricant")
+    if "preset" in lub_spec:
+        base = lubricant_preset(lub_spec["preset"])
+        overrides = {k: v for k, v in lub_spec.items() if k != "preset"}
+    else:
+        missing = {"name", "eta0", "T0", "S0", "rho0", "T_rho", "alpha_T", "cp0", "T_cp0", "c_cp", "k0", "tau0"} - set(lub_spec)
+        if "z" not in lub_spec and "alpha" not in lub_spec:
+            missing.add("z (or alpha)")
+        if missing:
+            raise InputError(f"[lubricant] without a preset must give {sorted(missing)}")
+        base = None
+        overrides = lub_spec
+    try:
+        if base is None:
+            z = lub_spec.get("z", 1.0)
+            fields_ = {k: v for k, v in overrides.items() if k != "alpha"}
+            fields_["z"] = z
+            lub = Lubricant(**fields_)
+            if "alpha" in overrides:
+                lub = lub.with_changes(alpha=overrides["alpha"])
+        else:
+            if "alpha" in overrides and "z" in overrides:
+                raise InputError("[lubricant] give alpha or z, not both")
+            lub = base.with_changes(**overrides)
+    except TypeError as exc:
+        raise InputError(f"[lubricant]: {exc}") from None
+
+    op = _section(data, "operating")
+    reject_unknown_keys("operating", op, {"load", "pmax", "us", "slip", "T_oil", "T_surface1", "T_surface2"})
+    if ("load" in op) == ("pmax" in op):
+        raise InputError("[operating] needs exactly one of load (N) or pmax (Pa)")
+    if "load" in op:
+        load = require_positive("operating.load", op["load"], "N")
+    else:
+        pmax = require_range("operating.pmax", op["pmax"], 1e5, 2e10, "Pa")
+        if kind == "line":
+            load = hertz.load_for_pmax_line(pmax, length, Rx, E_red)
+        else:
+            load = hertz.load_for_pmax_point(pmax, Rx, Ry, E_red)
+    if "us" not in op:
+        raise InputError("operating.us (sum velocity u1 + u2, m/s) is required")
+    us = require_positive("operating.us", op["us"], "m/s")
+    slip = require_range("operating.slip", op.get("slip", 0.0), -2.0, 2.0, "-")
+    T_oil = _temperature("operating.T_oil", op.get("T_oil", lub.T0))
+    T_s1 = _temperature("operating.T_surface1", op.get("T_surface1", T_oil))
+    T_s2 = _temperature("operating.T_surface2", op.get("T_surface2", T_oil))
+
+    rng = _section(data, "ranges", required=False)
+    reject_unknown_keys("ranges", rng, {"us", "slip", "load", "pmax"})
+    ranges: dict[str, Range] = {}
+    if "us" in rng:
+        ranges["us"] = _range("us", rng["us"], 0.0, 1e3, "m/s", lo_open=True)
+    if "slip" in rng:
+        ranges["slip"] = _range("slip", rng["slip"], -2.0, 2.0, "-", lo_open=False)
+    if "load" in rng:
+        ranges["load"] = _range("load", rng["load"], 0.0, 1e9, "N", lo_open=True)
+    if "pmax" in rng:
+        ranges["pmax"] = _range("pmax", rng["pmax"], 1e5, 2e10, "Pa", lo_open=False)
+
+    rough = _roughness(_section(data, "roughness", required=False))
+
+    sup = _section(data, "supply", required=False)
+    reject_unknown_keys("supply", sup, {"hoil", "hoil_over_sigma", "delta"})
+    hoil = require_range("supply.hoil", sup.get("hoil", math.inf), 0.0, math.inf, "m", lo_open=True)
+    hos = sup.get("hoil_over_sigma", [])
+    if not isinstance(hos, list):
+        raise InputError(f"supply.hoil_over_sigma = {hos!r} must be a list")
+    hos_t = tuple(require_range(f"supply.hoil_over_sigma[{i}]", v, 0.0, math.inf, "-", lo_open=True) for i, v in enumerate(hos))
+    delta = require_range("supply.delta", sup.get("delta", 3.5), 0.5, 20.0, "-")
+    if hos_t and rough is None:
+        raise InputError("supply.hoil_over_sigma needs a [roughness] table (sigma = Rq)")
+
+    solver = _section(data, "solver", required=False)
+    reject_unknown_keys("solver", solver, {"ehl", "thermal", "mixed"})
+    for k, v in solver.items():
+        if not isinstance(v, dict):
+            raise InputError(f"[solver.{k}] must be a table of options")
+
+    return Scene(
+        name=name, description=description, source=source, kind=kind, length=length,
+        Rx=Rx, Ry=Ry, body1=body1, body2=body2, E_reduced=E_red, lubricant=lub,
+        load=load, us=us, slip=slip, T_oil=T_oil, T_surface1=T_s1, T_surface2=T_s2,
+        ranges=ranges, roughness=rough, supply=Supply(hoil, hos_t, delta), solver=solver,
+        raw=data,
+    )
+
+
+def _reduced_radii(geo: dict, kind: str) -> tuple[float, float]:
+    has_reduced = "Rx" in geo or "Ry" in geo
+    has_bodies = any(k in geo for k in ("R1x", "R2x", "R1y", "R2y"))
+    if has_reduced and has_bodies:
+        raise InputError("[geometry] give either Rx, Ry (reduced) or R1x, R2x, R1y, R2y, not both")
+    if has_bodies:
+        def inv(key: str) -> float:
+            v = geo.get(key, math.inf)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or v == 0 or math.isnan(v):
+                raise InputError(f"geometry.{key} = {v!r} m must be a non-zero radius (inf = flat, negative = concave)")
+            return 1.0 / float(v)
+
+        cx = inv("R1x") + inv("R2x")
+        cy = inv("R1y") + inv("R2y")
+        if not cx > 0:
+            raise InputError(f"geometry: reduced curvature 1/Rx = {cx:.6g} 1/m must be > 0 (R1x, R2x)")
+        Rx = 1.0 / cx
+        Ry = 1.0 / cy if cy > 0 else math.inf
+    else:
+        if "Rx" not in geo:
+            raise InputError("[geometry] needs Rx (m) or the body radii R1x, R2x, R1y, R2y")
+        Rx = require_positive("geometry.Rx", geo["Rx"], "m")
+        default_Ry = math.inf if kind == "line" else Rx
+        Ry = require_positive("geometry.Ry", geo.get("Ry", default_Ry), "m", allow_inf=True)
+    require_range("geometry.Rx", Rx, 1e-6, 100.0, "m")
+    if kind == "line":
+        if math.isfinite(Ry):
+            raise InputError(f"geometry.Ry = {Ry:.6g} m must be inf for a line contact")
+    else:
+        require_range("geometry.Ry", Ry, 1e-6, 100.0, "m")
+        if kind == "point" and not math.isclose(Rx, Ry, rel_tol=1e-9):
+            raise InputError(
+                f"contact.kind = 'point' needs Rx = Ry (got Rx = {Rx:.6g} m, Ry = {Ry:.6g} m); use 'elliptic'"
+            )
+        require_range("theta = Rx/Ry", Rx / Ry, 1e-3, 1e3, "-")
+    return Rx, Ry
+
+
+def _roughness(sec: dict) -> Roughness | None:
+    if not sec:
+        return None
+    allowed = {"Rq", "Ra", "sigma_s", "dd", "n", "beta", "fc", "hardness"}
+    reject_unknown_keys("roughness", sec, allowed)
+    if "Rq" not in sec:
+        raise InputError("roughness.Rq (m) is required when a [roughness] table is given")
+    Rq = require_range("roughness.Rq", sec["Rq"], 1e-10, 1e-4, "m")
+    sigma_s = require_range("roughness.sigma_s", sec.get("sigma_s", 0.7 * Rq), 1e-10, 1e-4, "m")
+    dd = require_range("roughness.dd", sec.get("dd", 0.82 * Rq), -1e-4, 1e-4, "m")
+    n = require_range("roughness.n", sec["n"], 1e4, 1e16, "1/m^2") if "n" in sec else math.nan
+    beta = require_range("roughness.beta", sec["beta"], 1e-8, 1e-1, "m") if "beta" in sec else math.nan
+    Ra = require_range("roughness.Ra", sec["Ra"], 1e-10, 1e-4, "m") if "Ra" in sec else math.nan
+    fc = require_range("roughness.fc", sec.get("fc", 0.13), 0.0, 1.0, "-")
+    hard = require_positive("roughness.hardness", sec.get("hardness", 5e9), "Pa")
+    return Roughness(Rq=Rq, sigma_s=sigma_s, dd=dd, n=n, beta=beta, Ra=Ra, fc=fc, hardness=hard)
+
+
+# -- loading ----------------------------------------------------------------------------------
+def builtin_scene_names() -> list[str]:
+    """Names of the scenes shipped in ``ehl_multigrid/scenes``."""
+    files = resources.files("ehl_multigrid") / "scenes"
+    return sorted(p.name[:-5] for p in files.iterdir() if p.name.endswith(".toml"))
+
+
+DEFAULT_SCENE = "default"
+
+
+def load_scene(name_or_path: str | Path | None = None) -> Scene:
+    """Load a built-in scene by name or a TOML file by path (``None``: the default scene)."""
+    if name_or_path is None:
+        name_or_path = DEFAULT_SCENE
+    path = Path(name_or_path)
+    if path.suffix == ".toml" or path.exists():
+        if not path.is_file():
+            raise InputError(f"scene file {str(path)!r} does not exist")
+        text = path.read_text()
+        origin = str(path)
+    else:
+        res = resources.files("ehl_multigrid") / "scenes" / f"{name_or_path}.toml"
+        if not res.is_file():
+            raise InputError(
+                f"scene {str(name_or_path)!r} is neither a file nor a built-in scene; "
+                f"built-in scenes: {builtin_scene_names()}"
+            )
+        text = res.read_text()
+        origin = f"builtin:{name_or_path}"
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"scene {origin} is not valid TOML: {exc}") from None
+    data.setdefault("name", Path(str(name_or_path)).stem)
+    return Scene.from_dict(data, origin)

@@ -1,0 +1,73 @@
+"""Arguments of ``ehl solve`` and the dispatch to the line or point multigrid solver.
+
+Each solver package (``ehl_multigrid.line``, ``ehl_multigrid.point``) provides
+``run_solve(args, scene) -> dict`` in its ``cli`` module; ``scene`` is ``None`` in
+Moes-only mode (``--M``/``--L``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+
+from .errors import InputError
+
+#: Moes-only defaults for the oil (issue 3/4): Roelands reference pressure, alpha, eta0.
+MOES_ONLY_DEFAULTS = {"p0": 1.96e8, "alpha": 2.2e-8, "eta0": 0.04}
+
+
+def add_solve_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("scene", nargs="?", default=None, help="built-in scene name or TOML file (or use --M/--L)")
+    p.add_argument("--contact", choices=["line", "point", "elliptic"], help="contact type in Moes-only mode")
+    p.add_argument("--M", type=float, help="Moes load parameter (Moes-only mode)")
+    p.add_argument("--L", type=float, help="Moes lubricant parameter (Moes-only mode)")
+    p.add_argument("--ellipticity", type=float, default=None, help="theta = Rx/Ry (elliptic, Moes-only mode)")
+    p.add_argument("--viscosity", choices=["roelands", "barus"], default="roelands")
+    p.add_argument("--density", choices=["dowson-higginson", "incompressible"], default="dowson-higginson")
+    p.add_argument("--alpha", type=float, default=None, help="pressure-viscosity coefficient [1/Pa] (Moes-only; default 2.2e-8)")
+    p.add_argument("--eta0", type=float, default=None, help="ambient viscosity [Pa s] (Moes-only; default 0.04)")
+    p.add_argument("--p0", type=float, default=None, help="Roelands reference pressure [Pa] (Moes-only; default 1.96e8)")
+    p.add_argument("--levels", type=int, default=None, help="number of multigrid levels")
+    p.add_argument("--points", type=int, default=None, help="finest-grid points per direction (2^k + 1)")
+    p.add_argument("--cycle", choices=["V", "W"], default=None, help="multigrid cycle type")
+    p.add_argument("--cycles", type=int, default=None, help="cycles per FMG level")
+    p.add_argument("--max-cycles", type=int, default=None, help="extra finest-level cycles allowed to converge")
+    p.add_argument("--deformation", choices=["mlmi", "fft", "direct"], default=None, help="elastic deformation path")
+    p.add_argument("--xmin", type=float, default=None, help="inlet boundary X")
+    p.add_argument("--xmax", type=float, default=None, help="outlet boundary X")
+    p.add_argument("--ymax", type=float, default=None, help="half-width of the domain in Y (point contacts)")
+    p.add_argument("--half", action="store_true", help="solve half the domain using symmetry in Y (point contacts)")
+    p.add_argument("--threads", type=int, default=None, help="numba threads (default: all cores)")
+    p.add_argument("--tol", type=float, default=None, help="residual tolerance")
+    p.add_argument("--tol-load", type=float, default=None, help="relative load-error tolerance")
+
+
+def resolve_contact(args: argparse.Namespace):
+    """Return ``(contact, scene)``; ``scene`` is ``None`` in Moes-only mode."""
+    from .scene import load_scene
+
+    moes_only = args.M is not None or args.L is not None
+    if moes_only:
+        if args.scene is not None:
+            raise InputError("give either a scene or --M/--L, not both")
+        if args.M is None or args.L is None:
+            raise InputError("Moes-only mode needs both --M and --L")
+        if args.contact is None:
+            raise InputError("Moes-only mode needs --contact line|point|elliptic")
+        return args.contact, None
+    scene = load_scene(args.scene)
+    if args.contact is not None and args.contact != scene.kind:
+        raise InputError(f"--contact {args.contact} contradicts the scene's contact.kind = {scene.kind!r}")
+    return scene.kind, scene
+
+
+def run_solve(args: argparse.Namespace) -> dict:
+    contact, scene = resolve_contact(args)
+    module = "ehl_multigrid.line.cli" if contact == "line" else "ehl_multigrid.point.cli"
+    try:
+        mod = importlib.import_module(module)
+    except ModuleNotFoundError as exc:
+        if exc.name and exc.name.startswith("ehl_multigrid."):
+            raise InputError(f"the {contact}-contact multigrid solver is not available in this version") from None
+        raise
+    return mod.run_solve(args, scene)
