@@ -15,6 +15,7 @@ import math
 import sys
 from collections.abc import Callable, Sequence
 from importlib.metadata import entry_points
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -134,6 +135,33 @@ def _cmd_solve(args: argparse.Namespace) -> dict:
     return run_solve(args)
 
 
+def _cmd_sweep(args: argparse.Namespace) -> dict:
+    from .scene import load_scene
+    from .sweep import SweepSpec, parse_values, run_sweep
+
+    params: dict[str, list[float]] = {}
+    for item in args.param:
+        if "=" not in item:
+            raise InputError(f"--param {item!r} must be NAME=VALUES (e.g. operating.us=0.01:10:20:log)")
+        name, spec = item.split("=", 1)
+        params[name.strip()] = parse_values(spec)
+    if not params:
+        raise InputError("a sweep needs at least one --param NAME=VALUES")
+    options: dict[str, Any] = {}
+    for item in args.option:
+        if "=" not in item:
+            raise InputError(f"--option {item!r} must be KEY=VALUE")
+        k, v = item.split("=", 1)
+        options[k.strip()] = json.loads(v) if v.strip()[:1] in "[{0123456789-tfn" else v
+    spec = SweepSpec(load_scene(args.scene), args.task, params, options)
+    out = Path(args.out)
+    table = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler, progress=not args.json)
+    payload = {"cases": len(table.rows), "counts": table.counts, "table": str(out / "table.csv")}
+    if not args.json:
+        print_table({"cases": len(table.rows), **table.counts, "table": str(out / "table.csv")})
+    return payload
+
+
 def _positive_float(s: str) -> float:
     try:
         v = float(s)
@@ -179,6 +207,18 @@ def build_parser() -> argparse.ArgumentParser:
     add_solve_arguments(p)
     add_common_options(p)
     p.set_defaults(func=_cmd_solve)
+
+    p = sub.add_parser("sweep", help="run a task over a grid of scene parameters, in parallel, resumable")
+    p.add_argument("scene", help="built-in scene name or TOML file")
+    p.add_argument("--task", default="fit", help="task name from the ehl.tasks group (default: %(default)s)")
+    p.add_argument("--param", action="append", default=[], metavar="NAME=VALUES",
+                   help="dotted scene path or task option, values a,b,c or min:max:n[:log]; repeat for a grid")
+    p.add_argument("--option", action="append", default=[], metavar="KEY=VALUE", help="fixed task option")
+    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: all cores)")
+    p.add_argument("--scheduler", default=None, help="dask.distributed scheduler address (optional extra 'dask')")
+    p.add_argument("--json", action="store_true")
+    p.add_argument("--out", default="ehl_sweep", help="sweep folder (resumes if it holds finished cases)")
+    p.set_defaults(func=_cmd_sweep)
 
     for ep in _plugin_entry_points():
         _register_plugin(sub, ep.name, ep.load)
