@@ -162,6 +162,16 @@ def _cmd_sweep(args: argparse.Namespace) -> dict:
     return payload
 
 
+def _cmd_plan(args: argparse.Namespace) -> dict:
+    from .plan import make_plan, print_plan
+    from .scene import load_scene
+
+    plan = make_plan(load_scene(args.scene), fidelity=args.fidelity, tolerance=args.tolerance)
+    if not args.json:
+        print_plan(plan)
+    return plan.to_dict()
+
+
 def _positive_float(s: str) -> float:
     try:
         v = float(s)
@@ -207,6 +217,13 @@ def build_parser() -> argparse.ArgumentParser:
     add_solve_arguments(p)
     add_common_options(p)
     p.set_defaults(func=_cmd_solve)
+
+    p = sub.add_parser("plan", help="which physics a scene needs, and why (numbers behind each decision)")
+    p.add_argument("scene", help="built-in scene name or TOML file")
+    p.add_argument("--fidelity", choices=["fast", "standard", "reference"], default=None)
+    p.add_argument("--tolerance", type=float, default=None, help="target relative accuracy (overrides --fidelity)")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=_cmd_plan)
 
     p = sub.add_parser("sweep", help="run a task over a grid of scene parameters, in parallel, resumable")
     p.add_argument("scene", help="built-in scene name or TOML file")

@@ -1,0 +1,86 @@
+"""The planner models only what a scene needs; each decision carries its numbers."""
+
+import copy
+import json
+import math
+
+import pytest
+
+from ehl_multigrid.cli import main
+from ehl_multigrid.errors import InputError
+from ehl_multigrid.plan import LAMBDA_FULL_FILM, make_plan, temperature_rise_estimate
+from ehl_multigrid.scene import Scene, load_scene
+
+
+def test_smooth_scene_needs_no_asperity_model():
+    plan = make_plan(load_scene("appendix_d_point"))
+    assert not plan.includes("asperities")
+
+
+def test_asperity_decision_follows_lambda_threshold():
+    base = load_scene("page63_line_2000N").to_dict()
+    base.pop("ranges")
+    for us, expect in ((0.05, True), (50.0, False)):
+        d = copy.deepcopy(base)
+        d["operating"]["us"] = us
+        sc = Scene.from_dict(d)
+        dec = make_plan(sc).get("asperities")
+        lam = sc.central_film_fit()[1] / sc.roughness.Rq
+        assert dec.estimate == pytest.approx(lam)
+        assert dec.include is expect and (lam < LAMBDA_FULL_FILM) is expect
+
+
+def test_pure_rolling_is_isothermal_and_newtonian():
+    d = load_scene("appendix_d_point").to_dict()
+    d.pop("ranges")
+    d["operating"]["slip"] = 0.0
+    plan = make_plan(Scene.from_dict(d))
+    assert not plan.includes("thermal") and not plan.includes("eyring")
+
+
+def test_temperature_rise_grows_with_slip_and_speed():
+    sc = load_scene("appendix_c_line_42400N")
+    h = sc.central_film_fit()[1]
+    a = temperature_rise_estimate(sc, 8.0, 0.05, h)["dT"]
+    b = temperature_rise_estimate(sc, 8.0, 0.5, h)["dT"]
+    c = temperature_rise_estimate(sc, 16.0, 0.5, h)["dT"]
+    assert 0 < a < b < c
+
+
+def test_a_surface_at_rest_does_not_break_the_estimate():
+    sc = load_scene("page63_line_500N")  # 200 % slip: surface 2 at rest
+    est = temperature_rise_estimate(sc, 1.0, 2.0, sc.central_film_fit(us=1.0)[1])
+    assert math.isfinite(est["dT"]) and est["dT"] > 0
+
+
+def test_looser_tolerance_switches_thermal_off():
+    sc = load_scene("chapter6_starved_1.93GPa")
+    sens = make_plan(sc).get("thermal").estimate
+    assert make_plan(sc, tolerance=sens * 0.5).includes("thermal")
+    assert not make_plan(sc, tolerance=min(1.0, sens * 2)).includes("thermal")
+
+
+def test_film_from_fit_when_tolerance_exceeds_fit_deviation():
+    sc = load_scene("appendix_d_point")
+    dev = make_plan(sc).get("film").estimate
+    assert make_plan(sc, tolerance=min(1.0, 2 * dev)).get("film").setting == "fit"
+    assert make_plan(sc, tolerance=dev / 2).get("film").setting == "multigrid solver"
+
+
+def test_starvation_only_when_oil_supply_is_limited():
+    assert make_plan(load_scene("chapter6_starved_0.5GPa")).includes("starvation")
+    assert not make_plan(load_scene("default")).includes("starvation")
+
+
+def test_bad_fidelity_and_tolerance_are_named():
+    with pytest.raises(InputError, match="fidelity = 'ultra'"):
+        make_plan(load_scene("default"), fidelity="ultra")
+    with pytest.raises(InputError, match="tolerance = 0 -"):
+        make_plan(load_scene("default"), tolerance=0.0)
+
+
+def test_plan_cli_json_lists_every_decision(capsys):
+    assert main(["plan", "default", "--fidelity", "fast", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert {d["model"] for d in out["decisions"]} == {"film", "asperities", "thermal", "eyring", "starvation", "maxwell"}
+    assert out["tolerance"] == 0.1
