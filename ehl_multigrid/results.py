@@ -140,7 +140,7 @@ class Result:
             raise
         return path
 
-    def _write(self, f: h5py.File) -> None:
+    def _write(self, f: h5py.Group) -> None:
         f.attrs["kind"] = self.kind
         f.attrs["package"] = "ehl-multigrid"
         f.attrs["package_version"] = self.package_version
@@ -177,35 +177,79 @@ class Result:
             gm.attrs[name] = json.dumps(val, default=_json_default)
 
     @classmethod
-    def load(cls, path: str | os.PathLike) -> Result:
-        """Read a file written by :meth:`save`, scene included."""
+    def load(cls, path: str | os.PathLike, group: str | None = None) -> Result:
+        """Read a file written by :meth:`save` (or one result of :func:`save_results`)."""
         path = Path(path)
         if not path.is_file():
             raise InputError(f"result file {str(path)!r} does not exist")
         with h5py.File(path, "r") as f:
-            if f.attrs.get("package") != "ehl-multigrid":
-                raise InputError(f"{path} is not an ehl-multigrid result file")
-            scene = None
-            if "scene" in f:
-                from .scene import Scene, tomllib
+            if group is not None:
+                if group not in f:
+                    raise InputError(f"{path} has no result {group!r}; it holds {sorted(f.keys())}")
+                return cls._read(f[group], path)
+            return cls._read(f, path)
 
-                scene = Scene.from_dict(tomllib.loads(_str(f["scene"].attrs["toml"])), origin=str(path))
-            res = cls(kind=_str(f.attrs["kind"]), scene=scene, package_version=_str(f.attrs["package_version"]))
-            for name, ds in f["coords"].items():
-                res.coords[name] = Variable(ds[()], _str(ds.attrs["units"]), (name,), _str(ds.attrs["long_name"]))
-            for name, ds in f["fields"].items():
-                dims = tuple(json.loads(_str(ds.attrs["dims"])))
-                res.fields[name] = Variable(ds[()], _str(ds.attrs["units"]), dims, _str(ds.attrs["long_name"]))
-            for key, val in f["scalars"].attrs.items():
-                if key.startswith("units."):
-                    res.scalar_units[key[6:]] = _str(val)
-                else:
-                    res.scalars[key] = _from_attr(val)
-            for name, ds in f["history"].items():
-                res.history[name] = ds[()]
-            for key, val in f["meta"].attrs.items():
-                res.meta[key] = json.loads(_str(val))
+    @classmethod
+    def _read(cls, f: h5py.Group, path: Path) -> Result:
+        if f.attrs.get("package") != "ehl-multigrid":
+            raise InputError(f"{path} is not an ehl-multigrid result file")
+        scene = None
+        if "scene" in f:
+            from .scene import Scene, tomllib
+
+            scene = Scene.from_dict(tomllib.loads(_str(f["scene"].attrs["toml"])), origin=str(path))
+        res = cls(kind=_str(f.attrs["kind"]), scene=scene, package_version=_str(f.attrs["package_version"]))
+        for name, ds in f["coords"].items():
+            res.coords[name] = Variable(ds[()], _str(ds.attrs["units"]), (name,), _str(ds.attrs["long_name"]))
+        for name, ds in f["fields"].items():
+            dims = tuple(json.loads(_str(ds.attrs["dims"])))
+            res.fields[name] = Variable(ds[()], _str(ds.attrs["units"]), dims, _str(ds.attrs["long_name"]))
+        for key, val in f["scalars"].attrs.items():
+            if key.startswith("units."):
+                res.scalar_units[key[6:]] = _str(val)
+            else:
+                res.scalars[key] = _from_attr(val)
+        for name, ds in f["history"].items():
+            res.history[name] = ds[()]
+        for key, val in f["meta"].attrs.items():
+            res.meta[key] = json.loads(_str(val))
         return res
+
+
+def save_results(path: str | os.PathLike, results: dict[str, Result], meta: dict[str, Any] | None = None) -> Path:
+    """Several results in one HDF5 file, each under ``/<name>`` with the layout above;
+    written atomically like :meth:`Result.save`."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        with h5py.File(tmp, "w") as f:
+            f.attrs["package"] = "ehl-multigrid"
+            f.attrs["kind"] = "collection"
+            f.attrs["package_version"] = package_version()
+            f.attrs["format_version"] = FORMAT_VERSION
+            for k, v in (meta or {}).items():
+                f.attrs[k] = json.dumps(v, default=_json_default)
+            for name, res in results.items():
+                res._write(f.create_group(name))
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return path
+
+
+def load_results(path: str | os.PathLike) -> dict[str, Result]:
+    """Every result stored by :func:`save_results`."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"result file {str(path)!r} does not exist")
+    with h5py.File(path, "r") as f:
+        if f.attrs.get("kind") != "collection":
+            raise InputError(f"{path} is a single result; use Result.load")
+        return {name: Result._read(f[name], path) for name in f.keys()}
 
 
 def _json_default(o: Any) -> Any:

@@ -80,3 +80,19 @@ def test_loading_a_foreign_file_is_refused(tmp_path):
         h.attrs["x"] = 1
     with pytest.raises(InputError, match="not an ehl-multigrid result"):
         Result.load(f)
+
+
+def test_several_results_round_trip_in_one_file(tmp_path):
+    from ehl_multigrid.results import load_results, save_results
+
+    a, b = make_result(), make_result()
+    b.kind = "other"
+    b.scalars["Hc"] = 0.5
+    path = save_results(tmp_path / "run.h5", {"film": a, "traction": b}, meta={"plan": {"film": "fit"}})
+    back = load_results(path)
+    assert set(back) == {"film", "traction"}
+    assert back["traction"].kind == "other" and back["traction"].scalars["Hc"] == 0.5
+    np.testing.assert_array_equal(back["film"]["p"], a["p"])
+    assert Result.load(path, group="film").scene == a.scene
+    with pytest.raises(InputError, match="no result 'stribeck'"):
+        Result.load(path, group="stribeck")
