@@ -1,0 +1,159 @@
+"""Starved lubrication (thesis chapter 6; MODEL.md 7).
+
+* Chevalier's reduction (6.1-6.4): ``Hcs = Hc r/(1 + r^delta)^(1/delta)``,
+  ``r = Hoil/(Hc rho_bar(pmax))``; delta between 2 and 5, 3.5 by default. As the speed grows
+  ``Hc -> inf`` and ``Hcs -> Hoil/rho_bar(pmax)``: the inlet oil, compressed to the density at
+  pmax (isothermal Dowson-Higginson (2.7)), bounds the film.
+* ``hs_min``: the separation at which the asperities alone carry the load (gamma2 = 1). When the
+  starved film cannot keep ``hs`` above it the contact is in boundary lubrication (Fig. 6.1).
+* The limiting inlet film ``hoil = varsigma sigma`` below which all load is on the asperities
+  at every speed (section 6.4), from the exact ``F_3/2`` and, beside it, from the thesis's
+  approximation ``F_n(lam) ~ (-lam)^n`` (6.11).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from ehl_multigrid.errors import InputError, require_positive, require_range
+from ehl_multigrid.lubricant import density_ratio_dh
+
+from .film import johnson_film
+from .gw import asperity_pressure_coefficient, gw_f_inverse
+
+ArrayLike = float | np.ndarray
+
+
+def chevalier_reduction(r: ArrayLike, delta: float = 3.5) -> ArrayLike:
+    """Film reduction (6.1) ``Hcs/Hc = r/(1 + r^delta)^(1/delta)``; 1 for ``r = inf``."""
+    delta = require_range("delta", delta, 0.5, 20.0, "-")
+    r = np.asarray(r, dtype=float)
+    if np.any(~(r >= 0)):
+        raise InputError(f"r = {r[~(r >= 0)].ravel()[:3]} must be >= 0 (r = Hoil/(Hc rho_bar))")
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        lr = np.log(r)
+        out = np.exp(lr - np.logaddexp(0.0, delta * lr) / delta)
+    out = np.where(np.isinf(r), 1.0, out)
+    return float(out) if out.ndim == 0 else out
+
+
+def log_starved_film(log_hc: np.ndarray, hoil: float, rho_bar: float, delta: float) -> np.ndarray:
+    """``ln hcs`` from ``ln hc`` (metres) by (6.3)-(6.4); ``hoil = inf`` returns ``ln hc``."""
+    if math.isinf(hoil):
+        return np.asarray(log_hc, dtype=float)
+    log_cap = math.log(hoil / rho_bar)  # limit of hcs for hc -> inf
+    log_r = log_cap - np.asarray(log_hc, dtype=float)
+    return log_cap - np.logaddexp(0.0, delta * log_r) / delta
+
+
+def starved_film(hc: ArrayLike, hoil: float, rho_bar: float = 1.0, delta: float = 3.5) -> ArrayLike:
+    """Starved central film (6.4) ``hcs = hc r/(1 + r^delta)^(1/delta)``, ``r = hoil/(hc rho_bar)`` [m]."""
+    hoil = require_range("hoil", hoil, 0.0, math.inf, "m", lo_open=True)
+    require_positive("rho_bar", rho_bar, "-")
+    require_range("delta", delta, 0.5, 20.0, "-")
+    hc = np.asarray(hc, dtype=float)
+    if np.any(~(hc > 0)):
+        raise InputError(f"hc = {hc[~(hc > 0)].ravel()[:3]} m must be > 0")
+    out = np.exp(log_starved_film(np.log(hc), hoil, rho_bar, delta))
+    return float(out) if out.ndim == 0 else out
+
+
+def density_ratio_at(pmax: float) -> float:
+    """``rho_bar(pmax)`` of (6.3): isothermal Dowson-Higginson density ratio (2.7)."""
+    return float(density_ratio_dh(require_positive("pmax", pmax, "Pa")))
+
+
+def hss_min(load: float, area: float, n: float, beta: float, sigma_s: float, E_reduced: float) -> float:
+    """Summit-plane separation [m] at which GW asperities carry the whole load:
+    ``area pa(hss) = load`` with (4.18)."""
+    c = asperity_pressure_coefficient(n, beta, sigma_s, E_reduced)
+    target = require_positive("load", load, "N") / (require_positive("area", area, "m^2") * c)
+    return sigma_s * float(gw_f_inverse(1.5, target))
+
+
+@dataclass(frozen=True)
+class LimitingFilm:
+    """Limiting inlet film of section 6.4 (all load on the asperities for ``hoil < varsigma sigma``).
+
+    ``F32`` is the value ``F_3/2(hss/sigma_s)`` must take (6.10); ``lam`` the corresponding
+    ``hss/sigma_s``; ``t = hs/sigma``; ``varsigma = hf,r/sigma`` at that separation.
+    ``varsigma_compressed = rho_bar(pmax) varsigma``: with Chevalier's formula the starved film
+    tends to ``hoil/rho_bar``, so this is the inlet film below which the film model itself can
+    never lift any load off the asperities.
+    """
+
+    pmax: float
+    F32: float
+    lam_exact: float
+    lam_approx: float
+    t_exact: float
+    t_approx: float
+    varsigma_exact: float
+    varsigma_approx: float
+    difference: float
+    rho_bar: float
+    varsigma_compressed: float
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def limiting_inlet_film(
+    pmax: float,
+    *,
+    n_beta_sigma_s: float = 0.05,
+    psi: float = 1.0,
+    hardness: float = 5e9,
+    dd_over_sigma: float = 0.82,
+    sigma_s_over_sigma: float = 0.7,
+    contact: str = "point",
+) -> LimitingFilm:
+    """Section 6.4: varsigma from (6.7)-(6.14), exact and with the thesis's approximation.
+
+    (6.7) writes (4.18) as ``pa = (4/3) H' (n beta sigma_s) psi F_3/2(hss/sigma_s)`` (with
+    ``psi = (E'_GW/H') sqrt(sigma_s/beta)``, ``E'_GW = E'/2``); all load on the asperities means
+    ``pa = mean Hertz pressure`` (point ``2/3 pmax``, line ``pi/4 pmax``). Defaults are the
+    thesis's "standard values": ``n beta sigma_s = 0.05``, ``psi = 1``, ``H' = 5 GPa`` and the
+    Whitehouse-Archard planes ``hs/sigma = 0.82 + 0.7 hss/sigma_s`` (6.12). Then
+    ``varsigma = hf,r/sigma = t Phi(t) + phi(t)`` (6.13)-(6.14), ``t = hs/sigma``.
+    The exact path inverts ``F_3/2``; the approximate one uses ``F_3/2(lam) ~ (-lam)^(3/2)``
+    (6.11), which the thesis applies and which gives its 0.10 (1.93 GPa) and 0.46 (0.5 GPa).
+    """
+    pmax = require_positive("pmax", pmax, "Pa")
+    if contact == "point":
+        mean = 2.0 / 3.0 * pmax
+    elif contact == "line":
+        mean = math.pi / 4.0 * pmax
+    else:
+        raise InputError(f"contact = {contact!r} is not one of ['line', 'point']")
+    coeff = 4.0 / 3.0 * require_positive("hardness", hardness, "Pa") * require_positive(
+        "n_beta_sigma_s", n_beta_sigma_s, "-") * require_positive("psi", psi, "-")
+    F = mean / coeff
+    lam_e = float(gw_f_inverse(1.5, F))
+    lam_a = -(F ** (2.0 / 3.0))
+    t_e = dd_over_sigma + sigma_s_over_sigma * lam_e
+    t_a = dd_over_sigma + sigma_s_over_sigma * lam_a
+    v_e = float(johnson_film(t_e, 1.0))
+    v_a = float(johnson_film(t_a, 1.0))
+    rb = density_ratio_at(pmax)
+    return LimitingFilm(pmax, F, lam_e, lam_a, t_e, t_a, v_e, v_a, v_e - v_a, rb, rb * v_e)
+
+
+def limiting_inlet_film_for_roughness(
+    load: float, area: float, pmax: float, E_reduced: float, Rq: float, sigma_s: float, dd: float, n: float, beta: float
+) -> LimitingFilm:
+    """varsigma for a given contact and roughness (no standard values): exact ``F_3/2``
+    inversion of ``area pa(hss) = load`` beside the ``(-lam)^(3/2)`` approximation."""
+    c = asperity_pressure_coefficient(n, beta, sigma_s, E_reduced)
+    F = require_positive("load", load, "N") / (require_positive("area", area, "m^2") * c)
+    lam_e = float(gw_f_inverse(1.5, F))
+    lam_a = -(F ** (2.0 / 3.0))
+    t_e = (dd + sigma_s * lam_e) / Rq
+    t_a = (dd + sigma_s * lam_a) / Rq
+    v_e = float(johnson_film(t_e, 1.0))
+    v_a = float(johnson_film(t_a, 1.0))
+    rb = density_ratio_at(pmax)
+    return LimitingFilm(pmax, F, lam_e, lam_a, t_e, t_a, v_e, v_a, v_e - v_a, rb, rb * v_e)
