@@ -1,0 +1,118 @@
+"""``ehl traction``: thermal (or isothermal) Eyring friction against slip for a scene."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+from typing import Any
+
+from ehl_multigrid.cli import add_common_options, print_table
+from ehl_multigrid.errors import InputError
+from ehl_multigrid.results import Result
+from ehl_multigrid.scene import load_scene
+
+from .options import SLICE_PRESSURES, SLICE_RULES, SURFACE_KERNELS, ThermalOptions
+from .traction import default_slips, save_partial, traction_curve, traction_result
+
+
+def parse_slips(text: str) -> list[float]:
+    """``"0,0.1,0.5"`` (S values, thesis 100 % = 1) or ``"min:max:n"``."""
+    try:
+        if ":" in text:
+            lo, hi, n = text.split(":")
+            n = int(n)
+            if n < 1:
+                raise ValueError
+            if n == 1:
+                return [float(lo)]
+            return [float(lo) + (float(hi) - float(lo)) * i / (n - 1) for i in range(n)]
+        vals = [float(s) for s in text.split(",") if s.strip()]
+    except ValueError:
+        raise InputError(f"--slip {text!r} must be a comma list of numbers or min:max:n") from None
+    if not vals:
+        raise InputError("--slip is empty")
+    return vals
+
+
+def register(subparsers: Any) -> None:
+    p = subparsers.add_parser(
+        "traction",
+        help="thermal non-linear Roelands-Eyring friction against slip (thesis chapter 3)",
+        description="Friction force and coefficient against slip S = 2(u1-u2)/(u1+u2) (thesis 100 %% = 1).",
+    )
+    p.add_argument("scene", help="built-in scene name or TOML file")
+    p.add_argument("--isothermal", action="store_true", help="hold the temperature at the oil inlet value")
+    p.add_argument("--slip", default=None,
+                   help="slip values S: comma list or min:max:n; write --slip=-1,0,1 when the list starts negative "
+                   "(default: scene ranges.slip)")
+    p.add_argument("--nx", type=int, default=None, help="stations along x (default: scene or 80)")
+    p.add_argument("--nz", type=int, default=None, help="intervals across the film (default: scene or 20)")
+    p.add_argument("--slices", type=int, default=None, help="slices over half a point contact (default: scene ny or 10)")
+    p.add_argument("--input", choices=["hertz", "ehl"], default="hertz",
+                   help="Hertz pressure + fitted uniform film, or an EHL solution (--ehl-file)")
+    p.add_argument("--ehl-file", default=None, help="HDF5 result of kind ehl_line/ehl_point for --input ehl")
+    p.add_argument("--x-in", type=float, default=None, help="inlet boundary X (default -2.5)")
+    p.add_argument("--surface-kernel", choices=list(SURFACE_KERNELS), default=None)
+    p.add_argument("--slice-pressure", choices=list(SLICE_PRESSURES), default=None)
+    p.add_argument("--slice-rule", choices=list(SLICE_RULES), default=None)
+    p.add_argument("--tol", type=float, default=None, help="tol_T and tol_tau (default 1e-5)")
+    add_common_options(p)
+    p.set_defaults(func=run_traction)
+
+
+def run_traction(args: argparse.Namespace) -> dict[str, Any]:
+    scene = load_scene(args.scene)
+    options = ThermalOptions.from_scene(
+        scene, nx=args.nx, nz=args.nz, slices=args.slices, x_in=args.x_in, surface_kernel=args.surface_kernel,
+        slice_pressure=args.slice_pressure, slice_rule=args.slice_rule, tol_T=args.tol, tol_tau=args.tol,
+        thermal=False if args.isothermal else None,
+    )
+    slips = parse_slips(args.slip) if args.slip is not None else [float(s) for s in default_slips(scene)]
+    ehl = None
+    if args.input == "ehl":
+        if args.ehl_file is None:
+            raise InputError("--input ehl needs --ehl-file PATH (an HDF5 result of kind ehl_line/ehl_point, e.g. from 'ehl solve')")
+        ehl = Result.load(args.ehl_file)
+    elif args.ehl_file is not None:
+        raise InputError("--ehl-file applies to --input ehl only")
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    stem = f"traction_{scene.name}{'_iso' if not options.thermal else ''}"
+    h5 = out / f"{stem}.h5"
+    points = traction_curve(
+        scene, slips, progress=not args.json, on_point=save_partial(h5, scene, options),
+        options=options, input=args.input, ehl=ehl,
+    )
+    res = traction_result(scene, points, options)
+    res.save(h5)
+    payload: dict[str, Any] = {
+        "scene": scene.name,
+        "input": args.input,
+        "thermal": options.thermal,
+        "load": points[0].load,
+        "us": points[0].us,
+        "pmax": points[0].hertz.pmax,
+        "h_uniform": points[0].h if math.isfinite(points[0].h) else None,
+        "slip": [p.slip for p in points],
+        "friction_coefficient": [p.coefficient for p in points],
+        "friction_force": [p.force for p in points],
+        "max_temperature_rise": [p.max_temperature_rise for p in points],
+        "mean_temperature_rise": [p.mean_temperature_rise for p in points],
+        "converged_per_point": [p.converged for p in points],
+        "converged": all(p.converged for p in points),
+        "wall_s": sum(p.report.wall_s for p in points),
+        "hdf5": str(h5),
+    }
+    if not args.no_plots:
+        from .plots import plot_all
+
+        payload["png"] = plot_all(res, out, stem)
+    if not args.json:
+        print(f"traction {scene.name}: {'thermal' if options.thermal else 'isothermal'}, input {args.input}, "
+              f"load {points[0].load:.6g} N, pmax {points[0].hertz.pmax / 1e9:.4g} GPa, us {points[0].us:.4g} m/s")
+        print(f"  {'slip':>8} {'force [N]':>12} {'coeff':>9} {'max dT [K]':>11} {'conv':>5}")
+        for p in points:
+            print(f"  {p.slip:8.4g} {p.force:12.5g} {p.coefficient:9.4g} {p.max_temperature_rise:11.4g} {str(p.converged):>5}")
+        print_table({"converged": payload["converged"], "wall_s": payload["wall_s"], "hdf5": payload["hdf5"]})
+    return payload

@@ -1,0 +1,344 @@
+"""Compiled inner loops of the line-contact thermal model (thesis 3.2.2.2, MODEL.md 9).
+
+One station x_i carries the film profile T(Z), tau(Z), u(Z) on ``nz + 1`` nodes of the mapped
+film coordinate Z = z/h (3.14). At each station:
+
+* momentum (3.4): ``tau(Z) = tau_m + (dp/dx) h (Z - 1/2)``, linear across the film;
+* Eyring-Maxwell flow (3.3): ``gdot = (um/G) dtau/dx + (tau0/eta) sinh(tau/tau0)``; the mid-film
+  stress ``tau_m`` is fixed by ``h int_0^1 gdot dZ = u2 - u1`` (so u(0) = u1, u(h) = u2);
+* energy (3.5) in mapped form with the cross term dropped (3.17):
+  ``k/h^2 T_ZZ - rho Cp u T_x + tau gdot_v = 0``, three-point backward differences in x (3.18)
+  (two-point at the first station), central in Z (3.19);
+* walls: ``T = T_bulk + sum_j W(i, j) q_j`` (surface.py), with the wall flux from a second-order
+  one-sided difference.
+
+The march goes from inlet to outlet; each station is iterated until temperature and shear stress
+change by less than the tolerances (the thesis's 3-node sliding window: the two upstream nodes are
+already converged and fixed). Influences that point upstream (reverse flow in a thick EHL inlet,
+where a first-order forward difference with lagged downstream values is used, and the upstream
+reach of the moving-strip surface kernel) are lagged: :func:`sweep_line` does one sweep, and
+``thermal.line.solve_line`` repeats sweeps (Anderson-accelerated) until the field stops changing.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .properties import I_G, I_TAU0, conductivity, density, roelands, specific_heat
+
+T_KELVIN = 273.15
+
+
+@njit(cache=True)
+def _tau_residual(t, d, w, inv_eta, tau0, mx_a, mx_r, target):
+    """f(tau_m) = sum_j w_j gdot_j - target and its derivative."""
+    f = 0.0
+    df = 0.0
+    for j in range(d.shape[0]):
+        s = (t + d[j]) / tau0
+        if s > 700.0:
+            s = 700.0
+        elif s < -700.0:
+            s = -700.0
+        f += w[j] * (tau0 * inv_eta[j] * math.sinh(s) + mx_a * (t + d[j]) + mx_r[j])
+        df += w[j] * (inv_eta[j] * math.cosh(s) + mx_a)
+    return f - target, df
+
+
+@njit(cache=True)
+def solve_tau_mid(guess, d, w, inv_eta, tau0, mx_a, mx_r, target):
+    """Mid-film shear stress tau_m [Pa] from the flow condition (safeguarded Newton).
+
+    Returns ``(tau_m, ok)``; the residual is monotone increasing in tau_m.
+    """
+    t = guess
+    f, df = _tau_residual(t, d, w, inv_eta, tau0, mx_a, mx_r, target)
+    if f == 0.0:
+        return t, True
+    step = tau0
+    if f < 0.0:
+        lo = t
+        hi = t + step
+        fh, _ = _tau_residual(hi, d, w, inv_eta, tau0, mx_a, mx_r, target)
+        k = 0
+        while fh < 0.0 and k < 200:
+            lo = hi
+            step *= 2.0
+            hi = t + step
+            fh, _ = _tau_residual(hi, d, w, inv_eta, tau0, mx_a, mx_r, target)
+            k += 1
+    else:
+        hi = t
+        lo = t - step
+        fl, _ = _tau_residual(lo, d, w, inv_eta, tau0, mx_a, mx_r, target)
+        k = 0
+        while fl > 0.0 and k < 200:
+            hi = lo
+            step *= 2.0
+            lo = t - step
+            fl, _ = _tau_residual(lo, d, w, inv_eta, tau0, mx_a, mx_r, target)
+            k += 1
+    x = t
+    tolx = 1e-11 * tau0
+    for _ in range(300):
+        f, df = _tau_residual(x, d, w, inv_eta, tau0, mx_a, mx_r, target)
+        if f < 0.0:
+            lo = x
+        else:
+            hi = x
+        if df > 0.0 and math.isfinite(df) and math.isfinite(f):
+            xn = x - f / df
+        else:
+            xn = 0.5 * (lo + hi)
+        if not (lo < xn < hi):
+            xn = 0.5 * (lo + hi)
+        if abs(xn - x) <= tolx + 1e-14 * abs(x) or hi - lo <= tolx + 1e-14 * abs(x):
+            return xn, True
+        x = xn
+    return x, False
+
+
+@njit(cache=True)
+def _tridiag_solve(a, b, c, r, x):
+    """Thomas algorithm: a_j x_{j-1} + b_j x_j + c_j x_{j+1} = r_j."""
+    n = b.shape[0]
+    cp = np.empty(n)
+    rp = np.empty(n)
+    cp[0] = c[0] / b[0]
+    rp[0] = r[0] / b[0]
+    for j in range(1, n):
+        m = b[j] - a[j] * cp[j - 1]
+        cp[j] = c[j] / m
+        rp[j] = (r[j] - a[j] * rp[j - 1]) / m
+    x[n - 1] = rp[n - 1]
+    for j in range(n - 2, -1, -1):
+        x[j] = rp[j] - cp[j] * x[j + 1]
+
+
+@njit(cache=True)
+def _wall_weight(WL, WR, i, j, n):
+    m = i - j + n - 1
+    if j == 0:
+        return WR[m]
+    if j == n - 1:
+        return WL[m]
+    return WL[m] + WR[m]
+
+
+@njit(cache=True)
+def sweep_line(
+    dx, p, h, dpdx, oil, u1, u2, um, T_oil, Ts1, Ts2,
+    WL1, WR1, WL2, WR2, nz, thermal, first, q1_lag, q2_lag, T_lag,
+    tol_T, tol_tau, max_inner, relax,
+    T, tau, u, gv, q1, q2, heat, inner_its,
+):
+    """One inlet-to-outlet sweep of the line-contact thermal model; fills the output arrays.
+
+    Parameters (arrays have one row per station, ``nz + 1`` columns)
+    ----------
+    dx : station spacing [m]; p, h, dpdx : pressure [Pa], film [m], dp/dx [Pa/m] per station;
+    oil : properties.oil_params array; u1, u2 : wall speeds [m/s]; um : mean speed (Maxwell term);
+    T_oil, Ts1, Ts2 : inlet oil and bulk wall temperatures [degC];
+    WL1, WR1, WL2, WR2 : surface influence weights (surface.wall_weights);
+    thermal : False holds T = T_oil everywhere (isothermal switch);
+    first : first sweep (no lagged values yet: stations start from the upstream station);
+    q1_lag, q2_lag : wall heat fluxes used for the influence of downstream stations [W/m^2];
+    T_lag : temperatures used downstream of reverse-flow nodes and as starting values [degC];
+    tol_T : relative change of absolute temperature ending the station iteration;
+    tol_tau : relative shear-stress change; max_inner : station iteration limit;
+    relax : initial under-relaxation of the temperature update (halved when the change grows).
+
+    Outputs: T, tau [Pa], u [m/s], gv (viscous shear rate) [1/s], heat (tau*gv) [W/m^3],
+    q1, q2 (heat flux into solid 1 and 2) [W/m^2], inner_its per station.
+
+    Returns ``(n_station_fail, n_tau_fail, n_reverse)``.
+    """
+    n = p.shape[0]
+    nzp = nz + 1
+    dZ = 1.0 / nz
+    tau0 = oil[I_TAU0]
+    G = oil[I_G]
+    inv_G = 0.0 if G >= 1e29 else 1.0 / G
+    wz = np.full(nzp, dZ)
+    wz[0] = 0.5 * dZ
+    wz[nzp - 1] = 0.5 * dZ
+    Zc = np.empty(nzp)
+    for j in range(nzp):
+        Zc[j] = j * dZ - 0.5
+
+    d = np.empty(nzp)
+    inv_eta = np.empty(nzp)
+    mx_r = np.empty(nzp)
+    Ti = np.empty(nzp)
+    Tn = np.empty(nzp)
+    tau_old = np.empty(nzp)
+    aa = np.empty(nzp)
+    bb = np.empty(nzp)
+    cc = np.empty(nzp)
+    rr = np.empty(nzp)
+    gtot = np.empty(nzp)
+
+    n_tau_fail = 0
+    n_station_fail = 0
+    n_reverse = 0
+    for i in range(n):
+        hi_ = h[i]
+        k_i = conductivity(p[i], oil)
+        target = (u2 - u1) / hi_
+        for j in range(nzp):
+            d[j] = dpdx[i] * hi_ * Zc[j]
+        # Maxwell term: dtau/dx by the same backward differences as the energy equation
+        if i >= 2:
+            mx_a = um * inv_G * 1.5 / dx
+            for j in range(nzp):
+                mx_r[j] = um * inv_G * (-2.0 * tau[i - 1, j] + 0.5 * tau[i - 2, j]) / dx
+        elif i == 1:
+            mx_a = um * inv_G / dx
+            for j in range(nzp):
+                mx_r[j] = -um * inv_G * tau[0, j] / dx
+        else:
+            mx_a = 0.0
+            for j in range(nzp):
+                mx_r[j] = 0.0
+        # wall influence of all other stations (downstream ones lagged)
+        C1 = 0.0
+        C2 = 0.0
+        if thermal:
+            for jj in range(n):
+                if jj < i:
+                    C1 += _wall_weight(WL1, WR1, i, jj, n) * q1[jj]
+                    C2 += _wall_weight(WL2, WR2, i, jj, n) * q2[jj]
+                elif jj > i:
+                    C1 += _wall_weight(WL1, WR1, i, jj, n) * q1_lag[jj]
+                    C2 += _wall_weight(WL2, WR2, i, jj, n) * q2_lag[jj]
+        w1s = _wall_weight(WL1, WR1, i, i, n)
+        w2s = _wall_weight(WL2, WR2, i, i, n)
+        # starting values
+        if not thermal:
+            for j in range(nzp):
+                Ti[j] = T_oil
+        elif first:
+            if i == 0:
+                for j in range(nzp):
+                    Ti[j] = T_oil
+                Ti[0] = Ts1
+                Ti[nzp - 1] = Ts2
+            else:
+                for j in range(nzp):
+                    Ti[j] = T[i - 1, j]
+        else:
+            for j in range(nzp):
+                Ti[j] = T_lag[i, j]
+        tm_guess = 0.0
+        if i > 0:
+            for j in range(nzp):
+                tm_guess += wz[j] * tau[i - 1, j]
+        for j in range(nzp):
+            tau_old[j] = 0.0
+
+        omega = relax
+        last_dT = 1e300
+        converged = False
+        its = 0
+        for it in range(max_inner):
+            its = it + 1
+            for j in range(nzp):
+                inv_eta[j] = 1.0 / roelands(p[i], Ti[j], oil)
+            tm, ok = solve_tau_mid(tm_guess, d, wz, inv_eta, tau0, mx_a, mx_r, target)
+            if not ok:
+                n_tau_fail += 1
+            tm_guess = tm
+            dtau = 0.0
+            tmax = 1.0
+            for j in range(nzp):
+                t = tm + d[j]
+                s = t / tau0
+                if s > 700.0:
+                    s = 700.0
+                elif s < -700.0:
+                    s = -700.0
+                gv[i, j] = tau0 * inv_eta[j] * math.sinh(s)
+                gtot[j] = gv[i, j] + mx_a * t + mx_r[j]
+                heat[i, j] = t * gv[i, j]
+                dtau = max(dtau, abs(t - tau_old[j]))
+                tmax = max(tmax, abs(t))
+                tau[i, j] = t
+                tau_old[j] = t
+            dtau /= tmax
+            # velocity u(Z) = u1 + h int_0^Z gdot
+            u[i, 0] = u1
+            for j in range(1, nzp):
+                u[i, j] = u[i, j - 1] + hi_ * 0.5 * dZ * (gtot[j - 1] + gtot[j])
+            if not thermal:
+                converged = True
+                break
+            # energy equation rows: -A T_{j-1} + (2A + conv) T_j - A T_{j+1} = heat + conv rhs
+            A = k_i / (hi_ * hi_ * dZ * dZ)
+            for j in range(1, nzp - 1):
+                rc = density(p[i], Ti[j], oil) * specific_heat(Ti[j], oil) * u[i, j]
+                aa[j] = -A
+                cc[j] = -A
+                bb[j] = 2.0 * A
+                rr[j] = heat[i, j]
+                if i == 0:
+                    pass  # inlet column fixed below
+                elif u[i, j] >= 0.0:
+                    if i >= 2:
+                        bb[j] += 1.5 * rc / dx
+                        rr[j] += rc * (2.0 * T[i - 1, j] - 0.5 * T[i - 2, j]) / dx
+                    else:
+                        bb[j] += rc / dx
+                        rr[j] += rc * T[i - 1, j] / dx
+                elif i < n - 1:
+                    # reverse flow: first-order forward difference, downstream values lagged
+                    bb[j] += -rc / dx
+                    rr[j] += -rc * T_lag[i + 1, j] / dx
+            c1 = w1s * k_i / (2.0 * hi_ * dZ)
+            c2 = w2s * k_i / (2.0 * hi_ * dZ)
+            jt = nzp - 1
+            jm = nzp - 2
+            if i == 0:
+                # inlet: oil at T_oil, walls respond to their own flux
+                for j in range(1, nzp - 1):
+                    Tn[j] = T_oil
+                Tn[0] = (Ts1 + C1 + 3.0 * c1 * T_oil) / (1.0 + 3.0 * c1)
+                Tn[jt] = (Ts2 + C2 + 3.0 * c2 * T_oil) / (1.0 + 3.0 * c2)
+            else:
+                # wall rows (1 + 3c) T0 - 4c T1 + c T2 = Ts + C; T2 eliminated with row 1
+                aa[0] = 0.0
+                bb[0] = 1.0 + 3.0 * c1 - c1 * aa[1] / cc[1]
+                cc[0] = -4.0 * c1 - c1 * bb[1] / cc[1]
+                rr[0] = Ts1 + C1 - c1 * rr[1] / cc[1]
+                aa[jt] = -4.0 * c2 - c2 * bb[jm] / aa[jm]
+                bb[jt] = 1.0 + 3.0 * c2 - c2 * cc[jm] / aa[jm]
+                cc[jt] = 0.0
+                rr[jt] = Ts2 + C2 - c2 * rr[jm] / aa[jm]
+                _tridiag_solve(aa, bb, cc, rr, Tn)
+            dT = 0.0
+            for j in range(nzp):
+                dT = max(dT, abs(Tn[j] - Ti[j]) / (abs(Ti[j] + T_KELVIN)))
+            if dT > last_dT and omega > 0.05:
+                omega *= 0.5
+            last_dT = dT
+            for j in range(nzp):
+                Ti[j] = Ti[j] + omega * (Tn[j] - Ti[j])
+            if dT < tol_T and dtau < tol_tau:
+                converged = True
+                break
+        inner_its[i] = its
+        if not converged:
+            n_station_fail += 1
+        for j in range(nzp):
+            T[i, j] = Ti[j]
+            if u[i, j] < 0.0:
+                n_reverse += 1
+        if thermal:
+            q1[i] = k_i / (hi_ * 2.0 * dZ) * (-3.0 * Ti[0] + 4.0 * Ti[1] - Ti[2])
+            q2[i] = -k_i / (hi_ * 2.0 * dZ) * (3.0 * Ti[nzp - 1] - 4.0 * Ti[nzp - 2] + Ti[nzp - 3])
+        else:
+            q1[i] = 0.0
+            q2[i] = 0.0
+    return n_station_fail, n_tau_fail, n_reverse

@@ -1,0 +1,321 @@
+"""Thermal non-linear Roelands-Eyring model on one line profile (thesis 3.2, MODEL.md 9).
+
+:func:`solve_line` runs the compiled march (kernels.py) for a :class:`LineProfile` and returns
+the fields, the friction per unit length, the heat budget and a convergence report.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ehl_multigrid.convergence import ConvergenceReport
+from ehl_multigrid.errors import ConvergenceError, InputError, require_range
+from ehl_multigrid.lubricant import T_MAX_C, T_MIN_C, Lubricant
+from ehl_multigrid.solids import Solid
+
+from . import kernels
+from .options import ThermalOptions
+from .profiles import LineProfile
+from .properties import T_ROELANDS_MIN, oil_params
+from .surface import wall_weights
+
+
+@dataclass(frozen=True)
+class Surroundings:
+    """What the film sees besides its own profile: oil, solids, speeds and temperatures.
+
+    u1, u2 : speeds of surface 1 (Z = 0) and surface 2 (Z = 1) [m/s], both >= 0;
+    T_oil : inlet oil temperature [degC]; T_surface1, T_surface2 : bulk temperatures [degC].
+    """
+
+    lubricant: Lubricant
+    body1: Solid
+    body2: Solid
+    u1: float
+    u2: float
+    T_oil: float
+    T_surface1: float
+    T_surface2: float
+
+    def __post_init__(self) -> None:
+        require_range("u1", self.u1, 0.0, 1e3, "m/s")
+        require_range("u2", self.u2, 0.0, 1e3, "m/s")
+        if not self.u1 + self.u2 > 0:
+            raise InputError("u1 + u2 = 0 m/s: the thermal model needs a positive sum velocity")
+        for name in ("T_oil", "T_surface1", "T_surface2"):
+            require_range(name, getattr(self, name), T_MIN_C, T_MAX_C, "degC")
+
+
+@dataclass
+class LineSolution:
+    """Fields of one line profile; arrays are (station, Z node).
+
+    force_per_length : friction force per unit length of line [N/m], ``-int tau_mean dx``,
+        positive when surface 1 is faster (it opposes surface 1's motion);
+    traction1/2_per_length : shear force of the film on surface 1 / 2 along +x [N/m];
+    heat : dict of the heat budget per unit length [W/m]: shear, conduction1, conduction2,
+        convection (the (3.5) convection term integrated), enthalpy_flux (outlet minus inlet
+        of rho Cp u T h, for reference), balance (relative residual of
+        shear - conduction - convection).
+    """
+
+    profile: LineProfile
+    Z: np.ndarray
+    T: np.ndarray
+    tau: np.ndarray
+    u: np.ndarray
+    gdot: np.ndarray
+    heat_rate: np.ndarray
+    q1: np.ndarray
+    q2: np.ndarray
+    force_per_length: float
+    traction1_per_length: float
+    traction2_per_length: float
+    heat: dict[str, float]
+    report: ConvergenceReport
+    T_oil: float
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def T_surface1(self) -> np.ndarray:
+        return self.T[:, 0]
+
+    @property
+    def T_surface2(self) -> np.ndarray:
+        return self.T[:, -1]
+
+    @property
+    def tau_mean(self) -> np.ndarray:
+        """Film-mean (= mid-film, tau is linear in Z) shear stress per station [Pa]."""
+        return _zmean(self.tau)
+
+    def max_temperature_rise(self) -> float:
+        return float(np.max(self.T) - self.T_oil)
+
+    def mean_temperature_rise(self) -> float:
+        """Film-mean temperature rise averaged over the Hertz contact of this line [K]."""
+        m = self.profile.contact_mask
+        if m.sum() < 2:
+            return 0.0
+        X = self.profile.X[m]
+        Tm = _zmean(self.T)[m]
+        return float(np.trapezoid(Tm, X) / (X[-1] - X[0]) - self.T_oil)
+
+
+def _zmean(a: np.ndarray) -> np.ndarray:
+    return np.trapezoid(a, dx=1.0 / (a.shape[1] - 1), axis=1)
+
+
+def solve_line(profile: LineProfile, env: Surroundings, options: ThermalOptions, kernel_length: float = math.inf) -> LineSolution:
+    """Solve the thermal Eyring model on one line profile.
+
+    Raises :class:`ConvergenceError` on non-finite values or temperatures outside the property
+    model (T < -135 degC); an unconverged but finite solution is returned with
+    ``report.converged = False`` and the reason in ``report.message``.
+    """
+    t0 = time.perf_counter()
+    nx = profile.X.size
+    nz = options.nz
+    nzp = nz + 1
+    dx = profile.dx
+    p = np.ascontiguousarray(profile.p, dtype=np.float64)
+    h = np.ascontiguousarray(profile.h, dtype=np.float64)
+    if np.any(~(h > 0)):
+        raise InputError("film thickness h must be > 0 m at every station (zero film)")
+    if uses_momentum(profile, options):
+        dpdx = np.ascontiguousarray(profile.dpdx, dtype=np.float64)
+    else:
+        dpdx = np.zeros(nx)
+    oil = oil_params(env.lubricant, options.G)
+    um = 0.5 * (env.u1 + env.u2)
+    if options.thermal:
+        WL1, WR1 = wall_weights(nx, dx, env.u1, env.body1, options.surface_kernel, kernel_length)
+        WL2, WR2 = wall_weights(nx, dx, env.u2, env.body2, options.surface_kernel, kernel_length)
+        lagged = _reaches_upstream(WL1, WR1) or _reaches_upstream(WL2, WR2)
+    else:
+        WL1 = WR1 = WL2 = WR2 = np.zeros(2 * nx - 1)
+        lagged = False
+    T = np.full((nx, nzp), float(env.T_oil))
+    tau = np.zeros((nx, nzp))
+    u = np.zeros((nx, nzp))
+    gv = np.zeros((nx, nzp))
+    heat = np.zeros((nx, nzp))
+    q1 = np.zeros(nx)
+    q2 = np.zeros(nx)
+    inner = np.zeros(nx, dtype=np.int64)
+    q1_lag = np.zeros(nx)
+    q2_lag = np.zeros(nx)
+    T_lag = T.copy()
+    # lagged fluxes enter through sum W q: scale them to kelvin by the self weights
+    s1 = max(abs(WL1[nx - 1] + WR1[nx - 1]), 1e-300)
+    s2 = max(abs(WL2[nx - 1] + WR2[nx - 1]), 1e-300)
+    acc = _Anderson(depth=6)
+    history: list[float] = []
+    sweeps_ok = False
+    n_fail = n_tau_fail = n_rev = 0
+    sweeps = 0
+    for k in range(options.max_sweeps):
+        sweeps = k + 1
+        n_fail, n_tau_fail, n_rev = kernels.sweep_line(
+            dx, p, h, dpdx, oil, float(env.u1), float(env.u2), um, float(env.T_oil),
+            float(env.T_surface1), float(env.T_surface2), WL1, WR1, WL2, WR2, nz, bool(options.thermal), k == 0,
+            q1_lag, q2_lag, T_lag, float(options.tol_T), float(options.tol_tau), int(options.max_inner),
+            float(options.relax), T, tau, u, gv, q1, q2, heat, inner,
+        )
+        change = 1.0 if k == 0 else float(np.max(np.abs(T - T_lag) / np.abs(T_lag + kernels.T_KELVIN)))
+        history.append(change)
+        if not (options.thermal and (lagged or n_rev > 0)):
+            sweeps_ok = True
+            break
+        if k > 0 and change < options.tol_T:
+            sweeps_ok = True
+            break
+        if not np.all(np.isfinite(T)):
+            break
+        x_old = np.concatenate([q1_lag * s1, q2_lag * s2, T_lag.ravel()])
+        g = np.concatenate([q1 * s1, q2 * s2, T.ravel()])
+        x_new = g if k == 0 else acc.step(x_old, g)
+        q1_lag = x_new[:nx] / s1
+        q2_lag = x_new[nx:2 * nx] / s2
+        T_lag = x_new[2 * nx:].reshape(nx, nzp).copy()
+    sweep_change = np.array(history)
+    wall = time.perf_counter() - t0
+    converged = bool(sweeps_ok and n_fail == 0 and n_tau_fail == 0)
+    parts = []
+    if n_fail:
+        parts.append(f"{n_fail} station(s) did not reach tol_T/tol_tau in {options.max_inner} iterations")
+    if n_tau_fail:
+        parts.append(f"{n_tau_fail} shear-stress solve(s) failed")
+    if not sweeps_ok:
+        parts.append(f"sweeps did not settle in {options.max_sweeps}")
+    message = "converged" if converged else "; ".join(parts)
+    report = ConvergenceReport(
+        converged=converged,
+        message=message,
+        iterations=int(sweeps),
+        residual_history=sweep_change,
+        tolerances={"T": options.tol_T, "tau": options.tol_tau},
+        wall_s=wall,
+        extra={
+            "inner_iterations": inner.copy(),
+            "reverse_flow_nodes": int(n_rev),
+            "lagged_kernel": bool(lagged),
+        },
+    )
+    hint = "raise max_inner, lower relax, or check the film/pressure input"
+    kernels_check(T, tau, report, hint)
+    if np.max(T) > T_MAX_C:
+        warning = (f"temperature reaches {np.max(T):.4g} degC, above the {T_MAX_C:g} degC limit of the "
+                   "lubricant property model: the oil would degrade; treat the result as qualitative")
+        report.extra["warnings"] = [warning]
+        report.message = f"{report.message}; warning: {warning}"
+    Z = np.linspace(0.0, 1.0, nzp)
+    x = profile.x
+    tau_m = _zmean(tau)
+    F = -float(np.trapezoid(tau_m, x))
+    F1 = float(np.trapezoid(tau[:, 0], x))
+    F2 = -float(np.trapezoid(tau[:, -1], x))
+    budget = heat_budget(profile, T, u, heat, q1, q2, env.lubricant) if options.thermal else {}
+    return LineSolution(
+        profile=profile, Z=Z, T=T, tau=tau, u=u, gdot=gv, heat_rate=heat, q1=q1, q2=q2,
+        force_per_length=F, traction1_per_length=F1, traction2_per_length=F2, heat=budget,
+        report=report, T_oil=float(env.T_oil),
+    )
+
+
+def uses_momentum(profile: LineProfile, options: ThermalOptions) -> bool:
+    """Whether the pressure-gradient term of (3.4) is applied (see ThermalOptions.momentum)."""
+    if options.momentum == "auto":
+        return profile.source not in ("hertz", "thesis-slice")
+    return options.momentum == "on"
+
+
+class _Anderson:
+    """Anderson acceleration of the sweep map x -> g(x) (Walker & Ni 2011, type II, mixing 1).
+
+    The lagged quantities (downstream wall fluxes, temperatures behind reverse flow) couple the
+    stations both ways; for a slow or stationary surface the plain sweep iteration is barely
+    contractive, Anderson mixing makes it converge in a few sweeps.
+    """
+
+    def __init__(self, depth: int = 6) -> None:
+        self.depth = depth
+        self.xs: list[np.ndarray] = []
+        self.fs: list[np.ndarray] = []
+
+    def step(self, x: np.ndarray, g: np.ndarray) -> np.ndarray:
+        f = g - x
+        self.xs.append(x.copy())
+        self.fs.append(f)
+        if len(self.fs) > self.depth + 1:
+            self.xs.pop(0)
+            self.fs.pop(0)
+        if len(self.fs) < 2:
+            return g
+        dF = np.stack([self.fs[i + 1] - self.fs[i] for i in range(len(self.fs) - 1)], axis=1)
+        dX = np.stack([self.xs[i + 1] - self.xs[i] for i in range(len(self.xs) - 1)], axis=1)
+        with np.errstate(over="ignore", invalid="ignore"):
+            norms = np.linalg.norm(dF, axis=0)
+            if not np.all(np.isfinite(norms)) or np.any(norms == 0):
+                self.xs.clear()
+                self.fs.clear()
+                return g
+            gamma, *_ = np.linalg.lstsq(dF / norms, f, rcond=1e-10)
+            out = g - (dX + dF) @ (gamma / norms)
+        if not np.all(np.isfinite(out)):
+            self.xs.clear()
+            self.fs.clear()
+            return g
+        return out
+
+
+def _reaches_upstream(WL: np.ndarray, WR: np.ndarray) -> bool:
+    """True when a surface kernel carries heat upstream (index m = i - j < 0 in WL, m <= 0 in WR)."""
+    i0 = (WL.size - 1) // 2
+    up = np.sum(np.abs(WL[:i0])) + np.sum(np.abs(WR[: i0 + 1]))
+    return bool(up > 1e-12 * (np.sum(np.abs(WL)) + np.sum(np.abs(WR))))
+
+
+def kernels_check(T: np.ndarray, tau: np.ndarray, report: ConvergenceReport, hint: str) -> None:
+    from ehl_multigrid.convergence import check_finite
+
+    check_finite("temperature T", T, report, hint)
+    check_finite("shear stress tau", tau, report, hint)
+    if np.min(T) <= T_ROELANDS_MIN:
+        raise ConvergenceError(
+            f"temperature fell to {np.min(T):.4g} degC, below the Roelands limit {T_ROELANDS_MIN} degC", report, hint
+        )
+
+
+def heat_budget(
+    profile: LineProfile, T: np.ndarray, u: np.ndarray, heat: np.ndarray, q1: np.ndarray, q2: np.ndarray,
+    lub: Lubricant,
+) -> dict[str, float]:
+    """Heat budget per unit length of line [W/m] from the converged fields.
+
+    Computed with quadratures independent of the solver's stencils: trapezoid in Z and x,
+    second-order central differences for dT/dx. Rho and Cp from the core Lubricant.
+    """
+    x = profile.x
+    h = profile.h
+    nzp = T.shape[1]
+    dZ = 1.0 / (nzp - 1)
+    P = np.repeat(profile.p[:, None], nzp, axis=1)
+    rho = lub.density(P, T)
+    cp = lub.specific_heat(T)
+    shear = float(np.trapezoid(h * np.trapezoid(heat, dx=dZ, axis=1), x))
+    cond1 = float(np.trapezoid(q1, x))
+    cond2 = float(np.trapezoid(q2, x))
+    dTdx = np.gradient(T, profile.dx, axis=0, edge_order=2)
+    conv = float(np.trapezoid(h * np.trapezoid(rho * cp * u * dTdx, dx=dZ, axis=1), x))
+    flux = h * np.trapezoid(rho * cp * u * T, dx=dZ, axis=1)
+    enth = float(flux[-1] - flux[0])
+    bal = (shear - cond1 - cond2 - conv) / shear if shear > 0 else 0.0
+    return {
+        "shear": shear, "conduction1": cond1, "conduction2": cond2, "convection": conv,
+        "enthalpy_flux": enth, "balance": bal,
+    }
