@@ -208,6 +208,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("run", help="the main job on a scene (default: the built-in default scene)")
     p.add_argument("scene", nargs="?", default=None, help="built-in scene name or TOML file")
+    p.add_argument("--fidelity", choices=["fast", "standard", "reference"], default=None)
+    p.add_argument("--tolerance", type=float, default=None, help="target relative accuracy (overrides --fidelity)")
     add_common_options(p)
     p.set_defaults(func=_cmd_run)
 

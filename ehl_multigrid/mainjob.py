@@ -1,14 +1,21 @@
-"""``ehl run``: the main job on a scene.
+"""``ehl run``: the main job on a scene, planned and end to end.
 
-The core stage resolves the scene, computes Hertz and the fitted film, and stores the Hertz
-pressure with the fitted film as fields. Layers above add stages through the ``ehl.stages``
-entry-point group (a callable ``stage(scene, outdir, args) -> dict``), run in name order,
-so the core never imports them.
+1. :func:`~ehl_multigrid.plan.make_plan` decides what the scene needs (with the numbers why).
+2. The core *film* stage computes the pressure and film field: the multigrid solver when the plan
+   asks for it (grid from the fidelity), otherwise Hertz pressure with the fitted film.
+3. Stages that the layers above register in the ``ehl.stages`` entry-point group run next, in
+   the order of their ``order`` attribute (thermal traction curve, Stribeck curve, ...). A stage
+   is a callable ``stage(ctx: RunContext) -> StageOutput | None``; the core never imports them.
+4. All results go into one HDF5 file (rewritten atomically after every stage, so an interrupted
+   run keeps the finished stages) and a Markdown report with the figures says what was modelled
+   and why.
 """
 
 from __future__ import annotations
 
 import argparse
+import time
+from dataclasses import dataclass, field
 from importlib.metadata import entry_points
 from pathlib import Path
 from typing import Any
@@ -16,14 +23,48 @@ from typing import Any
 import numpy as np
 
 from .hertz import hertz_pressure_line, hertz_pressure_point
-from .results import Result
+from .plan import Plan, make_plan
+from .results import Result, save_results
 from .scene import Scene, load_scene
+
+
+@dataclass
+class StageOutput:
+    """What one stage of the main job produced."""
+
+    name: str
+    result: Result | None = None
+    summary: dict[str, Any] = field(default_factory=dict)
+    figures: list[Path] = field(default_factory=list)
+    text: str = ""
+    wall_s: float = float("nan")
+
+
+@dataclass
+class RunContext:
+    """Everything a stage may read: scene, plan, output folder, earlier stages' results."""
+
+    scene: Scene
+    plan: Plan
+    outdir: Path
+    plots: bool = True
+    progress: bool = True
+    outputs: dict[str, StageOutput] = field(default_factory=dict)
+
+    def result(self, name: str) -> Result | None:
+        out = self.outputs.get(name)
+        return out.result if out is not None else None
+
+
+# -- the core film stage -------------------------------------------------------------------------
+#: Finest grid of the multigrid solver per fidelity (points per direction).
+FILM_GRID = {"line": {"fast": 1025, "standard": 4097, "reference": 16385},
+             "point": {"fast": 129, "standard": 257, "reference": 513}}
 
 
 def hertz_result(scene: Scene, n: int = 201) -> Result:
     """Hertz pressure and fitted uniform film on the scene's contact, as a :class:`Result`."""
     hz = scene.hertz
-    Hc, hc = scene.central_film_fit()
     res = Result("hertz_fit", scene=scene)
     x = np.linspace(-1.5 * hz.a, 1.5 * hz.a, n)
     res.add_coord("x", x, "m", "rolling direction")
@@ -69,8 +110,81 @@ def plot_hertz(res: Result, path: Path) -> Path:
     ax.set_title(f"{sc.name}: pmax = {res.scalars['pmax'] / 1e9:.3g} GPa, hc(fit) = {res.scalars['hc_fit'] * 1e9:.3g} nm")
     fig.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=110)
     plt.close(fig)
+    return path
+
+
+def film_stage(ctx: RunContext) -> StageOutput:
+    """Pressure and film: multigrid solver or Hertz + fit, as the plan says."""
+    scene, plan = ctx.scene, ctx.plan
+    dec = plan.get("film")
+    contact = "line" if scene.kind == "line" else "point"
+    figures: list[Path] = []
+    if dec.setting == "multigrid solver":
+        points = FILM_GRID[contact][plan.fidelity]
+        if contact == "line":
+            from .line import solve_line
+
+            sol = solve_line(scene=scene, points=points)
+        else:
+            from .point import solve_point
+
+            sol = solve_point(scene=scene, points=points)
+        res = sol.to_result(scene) if contact == "line" else sol.to_result()
+        summary = {k: res.scalars.get(k) for k in ("Hc", "Hm", "hc", "hm", "p_spike", "load_error", "points", "converged")}
+        summary["Hc_fit"], summary["hc_fit"] = scene.central_film_fit()
+        text = (f"Film from the multigrid solver on {points} points per direction: hc = {res.scalars['hc'] * 1e9:.4g} nm, "
+                f"hm = {res.scalars['hm'] * 1e9:.4g} nm (fit: hc = {summary['hc_fit'] * 1e9:.4g} nm); "
+                f"load error {res.scalars['load_error']:.2g}, converged: {res.scalars['converged']}.")
+        if ctx.plots:
+            if contact == "line":
+                from .line.plots import plot_solution
+
+                figures += [Path(f) for f in plot_solution(sol, ctx.outdir / f"{scene.name}_film", scene.name)]
+            else:
+                from .point.plots import plot_result
+
+                figures += [Path(f) for f in plot_result(res, ctx.outdir, f"{scene.name}_film")]
+    else:
+        res = hertz_result(scene)
+        Hc, hc = scene.central_film_fit()
+        summary = {"Hc_fit": Hc, "hc_fit": hc, "pmax": scene.hertz.pmax}
+        text = (f"Film from the {'Moes' if contact == 'line' else 'Nijenbanning'} fit: hc = {hc * 1e9:.4g} nm "
+                f"under Hertz pressure pmax = {scene.hertz.pmax / 1e9:.4g} GPa.")
+        if ctx.plots:
+            figures.append(plot_hertz(res, ctx.outdir / f"{scene.name}_film.png"))
+    return StageOutput("film", res, summary, figures, text)
+
+
+# -- driver --------------------------------------------------------------------------------------
+def registered_stages() -> list[tuple[str, Any]]:
+    stages = []
+    for ep in entry_points(group="ehl.stages"):
+        fn = ep.load()
+        stages.append((getattr(fn, "order", 100), ep.name, fn))
+    return [(name, fn) for _, name, fn in sorted(stages, key=lambda t: (t[0], t[1]))]
+
+
+def write_report(ctx: RunContext, path: Path) -> Path:
+    sc, plan = ctx.scene, ctx.plan
+    lines = [f"# {sc.name}", "", sc.description, ""]
+    if sc.source:
+        lines += [f"Source: {sc.source}", ""]
+    s = sc.summary()
+    lines += ["## Contact", "",
+              f"{sc.kind} contact, load {sc.load:.4g} N, pmax {s['pmax'] / 1e9:.4g} GPa, us {sc.us:.4g} m/s, "
+              f"slip {sc.slip:g}, oil {sc.lubricant.name} at {sc.T_oil:g} degC (eta0 {s['eta0']:.4g} Pa s); "
+              f"Moes M = {s['M']:.4g}, L = {s['L']:.4g}.", "",
+              f"## What was modelled and why (fidelity {plan.fidelity}, tolerance {plan.tolerance:g})", "",
+              "| model | included | setting | estimate | threshold | why |", "|---|---|---|---|---|---|"]
+    for d in plan.decisions:
+        lines.append(f"| {d.model} | {'yes' if d.include else 'no'} | {d.setting} | {d.estimate:.3g} | {d.threshold:.3g} | {d.reason} |")
+    for name, out in ctx.outputs.items():
+        lines += ["", f"## {name} ({out.wall_s:.2f} s)", "", out.text, ""]
+        for fig in out.figures:
+            lines.append(f"![{fig.stem}]({Path(fig).name})")
+    path.write_text("\n".join(lines) + "\n")
     return path
 
 
@@ -78,18 +192,45 @@ def run_main_job(args: argparse.Namespace) -> dict[str, Any]:
     scene = load_scene(args.scene)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    res = hertz_result(scene)
-    h5 = res.save(out / f"{scene.name}.h5")
-    payload: dict[str, Any] = dict(scene.summary())
-    payload["hdf5"] = str(h5)
-    if not args.no_plots:
-        payload["png"] = str(plot_hertz(res, out / f"{scene.name}_hertz.png"))
-    for ep in sorted(entry_points(group="ehl.stages"), key=lambda e: e.name):
-        stage = ep.load()
-        payload[ep.name] = stage(scene, out, args)
+    plan = make_plan(scene, fidelity=getattr(args, "fidelity", None), tolerance=getattr(args, "tolerance", None))
+    ctx = RunContext(scene, plan, out, plots=not args.no_plots, progress=not args.json)
+    stages: list[tuple[str, Any]] = [("film", film_stage)] + registered_stages()
+    h5 = out / f"{scene.name}.h5"
+    bar = None
+    if ctx.progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=len(stages), desc=f"ehl run {scene.name}", unit="stage")
+    try:
+        for name, stage in stages:
+            if bar is not None:
+                bar.set_postfix_str(name)
+            t0 = time.perf_counter()
+            output = stage(ctx)
+            if output is not None:
+                output.wall_s = time.perf_counter() - t0
+                if output.result is not None:
+                    output.result.meta["plan"] = plan.to_dict()
+                ctx.outputs[name] = output
+                save_results(h5, {k: o.result for k, o in ctx.outputs.items() if o.result is not None},
+                             meta={"plan": plan.to_dict(), "scene": scene.name})
+            if bar is not None:
+                bar.update(1)
+    finally:
+        if bar is not None:
+            bar.close()
+        if ctx.outputs:
+            write_report(ctx, out / "report.md")
+    payload: dict[str, Any] = {"scene": scene.name, "hdf5": str(h5), "report": str(out / "report.md"),
+                               "plan": {d.model: d.setting if d.include else "off" for d in plan.decisions}}
+    for name, o in ctx.outputs.items():
+        payload[name] = o.summary
     if not args.json:
         from .cli import print_table
+        from .plan import print_plan
 
-        print(f"scene {scene.name}: {scene.description}")
-        print_table({k: v for k, v in payload.items() if not isinstance(v, dict)})
+        print_plan(plan)
+        for name, o in ctx.outputs.items():
+            print(f"{name}: {o.text}")
+        print_table({"hdf5": str(h5), "report": str(out / "report.md")})
     return payload

@@ -49,6 +49,11 @@ class Decision:
     units: str
     reason: str
 
+    def __post_init__(self) -> None:
+        self.include = bool(self.include)  # numpy comparisons give np.bool_
+        self.estimate = float(self.estimate)
+        self.threshold = float(self.threshold)
+
 
 @dataclass
 class Plan:

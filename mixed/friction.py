@@ -63,6 +63,7 @@ class MixedFriction:
     thermal_converged: np.ndarray | None = None
     thermal_used: np.ndarray | None = None
     thermal_messages: list[str] = field(default_factory=list)
+    film_limited: np.ndarray | None = None
     wall_s: float = math.nan
 
     @property
@@ -98,6 +99,7 @@ def mixed_friction(
     thermal: bool = False,
     thermal_options: dict[str, Any] | None = None,
     min_film_fraction: float = 1e-6,
+    limit_film_to_boundary: bool = True,
     progress: Callable[[int], None] | None = None,
 ) -> MixedFriction:
     """Coefficient of friction (4.39) and its asperity and film parts for a solved load sharing.
@@ -111,6 +113,10 @@ def mixed_friction(
     thermal : film force from ``thermal.film_friction`` (chapter 5.4) instead of (4.33)-(4.37).
     thermal_options : extra keyword options passed to ``thermal.film_friction``.
     min_film_fraction : below this ``Ph/P`` the thermal solve is skipped (isothermal film term).
+    limit_film_to_boundary : cap the film's shear stress at ``fc pavehl`` (its force at
+        ``fc Ph``). A film sheared harder than the boundary layers would slip at them instead;
+        without the cap a starved film of molecular thickness (hf,r << 1 nm) gives Eyring
+        stresses above the boundary friction. Where the cap acts, ``film_limited`` is True.
     progress : called with 1 after each thermal point (for a progress bar).
     """
     t0 = time.perf_counter()
@@ -133,6 +139,11 @@ def mixed_friction(
     )
     if thermal:
         _thermal_film(scene, sharing, out, slip, thermal_options or {}, min_film_fraction, progress)
+    out.film_limited = np.zeros(us.size, dtype=bool)
+    if limit_film_to_boundary:
+        cap = fc * sharing.Ph
+        out.film_limited = out.film_force > cap
+        out.film_force = np.where(out.film_limited, cap, out.film_force)
     out.film = out.film_force / P
     out.coefficient = out.asperity + out.film
     out.wall_s = time.perf_counter() - t0

@@ -235,6 +235,8 @@ def stribeck_result(scene: Scene, curves: list[StribeckCurve], *, thermal: bool,
     r.add_field("regime", np.stack([c.regime for c in curves]).astype(np.int8), "-", dims, "0 BL, 1 ML, 2 EHL")
     r.add_field("boundary_guard", np.stack([c.sharing.boundary for c in curves]).astype(np.int8), "-", dims,
                 "1 where the starved film is below hs_min (all load on the asperities)")
+    r.add_field("film_limited", np.stack([c.friction.film_limited for c in curves]).astype(np.int8), "-", dims,
+                "1 where the film shear stress was capped at fc pavehl (molecularly thin film)")
     sigma = curves[0].sharing.roughness.Rq
     hoil = np.array([c.hoil for c in curves])
     r.add_field("hoil", hoil, "m", ("case",), "inlet oil film (inf = flooded)")

@@ -6,7 +6,6 @@ import pytest
 
 from ehl_multigrid.cli import main
 from ehl_multigrid.fits import moes_line_central, nijenbanning_central
-from ehl_multigrid.results import Result
 from ehl_multigrid.scene import load_scene
 
 
@@ -51,11 +50,3 @@ def test_show_unknown_scene_exits_2(capsys):
 def test_scenes_lists_the_builtins(capsys):
     out = run_json(capsys, ["scenes", "--json"])
     assert {"default", "appendix_d_point"} <= {r["name"] for r in out["scenes"]}
-
-
-def test_run_writes_a_loadable_result_and_png(capsys, tmp_path):
-    out = run_json(capsys, ["run", "--out", str(tmp_path), "--json"])
-    res = Result.load(out["hdf5"])
-    assert res.scene.name == "default"
-    assert res.scalars["pmax"] == pytest.approx(out["pmax"])
-    assert (tmp_path / "default_hertz.png").stat().st_size > 1000
