@@ -1,0 +1,152 @@
+"""One grid of the multilevel line solver: coordinates, kernel, deformation operator, the
+FAS right-hand sides and the current iterate (P, H0), with the operations the cycles need."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg
+
+from .deformation import make_deformation
+from .discrete import (
+    distribute_changes,
+    fluid_state,
+    line_relaxation_system,
+    projected,
+    reynolds_residual,
+)
+
+
+@dataclass
+class State:
+    """Film and fluid properties of an iterate, with its residual."""
+
+    H: np.ndarray
+    rho: np.ndarray
+    drho: np.ndarray
+    lne: np.ndarray
+    dlne: np.ndarray
+    eps: np.ndarray
+    r: np.ndarray
+    scale: float
+
+
+@dataclass
+class LineLevel:
+    """Grid ``X_i = xmin + i h``, ``i = 0 .. n-1``, and its unknowns.
+
+    ``f`` (Reynolds) and ``g`` (load) are the FAS right-hand sides: ``f = 0``, ``g = pi/2``
+    on the finest grid.
+    """
+
+    n: int
+    xmin: float
+    xmax: float
+    par: np.ndarray
+    lam: float
+    elastic: bool
+    deformation: str
+    order: int = 2
+    mlmi_order: int = 12
+    mlmi_radius: int = 48
+    X: np.ndarray = field(init=False)
+    h: float = field(init=False)
+    P: np.ndarray = field(init=False)
+    H0: float = 0.0
+    f: np.ndarray = field(init=False)
+    g: float = float(np.pi / 2)
+
+    def __post_init__(self) -> None:
+        self.X = np.linspace(self.xmin, self.xmax, self.n)
+        self.h = (self.xmax - self.xmin) / (self.n - 1)
+        method = self.deformation if self.n > 129 else "direct"
+        self.op = make_deformation(self.n, self.h, method, self.mlmi_order, self.mlmi_radius)
+        self.kernel = self.op.kernel
+        self.P = np.zeros(self.n)
+        self.f = np.zeros(self.n)
+        #: points kept unchanged on this grid (FAS coarse grids near the fine free boundary)
+        self.frozen = np.zeros(self.n, dtype=np.bool_)
+
+    # -- evaluation -----------------------------------------------------------------------
+    def deform(self, P: np.ndarray) -> np.ndarray:
+        return self.op.apply(P) if self.elastic else np.zeros(self.n)
+
+    def state(self, P: np.ndarray | None = None, H0: float | None = None) -> State:
+        P = self.P if P is None else P
+        H0 = self.H0 if H0 is None else H0
+        W = self.deform(P)
+        H, rho, drho, lne, dlne, eps = fluid_state(P, W, self.X, H0, self.par, self.lam, self.elastic)
+        r, scale = reynolds_residual(P, H, rho, eps, self.h, self.f, self.order)
+        return State(H, rho, drho, lne, dlne, eps, r, scale)
+
+    def load(self, P: np.ndarray | None = None) -> float:
+        """``h sum P`` (trapezoid; P = 0 at the ends)."""
+        return float(self.h * np.sum(self.P if P is None else P))
+
+    def load_residual(self) -> float:
+        """``g - h sum P`` (FAS load equation residual)."""
+        return self.g - self.load()
+
+    def residual_norm(self, st: State) -> float:
+        """Mean absolute complementarity residual (frozen points excluded)."""
+        rp = projected(st.r, self.P)
+        rp[self.frozen] = 0.0
+        return float(np.mean(np.abs(rp[1:-1])))
+
+    # -- relaxation -----------------------------------------------------------------------
+    def relax(self, threshold: float, omega_gs: float, omega_jac: float, band: int = 4,
+              st: State | None = None, threshold_h: float = 0.0) -> State:
+        """One collective line-relaxation sweep (discrete.line_relaxation_system) at fixed H0.
+        Returns the state *before* the sweep (its residual is the one the sweep reduced)."""
+        st = self.state() if st is None else st
+        ab, rhs, jac = line_relaxation_system(
+            self.P, st.H, st.rho, st.drho, st.eps, st.r, self.kernel, self.h, self.order,
+            self.elastic, threshold, band, self.frozen, threshold_h)
+        delta = _solve_band(ab, rhs, band)
+        damp = np.ones(self.n)
+        self.P = distribute_changes(self.P, delta, jac, omega_gs, omega_jac, damp, self.frozen)
+        return st
+
+
+def _solve_band(ab: np.ndarray, rhs: np.ndarray, band: int) -> np.ndarray:
+    try:
+        return scipy.linalg.solve_banded((band, band), ab, rhs, check_finite=False)
+    except (np.linalg.LinAlgError, ValueError):
+        # singular line system (e.g. a film collapsed to zero): point Jacobi this sweep
+        d = ab[band]
+        return np.where(np.abs(d) > 0.0, rhs / np.where(d == 0.0, 1.0, d), 0.0)
+
+
+# -- transfers ------------------------------------------------------------------------------
+def inject(u: np.ndarray) -> np.ndarray:
+    return u[::2].copy()
+
+
+def full_weighting(r: np.ndarray) -> np.ndarray:
+    out = np.zeros((r.shape[0] - 1) // 2 + 1)
+    out[1:-1] = 0.25 * r[1:-3:2] + 0.5 * r[2:-2:2] + 0.25 * r[3:-1:2]
+    return out
+
+
+def interpolate_linear(u: np.ndarray) -> np.ndarray:
+    out = np.empty(2 * (u.shape[0] - 1) + 1)
+    out[::2] = u
+    out[1::2] = 0.5 * (u[:-1] + u[1:])
+    return out
+
+
+def interpolate_cubic(u: np.ndarray) -> np.ndarray:
+    """Four-point (cubic) interpolation, one-sided quadratic at the ends (FMG interpolation)."""
+    nc = u.shape[0]
+    out = np.empty(2 * (nc - 1) + 1)
+    out[::2] = u
+    mid = np.empty(nc - 1)
+    if nc >= 4:
+        mid[1:-1] = (-u[:-3] + 9.0 * u[1:-2] + 9.0 * u[2:-1] - u[3:]) / 16.0
+        mid[0] = (3.0 * u[0] + 6.0 * u[1] - u[2]) / 8.0
+        mid[-1] = (3.0 * u[-1] + 6.0 * u[-2] - u[-3]) / 8.0
+    else:
+        mid[:] = 0.5 * (u[:-1] + u[1:])
+    out[1::2] = mid
+    return out

@@ -1,0 +1,91 @@
+"""``ehl solve`` for point and elliptic contacts (``--contact point|elliptic`` or a point scene)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from dataclasses import fields
+from pathlib import Path
+
+from ..errors import InputError, reject_unknown_keys
+from .fas import SolverOptions, solve_fas
+from .postprocess import build_result, summary_payload
+from .problem import problem_from_moes, problem_from_scene
+
+DEFAULT_POINTS = 257
+
+
+def options_from_args(args: argparse.Namespace, scene=None) -> SolverOptions:
+    """Solver options: defaults, then the scene's ``[solver.point]`` table, then CLI flags."""
+    kw: dict = {"points": DEFAULT_POINTS}
+    if scene is not None:
+        table = dict(scene.solver.get("point", {}))
+        reject_unknown_keys("solver.point", table, {f.name for f in fields(SolverOptions)})
+        kw.update(table)
+    cli = {
+        "points": args.points, "levels": args.levels, "cycle": args.cycle, "cycles": args.cycles,
+        "max_cycles": args.max_cycles, "deformation": args.deformation, "xmin": args.xmin,
+        "xmax": args.xmax, "ymax": args.ymax, "threads": args.threads, "tol": args.tol,
+        "tol_load": args.tol_load,
+    }
+    kw.update({k: v for k, v in cli.items() if v is not None})
+    if args.half:
+        kw["half"] = True
+    return SolverOptions(**kw)
+
+
+def problem_from_args(args: argparse.Namespace, scene):
+    if scene is None:
+        if args.contact == "elliptic":
+            if args.ellipticity is None:
+                raise InputError("--contact elliptic needs --ellipticity theta = Rx/Ry (e.g. 0.25)")
+            theta = args.ellipticity
+        else:
+            theta = 1.0 if args.ellipticity is None else args.ellipticity
+            if not math.isclose(theta, 1.0):
+                raise InputError(f"--ellipticity {theta:g} with --contact point: use --contact elliptic")
+        if args.M is None or not args.M > 0:
+            raise InputError(f"M = {args.M} must be > 0 (Moes load parameter)")
+        if args.L is None or not args.L >= 0:
+            raise InputError(f"L = {args.L} must be >= 0 (Moes lubricant parameter)")
+        return problem_from_moes(args.M, args.L, theta, args.viscosity, args.density,
+                                 args.alpha, args.eta0, args.p0)
+    for flag in ("alpha", "eta0", "p0", "M", "L", "ellipticity"):
+        if getattr(args, flag, None) is not None:
+            raise InputError(f"--{flag} applies to Moes-only mode; set it in the scene file instead")
+    return problem_from_scene(scene, args.viscosity, args.density)
+
+
+def run_solve(args: argparse.Namespace, scene) -> dict:
+    """Solve, write ``<out>/<name>.h5`` and PNGs (unless ``--no-plots``), return the payload."""
+    pb = problem_from_args(args, scene)
+    opt = options_from_args(args, scene)
+    quiet = bool(getattr(args, "json", False))
+    if not quiet:
+        if scene is None:
+            print(f"# Moes-only point contact: M = {pb.M:g}, L = {pb.L:g}, theta = {pb.theta:g}; "
+                  f"oil alpha = {pb.alpha:g} 1/Pa, eta0 = {pb.eta0:g} Pa s, p0 = {pb.p_r:g} Pa "
+                  f"(pmax = alpha_bar/alpha = {pb.pmax:.4g} Pa)")
+        else:
+            print(f"# scene {scene.name}: M = {pb.M:.5g}, L = {pb.L:.5g}, theta = {pb.theta:.4g}, "
+                  f"pmax = {pb.pmax:.4g} Pa, a = {pb.a:.4g} m")
+        print(f"# {pb.viscosity} viscosity, {pb.density} density; {opt.points}^2 points, "
+              f"{opt.cycle} cycles, deformation {opt.deformation}{', half domain' if opt.half else ''}")
+    sol = solve_fas(pb, opt)
+    res = build_result(sol, scene)
+    name = scene.name if scene is not None else f"point_M{pb.M:g}_L{pb.L:g}_th{pb.theta:g}"
+    out = Path(getattr(args, "out", "ehl_out"))
+    path = res.save(out / f"{name}.h5")
+    payload = summary_payload(res)
+    payload["file"] = str(path)
+    if not getattr(args, "no_plots", False):
+        from .plots import plot_result
+
+        payload["plots"] = [str(p) for p in plot_result(res, out, name)]
+    if not quiet:
+        from ..cli import print_table
+
+        print_table({k: v for k, v in payload.items() if k not in ("actions", "plots")})
+        for a in payload["actions"]:
+            print(f"  action: {a}")
+    return payload

@@ -1,0 +1,416 @@
+"""Elastic deformation ``W(X, Y) = ∫∫ P(X', Y') / r dX' dY'`` on a uniform grid (MODEL.md 5).
+
+The pressure is taken uniform on each rectangular cell ``hx x hy`` centred on a node; the
+kernel is the exact integral of ``1/r`` over such a cell (Venner & Lubrecht, ch. 13):
+``K = F(x+, y+) - F(x-, y+) - F(x+, y-) + F(x-, y-)``,
+``F(x, y) = x asinh(y/x) + y asinh(x/y)``.
+
+Three evaluations of the same discrete sum ``W_ji = sum_lk K[|j-l|, |i-k|] P_lk``:
+
+* :class:`DirectDeformation` the O(N^2) sum (reference, small grids);
+* :class:`FFTDeformation` DC-FFT: linear convolution by zero padding to ``2(n-1)`` per axis
+  (enough because the kernel is even and P = 0 on the boundary); kernel FFTs are cached per grid;
+* :class:`MLMIDeformation` 2D multilevel multi-integration (Brandt & Lubrecht 1990) with
+  order-``2q`` (default 6) interpolation and near-field kernel corrections; its error is the
+  kernel-interpolation error outside the correction box (measured, see the tests).
+
+Arrays are indexed ``[j, i]`` (Y row, X column). Half-domain (symmetric in Y) grids hold rows
+``Y >= 0`` with row 0 on the centre line; :func:`mirror_full` expands them.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+import scipy.fft as sfft
+from numba import njit, prange
+
+from ..errors import InputError
+
+
+def _F(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Antiderivative of 1/r, odd in x and in y: ``x asinh(y/|x|) + y asinh(x/|y|)``
+    (F = 0 on the axes)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ax = np.where(x != 0.0, np.abs(x), 1.0)
+        ay = np.where(y != 0.0, np.abs(y), 1.0)
+        t1 = np.where(x != 0.0, x * np.arcsinh(y / ax), 0.0)
+        t2 = np.where(y != 0.0, y * np.arcsinh(x / ay), 0.0)
+    return t1 + t2
+
+
+def cell_kernel(nx: int, ny: int, hx: float, hy: float) -> np.ndarray:
+    """Exact cell kernel ``K[dj, di]`` for offsets ``0 <= di < nx``, ``0 <= dj < ny``."""
+    x = np.arange(nx, dtype=float)[None, :] * hx
+    y = np.arange(ny, dtype=float)[:, None] * hy
+    xp, xm = x + 0.5 * hx, x - 0.5 * hx
+    yp, ym = y + 0.5 * hy, y - 0.5 * hy
+    return _F(xp, yp) - _F(xm, yp) - _F(xp, ym) + _F(xm, ym)
+
+
+def mirror_full(P_half: np.ndarray) -> np.ndarray:
+    """Full-domain array from a half-domain one (row 0 = centre line)."""
+    return np.concatenate([P_half[:0:-1], P_half], axis=0)
+
+
+@njit(cache=True, parallel=True)
+def _direct_sum(K: np.ndarray, P: np.ndarray, out: np.ndarray) -> None:
+    ny, nx = P.shape
+    for j in prange(ny):
+        for i in range(nx):
+            s = 0.0
+            for ll in range(ny):
+                dj = abs(j - ll)
+                for k in range(nx):
+                    p = P[ll, k]
+                    if p != 0.0:
+                        s += K[dj, abs(i - k)] * p
+            out[j, i] = s
+
+
+class Deformation:
+    """Base class: ``__call__(P) -> W`` for one grid; ``half=True`` means P holds rows Y >= 0."""
+
+    name = "base"
+
+    def __init__(self, nx: int, ny: int, hx: float, hy: float, half: bool = False) -> None:
+        self.nx, self.ny, self.hx, self.hy, self.half = nx, ny, hx, hy, half
+        self.ny_full = 2 * ny - 1 if half else ny
+
+    def full(self, P: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+    def __call__(self, P: np.ndarray) -> np.ndarray:
+        if self.half:
+            W = self.full(mirror_full(P))
+            return np.ascontiguousarray(W[self.ny - 1:])
+        return self.full(P)
+
+
+class DirectDeformation(Deformation):
+    """O(N^2) reference sum."""
+
+    name = "direct"
+
+    def __init__(self, nx, ny, hx, hy, half=False):
+        super().__init__(nx, ny, hx, hy, half)
+        self.K = cell_kernel(nx, self.ny_full, hx, hy)
+
+    def full(self, P):
+        out = np.empty_like(P)
+        _direct_sum(self.K, np.ascontiguousarray(P), out)
+        return out
+
+
+@lru_cache(maxsize=16)
+def _kernel_fft(nx: int, ny: int, hx: float, hy: float) -> tuple[np.ndarray, tuple[int, int]]:
+    mx, my = 2 * (nx - 1), 2 * (ny - 1)
+    K = cell_kernel(nx, ny, hx, hy)
+    Kw = np.zeros((my, mx))
+    # wrap-around layout; index n-1 stands for both +(n-1) and -(n-1) (even kernel)
+    Kw[:ny, :nx] = K
+    Kw[my - ny + 1:, :nx] = K[:0:-1, :][: ny - 1]
+    Kw[:, mx - nx + 1:] = Kw[:, 1:nx][:, ::-1][:, : nx - 1]
+    return sfft.rfft2(Kw), (my, mx)
+
+
+class FFTDeformation(Deformation):
+    """DC-FFT: zero-padded linear convolution, kernel FFT cached per grid."""
+
+    name = "fft"
+    workers = 2
+
+    def __init__(self, nx, ny, hx, hy, half=False):
+        super().__init__(nx, ny, hx, hy, half)
+        self.Kf, self.shape = _kernel_fft(nx, self.ny_full, float(hx), float(hy))
+
+    def full(self, P):
+        w = self.workers if P.size >= 128 * 128 else 1  # threads do not pay on small grids
+        Pf = sfft.rfft2(P, s=self.shape, workers=w)
+        Pf *= self.Kf
+        return sfft.irfft2(Pf, s=self.shape, workers=w)[: P.shape[0], : P.shape[1]].copy()
+
+
+# -- multilevel multi-integration ------------------------------------------------------------
+def kernel_at(dx: np.ndarray, dy: np.ndarray, hx: float, hy: float) -> np.ndarray:
+    """Fine-cell kernel at integer offsets ``(dx, dy)`` (any size, broadcast)."""
+    x = np.abs(np.asarray(dx, dtype=float)) * hx
+    y = np.abs(np.asarray(dy, dtype=float)) * hy
+    xp, xm = x + 0.5 * hx, x - 0.5 * hx
+    yp, ym = y + 0.5 * hy, y - 0.5 * hy
+    return _F(xp, yp) - _F(xm, yp) - _F(xp, ym) + _F(xm, ym)
+
+
+def interp_weights(q: int) -> np.ndarray:
+    """Order-2q Lagrange weights for the midpoint of coarse nodes at fine offsets
+    ``-(2q-1), ..., -1, 1, ..., 2q-1``."""
+    nodes = np.arange(-q + 1, q + 1, dtype=float) * 2.0 - 1.0
+    w = np.ones(2 * q)
+    for a in range(2 * q):
+        for b in range(2 * q):
+            if a != b:
+                w[a] *= (0.0 - nodes[b]) / (nodes[a] - nodes[b])
+    return w
+
+
+@njit(cache=True)
+def _anterp_last(u, lo, w, q, lo_c, n_c):
+    """Transpose of midpoint interpolation along the last axis. Fine index I = lo + k;
+    coarse index J = lo_c + K."""
+    ny, n = u.shape
+    out = np.zeros((ny, n_c))
+    for j in range(ny):
+        for k in range(n):
+            v = u[j, k]
+            if v == 0.0:
+                continue
+            I = lo + k
+            if I % 2 == 0:
+                out[j, I // 2 - lo_c] += v
+            else:
+                J0 = (I - 1) // 2 - q + 1
+                for t in range(2 * q):
+                    out[j, J0 + t - lo_c] += w[t] * v
+    return out
+
+
+@njit(cache=True)
+def _interp_last(wc, lo_c, w, q, lo, n):
+    """Midpoint interpolation along the last axis to fine indices lo .. lo + n - 1."""
+    ny = wc.shape[0]
+    out = np.empty((ny, n))
+    for j in range(ny):
+        for k in range(n):
+            I = lo + k
+            if I % 2 == 0:
+                out[j, k] = wc[j, I // 2 - lo_c]
+            else:
+                J0 = (I - 1) // 2 - q + 1
+                s = 0.0
+                for t in range(2 * q):
+                    s += w[t] * wc[j, J0 + t - lo_c]
+                out[j, k] = s
+    return out
+
+
+@njit(cache=True, parallel=True)
+def _correct_sources(w, u, loy, lox, C, mc):
+    """Step A: ``w[i] += sum_{|i-j| <= mc, j not even-even} C[class(j)][i-j] u[j]``
+    (fine sources; class 0: x odd, 1: y odd, 2: both)."""
+    ny, nx = u.shape
+    for a in prange(ny):
+        for b in range(nx):
+            s = 0.0
+            for dy in range(-mc, mc + 1):
+                a2 = a - dy
+                if a2 < 0 or a2 >= ny:
+                    continue
+                oy = (loy + a2) % 2
+                for dx in range(-mc, mc + 1):
+                    b2 = b - dx
+                    if b2 < 0 or b2 >= nx:
+                        continue
+                    ox = (lox + b2) % 2
+                    if ox == 0 and oy == 0:
+                        continue
+                    v = u[a2, b2]
+                    if v != 0.0:
+                        c = 0 if oy == 0 else (1 if ox == 0 else 2)
+                        s += C[c, dy + mc, dx + mc] * v
+            w[a, b] += s
+
+
+@njit(cache=True, parallel=True)
+def _correct_targets(w, uc, loy, lox, loy_c, lox_c, C, mc):
+    """Step B: for targets i not even-even,
+    ``w[i] += sum_{|i - 2J| <= mc} C[class(i)][i - 2J] uc[J]`` (coarse sources)."""
+    ny, nx = w.shape
+    nyc, nxc = uc.shape
+    for a in prange(ny):
+        iy = loy + a
+        oy = iy % 2
+        for b in range(nx):
+            ix = lox + b
+            ox = ix % 2
+            if ox == 0 and oy == 0:
+                continue
+            c = 0 if oy == 0 else (1 if ox == 0 else 2)
+            s = 0.0
+            for Jy in range((iy - mc + 1) // 2, (iy + mc) // 2 + 1):
+                ky = Jy - loy_c
+                if ky < 0 or ky >= nyc:
+                    continue
+                dy = iy - 2 * Jy
+                if dy < -mc or dy > mc:
+                    continue
+                for Jx in range((ix - mc + 1) // 2, (ix + mc) // 2 + 1):
+                    kx = Jx - lox_c
+                    if kx < 0 or kx >= nxc:
+                        continue
+                    dx = ix - 2 * Jx
+                    if dx < -mc or dx > mc:
+                        continue
+                    v = uc[ky, kx]
+                    if v != 0.0:
+                        s += C[c, dy + mc, dx + mc] * v
+            w[a, b] += s
+
+
+def _even_floor(v: int) -> int:
+    return v - (v % 2)
+
+
+def _even_ceil(v: int) -> int:
+    return v + (v % 2)
+
+
+class MLMIDeformation(Deformation):
+    """2D multilevel multi-integration (Brandt & Lubrecht 1990; Venner & Lubrecht ch. 12-13),
+    full coarsening, order-2q tensor interpolation, near-field corrections in a
+    ``(2 mc + 1)^2`` box.
+
+    With ``u^H = I^T u^h`` (anterpolation, tensor product of 1-D transposes):
+
+    * step A: ``sum_j K_ij u_j = sum_J K(i, 2J) u^H_J + sum_{|i-j| <= mc} [K - I K]_ij u_j``;
+    * step B: ``sum_J K(i, 2J) u^H_J`` is the coarse problem at even-even targets and, at other
+      targets, the interpolation of those values plus ``sum_{|i-2J| <= mc} [K - I K](i, J) u^H_J``.
+
+    The coarse kernel is the fine-cell kernel sampled at coarse offsets (not a coarse-cell
+    kernel), so the method approximates the SAME discrete sum as the direct and FFT paths. The
+    error left is the order-2q interpolation error of the kernel beyond ``mc`` cells, roughly
+    ``(h/(mc h))^(2q)`` relative; each grid level is extended by ``q - 1`` points per side so
+    the stencils stay centred. Recursion ends at <= ``n_direct`` points per axis (direct sum).
+    """
+
+    name = "mlmi"
+
+    def __init__(self, nx, ny, hx, hy, half=False, q: int = 3, mc: int | None = None, n_direct: int = 40):
+        super().__init__(nx, ny, hx, hy, half)
+        self.q = int(q)
+        self.mc = 2 * self.q + 2 if mc is None else int(mc)
+        self.w = interp_weights(self.q)
+        self.n_direct = n_direct
+        self._plan(nx, self.ny_full)
+
+    def _corrections(self, step: int) -> np.ndarray:
+        """Correction tables C[class, dy + mc, dx + mc] at fine offsets (class 0: x odd,
+        1: y odd, 2: both odd), for the fine sources (step A) or targets (step B)."""
+        mc, q, w = self.mc, self.q, self.w
+        d = np.arange(-mc, mc + 1)
+        s = np.arange(-q + 1, q + 1) * 2 - 1  # odd offsets to the coarse nodes
+        out = np.zeros((3, d.size, d.size))
+        hx, hy = self.hx, self.hy
+        DY, DX = np.meshgrid(d, d, indexing="ij")
+        K0 = kernel_at(DX, DY, hx, hy)
+        sign = -1 if step == 0 else 1  # A: distance i - 2J = d - s; B: 2I - 2J = d + s
+        for c, (xo, yo) in enumerate(((1, 0), (0, 1), (1, 1))):
+            sx = s if xo else np.array([0])
+            sy = s if yo else np.array([0])
+            wx = w if xo else np.array([1.0])
+            wy = w if yo else np.array([1.0])
+            acc = np.zeros_like(K0)
+            for a, ty in enumerate(sy):
+                for b, tx in enumerate(sx):
+                    acc += wy[a] * wx[b] * kernel_at(DX + sign * tx, DY + sign * ty, hx, hy)
+            out[c] = K0 - acc
+        return out
+
+    def _plan(self, nx: int, ny: int) -> None:
+        q = self.q
+        self.CA = self._corrections(0)
+        self.CB = self._corrections(1)
+        ranges = [((0, ny - 1), (0, nx - 1))]
+        while True:
+            (ly, hy_), (lx, hx_) = ranges[-1]
+            if max(hy_ - ly, hx_ - lx) + 1 <= self.n_direct:
+                break
+            cy = (_even_floor(ly // 2 - q + 1), _even_ceil(hy_ // 2 + q - 1))
+            cx = (_even_floor(lx // 2 - q + 1), _even_ceil(hx_ // 2 + q - 1))
+            if max(cy[1] - cy[0], cx[1] - cx[0]) >= 0.75 * max(hy_ - ly, hx_ - lx):
+                break  # the q-1 extension no longer pays: sum directly
+            ranges.append((cy, cx))
+        self.ranges = ranges
+        (ly, hy_), (lx, hx_) = ranges[-1]
+        f = 2 ** (len(ranges) - 1)
+        ry = np.arange(hy_ - ly + 1)
+        rx = np.arange(hx_ - lx + 1)
+        self.Kc = np.ascontiguousarray(kernel_at(rx[None, :] * f, ry[:, None] * f, self.hx, self.hy))
+        # Correction tables are in fine units of each level: on level l the offsets are
+        # 2^l larger, so each level needs its own tables.
+        self.CA_l = [self.CA]
+        self.CB_l = [self.CB]
+        for lvl in range(1, len(ranges) - 1):
+            self.CA_l.append(self._scaled(0, 2**lvl))
+            self.CB_l.append(self._scaled(1, 2**lvl))
+
+    def _scaled(self, step: int, f: int) -> np.ndarray:
+        hx, hy = self.hx, self.hy
+        self.hx, self.hy = hx * f, hy * f
+        try:
+            # kernel sampled at f times the offsets equals the f-scaled kernel up to the cell
+            # size: evaluate exactly with the fine cell instead
+            return self._corrections_cell(step, f, hx, hy)
+        finally:
+            self.hx, self.hy = hx, hy
+
+    def _corrections_cell(self, step: int, f: int, hx: float, hy: float) -> np.ndarray:
+        mc, q, w = self.mc, self.q, self.w
+        d = np.arange(-mc, mc + 1)
+        s = np.arange(-q + 1, q + 1) * 2 - 1
+        out = np.zeros((3, d.size, d.size))
+        DY, DX = np.meshgrid(d, d, indexing="ij")
+        K0 = kernel_at(DX * f, DY * f, hx, hy)
+        sign = -1 if step == 0 else 1
+        for c, (xo, yo) in enumerate(((1, 0), (0, 1), (1, 1))):
+            sx = s if xo else np.array([0])
+            sy = s if yo else np.array([0])
+            wx = w if xo else np.array([1.0])
+            wy = w if yo else np.array([1.0])
+            acc = np.zeros_like(K0)
+            for a, ty in enumerate(sy):
+                for b, tx in enumerate(sx):
+                    acc += wy[a] * wx[b] * kernel_at((DX + sign * tx) * f, (DY + sign * ty) * f, hx, hy)
+            out[c] = K0 - acc
+        return out
+
+    def full(self, P):
+        u = np.ascontiguousarray(P, dtype=float)
+        return self._level(0, u)
+
+    def _level(self, lvl: int, u: np.ndarray) -> np.ndarray:
+        (ly, hy_), (lx, hx_) = self.ranges[lvl]
+        if lvl == len(self.ranges) - 1:
+            out = np.empty_like(u)
+            _direct_sum(self.Kc, u, out)
+            return out
+        (cly, chy), (clx, chx) = self.ranges[lvl + 1]
+        q, w = self.q, self.w
+        t = _anterp_last(u, lx, w, q, clx, chx - clx + 1)
+        uc = _anterp_last(np.ascontiguousarray(t.T), ly, w, q, cly, chy - cly + 1).T.copy()
+        wc = self._level(lvl + 1, uc)
+        t = _interp_last(wc, clx, w, q, lx, hx_ - lx + 1)
+        wf = _interp_last(np.ascontiguousarray(t.T), cly, w, q, ly, hy_ - ly + 1).T.copy()
+        _correct_targets(wf, uc, ly, lx, cly, clx, self.CB_l[lvl], self.mc)
+        _correct_sources(wf, u, ly, lx, self.CA_l[lvl], self.mc)
+        return wf
+
+
+def make_deformation(kind: str, nx: int, ny: int, hx: float, hy: float, half: bool = False) -> Deformation:
+    """Deformation operator ``kind`` in ``mlmi``, ``fft``, ``direct`` for one grid."""
+    if kind == "fft":
+        return FFTDeformation(nx, ny, hx, hy, half)
+    if kind == "direct":
+        return DirectDeformation(nx, ny, hx, hy, half)
+    if kind == "mlmi":
+        return MLMIDeformation(nx, ny, hx, hy, half)
+    raise InputError(f"deformation = {kind!r} is not one of ['mlmi', 'fft', 'direct']")
+
+
+def set_fft_workers(n: int) -> None:
+    FFTDeformation.workers = max(1, int(n))
+
+
+__all__ = ["cell_kernel", "make_deformation", "DirectDeformation", "FFTDeformation",
+           "MLMIDeformation", "mirror_full", "set_fft_workers", "math"]

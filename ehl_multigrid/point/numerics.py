@@ -1,0 +1,396 @@
+"""Compiled kernels of the point-contact solver: lubricant relations, the discrete Reynolds
+operator (MODEL.md 5), zebra line relaxation and grid transfers.
+
+Arrays are ``[j, i]`` = (Y row, X column); lines run along X. ``sym`` marks a half-domain
+grid whose row 0 is the centre line Y = 0 (mirror neighbour row 1).
+
+Discretisation of ``d/dX(eps dP/dX) + d/dY(eps dP/dY) - d(rho H)/dX``: central 5-point
+Poiseuille terms with ``eps`` averaged to the cell faces; the wedge term upwind, second order
+``(1.5 q_i - 2 q_{i-1} + 0.5 q_{i-2})/hx`` (first order next to the inlet boundary), or first
+order when ``order == 1``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+DH_A = 0.59263e9
+DH_B = 0.34615
+
+
+# -- lubricant ---------------------------------------------------------------------------------
+@njit(cache=True, parallel=True)
+def fluid_properties(P, H, visc_mode, dens_mode, lnr, z, pmax, p_r, abar, lam, rho, eps):
+    """Fill ``rho`` (rho/rho0) and ``eps = rho H^3/(eta lambda)`` from P and H.
+
+    visc_mode 0: Roelands ``eta = exp(ln(eta0/eta_inf) ((1 + p/p_r)^z - 1))`` (2.6);
+    1: Barus ``exp(alpha_bar P)`` (2.4). dens_mode 0: Dowson-Higginson (2.7); 1: constant.
+    Negative film (never at convergence) gives eps = 0.
+    """
+    ny, nx = P.shape
+    for j in prange(ny):
+        for i in range(nx):
+            p = P[j, i]
+            if p < 0.0:
+                p = 0.0
+            if visc_mode == 0:
+                eta = math.exp(lnr * ((1.0 + p * pmax / p_r) ** z - 1.0))
+            else:
+                eta = math.exp(abar * p)
+            if dens_mode == 0:
+                pp = p * pmax
+                r = 1.0 + DH_B * pp / (DH_A + pp)
+            else:
+                r = 1.0
+            rho[j, i] = r
+            h = H[j, i]
+            if h < 0.0:
+                h = 0.0
+            eps[j, i] = r * h * h * h / (eta * lam)
+
+
+@njit(cache=True, parallel=True)
+def film(W, X, Y, H00, theta, cd, H):
+    """``H = H00 + X^2/2 + theta Y^2/2 + cd W``."""
+    ny, nx = W.shape
+    for j in prange(ny):
+        gy = 0.5 * theta * Y[j] * Y[j]
+        for i in range(nx):
+            H[j, i] = H00 + 0.5 * X[i] * X[i] + gy + cd * W[j, i]
+
+
+@njit(cache=True)
+def _wedge(rho, H, j, i, hx, order):
+    if order == 2 and i >= 2:
+        return (1.5 * rho[j, i] * H[j, i] - 2.0 * rho[j, i - 1] * H[j, i - 1]
+                + 0.5 * rho[j, i - 2] * H[j, i - 2]) / hx
+    return (rho[j, i] * H[j, i] - rho[j, i - 1] * H[j, i - 1]) / hx
+
+
+@njit(cache=True)
+def _poiseuille(P, eps, j, jm, jp, i, hx2, hy2):
+    e = eps[j, i]
+    exm = 0.5 * (eps[j, i - 1] + e)
+    exp_ = 0.5 * (eps[j, i + 1] + e)
+    eym = 0.5 * (eps[jm, i] + e)
+    eyp = 0.5 * (eps[jp, i] + e)
+    p = P[j, i]
+    return ((exm * (P[j, i - 1] - p) + exp_ * (P[j, i + 1] - p)) / hx2
+            + (eym * (P[jm, i] - p) + eyp * (P[jp, i] - p)) / hy2)
+
+
+@njit(cache=True, parallel=True)
+def operator(P, H, rho, eps, hx, hy, sym, order, out):
+    """Discrete Reynolds operator ``L(P)`` at interior points (0 on the boundary)."""
+    ny, nx = P.shape
+    hx2, hy2 = hx * hx, hy * hy
+    j0 = 0 if sym else 1
+    for j in prange(ny):
+        for i in range(nx):
+            out[j, i] = 0.0
+        if j < j0 or j > ny - 2:
+            continue
+        jm = 1 if (sym and j == 0) else j - 1
+        for i in range(1, nx - 1):
+            out[j, i] = _poiseuille(P, eps, j, jm, j + 1, i, hx2, hy2) - _wedge(rho, H, j, i, hx, order)
+
+
+@njit(cache=True, parallel=True)
+def residual(P, H, rho, eps, f, hx, hy, sym, order, out):
+    """Complementarity residual: ``f - L(P)`` where P > 0; where P = 0 only the part that
+    would raise P (``min(r, 0)``) counts (cavitation, MODEL.md 5)."""
+    operator(P, H, rho, eps, hx, hy, sym, order, out)
+    ny, nx = P.shape
+    j0 = 0 if sym else 1
+    for j in prange(j0, ny - 1):
+        for i in range(1, nx - 1):
+            r = f[j, i] - out[j, i]
+            if P[j, i] <= 0.0 and r > 0.0:
+                r = 0.0
+            out[j, i] = r
+
+
+@njit(cache=True, parallel=True)
+def scaled_residual(r, H, rho, eps, K00, hx, hy, sym, out):
+    """Residual divided by the magnitude of the operator's diagonal,
+    ``|sum of face eps|/h^2 + 1.5 rho K00/hx`` (K00 = cd K[0,0], the film self-response): the
+    pressure change (in units of pmax) that one Jacobi step would make. Unlike the raw
+    residual it does not give weight to the cavitation front far from the contact, where
+    eps/h^2 is huge but P ~ 0."""
+    ny, nx = r.shape
+    hx2, hy2 = hx * hx, hy * hy
+    j0 = 0 if sym else 1
+    for j in prange(ny):
+        for i in range(nx):
+            out[j, i] = 0.0
+        if j < j0 or j > ny - 2:
+            continue
+        jm = 1 if (sym and j == 0) else j - 1
+        for i in range(1, nx - 1):
+            e = eps[j, i]
+            d = ((0.5 * (eps[j, i - 1] + e) + 0.5 * (eps[j, i + 1] + e)) / hx2
+                 + (0.5 * (eps[jm, i] + e) + 0.5 * (eps[j + 1, i] + e)) / hy2
+                 + 1.5 * rho[j, i] * K00 / hx)
+            out[j, i] = r[j, i] / d
+
+
+@njit(cache=True)
+def wedge_norm(H, rho, hx, sym, order):
+    """RMS of the wedge term ``d(rho H)/dX`` over the interior (the residual's scale)."""
+    ny, nx = H.shape
+    j0 = 0 if sym else 1
+    s = 0.0
+    n = 0
+    for j in range(j0, ny - 1):
+        for i in range(1, nx - 1):
+            w = _wedge(rho, H, j, i, hx, order)
+            s += w * w
+            n += 1
+    return math.sqrt(s / max(n, 1))
+
+
+# -- line relaxation -------------------------------------------------------------------------
+@njit(cache=True)
+def _gfun(Kc, d, jd):
+    """Film change at offset d along the line caused by a unit change of type jd at 0:
+    GS (jd=0) ``K[0,|d|]``; Jacobi-distributive (jd=1) the Laplacian-distributed pattern."""
+    a = abs(d)
+    if jd == 0:
+        return Kc[0, a]
+    return Kc[0, a] - 0.25 * (Kc[0, abs(d - 1)] + Kc[0, abs(d + 1)] + 2.0 * Kc[1, a])
+
+
+@njit(cache=True)
+def _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order):
+    ny, nx = P.shape
+    n = nx - 2
+    hx2, hy2 = hx * hx, hy * hy
+    jm = 1 if (sym and j == 0) else j - 1
+    jp = j + 1
+    A = np.zeros((n, 5))  # band: A[r, 2 + (c - r)]
+    rhs = np.zeros(n)
+    typ = np.zeros(n, dtype=np.int64)
+    c0 = np.zeros(n)
+    cw = np.zeros(n)
+    ce = np.zeros(n)
+    cy = np.zeros(n)
+    for r in range(n):
+        i = r + 1
+        e = eps[j, i]
+        exm = 0.5 * (eps[j, i - 1] + e)
+        exp_ = 0.5 * (eps[j, i + 1] + e)
+        eym = 0.5 * (eps[jm, i] + e)
+        eyp = 0.5 * (eps[jp, i] + e)
+        cw[r] = exm / hx2
+        ce[r] = exp_ / hx2
+        cy[r] = (eym + eyp) / hy2
+        c0[r] = -(cw[r] + ce[r] + cy[r])
+        lp = (cw[r] * (P[j, i - 1] - P[j, i]) + ce[r] * (P[j, i + 1] - P[j, i])
+              + (eym * (P[jm, i] - P[j, i]) + eyp * (P[jp, i] - P[j, i])) / hy2)
+        rhs[r] = f[j, i] - (lp - _wedge(rho, H, j, i, hx, order))
+        if e / hx2 < thr and P[j, i] > 0.0:
+            typ[r] = 1
+    for r in range(n):
+        i = r + 1
+        if P[j, i] <= 0.0 and rhs[r] >= 0.0:
+            A[r, 2] = 1.0
+            rhs[r] = 0.0
+            continue
+        # wedge weights (1/hx) sum_s ws[s] rho[i-s] H[i-s]
+        if order == 2 and i >= 2:
+            ns = 3
+        else:
+            ns = 2
+        for c in range(max(0, r - 2), min(n, r + 3)):
+            k = c + 1
+            jd = typ[c]
+            # Poiseuille (eps frozen)
+            a = 0.0
+            if jd == 0:
+                if c == r:
+                    a = c0[r]
+                elif c == r - 1:
+                    a = cw[r]
+                elif c == r + 1:
+                    a = ce[r]
+            else:
+                if c == r:
+                    a = c0[r] - 0.25 * (cw[r] + ce[r] + cy[r])
+                elif c == r - 1:
+                    a = cw[r] - 0.25 * c0[r]
+                elif c == r + 1:
+                    a = ce[r] - 0.25 * c0[r]
+                elif c == r - 2:
+                    a = -0.25 * cw[r]
+                else:
+                    a = -0.25 * ce[r]
+            # wedge through the film
+            wsum = 0.0
+            for s in range(ns):
+                if ns == 3:
+                    ws = 1.5 if s == 0 else (-2.0 if s == 1 else 0.5)
+                else:
+                    ws = 1.0 if s == 0 else -1.0
+                m = i - s
+                wsum += ws * rho[j, m] * _gfun(Kc, m - k, jd)
+            a -= wsum / hx
+            A[r, 2 + c - r] = a
+    # banded elimination without pivoting (diagonally dominant in practice)
+    for r in range(n):
+        piv = A[r, 2]
+        if piv == 0.0 or not math.isfinite(piv):
+            piv = -1e-30
+            A[r, 2] = piv
+        for rr in range(r + 1, min(n, r + 3)):
+            fac = A[rr, 2 + r - rr] / piv
+            if fac != 0.0:
+                for c in range(r, min(n, r + 3)):
+                    A[rr, 2 + c - rr] -= fac * A[r, 2 + c - r]
+                rhs[rr] -= fac * rhs[r]
+    dlt = np.zeros(n)
+    for r in range(n - 1, -1, -1):
+        s = rhs[r]
+        for c in range(r + 1, min(n, r + 3)):
+            s -= A[r, 2 + c - r] * dlt[c]
+        dlt[r] = s / A[r, 2]
+    for r in range(n):
+        if not math.isfinite(dlt[r]):
+            return  # singular line (e.g. zero film): leave it for this sweep
+    for r in range(n):
+        i = r + 1
+        if typ[r] == 0:
+            v = P[j, i] + w_gs * dlt[r]
+            P[j, i] = v if v > 0.0 else 0.0
+        else:
+            D[j, i] = dlt[r]
+
+
+@njit(cache=True, parallel=True)
+def relax_sweep(P, H, rho, eps, f, D, Kc, hx, hy, sym, thr, w_gs, w_jd, order):
+    """One zebra line-relaxation sweep along X (MODEL.md 5, Venner-style).
+
+    Lines of even j, then odd j, are each relaxed in parallel (prange); within a line the
+    points with ``eps/hx^2 >= thr`` (or P = 0) take a Gauss-Seidel change, the others a
+    Jacobi-distributive change, all from one banded (pentadiagonal) system that includes the
+    local film response through the kernel ``Kc = cd K[0:2, 0:6]``. The distributive changes
+    are applied after the sweep: ``P += w_jd (D - (sum of 4 neighbours of D)/4)``, then P is
+    projected to ``P >= 0``. H, rho and eps are NOT updated here (the caller recomputes them).
+    """
+    ny, nx = P.shape
+    j0 = 0 if sym else 1
+    for j in range(ny):
+        for i in range(nx):
+            D[j, i] = 0.0
+    for colour in range(2):
+        first = j0 if (j0 % 2) == colour else j0 + 1
+        nl = (ny - 2 - first) // 2 + 1 if first <= ny - 2 else 0
+        for t in prange(nl):
+            j = first + 2 * t
+            _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order)
+    if w_jd != 0.0:
+        for j in prange(j0, ny - 1):
+            jm = 1 if (sym and j == 0) else j - 1
+            for i in range(1, nx - 1):
+                dd = D[j, i] - 0.25 * (D[j, i - 1] + D[j, i + 1] + D[jm, i] + D[j + 1, i])
+                if dd != 0.0:
+                    v = P[j, i] + w_jd * dd
+                    P[j, i] = v if v > 0.0 else 0.0
+
+
+# -- transfers ---------------------------------------------------------------------------------
+@njit(cache=True, parallel=True)
+def restrict_full_weighting(r, sym, out):
+    """Full weighting (1/16)[1 2 1; 2 4 2; 1 2 1] of fine ``r`` to coarse ``out``."""
+    nyc, nxc = out.shape
+    ny, nx = r.shape
+    for J in prange(nyc):
+        for I in range(nxc):
+            out[J, I] = 0.0
+    j0 = 0 if sym else 1
+    for J in prange(j0, nyc - 1):
+        j = 2 * J
+        jm = 1 if (sym and j == 0) else j - 1
+        for I in range(1, nxc - 1):
+            i = 2 * I
+            out[J, I] = (4.0 * r[j, i] + 2.0 * (r[j, i - 1] + r[j, i + 1] + r[jm, i] + r[j + 1, i])
+                         + r[jm, i - 1] + r[jm, i + 1] + r[j + 1, i - 1] + r[j + 1, i + 1]) / 16.0
+
+
+@njit(cache=True, parallel=True)
+def add_bilinear(fine, coarse_delta, clip):
+    """``fine += bilinear(coarse_delta)`` where ``fine > 0`` (cavitated points keep P = 0, so a
+    smooth coarse correction does not smear the cavitation front); project to >= 0 when ``clip``."""
+    ny, nx = fine.shape
+    for j in prange(ny):
+        J = j // 2
+        oj = j % 2
+        for i in range(nx):
+            if clip and fine[j, i] <= 0.0:
+                continue
+            I = i // 2
+            oi = i % 2
+            if oj == 0 and oi == 0:
+                d = coarse_delta[J, I]
+            elif oj == 0:
+                d = 0.5 * (coarse_delta[J, I] + coarse_delta[J, I + 1])
+            elif oi == 0:
+                d = 0.5 * (coarse_delta[J, I] + coarse_delta[J + 1, I])
+            else:
+                d = 0.25 * (coarse_delta[J, I] + coarse_delta[J, I + 1]
+                            + coarse_delta[J + 1, I] + coarse_delta[J + 1, I + 1])
+            v = fine[j, i] + d
+            if clip and v < 0.0:
+                v = 0.0
+            fine[j, i] = v
+
+
+@njit(cache=True)
+def _cubic_1d(u, n_out, axis0_sym):
+    # 4-point cubic to midpoints along axis 1; ends use one-sided cubic or mirror (sym)
+    ny, nc = u.shape
+    out = np.empty((ny, n_out))
+    for j in range(ny):
+        for I in range(nc):
+            out[j, 2 * I] = u[j, I]
+        for I in range(nc - 1):
+            a = u[j, I]
+            b = u[j, I + 1]
+            if I - 1 >= 0:
+                am = u[j, I - 1]
+            elif axis0_sym:
+                am = u[j, 1]
+            else:
+                am = -1.0e300
+            if I + 2 < nc:
+                bp = u[j, I + 2]
+            else:
+                bp = -1.0e300
+            if am == -1.0e300 and bp == -1.0e300:
+                v = 0.5 * (a + b)
+            elif am == -1.0e300:
+                v = (3.0 * a + 6.0 * b - bp) / 8.0
+            elif bp == -1.0e300:
+                v = (-am + 6.0 * a + 3.0 * b) / 8.0
+            else:
+                v = (-am + 9.0 * a + 9.0 * b - bp) / 16.0
+            out[j, 2 * I + 1] = v
+    return out
+
+
+def interpolate_cubic(coarse: np.ndarray, sym: bool) -> np.ndarray:
+    """FMG interpolation: 4-point cubic, tensor product, limited to the range of the four
+    surrounding coarse values (no overshoot at the pressure spike, where an overshoot raises
+    the viscosity by orders of magnitude with Barus) and projected to >= 0."""
+    nyc, nxc = coarse.shape
+    t = _cubic_1d(np.ascontiguousarray(coarse), 2 * nxc - 1, False)
+    t = _cubic_1d(np.ascontiguousarray(t.T), 2 * nyc - 1, sym).T
+    c = coarse
+    lo = np.minimum(np.minimum(c[:-1, :-1], c[1:, :-1]), np.minimum(c[:-1, 1:], c[1:, 1:]))
+    hi = np.maximum(np.maximum(c[:-1, :-1], c[1:, :-1]), np.maximum(c[:-1, 1:], c[1:, 1:]))
+    jj = np.minimum(np.arange(2 * nyc - 1) // 2, nyc - 2)
+    ii = np.minimum(np.arange(2 * nxc - 1) // 2, nxc - 2)
+    t = np.clip(t, lo[jj][:, ii], hi[jj][:, ii])
+    return np.ascontiguousarray(np.maximum(t, 0.0))

@@ -1,0 +1,142 @@
+"""Film and pressure observables of a point-contact solution and the :class:`Result` that
+carries them (naming contract of the EHL results, kind ``ehl_point``)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..results import Result
+from .deformation import mirror_full
+
+
+def full_fields(X, Y, P, H, half: bool):
+    """Full-domain ``(Y, P, H)`` (mirrored when ``half``); arrays stay ``[j, i]``."""
+    if not half:
+        return Y, P, H
+    return np.concatenate([-Y[:0:-1], Y]), mirror_full(P), mirror_full(H)
+
+
+def _interp_at(x, xs, ys) -> float:
+    return float(np.interp(x, xs, ys))
+
+
+def film_metrics(X: np.ndarray, Y: np.ndarray, P: np.ndarray, H: np.ndarray) -> dict:
+    """Central and minimum film, pressure spike (full-domain arrays ``[j, i]``).
+
+    * ``Hc_center``: H at X = Y = 0 (linear interpolation along X if 0 is not a node);
+    * ``Hc_dpdx0`` and ``X_dpdx0``: H on the centre line where dP/dX = 0, the zero of the
+      central-difference gradient closest to X = 0 inside the loaded zone;
+    * ``Hm``, ``X_Hm``, ``Y_Hm``: minimum of H over the grid (the side lobes);
+      ``Hm_centerline``, ``X_Hm_centerline``: minimum on Y = 0 (the outlet constriction);
+    * ``p_spike``, ``X_spike``: the downstream-most local maximum of P on Y = 0 with X > 0
+      (NaN when the centre-line pressure has a single maximum, e.g. low L);
+    * ``P_max``.
+    """
+    jc = int(np.argmin(np.abs(Y)))
+    pc, hc = P[jc], H[jc]
+    out: dict = {"Hc_center": _interp_at(0.0, X, hc)}
+    g = np.gradient(pc, X)
+    loaded = pc > 1e-3 * max(pc.max(), 1e-300)
+    cand = []
+    for i in range(len(X) - 1):
+        if loaded[i] and loaded[i + 1] and g[i] > 0.0 >= g[i + 1]:
+            t = g[i] / (g[i] - g[i + 1])
+            cand.append(X[i] + t * (X[i + 1] - X[i]))
+    if cand:
+        xz = min(cand, key=abs)
+        out["X_dpdx0"] = float(xz)
+        out["Hc_dpdx0"] = _interp_at(xz, X, hc)
+    else:
+        out["X_dpdx0"] = math.nan
+        out["Hc_dpdx0"] = math.nan
+    k = int(np.argmin(H))
+    j, i = np.unravel_index(k, H.shape)
+    out.update(Hm=float(H[j, i]), X_Hm=float(X[i]), Y_Hm=float(Y[j]))
+    ic = int(np.argmin(hc))
+    out.update(Hm_centerline=float(hc[ic]), X_Hm_centerline=float(X[ic]))
+    spike = math.nan
+    xs = math.nan
+    for i in range(len(X) - 2, 0, -1):
+        if X[i] <= 0.0:
+            break
+        if pc[i] > pc[i - 1] and pc[i] >= pc[i + 1] and pc[i] > 0.0:
+            spike, xs = float(pc[i]), float(X[i])
+            break
+    out.update(p_spike=spike, X_spike=xs, P_max=float(P.max()))
+    return out
+
+
+def build_result(sol, scene=None, extra_scalars: dict | None = None) -> Result:
+    """Result of kind ``ehl_point`` from a :class:`~ehl_multigrid.point.fas.FASOutput`
+    (or the Newton path's output, which has the same attributes)."""
+    pb = sol.problem
+    Yf, Pf, Hf = full_fields(sol.X, sol.Y, sol.P, sol.H, sol.half)
+    m = film_metrics(sol.X, Yf, Pf, Hf)
+    fac = pb.moes_factor
+    res = Result("ehl_point", scene=scene)
+    res.add_coord("X", sol.X, "-", "x / a")
+    res.add_coord("Y", Yf, "-", "y / a")
+    res.add_field("P", Pf.T.copy(), "-", ("X", "Y"), "p / pmax")
+    res.add_field("H", Hf.T.copy(), "-", ("X", "Y"), "h Rx / a^2 (Venner)")
+    if pb.physical:
+        a = pb.a
+        res.add_coord("x", sol.X * a, "m", "rolling direction")
+        res.add_coord("y", Yf * a, "m", "transverse direction")
+        res.add_field("p", Pf.T * pb.pmax, "Pa", ("x", "y"), "pressure")
+        res.add_field("h", Hf.T * a * a / pb.Rx, "m", ("x", "y"), "film thickness")
+    res.add_report(sol.report)
+    Hc_v = m["Hc_center"]
+    Hm_v = m["Hm"]
+    res.set_scalar("Hc_venner", Hc_v)
+    res.set_scalar("Hm_venner", Hm_v)
+    res.set_scalar("Hc", Hc_v * fac)
+    res.set_scalar("Hm", Hm_v * fac)
+    res.set_scalar("Hc_dpdx0_venner", m["Hc_dpdx0"])
+    res.set_scalar("Hc_dpdx0", m["Hc_dpdx0"] * fac)
+    res.set_scalar("X_dpdx0", m["X_dpdx0"])
+    for k in ("X_Hm", "Y_Hm", "X_Hm_centerline", "X_spike", "P_max"):
+        res.set_scalar(k, m[k])
+    res.set_scalar("Hm_centerline", m["Hm_centerline"] * fac)
+    res.set_scalar("p_spike", m["p_spike"])
+    if pb.physical:
+        s = pb.a * pb.a / pb.Rx
+        res.set_scalar("hc", Hc_v * s, "m")
+        res.set_scalar("hm", Hm_v * s, "m")
+        res.set_scalar("p_spike_Pa", m["p_spike"] * pb.pmax, "Pa")
+    else:
+        res.set_scalar("hc", None, "m")
+        res.set_scalar("hm", None, "m")
+    load = sol.report.load_error_history[-1] if sol.report.load_error_history.size else math.nan
+    res.set_scalar("load_error", float(load))
+    res.set_scalar("levels", int(sol.levels))
+    res.set_scalar("points", int(len(sol.X)))
+    res.set_scalar("cycles", int(sol.report.iterations))
+    res.set_scalar("wall_s", float(sol.report.wall_s), "s")
+    res.set_scalar("converged", bool(sol.report.converged))
+    res.set_scalar("H00", float(sol.H00))
+    res.set_scalar("M", pb.M)
+    res.set_scalar("L", pb.L)
+    res.set_scalar("theta", pb.theta)
+    res.set_scalar("lambda_venner", pb.lam)
+    res.set_scalar("alpha_bar", pb.alpha_bar)
+    res.set_scalar("pmax", pb.pmax, "Pa")
+    for k, v in (extra_scalars or {}).items():
+        res.set_scalar(k, v)
+    res.meta["problem"] = pb.to_dict()
+    res.meta["options"] = {k: v for k, v in vars(sol.options).items()}
+    res.meta["actions"] = list(sol.report.extra.get("actions", []))
+    res.meta["solver"] = getattr(sol, "solver_name", "fas")
+    return res
+
+
+def summary_payload(res: Result) -> dict:
+    """JSON keys of ``ehl solve`` (same as the line solver) plus point-contact extras."""
+    keys = ["Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error", "levels",
+            "points", "cycles", "wall_s", "converged", "Hc_dpdx0", "X_dpdx0", "X_Hm", "Y_Hm",
+            "Hm_centerline", "X_spike", "P_max", "H00", "M", "L", "theta", "final_residual",
+            "work_units", "message"]
+    out = {k: res.scalars.get(k) for k in keys}
+    out["actions"] = res.meta.get("actions", [])
+    return out

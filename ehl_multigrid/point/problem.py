@@ -1,0 +1,177 @@
+"""Dimensionless point-contact EHL problem (MODEL.md section 5, circular and elliptic).
+
+Scaling: ``X = x/a``, ``Y = y/a`` (``a`` the Hertz semi-axis along the rolling direction x),
+``P = p/pmax``, ``H = h Rx/a^2``. With Hertz ``a = f W^(1/3) Rx``, ``pmax = g W^(1/3) E'``
+(``W = F/(E' Rx^2)``, f and g depending on the ellipticity ``theta = Rx/Ry`` only) the
+equations become
+
+* Reynolds  ``d/dX(eps dP/dX) + d/dY(eps dP/dY) - d(rho H)/dX = 0``, ``eps = rho H^3/(eta lambda)``,
+  ``lambda = 6 eta0 us Rx^2/(a^3 pmax) = 6/(f^3 g M^(4/3))``;
+* film ``H = H00 + X^2/2 + theta Y^2/2 + cd ∫∫ P/r dX'dY'``, ``cd = 2 g/(pi f)``;
+* load ``∫∫ P dX dY = 1/(g f^2) = 2 pi b/(3 a)``;
+* ``alpha_bar = alpha pmax = g L M^(1/3)``; ``H_Moes = H_Venner f^2 M^(2/3)``.
+
+For a circular contact f = (3/2)^(1/3), g = f/pi, which gives MODEL.md's
+``lambda = (128 pi^3/(3 M^4))^(1/3)``, ``cd = 2/pi^2``, load ``2 pi/3`` and
+``H_Moes = H_Venner (3M/2)^(2/3)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+from ..errors import InputError, require_choice, require_range
+from ..hertz import hertz_elliptic
+from ..lubricant import ETA_INF, P_R
+
+VISCOSITY = ("roelands", "barus")
+DENSITY = ("dowson-higginson", "incompressible")
+
+
+def hertz_shape(theta: float) -> tuple[float, float, float]:
+    """``(f, g, b/a)`` of the exact Hertz solution for ellipticity ``theta = Rx/Ry``.
+
+    ``a = f W^(1/3) Rx`` and ``pmax = g W^(1/3) E'`` with ``W = F/(E' Rx^2)``.
+    """
+    hz = hertz_elliptic(1.0, 1.0, 1.0 / theta, 1.0)
+    return hz.a, hz.pmax, hz.b / hz.a
+
+
+@dataclass(frozen=True)
+class PointProblem:
+    """Parameters of one dimensionless point-contact problem.
+
+    Attributes
+    ----------
+    M, L : Moes load and lubricant parameters (point-contact groups, MODEL.md 4) [-]
+    theta : ellipticity Rx/Ry [-]
+    viscosity : ``roelands`` or ``barus``
+    density : ``dowson-higginson`` or ``incompressible``
+    alpha : pressure-viscosity coefficient [1/Pa]
+    eta0 : ambient viscosity [Pa s]
+    p_r : Roelands reference pressure [Pa]
+    pmax : Hertz pressure [Pa] (``alpha_bar/alpha``; 0 when L = 0 in Moes-only mode)
+    a, b : Hertz semi-axes [m] (NaN in Moes-only mode)
+    Rx : reduced radius in x [m] (NaN in Moes-only mode)
+    film_scale : metres per unit Moes film (NaN in Moes-only mode)
+    """
+
+    M: float
+    L: float
+    theta: float = 1.0
+    viscosity: str = "roelands"
+    density: str = "dowson-higginson"
+    alpha: float = 2.2e-8
+    eta0: float = 0.04
+    p_r: float = 1.96e8
+    a: float = math.nan
+    b: float = math.nan
+    Rx: float = math.nan
+    film_scale: float = math.nan
+    pmax_physical: float = math.nan
+
+    def __post_init__(self) -> None:
+        require_range("M", self.M, 0.0, 1e6, "-", lo_open=True)
+        require_range("L", self.L, 0.0, 100.0, "-")
+        require_range("theta (ellipticity Rx/Ry)", self.theta, 0.01, 100.0, "-")
+        require_choice("viscosity", self.viscosity, VISCOSITY)
+        require_choice("density", self.density, DENSITY)
+        require_range("alpha", self.alpha, 1e-10, 1e-6, "1/Pa")
+        require_range("eta0", self.eta0, ETA_INF, 1e6, "Pa s", lo_open=True)
+        require_range("p0 (Roelands reference pressure)", self.p_r, 1e6, 1e10, "Pa")
+
+    # -- Hertz shape --------------------------------------------------------------------------
+    @property
+    def shape(self) -> tuple[float, float, float]:
+        return hertz_shape(self.theta)
+
+    @property
+    def b_over_a(self) -> float:
+        return self.shape[2]
+
+    @property
+    def lam(self) -> float:
+        """Venner's lambda ``6/(f^3 g M^(4/3))`` [-]."""
+        f, g, _ = self.shape
+        return 6.0 / (f**3 * g * self.M ** (4.0 / 3.0))
+
+    @property
+    def alpha_bar(self) -> float:
+        """``alpha pmax = g L M^(1/3)`` [-]."""
+        f, g, _ = self.shape
+        return g * self.L * self.M ** (1.0 / 3.0)
+
+    @property
+    def pmax(self) -> float:
+        """Hertz pressure [Pa] used by the Roelands and density relations."""
+        if math.isfinite(self.pmax_physical):
+            return self.pmax_physical
+        return self.alpha_bar / self.alpha
+
+    @property
+    def cd(self) -> float:
+        """Deformation coefficient ``2 g/(pi f)`` (``2/pi^2`` circular)."""
+        f, g, _ = self.shape
+        return 2.0 * g / (math.pi * f)
+
+    @property
+    def load(self) -> float:
+        """Target ``∫∫ P dX dY = 2 pi b/(3 a)``."""
+        return 2.0 * math.pi * self.b_over_a / 3.0
+
+    @property
+    def moes_factor(self) -> float:
+        """``H_Moes / H_Venner = f^2 M^(2/3)``."""
+        f, _, _ = self.shape
+        return f * f * self.M ** (2.0 / 3.0)
+
+    @property
+    def roelands_z(self) -> float:
+        """Roelands index equivalent to ``alpha`` at p = 0: ``z = alpha p_r/ln(eta0/eta_inf)``."""
+        return self.alpha * self.p_r / math.log(self.eta0 / ETA_INF)
+
+    @property
+    def ln_eta_ratio(self) -> float:
+        return math.log(self.eta0 / ETA_INF)
+
+    @property
+    def physical(self) -> bool:
+        return math.isfinite(self.film_scale)
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        d.update(lam=self.lam, alpha_bar=self.alpha_bar, pmax=self.pmax, cd=self.cd,
+                 load_target=self.load, b_over_a=self.b_over_a, roelands_z=self.roelands_z)
+        return d
+
+
+def problem_from_moes(M: float, L: float, theta: float = 1.0, viscosity: str = "roelands",
+                      density: str = "dowson-higginson", alpha: float | None = None,
+                      eta0: float | None = None, p0: float | None = None) -> PointProblem:
+    """Moes-only problem; the oil defaults are ``ehl_multigrid.solve_cli.MOES_ONLY_DEFAULTS``."""
+    from ..solve_cli import MOES_ONLY_DEFAULTS as D
+
+    return PointProblem(
+        M=float(M), L=float(L), theta=float(theta), viscosity=viscosity, density=density,
+        alpha=D["alpha"] if alpha is None else float(alpha),
+        eta0=D["eta0"] if eta0 is None else float(eta0),
+        p_r=D["p0"] if p0 is None else float(p0),
+    )
+
+
+def problem_from_scene(scene, viscosity: str = "roelands", density: str = "dowson-higginson") -> PointProblem:
+    """Problem of a point or elliptic scene; eta0 and alpha at the oil inlet temperature."""
+    if scene.kind == "line":
+        raise InputError(f"scene {scene.name!r} is a line contact; the point solver needs kind point|elliptic")
+    M, L = scene.moes()
+    hz = scene.hertz
+    lub = scene.lubricant
+    # Roelands' z of the scene's oil: p_r chosen so that alpha(T_oil) = z ln(eta0/eta_inf)/p_r.
+    eta0 = scene.eta0
+    p_r = lub.z * math.log(eta0 / ETA_INF) / scene.alpha if scene.alpha > 0 else P_R
+    return PointProblem(
+        M=M, L=L, theta=scene.theta, viscosity=viscosity, density=density,
+        alpha=scene.alpha, eta0=eta0, p_r=p_r, a=hz.a, b=hz.b, Rx=scene.Rx,
+        film_scale=scene.film_scale(), pmax_physical=hz.pmax,
+    )

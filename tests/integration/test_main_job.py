@@ -1,0 +1,41 @@
+"""`ehl run`: the planned chain end to end, one HDF5 with every stage, and a report."""
+
+import json
+
+import pytest
+
+from ehl_multigrid.cli import main
+from ehl_multigrid.results import load_results
+from ehl_multigrid.scene import load_scene
+
+
+def test_main_job_on_a_rough_line_contact_runs_film_traction_and_stribeck(capsys, tmp_path):
+    assert main(["run", "page63_line_2000N", "--fidelity", "fast", "--out", str(tmp_path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    results = load_results(out["hdf5"])
+    assert set(results) == {"film", "traction", "stribeck"}
+    film = results["film"]
+    assert film.kind == "ehl_line" and film.scalars["converged"] is True
+    # the stored plan says why the solver was used
+    assert film.meta["plan"]["decisions"][0]["model"] == "film"
+    # the solver's central film is below the Moes fit (Roelands + Dowson-Higginson, MODEL.md 6)
+    assert film.scalars["hc"] < load_scene("page63_line_2000N").central_film_fit()[1]
+    assert results["stribeck"].scene.name == "page63_line_2000N"
+    report = (tmp_path / "report.md").read_text()
+    assert "What was modelled and why" in report and "## stribeck" in report
+    assert out["stribeck"]["converged"] is True and out["traction"]["converged"] is True
+
+
+def test_main_job_skips_the_stribeck_stage_for_smooth_surfaces(capsys, tmp_path):
+    assert main(["run", "appendix_c_line_4240N", "--tolerance", "0.5", "--out", str(tmp_path), "--json", "--no-plots"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    results = load_results(out["hdf5"])
+    assert set(results) == {"film", "traction"}
+    assert out["plan"]["film"] == "fit" and results["film"].kind == "hertz_fit"
+
+
+@pytest.mark.slow
+def test_main_job_on_the_default_scene(capsys, tmp_path):
+    assert main(["run", "--out", str(tmp_path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert set(load_results(out["hdf5"])) == {"film", "traction", "stribeck"}

@@ -1,0 +1,34 @@
+"""``ehl solve --contact line`` through the core CLI."""
+
+import json
+
+from ehl_multigrid.cli import main
+
+
+def test_solve_line_json(capsys, tmp_path):
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--json", "--out", str(tmp_path)])
+    out = capsys.readouterr().out
+    assert rc == 0
+    d = json.loads(out)
+    for key in ("Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error",
+                "levels", "points", "cycles", "wall_s", "converged"):
+        assert key in d
+    assert d["converged"] is True and d["hc"] is None
+    assert 3.5 < d["Hc"] < 5.1  # Roelands + DH is below the Moes fit (5.10) at L = 10
+    assert (tmp_path / "line_M20_L10.h5").is_file()
+    assert (tmp_path / "line_M20_L10_zoom.png").stat().st_size > 1000
+
+
+def test_solve_line_prints_the_oil_used_without_json(capsys, tmp_path):
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "513",
+               "--out", str(tmp_path), "--no-plots"])
+    assert rc == 0
+    text = capsys.readouterr().out
+    assert "alpha = 2.2e-08" in text and "eta0 = 0.04" in text and "p0 = 1.96e+08" in text
+
+
+def test_solve_line_bad_levels_exits_2(capsys, tmp_path):
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "257",
+               "--levels", "12", "--out", str(tmp_path)])
+    assert rc == 2
+    assert "levels" in capsys.readouterr().err

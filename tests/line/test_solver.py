@@ -1,0 +1,123 @@
+"""Line-contact multigrid solver (MODEL.md 5): balance, cavitation, limits, regression, errors."""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ehl_multigrid.errors import ConvergenceError, InputError
+from ehl_multigrid.line import LineProblem, MultilevelLineSolver, solve_line
+from ehl_multigrid.results import Result
+
+REF = json.loads(Path(__file__).with_name("reference.json").read_text())
+
+
+@pytest.fixture(scope="module")
+def sol_20_10():
+    return solve_line(20.0, 10.0, points=1025)
+
+
+def test_load_balance_holds_at_convergence(sol_20_10):
+    # force balance: integral of P dX = pi/2 (MODEL.md 5)
+    s = sol_20_10
+    h = s.X[1] - s.X[0]
+    assert s.converged
+    assert h * np.sum(s.P) == pytest.approx(math.pi / 2, rel=1e-6)
+    assert abs(s.load_error) < 1e-6
+
+
+def test_no_negative_pressure_and_cavitated_outlet(sol_20_10):
+    s = sol_20_10
+    assert np.all(s.P >= 0.0)
+    assert np.all(s.P[s.X > 1.2] == 0.0)  # cavitation zone downstream of the contact
+    assert s.P[0] == 0.0 and s.P[-1] == 0.0
+
+
+def test_report_carries_histories(sol_20_10):
+    rep = sol_20_10.report
+    assert rep.converged and rep.residual_history[-1] < rep.tolerances["residual"]
+    assert rep.extra["level_residuals"].shape[0] == len(rep.extra["cycle_residual"])
+    assert rep.extra["fmg_points"][-1] == 1025
+    assert rep.work_units > 0 and rep.wall_s > 0
+
+
+def test_regression_against_stored_fine_grid_hc(sol_20_10):
+    case = REF["cases"]["M20_L10"]
+    grids = case["grids"]
+    ref = grids[str(case["reference_points"])]["Hc"]
+    # tolerance: 1.5 x the 1025-to-finest difference measured when reference.json was made
+    tol = 1.5 * abs(grids["1025"]["Hc"] - ref)
+    assert abs(sol_20_10.Hc - ref) <= tol
+    # the stored coarse value itself is reproduced (same code, same grid)
+    assert sol_20_10.Hc == pytest.approx(grids["1025"]["Hc"], rel=1e-4)
+
+
+def test_moving_the_inlet_changes_hc_less_than_the_discretisation_error(sol_20_10):
+    # MODEL.md 5: the default inlet (default_xmin) is far enough upstream when moving it
+    # further changes Hc by less than the discretisation error. Same mesh size h: the domain
+    # is doubled upstream with twice the intervals.
+    case = REF["cases"]["M20_L10"]
+    grids = case["grids"]
+    disc = abs(grids["1025"]["Hc"] - grids[str(case["reference_points"])]["Hc"])
+    pb = sol_20_10.problem
+    longer = solve_line(20.0, 10.0, points=2049, xmin=pb.xmin - (pb.xmax - pb.xmin))
+    assert longer.converged
+    assert longer.X[1] - longer.X[0] == pytest.approx(sol_20_10.X[1] - sol_20_10.X[0])
+    assert abs(longer.Hc - sol_20_10.Hc) < disc
+
+
+def test_rigid_isoviscous_limit_is_martins_2_45_over_M():
+    # L = 0, no deformation: Hc M = 2.45 exactly (Martin, Reynolds exit condition; MODEL.md 6)
+    s = solve_line(10.0, 0.0, points=1025, elastic=False, xmin=-6.0, xmax=1.0, fmg_start_points=257)
+    assert s.converged
+    assert s.Hc * 10.0 == pytest.approx(2.45, rel=0.01)
+    assert s.Hm * 10.0 == pytest.approx(2.45, rel=0.02)
+
+
+def test_result_follows_the_naming_contract(sol_20_10, tmp_path):
+    res = sol_20_10.to_result()
+    assert res.kind == "ehl_line"
+    for name in ("Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error",
+                 "levels", "points", "cycles", "wall_s", "converged"):
+        assert name in res.scalars
+    back = Result.load(res.save(tmp_path / "r.h5"))
+    assert np.array_equal(back["P"], sol_20_10.P)
+    assert back.scalars["Hc"] == pytest.approx(sol_20_10.Hc)
+    assert "residual" in back.history
+
+
+def test_scene_mode_gives_films_in_metres():
+    from ehl_multigrid.scene import load_scene
+
+    sc = load_scene("page63_line_2000N")
+    s = solve_line(scene=sc, points=1025)
+    res = s.to_result(sc)
+    assert s.hc == pytest.approx(s.Hc * sc.film_scale(), rel=1e-9)
+    assert res["h"][np.argmin(np.abs(s.X))] == pytest.approx(s.hc, rel=0.05)
+    assert res["x"][-1] == pytest.approx(1.5 * sc.hertz.b)
+
+
+@pytest.mark.parametrize("kw, field", [
+    (dict(M=-1.0, L=10.0), "M"), (dict(M=20.0, L=-2.0), "L"), (dict(M=1e6, L=10.0), "M"),
+    (dict(M=20.0, L=10.0, points=1000), "points"), (dict(M=20.0, L=10.0, points=257, levels=9), "levels"),
+    (dict(M=20.0, L=10.0, cycle="F"), "cycle"), (dict(M=20.0, L=10.0, deformation="magic"), "deformation"),
+])
+def test_bad_input_names_the_field(kw, field):
+    with pytest.raises(InputError, match=field):
+        solve_line(**kw)
+
+
+def test_stall_raises_convergence_error_with_a_hint():
+    pb = LineProblem.from_moes(100.0, 10.0)
+    solver = MultilevelLineSolver(pb, points=257, cycles=1, max_cycles=0, tol=1e-14, tol_load=1e-14)
+    with pytest.raises(ConvergenceError, match="what to try"):
+        solver.solve()
+
+
+def test_unconverged_result_says_so_when_not_raising():
+    sol = solve_line(100.0, 10.0, points=257, cycles=1, max_cycles=0, tol=1e-14,
+                     raise_on_failure=False)
+    assert sol.converged is False and sol.scalars["converged"] is False
+    assert sol.to_result().scalars["converged"] is False

@@ -1,0 +1,55 @@
+"""``ehl solve --contact point|elliptic`` through ehl_multigrid.cli.main."""
+
+import json
+
+import h5py
+
+from ehl_multigrid.cli import main
+from ehl_multigrid.results import Result
+
+KEYS = {"Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error", "levels",
+        "points", "cycles", "wall_s", "converged"}
+
+
+def test_cli_json_moes_only(tmp_path, capsys):
+    rc = main(["solve", "--contact", "point", "--M", "20", "--L", "10", "--points", "65",
+               "--json", "--out", str(tmp_path), "--no-plots"])
+    out = capsys.readouterr().out
+    assert rc == 0
+    payload = json.loads(out.strip().splitlines()[-1])
+    assert KEYS <= set(payload)
+    assert payload["converged"] is True
+    assert payload["hc"] is None and payload["hm"] is None
+    res = Result.load(payload["file"])
+    assert res.kind == "ehl_point"
+    assert res["P"].shape == (65, 65) and res.fields["P"].dims == ("X", "Y")
+    with h5py.File(payload["file"]) as f:
+        assert "residual" in f["history"]
+
+
+def test_cli_prints_the_oil_used_in_moes_only_mode(tmp_path, capsys):
+    rc = main(["solve", "--contact", "elliptic", "--ellipticity", "4", "--M", "20", "--L", "5",
+               "--points", "65", "--out", str(tmp_path), "--alpha", "1.5e-8"])
+    out = capsys.readouterr().out
+    assert rc == 0
+    assert "alpha = 1.5e-08" in out and "eta0 = 0.04" in out and "p0 = 1.96e+08" in out
+    assert list(tmp_path.glob("*_maps.png")) and list(tmp_path.glob("*_interference.png"))
+
+
+def test_cli_scene_gives_physical_films(tmp_path, capsys):
+    rc = main(["solve", "appendix_d_point", "--points", "65", "--json", "--no-plots", "--out", str(tmp_path),
+               "--max-cycles", "2"])
+    payload = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert rc == 0
+    assert payload["hc"] > 0 and payload["hm"] > 0
+    res = Result.load(payload["file"])
+    assert res.fields["h"].units == "m" and res.fields["p"].units == "Pa"
+
+
+def test_cli_error_paths(tmp_path, capsys):
+    assert main(["solve", "--contact", "elliptic", "--M", "20", "--L", "10", "--out", str(tmp_path)]) == 2
+    assert "ellipticity" in capsys.readouterr().err
+    assert main(["solve", "--contact", "point", "--M", "20", "--L", "10", "--points", "100",
+                 "--out", str(tmp_path)]) == 2
+    assert "points" in capsys.readouterr().err
+    assert main(["solve", "appendix_d_point", "--alpha", "2e-8", "--out", str(tmp_path)]) == 2
