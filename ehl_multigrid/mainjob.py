@@ -127,11 +127,12 @@ def film_stage(ctx: RunContext) -> StageOutput:
             from .line import solve_line
 
             sol = solve_line(scene=scene, points=points)
+            res = sol.to_result(scene)
         else:
-            from .point import solve_point
+            from .point import build_result, problem_from_scene, solve_fas
 
-            sol = solve_point(scene=scene, points=points)
-        res = sol.to_result(scene) if contact == "line" else sol.to_result()
+            sol = solve_fas(problem_from_scene(scene), points=points)
+            res = build_result(sol, scene)
         summary = {k: res.scalars.get(k) for k in ("Hc", "Hm", "hc", "hm", "p_spike", "load_error", "points", "converged")}
         summary["Hc_fit"], summary["hc_fit"] = scene.central_film_fit()
         text = (f"Film from the multigrid solver on {points} points per direction: hc = {res.scalars['hc'] * 1e9:.4g} nm, "
