@@ -23,7 +23,7 @@ DATA = ROOT / "ehl_multigrid" / "data"
 
 def table_from_rows(rows: list[dict], source: str) -> dict | None:
     sel = [r for r in rows if r.get("viscosity") == "roelands" and r.get("density") == "dowson-higginson"
-           and r.get("converged") and r.get("Hc") and (r.get("theta", 1.0) == 1.0)]
+           and r.get("converged") and r.get("Hc") and (float(r.get("theta", 1.0)) == 1.0)]
     if not sel:
         return None
     Ms = sorted({float(r["M"]) for r in sel})
@@ -39,13 +39,14 @@ def table_from_rows(rows: list[dict], source: str) -> dict | None:
 
 def main() -> None:
     DATA.mkdir(exist_ok=True)
-    for contact in ("line", "point"):
-        f = ROOT / "validation" / contact / "out" / "fit.json"
+    for contact, name in (("line", "fit.json"), ("point", "fit_check.json")):
+        f = ROOT / "validation" / contact / "out" / name
         if not f.exists():
             print(f"{contact}: no {f.relative_to(ROOT)}; table not written")
             continue
         data = json.loads(f.read_text())
-        tab = table_from_rows(data.get("rows", []), f"validation/{contact}/out/fit.json")
+        rows = data.get("rows", []) if "rows" in data else [v for v in data.values() if isinstance(v, dict)]
+        tab = table_from_rows(rows, f"validation/{contact}/out/{name}")
         if tab is None:
             print(f"{contact}: no converged Roelands + Dowson-Higginson rows; table not written")
             continue
