@@ -43,7 +43,7 @@ class SolverOptions:
     cycle : V or W; nu1, nu2 pre/post sweeps; cycles : cycles per FMG level
     max_cycles : extra finest-level cycles allowed to reach the tolerances
     deformation : fft | mlmi | direct
-    thr : eps/hx^2 switch GS/Jacobi-distributive (None: 1 Roelands, 10 Barus); w_gs, w_jd : under-relaxation
+    thr : eps/hx^2 switch GS/Jacobi-distributive (None: 10 for Barus with alpha_bar >= 8, else 1); w_gs, w_jd : under-relaxation
     c_h00 : H00 step per unit load error (None: 0.1 V / 0.05 W, /4 when L > 10 or M > 1000)
     coarse_sweeps : sweeps on the coarsest grid per visit
     tol : relative residual tolerance ``||r||_2/||d(rho H)/dX||_2``; tol_load : relative load error
@@ -185,9 +185,11 @@ class FASSolver:
         self.gain = self.c_h
         self._last_err = None
         self._n_soft = 0
-        # measured: Barus spikes need more Gauss-Seidel lines (thr 10 converges 513^2 in 9
-        # W cycles where thr 1 diverges); Roelands converges equally well with 1 and 10
-        barus_spike = self.visc == 1 and problem.alpha_bar > 0 and opt.elastic
+        # measured: strong Barus spikes (alpha_bar >= 8) need more Gauss-Seidel lines (thr 10
+        # converges (20, 10) at 513^2 in 9 W cycles where thr 1 diverges); at low alpha_bar
+        # thr 1 is better (Barus (50, 2.5) at 129^2: thr 1 converges, thr 10 stalls);
+        # Roelands converges equally well with 1 and 10
+        barus_spike = self.visc == 1 and problem.alpha_bar >= 8.0 and opt.elastic
         self.thr = opt.thr if opt.thr is not None else (10.0 if barus_spike else 1.0)
         self.actions: list[str] = []
         self.work = 0.0
@@ -486,6 +488,9 @@ class FASSolver:
         if not finite:
             raise ConvergenceError("point-contact solve produced NaN/inf", report,
                                    "use W cycles, a finer coarsest grid (--levels fewer), or smaller relaxation")
+        if not converged and lerr > 1e-2:
+            report.message += ("; the load cannot be balanced: at low M the inlet of this domain is too "
+                               "short (extend xmin/ymax), at high M the grid is too coarse (more points)")
         if not report.converged and opt.raise_on_failure:
             raise ConvergenceError(msg, report, "raise --max-cycles, use W cycles, a longer inlet or fewer levels")
         return FASOutput(self.pb, opt, fine.X, fine.Y, fine.P.copy(), fine.H.copy(), self.H00, report,

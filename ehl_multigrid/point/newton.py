@@ -260,6 +260,10 @@ def solve_newton_amg(problem: PointProblem, options: NewtonOptions | None = None
             active = (P <= 0.0) & (rhs >= 0.0)
             dlr, dle = _log_derivatives(pb, P)
             J = _jacobian(g, P, H, rho, eps, opt.m, opt.order, active, eps * (dlr - dle), dlr * rho)
+            if not np.all(np.isfinite(J.data)):
+                raise ConvergenceError(
+                    f"Newton/pyamg path: non-finite Jacobian on the {n}^2 grid (step {it})", None,
+                    "the lagged far-field deformation diverged here; use the FAS solver (solve_fas)")
             free = np.zeros_like(P, bool)
             free[1:-1, 1:-1] = True
             free &= ~active
@@ -286,10 +290,15 @@ def solve_newton_amg(problem: PointProblem, options: NewtonOptions | None = None
             def _cb(_x, cnt=cnt):
                 cnt[0] += 1
 
-            d1, i1 = spla.gmres(J, b1, M=Mpre, rtol=opt.lin_tol, restart=50, maxiter=6, callback=_cb,
-                                callback_type="pr_norm")
-            d2, i2 = spla.gmres(J, b2, M=Mpre, rtol=opt.lin_tol, restart=50, maxiter=6, callback=_cb,
-                                callback_type="pr_norm")
+            try:
+                d1, i1 = spla.gmres(J, b1, M=Mpre, rtol=opt.lin_tol, restart=50, maxiter=6,
+                                    callback=_cb, callback_type="pr_norm")
+                d2, i2 = spla.gmres(J, b2, M=Mpre, rtol=opt.lin_tol, restart=50, maxiter=6,
+                                    callback=_cb, callback_type="pr_norm")
+            except ValueError as exc:  # NaN/inf inside the AMG hierarchy
+                raise ConvergenceError(
+                    f"Newton/pyamg path diverged on the {n}^2 grid (step {it}): {exc}", None,
+                    "the lagged far-field deformation dominates here; use the FAS solver") from None
             if i1 or i2:
                 actions.append(f"n={n} step {it}: GMRES did not reach rtol {opt.lin_tol:g}")
             lin_iters.append(cnt[0])
