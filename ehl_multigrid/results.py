@@ -126,19 +126,7 @@ class Result:
     # -- I/O --------------------------------------------------------------------------------
     def save(self, path: str | os.PathLike) -> Path:
         """Write atomically to ``path`` (HDF5). Returns the path."""
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-        os.close(fd)
-        try:
-            with h5py.File(tmp, "w") as f:
-                self._write(f)
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
-        return path
+        return _write_atomic(path, self._write)
 
     def _write(self, f: h5py.Group) -> None:
         f.attrs["kind"] = self.kind
@@ -219,20 +207,29 @@ class Result:
 def save_results(path: str | os.PathLike, results: dict[str, Result], meta: dict[str, Any] | None = None) -> Path:
     """Several results in one HDF5 file, each under ``/<name>`` with the layout above;
     written atomically like :meth:`Result.save`."""
+
+    def write(f: h5py.File) -> None:
+        f.attrs["package"] = "ehl-multigrid"
+        f.attrs["kind"] = "collection"
+        f.attrs["package_version"] = package_version()
+        f.attrs["format_version"] = FORMAT_VERSION
+        for k, v in (meta or {}).items():
+            f.attrs[k] = json.dumps(v, default=_json_default)
+        for name, res in results.items():
+            res._write(f.create_group(name))
+
+    return _write_atomic(path, write)
+
+
+def _write_atomic(path: str | os.PathLike, write: Any) -> Path:
+    """Run ``write(h5file)`` on a temporary file beside ``path``, then rename it into place."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
         with h5py.File(tmp, "w") as f:
-            f.attrs["package"] = "ehl-multigrid"
-            f.attrs["kind"] = "collection"
-            f.attrs["package_version"] = package_version()
-            f.attrs["format_version"] = FORMAT_VERSION
-            for k, v in (meta or {}).items():
-                f.attrs[k] = json.dumps(v, default=_json_default)
-            for name, res in results.items():
-                res._write(f.create_group(name))
+            write(f)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
