@@ -133,6 +133,18 @@ def film_stage(ctx: RunContext) -> StageOutput:
 
             sol = solve_fas(problem_from_scene(scene), points=points)
             res = build_result(sol, scene)
+        if not res.scalars.get("converged") or not (res.scalars.get("hm") or 0.0) > 0.0:
+            # an unconverged or non-positive film must not feed the later stages: fall back to
+            # Hertz + fit and say so in the plan and the report
+            note = (f"multigrid solve on {points} points did not give a converged positive film "
+                    f"(converged = {res.scalars.get('converged')}, hm = {res.scalars.get('hm')}); "
+                    "film from the fit instead")
+            plan.notes.append(note)
+            dec.setting = "fit (solver fallback)"
+            out = _fit_film_output(ctx)
+            out.text = note + ". " + out.text
+            out.summary["solver_fallback"] = True
+            return out
         summary = {k: res.scalars.get(k) for k in ("Hc", "Hm", "hc", "hm", "p_spike", "load_error", "points", "converged")}
         summary["Hc_fit"], summary["hc_fit"] = scene.central_film_fit()
         text = (f"Film from the multigrid solver on {points} points per direction: hc = {res.scalars['hc'] * 1e9:.4g} nm, "
@@ -148,13 +160,18 @@ def film_stage(ctx: RunContext) -> StageOutput:
 
                 figures += [Path(f) for f in plot_result(res, ctx.outdir, f"{scene.name}_film")]
     else:
-        res = hertz_result(scene)
-        Hc, hc = scene.central_film_fit()
-        summary = {"Hc_fit": Hc, "hc_fit": hc, "pmax": scene.hertz.pmax}
-        text = (f"Film from the {'Moes' if contact == 'line' else 'Nijenbanning'} fit: hc = {hc * 1e9:.4g} nm "
-                f"under Hertz pressure pmax = {scene.hertz.pmax / 1e9:.4g} GPa.")
-        if ctx.plots:
-            figures.append(plot_hertz(res, ctx.outdir / f"{scene.name}_film.png"))
+        return _fit_film_output(ctx)
+    return StageOutput("film", res, summary, figures, text)
+
+
+def _fit_film_output(ctx: RunContext) -> StageOutput:
+    scene = ctx.scene
+    res = hertz_result(scene)
+    Hc, hc = scene.central_film_fit()
+    summary = {"Hc_fit": Hc, "hc_fit": hc, "pmax": scene.hertz.pmax}
+    text = (f"Film from the {'Moes' if scene.kind == 'line' else 'Nijenbanning'} fit: hc = {hc * 1e9:.4g} nm "
+            f"under Hertz pressure pmax = {scene.hertz.pmax / 1e9:.4g} GPa.")
+    figures = [plot_hertz(res, ctx.outdir / f"{scene.name}_film.png")] if ctx.plots else []
     return StageOutput("film", res, summary, figures, text)
 
 

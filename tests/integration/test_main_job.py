@@ -39,3 +39,14 @@ def test_main_job_on_the_default_scene(capsys, tmp_path):
     assert main(["run", "--out", str(tmp_path), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert set(load_results(out["hdf5"])) == {"film", "traction", "stribeck"}
+
+
+def test_unconverged_solver_film_falls_back_to_the_fit_and_says_so(capsys, tmp_path):
+    # M = 6114 at 1.93 GPa: a 129^2 point grid cannot resolve it (the solver returns converged=False)
+    assert main(["run", "series_C_disc3_1.93GPa", "--fidelity", "fast", "--out", str(tmp_path), "--json", "--no-plots"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["plan"]["film"] == "fit (solver fallback)"
+    assert out["film"]["solver_fallback"] is True
+    results = load_results(out["hdf5"])
+    assert results["film"].kind == "hertz_fit"
+    assert any("did not give a converged positive film" in n for n in results["film"].meta["plan"]["notes"])
