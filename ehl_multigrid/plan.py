@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from .errors import InputError, require_range
-from .lubricant import density_ratio_dh
+from .lubricant import ETA_INF, P_R, density_ratio_dh
 from .scene import Scene
 
 #: Relative accuracy targeted by each fidelity level.
@@ -162,8 +162,8 @@ def temperature_rise_estimate(scene: Scene, us: float, slip: float, h: float) ->
     dT = dT_surface + q * h / (8.0 * k_oil)
     # d ln(eta)/dT of Roelands at p, T_oil
     T = scene.T_oil
-    expo = (1.0 + p / 1.962e8) ** lub.z * ((lub.T0 + 135.0) / (T + 135.0)) ** lub.S0
-    dlneta_dT = -math.log(lub.eta0 / 6.31e-5) * expo * lub.S0 / (T + 135.0)
+    expo = (1.0 + p / P_R) ** lub.z * ((lub.T0 + 135.0) / (T + 135.0)) ** lub.S0
+    dlneta_dT = -math.log(lub.eta0 / ETA_INF) * expo * lub.S0 / (T + 135.0)
     damping = x / (math.sqrt(1 + x * x) * math.asinh(x)) if x > 1e-12 else 1.0
     return {
         "tau": tau, "q": q, "dT": dT, "dT_surface": dT_surface, "eyring_x": x,
