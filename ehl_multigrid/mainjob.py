@@ -129,10 +129,12 @@ def film_stage(ctx: RunContext) -> StageOutput:
             sol = solve_line(scene=scene, points=points)
             res = sol.to_result(scene)
         else:
-            from .point import build_result, problem_from_scene, solve_fas
+            from .point import solve_point
+            from .point.problem import min_points
 
-            sol = solve_fas(problem_from_scene(scene), points=points)
-            res = build_result(sol, scene)
+            M, _ = scene.moes()
+            points = max(points, min_points(M))  # below it the solver does not converge
+            res = solve_point(scene=scene, points=points).to_result(scene)
         if not res.scalars.get("converged") or not (res.scalars.get("hm") or 0.0) > 0.0:
             # an unconverged or non-positive film must not feed the later stages: fall back to
             # Hertz + fit and say so in the plan and the report

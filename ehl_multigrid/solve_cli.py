@@ -40,6 +40,9 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--threads", type=int, default=None, help="numba threads (default: all cores)")
     p.add_argument("--tol", type=float, default=None, help="residual tolerance")
     p.add_argument("--tol-load", type=float, default=None, help="relative load-error tolerance")
+    p.add_argument("--solver", choices=["fas", "newton"], default=None,
+                   help="point contacts: FAS/FMG multigrid (default) or the Newton semi-system path with pyamg")
+    p.add_argument("--rigid", action="store_true", help="rigid surfaces: elastic deformation off (FAS)")
 
 
 def resolve_contact(args: argparse.Namespace):

@@ -53,7 +53,12 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
             raise InputError(f"--{opt} applies to point contacts, not to a line contact")
     if getattr(args, "half", False):
         raise InputError("--half applies to point contacts, not to a line contact")
+    if getattr(args, "solver", None) == "newton":
+        raise InputError("--solver newton is the point-contact cross-check path; line contacts use "
+                         "the FAS solver (whose coarsest grid is already solved by Newton)")
     opts, model = _options(args, scene)
+    if getattr(args, "rigid", False):
+        model["elastic"] = False
     if scene is None:
         oil = {k: getattr(args, k, None) for k in ("alpha", "eta0", "p0")}
         pb = LineProblem.from_moes(args.M, args.L, **oil, **model)

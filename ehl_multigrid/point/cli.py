@@ -9,6 +9,7 @@ from pathlib import Path
 
 from ..errors import InputError, reject_unknown_keys
 from .fas import SolverOptions, solve_fas
+from .newton import NewtonOptions, solve_newton_amg
 from .postprocess import build_result, summary_payload
 from .problem import problem_from_moes, problem_from_scene
 
@@ -56,10 +57,37 @@ def problem_from_args(args: argparse.Namespace, scene):
     return problem_from_scene(scene, args.viscosity, args.density)
 
 
+def newton_options_from_args(args: argparse.Namespace, scene=None) -> NewtonOptions:
+    """Options of the Newton/pyamg path: defaults, the scene's ``[solver.point]`` keys that
+    the path shares with FAS, then CLI flags; FAS-only flags are refused."""
+    names = {f.name for f in fields(NewtonOptions)}
+    kw: dict = {"points": DEFAULT_POINTS}
+    if scene is not None:
+        kw.update({k: v for k, v in scene.solver.get("point", {}).items() if k in names})
+    for flag in ("levels", "cycle", "cycles", "max_cycles", "threads"):
+        if getattr(args, flag, None) is not None:
+            raise InputError(f"--{flag.replace('_', '-')} applies to --solver fas only")
+    if args.half:
+        raise InputError("--half applies to --solver fas only (the Newton path solves the full domain)")
+    cli = {"points": args.points, "deformation": args.deformation, "xmin": args.xmin, "xmax": args.xmax,
+           "ymax": args.ymax, "tol": args.tol, "tol_load": args.tol_load}
+    kw.update({k: v for k, v in cli.items() if v is not None})
+    return NewtonOptions(**kw)
+
+
 def run_solve(args: argparse.Namespace, scene) -> dict:
     """Solve, write ``<out>/<name>.h5`` and PNGs (unless ``--no-plots``), return the payload."""
     pb = problem_from_args(args, scene)
-    opt = options_from_args(args, scene)
+    solver = getattr(args, "solver", None) or "fas"
+    rigid = bool(getattr(args, "rigid", False))
+    if solver == "newton":
+        if rigid:
+            raise InputError("--rigid applies to --solver fas only")
+        opt = newton_options_from_args(args, scene)
+    else:
+        opt = options_from_args(args, scene)
+        if rigid:
+            opt.elastic = False
     quiet = bool(getattr(args, "json", False))
     if not quiet:
         if scene is None:
@@ -69,14 +97,17 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
         else:
             print(f"# scene {scene.name}: M = {pb.M:.5g}, L = {pb.L:.5g}, theta = {pb.theta:.4g}, "
                   f"pmax = {pb.pmax:.4g} Pa, a = {pb.a:.4g} m")
-        print(f"# {pb.viscosity} viscosity, {pb.density} density; {opt.points}^2 points, "
-              f"{opt.cycle} cycles, deformation {opt.deformation}{', half domain' if opt.half else ''}")
-    sol = solve_fas(pb, opt)
+        how = (f"{opt.cycle} cycles" if solver == "fas" else "Newton/pyamg")
+        print(f"# {pb.viscosity} viscosity, {pb.density} density; {opt.points} points along X, "
+              f"{how}, deformation {opt.deformation}{', half domain' if opt.half else ''}"
+              f"{', rigid surfaces' if rigid else ''}")
+    sol = solve_fas(pb, opt) if solver == "fas" else solve_newton_amg(pb, opt)
     res = build_result(sol, scene)
     name = scene.name if scene is not None else f"point_M{pb.M:g}_L{pb.L:g}_th{pb.theta:g}"
     out = Path(getattr(args, "out", "ehl_out"))
     path = res.save(out / f"{name}.h5")
     payload = summary_payload(res)
+    payload["solver"] = solver
     payload["file"] = str(path)
     if not getattr(args, "no_plots", False):
         from .plots import plot_result

@@ -16,16 +16,17 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 import numba
 import numpy as np
 
 from ..convergence import ConvergenceReport
 from ..errors import ConvergenceError, InputError, require_range
+from ..fits import nijenbanning_central
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation, set_fft_workers
-from .problem import PointProblem
+from .problem import PointProblem, coarse_intervals, default_domain, domain_scale, min_points
 
 #: grids with fewer points than this run single-threaded (see FASSolver._threads_for)
 SERIAL_BELOW = 129 * 129
@@ -37,14 +38,19 @@ class SolverOptions:
 
     points : finest-grid points per axis (2^k n0 + 1)
     levels : number of levels (None: coarsest grid ``n_coarse`` intervals)
-    n_coarse : intervals of the coarsest grid along X (None: 16, or 32 at M >= 200)
-    xmin, xmax, ymax : domain (ymax is in units of a; None: 3 b/a)
+    n_coarse : intervals of the coarsest grid along X (None: :func:`problem.coarse_intervals`)
+    xmin, xmax, ymax : domain in units of a (None: :func:`problem.default_domain`, which is
+        [-4.5, 1.5] x [-3, 3] b/a except at low M)
+    y_ratio : (points along Y - 1)/(points - 1), a power of 2 (None: the one that makes the
+        mesh closest to square, so elliptic contacts keep hy ~ hx; 1 for circular contacts)
     half : solve Y >= 0 only (symmetric contact)
     cycle : V or W; nu1, nu2 pre/post sweeps; cycles : cycles per FMG level
     max_cycles : extra finest-level cycles allowed to reach the tolerances
     deformation : fft | mlmi | direct
     thr : eps/hx^2 switch GS/Jacobi-distributive (None: 10 for Barus with alpha_bar >= 8, else 1); w_gs, w_jd : under-relaxation
-    c_h00 : H00 step per unit load error (None: 0.1 V / 0.05 W, /4 when L > 10 or M > 1000)
+    c_h00 : H00 step per unit load error (None: 0.1 V / 0.05 W, /4 when L > 10 or M > 1000;
+        at least ``H_fit/(10 load)`` where the film is thick (:func:`problem.domain_scale` > 1),
+        from the rigid sensitivity ``d load/d H00 ~ -2 load/H``)
     coarse_sweeps : sweeps on the coarsest grid per visit
     tol : relative residual tolerance ``||r||_2/||d(rho H)/dX||_2``; tol_load : relative load error
     order : wedge discretisation order (1 or 2)
@@ -55,9 +61,10 @@ class SolverOptions:
     points: int = 129
     levels: int | None = None
     n_coarse: int | None = None
-    xmin: float = -4.5
-    xmax: float = 1.5
+    xmin: float | None = None
+    xmax: float | None = None
     ymax: float | None = None
+    y_ratio: float | None = None
     half: bool = False
     cycle: str = "W"
     nu1: int = 2
@@ -85,10 +92,16 @@ class SolverOptions:
             raise InputError(f"cycle = {self.cycle!r} is not one of ['V', 'W']")
         if self.deformation not in ("fft", "mlmi", "direct"):
             raise InputError(f"deformation = {self.deformation!r} is not one of ['mlmi', 'fft', 'direct']")
-        require_range("xmin", self.xmin, -50.0, -1.05, "-")
-        require_range("xmax", self.xmax, 1.05, 50.0, "-")
+        if self.xmin is not None:
+            require_range("xmin", self.xmin, -2000.0, -1.05, "-")
+        if self.xmax is not None:
+            require_range("xmax", self.xmax, 1.05, 2000.0, "-")
         if self.ymax is not None:
-            require_range("ymax", self.ymax, 0.5, 100.0, "-")
+            require_range("ymax", self.ymax, 0.5, 2000.0, "-")
+        if self.y_ratio is not None:
+            require_range("y_ratio", self.y_ratio, 0.125, 8.0, "-")
+            if abs(math.log2(self.y_ratio) - round(math.log2(self.y_ratio))) > 1e-12:
+                raise InputError(f"y_ratio = {self.y_ratio:g} must be a power of 2 in [1/8, 8]")
         require_range("cycles", self.cycles, 1, 50)
         require_range("max_cycles", self.max_cycles, 0, 1000)
         require_range("tol", self.tol, 1e-14, 1.0, "-", lo_open=True)
@@ -141,6 +154,14 @@ class FASOutput:
     fmg_Hc: list = field(default_factory=list)
 
 
+def y_ratio(length_x: float, length_y: float, coarse_x: int) -> float:
+    """Power of 2 closest (in log) to ``length_y/length_x``, in [1/8, 8], leaving at least 4
+    intervals along Y on the coarsest grid (``coarse_x`` intervals along X)."""
+    r = 2.0 ** round(math.log2(length_y / length_x))
+    r = min(max(r, 0.125, 4.0 / coarse_x), 8.0)
+    return 2.0 ** math.ceil(math.log2(r) - 1e-12)
+
+
 def load_integral(P: np.ndarray, hx: float, hy: float, half: bool) -> float:
     """``∫∫ P dX dY`` (trapezoid; P = 0 on the boundary); half domains count row 0 once."""
     if half:
@@ -154,6 +175,10 @@ class FASSolver:
     def __init__(self, problem: PointProblem, opt: SolverOptions) -> None:
         opt.validate()
         self.pb = problem
+        xmin, xmax, ymax = default_domain(problem)
+        opt = replace(opt, xmin=xmin if opt.xmin is None else opt.xmin,
+                      xmax=xmax if opt.xmax is None else opt.xmax,
+                      ymax=ymax if opt.ymax is None else opt.ymax)
         self.opt = opt
         self.nthreads = numba.config.NUMBA_NUM_THREADS
         if opt.threads is not None:
@@ -179,6 +204,9 @@ class FASSolver:
             c = 0.1 if opt.cycle == "V" else 0.05
             if problem.L > 10 or problem.M > 1000:
                 c *= 0.25
+            if domain_scale(problem) > 1.0:  # thick film: the rigid sensitivity sets the gain
+                H_fit = nijenbanning_central(problem.M, problem.L, problem.theta) / problem.moes_factor
+                c = max(c, 0.1 * H_fit / problem.load)
             self.c_h = c
         else:
             self.c_h = opt.c_h00
@@ -205,7 +233,7 @@ class FASSolver:
         n = int(opt.points)
         nc = opt.n_coarse
         if nc is None:
-            nc = 32 if self.pb.M >= 200 else 16
+            nc = coarse_intervals(self.pb.M, opt.xmax - opt.xmin, n, domain_scale(self.pb))
         if opt.levels is not None:
             nlev = int(opt.levels)
             if (n - 1) % (2 ** (nlev - 1)) or (n - 1) // 2 ** (nlev - 1) < 4:
@@ -221,20 +249,25 @@ class FASSolver:
             nlev = int(round(math.log2(m))) + 1
         if (n - 1) % 2 ** (nlev - 1):
             raise InputError(f"points = {n} must be 2^k + 1")
-        ymax = 3.0 * self.boa if opt.ymax is None else float(opt.ymax)
+        ymax = float(opt.ymax)
         self.ymax = ymax
+        ratio = opt.y_ratio
+        if ratio is None:
+            ratio = y_ratio(opt.xmax - opt.xmin, 2.0 * ymax, (n - 1) // 2 ** (nlev - 1))
+        self.y_ratio = ratio
         self.levels: list[Level] = []
         for k in range(nlev):
             nk = (n - 1) // 2 ** (nlev - 1 - k) + 1
+            nyf = int(round((nk - 1) * ratio)) + 1  # full-domain points along Y
             hx = (opt.xmax - opt.xmin) / (nk - 1)
-            hy = 2.0 * ymax / (nk - 1)
+            hy = 2.0 * ymax / (nyf - 1)
             X = opt.xmin + hx * np.arange(nk)
             if opt.half:
-                nyk = (nk - 1) // 2 + 1
+                nyk = (nyf - 1) // 2 + 1
                 Y = hy * np.arange(nyk)
             else:
-                nyk = nk
-                Y = -ymax + hy * np.arange(nk)
+                nyk = nyf
+                Y = -ymax + hy * np.arange(nyf)
             defo = make_deformation(opt.deformation, nk, nyk, hx, hy, opt.half)
             K = cell_kernel(6, 2, hx, hy)
             lev = Level(nk, nyk, hx, hy, X, Y, defo, np.ascontiguousarray(self.cd * K))
@@ -394,8 +427,6 @@ class FASSolver:
         lev.P[-1] = 0.0
         if not self.opt.half:
             lev.P[0] = 0.0
-        from ..fits import nijenbanning_central
-
         Hc_fit = nijenbanning_central(self.pb.M, self.pb.L, self.theta) / self.pb.moes_factor
         self.H00 = 0.0
         lev.W = lev.defo(lev.P)
@@ -452,7 +483,9 @@ class FASSolver:
             lerr = abs(self.load(fine) - self.g_target) / self.g_target if ok else math.inf
             if not math.isfinite(res) or res > 3.0 * best[0] or self.central_film(fine) <= 0:
                 self._restore(best[1], nlev - 1)
-                self._soften(f"cycle {extra}: residual {res:.3g} > 3x best {best[0]:.3g}")
+                why = (f"residual {res:.3g} > 3x best {best[0]:.3g}" if res > 3.0 * best[0]
+                       else "negative central film")
+                self._soften(f"cycle {extra}: {why}")
                 res = self.rel_residual(fine)
                 lerr = abs(self.load(fine) - self.g_target) / self.g_target
             elif res > 0.95 * self.res_hist[-1] and res > opt.tol:
@@ -488,6 +521,9 @@ class FASSolver:
         if not finite:
             raise ConvergenceError("point-contact solve produced NaN/inf", report,
                                    "use W cycles, a finer coarsest grid (--levels fewer), or smaller relaxation")
+        if not converged and opt.points < min_points(self.pb.M):
+            report.message += (f"; at M = {self.pb.M:.4g} a grid of {opt.points} points is too coarse for "
+                               f"this solver: use points >= {min_points(self.pb.M)}")
         if not converged and lerr > 1e-2:
             report.message += ("; the load cannot be balanced: at low M the inlet of this domain is too "
                                "short (extend xmin/ymax), at high M the grid is too coarse (more points)")

@@ -32,14 +32,14 @@ from ..errors import ConvergenceError, InputError
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
 from .fas import load_integral
-from .problem import PointProblem
+from .problem import PointProblem, default_domain
 
 
 @dataclass
 class NewtonOptions:
     points: int = 129
-    xmin: float = -4.5
-    xmax: float = 1.5
+    xmin: float | None = None  # None: problem.default_domain (as the FAS path)
+    xmax: float | None = None
     ymax: float | None = None
     m: int = 2
     max_iter: int = 60
@@ -74,10 +74,13 @@ class NewtonOutput:
 class _Grid:
     def __init__(self, pb: PointProblem, n: int, opt: NewtonOptions) -> None:
         self.n = n
-        ymax = 3.0 * pb.b_over_a if opt.ymax is None else opt.ymax
-        self.hx = (opt.xmax - opt.xmin) / (n - 1)
+        xmin, xmax, ymax = default_domain(pb)
+        xmin = xmin if opt.xmin is None else opt.xmin
+        xmax = xmax if opt.xmax is None else opt.xmax
+        ymax = ymax if opt.ymax is None else opt.ymax
+        self.hx = (xmax - xmin) / (n - 1)
         self.hy = 2.0 * ymax / (n - 1)
-        self.X = opt.xmin + self.hx * np.arange(n)
+        self.X = xmin + self.hx * np.arange(n)
         self.Y = -ymax + self.hy * np.arange(n)
         self.defo = make_deformation(opt.deformation, n, n, self.hx, self.hy, False)
         self.K = pb.cd * cell_kernel(opt.m + 3, opt.m + 1, self.hx, self.hy)

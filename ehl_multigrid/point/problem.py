@@ -175,3 +175,58 @@ def problem_from_scene(scene, viscosity: str = "roelands", density: str = "dowso
         alpha=scene.alpha, eta0=eta0, p_r=p_r, a=hz.a, b=hz.b, Rx=scene.Rx,
         film_scale=scene.film_scale(), pmax_physical=hz.pmax,
     )
+
+
+def rigid_length(problem: PointProblem) -> float:
+    """Inlet length scale ``s = sqrt(2 H)`` [a], H the fitted central film (Venner units).
+
+    Where the film is thick compared with the elastic deformation (low M) the pressure spreads
+    over a few ``s`` around the contact instead of over the Hertz circle.
+    """
+    from ..fits import nijenbanning_central
+
+    H = float(nijenbanning_central(problem.M, problem.L, problem.theta)) / problem.moes_factor
+    return math.sqrt(2.0 * H)
+
+
+def domain_scale(problem: PointProblem) -> float:
+    """Factor >= 1 by which the default domain is widened in the thick-film (low M) regime:
+    ``max(1, (1 + 3 s)/4.5)``, so that the inlet holds at least 3 inlet lengths ``s`` upstream
+    of the contact (s from :func:`rigid_length`). It is 1 (MODEL.md 5's domain) while
+    s <= 1.17 (M >~ 5 at L = 0, every M >= 10 for L <= 25) and 5.5 at M = 1, L = 0."""
+    return max(1.0, (1.0 + 3.0 * rigid_length(problem)) / 4.5)
+
+
+def default_domain(problem: PointProblem) -> tuple[float, float, float]:
+    """Default ``(xmin, xmax, ymax)`` in units of a: MODEL.md 5's X in [-4.5, 1.5],
+    Y in [-3, 3] b/a, scaled by :func:`domain_scale` at low M.
+
+    Measured (validation/point/REPORT.md): doubling the [-4.5, 1.5] x 3 domain at equal mesh
+    size raises Hc by 1.2 % at (M, L) = (20, 10), 5.6 % at (5, 0) and 0.6 % at (5, 10); at
+    M = 1 the rigid-isoviscous pressure spreads over tens of a and Hc keeps rising with the
+    domain (12.9, 19.4, 25.2 for inlets of 17, 33, 65 a).
+    """
+    f = domain_scale(problem)
+    return -4.5 * f, 1.5 * f, 3.0 * f * problem.b_over_a
+
+
+def coarse_intervals(M: float, length: float, points: int, scale: float = 1.0) -> int:
+    """Intervals of the coarsest grid along X: the smallest ``16 * 2^k`` that gives a coarse
+    mesh size <= 0.375 a (M < 200), 0.1875 a (200 <= M < 1000) or 0.094 a (M >= 1000), times
+    ``scale`` (:func:`domain_scale`: in the thick-film regime the pressure zone grows with the
+    domain), and no more than the finest grid has. The Hertz zone must be resolved on the coarsest grid for the
+    load balance to steer H00 (a [-13.5, 3.5] domain with 16 coarse intervals diverges at
+    (20, 10); see REPORT.md)."""
+    h = (0.375 if M < 200 else (0.1875 if M < 1000 else 0.094)) * scale
+    n = 16
+    while length / n > h and n < points - 1:
+        n *= 2
+    return min(n, points - 1)
+
+
+def min_points(M: float) -> int:
+    """Smallest finest grid (points along X) at which the FAS solver is expected to converge
+    with the default domain: 129 below M = 200, 257 below M = 1000, 513 from M = 1000 on.
+    Measured (validation/point/REPORT.md, extremes): (1000, 10) converges at 257 but (1000, 0)
+    and (1000, 25) need 513; (5000, 10) converges at 513 (2.3 s) and 1025 (6.6 s)."""
+    return 129 if M < 200 else (257 if M < 1000 else 513)

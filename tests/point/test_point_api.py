@@ -1,0 +1,105 @@
+"""The unified point-contact API (solve_point), its domain and grid rules, and the CLI's
+--solver / --rigid switches."""
+
+import json
+import math
+
+import pytest
+
+from ehl_multigrid.cli import main
+from ehl_multigrid.errors import InputError
+from ehl_multigrid.point import default_domain, problem_from_moes, solve_point
+from ehl_multigrid.point.problem import coarse_intervals, domain_scale, min_points
+from ehl_multigrid.scene import load_scene
+
+
+def test_solve_point_from_moes_returns_result_with_line_solver_shape():
+    sol = solve_point(20, 10, points=65)
+    assert sol.converged
+    res = sol.to_result()
+    assert res.kind == "ehl_point"
+    assert sol.Hc == pytest.approx(res.scalars["Hc"])
+    assert set(("Hc", "Hm", "load_error", "converged", "solver")) <= set(sol.payload())
+
+
+def test_solve_point_newton_path_agrees_with_fas_on_the_same_grid():
+    a = solve_point(20, 10, points=65)
+    b = solve_point(20, 10, points=65, solver="newton")
+    assert b.converged, b.report.message
+    assert b.Hc == pytest.approx(a.Hc, rel=3e-4)
+
+
+def test_solve_point_from_scene_gives_physical_film():
+    sol = solve_point(scene=load_scene("appendix_d_point"), points=257)
+    assert sol.converged
+    assert 1e-8 < sol.hc < 1e-6
+
+
+def test_solve_point_rejects_bad_combinations():
+    with pytest.raises(InputError, match="solver"):
+        solve_point(20, 10, solver="sor")
+    with pytest.raises(InputError, match="scene or M and L"):
+        solve_point(20, 10, scene=load_scene("appendix_d_point"))
+    with pytest.raises(InputError, match="rigid"):
+        solve_point(20, 10, solver="newton", rigid=True)
+
+
+def test_default_domain_is_model_domain_at_moderate_load_and_grows_at_low_M():
+    assert default_domain(problem_from_moes(20, 10)) == pytest.approx((-4.5, 1.5, 3.0))
+    assert domain_scale(problem_from_moes(10, 0)) == 1.0
+    xmin, xmax, ymax = default_domain(problem_from_moes(1, 0))
+    assert xmin < -20 and ymax > 15 and xmax > 5
+
+
+def test_low_M_thick_film_converges_with_the_default_domain():
+    """M = 2, L = 0: the pressure spreads over several a; the widened domain and the rigid
+    H00 gain make the default solve converge (it failed with the fixed [-4.5, 1.5] box)."""
+    sol = solve_point(2, 0, points=65)
+    assert sol.converged, sol.report.message
+    assert sol.Hc > 0
+
+
+def test_elliptic_grid_keeps_cells_nearly_square():
+    sol = solve_point(20, 10, theta=4.0, points=129)
+    hx = sol.X[1] - sol.X[0]
+    hy = sol.Y[1] - sol.Y[0]
+    assert 0.7 < hy / hx < 1.42
+    assert sol.converged
+
+
+def test_coarse_grid_and_minimum_grid_rules():
+    assert coarse_intervals(20, 6.0, 129) == 16
+    assert coarse_intervals(500, 6.0, 129) == 32
+    assert coarse_intervals(2000, 6.0, 513) == 64
+    assert coarse_intervals(20, 24.0, 513) == 64  # widened domain keeps the coarse mesh size
+    assert min_points(100) == 129 and min_points(500) == 257 and min_points(5000) == 513
+
+
+def test_unconverged_coarse_high_M_solve_names_the_grid_it_needs():
+    sol = solve_point(5000, 10, points=65, max_cycles=3)
+    assert not sol.converged
+    assert "points >= 513" in sol.report.message
+
+
+def test_cli_solver_newton_and_rigid(tmp_path, capsys):
+    rc = main(["solve", "--M", "20", "--L", "10", "--contact", "point", "--points", "65",
+               "--solver", "newton", "--json", "--no-plots", "--out", str(tmp_path)])
+    assert rc == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["solver"] == "newton" and d["converged"]
+    rc = main(["solve", "--M", "3", "--L", "0", "--contact", "point", "--points", "65", "--rigid",
+               "--json", "--no-plots", "--out", str(tmp_path)])
+    assert rc == 0
+    rigid = json.loads(capsys.readouterr().out)
+    main(["solve", "--M", "3", "--L", "0", "--contact", "point", "--points", "65",
+          "--json", "--no-plots", "--out", str(tmp_path)])
+    elastic = json.loads(capsys.readouterr().out)
+    # the elastic bodies flatten in the contact and carry the load on a thicker film
+    assert rigid["converged"] and elastic["converged"]
+    assert rigid["Hc"] < elastic["Hc"]
+    assert math.isclose(rigid["Hc"], rigid["Hm"], rel_tol=1e-2)
+
+
+def test_cli_line_refuses_newton_path(capsys):
+    rc = main(["solve", "--M", "20", "--L", "10", "--contact", "line", "--solver", "newton", "--json"])
+    assert rc == 2
