@@ -1,5 +1,6 @@
 """Study 5: extremes. M from 1 to 5000, L from 0 to 25, theta from 0.1 to 10, Roelands + DH,
-129^2 (quick: 65^2, fewer points): every case converged, not converged (reported in the
+on max(129, min_points(M)) points (the solver's own minimum grid: 257 from M = 200, 513 from
+M = 1000; quick: 65 points, fewer cases): every case converged, not converged (reported in the
 result) or a clear error; counted and listed.
 
     python validation/point/extremes.py [--quick]
@@ -11,6 +12,8 @@ from collections import Counter
 from common import Store, solve_case
 from tqdm import tqdm
 
+from ehl_multigrid.point.problem import min_points
+
 
 def main() -> None:
     ap = argparse.ArgumentParser()
@@ -19,14 +22,15 @@ def main() -> None:
     if a.quick:
         Ms, Ls, ths, n = [1, 100, 5000], [0, 25], [0.1, 1, 10], 65
     else:
-        Ms, Ls, ths, n = [1, 10, 100, 1000, 5000], [0, 5, 15, 25], [0.1, 1, 10], 129
+        Ms, Ls, ths, n = [1, 10, 100, 1000, 5000], [0, 5, 15, 25], [0.1, 1, 10], None
     st = Store(f"extremes{'_quick' if a.quick else ''}.json")
     todo = [(M, L, th) for th in ths for M in Ms for L in Ls]
     for M, L, th in tqdm(todo, desc="extremes"):
-        key = f"{M}_{L}_{th}_{n}"
+        pts = n if n is not None else max(129, min_points(M))
+        key = f"{M}_{L}_{th}_{pts}"
         if key in st:
             continue
-        st.put(key, solve_case(M, L, th, "roelands", "dowson-higginson", n, max_cycles=40))
+        st.put(key, solve_case(M, L, th, "roelands", "dowson-higginson", pts, max_cycles=40))
     c = Counter(r["status"] for r in st.data.values())
     bad = {k: (r["status"], (r.get("message") or "")[:160]) for k, r in st.data.items() if r["status"] != "converged"}
     Store(f"extremes_summary{'_quick' if a.quick else ''}.json").put("summary", {"counts": dict(c), "failures": bad})

@@ -5,7 +5,9 @@ incompressibility); optionally theta = 1 Roelands + DH (--roelands) and the grid
 (--grid-error: theta = 1 Barus map re-solved at twice the resolution). Without it, the grid
 error at 129^2 is the one measured by grid_convergence.py.
 
-    python validation/point/fit_check.py [--quick] [--points 129]
+    python validation/point/fit_check.py [--quick] [--points 129] [--roelands]
+
+Each case runs on max(points, min_points(M)) points (257 from M = 200, 513 from M = 1000).
 """
 
 import argparse
@@ -15,6 +17,7 @@ from common import Store, plt, solve_case
 from tqdm import tqdm
 
 from ehl_multigrid.fits import nijenbanning_central
+from ehl_multigrid.point.problem import min_points
 
 MS = [5, 10, 20, 50, 100, 200, 500, 1000]
 LS = [0, 2.5, 5, 10, 15, 20]
@@ -33,11 +36,14 @@ def main() -> None:
     ls = [0, 10, 20] if a.quick else LS
     thetas = [1.0] if a.quick else THETAS
     st = Store(f"fit_check{'_quick' if a.quick else ''}.json")
-    todo = [(th, m, M, L, a.points) for th in thetas for m in MODELS for M in ms for L in ls]
+    def pts(M: float) -> int:
+        return max(a.points, min_points(M))
+
+    todo = [(th, m, M, L, pts(M)) for th in thetas for m in MODELS for M in ms for L in ls]
     if a.roelands:
-        todo += [(1.0, ("roelands", "dowson-higginson"), M, L, a.points) for M in ms for L in ls]
+        todo += [(1.0, ("roelands", "dowson-higginson"), M, L, pts(M)) for M in ms for L in ls]
     if a.grid_error:  # grid error: theta = 1, Barus + incompressible at twice the resolution
-        todo += [(1.0, MODELS[0], M, L, 2 * a.points - 1) for M in ms for L in (0, 10, 20)]
+        todo += [(1.0, MODELS[0], M, L, 2 * pts(M) - 1) for M in ms for L in (0, 10, 20)]
     for th, (v, d), M, L, n in tqdm(todo, desc="fit check"):
         key = f"{th}_{v}_{d}_{M}_{L}_{n}"
         if key in st:
@@ -55,7 +61,7 @@ def main() -> None:
         dev = np.full((len(ls), len(ms)), np.nan)
         for i, L in enumerate(ls):
             for j, M in enumerate(ms):
-                r = st.data[f"{th}_{v}_{d}_{M}_{L}_{a.points}"]
+                r = st.data[f"{th}_{v}_{d}_{M}_{L}_{pts(M)}"]
                 if r.get("Hc") is not None and r.get("converged"):
                     dev[i, j] = 100.0 * (r["Hc"] / r["Hc_fit"] - 1.0)
         out[f"{th}_{v}_{d}"] = {"M": ms, "L": ls, "dev_pct": dev.tolist()}
@@ -75,8 +81,8 @@ def main() -> None:
         g = np.full((len(ls), len(ms)), np.nan)
         for i, L in enumerate(ls):
             for j, M in enumerate(ms):
-                r1 = st.data[f"1.0_barus_incompressible_{M}_{L}_{a.points}"]
-                r2 = st.data.get(f"1.0_barus_incompressible_{M}_{L}_{2 * a.points - 1}", {})
+                r1 = st.data[f"1.0_barus_incompressible_{M}_{L}_{pts(M)}"]
+                r2 = st.data.get(f"1.0_barus_incompressible_{M}_{L}_{2 * pts(M) - 1}", {})
                 if r1.get("Hc") and r2.get("Hc") and r1.get("converged") and r2.get("converged"):
                     g[i, j] = 100.0 * (r1["Hc"] / r2["Hc"] - 1.0)
         out["grid_error_pct_theta1_barus_inc"] = {"M": ms, "L": ls, "points": [a.points, 2 * a.points - 1],
