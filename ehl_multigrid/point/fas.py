@@ -47,7 +47,7 @@ class SolverOptions:
     cycle : V or W; nu1, nu2 pre/post sweeps; cycles : cycles per FMG level
     max_cycles : extra finest-level cycles allowed to reach the tolerances
     deformation : fft | mlmi | direct
-    thr : eps/hx^2 switch GS/Jacobi-distributive (None: 10 for Barus with alpha_bar >= 8, else 1); w_gs, w_jd : under-relaxation
+    thr : eps/hx^2 switch GS/Jacobi-distributive (None: :func:`default_threshold`); w_gs, w_jd : under-relaxation
     c_h00 : H00 step per unit load error (None: 0.1 V / 0.05 W, /4 when L > 10 or M > 1000;
         at least ``H_fit/(10 load)`` where the film is thick (:func:`problem.domain_scale` > 1),
         from the rigid sensitivity ``d load/d H00 ~ -2 load/H``)
@@ -154,6 +154,16 @@ class FASOutput:
     fmg_Hc: list = field(default_factory=list)
 
 
+def default_threshold(visc: int, alpha_bar: float, elastic: bool = True) -> float:
+    """GS/Jacobi-distributive switch ``eps/hx^2`` (see FASSolver): 1 by default, 10 for strong
+    pressure spikes (Barus alpha_bar >= 8, Roelands >= 20), 40 for Roelands alpha_bar >= 30."""
+    if not elastic:
+        return 1.0
+    if visc == 1:
+        return 10.0 if alpha_bar >= 8.0 else 1.0
+    return 40.0 if alpha_bar >= 30.0 else (10.0 if alpha_bar >= 20.0 else 1.0)
+
+
 def y_ratio(length_x: float, length_y: float, coarse_x: int) -> float:
     """Power of 2 closest (in log) to ``length_y/length_x``, in [1/8, 8], leaving at least 4
     intervals along Y on the coarsest grid (``coarse_x`` intervals along X)."""
@@ -213,12 +223,13 @@ class FASSolver:
         self.gain = self.c_h
         self._last_err = None
         self._n_soft = 0
-        # measured: strong Barus spikes (alpha_bar >= 8) need more Gauss-Seidel lines (thr 10
-        # converges (20, 10) at 513^2 in 9 W cycles where thr 1 diverges); at low alpha_bar
-        # thr 1 is better (Barus (50, 2.5) at 129^2: thr 1 converges, thr 10 stalls);
-        # Roelands converges equally well with 1 and 10
-        barus_spike = self.visc == 1 and problem.alpha_bar >= 8.0 and opt.elastic
-        self.thr = opt.thr if opt.thr is not None else (10.0 if barus_spike else 1.0)
+        # measured: strong spikes need more Gauss-Seidel lines. Barus (alpha_bar >= 8): thr 10
+        # converges (20, 10) at 513^2 in 9 W cycles where thr 1 diverges; at low alpha_bar
+        # thr 1 is better (Barus (50, 2.5) at 129^2: thr 1 converges, thr 10 stalls). Roelands
+        # converges equally well with 1 and 10 at (20, 10) (alpha_bar 10); from alpha_bar 20 on
+        # thr 10 and from 30 on thr 40: (200, 20) (alpha_bar 43) converges at 257^2 with 10
+        # (thr 1 does not) and at 513^2 only with 40; (100, 20) (34) at 257^2 only with 40
+        self.thr = opt.thr if opt.thr is not None else default_threshold(self.visc, problem.alpha_bar, opt.elastic)
         self.actions: list[str] = []
         self.work = 0.0
         self.res_hist: list[float] = []

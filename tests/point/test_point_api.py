@@ -103,3 +103,13 @@ def test_cli_solver_newton_and_rigid(tmp_path, capsys):
 def test_cli_line_refuses_newton_path(capsys):
     rc = main(["solve", "--M", "20", "--L", "10", "--contact", "line", "--solver", "newton", "--json"])
     assert rc == 2
+
+
+def test_highly_piezoviscous_case_converges_with_the_default_switch():
+    """(M, L) = (100, 20), alpha_bar = 34 at 257^2: the default GS/JD switch (40) converges;
+    the switch of moderate loads (1) does not within the same cycle budget."""
+    sol = solve_point(100, 20, points=257, max_cycles=30)
+    assert sol.converged, sol.report.message
+    assert sol.report.extra["final_thr"] >= 40.0
+    low = solve_point(100, 20, points=257, max_cycles=30, thr=1.0, adapt=False)
+    assert not low.converged
