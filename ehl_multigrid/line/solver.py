@@ -359,10 +359,14 @@ class MultilevelLineSolver:
                                 f"{self.problem.M:.4g}: FMG start moved to {self.levels[k + 1].n} points")
             k += 1
         if not self._film_ok(lv):
+            capped = k < top and self.levels[k + 1].n > MAX_START_POINTS
+            hint = (f"the dense Newton start is limited to {MAX_START_POINTS} points, so more points do "
+                    f"not help: this (M, L) is beyond the line solver's range (use the Moes fit)"
+                    if capped else "more points (--points), or lower M")
             raise ConvergenceError(
                 f"line solver: the discrete film is not positive on the {lv.n}-point start grid "
-                f"(M = {self.problem.M:.4g} needs finer grids)", self._report(False, math.nan),
-                "more points (--points), or lower M")
+                f"(M = {self.problem.M:.4g}, L = {self.problem.L:.4g} needs finer grids)",
+                self._report(False, math.nan), hint)
         if k > 0:
             self.actions.append(f"FMG started on the {lv.n}-point grid (cycles still coarsen to {self.levels[0].n})")
         return k
