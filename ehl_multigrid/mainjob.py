@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from .hertz import hertz_pressure_line, hertz_pressure_point
-from .plan import Plan, make_plan
+from .plan import Plan, film_grid, make_plan
 from .results import Result, save_results
 from .scene import Scene, load_scene
 
@@ -57,9 +57,6 @@ class RunContext:
 
 
 # -- the core film stage -------------------------------------------------------------------------
-#: Finest grid of the multigrid solver per fidelity (points per direction).
-FILM_GRID = {"line": {"fast": 1025, "standard": 4097, "reference": 16385},
-             "point": {"fast": 129, "standard": 257, "reference": 513}}
 
 
 def hertz_result(scene: Scene, n: int = 201) -> Result:
@@ -122,7 +119,7 @@ def film_stage(ctx: RunContext) -> StageOutput:
     contact = "line" if scene.kind == "line" else "point"
     figures: list[Path] = []
     if dec.setting == "multigrid solver":
-        points = FILM_GRID[contact][plan.fidelity]
+        points = film_grid(scene, plan.tolerance).points
         if contact == "line":
             from .line import solve_line
 
@@ -130,10 +127,7 @@ def film_stage(ctx: RunContext) -> StageOutput:
             res = sol.to_result(scene)
         else:
             from .point import solve_point
-            from .point.problem import min_points
 
-            M, _ = scene.moes()
-            points = max(points, min_points(M))  # below it the solver does not converge
             res = solve_point(scene=scene, points=points).to_result(scene)
         if not res.scalars.get("converged") or not (res.scalars.get("hm") or 0.0) > 0.0:
             # an unconverged or non-positive film must not feed the later stages: fall back to

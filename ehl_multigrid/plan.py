@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from .errors import InputError, require_range
+from .gridchoice import GridChoice, solver_grid
 from .lubricant import ETA_INF, P_R, density_ratio_dh
 from .scene import Scene
 
@@ -223,6 +224,17 @@ def temperature_rise_estimate(scene: Scene, us: float, slip: float, h: float) ->
     }
 
 
+def film_grid(scene: Scene, tol: float) -> GridChoice:
+    """Finest grid of the film solver for the scene at tolerance ``tol`` (measured grid-error
+    constants, :mod:`ehl_multigrid.gridchoice`; the point solver's own minimum grid as floor)."""
+    M, _ = scene.moes()
+    if scene.kind == "line":
+        return solver_grid("line", M, tol)
+    from .point.problem import min_points
+
+    return solver_grid("point", M, tol, floor=min_points(M))
+
+
 def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None = None) -> Plan:
     """Decide what the scene needs. See the module docstring for the criteria."""
     fid, tol = resolve_tolerance(fidelity, tolerance)
@@ -233,11 +245,10 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     # 1. film: fit or solver
     dev, src = fit_deviation_estimate(scene)
     use_solver = dev > tol
-    plan.decisions.append(Decision(
-        "film", True, "multigrid solver" if use_solver else "fit",
-        dev, tol, "-",
-        f"expected fit deviation {dev:.3g} {'>' if use_solver else '<='} tolerance {tol:g} ({src})",
-    ))
+    why = f"expected fit deviation {dev:.3g} {'>' if use_solver else '<='} tolerance {tol:g} ({src})"
+    if use_solver:
+        why += f"; grid {film_grid(scene, tol).reason}"
+    plan.decisions.append(Decision("film", True, "multigrid solver" if use_solver else "fit", dev, tol, "-", why))
 
     # 2. asperity contact
     hcs = np.array([scene.central_film_fit(us=u)[1] for u in speeds])

@@ -8,6 +8,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+#: Thermal film-friction grid of the Stribeck stage per fidelity, from the accuracy-cost study
+#: (validation/pareto/REPORT.md): largest friction error over three speeds against 160 x 40 was
+#: 0.82 % (20 x 5), 0.09 % (40 x 10) for the page-63 line and 0.51 %, 0.08 % for series D.
+THERMAL_GRID = {"fast": {"nx": 20, "nz": 5}, "standard": {"nx": 20, "nz": 5}, "reference": {"nx": 40, "nz": 10}}
+
 
 def stribeck_stage(ctx: Any):
     from ehl_multigrid.mainjob import StageOutput
@@ -20,7 +25,11 @@ def stribeck_stage(ctx: Any):
     thermal = plan.includes("thermal")
     hoil = list(scene.supply.hoil_over_sigma) if plan.includes("starvation") else []
     us = default_us(scene)
-    curves = stribeck_cases(scene, us, hoil_over_sigma=hoil, thermal=thermal, options=stribeck_options(scene))
+    topts = None
+    if thermal and not {"nx", "nz"} & set(scene.solver.get("thermal", {})):
+        topts = THERMAL_GRID.get(plan.fidelity)
+    curves = stribeck_cases(scene, us, hoil_over_sigma=hoil, thermal=thermal, thermal_options=topts,
+                            options=stribeck_options(scene))
     res = stribeck_result(scene, curves, thermal=thermal)
     figures: list[Path] = []
     if ctx.plots:

@@ -98,11 +98,33 @@ class ThermalOptions:
         base.update(_normalise({k: v for k, v in overrides.items() if v is not None}, "thermal options"))
         return cls(**base)
 
+    @classmethod
+    def for_fidelity(cls, scene: Any, fidelity: str, **overrides: Any) -> ThermalOptions:
+        """Options of :meth:`from_scene` with the grid of :data:`FIDELITY_GRID` for the scene's
+        contact, unless the scene's ``[solver.thermal]`` table sets it."""
+        table = _normalise(dict(scene.solver.get("thermal", {})), "solver.thermal") if scene is not None else {}
+        contact = "line" if getattr(scene, "kind", "line") == "line" else "point"
+        grid = FIDELITY_GRID[contact].get(fidelity, {})
+        chosen = {k: v for k, v in grid.items() if k not in table and overrides.get(k) is None}
+        return cls.from_scene(scene, **{**overrides, **chosen})
+
     def with_changes(self, **changes: Any) -> ThermalOptions:
         return replace(self, **_normalise(changes, "thermal options"))
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
+
+
+#: Thermal grid per fidelity, from the accuracy-cost study (validation/pareto/REPORT.md): the
+#: cheapest setting whose largest friction error over slips 0.02, 0.3 and 1 stays within the
+#: fidelity's tolerance (10 %, 2 %, 0.2 %). Line, appendix C 42400 N: 20 x 5 3.9 %, 40 x 10
+#: 0.94 %, 160 x 40 0.04 % (80 x 20: 0.21 %). Point, appendix D: 20 x 5 x 5 slices 2.5 %,
+#: 40 x 10 x 5 0.26 %, 80 x 20 x 10 0.11 %.
+FIDELITY_GRID: dict[str, dict[str, dict[str, int]]] = {
+    "line": {"fast": {"nx": 20, "nz": 5}, "standard": {"nx": 40, "nz": 10}, "reference": {"nx": 160, "nz": 40}},
+    "point": {"fast": {"nx": 20, "nz": 5, "slices": 5}, "standard": {"nx": 40, "nz": 10, "slices": 5},
+              "reference": {"nx": 80, "nz": 20, "slices": 10}},
+}
 
 
 def _normalise(d: dict[str, Any], section: str) -> dict[str, Any]:

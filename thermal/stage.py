@@ -20,7 +20,7 @@ def traction_stage(ctx: Any):
     thermal = plan.includes("thermal")
     film = ctx.result("film")
     use_ehl = film is not None and film.kind in ("ehl_line", "ehl_point")
-    options = ThermalOptions.from_scene(scene, thermal=thermal)
+    options = ThermalOptions.for_fidelity(scene, plan.fidelity, thermal=thermal)
     slips = [float(s) for s in default_slips(scene)]
     points = traction_curve(scene, slips, options=options, input="ehl" if use_ehl else "hertz",
                             ehl=film if use_ehl else None)

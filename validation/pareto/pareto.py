@@ -3,13 +3,19 @@ resolution versus wall time, across its resolution knobs; Pareto front per model
 recommended settings per fidelity level (cheapest setting whose error is within the fidelity's
 tolerance: fast 10 %, standard 2 %, reference 0.2 %).
 
+Each setting is run on a small set of operating points and its error is the LARGEST relative
+error over them (one operating point alone lets errors of opposite sign cancel by luck: 3 slices
+on a 20 x 5 grid matched the reference traction to 0.08 % at one slip with a 0.9 % slice error).
+Wall times are per operating point.
+
 Models and knobs
-  line_ehl   Moes (M, L) = (100, 10), Roelands + Dowson-Higginson; points, V/W, MLMI/FFT; film fit
-  point_ehl  (M, L) = (20, 10); points, V/W, MLMI/FFT; film fit
-  traction   appendix C 42400 N at slip 0.3 and appendix D at slip 0.3: nx, nz (slices); input
+  line_ehl   Moes (M, L) = (20, 10), (100, 10), (500, 10), Roelands + Dowson-Higginson; points,
+             V/W, MLMI/FFT; film fit
+  point_ehl  (M, L) = (20, 10), (100, 10); points, V/W, MLMI/FFT; film fit
+  traction   appendix C 42400 N and appendix D at slips 0.02, 0.3, 1: nx, nz (slices); input
              Hertz + fit or EHL film; isothermal model
-  stribeck   page-63 line contact 2000 N at us = 0.3 m/s (mixed regime) and series D disc 3
-             at 1 m/s: isothermal vs thermal film friction, thermal nx x nz
+  stribeck   page-63 line contact 2000 N at us = 0.1, 0.3, 1 m/s (mixed regime) and series D
+             disc 3 at 0.3, 1, 3 m/s: isothermal vs thermal film friction, thermal nx x nz
 
 Usage: python validation/pareto/pareto.py [--quick] [--models line_ehl,point_ehl,traction,stribeck]
 Writes out/pareto[_quick].json, out/pareto_<model>.png and out/recommended[_quick].json;
@@ -22,6 +28,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -31,14 +38,19 @@ OUT = Path(__file__).parent / "out"
 FIDELITY_TOL = {"fast": 0.1, "standard": 0.02, "reference": 0.002}
 
 
-def timed(fn: Callable[[], float], repeats: int = 1) -> tuple[float, float]:
+def timed(fn: Callable[[], list[float]], repeats: int = 1) -> tuple[list[float], float]:
+    """Values and the best wall time per operating point over ``repeats`` runs."""
     best = math.inf
-    val = math.nan
+    val: list[float] = []
     for _ in range(repeats):
         t0 = time.perf_counter()
         val = fn()
-        best = min(best, time.perf_counter() - t0)
+        best = min(best, (time.perf_counter() - t0) / max(len(val), 1))
     return val, best
+
+
+def max_rel_error(val: list[float], ref: list[float]) -> float:
+    return max(abs(v - r) / abs(r) for v, r in zip(val, ref, strict=True))
 
 
 # -- line EHL ----------------------------------------------------------------------------------
@@ -49,18 +61,24 @@ def line_settings(quick: bool) -> tuple[dict, list[dict]]:
     return ref, sets + [{"film": "fit"}]
 
 
-def line_run(s: dict) -> float:
-    M, L = 100.0, 10.0
+LINE_CASES = ((20.0, 10.0), (100.0, 10.0), (500.0, 10.0))
+POINT_CASES = ((20.0, 10.0), (100.0, 10.0))
+
+
+def line_run(s: dict) -> list[float]:
     if s.get("film") == "fit":
         from ehl_multigrid.fits import moes_line_central
 
-        return float(moes_line_central(M, L))
+        return [float(moes_line_central(M, L)) for M, L in LINE_CASES]
     from ehl_multigrid.line import solve_line
 
-    sol = solve_line(M, L, **s)
-    if not sol.converged:
-        raise RuntimeError(f"line solve not converged for {s}")
-    return float(sol.Hc)
+    out = []
+    for M, L in LINE_CASES:
+        sol = solve_line(M, L, **s)
+        if not sol.converged:
+            raise RuntimeError(f"line solve not converged for {s} at (M, L) = ({M:g}, {L:g})")
+        out.append(float(sol.Hc))
+    return out
 
 
 # -- point EHL ---------------------------------------------------------------------------------
@@ -71,18 +89,20 @@ def point_settings(quick: bool) -> tuple[dict, list[dict]]:
     return ref, sets + [{"film": "fit"}]
 
 
-def point_run(s: dict) -> float:
-    M, L = 20.0, 10.0
+def point_run(s: dict) -> list[float]:
     if s.get("film") == "fit":
         from ehl_multigrid.fits import nijenbanning_central
 
-        return float(nijenbanning_central(M, L))
-    from ehl_multigrid.point import build_result, problem_from_moes, solve_fas
+        return [float(nijenbanning_central(M, L)) for M, L in POINT_CASES]
+    from ehl_multigrid.point import solve_point
 
-    sol = solve_fas(problem_from_moes(M, L), **s)
-    if not sol.report.converged:
-        raise RuntimeError(f"point solve not converged for {s}")
-    return float(build_result(sol).scalars["Hc"])
+    out = []
+    for M, L in POINT_CASES:
+        sol = solve_point(M, L, **s)
+        if not sol.converged:
+            raise RuntimeError(f"point solve not converged for {s} at (M, L) = ({M:g}, {L:g})")
+        out.append(float(sol.Hc))
+    return out
 
 
 # -- thermal traction --------------------------------------------------------------------------
@@ -102,7 +122,10 @@ def traction_settings(quick: bool) -> tuple[dict, list[dict]]:
 _EHL_CACHE: dict[str, Any] = {}
 
 
-def traction_run(s: dict) -> float:
+TRACTION_SLIPS = (0.02, 0.3, 1.0)
+
+
+def traction_run(s: dict) -> list[float]:
     from ehl_multigrid.scene import load_scene
     from thermal.traction import solve_traction
 
@@ -119,17 +142,18 @@ def traction_run(s: dict) -> float:
 
                 _EHL_CACHE[key] = solve_line(scene=scene, points=4097).to_result(scene)
             else:
-                from ehl_multigrid.point import build_result, problem_from_scene, solve_fas
+                from ehl_multigrid.point import solve_point
 
-                _EHL_CACHE[key] = build_result(solve_fas(problem_from_scene(scene), points=257), scene)
-        return float(solve_traction(scene, 0.3, input="ehl", ehl=_EHL_CACHE[key], **s).coefficient)
-    return float(solve_traction(scene, 0.3, **s).coefficient)
+                _EHL_CACHE[key] = solve_point(scene=scene, points=257).to_result(scene)
+        return [float(solve_traction(scene, sl, input="ehl", ehl=_EHL_CACHE[key], **s).coefficient)
+                for sl in TRACTION_SLIPS]
+    return [float(solve_traction(scene, sl, **s).coefficient) for sl in TRACTION_SLIPS]
 
 
 # -- Stribeck point ----------------------------------------------------------------------------
 def stribeck_settings(quick: bool) -> tuple[dict, list[dict]]:
     sets = []
-    for scene, us in (("page63_line_2000N", 0.3), ("series_D_disc3_1.93GPa", 1.0)):
+    for scene, us in (("page63_line_2000N", (0.1, 0.3, 1.0)), ("series_D_disc3_1.93GPa", (0.3, 1.0, 3.0))):
         sets.append({"scene": scene, "us": us, "thermal": False})
         for nx, nz in ((20, 5), (40, 10), (80, 20)):
             sets.append({"scene": scene, "us": us, "thermal": True, "nx": nx, "nz": nz})
@@ -137,7 +161,7 @@ def stribeck_settings(quick: bool) -> tuple[dict, list[dict]]:
     return ref, sets
 
 
-def stribeck_run(s: dict) -> float:
+def stribeck_run(s: dict) -> list[float]:
     import numpy as np
 
     from ehl_multigrid.scene import load_scene
@@ -145,8 +169,9 @@ def stribeck_run(s: dict) -> float:
 
     scene = load_scene(s["scene"])
     topts = {k: s[k] for k in ("nx", "nz") if k in s}
-    c = stribeck_curve(scene, np.array([s["us"]]), thermal=s["thermal"], thermal_options=topts or None, transitions=False)
-    return float(c.friction.coefficient[0])
+    c = stribeck_curve(scene, np.array(s["us"], dtype=float), thermal=s["thermal"], thermal_options=topts or None,
+                       transitions=False)
+    return [float(f) for f in c.friction.coefficient]
 
 
 MODELS = {
@@ -183,7 +208,7 @@ def run_model(name: str, quick: bool, store: dict) -> None:
             val, wall = timed(lambda s=s: run(s))
             ref = rec["refs"][gk]["value"]
             rec["rows"][k] = {"setting": s, "group": group, "value": val, "wall_s": wall,
-                              "error": abs(val - ref) / abs(ref)}
+                              "error": max_rel_error(val, ref), "load_avg": os.getloadavg()[0]}
         except Exception as exc:  # recorded, not hidden
             rec["rows"][k] = {"setting": s, "group": group, "error_message": f"{type(exc).__name__}: {exc}"}
         save(store, quick)

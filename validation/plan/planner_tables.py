@@ -6,6 +6,11 @@ measured numbers instead of priors.
   ``(Hc_fit - Hc_solver) / Hc_solver``, on the (M, L) map of the fit-check studies
   (validation/line/out/fit.json, validation/point/out/fit.json).
 
+* ``ehl_multigrid/data/grid_error_line.json`` / ``_point.json``: the constant ``C(M)`` of the
+  second-order grid error of Hc, ``|error| = C / (N - 1)^2``, from the accuracy-cost study
+  (validation/pareto/out/pareto.json: V cycles, FFT deformation, against its reference grid;
+  ``C = |e| / ((N-1)^-2 - (N_ref-1)^-2)``, median over the grids listed in GRIDS).
+
 Usage: python validation/plan/planner_tables.py
 """
 
@@ -37,8 +42,58 @@ def table_from_rows(rows: list[dict], source: str) -> dict | None:
             "source": source}
 
 
+GRIDS = {"line_ehl": (1025, 2049, 4097), "point_ehl": (129, 257, 513)}
+CASES = {"line_ehl": "LINE_CASES", "point_ehl": "POINT_CASES"}
+
+
+def grid_error_tables() -> None:
+    f = ROOT / "validation" / "pareto" / "out" / "pareto.json"
+    if not f.exists():
+        print("no validation/pareto/out/pareto.json; grid-error tables not written")
+        return
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("pareto", ROOT / "validation" / "pareto" / "pareto.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    store = json.loads(f.read_text())
+    for model, grids in GRIDS.items():
+        rec = store.get(model)
+        if not rec or "{}" not in rec["refs"]:
+            print(f"{model}: not in pareto.json; table not written")
+            continue
+        ref = rec["refs"]["{}"]
+        n_ref = ref["setting"]["points"]
+        cases = getattr(mod, CASES[model])
+        per_case: list[list[float]] = [[] for _ in cases]
+        for r in rec["rows"].values():
+            s = r["setting"]
+            if s.get("cycle") != "V" or s.get("deformation") != "fft" or s.get("points") not in grids or "value" not in r:
+                continue
+            w = (s["points"] - 1) ** -2 - (n_ref - 1) ** -2
+            for i, (v, v0) in enumerate(zip(r["value"], ref["value"], strict=True)):
+                per_case[i].append(abs(v - v0) / abs(v0) / w)
+        Ms, Cs = [], []
+        for (M, _L), cs in zip(cases, per_case, strict=True):
+            if cs:
+                Ms.append(float(M))
+                Cs.append(float(np.median(cs)))
+        if not Ms:
+            print(f"{model}: no converged V/FFT rows on {grids}; table not written")
+            continue
+        contact = model.split("_")[0]
+        tab = {"M": Ms, "L": [float(L) for _M, L in cases][:len(Ms)], "C": Cs, "order": 2,
+               "reference_points": n_ref, "grids": list(grids),
+               "definition": "relative error of Hc = C / (points - 1)^2 (Roelands + Dowson-Higginson)",
+               "source": "validation/pareto/out/pareto.json"}
+        out = DATA / f"grid_error_{contact}.json"
+        out.write_text(json.dumps(tab, indent=1))
+        print(f"{contact}: wrote {out.relative_to(ROOT)}: " + ", ".join(f"C({M:g}) = {C:.3g}" for M, C in zip(Ms, Cs, strict=True)))
+
+
 def main() -> None:
     DATA.mkdir(exist_ok=True)
+    grid_error_tables()
     for contact, name in (("line", "fit.json"), ("point", "fit_check.json")):
         f = ROOT / "validation" / contact / "out" / name
         if not f.exists():
