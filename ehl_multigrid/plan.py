@@ -232,7 +232,7 @@ def film_grid(scene: Scene, tol: float) -> GridChoice:
         return solver_grid("line", M, tol)
     from .point.problem import min_points
 
-    return solver_grid("point", M, tol, floor=min_points(M))
+    return solver_grid("point", M, tol, floor=min_points(M, scene.hertz.b / scene.hertz.a))
 
 
 def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None = None) -> Plan:

@@ -532,9 +532,9 @@ class FASSolver:
         if not finite:
             raise ConvergenceError("point-contact solve produced NaN/inf", report,
                                    "use W cycles, a finer coarsest grid (--levels fewer), or smaller relaxation")
-        if not converged and opt.points < min_points(self.pb.M):
+        if not converged and opt.points < min_points(self.pb.M, self.boa):
             report.message += (f"; at M = {self.pb.M:.4g} a grid of {opt.points} points is too coarse for "
-                               f"this solver: use points >= {min_points(self.pb.M)}")
+                               f"this solver: use points >= {min_points(self.pb.M, self.boa)}")
         if not converged and lerr > 1e-2:
             report.message += ("; the load cannot be balanced: at low M the inlet of this domain is too "
                                "short (extend xmin/ymax), at high M the grid is too coarse (more points)")

@@ -224,9 +224,15 @@ def coarse_intervals(M: float, length: float, points: int, scale: float = 1.0) -
     return min(n, points - 1)
 
 
-def min_points(M: float) -> int:
+def min_points(M: float, b_over_a: float = 1.0) -> int:
     """Smallest finest grid (points along X) at which the FAS solver is expected to converge
-    with the default domain: 129 below M = 200, 257 below M = 1000, 513 from M = 1000 on.
+    with the default domain: 129 below M = 200, 257 below M = 1000, 513 from M = 1000 on, times
+    ``2^ceil(log2(0.75 a/b))`` for contacts narrower than long (b/a < 0.75, theta > ~2), so the
+    semi-axis b keeps about as many cells as a circular contact has across a (capped at 2049).
     Measured (validation/point/REPORT.md, extremes): (1000, 10) converges at 257 but (1000, 0)
-    and (1000, 25) need 513; (5000, 10) converges at 513 (2.3 s) and 1025 (6.6 s)."""
-    return 129 if M < 200 else (257 if M < 1000 else 513)
+    and (1000, 25) need 513; (5000, 10) converges at 513 (2.3 s) and 1025 (6.6 s); theta = 10
+    (b/a = 0.22) at M = 10 stalls at 257 and converges at 513."""
+    n = 129 if M < 200 else (257 if M < 1000 else 513)
+    if b_over_a < 0.75:
+        n = (n - 1) * 2 ** math.ceil(math.log2(0.75 / b_over_a)) + 1
+    return min(n, 2049)

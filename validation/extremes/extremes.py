@@ -43,19 +43,19 @@ def ehl_cases(contact: str, quick: bool) -> Iterator[Case]:
                 yield {"model": f"{contact}_ehl", "M": M, "L": L, "theta": th}
 
 
-def ehl_points(contact: str, M: float) -> int:
+def ehl_points(contact: str, M: float, theta: float = 1.0) -> int:
     """Grid per case: the line solver's 1025 points (4097 from M = 2000) and the point
-    solver's own minimum grid (129, 257 from M = 200, 513 from M = 1000)."""
+    solver's own minimum grid (129, 257 from M = 200, 513 from M = 1000; more when b < a)."""
     if contact == "line":
         return 1025 if M < 2000 else 4097
-    from ehl_multigrid.point.problem import min_points
+    from ehl_multigrid.point.problem import hertz_shape, min_points
 
-    return max(129, min_points(M))
+    return max(129, min_points(M, hertz_shape(theta)[2]))
 
 
 def run_ehl(case: Case, points: int | None = None) -> tuple[str, dict[str, Any]]:
     contact = "line" if case["model"] == "line_ehl" else "point"
-    n = points or ehl_points(contact, case["M"])
+    n = points or ehl_points(contact, case["M"], case.get("theta", 1.0))
     if contact == "line":
         from ehl_multigrid.line import solve_line
 

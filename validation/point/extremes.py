@@ -1,6 +1,6 @@
 """Study 5: extremes. M from 1 to 5000, L from 0 to 25, theta from 0.1 to 10, Roelands + DH,
-on max(129, min_points(M)) points (the solver's own minimum grid: 257 from M = 200, 513 from
-M = 1000; quick: 65 points, fewer cases): every case converged, not converged (reported in the
+on max(129, min_points(M, b/a)) points (the solver's own minimum grid: 257 from M = 200, 513 from
+M = 1000, more for theta > 2; quick: 65 points, fewer cases): every case converged, not converged (reported in the
 result) or a clear error; counted and listed.
 
     python validation/point/extremes.py [--quick]
@@ -12,7 +12,7 @@ from collections import Counter
 from common import Store, solve_case
 from tqdm import tqdm
 
-from ehl_multigrid.point.problem import min_points
+from ehl_multigrid.point.problem import hertz_shape, min_points
 
 
 def main() -> None:
@@ -26,7 +26,7 @@ def main() -> None:
     st = Store(f"extremes{'_quick' if a.quick else ''}.json")
     todo = [(M, L, th) for th in ths for M in Ms for L in Ls]
     for M, L, th in tqdm(todo, desc="extremes"):
-        pts = n if n is not None else max(129, min_points(M))
+        pts = n if n is not None else max(129, min_points(M, hertz_shape(th)[2]))
         key = f"{M}_{L}_{th}_{pts}"
         if key in st:
             continue

@@ -7,7 +7,8 @@ error at 129^2 is the one measured by grid_convergence.py.
 
     python validation/point/fit_check.py [--quick] [--points 129] [--roelands]
 
-Each case runs on max(points, min_points(M)) points (257 from M = 200, 513 from M = 1000).
+Each case runs on max(points, min_points(M, b/a)) points (257 from M = 200, 513 from M = 1000,
+more for theta > 2).
 """
 
 import argparse
@@ -17,7 +18,7 @@ from common import Store, plt, solve_case
 from tqdm import tqdm
 
 from ehl_multigrid.fits import nijenbanning_central
-from ehl_multigrid.point.problem import min_points
+from ehl_multigrid.point.problem import hertz_shape, min_points
 
 MS = [5, 10, 20, 50, 100, 200, 500, 1000]
 LS = [0, 2.5, 5, 10, 15, 20]
@@ -36,10 +37,10 @@ def main() -> None:
     ls = [0, 10, 20] if a.quick else LS
     thetas = [1.0] if a.quick else THETAS
     st = Store(f"fit_check{'_quick' if a.quick else ''}.json")
-    def pts(M: float) -> int:
-        return max(a.points, min_points(M))
+    def pts(M: float, th: float = 1.0) -> int:
+        return max(a.points, min_points(M, hertz_shape(th)[2]))
 
-    todo = [(th, m, M, L, pts(M)) for th in thetas for m in MODELS for M in ms for L in ls]
+    todo = [(th, m, M, L, pts(M, th)) for th in thetas for m in MODELS for M in ms for L in ls]
     if a.roelands:
         todo += [(1.0, ("roelands", "dowson-higginson"), M, L, pts(M)) for M in ms for L in ls]
     if a.grid_error:  # grid error: theta = 1, Barus + incompressible at twice the resolution
@@ -61,7 +62,7 @@ def main() -> None:
         dev = np.full((len(ls), len(ms)), np.nan)
         for i, L in enumerate(ls):
             for j, M in enumerate(ms):
-                r = st.data[f"{th}_{v}_{d}_{M}_{L}_{pts(M)}"]
+                r = st.data[f"{th}_{v}_{d}_{M}_{L}_{pts(M, th)}"]
                 if r.get("Hc") is not None and r.get("converged"):
                     dev[i, j] = 100.0 * (r["Hc"] / r["Hc_fit"] - 1.0)
         out[f"{th}_{v}_{d}"] = {"M": ms, "L": ls, "dev_pct": dev.tolist()}
