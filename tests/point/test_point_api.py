@@ -113,3 +113,12 @@ def test_highly_piezoviscous_case_converges_with_the_default_switch():
     assert sol.report.extra["final_thr"] >= 40.0
     low = solve_point(100, 20, points=257, max_cycles=30, thr=1.0, adapt=False)
     assert not low.converged
+
+
+def test_half_domain_equals_full_domain_for_an_elliptic_contact_with_square_cells():
+    full = solve_point(20, 10, theta=0.25, points=65)
+    half = solve_point(20, 10, theta=0.25, points=65, half=True)
+    assert full.P.shape == (129, 65) and half.P.shape == (65, 65)
+    assert full.converged and half.converged
+    assert half.Hc == pytest.approx(full.Hc, rel=1e-5)
+    assert half.Hm == pytest.approx(full.Hm, rel=1e-5)
