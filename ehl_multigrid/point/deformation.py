@@ -127,7 +127,9 @@ class FFTDeformation(Deformation):
         self.Kf, self.shape = _kernel_fft(nx, self.ny_full, float(hx), float(hy))
 
     def full(self, P):
-        w = self.workers if P.size >= 128 * 128 else 1  # threads do not pay on small grids
+        # threads do not pay on small grids: measured 129^2 1.23 ms with 2 workers, 0.57 ms with 1;
+        # 257^2 4.4 ms with 2, 9.4 ms with 1
+        w = self.workers if P.size >= 256 * 256 else 1
         Pf = sfft.rfft2(P, s=self.shape, workers=w)
         Pf *= self.Kf
         return sfft.irfft2(Pf, s=self.shape, workers=w)[: P.shape[0], : P.shape[1]].copy()
