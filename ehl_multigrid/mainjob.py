@@ -128,7 +128,9 @@ def film_stage(ctx: RunContext) -> StageOutput:
         else:
             from .point import solve_point
 
-            res = solve_point(scene=scene, points=points).to_result(scene)
+            # smooth point and elliptic contacts are symmetric in Y: the half domain gives the same
+            # films (tested to 1e-5, measured 4e-8) in about 80 % of the time
+            res = solve_point(scene=scene, points=points, half=True).to_result(scene)
         if not res.scalars.get("converged") or not (res.scalars.get("hm") or 0.0) > 0.0:
             # an unconverged or non-positive film must not feed the later stages: fall back to
             # Hertz + fit and say so in the plan and the report
