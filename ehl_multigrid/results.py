@@ -55,6 +55,21 @@ class Variable:
     long_name: str = ""
 
 
+class ScalarAccess:
+    """Solver answers (line, point): the entries of ``self.scalars`` read as attributes
+    (``sol.Hc``) and ``converged`` taken from ``self.report``."""
+
+    def __getattr__(self, name: str) -> Any:
+        scal = self.__dict__.get("scalars", {})
+        if name in scal:
+            return scal[name]
+        raise AttributeError(name)
+
+    @property
+    def converged(self) -> bool:
+        return bool(self.report.converged)
+
+
 @dataclass
 class Result:
     """Container for any solver output.

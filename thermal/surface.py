@@ -38,7 +38,7 @@ half hats.
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
+from functools import lru_cache
 
 import numpy as np
 from numba import njit
@@ -136,10 +136,7 @@ def _cj_linear_integral(a: np.ndarray, b: np.ndarray, alpha: np.ndarray, beta: n
     return 2.0 * alpha * (sb - sa) + (2.0 / 3.0) * beta * (sb**3 - sa**3)
 
 
-_CACHE: OrderedDict = OrderedDict()
-_CACHE_SIZE = 64
-
-
+@lru_cache(maxsize=64)
 def wall_weights(
     n: int,
     dx: float,
@@ -148,23 +145,16 @@ def wall_weights(
     kernel: str = "moving-strip",
     length: float = math.inf,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Half-hat influence weights ``(WL, WR)`` [K m^2/W], each of size ``2n - 1`` (cached).
+    """Half-hat influence weights ``(WL, WR)`` [K m^2/W], each of size ``2n - 1`` (cached,
+    read-only).
 
     ``WL[m + n - 1]`` is ``int_{-dx}^{0} (1 + t/dx) K(m dx - t) dt`` (left half of a hat centred on
     the source node, seen from a node m cells downstream); ``WR`` the right half
     ``int_0^{dx} (1 - t/dx) K(m dx - t) dt``.
     """
-    key = (int(n), float(dx), float(u), solid, kernel, float(length))
-    hit = _CACHE.get(key)
-    if hit is not None:
-        _CACHE.move_to_end(key)
-        return hit
     out = _wall_weights(n, dx, u, solid, kernel, length)
     for arr in out:
         arr.setflags(write=False)
-    _CACHE[key] = out
-    if len(_CACHE) > _CACHE_SIZE:
-        _CACHE.popitem(last=False)
     return out
 
 
@@ -176,12 +166,7 @@ def _wall_weights(
     kernel: str = "moving-strip",
     length: float = math.inf,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Half-hat influence weights ``(WL, WR)`` [K m^2/W], each of size ``2n - 1``.
-
-    ``WL[m + n - 1]`` is ``int_{-dx}^{0} (1 + t/dx) K(m dx - t) dt`` (left half of a hat centred on
-    the source node, seen from a node m cells downstream); ``WR`` the right half
-    ``int_0^{dx} (1 - t/dx) K(m dx - t) dt``.
-    """
+    """:func:`wall_weights` without the cache."""
     require_range("surface kernel n", n, 2, 1e6)
     require_positive("surface kernel dx", dx, "m")
     require_range("surface velocity u", u, 0.0, 1e4, "m/s")

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..convergence import ConvergenceReport
-from ..results import Result
+from ..results import Result, ScalarAccess
 from .problem import LineProblem
 
 
@@ -38,7 +38,7 @@ def spike_index(X: np.ndarray, P: np.ndarray) -> int | None:
 
 
 @dataclass
-class LineSolution:
+class LineSolution(ScalarAccess):
     problem: LineProblem
     options: dict[str, Any]
     X: np.ndarray
@@ -94,16 +94,6 @@ class LineSolution:
             s["hm"] = None
 
     # -- convenience ----------------------------------------------------------------------
-    def __getattr__(self, name: str) -> Any:
-        scal = self.__dict__.get("scalars", {})
-        if name in scal:
-            return scal[name]
-        raise AttributeError(name)
-
-    @property
-    def converged(self) -> bool:
-        return bool(self.report.converged)
-
     def payload(self) -> dict[str, Any]:
         """The JSON payload of ``ehl solve`` (keys of the naming contract first)."""
         keys = ["Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error",

@@ -296,16 +296,19 @@ class MLMIDeformation(Deformation):
         self.n_direct = n_direct
         self._plan(nx, self.ny_full)
 
-    def _corrections(self, step: int) -> np.ndarray:
+    def _corrections(self, step: int, f: int = 1) -> np.ndarray:
         """Correction tables C[class, dy + mc, dx + mc] at fine offsets (class 0: x odd,
-        1: y odd, 2: both odd), for the fine sources (step A) or targets (step B)."""
+        1: y odd, 2: both odd), for the fine sources (step A) or targets (step B).
+
+        On level l of the plan the offsets are ``f = 2^l`` times larger; the kernel is then
+        evaluated at the scaled offsets with the fine cell (exact, not the f-scaled kernel)."""
         mc, q, w = self.mc, self.q, self.w
         d = np.arange(-mc, mc + 1)
         s = np.arange(-q + 1, q + 1) * 2 - 1  # odd offsets to the coarse nodes
         out = np.zeros((3, d.size, d.size))
         hx, hy = self.hx, self.hy
         DY, DX = np.meshgrid(d, d, indexing="ij")
-        K0 = kernel_at(DX, DY, hx, hy)
+        K0 = kernel_at(DX * f, DY * f, hx, hy)
         sign = -1 if step == 0 else 1  # A: distance i - 2J = d - s; B: 2I - 2J = d + s
         for c, (xo, yo) in enumerate(((1, 0), (0, 1), (1, 1))):
             sx = s if xo else np.array([0])
@@ -315,7 +318,7 @@ class MLMIDeformation(Deformation):
             acc = np.zeros_like(K0)
             for a, ty in enumerate(sy):
                 for b, tx in enumerate(sx):
-                    acc += wy[a] * wx[b] * kernel_at(DX + sign * tx, DY + sign * ty, hx, hy)
+                    acc += wy[a] * wx[b] * kernel_at((DX + sign * tx) * f, (DY + sign * ty) * f, hx, hy)
             out[c] = K0 - acc
         return out
 
@@ -344,38 +347,8 @@ class MLMIDeformation(Deformation):
         self.CA_l = [self.CA]
         self.CB_l = [self.CB]
         for lvl in range(1, len(ranges) - 1):
-            self.CA_l.append(self._scaled(0, 2**lvl))
-            self.CB_l.append(self._scaled(1, 2**lvl))
-
-    def _scaled(self, step: int, f: int) -> np.ndarray:
-        hx, hy = self.hx, self.hy
-        self.hx, self.hy = hx * f, hy * f
-        try:
-            # kernel sampled at f times the offsets equals the f-scaled kernel up to the cell
-            # size: evaluate exactly with the fine cell instead
-            return self._corrections_cell(step, f, hx, hy)
-        finally:
-            self.hx, self.hy = hx, hy
-
-    def _corrections_cell(self, step: int, f: int, hx: float, hy: float) -> np.ndarray:
-        mc, q, w = self.mc, self.q, self.w
-        d = np.arange(-mc, mc + 1)
-        s = np.arange(-q + 1, q + 1) * 2 - 1
-        out = np.zeros((3, d.size, d.size))
-        DY, DX = np.meshgrid(d, d, indexing="ij")
-        K0 = kernel_at(DX * f, DY * f, hx, hy)
-        sign = -1 if step == 0 else 1
-        for c, (xo, yo) in enumerate(((1, 0), (0, 1), (1, 1))):
-            sx = s if xo else np.array([0])
-            sy = s if yo else np.array([0])
-            wx = w if xo else np.array([1.0])
-            wy = w if yo else np.array([1.0])
-            acc = np.zeros_like(K0)
-            for a, ty in enumerate(sy):
-                for b, tx in enumerate(sx):
-                    acc += wy[a] * wx[b] * kernel_at((DX + sign * tx) * f, (DY + sign * ty) * f, hx, hy)
-            out[c] = K0 - acc
-        return out
+            self.CA_l.append(self._corrections(0, 2**lvl))
+            self.CB_l.append(self._corrections(1, 2**lvl))
 
     def full(self, P):
         u = np.ascontiguousarray(P, dtype=float)

@@ -26,7 +26,7 @@ from ..errors import ConvergenceError, InputError, require_range
 from ..fits import nijenbanning_central
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation, set_fft_workers
-from .problem import PointProblem, coarse_intervals, default_domain, domain_scale, min_points
+from .problem import PointProblem, coarse_intervals, domain_scale, min_points, resolve_domain
 
 #: grids with fewer points than this run single-threaded (see FASSolver._threads_for)
 SERIAL_BELOW = 129 * 129
@@ -185,10 +185,8 @@ class FASSolver:
     def __init__(self, problem: PointProblem, opt: SolverOptions) -> None:
         opt.validate()
         self.pb = problem
-        xmin, xmax, ymax = default_domain(problem)
-        opt = replace(opt, xmin=xmin if opt.xmin is None else opt.xmin,
-                      xmax=xmax if opt.xmax is None else opt.xmax,
-                      ymax=ymax if opt.ymax is None else opt.ymax)
+        xmin, xmax, ymax = resolve_domain(problem, opt.xmin, opt.xmax, opt.ymax)
+        opt = replace(opt, xmin=xmin, xmax=xmax, ymax=ymax)
         self.opt = opt
         self.nthreads = numba.config.NUMBA_NUM_THREADS
         if opt.threads is not None:

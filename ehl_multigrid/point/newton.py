@@ -32,7 +32,7 @@ from ..errors import ConvergenceError, InputError
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
 from .fas import load_integral
-from .problem import PointProblem, default_domain
+from .problem import PointProblem, resolve_domain
 
 
 @dataclass
@@ -74,10 +74,7 @@ class NewtonOutput:
 class _Grid:
     def __init__(self, pb: PointProblem, n: int, opt: NewtonOptions) -> None:
         self.n = n
-        xmin, xmax, ymax = default_domain(pb)
-        xmin = xmin if opt.xmin is None else opt.xmin
-        xmax = xmax if opt.xmax is None else opt.xmax
-        ymax = ymax if opt.ymax is None else opt.ymax
+        xmin, xmax, ymax = resolve_domain(pb, opt.xmin, opt.xmax, opt.ymax)
         self.hx = (xmax - xmin) / (n - 1)
         self.hy = 2.0 * ymax / (n - 1)
         self.X = xmin + self.hx * np.arange(n)

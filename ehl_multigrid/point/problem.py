@@ -210,6 +210,14 @@ def default_domain(problem: PointProblem) -> tuple[float, float, float]:
     return -4.5 * f, 1.5 * f, 3.0 * f * problem.b_over_a
 
 
+def resolve_domain(problem: PointProblem, xmin: float | None, xmax: float | None,
+                   ymax: float | None) -> tuple[float, float, float]:
+    """``(xmin, xmax, ymax)``: the given values, :func:`default_domain` where None."""
+    dx0, dx1, dy = default_domain(problem)
+    return (dx0 if xmin is None else float(xmin), dx1 if xmax is None else float(xmax),
+            dy if ymax is None else float(ymax))
+
+
 def coarse_intervals(M: float, length: float, points: int, scale: float = 1.0) -> int:
     """Intervals of the coarsest grid along X: the smallest ``16 * 2^k`` that gives a coarse
     mesh size <= 0.375 a (M < 200), 0.1875 a (200 <= M < 1000) or 0.094 a (M >= 1000), times

@@ -12,7 +12,7 @@ from typing import Any
 
 from ..convergence import ConvergenceReport
 from ..errors import InputError, require_choice
-from ..results import Result
+from ..results import Result, ScalarAccess
 from .postprocess import build_result, summary_payload
 from .problem import PointProblem, problem_from_moes, problem_from_scene
 
@@ -20,7 +20,7 @@ SOLVERS = ("fas", "newton")
 
 
 @dataclass
-class PointSolution:
+class PointSolution(ScalarAccess):
     """Answer of :func:`solve_point`: the raw solver output, its problem and the scalars of the
     ``ehl_point`` result (``Hc``, ``Hm``, ``hc``, ``p_spike``, ``load_error``, ...) as attributes."""
 
@@ -34,19 +34,9 @@ class PointSolution:
         self._result = build_result(self.output, self.scene)
         self.scalars = dict(self._result.scalars)
 
-    def __getattr__(self, name: str) -> Any:
-        scal = self.__dict__.get("scalars", {})
-        if name in scal:
-            return scal[name]
-        raise AttributeError(name)
-
     @property
     def report(self) -> ConvergenceReport:
         return self.output.report
-
-    @property
-    def converged(self) -> bool:
-        return bool(self.output.report.converged)
 
     @property
     def X(self):
