@@ -2,16 +2,23 @@
 fits, scenes, results, and the multigrid EHL solvers for line and point contacts.
 
 The package follows Q. Liu's thesis (Twente, 2002) and the dimensionless EHL formulation of
-Venner and Moes; see MODEL.md for the equations cited in docstrings.
+Venner and Moes; docstrings cite the thesis's equation numbers, e.g. (2.6).
+
+Layers: :mod:`ehl_multigrid.model` (the physics foundation), the numerical packages
+:mod:`ehl_multigrid.line` and :mod:`ehl_multigrid.point`, and the ``ehl`` application in
+:mod:`ehl_multigrid.app`.
 """
 
-from .errors import ConvergenceError, InputError
-from .fits import moes_line_central, nijenbanning_central
-from .hertz import HertzContact, hertz_circular, hertz_elliptic, hertz_line, hertz_point
-from .lubricant import Lubricant, lubricant_preset
-from .results import Result
-from .scene import Scene, builtin_scene_names, load_scene
-from .solids import Solid, gw_modulus, reduced_modulus
+from . import _moved
+from .model.errors import ConvergenceError, InputError
+from .model.fits import moes_line_central, nijenbanning_central
+from .model.hertz import HertzContact, hertz_circular, hertz_elliptic, hertz_line, hertz_point
+from .model.lubricant import Lubricant, lubricant_preset
+from .model.results import Result
+from .model.scene import Scene, builtin_scene_names, load_scene
+from .model.solids import Solid, gw_modulus, reduced_modulus
+
+_moved.install()
 
 __all__ = [
     "ConvergenceError", "InputError", "moes_line_central", "nijenbanning_central",

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import ConvergenceError, InputError
+from .model.errors import ConvergenceError, InputError
 
 EXIT_INPUT = 2
 EXIT_CONVERGENCE = 3
@@ -69,7 +69,7 @@ def print_table(payload: dict[str, Any]) -> None:
 
 # -- core subcommands ------------------------------------------------------------------------
 def _cmd_scenes(args: argparse.Namespace) -> dict:
-    from .scene import builtin_scene_names, load_scene
+    from .model.scene import builtin_scene_names, load_scene
 
     rows = []
     for name in builtin_scene_names():
@@ -83,7 +83,7 @@ def _cmd_scenes(args: argparse.Namespace) -> dict:
 
 
 def _cmd_show(args: argparse.Namespace) -> dict:
-    from .scene import load_scene
+    from .model.scene import load_scene
 
     sc = load_scene(args.scene)
     summary = sc.summary()
@@ -98,7 +98,7 @@ def _cmd_show(args: argparse.Namespace) -> dict:
 
 
 def _cmd_fits(args: argparse.Namespace) -> dict:
-    from . import fits, groups
+    from .model import fits, groups
 
     if args.contact == "line":
         if args.ellipticity != 1.0:
@@ -136,7 +136,7 @@ def _cmd_solve(args: argparse.Namespace) -> dict:
 
 
 def _cmd_sweep(args: argparse.Namespace) -> dict:
-    from .scene import load_scene
+    from .model.scene import load_scene
     from .sweep import SweepSpec, parse_values, run_sweep
 
     params: dict[str, list[float]] = {}
@@ -163,8 +163,8 @@ def _cmd_sweep(args: argparse.Namespace) -> dict:
 
 
 def _cmd_plan(args: argparse.Namespace) -> dict:
+    from .model.scene import load_scene
     from .plan import make_plan, print_plan
-    from .scene import load_scene
 
     plan = make_plan(load_scene(args.scene), fidelity=args.fidelity, tolerance=args.tolerance)
     if not args.json:
@@ -272,7 +272,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.version:
-        from .results import package_version
+        from .model.results import package_version
 
         print(package_version())
         return 0

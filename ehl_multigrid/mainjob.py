@@ -22,10 +22,10 @@ from typing import Any
 
 import numpy as np
 
-from .hertz import hertz_pressure_line, hertz_pressure_point
+from .model.hertz import hertz_pressure_line, hertz_pressure_point
+from .model.results import Result, save_results
+from .model.scene import Scene, load_scene
 from .plan import Plan, film_grid, make_plan
-from .results import Result, save_results
-from .scene import Scene, load_scene
 
 
 @dataclass

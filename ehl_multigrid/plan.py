@@ -22,10 +22,11 @@ from typing import Any
 
 import numpy as np
 
-from .errors import InputError, require_range
 from .gridchoice import GridChoice, solver_grid
-from .lubricant import ETA_INF, P_R, density_ratio_dh
-from .scene import Scene
+from .model.constants import ETA_INF, P_R
+from .model.errors import InputError, require_range
+from .model.lubricant import density_ratio_dh
+from .model.scene import Scene
 
 #: Relative accuracy targeted by each fidelity level.
 FIDELITY_TOLERANCE = {"fast": 0.1, "standard": 0.02, "reference": 0.002}

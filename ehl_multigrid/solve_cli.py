@@ -10,10 +10,8 @@ from __future__ import annotations
 import argparse
 import importlib
 
-from .errors import InputError
-
-#: Moes-only defaults for the oil (issue 3/4): Roelands reference pressure, alpha, eta0.
-MOES_ONLY_DEFAULTS = {"p0": 1.96e8, "alpha": 2.2e-8, "eta0": 0.04}
+from .model.constants import MOES_ONLY_DEFAULTS  # noqa: F401 - re-exported for old callers
+from .model.errors import InputError
 
 
 def add_solve_arguments(p: argparse.ArgumentParser) -> None:
@@ -47,7 +45,7 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
 
 def resolve_contact(args: argparse.Namespace):
     """Return ``(contact, scene)``; ``scene`` is ``None`` in Moes-only mode."""
-    from .scene import load_scene
+    from .model.scene import load_scene
 
     moes_only = args.M is not None or args.L is not None
     if moes_only:

@@ -2,7 +2,7 @@
 
 A task is a callable ``task(scene, **options) -> dict`` returning scalars (numbers, strings,
 bools, or 1-D lists) and optionally, under the key ``"result"``, a
-:class:`~ehl_multigrid.results.Result` that the caller saves. Tasks are found through the
+:class:`~ehl_multigrid.model.results.Result` that the caller saves. Tasks are found through the
 ``ehl.tasks`` entry-point group, so layers above the core add theirs without the core
 importing them.
 """
@@ -13,8 +13,8 @@ from collections.abc import Callable
 from importlib.metadata import entry_points
 from typing import Any
 
-from .errors import InputError
-from .scene import Scene
+from .model.errors import InputError
+from .model.scene import Scene
 
 
 def fit_task(scene: Scene, **options: Any) -> dict[str, Any]:

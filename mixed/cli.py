@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from ehl_multigrid.cli import add_common_options, print_table
-from ehl_multigrid.errors import InputError
+from ehl_multigrid.model.errors import InputError
 
 
 def _float_list(text: str) -> list[float]:
@@ -51,7 +51,7 @@ def register(subparsers: Any) -> None:
 
 
 def run_stribeck(args: argparse.Namespace) -> dict:
-    from ehl_multigrid.scene import load_scene
+    from ehl_multigrid.model.scene import load_scene
 
     from .stribeck import default_us, stribeck_cases, stribeck_options, stribeck_result
 

@@ -22,9 +22,9 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy import optimize
 
-from ehl_multigrid import hertz
-from ehl_multigrid.errors import InputError, require_range
-from ehl_multigrid.scene import Scene
+from ehl_multigrid.model import hertz
+from ehl_multigrid.model.errors import InputError, require_range
+from ehl_multigrid.model.scene import Scene
 
 from .gw import gw_f
 from .sharing import load_sharing, require_gw_roughness

@@ -17,8 +17,8 @@ import math
 import numpy as np
 from scipy import special
 
-from ehl_multigrid.errors import InputError, require_positive, require_range
-from ehl_multigrid.scene import Roughness
+from ehl_multigrid.model.errors import InputError, require_positive, require_range
+from ehl_multigrid.model.scene import Roughness
 
 from .gw import gw_f1, gw_log_f
 

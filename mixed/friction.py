@@ -25,9 +25,9 @@ from typing import Any
 
 import numpy as np
 
-from ehl_multigrid.errors import ConvergenceError, InputError, require_range
-from ehl_multigrid.lubricant import Lubricant
-from ehl_multigrid.scene import Scene
+from ehl_multigrid.model.errors import ConvergenceError, InputError, require_range
+from ehl_multigrid.model.lubricant import Lubricant
+from ehl_multigrid.model.scene import Scene
 
 from .sharing import LoadSharing
 

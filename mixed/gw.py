@@ -32,8 +32,8 @@ import numpy as np
 from numba import njit
 from scipy import special
 
-from ehl_multigrid.errors import InputError, require_positive, require_range
-from ehl_multigrid.solids import gw_modulus
+from ehl_multigrid.model.errors import InputError, require_positive, require_range
+from ehl_multigrid.model.solids import gw_modulus
 
 ArrayLike = float | np.ndarray
 

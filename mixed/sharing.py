@@ -27,10 +27,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ehl_multigrid import fits, hertz
-from ehl_multigrid.convergence import ConvergenceReport, check_finite
-from ehl_multigrid.errors import ConvergenceError, InputError, require_positive, require_range
-from ehl_multigrid.scene import Roughness, Scene
+from ehl_multigrid.model import fits, hertz
+from ehl_multigrid.model.convergence import ConvergenceReport, check_finite
+from ehl_multigrid.model.errors import ConvergenceError, InputError, require_positive, require_range
+from ehl_multigrid.model.scene import Roughness, Scene
 
 from .film import johnson_film, separation_from_log_film
 from .gw import asperity_pressure_coefficient, gw_log_f

@@ -18,8 +18,8 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from ehl_multigrid.errors import InputError, require_positive, require_range
-from ehl_multigrid.lubricant import density_ratio_dh
+from ehl_multigrid.model.errors import InputError, require_positive, require_range
+from ehl_multigrid.model.lubricant import density_ratio_dh
 
 from .film import johnson_film
 from .gw import asperity_pressure_coefficient, gw_f_inverse

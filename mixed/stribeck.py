@@ -19,10 +19,10 @@ from typing import Any
 import numpy as np
 from scipy import optimize
 
-from ehl_multigrid.convergence import ConvergenceReport
-from ehl_multigrid.errors import InputError, reject_unknown_keys, require_range
-from ehl_multigrid.results import Result
-from ehl_multigrid.scene import Scene
+from ehl_multigrid.model.convergence import ConvergenceReport
+from ehl_multigrid.model.errors import InputError, reject_unknown_keys, require_range
+from ehl_multigrid.model.results import Result
+from ehl_multigrid.model.scene import Scene
 
 from .film import johnson_film
 from .friction import MixedFriction, mixed_friction

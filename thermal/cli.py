@@ -8,9 +8,9 @@ from pathlib import Path
 from typing import Any
 
 from ehl_multigrid.cli import add_common_options, print_table
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.results import Result
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.results import Result
+from ehl_multigrid.model.scene import load_scene
 
 from .options import SLICE_PRESSURES, SLICE_RULES, SURFACE_KERNELS, ThermalOptions
 from .traction import default_slips, save_partial, traction_curve, traction_result

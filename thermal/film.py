@@ -10,9 +10,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from ehl_multigrid.convergence import ConvergenceReport
-from ehl_multigrid.errors import require_choice, require_range
-from ehl_multigrid.scene import Scene
+from ehl_multigrid.model.convergence import ConvergenceReport
+from ehl_multigrid.model.errors import require_choice, require_range
+from ehl_multigrid.model.scene import Scene
 
 from .traction import solve_traction
 

@@ -12,10 +12,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ehl_multigrid.convergence import ConvergenceReport
-from ehl_multigrid.errors import ConvergenceError, InputError, require_range
-from ehl_multigrid.lubricant import T_MAX_C, T_MIN_C, Lubricant
-from ehl_multigrid.solids import Solid
+from ehl_multigrid.model.convergence import ConvergenceReport
+from ehl_multigrid.model.errors import ConvergenceError, InputError, require_range
+from ehl_multigrid.model.lubricant import T_MAX_C, T_MIN_C, Lubricant
+from ehl_multigrid.model.solids import Solid
 
 from . import kernels
 from .options import ThermalOptions
@@ -281,7 +281,7 @@ def _reaches_upstream(WL: np.ndarray, WR: np.ndarray) -> bool:
 
 
 def kernels_check(T: np.ndarray, tau: np.ndarray, report: ConvergenceReport, hint: str) -> None:
-    from ehl_multigrid.convergence import check_finite
+    from ehl_multigrid.model.convergence import check_finite
 
     check_finite("temperature T", T, report, hint)
     check_finite("shear stress tau", tau, report, hint)

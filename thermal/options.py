@@ -7,7 +7,12 @@ import math
 from dataclasses import asdict, dataclass, fields, replace
 from typing import Any
 
-from ehl_multigrid.errors import InputError, reject_unknown_keys, require_choice, require_range
+from ehl_multigrid.model.errors import (
+    InputError,
+    reject_unknown_keys,
+    require_choice,
+    require_range,
+)
 
 SLICE_RULES = ("cosine", "midpoint")
 SLICE_PRESSURES = ("hertz", "thesis")

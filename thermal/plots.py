@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ehl_multigrid.results import Result
+from ehl_multigrid.model.results import Result
 
 DPI = 100
 

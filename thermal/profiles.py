@@ -5,7 +5,7 @@ Sources, one interface (:class:`LineProfile`):
 
 * Hertz pressure with a uniform film (the thesis's simple model): :func:`hertz_profile`;
 * an EHL solution as plain arrays (x, p, h): :func:`profile_from_arrays`;
-* an EHL :class:`~ehl_multigrid.results.Result` of kind ``ehl_line`` / ``ehl_point`` following the
+* an EHL :class:`~ehl_multigrid.model.results.Result` of kind ``ehl_line`` / ``ehl_point`` following the
   naming contract (coords ``x`` [m], fields ``p`` [Pa], ``h`` [m] on ("x",) or ("x", "y")):
   :func:`profiles_from_result`;
 * point contacts sliced in Y, each slice a line problem: :func:`hertz_slices` (true Hertz slice
@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ehl_multigrid.errors import InputError, require_positive, require_range
+from ehl_multigrid.model.errors import InputError, require_positive, require_range
 
 
 @dataclass(frozen=True)

@@ -1,6 +1,6 @@
 """Lubricant property functions compiled for the thermal kernels (MODEL.md 3, thesis 3.2.1.7-3.2.1.10).
 
-The reference implementations live in :class:`ehl_multigrid.lubricant.Lubricant`; these are the
+The reference implementations live in :class:`ehl_multigrid.model.lubricant.Lubricant`; these are the
 same formulas as scalar numba functions so the inner loops can call them. The tests check both
 paths agree at known points. Temperatures in degC, pressures in Pa.
 
@@ -15,7 +15,8 @@ import math
 import numpy as np
 from numba import njit
 
-from ehl_multigrid.lubricant import DH_A, DH_B, ETA_INF, P_R, Lubricant
+from ehl_multigrid.model.constants import DH_A, DH_B, ETA_INF, P_R
+from ehl_multigrid.model.lubricant import Lubricant
 
 #: Layout of the float array handed to the kernels.
 OIL_FIELDS = (

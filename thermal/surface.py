@@ -43,8 +43,8 @@ from functools import lru_cache
 import numpy as np
 from numba import njit
 
-from ehl_multigrid.errors import InputError, require_positive, require_range
-from ehl_multigrid.solids import Solid
+from ehl_multigrid.model.errors import InputError, require_positive, require_range
+from ehl_multigrid.model.solids import Solid
 
 KERNELS = ("moving-strip", "carslaw-jaeger")
 

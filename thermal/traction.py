@@ -16,12 +16,12 @@ from typing import Any
 
 import numpy as np
 
-from ehl_multigrid.convergence import ConvergenceReport
-from ehl_multigrid.errors import InputError, require_range
-from ehl_multigrid.hertz import HertzContact, hertz_line, hertz_point
-from ehl_multigrid.lubricant import T_MAX_C, Lubricant, lubricant_preset
-from ehl_multigrid.results import Result
-from ehl_multigrid.scene import Scene
+from ehl_multigrid.model.convergence import ConvergenceReport
+from ehl_multigrid.model.errors import InputError, require_range
+from ehl_multigrid.model.hertz import HertzContact, hertz_line, hertz_point
+from ehl_multigrid.model.lubricant import T_MAX_C, Lubricant, lubricant_preset
+from ehl_multigrid.model.results import Result
+from ehl_multigrid.model.scene import Scene
 
 from .line import LineSolution, Surroundings, solve_line
 from .options import ThermalOptions

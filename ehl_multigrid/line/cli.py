@@ -7,8 +7,8 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from ..errors import InputError, reject_unknown_keys
-from ..solve_cli import MOES_ONLY_DEFAULTS
+from ..model.constants import MOES_ONLY_DEFAULTS
+from ..model.errors import InputError, reject_unknown_keys
 from .problem import LineProblem
 from .solver import LineSolverOptions, MultilevelLineSolver
 

@@ -24,7 +24,7 @@ import numpy as np
 import scipy.fft
 from numba import njit
 
-from ..errors import require_choice
+from ..model.errors import require_choice
 from .kernel import log_kernel
 
 METHODS = ("mlmi", "fft", "direct")

@@ -15,10 +15,9 @@ from typing import Any
 
 import numpy as np
 
-from .. import groups
-from ..errors import InputError, require_choice, require_positive, require_range
-from ..lubricant import ETA_INF, P_R
-from ..solve_cli import MOES_ONLY_DEFAULTS
+from ..model import groups
+from ..model.constants import ETA_INF, MOES_ONLY_DEFAULTS, P_R
+from ..model.errors import InputError, require_choice, require_positive, require_range
 from .rheology import DENSITY, VISCOSITY, pack
 
 #: Range of the Moes groups the solver accepts (beyond it the grids it would need are
@@ -162,7 +161,7 @@ def default_xmin(M: float, L: float) -> float:
     Measured at equal mesh size (REPORT.md): with X >= -4.5 fixed, Hc is 0.19 % (M = 20,
     L = 10), 0.9 % (M = 5, L = 5) and 1.7 % (M = 2, L = 2) below its long-inlet value.
     """
-    from ..fits import moes_line_central
+    from ..model.fits import moes_line_central
 
     H = float(moes_line_central(M, L)) * math.pi / (8.0 * M)
     return float(min(-4.5, math.floor(2.0 * (-1.0 - 20.0 * math.sqrt(2.0 * H))) / 2.0))

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..lubricant import DH_A, DH_B
+from ..model.constants import DH_A, DH_B
 
 VISCOSITY = ("roelands", "barus")
 DENSITY = ("dowson-higginson", "incompressible")

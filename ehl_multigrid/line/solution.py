@@ -20,8 +20,8 @@ from typing import Any
 
 import numpy as np
 
-from ..convergence import ConvergenceReport
-from ..results import Result, ScalarAccess
+from ..model.convergence import ConvergenceReport
+from ..model.results import Result, ScalarAccess
 from .problem import LineProblem
 
 

@@ -34,9 +34,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..convergence import ConvergenceReport
-from ..errors import ConvergenceError, InputError, require_choice, require_range
-from ..fits import moes_line_central
+from ..model.convergence import ConvergenceReport
+from ..model.errors import ConvergenceError, InputError, require_choice, require_range
+from ..model.fits import moes_line_central
 from .deformation import METHODS
 from .discrete import projected
 from .level import LineLevel, State, full_weighting, inject, interpolate_cubic, interpolate_linear

@@ -7,7 +7,7 @@ import math
 from dataclasses import fields
 from pathlib import Path
 
-from ..errors import InputError, reject_unknown_keys
+from ..model.errors import InputError, reject_unknown_keys
 from .fas import SolverOptions, solve_fas
 from .newton import NewtonOptions, solve_newton_amg
 from .postprocess import build_result, summary_payload

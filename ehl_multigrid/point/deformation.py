@@ -27,7 +27,7 @@ import numpy as np
 import scipy.fft as sfft
 from numba import njit, prange
 
-from ..errors import InputError
+from ..model.errors import InputError
 
 
 def _F(x: np.ndarray, y: np.ndarray) -> np.ndarray:

@@ -21,9 +21,9 @@ from dataclasses import asdict, dataclass, field, replace
 import numba
 import numpy as np
 
-from ..convergence import ConvergenceReport
-from ..errors import ConvergenceError, InputError, require_range
-from ..fits import nijenbanning_central
+from ..model.convergence import ConvergenceReport
+from ..model.errors import ConvergenceError, InputError, require_range
+from ..model.fits import nijenbanning_central
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation, set_fft_workers
 from .problem import PointProblem, coarse_intervals, domain_scale, min_points, resolve_domain

@@ -27,8 +27,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..convergence import ConvergenceReport
-from ..errors import ConvergenceError, InputError
+from ..model.convergence import ConvergenceReport
+from ..model.errors import ConvergenceError, InputError
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
 from .fas import load_integral
@@ -208,7 +208,7 @@ def solve_newton_amg(problem: PointProblem, options: NewtonOptions | None = None
         g = _Grid(pb, n, opt)
         if P is None:
             P = np.sqrt(np.clip(1.0 - g.X[None, :] ** 2 - (g.Y[:, None] / pb.b_over_a) ** 2, 0.0, None))
-            from ..fits import nijenbanning_central
+            from ..model.fits import nijenbanning_central
 
             Hc_fit = nijenbanning_central(pb.M, pb.L, pb.theta) / pb.moes_factor
             W = g.defo(P)

@@ -17,8 +17,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-DH_A = 0.59263e9
-DH_B = 0.34615
+from ..model.constants import DH_A, DH_B
 
 
 # -- lubricant ---------------------------------------------------------------------------------

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..results import Result
+from ..model.results import Result
 
 
 def _plt():

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ..results import Result
+from ..model.results import Result
 from .deformation import mirror_full
 
 

@@ -21,9 +21,9 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from ..errors import InputError, require_choice, require_range
-from ..hertz import hertz_elliptic
-from ..lubricant import ETA_INF, P_R
+from ..model.constants import ETA_INF, MOES_ONLY_DEFAULTS, P_R
+from ..model.errors import InputError, require_choice, require_range
+from ..model.hertz import hertz_elliptic
 
 VISCOSITY = ("roelands", "barus")
 DENSITY = ("dowson-higginson", "incompressible")
@@ -64,7 +64,7 @@ class PointProblem:
     density: str = "dowson-higginson"
     alpha: float = 2.2e-8
     eta0: float = 0.04
-    p_r: float = 1.96e8
+    p_r: float = MOES_ONLY_DEFAULTS["p0"]
     a: float = math.nan
     b: float = math.nan
     Rx: float = math.nan
@@ -150,7 +150,7 @@ def problem_from_moes(M: float, L: float, theta: float = 1.0, viscosity: str = "
                       density: str = "dowson-higginson", alpha: float | None = None,
                       eta0: float | None = None, p0: float | None = None) -> PointProblem:
     """Moes-only problem; the oil defaults are ``ehl_multigrid.solve_cli.MOES_ONLY_DEFAULTS``."""
-    from ..solve_cli import MOES_ONLY_DEFAULTS as D
+    from ..model.constants import MOES_ONLY_DEFAULTS as D
 
     return PointProblem(
         M=float(M), L=float(L), theta=float(theta), viscosity=viscosity, density=density,
@@ -183,7 +183,7 @@ def rigid_length(problem: PointProblem) -> float:
     Where the film is thick compared with the elastic deformation (low M) the pressure spreads
     over a few ``s`` around the contact instead of over the Hertz circle.
     """
-    from ..fits import nijenbanning_central
+    from ..model.fits import nijenbanning_central
 
     H = float(nijenbanning_central(problem.M, problem.L, problem.theta)) / problem.moes_factor
     return math.sqrt(2.0 * H)

@@ -10,9 +10,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..convergence import ConvergenceReport
-from ..errors import InputError, require_choice
-from ..results import Result, ScalarAccess
+from ..model.convergence import ConvergenceReport
+from ..model.errors import InputError, require_choice
+from ..model.results import Result, ScalarAccess
 from .postprocess import build_result, summary_payload
 from .problem import PointProblem, problem_from_moes, problem_from_scene
 

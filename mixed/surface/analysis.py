@@ -12,7 +12,7 @@ import re
 from dataclasses import dataclass, replace
 from typing import Any
 
-from ehl_multigrid.errors import InputError, require_choice, require_positive
+from ehl_multigrid.model.errors import InputError, require_choice, require_positive
 
 from .filters import FilterStudy, filter_until_psi, gaussian_lowpass, lowpass_3x3
 from .heightmap import HeightMap, parse_length

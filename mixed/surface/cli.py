@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ehl_multigrid.cli import add_common_options, print_table
-from ehl_multigrid.errors import InputError, require_positive, require_range
+from ehl_multigrid.model.errors import InputError, require_positive, require_range
 
 from .readers import LAYOUTS
 
@@ -95,7 +95,7 @@ def _analyse_file(path: str, args: argparse.Namespace, E: float | None, H: float
 
 
 def run_surface(args: argparse.Namespace) -> dict[str, Any]:
-    from ehl_multigrid.scene import load_scene
+    from ehl_multigrid.model.scene import load_scene
 
     from .statistics import combine_statistics, counter_surface
 
@@ -164,7 +164,7 @@ def run_surface(args: argparse.Namespace) -> dict[str, Any]:
 
 def write_scene(scene: Any, stats: Any, path: str | Path, source: str, an: Analysis, fc: float | None) -> Path:
     """Write ``scene`` with its ``[roughness]`` block replaced by ``stats`` (validated by loading)."""
-    from ehl_multigrid.scene import Scene
+    from ehl_multigrid.model.scene import Scene
 
     if fc is None:
         fc = scene.roughness.fc if scene.roughness is not None else None
@@ -184,7 +184,7 @@ def write_scene(scene: Any, stats: Any, path: str | Path, source: str, an: Analy
 
 
 def _save_result(an: Analysis, payload: dict[str, Any], scene: Any, path: Path) -> Path:
-    from ehl_multigrid.results import Result
+    from ehl_multigrid.model.results import Result
 
     hm = an.surface
     r = Result("surface", scene=scene)

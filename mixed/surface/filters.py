@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 from scipy import ndimage
 
-from ehl_multigrid.errors import InputError, require_choice, require_positive
+from ehl_multigrid.model.errors import InputError, require_choice, require_positive
 
 from .heightmap import HeightMap
 from .statistics import SurfaceStats, surface_statistics

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ehl_multigrid.errors import InputError, require_positive
+from ehl_multigrid.model.errors import InputError, require_positive
 
 #: Length units accepted for heights and spacings, in metres.
 LENGTH_UNITS: dict[str, float] = {

@@ -18,7 +18,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ehl_multigrid.errors import InputError, require_choice
+from ehl_multigrid.model.errors import InputError, require_choice
 
 from .heightmap import HeightMap
 

@@ -26,7 +26,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ehl_multigrid.errors import InputError, require_positive
+from ehl_multigrid.model.errors import InputError, require_positive
 
 SIGMA_S_COEFF = 0.8968  # Nayak (1971): sigma_s^2 = sigma^2 (1 - 0.8968/alpha)
 

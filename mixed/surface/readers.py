@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ehl_multigrid.errors import InputError, require_choice
+from ehl_multigrid.model.errors import InputError, require_choice
 
 from .heightmap import HeightMap, parse_length, unit_factor
 

@@ -31,8 +31,8 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from ehl_multigrid.errors import InputError, require_positive
-from ehl_multigrid.solids import STEEL, gw_modulus, reduced_modulus_of
+from ehl_multigrid.model.errors import InputError, require_positive
+from ehl_multigrid.model.solids import STEEL, gw_modulus, reduced_modulus_of
 
 from .heightmap import HeightMap
 
@@ -201,7 +201,7 @@ class SurfaceStats:
         return d
 
     def roughness_block(self, fc: float | None = None) -> dict[str, float]:
-        """The scene ``[roughness]`` table (ehl_multigrid.scene): Rq, Ra, sigma_s, dd, n, beta, hardness."""
+        """The scene ``[roughness]`` table (ehl_multigrid.model.scene): Rq, Ra, sigma_s, dd, n, beta, hardness."""
         out: dict[str, float] = {}
         for k in ("Rq", "Ra", "sigma_s", "dd", "n", "beta"):
             v = float(getattr(self, k))

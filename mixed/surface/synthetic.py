@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from ehl_multigrid.errors import InputError, require_positive, require_range
+from ehl_multigrid.model.errors import InputError, require_positive, require_range
 
 from .heightmap import HeightMap
 

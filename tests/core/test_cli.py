@@ -5,8 +5,8 @@ import json
 import pytest
 
 from ehl_multigrid.cli import main
-from ehl_multigrid.fits import moes_line_central, nijenbanning_central
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.fits import moes_line_central, nijenbanning_central
+from ehl_multigrid.model.scene import load_scene
 
 
 def run_json(capsys, argv):

@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from ehl_multigrid import fits, groups
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.hertz import hertz_circular, hertz_line
+from ehl_multigrid.model import fits, groups
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.hertz import hertz_circular, hertz_line
 
 
 def test_moes_line_groups_from_dowson_higginson():

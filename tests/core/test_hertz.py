@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.hertz import (
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.hertz import (
     hertz_circular,
     hertz_elliptic,
     hertz_line,
@@ -15,7 +15,7 @@ from ehl_multigrid.hertz import (
     load_for_pmax_line,
     load_for_pmax_point,
 )
-from ehl_multigrid.solids import STEEL, gw_modulus, reduced_modulus, reduced_modulus_of
+from ehl_multigrid.model.solids import STEEL, gw_modulus, reduced_modulus, reduced_modulus_of
 
 
 def test_line_contact_page_63_gives_0_30_gpa():
@@ -125,7 +125,7 @@ def test_bad_hertz_input_names_the_field(call, field):
 
 
 def test_hertz_pressure_profiles_integrate_to_load():
-    from ehl_multigrid.hertz import hertz_pressure_line
+    from ehl_multigrid.model.hertz import hertz_pressure_line
 
     hz = hertz_line(1000.0, 0.01, 0.02, 2.3e11)
     x = np.linspace(-hz.b, hz.b, 20001)

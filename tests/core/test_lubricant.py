@@ -5,8 +5,15 @@ import math
 import numpy as np
 import pytest
 
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.lubricant import ETA_INF, HVI160, P_R, T9, density_ratio_dh, lubricant_preset
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.lubricant import (
+    ETA_INF,
+    HVI160,
+    P_R,
+    T9,
+    density_ratio_dh,
+    lubricant_preset,
+)
 
 
 def test_roelands_returns_eta0_at_reference_temperature_and_zero_pressure():

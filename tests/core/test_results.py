@@ -4,10 +4,10 @@ import h5py
 import numpy as np
 import pytest
 
-from ehl_multigrid.convergence import ConvergenceReport
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.results import Result
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.convergence import ConvergenceReport
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.results import Result
+from ehl_multigrid.model.scene import load_scene
 
 
 def make_result() -> Result:
@@ -83,7 +83,7 @@ def test_loading_a_foreign_file_is_refused(tmp_path):
 
 
 def test_several_results_round_trip_in_one_file(tmp_path):
-    from ehl_multigrid.results import load_results, save_results
+    from ehl_multigrid.model.results import load_results, save_results
 
     a, b = make_result(), make_result()
     b.kind = "other"

@@ -5,8 +5,8 @@ import math
 
 import pytest
 
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.scene import Scene, builtin_scene_names, load_scene
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import Scene, builtin_scene_names, load_scene
 
 BASE = {
     "name": "t",

@@ -7,8 +7,8 @@ import threading
 import numpy as np
 import pytest
 
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import load_scene
 from ehl_multigrid.sweep import SweepSpec, gather, parse_values, run_sweep
 from ehl_multigrid.tasks import register_task
 

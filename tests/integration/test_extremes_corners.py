@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from ehl_multigrid.errors import ConvergenceError
+from ehl_multigrid.model.errors import ConvergenceError
 
 SCRIPT = Path(__file__).resolve().parents[2] / "validation" / "extremes" / "extremes.py"
 

@@ -5,8 +5,8 @@ import json
 import pytest
 
 from ehl_multigrid.cli import main
-from ehl_multigrid.results import load_results
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.results import load_results
+from ehl_multigrid.model.scene import load_scene
 
 
 def test_main_job_on_a_rough_line_contact_runs_film_traction_and_stribeck(capsys, tmp_path):

@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 
 from ehl_multigrid.line import solve_line
-from ehl_multigrid.results import package_version
+from ehl_multigrid.model.results import package_version
 
 CASES = {"M20_L10": dict(M=20.0, L=10.0)}
 GRIDS = [1025, 2049, 4097, 8193]

@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ehl_multigrid.errors import ConvergenceError, InputError
 from ehl_multigrid.line import LineProblem, MultilevelLineSolver, solve_line
-from ehl_multigrid.results import Result
+from ehl_multigrid.model.errors import ConvergenceError, InputError
+from ehl_multigrid.model.results import Result
 
 REF = json.loads(Path(__file__).with_name("reference.json").read_text())
 
@@ -89,7 +89,7 @@ def test_result_follows_the_naming_contract(sol_20_10, tmp_path):
 
 
 def test_scene_mode_gives_films_in_metres():
-    from ehl_multigrid.scene import load_scene
+    from ehl_multigrid.model.scene import load_scene
 
     sc = load_scene("page63_line_2000N")
     s = solve_line(scene=sc, points=1025)

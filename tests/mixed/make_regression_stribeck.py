@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.scene import load_scene
 from mixed.stribeck import stribeck_curve, stribeck_options
 
 CASES = [("page63_line_2000N", None), ("series_C_disc3_1.93GPa", None), ("chapter6_starved_1.93GPa", 1.0)]

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import load_scene
 from mixed.critical import critical_load
 from mixed.sharing import load_sharing
 from mixed.stribeck import transition_speed

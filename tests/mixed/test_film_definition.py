@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.scene import Roughness
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import Roughness
 from mixed.film import (
     equivalent_surface,
     johnson_film,

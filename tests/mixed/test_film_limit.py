@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from ehl_multigrid.scene import Scene, load_scene
+from ehl_multigrid.model.scene import Scene, load_scene
 from mixed.friction import mixed_friction
 from mixed.sharing import load_sharing
 

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy import integrate, special
 
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import load_scene
 from mixed.gw import (
     asperity_pressure,
     asperity_pressure_dimensionless,

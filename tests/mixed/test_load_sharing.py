@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from ehl_multigrid import fits
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.scene import Scene, load_scene
+from ehl_multigrid.model import fits
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import Scene, load_scene
 from mixed.film import johnson_film
 from mixed.gw import asperity_pressure
 from mixed.roots import bracketed_root

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import load_scene
 from mixed.friction import film_area, mixed_friction
 from mixed.sharing import load_sharing
 from mixed.stribeck import classify_regime, stribeck_curve, stribeck_options
@@ -53,7 +53,7 @@ def test_isothermal_film_term_uses_the_film_area_and_pressure_of_4_35_to_4_37():
     assert fr.AH[0] == pytest.approx(AH, rel=1e-12)
     assert fr.pavehl[0] == pytest.approx(ls.Ph[0] / AH, rel=1e-12)
     # Hertz at load Ph has exactly this area and mean pressure (line and point)
-    from ehl_multigrid.hertz import hertz_circular, hertz_line
+    from ehl_multigrid.model.hertz import hertz_circular, hertz_line
 
     h = hertz_line(ls.Ph[0], sc.length, sc.Rx, sc.E_reduced)
     assert (h.area, h.mean_pressure) == (pytest.approx(AH, rel=1e-12), pytest.approx(fr.pavehl[0], rel=1e-12))
@@ -98,7 +98,7 @@ def test_thermal_friction_runs_and_softens_the_film_at_high_speed():
 
 
 def test_scene_solver_table_sets_the_regime_thresholds_and_rejects_unknown_keys():
-    from ehl_multigrid.scene import Scene
+    from ehl_multigrid.model.scene import Scene
 
     d = load_scene("page63_line_500N").to_dict()
     d["solver"] = {"mixed": {"bl_fraction": 0.9, "ehl_fraction": 0.01}}

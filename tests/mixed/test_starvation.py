@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy import integrate, optimize
 
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import load_scene
 from mixed.film import johnson_film
 from mixed.sharing import load_sharing
 from mixed.starvation import (

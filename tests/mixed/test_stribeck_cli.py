@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from ehl_multigrid.cli import main
-from ehl_multigrid.results import Result
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.results import Result
+from ehl_multigrid.model.scene import load_scene
 from mixed.sharing import load_sharing
 
 

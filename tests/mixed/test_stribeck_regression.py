@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.scene import load_scene
 from mixed.stribeck import stribeck_curve, stribeck_options
 
 STORED = json.loads(Path(__file__).with_name("regression_stribeck.json").read_text())

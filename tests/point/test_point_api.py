@@ -7,10 +7,10 @@ import math
 import pytest
 
 from ehl_multigrid.cli import main
-from ehl_multigrid.errors import InputError
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import load_scene
 from ehl_multigrid.point import default_domain, problem_from_moes, solve_point
 from ehl_multigrid.point.problem import coarse_intervals, domain_scale, min_points
-from ehl_multigrid.scene import load_scene
 
 
 def test_solve_point_from_moes_returns_result_with_line_solver_shape():

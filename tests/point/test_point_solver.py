@@ -8,12 +8,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ehl_multigrid.errors import InputError
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import load_scene
 from ehl_multigrid.point import build_result, problem_from_moes, solve_fas
 from ehl_multigrid.point.fas import load_integral
 from ehl_multigrid.point.problem import problem_from_scene
 from ehl_multigrid.point.rigid import solve_rigid_direct
-from ehl_multigrid.scene import load_scene
 
 REF = json.loads(Path(__file__).with_name("reference.json").read_text())
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from ehl_multigrid.cli import main
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.scene import load_scene
 from mixed.surface import gaussian_random_surface, read_height_map
 
 MAIN = ("Ra", "Rq", "n", "beta", "sigma_s", "dd", "psi")

@@ -6,7 +6,7 @@ import h5py
 import numpy as np
 import pytest
 
-from ehl_multigrid.errors import InputError
+from ehl_multigrid.model.errors import InputError
 from mixed.surface import make_height_map, parse_length, read_height_map
 
 Z_UM = np.array([[0.1, 0.2, 0.3, 0.2], [0.0, -0.1, 0.4, 0.1], [0.3, 0.2, -0.2, 0.0]])

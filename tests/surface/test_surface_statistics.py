@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from ehl_multigrid.errors import InputError
+from ehl_multigrid.model.errors import InputError
 from mixed.surface import (
     HeightMap,
     combine_statistics,

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ehl_multigrid.errors import InputError
+from ehl_multigrid.model.errors import InputError
 from mixed.surface import (
     analyse_surface,
     gaussian_acf,

@@ -1,6 +1,6 @@
 import pytest
 
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.scene import load_scene
 
 
 @pytest.fixture(scope="session")

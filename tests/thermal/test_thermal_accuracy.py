@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.scene import load_scene
 from thermal import solve_traction
 
 DATA = json.loads((Path(__file__).parent / "regression_thermal.json").read_text())

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 
 from ehl_multigrid.cli import main
-from ehl_multigrid.convergence import ConvergenceReport
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.results import Result
-from ehl_multigrid.scene import Scene
+from ehl_multigrid.model.convergence import ConvergenceReport
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.results import Result
+from ehl_multigrid.model.scene import Scene
 from thermal import (
     FilmFriction,
     ThermalOptions,

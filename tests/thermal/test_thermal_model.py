@@ -97,7 +97,7 @@ def test_surface_at_rest_is_finite_converged_and_continuous(line_hi, slip):
 
 
 def test_carslaw_jaeger_kernel_refuses_surface_at_rest(line_hi):
-    from ehl_multigrid.errors import InputError
+    from ehl_multigrid.model.errors import InputError
 
     with pytest.raises(InputError, match="u > 0"):
         solve_traction(line_hi, 2.0, surface_kernel="carslaw-jaeger")

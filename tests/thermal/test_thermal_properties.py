@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from ehl_multigrid.lubricant import HVI160, T9
+from ehl_multigrid.model.lubricant import HVI160, T9
 from thermal.properties import conductivity, density, oil_params, roelands, specific_heat
 
 

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy.special import k0
 
-from ehl_multigrid.errors import InputError
-from ehl_multigrid.solids import STEEL
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.solids import STEEL
 from thermal.surface import (
     carslaw_jaeger_kernel,
     diffusivity,

@@ -24,8 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from ehl_multigrid.errors import ConvergenceError, InputError
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.errors import ConvergenceError, InputError
+from ehl_multigrid.model.scene import load_scene
 
 OUT = Path(__file__).parent / "out"
 
@@ -125,7 +125,7 @@ def mixed_cases(quick: bool) -> Iterator[Case]:
 
 
 def run_mixed(case: Case) -> tuple[str, dict[str, Any]]:
-    from ehl_multigrid.scene import Scene
+    from ehl_multigrid.model.scene import Scene
     from mixed.tasks import stribeck_point_task
 
     d = load_scene(case["scene"]).to_dict()

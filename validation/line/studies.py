@@ -32,9 +32,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from tqdm import tqdm  # noqa: E402
 
-from ehl_multigrid.errors import ConvergenceError  # noqa: E402
-from ehl_multigrid.fits import moes_line_central  # noqa: E402
 from ehl_multigrid.line import solve_line  # noqa: E402
+from ehl_multigrid.model.errors import ConvergenceError  # noqa: E402
+from ehl_multigrid.model.fits import moes_line_central  # noqa: E402
 
 OUT = Path(__file__).with_name("out")
 DPI = 100

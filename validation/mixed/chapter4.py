@@ -21,7 +21,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import out_dir, plt, write_json  # noqa: E402
 
-from ehl_multigrid.scene import Scene, load_scene  # noqa: E402
+from ehl_multigrid.model.scene import Scene, load_scene  # noqa: E402
 from mixed.critical import critical_load  # noqa: E402
 from mixed.film import johnson_film  # noqa: E402
 from mixed.gw import gw_f  # noqa: E402

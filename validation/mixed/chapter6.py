@@ -18,7 +18,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import out_dir, write_json  # noqa: E402
 
-from ehl_multigrid.scene import load_scene  # noqa: E402
+from ehl_multigrid.model.scene import load_scene  # noqa: E402
 from mixed.plots import plot_cases  # noqa: E402
 from mixed.starvation import limiting_inlet_film, limiting_inlet_film_for_roughness  # noqa: E402
 from mixed.stribeck import stribeck_curve  # noqa: E402

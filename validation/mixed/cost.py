@@ -19,7 +19,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import write_json  # noqa: E402
 
-from ehl_multigrid.scene import load_scene  # noqa: E402
+from ehl_multigrid.model.scene import load_scene  # noqa: E402
 from mixed.film import johnson_film, separation_from_film  # noqa: E402
 from mixed.gw import gw_f32  # noqa: E402
 from mixed.sharing import load_sharing  # noqa: E402

@@ -23,7 +23,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import out_dir, plt, write_json  # noqa: E402
 
-from ehl_multigrid.scene import load_scene  # noqa: E402
+from ehl_multigrid.model.scene import load_scene  # noqa: E402
 from mixed.gw import plasticity_index  # noqa: E402
 from mixed.stribeck import default_us, stribeck_curve  # noqa: E402
 

@@ -13,7 +13,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import write_json  # noqa: E402
 
-from ehl_multigrid.scene import load_scene  # noqa: E402
+from ehl_multigrid.model.scene import load_scene  # noqa: E402
 from mixed.sharing import load_sharing  # noqa: E402
 
 # us [m/s], pmax [GPa], P [N], Pa [N], Ph [N], gamma2, gamma1, h [m], hss [m]

@@ -67,7 +67,7 @@ POINT_CASES = ((20.0, 10.0), (100.0, 10.0))
 
 def line_run(s: dict) -> list[float]:
     if s.get("film") == "fit":
-        from ehl_multigrid.fits import moes_line_central
+        from ehl_multigrid.model.fits import moes_line_central
 
         return [float(moes_line_central(M, L)) for M, L in LINE_CASES]
     from ehl_multigrid.line import solve_line
@@ -91,7 +91,7 @@ def point_settings(quick: bool) -> tuple[dict, list[dict]]:
 
 def point_run(s: dict) -> list[float]:
     if s.get("film") == "fit":
-        from ehl_multigrid.fits import nijenbanning_central
+        from ehl_multigrid.model.fits import nijenbanning_central
 
         return [float(nijenbanning_central(M, L)) for M, L in POINT_CASES]
     from ehl_multigrid.point import solve_point
@@ -126,7 +126,7 @@ TRACTION_SLIPS = (0.02, 0.3, 1.0)
 
 
 def traction_run(s: dict) -> list[float]:
-    from ehl_multigrid.scene import load_scene
+    from ehl_multigrid.model.scene import load_scene
     from thermal.traction import solve_traction
 
     s = dict(s)
@@ -164,7 +164,7 @@ def stribeck_settings(quick: bool) -> tuple[dict, list[dict]]:
 def stribeck_run(s: dict) -> list[float]:
     import numpy as np
 
-    from ehl_multigrid.scene import load_scene
+    from ehl_multigrid.model.scene import load_scene
     from mixed.stribeck import stribeck_curve
 
     scene = load_scene(s["scene"])

@@ -35,7 +35,9 @@ from pathlib import Path
 import numpy as np
 
 from ehl_multigrid import plan as planner
-from ehl_multigrid.errors import ConvergenceError, InputError
+from ehl_multigrid.model.errors import ConvergenceError, InputError
+from ehl_multigrid.model.scene import Scene, load_scene
+from ehl_multigrid.model.solids import reduced_modulus
 from ehl_multigrid.plan import (
     FIDELITY_TOLERANCE,
     make_plan,
@@ -43,8 +45,6 @@ from ehl_multigrid.plan import (
     speed_range,
     temperature_rise_estimate,
 )
-from ehl_multigrid.scene import Scene, load_scene
-from ehl_multigrid.solids import reduced_modulus
 
 OUT = Path(__file__).resolve().parent / "out"
 JSON_PATH = OUT / "temperature_rise.json"

@@ -15,7 +15,7 @@ OUT = HERE / "out"
 OUT.mkdir(exist_ok=True)
 sys.path.insert(0, str(HERE.parents[1]))
 
-from ehl_multigrid.errors import ConvergenceError, InputError  # noqa: E402
+from ehl_multigrid.model.errors import ConvergenceError, InputError  # noqa: E402
 from ehl_multigrid.point import build_result, problem_from_moes, solve_fas  # noqa: E402
 
 

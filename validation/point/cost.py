@@ -19,7 +19,7 @@ from ehl_multigrid.point import build_result, problem_from_moes
 
 
 def newton_case(M, L, n):
-    from ehl_multigrid.errors import ConvergenceError
+    from ehl_multigrid.model.errors import ConvergenceError
     from ehl_multigrid.point.newton import solve_newton_amg
 
     row = {"M": M, "L": L, "points": n, "solver": "newton-pyamg", "load_before": load_avg()}

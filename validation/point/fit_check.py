@@ -17,7 +17,7 @@ import numpy as np
 from common import Store, plt, solve_case
 from tqdm import tqdm
 
-from ehl_multigrid.fits import nijenbanning_central
+from ehl_multigrid.model.fits import nijenbanning_central
 from ehl_multigrid.point.problem import hertz_shape, min_points
 
 MS = [5, 10, 20, 50, 100, 200, 500, 1000]

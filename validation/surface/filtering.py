@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ehl_multigrid.scene import Scene, load_scene
+from ehl_multigrid.model.scene import Scene, load_scene
 from mixed.surface import (
     filter_until_psi,
     gaussian_lowpass,

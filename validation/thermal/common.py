@@ -85,7 +85,7 @@ def richardson_resolved(h: list[float], f: list[float], noise: float = 1e-5) -> 
 
 def ehl_line_result(scene, xmin: float = -2.5, xmax: float = 1.5):
     """EHL line solution of ``scene`` (ehl_multigrid.line), cached on disk; None if unavailable."""
-    from ehl_multigrid.results import Result
+    from ehl_multigrid.model.results import Result
 
     CACHE.mkdir(exist_ok=True)
     path = CACHE / f"ehl_{scene.name}_{scene.load:g}_{scene.us:g}_{scene.T_oil:g}_{scene.lubricant.name}_{xmin:g}_{xmax:g}.h5"
@@ -95,7 +95,7 @@ def ehl_line_result(scene, xmin: float = -2.5, xmax: float = 1.5):
         from ehl_multigrid.line.solver import solve_line
     except ImportError:
         return None
-    from ehl_multigrid.errors import ConvergenceError
+    from ehl_multigrid.model.errors import ConvergenceError
 
     try:
         sol = solve_line(scene=scene, xmin=xmin, xmax=xmax)

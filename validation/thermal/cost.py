@@ -13,7 +13,7 @@ import time
 import numpy as np
 from common import OUT, ehl_line_result, plt, quick_flag, write_json
 
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.scene import load_scene
 from thermal import film_friction, solve_traction, traction_curve
 
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from common import OUT, plt, quick_flag, richardson_resolved, write_json
 
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.scene import load_scene
 from thermal import solve_traction
 
 DEFAULT = {"nx": 80, "nz": 20, "slices": 10}

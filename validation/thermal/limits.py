@@ -17,7 +17,7 @@ import numpy as np
 from common import OUT, ehl_line_result, plt, quick_flag, write_json
 from scipy.integrate import quad
 
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.scene import load_scene
 from thermal import solve_traction
 
 

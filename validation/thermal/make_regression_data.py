@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ehl_multigrid.scene import load_scene
+from ehl_multigrid.model.scene import load_scene
 from thermal import solve_traction
 
 CASES = [

@@ -22,8 +22,8 @@ import time
 import numpy as np
 from common import OUT, ehl_line_result, plt, quick_flag, write_json
 
-from ehl_multigrid.results import Result
-from ehl_multigrid.scene import Scene, load_scene
+from ehl_multigrid.model.results import Result
+from ehl_multigrid.model.scene import Scene, load_scene
 from thermal import solve_traction, traction_curve, traction_result
 from thermal.plots import plot_inlet_temperatures, plot_temperature_map, plot_velocity_profiles
 

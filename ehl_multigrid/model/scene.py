@@ -1,7 +1,7 @@
 """Scenes: one contact situation as a plain data object, loaded from TOML.
 
 Every layer reads the same :class:`Scene`. Loading validates every value and raises
-:class:`~ehl_multigrid.errors.InputError` naming the field, value, units and allowed range;
+:class:`~ehl_multigrid.model.errors.InputError` naming the field, value, units and allowed range;
 nothing is half-loaded. Built-in scenes live in ``ehl_multigrid/scenes/*.toml``.
 
 TOML layout (all SI, temperatures in degC)::

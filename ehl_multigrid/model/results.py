@@ -86,7 +86,7 @@ class Result:
     """
 
     kind: str
-    scene: Any = None  # ehl_multigrid.scene.Scene | None (kept loose: results may be scene-free)
+    scene: Any = None  # ehl_multigrid.model.scene.Scene | None (kept loose: results may be scene-free)
     coords: dict[str, Variable] = field(default_factory=dict)
     fields: dict[str, Variable] = field(default_factory=dict)
     scalars: dict[str, Any] = field(default_factory=dict)
@@ -122,7 +122,7 @@ class Result:
         self.scalar_units[name] = units
 
     def add_report(self, report: Any) -> None:
-        """Store a :class:`~ehl_multigrid.convergence.ConvergenceReport`."""
+        """Store a :class:`~ehl_multigrid.model.convergence.ConvergenceReport`."""
         for k, v in report.scalars().items():
             self.scalars[k] = v
         self.scalar_units.setdefault("wall_s", "s")

@@ -11,14 +11,10 @@ from dataclasses import asdict, dataclass, fields, replace
 
 import numpy as np
 
+# the Roelands and Dowson-Higginson constants live in .constants; importing them from here
+# keeps working
+from .constants import DH_A, DH_B, ETA_INF, P_R
 from .errors import InputError, reject_unknown_keys, require_positive, require_range
-
-#: Roelands constants (2.6): viscosity at infinite temperature [Pa s] and reference pressure [Pa].
-ETA_INF = 6.31e-5
-P_R = 1.962e8
-#: Dowson-Higginson constants (2.7, 3.10) [Pa].
-DH_A = 0.59263e9
-DH_B = 0.34615
 
 T_MIN_C = -50.0
 T_MAX_C = 400.0

@@ -4,7 +4,7 @@
 * Nijenbanning elliptic fit (2.23-2.29) and its mixed-lubrication form (4.25-4.26).
 
 All take Moes groups (M, L) built on the sum velocity and return the Moes-scaled central film
-``Hc`` (``h = Hc R sqrt(eta0 us/(E' R))``, see :func:`ehl_multigrid.groups.moes_film_scale`).
+``Hc`` (``h = Hc R sqrt(eta0 us/(E' R))``, see :func:`ehl_multigrid.model.groups.moes_film_scale`).
 ``gamma1 >= 1`` is the fluid load-sharing factor ``P/Ph``; ``gamma1 = 1`` is the smooth fit.
 Vectorised: arguments broadcast against each other.
 
