@@ -1,22 +1,52 @@
-"""Multilevel (FAS/FMG) solver for the steady isothermal EHL line contact (MODEL.md 5).
+"""Multilevel (FAS/FMG) solver for the steady isothermal EHL line contact.
 
 Public API::
 
-    from ehl_multigrid.line import solve_line, LineProblem, MultilevelLineSolver
+    from ehl_multigrid.line import solve_line, LineProblem
     sol = solve_line(20, 10, points=1025)            # Moes groups, default oil
-    sol.Hc, sol.Hm, sol.converged                    # Moes-scaled films
-    res = sol.to_result()                            # core Result, kind "ehl_line"
+    sol.Hc, sol.Hm, sol.success, sol.status_name     # Moes-scaled films, outcome
+    res = sol.to_result()                            # package Result, kind "ehl_line"
 
     from ehl_multigrid.line import make_deformation  # W = sum_j K_|i-j| P_j (mlmi/fft/direct)
+
+The cycles, FMG and robustness policy are the shared ones of :mod:`ehl_multigrid.multigrid`;
+this package holds the line discretisation (:class:`LineHierarchy`).
 """
 
+import warnings
+
+from ..multigrid.options import LineOptions
 from .deformation import DirectDeformation, FFTDeformation, MLMIDeformation, make_deformation
 from .kernel import log_kernel
 from .problem import LineProblem
 from .solution import LineSolution
-from .solver import LineSolverOptions, MultilevelLineSolver, solve_line
+from .solver import LineHierarchy, line_solver, solve_line, solve_line_problem
 
 __all__ = [
     "DirectDeformation", "FFTDeformation", "MLMIDeformation", "make_deformation", "log_kernel",
-    "LineProblem", "LineSolution", "LineSolverOptions", "MultilevelLineSolver", "solve_line",
+    "LineHierarchy", "LineOptions", "LineProblem", "LineSolution", "line_solver", "solve_line",
+    "solve_line_problem",
 ]
+
+
+class _DeprecatedLineSolver:
+    """``MultilevelLineSolver(problem, **options).solve()`` of the previous release."""
+
+    def __init__(self, problem: LineProblem, options: LineOptions | None = None, **kw) -> None:
+        self.problem = problem
+        self.options = LineOptions.build(options, **kw)
+
+    def solve(self, callback=None):
+        return solve_line_problem(self.problem, self.options, callback=callback)
+
+
+def __getattr__(name: str):
+    if name == "MultilevelLineSolver":
+        warnings.warn("MultilevelLineSolver is deprecated: use solve_line_problem(problem, options) "
+                      "or line_solver(problem, options)", DeprecationWarning, stacklevel=2)
+        return _DeprecatedLineSolver
+    if name == "LineSolverOptions":
+        warnings.warn("LineSolverOptions is deprecated: use ehl_multigrid.multigrid.LineOptions",
+                      DeprecationWarning, stacklevel=2)
+        return LineOptions
+    raise AttributeError(name)

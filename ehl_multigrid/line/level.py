@@ -68,6 +68,18 @@ class LineLevel:
         #: points kept unchanged on this grid (FAS coarse grids near the fine free boundary)
         self.frozen = np.zeros(self.n, dtype=np.bool_)
 
+    @property
+    def shape(self) -> tuple[int]:
+        return (self.n,)
+
+    @property
+    def spacing(self) -> tuple[float]:
+        return (self.h,)
+
+    @property
+    def npts(self) -> int:
+        return self.n
+
     # -- evaluation -----------------------------------------------------------------------
     def deform(self, P: np.ndarray) -> np.ndarray:
         return self.op.apply(P) if self.elastic else np.zeros(self.n)
@@ -95,17 +107,17 @@ class LineLevel:
         return float(np.mean(np.abs(rp[1:-1])))
 
     # -- relaxation -----------------------------------------------------------------------
-    def relax(self, threshold: float, omega_gs: float, omega_jac: float, band: int = 4,
-              st: State | None = None, threshold_h: float = 0.0) -> State:
+    def relax(self, switch: float, omega: float, omega_jd: float, band: int = 4,
+              st: State | None = None, switch_h: float = 0.0) -> State:
         """One collective line-relaxation sweep (discrete.line_relaxation_system) at fixed H0.
         Returns the state *before* the sweep (its residual is the one the sweep reduced)."""
         st = self.state() if st is None else st
         ab, rhs, jac = line_relaxation_system(
             self.P, st.H, st.rho, st.drho, st.eps, st.r, self.kernel, self.h, self.order,
-            self.elastic, threshold, band, self.frozen, threshold_h)
+            self.elastic, switch, band, self.frozen, switch_h)
         delta = _solve_band(ab, rhs, band)
         damp = np.ones(self.n)
-        self.P = distribute_changes(self.P, delta, jac, omega_gs, omega_jac, damp, self.frozen)
+        self.P = distribute_changes(self.P, delta, jac, omega, omega_jd, damp, self.frozen)
         return st
 
 
@@ -116,37 +128,3 @@ def _solve_band(ab: np.ndarray, rhs: np.ndarray, band: int) -> np.ndarray:
         # singular line system (e.g. a film collapsed to zero): point Jacobi this sweep
         d = ab[band]
         return np.where(np.abs(d) > 0.0, rhs / np.where(d == 0.0, 1.0, d), 0.0)
-
-
-# -- transfers ------------------------------------------------------------------------------
-def inject(u: np.ndarray) -> np.ndarray:
-    return u[::2].copy()
-
-
-def full_weighting(r: np.ndarray) -> np.ndarray:
-    out = np.zeros((r.shape[0] - 1) // 2 + 1)
-    out[1:-1] = 0.25 * r[1:-3:2] + 0.5 * r[2:-2:2] + 0.25 * r[3:-1:2]
-    return out
-
-
-def interpolate_linear(u: np.ndarray) -> np.ndarray:
-    out = np.empty(2 * (u.shape[0] - 1) + 1)
-    out[::2] = u
-    out[1::2] = 0.5 * (u[:-1] + u[1:])
-    return out
-
-
-def interpolate_cubic(u: np.ndarray) -> np.ndarray:
-    """Four-point (cubic) interpolation, one-sided quadratic at the ends (FMG interpolation)."""
-    nc = u.shape[0]
-    out = np.empty(2 * (nc - 1) + 1)
-    out[::2] = u
-    mid = np.empty(nc - 1)
-    if nc >= 4:
-        mid[1:-1] = (-u[:-3] + 9.0 * u[1:-2] + 9.0 * u[2:-1] - u[3:]) / 16.0
-        mid[0] = (3.0 * u[0] + 6.0 * u[1] - u[2]) / 8.0
-        mid[-1] = (3.0 * u[-1] + 6.0 * u[-2] - u[-3]) / 8.0
-    else:
-        mid[:] = 0.5 * (u[:-1] + u[1:])
-    out[1::2] = mid
-    return out

@@ -15,14 +15,12 @@ Definitions (Venner's dimensionless variables, MODEL.md 5):
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..model.convergence import ConvergenceReport
-from ..model.results import Result, ScalarAccess
-from .problem import LineProblem
+from ..model.results import Result
+from ..multigrid.result import EHLResult
 
 
 def spike_index(X: np.ndarray, P: np.ndarray) -> int | None:
@@ -37,92 +35,85 @@ def spike_index(X: np.ndarray, P: np.ndarray) -> int | None:
     return int(keep[-1]) if keep else None
 
 
-@dataclass
-class LineSolution(ScalarAccess):
-    problem: LineProblem
-    options: dict[str, Any]
-    X: np.ndarray
-    P: np.ndarray
-    H: np.ndarray
-    H0: float
-    report: ConvergenceReport
-    scalars: dict[str, Any] = field(default_factory=dict)
+#: The answer of a line-contact solve is the package's one EHL result type.
+LineSolution = EHLResult
 
-    @classmethod
-    def from_solver(cls, solver: Any, report: ConvergenceReport) -> LineSolution:
-        lv = solver.levels[-1]
-        st = lv.state()
-        sol = cls(solver.problem, asdict(solver.options), lv.X.copy(), lv.P.copy(), st.H.copy(),
-                  float(lv.H0), report)
-        sol._derive(solver)
-        return sol
 
-    def _derive(self, solver: Any) -> None:
-        pb, X, P, H = self.problem, self.X, self.P, self.H
-        Hc = float(np.interp(0.0, X, H))
-        zone = (np.abs(X) <= 1.5) | (P > 0)
-        idx = np.flatnonzero(zone)
-        im = idx[np.argmin(H[idx])]
-        isp = spike_index(X, P)
-        s = self.scalars
-        s["Hc_venner"] = Hc
-        s["Hm_venner"] = float(H[im])
-        s["X_Hm"] = float(X[im])
-        s["Hc"] = pb.moes_from_venner(Hc)
-        s["Hm"] = pb.moes_from_venner(H[im])
-        s["p_spike"] = float(P[isp]) if isp is not None else math.nan
-        s["X_spike"] = float(X[isp]) if isp is not None else math.nan
-        s["H0"] = self.H0
-        s["load_error"] = float(solver.load_errors[-1]) if solver.load_errors else math.nan
-        s["residual"] = float(solver.residuals[-1]) if solver.residuals else math.nan
-        s["converged"] = bool(self.report.converged)
-        s["levels"] = len(solver.levels)
-        s["points"] = int(X.shape[0])
-        s["cycles"] = int(len(solver.history))
-        s["finest_cycles"] = int(len(solver.residuals))
-        s["work_units"] = float(solver.work_units)
-        s["wall_s"] = float(self.report.wall_s)
-        s["M"], s["L"] = pb.M, pb.L
-        s["lambda_venner"], s["alpha_bar"] = pb.lam, pb.alpha_bar
-        s["pmax"] = pb.pmax
-        if pb.physical:
-            scale = pb.b**2 / pb.R
-            s["hc"] = Hc * scale
-            s["hm"] = float(H[im]) * scale
-        else:
-            s["hc"] = None
-            s["hm"] = None
+def line_scalars(sol: EHLResult, solver: Any) -> dict[str, Any]:
+    """Observables of a line-contact solution (see module docstring)."""
+    pb, X, P, H = sol.problem, sol.X, sol.P, sol.H
+    Hc = float(np.interp(0.0, X, H))
+    zone = (np.abs(X) <= 1.5) | (P > 0)
+    idx = np.flatnonzero(zone)
+    im = idx[np.argmin(H[idx])]
+    isp = spike_index(X, P)
+    s: dict[str, Any] = {}
+    s["Hc_venner"] = Hc
+    s["Hm_venner"] = float(H[im])
+    s["X_Hm"] = float(X[im])
+    s["Hc"] = pb.moes_from_venner(Hc)
+    s["Hm"] = pb.moes_from_venner(H[im])
+    s["p_spike"] = float(P[isp]) if isp is not None else math.nan
+    s["X_spike"] = float(X[isp]) if isp is not None else math.nan
+    s["H0"] = sol.H0
+    s["load_error"] = float(sol.load_error_history[-1]) if sol.load_error_history.size else math.nan
+    s["residual"] = float(sol.residual_history[-1]) if sol.residual_history.size else math.nan
+    s["converged"] = bool(sol.success)
+    s["levels"] = sol.levels
+    s["points"] = int(X.shape[0])
+    s["cycles"] = int(sol.cycles)
+    s["finest_cycles"] = int(sol.residual_history.size)
+    s["work_units"] = float(sol.work_units)
+    s["wall_s"] = float(sol.wall_s)
+    s["M"], s["L"] = pb.M, pb.L
+    s["lambda_venner"], s["alpha_bar"] = pb.lam, pb.alpha_bar
+    s["pmax"] = pb.pmax
+    if pb.physical:
+        scale = pb.b**2 / pb.R
+        s["hc"] = Hc * scale
+        s["hm"] = float(H[im]) * scale
+    else:
+        s["hc"] = None
+        s["hm"] = None
+    return s
 
-    # -- convenience ----------------------------------------------------------------------
-    def payload(self) -> dict[str, Any]:
-        """The JSON payload of ``ehl solve`` (keys of the naming contract first)."""
-        keys = ["Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error",
-                "levels", "points", "cycles", "wall_s", "converged", "X_Hm", "X_spike",
-                "residual", "work_units", "finest_cycles", "M", "L", "pmax", "alpha_bar",
-                "lambda_venner"]
-        out = {k: self.scalars.get(k) for k in keys}
-        out["actions"] = list(self.report.extra.get("actions", []))
-        return out
 
-    def to_result(self, scene: Any = None) -> Result:
-        """Core :class:`Result` of kind ``"ehl_line"`` (naming contract of COMMON.md)."""
-        pb = self.problem
-        res = Result("ehl_line", scene=scene)
-        res.add_coord("X", self.X, "-", "x / b")
-        res.add_field("P", self.P, "-", ("X",), "p / pmax")
-        res.add_field("H", self.H, "-", ("X",), "h R / b^2 (Venner)")
-        if pb.physical:
-            res.add_coord("x", self.X * pb.b, "m", "rolling direction")
-            res.add_field("p", self.P * pb.pmax, "Pa", ("x",), "pressure")
-            res.add_field("h", self.H * pb.b**2 / pb.R, "m", ("x",), "film thickness")
-        units = {"hc": "m", "hm": "m", "wall_s": "s", "pmax": "Pa"}
-        res.add_report(self.report)
-        for k, v in self.scalars.items():
-            res.set_scalar(k, v, units.get(k, "-"))
-        res.meta["problem"] = pb.describe()
-        res.meta["options"] = self.options
-        res.meta["actions"] = list(self.report.extra.get("actions", []))
-        res.meta["definitions"] = (
-            "Hc at X=0; Hm minimum film and X_Hm its position; p_spike max P for X >= 0; "
-            "Moes films H = H_venner 8M/pi; load_error = h sum P/(pi/2) - 1")
-        return res
+def finish_line_result(sol: EHLResult, solver: Any, scene: Any = None) -> EHLResult:
+    """Fill the line-contact fields and scalars of a driver's result."""
+    hz = solver.hierarchy
+    lv = hz.levels[-1]
+    st = lv.state()
+    sol.contact, sol.solver, sol.scene = "line", "fas", scene
+    sol.problem, sol.options = hz.problem, solver.options
+    sol.X, sol.P, sol.H, sol.H0 = lv.X.copy(), lv.P.copy(), st.H.copy(), float(lv.H0)
+    sol.levels = len(hz.levels)
+    sol.extra["newton_iterations"] = hz.newton_iterations
+    sol.extra["start_points"] = hz.levels[solver.start_level].n
+    sol.scalars = line_scalars(sol, solver)
+    sol.builder = line_result
+    return sol
+
+
+def line_result(sol: EHLResult, scene: Any = None) -> Result:
+    """Package :class:`Result` of kind ``"ehl_line"`` (the naming contract of EHL results)."""
+    pb = sol.problem
+    res = Result("ehl_line", scene=scene)
+    res.add_coord("X", sol.X, "-", "x / b")
+    res.add_field("P", sol.P, "-", ("X",), "p / pmax")
+    res.add_field("H", sol.H, "-", ("X",), "h R / b^2 (Venner)")
+    if pb.physical:
+        res.add_coord("x", sol.X * pb.b, "m", "rolling direction")
+        res.add_field("p", sol.P * pb.pmax, "Pa", ("x",), "pressure")
+        res.add_field("h", sol.H * pb.b**2 / pb.R, "m", ("x",), "film thickness")
+    units = {"hc": "m", "hm": "m", "wall_s": "s", "pmax": "Pa"}
+    res.add_report(sol.report)
+    for k, v in sol.scalars.items():
+        res.set_scalar(k, v, units.get(k, "-"))
+    res.set_scalar("status", sol.status_name)
+    res.meta["problem"] = pb.describe()
+    res.meta["options"] = sol.options.describe()
+    res.meta["actions"] = list(sol.actions)
+    res.meta["definitions"] = (
+        "Hc at X=0; Hm minimum film and X_Hm its position; p_spike max P for X >= 0; "
+        "Moes films H = H_venner 8M/pi; load_error = h sum P/(pi/2) - 1")
+    return res

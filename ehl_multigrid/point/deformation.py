@@ -120,10 +120,10 @@ class FFTDeformation(Deformation):
     """DC-FFT: zero-padded linear convolution, kernel FFT cached per grid."""
 
     name = "fft"
-    workers = 2
 
-    def __init__(self, nx, ny, hx, hy, half=False):
+    def __init__(self, nx, ny, hx, hy, half=False, workers: int = 1):
         super().__init__(nx, ny, hx, hy, half)
+        self.workers = max(1, int(workers))
         self.Kf, self.shape = _kernel_fft(nx, self.ny_full, float(hx), float(hy))
 
     def full(self, P):
@@ -372,10 +372,12 @@ class MLMIDeformation(Deformation):
         return wf
 
 
-def make_deformation(kind: str, nx: int, ny: int, hx: float, hy: float, half: bool = False) -> Deformation:
-    """Deformation operator ``kind`` in ``mlmi``, ``fft``, ``direct`` for one grid."""
+def make_deformation(kind: str, nx: int, ny: int, hx: float, hy: float, half: bool = False,
+                     workers: int = 1) -> Deformation:
+    """Deformation operator ``kind`` in ``mlmi``, ``fft``, ``direct`` for one grid;
+    ``workers`` threads for the FFT (grids of 256^2 and more)."""
     if kind == "fft":
-        return FFTDeformation(nx, ny, hx, hy, half)
+        return FFTDeformation(nx, ny, hx, hy, half, workers)
     if kind == "direct":
         return DirectDeformation(nx, ny, hx, hy, half)
     if kind == "mlmi":
@@ -383,9 +385,5 @@ def make_deformation(kind: str, nx: int, ny: int, hx: float, hy: float, half: bo
     raise InputError(f"deformation = {kind!r} is not one of ['mlmi', 'fft', 'direct']")
 
 
-def set_fft_workers(n: int) -> None:
-    FFTDeformation.workers = max(1, int(n))
-
-
 __all__ = ["cell_kernel", "make_deformation", "DirectDeformation", "FFTDeformation",
-           "MLMIDeformation", "mirror_full", "set_fft_workers", "math"]
+           "MLMIDeformation", "mirror_full", "math"]

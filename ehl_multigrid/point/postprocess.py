@@ -69,8 +69,8 @@ def film_metrics(X: np.ndarray, Y: np.ndarray, P: np.ndarray, H: np.ndarray) -> 
 
 
 def build_result(sol, scene=None, extra_scalars: dict | None = None) -> Result:
-    """Result of kind ``ehl_point`` from a :class:`~ehl_multigrid.point.fas.FASOutput`
-    (or the Newton path's output, which has the same attributes)."""
+    """Result of kind ``ehl_point`` from a point-contact
+    :class:`~ehl_multigrid.multigrid.result.EHLResult` (FAS or Newton path)."""
     pb = sol.problem
     Yf, Pf, Hf = full_fields(sol.X, sol.Y, sol.P, sol.H, sol.half)
     m = film_metrics(sol.X, Yf, Pf, Hf)
@@ -126,8 +126,9 @@ def build_result(sol, scene=None, extra_scalars: dict | None = None) -> Result:
         res.set_scalar(k, v)
     res.meta["problem"] = pb.to_dict()
     res.meta["options"] = {k: v for k, v in vars(sol.options).items()}
-    res.meta["actions"] = list(sol.report.extra.get("actions", []))
-    res.meta["solver"] = getattr(sol, "solver_name", "fas")
+    res.meta["actions"] = list(sol.actions)
+    res.meta["solver"] = sol.solver
+    res.set_scalar("status", sol.status_name)
     return res
 
 

@@ -1,86 +1,95 @@
 """One entry point for point and elliptic contacts, shaped like :func:`~ehl_multigrid.line.solve_line`.
 
 >>> sol = solve_point(20, 10, points=129)                     # doctest: +SKIP
->>> round(sol.Hc, 2), sol.converged                           # doctest: +SKIP
+>>> round(sol.Hc, 2), sol.success, sol.status_name            # doctest: +SKIP
 >>> res = sol.to_result()                                     # kind "ehl_point"
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Callable
 from typing import Any
 
-from ..model.convergence import ConvergenceReport
 from ..model.errors import InputError, require_choice
-from ..model.results import Result, ScalarAccess
-from .postprocess import build_result, summary_payload
-from .problem import PointProblem, problem_from_moes, problem_from_scene
+from ..multigrid.options import PointOptions
+from ..multigrid.result import EHLResult
+from ..multigrid.threads import preserved_threads
+from .fas import point_solver
+from .postprocess import build_result
+from .problem import PointProblem, min_points, problem_from_moes, problem_from_scene
 
 SOLVERS = ("fas", "newton")
 
+#: The answer of a point-contact solve is the package's one EHL result type.
+PointSolution = EHLResult
 
-@dataclass
-class PointSolution(ScalarAccess):
-    """Answer of :func:`solve_point`: the raw solver output, its problem and the scalars of the
-    ``ehl_point`` result (``Hc``, ``Hm``, ``hc``, ``p_spike``, ``load_error``, ...) as attributes."""
 
-    problem: PointProblem
-    output: Any  # FASOutput or NewtonOutput
-    solver: str
-    scene: Any = None
-    scalars: dict[str, Any] = field(default_factory=dict)
+def _finish(sol: EHLResult, scene: Any) -> EHLResult:
+    sol.scene = scene
+    sol.builder = build_result
+    sol.scalars = dict(build_result(sol, scene).scalars)
+    return sol
 
-    def __post_init__(self) -> None:
-        self._result = build_result(self.output, self.scene)
-        self.scalars = dict(self._result.scalars)
 
-    @property
-    def report(self) -> ConvergenceReport:
-        return self.output.report
+def solve_fas(problem: PointProblem, options: PointOptions | None = None,
+              callback: Callable[[dict[str, Any]], None] | None = None, scene: Any = None,
+              **kw: Any) -> EHLResult:
+    """FAS/FMG solve of one :class:`PointProblem`; keyword arguments override ``options``."""
+    opt = PointOptions.build(options, **kw)
+    with preserved_threads():
+        solver = point_solver(problem, opt)
+        sol = solver.solve(callback=callback)
+    hz = solver.hierarchy
+    fine = hz.levels[-1]
+    sol.contact, sol.solver, sol.problem, sol.options = "point", "fas", problem, opt
+    sol.X, sol.Y, sol.P, sol.H = fine.X, fine.Y, fine.P.copy(), fine.H.copy()
+    sol.H0, sol.half, sol.levels = hz.H00, opt.half, len(hz.levels)
+    sol.extra.update(final_omega=sol.settings.omega, final_omega_jd=sol.settings.omega_jd,
+                     final_h00_gain=sol.settings.h00_gain, final_cycle=sol.settings.cycle,
+                     final_switch=sol.settings.switch)
+    if not sol.success:
+        if opt.points < min_points(problem.M, problem.b_over_a):
+            sol.message += (f"; at M = {problem.M:.4g} a grid of {opt.points} points is too coarse "
+                            f"for this solver: use points >= {min_points(problem.M, problem.b_over_a)}")
+        if sol.load_error_history.size and sol.load_error_history[-1] > 1e-2:
+            sol.message += ("; the load cannot be balanced: at low M the inlet of this domain is too "
+                            "short (extend xmin/ymax), at high M the grid is too coarse (more points)")
+    return _finish(sol, scene)
 
-    @property
-    def X(self):
-        return self.output.X
 
-    @property
-    def Y(self):
-        return self.output.Y
-
-    @property
-    def P(self):
-        return self.output.P
-
-    @property
-    def H(self):
-        return self.output.H
-
-    def to_result(self, scene: Any = None) -> Result:
-        """Core :class:`Result` of kind ``"ehl_point"`` (full domain, also for half solves)."""
-        if scene is None or scene is self.scene:
-            return self._result
-        return build_result(self.output, scene)
-
-    def payload(self) -> dict[str, Any]:
-        """The JSON payload of ``ehl solve`` (same keys as the line solver first)."""
-        out = summary_payload(self._result)
-        out["solver"] = self.solver
-        return out
+def _newton_result(out: Any, scene: Any) -> EHLResult:
+    rep = out.report
+    sol = EHLResult(
+        status=0 if rep.converged else 1, message=rep.message, cycles=rep.iterations,
+        residual_history=rep.residual_history, load_error_history=rep.load_error_history,
+        work_units=rep.work_units, wall_s=rep.wall_s, actions=list(rep.extra.get("actions", [])),
+        tolerances=dict(rep.tolerances), contact="point", solver="newton", problem=out.problem,
+        options=out.options, X=out.X, Y=out.Y, P=out.P, H=out.H, H0=out.H00, half=out.half,
+        levels=out.levels,
+        extra={k: v for k, v in rep.extra.items() if k != "actions"})
+    return _finish(sol, scene)
 
 
 def solve_point(
     M: float | None = None, L: float | None = None, *, theta: float = 1.0, scene: Any = None,
     viscosity: str = "roelands", density: str = "dowson-higginson",
     alpha: float | None = None, eta0: float | None = None, p0: float | None = None,
-    solver: str = "fas", rigid: bool = False, **options: Any,
-) -> PointSolution:
-    """Solve the steady isothermal EHL point or elliptic contact (MODEL.md 5).
+    solver: str = "fas", rigid: bool = False,
+    callback: Callable[[dict[str, Any]], None] | None = None,
+    options: PointOptions | None = None, **kw: Any,
+) -> EHLResult:
+    """Solve the steady isothermal EHL point or elliptic contact (Venner's dimensionless
+    Reynolds, film and load equations; Roelands (2.6) and Dowson-Higginson (2.7) by default).
 
     Give either Moes ``M, L`` and ``theta = Rx/Ry`` (oil data ``alpha``, ``eta0``, ``p0``
-    default to ``MOES_ONLY_DEFAULTS``) or a point/elliptic ``scene``. ``solver`` is ``"fas"``
-    (FAS/FMG multigrid, :class:`~ehl_multigrid.point.fas.SolverOptions`) or ``"newton"`` (the
-    Newton semi-system path with pyamg, :class:`~ehl_multigrid.point.newton.NewtonOptions`);
+    default to :data:`~ehl_multigrid.model.constants.MOES_ONLY_DEFAULTS`) or a point/elliptic
+    ``scene``. ``solver`` is ``"fas"`` (FAS/FMG multigrid,
+    :class:`~ehl_multigrid.multigrid.options.PointOptions`) or ``"newton"`` (the Newton
+    semi-system path with pyamg, :class:`~ehl_multigrid.point.newton.NewtonOptions`);
     ``rigid=True`` switches the elastic deformation off (FAS only). Remaining keyword
     arguments are options of the chosen solver.
+
+    Returns an :class:`~ehl_multigrid.multigrid.result.EHLResult`.
     """
     require_choice("solver", solver, SOLVERS)
     if scene is not None:
@@ -92,13 +101,11 @@ def solve_point(
             raise InputError("solve_point needs M and L (Moes groups) or a scene")
         pb = problem_from_moes(M, L, theta, viscosity, density, alpha, eta0, p0)
     if solver == "fas":
-        from .fas import solve_fas
-
-        out = solve_fas(pb, elastic=not rigid, **options)
-    else:
         if rigid:
-            raise InputError("rigid = True is available with solver = 'fas' only")
-        from .newton import solve_newton_amg
+            kw["elastic"] = False
+        return solve_fas(pb, options, callback=callback, scene=scene, **kw)
+    if rigid:
+        raise InputError("rigid = True is available with solver = 'fas' only")
+    from .newton import solve_newton_amg
 
-        out = solve_newton_amg(pb, **options)
-    return PointSolution(pb, out, solver, scene)
+    return _newton_result(solve_newton_amg(pb, **kw), scene)

@@ -1,0 +1,285 @@
+"""One FAS/FMG driver for every multilevel EHL solve.
+
+The driver owns what does not depend on the discretisation: the recursive V, W and F cycles,
+Full Multigrid (solve on a start grid, interpolate to each finer grid, ``cycles`` cycles
+there), extra finest-grid cycles until the tolerances are met, the robustness policy
+(:mod:`.policy`), the per-cycle callback, the histories and the result. A contact supplies a
+*hierarchy* (its grids and unknowns) with these methods (``k`` indexes the grids, coarsest
+first):
+
+``levels``                      sequence of grids; each has ``shape`` (points per axis),
+                                ``spacing`` (mesh sizes) and ``npts``
+``name``                        ``"line"``, ``"point"`` ... (for messages)
+``start(solver) -> k0``         initial guess and solution on the FMG start grid ``k0``
+``relax(k, sweeps, settings, coarse)``   relaxation sweeps (``coarse``: ``k`` is below the
+                                current FMG grid, where the film constant may move)
+``restrict(k, settings) -> token``       FAS coarse problem on ``k - 1`` from grid ``k``
+``correct(k, token, settings)`` add the interpolated coarse-grid correction to grid ``k``
+``coarse_solve(k, settings)``   solve on the coarsest grid
+``fmg_interpolate(k, settings)`` start grid ``k`` from the solution on ``k - 1``
+``snapshot(k) / restore(k, s)`` save and restore the iterate on grids ``0 .. k``
+``measure(k) -> Measurement``   residual, load error and central film of grid ``k``
+``raise_switch(settings) -> str``        widen the Jacobi-distributive zone ("" if it cannot)
+``last_resort(k, solver) -> bool``       optional: finish a stalled solve another way
+``work(k)``                     cost of one sweep on grid ``k`` in finest-grid sweeps
+
+Every method may return a cost in work units (finest-grid sweeps) or None. The hierarchy logs
+what it does with ``solver.note(message)``.
+
+Modelled on pyamg's ``MultilevelSolver``: the solver exposes its levels, cycle type, residual
+history and a callback, and ``repr`` lists the grids.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..model.errors import ConvergenceError
+from .options import MultigridOptions
+from .policy import RobustnessPolicy, Settings
+from .result import EHLResult
+
+
+@dataclass
+class Measurement:
+    """Finest-grid (or current-grid) observables after a cycle."""
+
+    residual: float
+    load_error: float
+    Hc: float
+    ok: bool
+    level_residual: float = math.nan
+
+
+@dataclass
+class CycleRecord:
+    """One accepted cycle: grid, index, residual, load error, central film (Venner units)."""
+
+    level: int
+    cycle: int
+    residual: float
+    load_error: float
+    Hc: float
+    work_units: float
+    level_residuals: list[float] = field(default_factory=list)
+
+
+class _Stop(Exception):
+    """Internal: the solve ends early with a status code."""
+
+    def __init__(self, status: int, message: str) -> None:
+        super().__init__(message)
+        self.status = status
+        self.message = message
+
+
+class MultilevelSolver:
+    """FAS/FMG solve of one EHL problem on a contact's grid hierarchy.
+
+    Parameters
+    ----------
+    hierarchy : the contact's grids and discretisation (see module docstring).
+    options : immutable :class:`MultigridOptions` of the solve.
+    settings : the adaptive per-solve settings (start values).
+    policy : :class:`RobustnessPolicy` of the contact.
+    hint : what to try when the solve fails (appended to error messages).
+
+    Attributes
+    ----------
+    levels, cycle, residuals, load_errors, history, actions, work_units
+    """
+
+    def __init__(self, hierarchy: Any, options: MultigridOptions, settings: Settings,
+                 policy: RobustnessPolicy, hint: str = "") -> None:
+        self.hierarchy = hierarchy
+        self.options = options
+        self.settings = settings
+        self.policy = policy
+        self.hint = hint
+        self.residuals: list[float] = []
+        self.load_errors: list[float] = []
+        self.history: list[CycleRecord] = []
+        self.fmg: list[dict[str, float]] = []
+        self.actions: list[str] = []
+        self.work_units = 0.0
+        self.start_level = 0
+        self._level_res: list[float] = []
+        self._callback: Callable | None = None
+        self._finest_phase = False
+
+    # -- introspection --------------------------------------------------------------------
+    @property
+    def levels(self) -> list:
+        return list(self.hierarchy.levels)
+
+    @property
+    def cycle(self) -> str:
+        return self.settings.cycle
+
+    def __repr__(self) -> str:
+        lines = [f"MultilevelSolver({type(self.hierarchy).__name__}, cycle {self.settings.cycle}, "
+                 f"{len(self.hierarchy.levels)} levels, deformation {self.options.deformation})"]
+        for k, lv in enumerate(self.hierarchy.levels):
+            shape = " x ".join(str(s) for s in lv.shape)
+            h = ", ".join(f"{v:.4g}" for v in lv.spacing)
+            lines.append(f"  level {k}: {shape} points, h = {h}")
+        return "\n".join(lines)
+
+    def note(self, message: str) -> None:
+        """Record a robustness action (also listed in the result)."""
+        self.actions.append(message)
+
+    def _add(self, cost: float | None) -> None:
+        if cost:
+            self.work_units += float(cost)
+
+    # -- cycles ---------------------------------------------------------------------------
+    def _cycle(self, k: int, top: int, kind: str) -> None:
+        """One FAS cycle with grid ``k`` as the current fine grid (``top``: the FMG grid)."""
+        hz, s, o = self.hierarchy, self.settings, self.options
+        if k == 0:
+            self._add(hz.coarse_solve(0, s))
+            return
+        self._add(hz.relax(k, o.nu1, s, k != top))
+        token, lres = hz.restrict(k, s)
+        if lres is not None:
+            self._level_res.append(lres)
+        if kind == "V" or k == 1:
+            self._cycle(k - 1, top, kind)
+        elif kind == "W":
+            self._cycle(k - 1, top, "W")
+            self._cycle(k - 1, top, "W")
+        else:  # F: an F cycle then a V cycle below
+            self._cycle(k - 1, top, "F")
+            self._cycle(k - 1, top, "V")
+        hz.correct(k, token, s)
+        self._add(hz.relax(k, o.nu2, s, k != top))
+
+    def run_cycle(self, k: int, c: int) -> Measurement:
+        """One accepted cycle on grid ``k``: rejected attempts are undone and repeated with
+        the policy's next step; raises ``_Stop`` when the retries run out."""
+        hz, pol, s = self.hierarchy, self.policy, self.settings
+        saved = hz.snapshot(k)
+        recent = [h.residual for h in self.history if h.level == k]
+        last = self.history[-1] if self.history else None
+        prev_le = last.load_error if last is not None and last.level == k else None
+        for attempt in range(pol.params.max_retries):
+            self._level_res = []
+            try:
+                if k > 0:
+                    self._cycle(k, k, s.cycle)
+                else:
+                    self._add(hz.coarse_solve(0, s))
+                m = hz.measure(k)
+            except (np.linalg.LinAlgError, FloatingPointError, ValueError) as exc:
+                m = Measurement(math.inf, math.inf, math.nan, False)
+                self.note(f"cycle {c} on grid {k} failed: {exc}")
+            if pol.accept(m.ok, m.residual, m.load_error, recent, prev_le, self.options.tol):
+                pol.recover(s)
+                break
+            hz.restore(k, saved)
+            what = pol.on_reject(s, hz)
+            self.note(f"cycle {c} on grid {k} rejected (residual {m.residual:.3g}, load error "
+                      f"{m.load_error:.3g}, attempt {attempt + 1}): {what}")
+        else:
+            raise _Stop(3, f"diverged on grid {k}: {pol.params.max_retries} attempts of cycle {c} "
+                           f"rejected (last residual {m.residual:.3g})")
+        self.record(k, c, m)
+        return m
+
+    def record(self, k: int, c: int, m: Measurement) -> None:
+        """Append an accepted cycle (or a last-resort solve, ``c = -1``) to the histories and
+        call the callback."""
+        rec = CycleRecord(k, c, m.residual, m.load_error, m.Hc, self.work_units, list(self._level_res))
+        self.history.append(rec)
+        if k == len(self.hierarchy.levels) - 1:
+            self.residuals.append(m.residual)
+            self.load_errors.append(m.load_error)
+        if self._callback is not None:
+            info = {"level": k, "points": self.hierarchy.levels[k].shape[-1], "cycle": c,
+                    "residual": m.residual, "load_error": m.load_error, "Hc_venner": m.Hc,
+                    "work_units": self.work_units, "cycle_type": self.settings.cycle}
+            try:
+                self._callback(info)
+            except StopIteration:
+                raise _Stop(4, f"stopped by the callback after cycle {c} on grid {k}") from None
+
+    def converged(self) -> bool:
+        o = self.options
+        return bool(self.residuals) and self.residuals[-1] < o.tol and abs(self.load_errors[-1]) < o.tol_load
+
+    # -- driver ---------------------------------------------------------------------------
+    def solve(self, callback: Callable[[dict[str, Any]], None] | None = None) -> EHLResult:
+        """FMG, then extra finest-grid cycles until the tolerances are met.
+
+        ``callback(info)`` is called after every accepted cycle with a dict (level, points,
+        cycle, residual, load_error, Hc_venner, work_units, cycle_type); raising
+        ``StopIteration`` in it ends the solve with status ``"stopped"``.
+        """
+        self._callback = callback
+        t0 = time.perf_counter()
+        status, message = 0, ""
+        hz, o = self.hierarchy, self.options
+        top = len(hz.levels) - 1
+        with np.errstate(all="ignore"):
+            try:
+                k0 = hz.start(self)
+                self.start_level = k0
+                Hc_prev = hz.measure(k0).Hc
+                self.fmg.append({"points": hz.levels[k0].shape[-1], "Hc": Hc_prev, "dHc": math.nan})
+                for k in range(k0 + 1, top + 1):
+                    self._add(hz.fmg_interpolate(k, self.settings))
+                    for c in range(o.cycles):
+                        m = self.run_cycle(k, c)
+                    self.fmg.append({"points": hz.levels[k].shape[-1], "Hc": m.Hc, "dHc": m.Hc - Hc_prev})
+                    Hc_prev = m.Hc
+                if top == k0 and top > 0:
+                    self.run_cycle(top, 0)
+                extra = 0
+                self._finest_phase = True
+                while not self.converged() and extra < o.max_cycles:
+                    self.run_cycle(top, o.cycles + extra)
+                    extra += 1
+                    if not self.converged() and self.policy.stalled(self.residuals, o.tol):
+                        what = self.policy.on_stall(self.settings, hz, len(self.residuals))
+                        r = self.residuals
+                        if what is None:
+                            raise _Stop(2, f"stalled: the residual fell only from "
+                                           f"{r[-self.policy.params.stall_window]:.3g} to {r[-1]:.3g} "
+                                           f"over {self.policy.params.stall_window - 1} cycles")
+                        self.note(f"residual stalled at {r[-1]:.3g}: {what}")
+                if self.converged():
+                    status = 0
+                else:
+                    status = 1
+                    message = (f"not converged after {extra} extra cycles: residual "
+                               f"{self.residuals[-1]:.3g} (tol {o.tol:.3g}), load error "
+                               f"{self.load_errors[-1]:.3g} (tol {o.tol_load:.3g})")
+            except _Stop as stop:
+                status, message = stop.status, stop.message
+            except ConvergenceError as exc:
+                status, message = 5, str(exc)
+            if status in (2, 3) and self._finest_phase and hasattr(hz, "last_resort"):
+                if hz.last_resort(top, self):
+                    status = 0 if self.converged() else status
+        wall = time.perf_counter() - t0
+        finite = hz.finite() if hasattr(hz, "finite") else True
+        if status == 0 and not finite:
+            status, message = 3, "the solution holds NaN or inf"
+        if status == 0:
+            message = "converged"
+        record = EHLResult(
+            status=status, message=message, cycles=len(self.history), residual_history=np.asarray(self.residuals, dtype=float),
+            load_error_history=np.asarray(self.load_errors, dtype=float), work_units=self.work_units,
+            wall_s=wall, actions=list(self.actions), history=list(self.history), fmg=list(self.fmg),
+            tolerances={"residual": o.tol, "load": o.tol_load}, settings=self.settings,
+            start_level=self.start_level)
+        if not record.success and o.raise_on_failure:
+            raise ConvergenceError(f"{hz.name} solver: {message}", record.report, self.hint)
+        return record

@@ -1,0 +1,226 @@
+"""Numerical options of the multilevel EHL solvers: one immutable type per contact, one name
+per concept.
+
+:class:`MultigridOptions` holds what every FAS/FMG solve has (grid, cycle, relaxation, film
+constant, tolerances, threads); :class:`LineOptions` and :class:`PointOptions` add what only
+one discretisation has and carry that contact's measured defaults. Options never change during
+a solve: the adaptive choices of a solve (under-relaxation, cycle type, switch) live in its
+:class:`~ehl_multigrid.multigrid.policy.Settings`.
+
+Old option names (``omega_gs``, ``w_gs``, ``thr``, ``threshold``, ``c_h00``, ``h0_factor``,
+``order`` ...) are accepted by :meth:`MultigridOptions.build` for one release with a
+:class:`DeprecationWarning`.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import asdict, dataclass, fields, replace
+from typing import Any, ClassVar
+
+from ..model.errors import InputError, require_choice, require_range
+
+CYCLES = ("V", "W", "F")
+DEFORMATIONS = ("mlmi", "fft", "direct")
+
+
+@dataclass(frozen=True)
+class MultigridOptions:
+    """Options shared by every multilevel EHL solve (defaults per contact in the subclasses).
+
+    Attributes
+    ----------
+    points : finest-grid points along X (``2^k n0 + 1``).
+    levels : number of grids (None: the contact's rule for the coarsest grid).
+    cycle : ``"V"``, ``"W"`` or ``"F"`` FAS cycles.
+    cycles : cycles per FMG level.
+    max_cycles : extra finest-grid cycles allowed to reach the tolerances.
+    nu1, nu2 : pre- and post-relaxations per level visit.
+    deformation : ``"mlmi"``, ``"fft"`` or ``"direct"`` evaluation of the elastic integral.
+    switch : Gauss-Seidel / Jacobi-distributive switch on ``eps/h^2`` (None: the contact's
+        rule from ``alpha_bar``); Jacobi-distributive where ``eps/h^2 < switch``.
+    omega, omega_jd : under-relaxation of Gauss-Seidel and Jacobi-distributive changes.
+    h00_gain : film-constant step per unit load error (None: 0.1 for V and 0.05 for W/F
+        cycles, divided by 4 when L > 10 or M > 1000 -- the classic settings).
+    tol : relative residual tolerance; tol_load : relative load-error tolerance.
+    wedge_order : upwind order of the wedge term ``d(rho H)/dX`` (1 or 2).
+    threads : numba threads and FFT workers for this solve (None: the current numba setting,
+        which is restored afterwards).
+    adapt : False disables the adaptive robustness policy (fixed classic settings).
+    raise_on_failure : raise :class:`ConvergenceError` instead of returning ``success=False``.
+    """
+
+    points: int = 129
+    levels: int | None = None
+    cycle: str = "V"
+    cycles: int = 2
+    max_cycles: int = 60
+    nu1: int = 2
+    nu2: int = 1
+    deformation: str = "fft"
+    switch: float | None = None
+    omega: float = 0.5
+    omega_jd: float = 0.3
+    h00_gain: float | None = None
+    tol: float = 1e-5
+    tol_load: float = 1e-6
+    wedge_order: int = 2
+    threads: int | None = None
+    adapt: bool = True
+    raise_on_failure: bool = False
+
+    #: deprecated name -> current name
+    ALIASES: ClassVar[dict[str, str]] = {
+        "omega_gs": "omega", "w_gs": "omega", "omega_jac": "omega_jd", "w_jd": "omega_jd",
+        "threshold": "switch", "thr": "switch", "h0_factor": "h00_gain", "c_h00": "h00_gain",
+        "order": "wedge_order",
+    }
+
+    def __post_init__(self) -> None:
+        require_range("points", self.points, 9, 2**20 + 1, "grid points")
+        if int(self.points) != self.points or (int(self.points) - 1) % 2:
+            raise InputError(f"points = {self.points} must be 2^k n0 + 1 (e.g. 129, 257, 513, 1025)")
+        if self.levels is not None:
+            require_range("levels", self.levels, 1, 20, "-")
+            if int(self.levels) != self.levels:
+                raise InputError(f"levels = {self.levels} must be an integer")
+        require_choice("cycle", self.cycle, CYCLES)
+        require_range("cycles", self.cycles, 1, 50, "cycles per FMG level")
+        require_range("max_cycles", self.max_cycles, 0, 10000, "cycles")
+        require_range("nu1", self.nu1, 0, 50)
+        require_range("nu2", self.nu2, 0, 50)
+        if self.nu1 + self.nu2 < 1:
+            raise InputError("nu1 + nu2 must be >= 1 (at least one relaxation per level)")
+        require_choice("deformation", self.deformation, DEFORMATIONS)
+        if self.switch is not None:
+            require_range("switch", self.switch, 0.0, 1e6)
+        require_range("omega", self.omega, 0.0, 1.5, lo_open=True)
+        require_range("omega_jd", self.omega_jd, 0.0, 1.0, lo_open=True)
+        if self.h00_gain is not None:
+            require_range("h00_gain", self.h00_gain, 0.0, 1.0)
+        require_range("tol", self.tol, 1e-14, 1e-1)
+        require_range("tol_load", self.tol_load, 1e-14, 1e-1)
+        require_choice("wedge_order", self.wedge_order, (1, 2))
+        if self.threads is not None:
+            require_range("threads", self.threads, 1, 1024, "threads")
+
+    @classmethod
+    def build(cls, options: MultigridOptions | None = None, **kw: Any):
+        """Options of this type from ``options`` with keyword overrides; deprecated names
+        are translated with a warning, unknown names raise :class:`InputError`."""
+        names = {f.name for f in fields(cls)}
+        out: dict[str, Any] = {}
+        for key, value in kw.items():
+            new = cls.ALIASES.get(key)
+            if new is not None and key not in names:
+                warnings.warn(f"option {key!r} is deprecated: use {new!r}", DeprecationWarning,
+                              stacklevel=3)
+                key = new
+            if key not in names:
+                raise InputError(f"unknown solver option {key!r}; known: {sorted(names)}")
+            out[key] = value
+        if options is None:
+            return cls(**out)
+        if not isinstance(options, cls):
+            base = {k: v for k, v in asdict(options).items() if k in names}
+            return cls(**{**base, **out})
+        return replace(options, **out) if out else options
+
+    def default_h00_gain(self, M: float, L: float) -> float:
+        """The classic film-constant step: 0.1 (V) or 0.05 (W, F), /4 when L > 10 or M > 1000."""
+        c = 0.1 if self.cycle == "V" else 0.05
+        return c / 4.0 if (L > 10 or M > 1000) else c
+
+    def describe(self) -> dict[str, Any]:
+        return {k: v for k, v in asdict(self).items() if not (isinstance(v, float) and math.isnan(v))}
+
+
+@dataclass(frozen=True)
+class LineOptions(MultigridOptions):
+    """Line-contact options (defaults measured on the line solver's test set).
+
+    Adds: ``switch_h`` -- h-scaled switch on fine grids, Jacobi-distributive where
+    ``eps/h^2 < switch_h/h`` (None: from ``alpha_bar``); ``band`` -- half band width of the
+    collective line systems; ``mlmi_order``, ``mlmi_radius`` -- MLMI interpolation order and
+    correction radius; ``correction_mask`` -- no coarse-grid correction where ``eps/h^2``
+    exceeds it; ``fmg_start_points`` -- grid on which FMG starts (None: from M);
+    ``fmg_match_film`` -- carry the central film (not H0) to each finer FMG grid.
+    """
+
+    points: int = 1025
+    cycle: str = "V"
+    max_cycles: int = 60
+    deformation: str = "mlmi"
+    switch: float | None = 0.3
+    omega: float = 0.5
+    omega_jd: float = 0.3
+    tol: float = 1e-5
+    tol_load: float = 1e-6
+    raise_on_failure: bool = True
+    switch_h: float | None = None
+    band: int = 4
+    mlmi_order: int = 12
+    mlmi_radius: int = 48
+    correction_mask: float | None = None
+    fmg_start_points: int | None = None
+    fmg_match_film: bool = True
+
+    ALIASES: ClassVar[dict[str, str]] = {**MultigridOptions.ALIASES, "threshold_h": "switch_h"}
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        n = int(self.points) - 1
+        if self.points < 33 or n & (n - 1):
+            raise InputError(f"points = {self.points} must be 2^k + 1 >= 33 (e.g. 257, 1025, 4097)")
+        if self.switch_h is not None:
+            require_range("switch_h", self.switch_h, 0.0, 1e3)
+        require_range("band", self.band, 1, 8)
+        require_range("mlmi_order", self.mlmi_order, 2, 32)
+        require_range("mlmi_radius", self.mlmi_radius, 1, 4096)
+
+
+@dataclass(frozen=True)
+class PointOptions(MultigridOptions):
+    """Point- and elliptic-contact options.
+
+    Adds: ``n_coarse`` -- intervals of the coarsest grid along X (None: from M and the
+    domain); ``xmin, xmax, ymax`` -- domain in units of a (None: the default box, widened at
+    low M); ``y_ratio`` -- (points along Y - 1)/(points - 1), a power of 2 (None: near-square
+    cells); ``half`` -- solve Y >= 0 only (symmetric contact); ``coarse_sweeps`` -- relaxations
+    per coarsest-grid visit; ``elastic`` -- False for rigid surfaces.
+    """
+
+    points: int = 129
+    cycle: str = "W"
+    max_cycles: int = 30
+    deformation: str = "fft"
+    omega: float = 0.6
+    omega_jd: float = 0.3
+    tol: float = 1e-4
+    tol_load: float = 1e-5
+    n_coarse: int | None = None
+    xmin: float | None = None
+    xmax: float | None = None
+    ymax: float | None = None
+    y_ratio: float | None = None
+    half: bool = False
+    coarse_sweeps: int = 10
+    elastic: bool = True
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        require_range("points", self.points, 9, 8193)
+        if self.xmin is not None:
+            require_range("xmin", self.xmin, -2000.0, -1.05, "- (x/a)")
+        if self.xmax is not None:
+            require_range("xmax", self.xmax, 1.05, 2000.0, "- (x/a)")
+        if self.ymax is not None:
+            require_range("ymax", self.ymax, 0.5, 2000.0, "- (y/a)")
+        if self.y_ratio is not None:
+            require_range("y_ratio", self.y_ratio, 0.125, 8.0, "-")
+            if abs(math.log2(self.y_ratio) - round(math.log2(self.y_ratio))) > 1e-12:
+                raise InputError(f"y_ratio = {self.y_ratio:g} must be a power of 2 in [1/8, 8]")
+        if self.levels is not None:
+            require_range("levels", self.levels, 1, 12)
+        require_range("coarse_sweeps", self.coarse_sweeps, 1, 1000)

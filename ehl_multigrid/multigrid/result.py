@@ -1,0 +1,157 @@
+"""The one result type of every EHL solve (line, point, FAS or Newton path).
+
+In the spirit of scipy's ``OptimizeResult``: the fields and films, ``success``, a ``status``
+code from :data:`STATUS`, a ``message``, the cycle count, work units, residual and load-error
+histories and the wall time, so callers never parse printed text. The scalars of the contact
+(``Hc``, ``Hm``, ``p_spike``, ...) read as attributes (``sol.Hc``); ``to_result()`` gives the
+package's HDF5 :class:`~ehl_multigrid.model.results.Result`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..model.convergence import ConvergenceReport
+from ..model.results import Result
+
+#: status code -> name
+STATUS = {
+    0: "converged",     # residual and load error below their tolerances
+    1: "max_cycles",    # the cycle budget ran out first
+    2: "stalled",       # the residual stopped falling and the policy had nothing left to try
+    3: "diverged",      # every retry of a cycle was rejected, or the iterate holds NaN/inf
+    4: "stopped",       # the callback raised StopIteration
+    5: "start_failed",  # no usable solution on the start grid
+}
+
+
+@dataclass
+class EHLResult:
+    """Answer of an EHL solve.
+
+    Attributes
+    ----------
+    success : bool -- the iteration met every tolerance (``converged`` is an alias).
+    status : int -- key of :data:`STATUS`; ``status_name`` its name.
+    message : str -- why the solve stopped, and what to try when it failed.
+    cycles : int -- accepted FAS cycles on all grids (Newton path: iterations).
+    residual_history, load_error_history : finest-grid values after each cycle.
+    work_units : float -- cost in finest-grid relaxation sweeps (NaN for the Newton path).
+    wall_s : float -- wall time [s].
+    actions : list of str -- robustness steps taken.
+    history : per-cycle records (grid, cycle, residual, load error, Hc).
+    contact : ``"line"`` or ``"point"``; solver : ``"fas"`` or ``"newton"``.
+    problem, options : the dimensionless problem and the (immutable) options solved with.
+    X, Y, P, H, H0 : grid (Y None for a line contact), pressure, film, film constant.
+    scalars : contact observables (``Hc``, ``Hm``, ...), also readable as attributes.
+    """
+
+    status: int
+    message: str
+    cycles: int = 0
+    residual_history: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    load_error_history: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    work_units: float = math.nan
+    wall_s: float = math.nan
+    actions: list[str] = field(default_factory=list)
+    history: list[Any] = field(default_factory=list)
+    fmg: list[dict[str, float]] = field(default_factory=list)
+    tolerances: dict[str, float] = field(default_factory=dict)
+    settings: Any = None
+    start_level: int = 0
+    status_name: str = ""
+    success: bool = False
+    contact: str = ""
+    solver: str = "fas"
+    problem: Any = None
+    options: Any = None
+    X: np.ndarray | None = None
+    Y: np.ndarray | None = None
+    P: np.ndarray | None = None
+    H: np.ndarray | None = None
+    H0: float = math.nan
+    half: bool = False
+    levels: int = 0
+    scene: Any = None
+    scalars: dict[str, Any] = field(default_factory=dict)
+    extra: dict[str, Any] = field(default_factory=dict)
+    builder: Callable[[EHLResult, Any], Result] | None = field(default=None, repr=False)
+
+    def __post_init__(self) -> None:
+        self.status_name = STATUS[self.status]
+        self.success = self.status == 0
+
+    def __getattr__(self, name: str) -> Any:
+        scal = self.__dict__.get("scalars", {})
+        if name in scal:
+            return scal[name]
+        raise AttributeError(name)
+
+    # -- aliases --------------------------------------------------------------------------
+    @property
+    def converged(self) -> bool:
+        return self.success
+
+    @property
+    def H00(self) -> float:
+        return self.H0
+
+    @property
+    def iterations(self) -> int:
+        return self.cycles
+
+    @property
+    def output(self) -> EHLResult:
+        """Deprecated: the result is its own output now."""
+        return self
+
+    # -- views ----------------------------------------------------------------------------
+    @property
+    def report(self) -> ConvergenceReport:
+        """The convergence part as the package's :class:`ConvergenceReport` (HDF5 history)."""
+        ex = dict(self.extra)
+        per_level = [r.level_residuals for r in self.history]
+        width = max((len(v) for v in per_level), default=0)
+        lvl = np.full((len(per_level), max(width, 1)), np.nan)
+        for i, v in enumerate(per_level):
+            lvl[i, : len(v)] = v
+        ex.update({
+            "level_residuals": lvl,
+            "status": self.status_name,
+            "actions": list(self.actions),
+            "cycle_level": np.array([r.level for r in self.history], dtype=int),
+            "cycle_residual": np.array([r.residual for r in self.history], dtype=float),
+            "cycle_load_error": np.array([r.load_error for r in self.history], dtype=float),
+            "cycle_Hc_venner": np.array([r.Hc for r in self.history], dtype=float),
+            "cycle_work_units": np.array([r.work_units for r in self.history], dtype=float),
+            "fmg_points": np.array([d["points"] for d in self.fmg], dtype=int),
+            "fmg_Hc_venner": np.array([d["Hc"] for d in self.fmg], dtype=float),
+        })
+        return ConvergenceReport(
+            converged=self.success, message=self.message, iterations=self.cycles,
+            residual_history=np.asarray(self.residual_history, dtype=float),
+            load_error_history=np.asarray(self.load_error_history, dtype=float),
+            tolerances=dict(self.tolerances), work_units=self.work_units, wall_s=self.wall_s,
+            extra=ex)
+
+    def to_result(self, scene: Any = None) -> Result:
+        """The package :class:`Result` (kind ``"ehl_line"`` or ``"ehl_point"``)."""
+        if self.builder is None:
+            raise TypeError("this result has no field builder")
+        return self.builder(self, self.scene if scene is None else scene)
+
+    def payload(self) -> dict[str, Any]:
+        """The JSON payload of ``ehl solve``: the contact's scalars plus the solve outcome."""
+        keys = ["Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error",
+                "levels", "points", "cycles", "wall_s", "converged", "X_Hm", "X_spike",
+                "residual", "work_units", "M", "L", "theta", "pmax", "alpha_bar", "lambda_venner",
+                "Hc_dpdx0", "X_dpdx0", "Y_Hm", "Hm_centerline", "P_max", "H00", "final_residual"]
+        out = {k: self.scalars[k] for k in keys if k in self.scalars}
+        out.update(status=self.status_name, message=self.message, solver=self.solver,
+                   actions=list(self.actions))
+        return out
