@@ -22,6 +22,13 @@ MOVED: dict[str, str] = {
     **{f"ehl_multigrid.{m}": f"ehl_multigrid.model.{m}" for m in (
         "convergence", "errors", "fits", "groups", "hertz", "lubricant", "results", "scene",
         "solids")},
+    **{f"ehl_multigrid.{m}": f"ehl_multigrid.app.{m}" for m in (
+        "cli", "gridchoice", "mainjob", "plan", "sweep", "tasks")},
+    "ehl_multigrid.solve_cli": "ehl_multigrid.app.solve",
+    "ehl_multigrid.line.cli": "ehl_multigrid.app.line_cli",
+    "ehl_multigrid.line.plots": "ehl_multigrid.app.line_plots",
+    "ehl_multigrid.point.cli": "ehl_multigrid.app.point_cli",
+    "ehl_multigrid.point.plots": "ehl_multigrid.app.point_plots",
 }
 
 REMOVAL = "will be removed in the next release"

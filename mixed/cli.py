@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ehl_multigrid.cli import add_common_options, print_table
+from ehl_multigrid.app.console import add_common_options, print_table
 from ehl_multigrid.model.errors import InputError
 
 

@@ -6,7 +6,8 @@ Skipped for smooth scenes. Thermal film friction and starved curves as the plan 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+
+from ehl_multigrid.app.stages import RunContext, StageOutput
 
 #: Thermal film-friction grid of the Stribeck stage per fidelity, from the accuracy-cost study
 #: (validation/pareto/REPORT.md): largest friction error over three speeds against 160 x 40 was
@@ -14,9 +15,7 @@ from typing import Any
 THERMAL_GRID = {"fast": {"nx": 20, "nz": 5}, "standard": {"nx": 20, "nz": 5}, "reference": {"nx": 40, "nz": 10}}
 
 
-def stribeck_stage(ctx: Any):
-    from ehl_multigrid.mainjob import StageOutput
-
+def stribeck_stage(ctx: RunContext) -> StageOutput | None:
     from .stribeck import default_us, stribeck_cases, stribeck_options, stribeck_result
 
     scene, plan = ctx.scene, ctx.plan

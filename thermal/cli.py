@@ -7,7 +7,7 @@ import math
 from pathlib import Path
 from typing import Any
 
-from ehl_multigrid.cli import add_common_options, print_table
+from ehl_multigrid.app.console import add_common_options, print_table
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import load_scene

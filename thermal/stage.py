@@ -7,15 +7,14 @@ solved them, Hertz with the fitted film otherwise.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+
+from ehl_multigrid.app.stages import RunContext, StageOutput
 
 from .options import ThermalOptions
 from .traction import default_slips, traction_curve, traction_result
 
 
-def traction_stage(ctx: Any):
-    from ehl_multigrid.mainjob import StageOutput
-
+def traction_stage(ctx: RunContext) -> StageOutput | None:
     scene, plan = ctx.scene, ctx.plan
     thermal = plan.includes("thermal")
     film = ctx.result("film")

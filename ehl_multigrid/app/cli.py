@@ -11,65 +11,24 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 from collections.abc import Callable, Sequence
 from importlib.metadata import entry_points
 from pathlib import Path
 from typing import Any
 
-import numpy as np
+from ..model.errors import ConvergenceError, InputError
+from .console import add_common_options, jsonable, print_payload, print_table
 
-from .model.errors import ConvergenceError, InputError
+__all__ = ["add_common_options", "build_parser", "jsonable", "main", "print_payload", "print_table"]
 
 EXIT_INPUT = 2
 EXIT_CONVERGENCE = 3
 
 
-def add_common_options(p: argparse.ArgumentParser, out_default: str = "ehl_out") -> None:
-    """Options every subcommand that writes results shares: ``--json``, ``--out``, ``--no-plots``."""
-    p.add_argument("--json", action="store_true", help="print the main scalars as one JSON object")
-    p.add_argument("--out", default=out_default, help="output folder for HDF5 and PNG (default: %(default)s)")
-    p.add_argument("--no-plots", action="store_true", help="skip PNG output")
-
-
-def jsonable(obj: Any) -> Any:
-    """Turn numpy scalars/arrays into plain types; non-finite floats become ``None``."""
-    if isinstance(obj, dict):
-        return {str(k): jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return jsonable(obj.tolist())
-    if isinstance(obj, (np.bool_, bool)):
-        return bool(obj)
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, (float, np.floating)):
-        f = float(obj)
-        return f if math.isfinite(f) else None
-    return obj
-
-
-def print_payload(payload: dict[str, Any]) -> None:
-    print(json.dumps(jsonable(payload), indent=None, sort_keys=False))
-
-
-def print_table(payload: dict[str, Any]) -> None:
-    width = max((len(k) for k in payload), default=0)
-    for k, v in payload.items():
-        if isinstance(v, float):
-            s = f"{v:.6g}"
-        elif isinstance(v, (list, tuple, np.ndarray)) and len(v) > 8:
-            s = f"[{len(v)} values: {v[0]:.4g} ... {v[-1]:.4g}]"
-        else:
-            s = str(v)
-        print(f"  {k:<{width}}  {s}")
-
-
 # -- core subcommands ------------------------------------------------------------------------
 def _cmd_scenes(args: argparse.Namespace) -> dict:
-    from .model.scene import builtin_scene_names, load_scene
+    from ..model.scene import builtin_scene_names, load_scene
 
     rows = []
     for name in builtin_scene_names():
@@ -83,7 +42,7 @@ def _cmd_scenes(args: argparse.Namespace) -> dict:
 
 
 def _cmd_show(args: argparse.Namespace) -> dict:
-    from .model.scene import load_scene
+    from ..model.scene import load_scene
 
     sc = load_scene(args.scene)
     summary = sc.summary()
@@ -98,7 +57,7 @@ def _cmd_show(args: argparse.Namespace) -> dict:
 
 
 def _cmd_fits(args: argparse.Namespace) -> dict:
-    from .model import fits, groups
+    from ..model import fits, groups
 
     if args.contact == "line":
         if args.ellipticity != 1.0:
@@ -124,19 +83,22 @@ def _cmd_fits(args: argparse.Namespace) -> dict:
 
 
 def _cmd_run(args: argparse.Namespace) -> dict:
-    from .mainjob import run_main_job
+    from ..model.scene import load_scene
+    from .mainjob import MainJobOptions, run_main_job
 
-    return run_main_job(args)
+    options = MainJobOptions(out_dir=Path(args.out), fidelity=args.fidelity, tolerance=args.tolerance,
+                             plots=not args.no_plots, quiet=args.json)
+    return run_main_job(load_scene(args.scene), options)
 
 
 def _cmd_solve(args: argparse.Namespace) -> dict:
-    from .solve_cli import run_solve
+    from .solve import run_solve
 
     return run_solve(args)
 
 
 def _cmd_sweep(args: argparse.Namespace) -> dict:
-    from .model.scene import load_scene
+    from ..model.scene import load_scene
     from .sweep import SweepSpec, parse_values, run_sweep
 
     params: dict[str, list[float]] = {}
@@ -163,7 +125,7 @@ def _cmd_sweep(args: argparse.Namespace) -> dict:
 
 
 def _cmd_plan(args: argparse.Namespace) -> dict:
-    from .model.scene import load_scene
+    from ..model.scene import load_scene
     from .plan import make_plan, print_plan
 
     plan = make_plan(load_scene(args.scene), fidelity=args.fidelity, tolerance=args.tolerance)
@@ -214,7 +176,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_run)
 
     p = sub.add_parser("solve", help="multigrid EHL solve of a scene or of Moes (M, L)")
-    from .solve_cli import add_solve_arguments
+    from .solve import add_solve_arguments
 
     add_solve_arguments(p)
     add_common_options(p)
@@ -272,7 +234,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.version:
-        from .model.results import package_version
+        from ..model.results import package_version
 
         print(package_version())
         return 0

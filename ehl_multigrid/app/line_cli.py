@@ -1,5 +1,5 @@
 """``ehl solve`` for line contacts: ``run_solve(args, scene) -> dict`` (called by
-``ehl_multigrid.solve_cli``). Writes ``<out>/<name>.h5`` and PNG plots of P and H."""
+:mod:`ehl_multigrid.app.solve`). Writes ``<out>/<name>.h5`` and PNG plots of P and H."""
 
 from __future__ import annotations
 
@@ -7,10 +7,10 @@ import argparse
 from pathlib import Path
 from typing import Any
 
+from ..line.problem import LineProblem
+from ..line.solver import LineSolverOptions, MultilevelLineSolver
 from ..model.constants import MOES_ONLY_DEFAULTS
 from ..model.errors import InputError, reject_unknown_keys
-from .problem import LineProblem
-from .solver import LineSolverOptions, MultilevelLineSolver
 
 #: keys of a scene's [solver.ehl] table the line solver accepts
 SCENE_KEYS = {"points", "levels", "cycle", "cycles", "max_cycles", "deformation", "tol",
@@ -84,11 +84,11 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
     payload = sol.payload()
     payload["hdf5"] = str(h5)
     if not args.no_plots:
-        from .plots import plot_solution
+        from .line_plots import plot_solution
 
         payload["png"] = [str(p) for p in plot_solution(sol, out / name, name)]
     if not args.json:
-        from ..cli import print_table
+        from .console import print_table
 
         print_table({k: v for k, v in payload.items() if k != "actions"})
         for a in payload["actions"]:

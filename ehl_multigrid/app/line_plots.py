@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .solution import LineSolution
+from ..line.solution import LineSolution
 
 
 def plot_solution(sol: LineSolution, path: str | Path, title: str = "") -> list[Path]:

@@ -1,11 +1,12 @@
 """``ehl run``: the main job on a scene, planned and end to end.
 
-1. :func:`~ehl_multigrid.plan.make_plan` decides what the scene needs (with the numbers why).
+1. :func:`~ehl_multigrid.app.plan.make_plan` decides what the scene needs (with the numbers why).
 2. The core *film* stage computes the pressure and film field: the multigrid solver when the plan
    asks for it (grid from the fidelity), otherwise Hertz pressure with the fitted film.
 3. Stages that the layers above register in the ``ehl.stages`` entry-point group run next, in
    the order of their ``order`` attribute (thermal traction curve, Stribeck curve, ...). A stage
-   is a callable ``stage(ctx: RunContext) -> StageOutput | None``; the core never imports them.
+   is a callable ``stage(ctx: RunContext) -> StageOutput | None`` (:mod:`ehl_multigrid.app.stages`);
+   the core never imports them.
 4. All results go into one HDF5 file (rewritten atomically after every stage, so an interrupted
    run keeps the finished stages) and a Markdown report with the figures says what was modelled
    and why.
@@ -13,47 +14,48 @@
 
 from __future__ import annotations
 
-import argparse
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from importlib.metadata import entry_points
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from .model.hertz import hertz_pressure_line, hertz_pressure_point
-from .model.results import Result, save_results
-from .model.scene import Scene, load_scene
-from .plan import Plan, film_grid, make_plan
+from ..model.hertz import hertz_pressure_line, hertz_pressure_point
+from ..model.results import Result, save_results
+from ..model.scene import Scene
+from .console import print_table
+from .plan import film_grid, make_plan, print_plan
+from .stages import RunContext, StageOutput
+
+__all__ = ["MainJobOptions", "RunContext", "StageOutput", "film_stage", "hertz_result",
+           "registered_stages", "run_main_job", "write_report"]
 
 
-@dataclass
-class StageOutput:
-    """What one stage of the main job produced."""
+@dataclass(frozen=True)
+class MainJobOptions:
+    """How ``ehl run`` runs a scene.
 
-    name: str
-    result: Result | None = None
-    summary: dict[str, Any] = field(default_factory=dict)
-    figures: list[Path] = field(default_factory=list)
-    text: str = ""
-    wall_s: float = float("nan")
+    Parameters
+    ----------
+    out_dir : Path
+        Folder for the HDF5 file, the report and the figures (created if missing).
+    fidelity : str or None
+        ``"fast"``, ``"standard"`` or ``"reference"`` (planner default when ``None``).
+    tolerance : float or None
+        Target relative accuracy; overrides ``fidelity`` when given.
+    plots : bool
+        Write PNG figures.
+    quiet : bool
+        No progress bar and no printed summary (``ehl run --json``).
+    """
 
-
-@dataclass
-class RunContext:
-    """Everything a stage may read: scene, plan, output folder, earlier stages' results."""
-
-    scene: Scene
-    plan: Plan
-    outdir: Path
+    out_dir: Path = Path("ehl_out")
+    fidelity: str | None = None
+    tolerance: float | None = None
     plots: bool = True
-    progress: bool = True
-    outputs: dict[str, StageOutput] = field(default_factory=dict)
-
-    def result(self, name: str) -> Result | None:
-        out = self.outputs.get(name)
-        return out.result if out is not None else None
+    quiet: bool = False
 
 
 # -- the core film stage -------------------------------------------------------------------------
@@ -121,12 +123,12 @@ def film_stage(ctx: RunContext) -> StageOutput:
     if dec.setting == "multigrid solver":
         points = film_grid(scene, plan.tolerance).points
         if contact == "line":
-            from .line import solve_line
+            from ..line import solve_line
 
             sol = solve_line(scene=scene, points=points)
             res = sol.to_result(scene)
         else:
-            from .point import solve_point
+            from ..point import solve_point
 
             # smooth point and elliptic contacts are symmetric in Y: the half domain gives the same
             # films (tested to 1e-5, measured 4e-8) in about 80 % of the time
@@ -150,11 +152,11 @@ def film_stage(ctx: RunContext) -> StageOutput:
                 f"load error {res.scalars['load_error']:.2g}, converged: {res.scalars['converged']}.")
         if ctx.plots:
             if contact == "line":
-                from .line.plots import plot_solution
+                from .line_plots import plot_solution
 
                 figures += [Path(f) for f in plot_solution(sol, ctx.outdir / f"{scene.name}_film", scene.name)]
             else:
-                from .point.plots import plot_result
+                from .point_plots import plot_result
 
                 figures += [Path(f) for f in plot_result(res, ctx.outdir, f"{scene.name}_film")]
     else:
@@ -204,12 +206,14 @@ def write_report(ctx: RunContext, path: Path) -> Path:
     return path
 
 
-def run_main_job(args: argparse.Namespace) -> dict[str, Any]:
-    scene = load_scene(args.scene)
-    out = Path(args.out)
+def run_main_job(scene: Scene, options: MainJobOptions | None = None) -> dict[str, Any]:
+    """Plan ``scene``, run the film stage and every registered stage, write the HDF5 results and
+    ``report.md`` into ``options.out_dir``; return the payload ``ehl run --json`` prints."""
+    options = options if options is not None else MainJobOptions()
+    out = Path(options.out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    plan = make_plan(scene, fidelity=getattr(args, "fidelity", None), tolerance=getattr(args, "tolerance", None))
-    ctx = RunContext(scene, plan, out, plots=not args.no_plots, progress=not args.json)
+    plan = make_plan(scene, fidelity=options.fidelity, tolerance=options.tolerance)
+    ctx = RunContext(scene, plan, out, plots=options.plots, progress=not options.quiet)
     stages: list[tuple[str, Any]] = [("film", film_stage)] + registered_stages()
     h5 = out / f"{scene.name}.h5"
     bar = None
@@ -241,10 +245,7 @@ def run_main_job(args: argparse.Namespace) -> dict[str, Any]:
                                "plan": {d.model: d.setting if d.include else "off" for d in plan.decisions}}
     for name, o in ctx.outputs.items():
         payload[name] = o.summary
-    if not args.json:
-        from .cli import print_table
-        from .plan import print_plan
-
+    if not options.quiet:
         print_plan(plan)
         for name, o in ctx.outputs.items():
             print(f"{name}: {o.text}")

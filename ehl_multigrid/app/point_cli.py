@@ -8,10 +8,10 @@ from dataclasses import fields
 from pathlib import Path
 
 from ..model.errors import InputError, reject_unknown_keys
-from .fas import SolverOptions, solve_fas
-from .newton import NewtonOptions, solve_newton_amg
-from .postprocess import build_result, summary_payload
-from .problem import problem_from_moes, problem_from_scene
+from ..point.fas import SolverOptions, solve_fas
+from ..point.newton import NewtonOptions, solve_newton_amg
+from ..point.postprocess import build_result, summary_payload
+from ..point.problem import problem_from_moes, problem_from_scene
 
 DEFAULT_POINTS = 257
 
@@ -110,11 +110,11 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
     payload["solver"] = solver
     payload["file"] = str(path)
     if not getattr(args, "no_plots", False):
-        from .plots import plot_result
+        from .point_plots import plot_result
 
         payload["plots"] = [str(p) for p in plot_result(res, out, name)]
     if not quiet:
-        from ..cli import print_table
+        from .console import print_table
 
         print_table({k: v for k, v in payload.items() if k not in ("actions", "plots")})
         for a in payload["actions"]:

@@ -1,17 +1,17 @@
 """Arguments of ``ehl solve`` and the dispatch to the line or point multigrid solver.
 
-Each solver package (``ehl_multigrid.line``, ``ehl_multigrid.point``) provides
-``run_solve(args, scene) -> dict`` in its ``cli`` module; ``scene`` is ``None`` in
-Moes-only mode (``--M``/``--L``).
+:mod:`~ehl_multigrid.app.line_cli` and :mod:`~ehl_multigrid.app.point_cli` each provide
+``run_solve(args, scene) -> dict``; ``scene`` is ``None`` in Moes-only mode (``--M``/``--L``).
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib
 
-from .model.constants import MOES_ONLY_DEFAULTS  # noqa: F401 - re-exported for old callers
-from .model.errors import InputError
+from ..model.constants import MOES_ONLY_DEFAULTS
+from ..model.errors import InputError
+
+__all__ = ["MOES_ONLY_DEFAULTS", "add_solve_arguments", "resolve_contact", "run_solve"]
 
 
 def add_solve_arguments(p: argparse.ArgumentParser) -> None:
@@ -22,9 +22,9 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--ellipticity", type=float, default=None, help="theta = Rx/Ry (elliptic, Moes-only mode)")
     p.add_argument("--viscosity", choices=["roelands", "barus"], default="roelands")
     p.add_argument("--density", choices=["dowson-higginson", "incompressible"], default="dowson-higginson")
-    p.add_argument("--alpha", type=float, default=None, help="pressure-viscosity coefficient [1/Pa] (Moes-only; default 2.2e-8)")
-    p.add_argument("--eta0", type=float, default=None, help="ambient viscosity [Pa s] (Moes-only; default 0.04)")
-    p.add_argument("--p0", type=float, default=None, help="Roelands reference pressure [Pa] (Moes-only; default 1.96e8)")
+    p.add_argument("--alpha", type=float, default=None, help=f"pressure-viscosity coefficient [1/Pa] (Moes-only; default {MOES_ONLY_DEFAULTS['alpha']:g})")
+    p.add_argument("--eta0", type=float, default=None, help=f"ambient viscosity [Pa s] (Moes-only; default {MOES_ONLY_DEFAULTS['eta0']:g})")
+    p.add_argument("--p0", type=float, default=None, help=f"Roelands reference pressure [Pa] (Moes-only; default {MOES_ONLY_DEFAULTS['p0']:g})")
     p.add_argument("--levels", type=int, default=None, help="number of multigrid levels")
     p.add_argument("--points", type=int, default=None, help="finest-grid points per direction (2^k + 1)")
     p.add_argument("--cycle", choices=["V", "W"], default=None, help="multigrid cycle type")
@@ -45,7 +45,7 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
 
 def resolve_contact(args: argparse.Namespace):
     """Return ``(contact, scene)``; ``scene`` is ``None`` in Moes-only mode."""
-    from .model.scene import load_scene
+    from ..model.scene import load_scene
 
     moes_only = args.M is not None or args.L is not None
     if moes_only:
@@ -63,12 +63,11 @@ def resolve_contact(args: argparse.Namespace):
 
 
 def run_solve(args: argparse.Namespace) -> dict:
+    """Solve the contact of ``args`` (a scene or Moes ``--M``/``--L``) with the line or the
+    point solver; return the payload that ``ehl solve --json`` prints."""
     contact, scene = resolve_contact(args)
-    module = "ehl_multigrid.line.cli" if contact == "line" else "ehl_multigrid.point.cli"
-    try:
-        mod = importlib.import_module(module)
-    except ModuleNotFoundError as exc:
-        if exc.name and exc.name.startswith("ehl_multigrid."):
-            raise InputError(f"the {contact}-contact multigrid solver is not available in this version") from None
-        raise
-    return mod.run_solve(args, scene)
+    if contact == "line":
+        from .line_cli import run_solve as run_contact
+    else:
+        from .point_cli import run_solve as run_contact
+    return run_contact(args, scene)

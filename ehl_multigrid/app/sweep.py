@@ -30,8 +30,8 @@ from typing import Any
 
 import numpy as np
 
-from .model.errors import ConvergenceError, InputError
-from .model.scene import Scene
+from ..model.errors import ConvergenceError, InputError
+from ..model.scene import Scene
 
 STATUS_OK = "ok"
 STATUS_FAILED = "failed"  # clear error raised by the model (input or convergence)

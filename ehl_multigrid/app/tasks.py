@@ -13,8 +13,8 @@ from collections.abc import Callable
 from importlib.metadata import entry_points
 from typing import Any
 
-from .model.errors import InputError
-from .model.scene import Scene
+from ..model.errors import InputError
+from ..model.scene import Scene
 
 
 def fit_task(scene: Scene, **options: Any) -> dict[str, Any]:

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ehl_multigrid.cli import add_common_options, print_table
+from ehl_multigrid.app.console import add_common_options, print_table
 from ehl_multigrid.model.errors import InputError, require_positive, require_range
 
 from .readers import LAYOUTS

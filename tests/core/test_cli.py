@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from ehl_multigrid.cli import main
+from ehl_multigrid.app.cli import main
 from ehl_multigrid.model.fits import moes_line_central, nijenbanning_central
 from ehl_multigrid.model.scene import load_scene
 

@@ -2,7 +2,7 @@
 
 import pytest
 
-from ehl_multigrid.gridchoice import grid_error_constant, solver_grid
+from ehl_multigrid.app.gridchoice import grid_error_constant, solver_grid
 from ehl_multigrid.line import solve_line
 
 

@@ -6,17 +6,17 @@ import math
 
 import pytest
 
-from ehl_multigrid.cli import main
-from ehl_multigrid.model.errors import InputError
-from ehl_multigrid.model.scene import Scene, load_scene
-from ehl_multigrid.model.solids import reduced_modulus
-from ehl_multigrid.plan import (
+from ehl_multigrid.app.cli import main
+from ehl_multigrid.app.plan import (
     FIDELITY_TOLERANCE,
     LAMBDA_FULL_FILM,
     THERMAL_DECISION_MARGIN,
     make_plan,
     temperature_rise_estimate,
 )
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import Scene, load_scene
+from ehl_multigrid.model.solids import reduced_modulus
 
 
 def test_smooth_scene_needs_no_asperity_model():

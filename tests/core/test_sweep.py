@@ -7,10 +7,10 @@ import threading
 import numpy as np
 import pytest
 
+from ehl_multigrid.app.sweep import SweepSpec, gather, parse_values, run_sweep
+from ehl_multigrid.app.tasks import register_task
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.scene import load_scene
-from ehl_multigrid.sweep import SweepSpec, gather, parse_values, run_sweep
-from ehl_multigrid.tasks import register_task
 
 CALLS: list[float] = []
 LOCK = threading.Lock()
@@ -118,7 +118,7 @@ def test_sweep_runs_on_a_dask_cluster_given_its_address(tmp_path):
 
 
 def test_sweep_cli_json(capsys, tmp_path):
-    from ehl_multigrid.cli import main
+    from ehl_multigrid.app.cli import main
 
     assert main(["sweep", "page63_line_500N", "--param", "operating.us=0.01,0.1", "--workers", "1",
                  "--out", str(tmp_path), "--json"]) == 0

@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from ehl_multigrid.cli import main
+from ehl_multigrid.app.cli import main
 from ehl_multigrid.model.results import load_results
 from ehl_multigrid.model.scene import load_scene
 
@@ -44,8 +44,8 @@ def test_main_job_on_the_default_scene(capsys, tmp_path):
 def test_unconverged_solver_film_falls_back_to_the_fit_and_says_so(capsys, tmp_path, monkeypatch):
     # M = 6114 at 1.93 GPa: forced onto a 129^2 grid (the planner would take 513) the point
     # solver returns converged=False, which must not reach the later stages
-    import ehl_multigrid.mainjob as mainjob
-    from ehl_multigrid.gridchoice import GridChoice
+    import ehl_multigrid.app.mainjob as mainjob
+    from ehl_multigrid.app.gridchoice import GridChoice
 
     monkeypatch.setattr(mainjob, "film_grid", lambda scene, tol: GridChoice(129, 1.0, 0.0, "test"))
     assert main(["run", "series_C_disc3_1.93GPa", "--fidelity", "fast", "--out", str(tmp_path), "--json", "--no-plots"]) == 0

@@ -2,7 +2,7 @@
 
 import json
 
-from ehl_multigrid.cli import main
+from ehl_multigrid.app.cli import main
 
 
 def test_solve_line_json(capsys, tmp_path):

@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-from ehl_multigrid.cli import main
+from ehl_multigrid.app.cli import main
 from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import load_scene
 from mixed.sharing import load_sharing

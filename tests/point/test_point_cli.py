@@ -4,7 +4,7 @@ import json
 
 import h5py
 
-from ehl_multigrid.cli import main
+from ehl_multigrid.app.cli import main
 from ehl_multigrid.model.results import Result
 
 KEYS = {"Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error", "levels",

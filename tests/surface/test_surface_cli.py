@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from ehl_multigrid.cli import main
+from ehl_multigrid.app.cli import main
 from ehl_multigrid.model.scene import load_scene
 from mixed.surface import gaussian_random_surface, read_height_map
 

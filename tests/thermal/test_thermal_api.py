@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from ehl_multigrid.cli import main
+from ehl_multigrid.app.cli import main
 from ehl_multigrid.model.convergence import ConvergenceReport
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.results import Result

@@ -19,7 +19,7 @@ OUT = Path(__file__).resolve().parent / "out"
 
 
 def scenes() -> list[str]:
-    out = subprocess.run([sys.executable, "-m", "ehl_multigrid.cli", "scenes", "--json"], capture_output=True,
+    out = subprocess.run([sys.executable, "-m", "ehl_multigrid", "scenes", "--json"], capture_output=True,
                          text=True, check=True).stdout
     data = json.loads(out)
     return sorted(s["name"] if isinstance(s, dict) else s for s in (data["scenes"] if isinstance(data, dict) else data))
@@ -39,7 +39,7 @@ def main() -> None:
             continue
         with tempfile.TemporaryDirectory() as tmp:
             t0 = time.perf_counter()
-            p = subprocess.run([sys.executable, "-m", "ehl_multigrid.cli", "run", name, "--fidelity", a.fidelity,
+            p = subprocess.run([sys.executable, "-m", "ehl_multigrid", "run", name, "--fidelity", a.fidelity,
                                 "--no-plots", "--json", "--out", tmp], capture_output=True, text=True)
             wall = time.perf_counter() - t0
         row = {"exit_code": p.returncode, "wall_s": wall}

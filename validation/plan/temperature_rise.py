@@ -2,7 +2,7 @@
 
 For each built-in scene, slip and speed, compares
 
-* the planner's cheap estimate ``ehl_multigrid.plan.temperature_rise_estimate`` (temperature rise
+* the planner's cheap estimate ``ehl_multigrid.app.plan.temperature_rise_estimate`` (temperature rise
   dT_est [K] and the friction-sensitivity number the thermal decision uses), with
 * the thermal Roelands-Eyring solver ``thermal.traction.solve_traction`` (Hertz pressure, uniform
   central film from the fit, the same film the estimate gets): maximum and contact-mean
@@ -34,17 +34,17 @@ from pathlib import Path
 
 import numpy as np
 
-from ehl_multigrid import plan as planner
-from ehl_multigrid.model.errors import ConvergenceError, InputError
-from ehl_multigrid.model.scene import Scene, load_scene
-from ehl_multigrid.model.solids import reduced_modulus
-from ehl_multigrid.plan import (
+from ehl_multigrid.app import plan as planner
+from ehl_multigrid.app.plan import (
     FIDELITY_TOLERANCE,
     make_plan,
     slip_range,
     speed_range,
     temperature_rise_estimate,
 )
+from ehl_multigrid.model.errors import ConvergenceError, InputError
+from ehl_multigrid.model.scene import Scene, load_scene
+from ehl_multigrid.model.solids import reduced_modulus
 
 OUT = Path(__file__).resolve().parent / "out"
 JSON_PATH = OUT / "temperature_rise.json"

@@ -1,0 +1,65 @@
+"""What a stage of the main job (``ehl run``) receives and returns.
+
+A stage is a callable ``stage(ctx: RunContext) -> StageOutput | None`` registered in the
+``ehl.stages`` entry-point group; the layers above the core (thermal, mixed) provide theirs and
+import only this module from the application. A leaf module: it imports nothing from the rest
+of the application (the plan is seen through the small :class:`PlanView` protocol).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Protocol
+
+from ..model.results import Result
+from ..model.scene import Scene
+
+
+class PlanView(Protocol):
+    """The planner's decisions as a stage reads them (``ehl_multigrid.app.plan.Plan``)."""
+
+    fidelity: str
+    tolerance: float
+    notes: list[str]
+
+    def includes(self, model: str) -> bool:
+        """Whether the plan includes ``model`` (``"thermal"``, ``"starvation"``, ...)."""
+        ...
+
+    def get(self, model: str) -> Any:
+        """The decision on ``model`` (estimate, threshold, setting, reason)."""
+        ...
+
+    def to_dict(self) -> dict[str, Any]:
+        """The plan as plain data (stored in every result's ``meta['plan']``)."""
+        ...
+
+
+@dataclass
+class StageOutput:
+    """What one stage of the main job produced."""
+
+    name: str
+    result: Result | None = None
+    summary: dict[str, Any] = field(default_factory=dict)
+    figures: list[Path] = field(default_factory=list)
+    text: str = ""
+    wall_s: float = float("nan")
+
+
+@dataclass
+class RunContext:
+    """Everything a stage may read: scene, plan, output folder, earlier stages' results."""
+
+    scene: Scene
+    plan: PlanView
+    outdir: Path
+    plots: bool = True
+    progress: bool = True
+    outputs: dict[str, StageOutput] = field(default_factory=dict)
+
+    def result(self, name: str) -> Result | None:
+        """The result of the earlier stage ``name``, or ``None`` if it did not run."""
+        out = self.outputs.get(name)
+        return out.result if out is not None else None
