@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .rheology import density, log_viscosity
+from ..multigrid.rheology import density, log_viscosity
 
 #: grids finer than this use the h-scaled switch threshold (line_relaxation_system)
 FINE_H = 0.012

@@ -18,7 +18,7 @@ import numpy as np
 from ..model import groups
 from ..model.constants import ETA_INF, MOES_ONLY_DEFAULTS, P_R
 from ..model.errors import InputError, require_choice, require_positive, require_range
-from .rheology import DENSITY, VISCOSITY, pack
+from ..multigrid.rheology import DENSITY, VISCOSITY, pack
 
 #: Range of the Moes groups the solver accepts (beyond it the grids it would need are
 #: impractical or the groups are meaningless).

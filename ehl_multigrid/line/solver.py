@@ -33,7 +33,7 @@ import numpy as np
 from ..model.errors import ConvergenceError, InputError
 from ..model.fits import moes_line_central
 from ..multigrid.driver import Measurement, MultilevelSolver
-from ..multigrid.options import LineOptions
+from ..multigrid.options import LineOptions, build_scene_options, scene_solver_table
 from ..multigrid.policy import PolicyParameters, RobustnessPolicy, Settings
 from ..multigrid.result import EHLResult
 from ..multigrid.transfer import full_weighting, inject, interpolate_cubic, interpolate_linear
@@ -369,9 +369,9 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
 
 def solve_line(
     M: float | None = None, L: float | None = None, *, scene: Any = None,
-    viscosity: str = "roelands", density: str = "dowson-higginson",
+    viscosity: str | None = None, density: str | None = None,
     alpha: float | None = None, eta0: float | None = None, p0: float | None = None,
-    xmin: float | None = None, xmax: float = 1.5, elastic: bool = True,
+    xmin: float | None = None, xmax: float | None = None, elastic: bool = True,
     callback: Callable[[dict[str, Any]], None] | None = None,
     options: LineOptions | None = None, **kw: Any,
 ) -> EHLResult:
@@ -379,7 +379,9 @@ def solve_line(
     and load equations; Roelands (2.6) and Dowson-Higginson (2.7) by default).
 
     Give either Moes ``M, L`` (oil data ``alpha``, ``eta0``, ``p0`` default to
-    :data:`~ehl_multigrid.model.constants.MOES_ONLY_DEFAULTS`) or a line-contact ``scene``.
+    :data:`~ehl_multigrid.model.constants.MOES_ONLY_DEFAULTS`) or a line-contact ``scene``,
+    whose ``[solver.ehl]`` table (viscosity, density, xmin, xmax and any option) applies
+    below the explicit arguments. Defaults: Roelands, Dowson-Higginson, xmax = 1.5.
     Numerical options are a :class:`~ehl_multigrid.multigrid.options.LineOptions` and/or
     its fields as keywords (points, levels, cycle, deformation, tol, ...).
 
@@ -391,14 +393,17 @@ def solve_line(
     >>> sol = solve_line(20, 10, points=257)              # doctest: +SKIP
     >>> round(sol.Hc, 2), sol.success, sol.status_name    # doctest: +SKIP
     """
+    model, table = scene_solver_table(scene, "line") if scene is not None else ({}, {})
+    given = {"viscosity": viscosity, "density": density, "xmin": xmin, "xmax": xmax}
+    prob = {**{"viscosity": "roelands", "density": "dowson-higginson", "xmax": 1.5}, **model,
+            **{k: v for k, v in given.items() if v is not None}}
     if scene is not None:
         if M is not None or L is not None:
             raise InputError("give either a scene or M and L, not both")
-        pb = LineProblem.from_scene(scene, viscosity=viscosity, density=density, xmin=xmin,
-                                    xmax=xmax, elastic=elastic)
+        pb = LineProblem.from_scene(scene, elastic=elastic, **prob)
     else:
         if M is None or L is None:
             raise InputError("solve_line needs M and L (Moes groups) or a scene")
-        pb = LineProblem.from_moes(M, L, viscosity=viscosity, density=density, alpha=alpha,
-                                   eta0=eta0, p0=p0, xmin=xmin, xmax=xmax, elastic=elastic)
-    return solve_line_problem(pb, options, callback=callback, scene=scene, **kw)
+        pb = LineProblem.from_moes(M, L, alpha=alpha, eta0=eta0, p0=p0, elastic=elastic, **prob)
+    opts = build_scene_options(LineOptions, options, table, kw)
+    return solve_line_problem(pb, opts, callback=callback, scene=scene)

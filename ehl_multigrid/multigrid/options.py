@@ -224,3 +224,27 @@ class PointOptions(MultigridOptions):
         if self.levels is not None:
             require_range("levels", self.levels, 1, 12)
         require_range("coarse_sweeps", self.coarse_sweeps, 1, 1000)
+
+
+#: keys of a scene's ``[solver.ehl]`` table that set the problem rather than the numerics
+MODEL_KEYS = {"line": ("viscosity", "density", "xmin", "xmax"), "point": ("viscosity", "density")}
+
+
+def scene_solver_table(scene: Any, contact: str) -> tuple[dict[str, Any], dict[str, Any]]:
+    """``(model, options)`` keywords from the scene's ``[solver.ehl]`` table: the problem keys
+    (viscosity and density laws; the line contact's domain) and the solver options, which
+    :meth:`MultigridOptions.build` validates."""
+    table = dict((getattr(scene, "solver", None) or {}).get("ehl") or {})
+    model = {k: table.pop(k) for k in MODEL_KEYS[contact] if k in table}
+    return model, table
+
+
+def build_scene_options(cls: type[MultigridOptions], options: MultigridOptions | None,
+                        table: dict[str, Any], kw: dict[str, Any]) -> MultigridOptions:
+    """Options from ``options``, then the scene's ``[solver.ehl]`` table, then keywords;
+    an error in the table names the table."""
+    try:
+        base = cls.build(options, **table) if table else options
+    except InputError as exc:
+        raise InputError(f"[solver.ehl] {exc}") from None
+    return cls.build(base, **kw)

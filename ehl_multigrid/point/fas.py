@@ -116,12 +116,7 @@ class PointHierarchy:
         self.xmin, self.xmax, self.ymax = xmin, xmax, ymax
         self.options = options
         self.threads = ThreadBudget(resolve_threads(options.threads), SERIAL_BELOW)
-        self.visc = 0 if problem.viscosity == "roelands" else 1
-        self.dens = 0 if problem.density == "dowson-higginson" else 1
-        self.lnr = problem.ln_eta_ratio
-        self.z = problem.roelands_z
-        self.pmax = problem.pmax
-        self.abar = problem.alpha_bar
+        self.par = problem.rheology()
         self.lam = problem.lam
         self.cd = problem.cd if options.elastic else 0.0
         self.theta = problem.theta
@@ -187,8 +182,7 @@ class PointHierarchy:
         self.threads.for_size(lev.npts)
         lev.W = lev.defo(lev.P) if self.cd != 0.0 else np.zeros_like(lev.P)
         nm.film(lev.W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
-        nm.fluid_properties(lev.P, lev.H, self.visc, self.dens, self.lnr, self.z, self.pmax,
-                            self.pb.p_r, self.abar, self.lam, lev.rho, lev.eps)
+        nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
 
     def _sweep(self, lev: Level, s: Settings) -> None:
         self.threads.for_size(lev.npts)
@@ -250,8 +244,7 @@ class PointHierarchy:
             step = self.gain * err
             self.H00 -= max(-self.h00_step_max, min(self.h00_step_max, step))
             nm.film(lev.W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
-            nm.fluid_properties(lev.P, lev.H, self.visc, self.dens, self.lnr, self.z, self.pmax,
-                                self.pb.p_r, self.abar, self.lam, lev.rho, lev.eps)
+            nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
         return sweeps * self.work(k)
 
     def restrict(self, k: int, s: Settings) -> tuple[np.ndarray, None]:

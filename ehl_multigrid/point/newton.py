@@ -29,6 +29,7 @@ import scipy.sparse.linalg as spla
 
 from ..model.convergence import ConvergenceReport
 from ..model.errors import ConvergenceError, InputError
+from ..multigrid.rheology import log_derivatives
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
 from .fas import load_integral
@@ -82,23 +83,6 @@ class _Grid:
         self.defo = make_deformation(opt.deformation, n, n, self.hx, self.hy, False)
         self.K = pb.cd * cell_kernel(opt.m + 3, opt.m + 1, self.hx, self.hy)
         self.K00 = float(pb.cd * cell_kernel(1, 1, self.hx, self.hy)[0, 0])
-
-
-def _log_derivatives(pb: PointProblem, P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``d ln(rho)/dP`` and ``d ln(eta)/dP`` of the relations used by :func:`numerics.fluid_properties`."""
-    p = np.maximum(P, 0.0) * pb.pmax
-    if pb.density == "dowson-higginson":
-        A, B = nm.DH_A, nm.DH_B
-        rho = 1.0 + B * p / (A + p)
-        dlr = pb.pmax * B * A / (A + p) ** 2 / rho
-    else:
-        dlr = np.zeros_like(P)
-    if pb.viscosity == "roelands":
-        z = pb.roelands_z
-        dle = pb.ln_eta_ratio * z * (pb.pmax / pb.p_r) * (1.0 + p / pb.p_r) ** (z - 1.0)
-    else:
-        dle = np.full_like(P, pb.alpha_bar)
-    return dlr, dle
 
 
 def _jacobian(g: _Grid, P, H, rho, eps, m: int, order: int, active: np.ndarray,
@@ -193,8 +177,7 @@ def solve_newton_amg(problem: PointProblem, options: NewtonOptions | None = None
         raise InputError(f"points = {opt.points} must be 16 k + 1")
     pb = problem
     t0 = time.perf_counter()
-    visc = 0 if pb.viscosity == "roelands" else 1
-    dens = 0 if pb.density == "dowson-higginson" else 1
+    par = pb.rheology()
     sizes = [opt.points]
     while sizes[-1] > opt.start_points and (sizes[-1] - 1) % 2 == 0 and (sizes[-1] - 1) // 2 >= 16:
         sizes.append((sizes[-1] - 1) // 2 + 1)
@@ -228,8 +211,7 @@ def solve_newton_amg(problem: PointProblem, options: NewtonOptions | None = None
         for it in range(maxit):
             W = g.defo(P)
             nm.film(W, g.X, g.Y, H00, pb.theta, pb.cd, H)
-            nm.fluid_properties(P, H, visc, dens, pb.ln_eta_ratio, pb.roelands_z, pb.pmax, pb.p_r,
-                                pb.alpha_bar, pb.lam, rho, eps)
+            nm.fluid_properties(P, H, par, pb.lam, rho, eps)
             nm.residual(P, H, rho, eps, f, g.hx, g.hy, False, opt.order, r)
             sr = np.empty_like(r)
             nm.scaled_residual(r, H, rho, eps, g.K00, g.hx, g.hy, False, sr)
@@ -258,7 +240,8 @@ def solve_newton_amg(problem: PointProblem, options: NewtonOptions | None = None
             nm.operator(P, H, rho, eps, g.hx, g.hy, False, opt.order, Lfull)
             rhs = f - Lfull
             active = (P <= 0.0) & (rhs >= 0.0)
-            dlr, dle = _log_derivatives(pb, P)
+            dlr, dle = np.empty_like(P), np.empty_like(P)
+            log_derivatives(P, par, dlr, dle)
             J = _jacobian(g, P, H, rho, eps, opt.m, opt.order, active, eps * (dlr - dle), dlr * rho)
             if not np.all(np.isfinite(J.data)):
                 raise ConvergenceError(

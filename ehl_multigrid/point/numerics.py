@@ -17,38 +17,28 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..model.constants import DH_A, DH_B
+from ..multigrid.rheology import density, log_viscosity
 
 
 # -- lubricant ---------------------------------------------------------------------------------
 @njit(cache=True, parallel=True)
-def fluid_properties(P, H, visc_mode, dens_mode, lnr, z, pmax, p_r, abar, lam, rho, eps):
-    """Fill ``rho`` (rho/rho0) and ``eps = rho H^3/(eta lambda)`` from P and H.
-
-    visc_mode 0: Roelands ``eta = exp(ln(eta0/eta_inf) ((1 + p/p_r)^z - 1))`` (2.6);
-    1: Barus ``exp(alpha_bar P)`` (2.4). dens_mode 0: Dowson-Higginson (2.7); 1: constant.
-    Negative film (never at convergence) gives eps = 0.
+def fluid_properties(P, H, par, lam, rho, eps):
+    """Fill ``rho`` (rho/rho0) and ``eps = rho H^3/(eta lambda)`` from P and H, with the
+    viscosity (Roelands (2.6) or Barus (2.4)) and density (Dowson-Higginson (2.7) or constant)
+    of the packed parameters ``par`` (:func:`ehl_multigrid.multigrid.rheology.pack`).
+    Negative pressure counts as zero; a negative film (never at convergence) gives eps = 0.
     """
     ny, nx = P.shape
     for j in prange(ny):
         for i in range(nx):
             p = P[j, i]
-            if p < 0.0:
-                p = 0.0
-            if visc_mode == 0:
-                eta = math.exp(lnr * ((1.0 + p * pmax / p_r) ** z - 1.0))
-            else:
-                eta = math.exp(abar * p)
-            if dens_mode == 0:
-                pp = p * pmax
-                r = 1.0 + DH_B * pp / (DH_A + pp)
-            else:
-                r = 1.0
+            r = density(p, par)[0]
+            lne = log_viscosity(p, par)[0]
             rho[j, i] = r
             h = H[j, i]
             if h < 0.0:
                 h = 0.0
-            eps[j, i] = r * h * h * h / (eta * lam)
+            eps[j, i] = r * h * h * h * math.exp(-lne) / lam
 
 
 @njit(cache=True, parallel=True)

@@ -21,12 +21,12 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
+import numpy as np
+
 from ..model.constants import ETA_INF, MOES_ONLY_DEFAULTS, P_R
 from ..model.errors import InputError, require_choice, require_range
 from ..model.hertz import hertz_elliptic
-
-VISCOSITY = ("roelands", "barus")
-DENSITY = ("dowson-higginson", "incompressible")
+from ..multigrid.rheology import DENSITY, VISCOSITY, pack
 
 
 def hertz_shape(theta: float) -> tuple[float, float, float]:
@@ -138,6 +138,11 @@ class PointProblem:
     @property
     def physical(self) -> bool:
         return math.isfinite(self.film_scale)
+
+    def rheology(self) -> np.ndarray:
+        """Packed viscosity and density parameters for the numba kernels."""
+        return pack(self.viscosity, self.density, self.ln_eta_ratio, self.roelands_z,
+                    self.pmax / self.p_r, self.alpha_bar, self.pmax)
 
     def to_dict(self) -> dict:
         d = asdict(self)

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from ..model.errors import InputError, require_choice
-from ..multigrid.options import PointOptions
+from ..multigrid.options import PointOptions, build_scene_options, scene_solver_table
 from ..multigrid.result import EHLResult
 from ..multigrid.threads import preserved_threads
 from .fas import point_solver
@@ -72,7 +72,7 @@ def _newton_result(out: Any, scene: Any) -> EHLResult:
 
 def solve_point(
     M: float | None = None, L: float | None = None, *, theta: float = 1.0, scene: Any = None,
-    viscosity: str = "roelands", density: str = "dowson-higginson",
+    viscosity: str | None = None, density: str | None = None,
     alpha: float | None = None, eta0: float | None = None, p0: float | None = None,
     solver: str = "fas", rigid: bool = False,
     callback: Callable[[dict[str, Any]], None] | None = None,
@@ -83,7 +83,8 @@ def solve_point(
 
     Give either Moes ``M, L`` and ``theta = Rx/Ry`` (oil data ``alpha``, ``eta0``, ``p0``
     default to :data:`~ehl_multigrid.model.constants.MOES_ONLY_DEFAULTS`) or a point/elliptic
-    ``scene``. ``solver`` is ``"fas"`` (FAS/FMG multigrid,
+    ``scene``, whose ``[solver.ehl]`` table (viscosity, density and any option) applies below
+    the explicit arguments (defaults: Roelands, Dowson-Higginson). ``solver`` is ``"fas"`` (FAS/FMG multigrid,
     :class:`~ehl_multigrid.multigrid.options.PointOptions`) or ``"newton"`` (the Newton
     semi-system path with pyamg, :class:`~ehl_multigrid.point.newton.NewtonOptions`);
     ``rigid=True`` switches the elastic deformation off (FAS only). Remaining keyword
@@ -92,6 +93,9 @@ def solve_point(
     Returns an :class:`~ehl_multigrid.multigrid.result.EHLResult`.
     """
     require_choice("solver", solver, SOLVERS)
+    model, table = scene_solver_table(scene, "point") if scene is not None else ({}, {})
+    viscosity = viscosity or model.get("viscosity", "roelands")
+    density = density or model.get("density", "dowson-higginson")
     if scene is not None:
         if M is not None or L is not None:
             raise InputError("give either a scene or M and L, not both")
@@ -103,7 +107,8 @@ def solve_point(
     if solver == "fas":
         if rigid:
             kw["elastic"] = False
-        return solve_fas(pb, options, callback=callback, scene=scene, **kw)
+        opts = build_scene_options(PointOptions, options, table, kw)
+        return solve_fas(pb, opts, callback=callback, scene=scene)
     if rigid:
         raise InputError("rigid = True is available with solver = 'fas' only")
     from .newton import solve_newton_amg

@@ -1,4 +1,4 @@
-"""Dimensionless viscosity and density of the line-contact solver (MODEL.md 3 and 5).
+"""Dimensionless viscosity and density of every EHL solver (line, point, Newton path).
 
 ``eta_bar = eta/eta0`` and ``rho_bar = rho/rho0`` as functions of ``P = p/pmax``:
 
@@ -8,7 +8,9 @@
 * Dowson-Higginson (2.7): ``rho_bar = 1 + 0.34615 p/(0.59263e9 + p)``;
 * incompressible: ``rho_bar = 1``.
 
-The parameters are packed in a small float array (:func:`pack`) read by numba kernels.
+The parameters are packed in a small float array (:func:`pack`) read by numba kernels; the
+scalar functions are inlined into the contacts' kernels, :func:`log_derivatives` serves
+whole arrays.
 """
 
 from __future__ import annotations
@@ -62,3 +64,13 @@ def density(P: float, par: np.ndarray) -> tuple[float, float]:
     c = par[6]
     d = 1.0 + Pp * c
     return 1.0 + par[7] * Pp * c / d, par[7] * c / (d * d)
+
+
+@njit(cache=True)
+def log_derivatives(P: np.ndarray, par: np.ndarray, dlr: np.ndarray, dle: np.ndarray) -> None:
+    """Fill ``d ln(rho_bar)/dP`` and ``d ln(eta_bar)/dP`` for every entry of ``P`` (any shape)."""
+    Pf, a, b = P.ravel(), dlr.ravel(), dle.ravel()
+    for k in range(Pf.shape[0]):
+        r, dr = density(Pf[k], par)
+        a[k] = dr / r
+        b[k] = log_viscosity(Pf[k], par)[1]
