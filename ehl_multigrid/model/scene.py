@@ -4,7 +4,8 @@ Every layer reads the same :class:`Scene`. Loading validates every value and rai
 :class:`~ehl_multigrid.model.errors.InputError` naming the field, value, units and allowed range;
 nothing is half-loaded. Built-in scenes live in ``ehl_multigrid/scenes/*.toml``.
 
-TOML layout (all SI, temperatures in degC)::
+TOML layout (plain numbers SI, temperatures in degC, angles in degrees; any value may instead
+be a string with units, "7.94 mm", "1.5 GPa", "68 cSt", "70 degC", "1500 rpm")::
 
     name = "my_contact"
     description = "..."
@@ -12,9 +13,15 @@ TOML layout (all SI, temperatures in degC)::
     [geometry]    Rx, Ry [m] (reduced)  or  R1x, R2x, R1y, R2y [m] (inf = flat)
     [solids]      body1, body2 = preset name or table {preset, E, nu, rho, k, cp, hardness};
                   E_reduced [Pa] overrides the value computed from the bodies
-    [lubricant]   preset = "T9" | "T9-point" | "HVI-160" plus overrides (eta0, alpha or z, tau0, ...)
-    [operating]   load [N] or pmax [Pa]; us [m/s] (sum velocity); slip [-] (S = 2(u1-u2)/us);
-                  T_oil, T_surface1, T_surface2 [degC]
+    [element]     kind = "ball_bearing" | "roller_bearing" | "spur_gear" | "ball_on_disc" |
+                  "ball_on_flat" plus its catalogue data (see model.elements); replaces
+                  [geometry] and gives [contact], load, us and slip (which [operating] may override)
+    [materials.NAME]  a solid {preset, E, nu, rho, k, cp, hardness, source} usable as body1/body2
+    [lubricant]   preset = "T9" | "T9-point" | "HVI-160" plus overrides (eta0, alpha or z, tau0, ...);
+                  or a data-sheet oil: oil = "mineral-VG68" ..., or iso_vg + vi, or nu40 + nu100,
+                  with rho15, alpha40, tau0, k, cp40, T0 (Roelands reference, default T_oil)
+    [operating]   load [N] or pmax [Pa]; us [m/s] (sum velocity u1 + u2) or entrainment_speed
+                  [m/s] ((u1 + u2)/2); slip [-] (S = 2(u1-u2)/us); T_oil, T_surface1, T_surface2 [degC]
     [ranges]      us, slip, load: a list, or {min, max, n, log}
     [roughness]   Rq, Ra, sigma_s, dd [m]; n [1/m^2]; beta [m]; fc [-]; hardness [Pa]
     [supply]      hoil [m] (inf = flooded); hoil_over_sigma (list); delta [-]
@@ -35,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from . import fits, groups, hertz
+from .elements import ElementContact, element_contact
 from .errors import (
     InputError,
     reject_unknown_keys,
@@ -43,7 +51,10 @@ from .errors import (
     require_range,
 )
 from .lubricant import T_MAX_C, T_MIN_C, Lubricant, lubricant_preset
-from .solids import Solid, reduced_modulus_of, solid_preset
+from .materials import Material, material, materials_from_tables
+from .oils import Oil, is_oil_table, oil_from_table
+from .solids import Solid, reduced_modulus_of
+from .units import convert_table, to_canonical
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -53,8 +64,32 @@ else:  # pragma: no cover
 CONTACT_KINDS = ("line", "point", "elliptic")
 TOP_KEYS = {
     "name", "description", "source", "contact", "geometry", "solids", "lubricant",
-    "operating", "ranges", "roughness", "supply", "solver",
+    "operating", "ranges", "roughness", "supply", "solver", "element", "materials",
 }
+
+#: Kind of quantity of each scalar key, per section, for values given with units.
+UNIT_KINDS: dict[str, dict[str, str]] = {
+    "contact": {"length": "length"},
+    "geometry": {k: "length" for k in ("Rx", "Ry", "R1x", "R2x", "R1y", "R2y")},
+    "solids": {"E_reduced": "pressure"},
+    "lubricant": {
+        "eta0": "dynamic_viscosity", "T0": "temperature", "rho0": "density",
+        "T_rho": "temperature", "alpha_T": "inverse_temperature", "cp0": "specific_heat",
+        "T_cp0": "temperature", "k0": "conductivity", "tau0": "pressure", "G": "pressure",
+        "alpha": "inverse_pressure",
+    },
+    "operating": {
+        "load": "force", "pmax": "pressure", "us": "speed", "entrainment_speed": "speed",
+        "slip": "dimensionless", "T_oil": "temperature", "T_surface1": "temperature",
+        "T_surface2": "temperature",
+    },
+    "roughness": {
+        "Rq": "length", "Ra": "length", "sigma_s": "length", "dd": "length",
+        "n": "inverse_area", "beta": "length", "fc": "dimensionless", "hardness": "pressure",
+    },
+    "supply": {"hoil": "length"},
+}
+RANGE_KINDS = {"us": "speed", "slip": "dimensionless", "load": "force", "pmax": "pressure"}
 
 
 @dataclass(frozen=True)
@@ -138,6 +173,10 @@ class Scene:
     supply: Supply = field(default_factory=Supply)
     solver: dict[str, dict[str, Any]] = field(default_factory=dict)
     raw: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
+    #: The machine element the contact came from ([element] table), if any.
+    element: ElementContact | None = field(default=None, compare=False)
+    #: The data-sheet oil the lubricant was built from, if any.
+    oil: Oil | None = field(default=None, compare=False, repr=False)
 
     # -- derived ------------------------------------------------------------------------------
     @property
@@ -209,6 +248,9 @@ class Scene:
             "E_reduced": self.E_reduced,
             "Rx": self.Rx,
             "Ry": self.Ry,
+            "u1": self.u1,
+            "u2": self.u2,
+            "entrainment_speed": 0.5 * self.us,
             "eta0": self.eta0,
             "alpha": self.alpha,
             "pmax": hz.pmax,
@@ -232,6 +274,20 @@ class Scene:
         out["alpha_bar"] = abar
         if self.roughness is not None:
             out["Lambda_fit"] = hc / self.roughness.Rq
+        if self.element is not None:
+            el = self.element.describe()
+            out["element"] = el.pop("element")
+            for k in ("contact", "theta", "us", "slip", "entrainment_speed", "length",
+                      "load_per_length"):
+                el.pop(k, None)
+            out.update({f"element_{k}": v for k, v in el.items()})
+        if self.oil is not None:
+            out.update({
+                "oil": self.oil.name, "oil_nu40": self.oil.nu40, "oil_nu100": self.oil.nu100,
+                "oil_viscosity_index": self.oil.viscosity_index, "oil_rho15": self.oil.rho15,
+                "oil_nu_T_oil": self.oil.kinematic_viscosity(self.T_oil),
+                "oil_source": self.oil.source,
+            })
         return out
 
     # -- (de)serialisation -----------------------------------------------------------------
@@ -309,20 +365,37 @@ def _temperature(field_name: str, value: Any) -> float:
     return require_range(field_name, value, T_MIN_C, T_MAX_C, "degC")
 
 
-def _solid(field_name: str, spec: Any) -> Solid:
+def _solid(field_name: str, spec: Any, extra: dict[str, Material] | None = None) -> Solid:
     if isinstance(spec, str):
-        return solid_preset(spec)
-    if isinstance(spec, dict):
-        base = solid_preset(spec.get("preset", "steel"))
         try:
-            return base.with_changes(**{k: v for k, v in spec.items()})
+            return material(spec, extra)
         except InputError as exc:
             raise InputError(f"solids.{field_name}: {exc}") from None
-    raise InputError(f"solids.{field_name} = {spec!r} must be a preset name or a table")
+    if isinstance(spec, dict):
+        try:
+            base = material(str(spec.get("preset", "steel")), extra)
+            from .materials import MATERIAL_KEYS
+
+            return base.with_changes(**convert_table(f"solids.{field_name}", spec, MATERIAL_KEYS))
+        except InputError as exc:
+            raise InputError(f"solids.{field_name}: {exc}") from None
+    raise InputError(f"solids.{field_name} = {spec!r} must be a material name or a table")
+
+
+def _with_units(data: dict, key: str, required: bool = True) -> dict:
+    """The section ``key`` with its scalar values converted from strings with units."""
+    return convert_table(key, _section(data, key, required), UNIT_KINDS[key])
 
 
 def _range(field_name: str, spec: Any, lo: float, hi: float, units: str, lo_open: bool) -> Range:
     name = f"ranges.{field_name}"
+    kind = RANGE_KINDS[field_name]
+    if isinstance(spec, list):
+        spec = [to_canonical(f"{name}[{i}]", v, kind) if isinstance(v, str) else v
+                for i, v in enumerate(spec)]
+    elif isinstance(spec, dict):
+        spec = {k: to_canonical(f"{name}.{k}", v, kind) if k in ("min", "max") and isinstance(v, str)
+                else v for k, v in spec.items()}
     if isinstance(spec, list):
         if not spec:
             raise InputError(f"{name} is an empty list")
@@ -353,9 +426,23 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
     description = str(data.get("description", ""))
     source = str(data.get("source", ""))
 
-    contact = _section(data, "contact")
+    extra_materials = materials_from_tables(data["materials"]) if "materials" in data else {}
+    element = element_contact(data["element"]) if "element" in data else None
+
+    contact = _with_units(data, "contact", required=element is None)
     reject_unknown_keys("contact", contact, {"kind", "length"})
-    kind = require_choice("contact.kind", contact.get("kind"), CONTACT_KINDS)
+    if element is not None:
+        kind = require_choice("contact.kind", contact.get("kind", element.kind), CONTACT_KINDS)
+        if kind != element.kind:
+            raise InputError(
+                f"contact.kind = {kind!r} contradicts [element] kind = {element.element!r}, "
+                f"which gives a {element.kind!r} contact; leave contact.kind out"
+            )
+        if "length" in contact:
+            raise InputError("contact.length is given by the [element] table; leave it out")
+        if element.kind == "line":
+            contact = {**contact, "length": element.length}
+    kind = require_choice("contact.kind", contact.get("kind", element.kind if element else None), CONTACT_KINDS)
     if kind == "line":
         if "length" not in contact:
             raise InputError("contact.length (B, m) is required for a line contact")
@@ -365,51 +452,47 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
             raise InputError(f"contact.length is only meaningful for a line contact, not {kind!r}")
         length = math.nan
 
-    geo = _section(data, "geometry")
-    reject_unknown_keys("geometry", geo, {"Rx", "Ry", "R1x", "R2x", "R1y", "R2y"})
-    Rx, Ry = _reduced_radii(geo, kind)
+    if element is not None:
+        if "geometry" in data:
+            raise InputError("give [geometry] or [element], not both (the element gives Rx and Ry)")
+        Rx, Ry = _reduced_radii({"Rx": element.Rx, "Ry": element.Ry}, kind)
+    else:
+        geo = _with_units(data, "geometry")
+        reject_unknown_keys("geometry", geo, {"Rx", "Ry", "R1x", "R2x", "R1y", "R2y"})
+        Rx, Ry = _reduced_radii(geo, kind)
 
-    solids = _section(data, "solids", required=False)
+    solids = _with_units(data, "solids", required=False)
     reject_unknown_keys("solids", solids, {"body1", "body2", "E_reduced"})
-    body1 = _solid("body1", solids.get("body1", "steel"))
-    body2 = _solid("body2", solids.get("body2", "steel"))
+    body1 = _solid("body1", solids.get("body1", "steel"), extra_materials)
+    body2 = _solid("body2", solids.get("body2", "steel"), extra_materials)
     if "E_reduced" in solids:
         E_red = require_range("solids.E_reduced", solids["E_reduced"], 1e6, 4e12, "Pa")
     else:
         E_red = reduced_modulus_of(body1, body2)
 
+    op = _with_units(data, "operating", required=element is None)
+    reject_unknown_keys("operating", op, set(UNIT_KINDS["operating"]))
     lub_spec = _section(data, "lubricant")
-    if "preset" in lub_spec:
-        base = lubricant_preset(lub_spec["preset"])
-        overrides = {k: v for k, v in lub_spec.items() if k != "preset"}
-    else:
-        missing = {"name", "eta0", "T0", "S0", "rho0", "T_rho", "alpha_T", "cp0", "T_cp0", "c_cp", "k0", "tau0"} - set(lub_spec)
-        if "z" not in lub_spec and "alpha" not in lub_spec:
-            missing.add("z (or alpha)")
-        if missing:
-            raise InputError(f"[lubricant] without a preset must give {sorted(missing)}")
-        base = None
-        overrides = lub_spec
-    try:
-        if base is None:
-            z = lub_spec.get("z", 1.0)
-            fields_ = {k: v for k, v in overrides.items() if k != "alpha"}
-            fields_["z"] = z
-            lub = Lubricant(**fields_)
-            if "alpha" in overrides:
-                lub = lub.with_changes(alpha=overrides["alpha"])
+    oil = None
+    if is_oil_table(lub_spec):
+        oil, oil_options = oil_from_table(lub_spec)
+        if "T0" in oil_options:
+            T_ref = oil_options["T0"]
+        elif "T_oil" in op:
+            T_ref = _temperature("operating.T_oil", op["T_oil"])
         else:
-            if "alpha" in overrides and "z" in overrides:
-                raise InputError("[lubricant] give alpha or z, not both")
-            lub = base.with_changes(**overrides)
-    except TypeError as exc:
-        raise InputError(f"[lubricant]: {exc}") from None
+            T_ref = 40.0
+        lub = oil.lubricant(T_ref, oil_options.get("T_fit"))
+    else:
+        lub = _preset_lubricant(convert_table("lubricant", lub_spec, UNIT_KINDS["lubricant"]))
 
-    op = _section(data, "operating")
-    reject_unknown_keys("operating", op, {"load", "pmax", "us", "slip", "T_oil", "T_surface1", "T_surface2"})
-    if ("load" in op) == ("pmax" in op):
+    if "load" in op and "pmax" in op:
         raise InputError("[operating] needs exactly one of load (N) or pmax (Pa)")
-    if "load" in op:
+    if "load" not in op and "pmax" not in op:
+        if element is None:
+            raise InputError("[operating] needs exactly one of load (N) or pmax (Pa)")
+        load = require_positive("element load", element.load, "N")
+    elif "load" in op:
         load = require_positive("operating.load", op["load"], "N")
     else:
         pmax = require_range("operating.pmax", op["pmax"], 1e5, 2e10, "Pa")
@@ -417,10 +500,17 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
             load = hertz.load_for_pmax_line(pmax, length, Rx, E_red)
         else:
             load = hertz.load_for_pmax_point(pmax, Rx, Ry, E_red)
-    if "us" not in op:
-        raise InputError("operating.us (sum velocity u1 + u2, m/s) is required")
-    us = require_positive("operating.us", op["us"], "m/s")
-    slip = require_range("operating.slip", op.get("slip", 0.0), -2.0, 2.0, "-")
+    if "us" in op and "entrainment_speed" in op:
+        raise InputError("[operating] give us (sum velocity u1 + u2) or entrainment_speed ((u1 + u2)/2), not both")
+    if "us" in op:
+        us = require_positive("operating.us", op["us"], "m/s")
+    elif "entrainment_speed" in op:
+        us = 2.0 * require_positive("operating.entrainment_speed", op["entrainment_speed"], "m/s")
+    elif element is not None:
+        us = require_positive("element sum velocity u1 + u2", element.us, "m/s")
+    else:
+        raise InputError("operating.us (sum velocity u1 + u2, m/s) or operating.entrainment_speed is required")
+    slip = require_range("operating.slip", op.get("slip", element.slip if element else 0.0), -2.0, 2.0, "-")
     T_oil = _temperature("operating.T_oil", op.get("T_oil", lub.T0))
     T_s1 = _temperature("operating.T_surface1", op.get("T_surface1", T_oil))
     T_s2 = _temperature("operating.T_surface2", op.get("T_surface2", T_oil))
@@ -437,9 +527,9 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
     if "pmax" in rng:
         ranges["pmax"] = _range("pmax", rng["pmax"], 1e5, 2e10, "Pa", lo_open=False)
 
-    rough = _roughness(_section(data, "roughness", required=False))
+    rough = _roughness(_with_units(data, "roughness", required=False))
 
-    sup = _section(data, "supply", required=False)
+    sup = _with_units(data, "supply", required=False)
     reject_unknown_keys("supply", sup, {"hoil", "hoil_over_sigma", "delta"})
     hoil = require_range("supply.hoil", sup.get("hoil", math.inf), 0.0, math.inf, "m", lo_open=True)
     hos = sup.get("hoil_over_sigma", [])
@@ -461,8 +551,41 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         Rx=Rx, Ry=Ry, body1=body1, body2=body2, E_reduced=E_red, lubricant=lub,
         load=load, us=us, slip=slip, T_oil=T_oil, T_surface1=T_s1, T_surface2=T_s2,
         ranges=ranges, roughness=rough, supply=Supply(hoil, hos_t, delta), solver=solver,
-        raw=data,
+        raw=data, element=element, oil=oil,
     )
+
+
+def _preset_lubricant(lub_spec: dict[str, Any]) -> Lubricant:
+    """A lubricant from a preset with overrides, or from a full table of Roelands properties."""
+    if "preset" in lub_spec:
+        base = lubricant_preset(lub_spec["preset"])
+        overrides = {k: v for k, v in lub_spec.items() if k != "preset"}
+    else:
+        missing = {"name", "eta0", "T0", "S0", "rho0", "T_rho", "alpha_T", "cp0", "T_cp0", "c_cp", "k0", "tau0"} - set(lub_spec)
+        if "z" not in lub_spec and "alpha" not in lub_spec:
+            missing.add("z (or alpha)")
+        if missing:
+            raise InputError(
+                f"[lubricant] without a preset must give {sorted(missing)} "
+                "(or describe the oil by oil = PRESET, iso_vg + vi, or nu40 + nu100)"
+            )
+        base = None
+        overrides = lub_spec
+    try:
+        if base is None:
+            z = lub_spec.get("z", 1.0)
+            fields_ = {k: v for k, v in overrides.items() if k != "alpha"}
+            fields_["z"] = z
+            lub = Lubricant(**fields_)
+            if "alpha" in overrides:
+                lub = lub.with_changes(alpha=overrides["alpha"])
+        else:
+            if "alpha" in overrides and "z" in overrides:
+                raise InputError("[lubricant] give alpha or z, not both")
+            lub = base.with_changes(**overrides)
+    except TypeError as exc:
+        raise InputError(f"[lubricant]: {exc}") from None
+    return lub
 
 
 def _reduced_radii(geo: dict, kind: str) -> tuple[float, float]:

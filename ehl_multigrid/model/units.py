@@ -39,6 +39,7 @@ CANONICAL: dict[str, str] = {
     "power": "W",
     "conductivity": "W/(m*K)",
     "specific_heat": "J/(kg*K)",
+    "inverse_area": "1/m^2",
     "inverse_pressure": "1/Pa",
     "inverse_temperature": "1/K",
     "dimensionless": "",
