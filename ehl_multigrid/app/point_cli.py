@@ -7,22 +7,22 @@ import math
 from dataclasses import fields
 from pathlib import Path
 
-from ..model.errors import InputError, reject_unknown_keys
-from ..point.fas import SolverOptions, solve_fas
-from ..point.newton import NewtonOptions, solve_newton_amg
-from ..point.postprocess import build_result, summary_payload
+from ..model.errors import InputError
+from ..multigrid.options import PointOptions
+from ..point.newton import NewtonOptions
+from ..point.postprocess import summary_payload
 from ..point.problem import problem_from_moes, problem_from_scene
+from ..point.solve import solve_point
 
 DEFAULT_POINTS = 257
 
 
-def options_from_args(args: argparse.Namespace, scene=None) -> SolverOptions:
-    """Solver options: defaults, then the scene's ``[solver.point]`` table, then CLI flags."""
-    kw: dict = {"points": DEFAULT_POINTS}
-    if scene is not None:
-        table = dict(scene.solver.get("point", {}))
-        reject_unknown_keys("solver.point", table, {f.name for f in fields(SolverOptions)})
-        kw.update(table)
+def options_from_args(args: argparse.Namespace, scene=None) -> dict:
+    """FAS option keywords from the command line; the scene's ``[solver.ehl]`` table applies
+    below them in :func:`~ehl_multigrid.point.solve.solve_point`, and ``points`` defaults to
+    :data:`DEFAULT_POINTS` when neither gives it."""
+    table = (scene.solver.get("ehl") or {}) if scene is not None else {}
+    kw: dict = {} if "points" in table else {"points": DEFAULT_POINTS}
     cli = {
         "points": args.points, "levels": args.levels, "cycle": args.cycle, "cycles": args.cycles,
         "max_cycles": args.max_cycles, "deformation": args.deformation, "xmin": args.xmin,
@@ -32,7 +32,7 @@ def options_from_args(args: argparse.Namespace, scene=None) -> SolverOptions:
     kw.update({k: v for k, v in cli.items() if v is not None})
     if args.half:
         kw["half"] = True
-    return SolverOptions(**kw)
+    return kw
 
 
 def problem_from_args(args: argparse.Namespace, scene):
@@ -49,21 +49,23 @@ def problem_from_args(args: argparse.Namespace, scene):
             raise InputError(f"M = {args.M} must be > 0 (Moes load parameter)")
         if args.L is None or not args.L >= 0:
             raise InputError(f"L = {args.L} must be >= 0 (Moes lubricant parameter)")
-        return problem_from_moes(args.M, args.L, theta, args.viscosity, args.density,
-                                 args.alpha, args.eta0, args.p0)
+        return problem_from_moes(args.M, args.L, theta, args.viscosity or "roelands",
+                                 args.density or "dowson-higginson", args.alpha, args.eta0, args.p0)
     for flag in ("alpha", "eta0", "p0", "M", "L", "ellipticity"):
         if getattr(args, flag, None) is not None:
             raise InputError(f"--{flag} applies to Moes-only mode; set it in the scene file instead")
-    return problem_from_scene(scene, args.viscosity, args.density)
+    table = scene.solver.get("ehl") or {}
+    return problem_from_scene(scene, args.viscosity or table.get("viscosity", "roelands"),
+                              args.density or table.get("density", "dowson-higginson"))
 
 
 def newton_options_from_args(args: argparse.Namespace, scene=None) -> NewtonOptions:
-    """Options of the Newton/pyamg path: defaults, the scene's ``[solver.point]`` keys that
+    """Options of the Newton/pyamg path: defaults, the scene's ``[solver.ehl]`` keys that
     the path shares with FAS, then CLI flags; FAS-only flags are refused."""
     names = {f.name for f in fields(NewtonOptions)}
     kw: dict = {"points": DEFAULT_POINTS}
     if scene is not None:
-        kw.update({k: v for k, v in scene.solver.get("point", {}).items() if k in names})
+        kw.update({k: v for k, v in (scene.solver.get("ehl") or {}).items() if k in names})
     for flag in ("levels", "cycle", "cycles", "max_cycles", "threads"):
         if getattr(args, flag, None) is not None:
             raise InputError(f"--{flag.replace('_', '-')} applies to --solver fas only")
@@ -85,9 +87,7 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
             raise InputError("--rigid applies to --solver fas only")
         opt = newton_options_from_args(args, scene)
     else:
-        opt = options_from_args(args, scene)
-        if rigid:
-            opt.elastic = False
+        opt = PointOptions.build(**options_from_args(args, scene))
     quiet = bool(getattr(args, "json", False))
     if not quiet:
         if scene is None:
@@ -101,8 +101,14 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
         print(f"# {pb.viscosity} viscosity, {pb.density} density; {opt.points} points along X, "
               f"{how}, deformation {opt.deformation}{', half domain' if opt.half else ''}"
               f"{', rigid surfaces' if rigid else ''}")
-    sol = solve_fas(pb, opt) if solver == "fas" else solve_newton_amg(pb, opt)
-    res = build_result(sol, scene)
+    if scene is None:
+        sol = solve_point(pb.M, pb.L, theta=pb.theta, viscosity=pb.viscosity, density=pb.density,
+                          alpha=pb.alpha, eta0=pb.eta0, p0=pb.p_r, solver=solver, rigid=rigid,
+                          **(vars(opt) if solver == "newton" else options_from_args(args, scene)))
+    else:
+        sol = solve_point(scene=scene, viscosity=pb.viscosity, density=pb.density, solver=solver,
+                          rigid=rigid, **(vars(opt) if solver == "newton" else options_from_args(args, scene)))
+    res = sol.to_result(scene)
     name = scene.name if scene is not None else f"point_M{pb.M:g}_L{pb.L:g}_th{pb.theta:g}"
     out = Path(getattr(args, "out", "ehl_out"))
     path = res.save(out / f"{name}.h5")

@@ -223,6 +223,7 @@ class MultilevelSolver:
         ``StopIteration`` in it ends the solve with status ``"stopped"``.
         """
         self._callback = callback
+        hint = self.hint
         t0 = time.perf_counter()
         status, message = 0, ""
         hz, o = self.hierarchy, self.options
@@ -264,7 +265,8 @@ class MultilevelSolver:
             except _Stop as stop:
                 status, message = stop.status, stop.message
             except ConvergenceError as exc:
-                status, message = 5, str(exc)
+                status, message = 5, str(exc).split("\n  what to try:")[0]
+                hint = exc.hint or self.hint
             if status in (2, 3) and self._finest_phase and hasattr(hz, "last_resort"):
                 if hz.last_resort(top, self):
                     status = 0 if self.converged() else status
@@ -281,5 +283,5 @@ class MultilevelSolver:
             tolerances={"residual": o.tol, "load": o.tol_load}, settings=self.settings,
             start_level=self.start_level)
         if not record.success and o.raise_on_failure:
-            raise ConvergenceError(f"{hz.name} solver: {message}", record.report, self.hint)
+            raise ConvergenceError(f"{hz.name} solver: {message}", record.report, hint)
         return record

@@ -29,6 +29,7 @@ import scipy.sparse.linalg as spla
 
 from ..model.convergence import ConvergenceReport
 from ..model.errors import ConvergenceError, InputError
+from ..multigrid.result import EHLResult
 from ..multigrid.rheology import log_derivatives
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
@@ -166,7 +167,7 @@ def _jacobian(g: _Grid, P, H, rho, eps, m: int, order: int, active: np.ndarray,
     return J
 
 
-def solve_newton_amg(problem: PointProblem, options: NewtonOptions | None = None, **kw) -> NewtonOutput:
+def solve_newton_amg(problem: PointProblem, options: NewtonOptions | None = None, **kw) -> EHLResult:
     """Newton semi-system solve with AMG-preconditioned GMRES (see module docstring)."""
     import pyamg
 
@@ -308,4 +309,22 @@ def solve_newton_amg(problem: PointProblem, options: NewtonOptions | None = None
     )
     if not converged and opt.raise_on_failure:
         raise ConvergenceError(msg, report, "the lagged far-field deformation is too stiff here: use solve_fas")
-    return NewtonOutput(pb, opt, g.X, g.Y, P, H, H00, report, len(sizes), False, "newton-pyamg", hc_hist)
+    return newton_result(NewtonOutput(pb, opt, g.X, g.Y, P, H, H00, report, len(sizes), False,
+                                      "newton-pyamg", hc_hist))
+
+
+def newton_result(out: NewtonOutput, scene=None) -> EHLResult:
+    """The Newton path's answer as the package's one EHL result type."""
+    from .postprocess import build_result
+
+    rep = out.report
+    sol = EHLResult(
+        status=0 if rep.converged else 1, message=rep.message, cycles=rep.iterations,
+        residual_history=rep.residual_history, load_error_history=rep.load_error_history,
+        work_units=rep.work_units, wall_s=rep.wall_s, actions=list(rep.extra.get("actions", [])),
+        tolerances=dict(rep.tolerances), contact="point", solver="newton", problem=out.problem,
+        options=out.options, X=out.X, Y=out.Y, P=out.P, H=out.H, H0=out.H00, half=out.half,
+        levels=out.levels, scene=scene, builder=build_result,
+        extra={k: v for k, v in rep.extra.items() if k != "actions"})
+    sol.scalars = dict(build_result(sol, scene).scalars)
+    return sol

@@ -57,19 +57,6 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     return _finish(sol, scene)
 
 
-def _newton_result(out: Any, scene: Any) -> EHLResult:
-    rep = out.report
-    sol = EHLResult(
-        status=0 if rep.converged else 1, message=rep.message, cycles=rep.iterations,
-        residual_history=rep.residual_history, load_error_history=rep.load_error_history,
-        work_units=rep.work_units, wall_s=rep.wall_s, actions=list(rep.extra.get("actions", [])),
-        tolerances=dict(rep.tolerances), contact="point", solver="newton", problem=out.problem,
-        options=out.options, X=out.X, Y=out.Y, P=out.P, H=out.H, H0=out.H00, half=out.half,
-        levels=out.levels,
-        extra={k: v for k, v in rep.extra.items() if k != "actions"})
-    return _finish(sol, scene)
-
-
 def solve_point(
     M: float | None = None, L: float | None = None, *, theta: float = 1.0, scene: Any = None,
     viscosity: str | None = None, density: str | None = None,
@@ -113,4 +100,7 @@ def solve_point(
         raise InputError("rigid = True is available with solver = 'fas' only")
     from .newton import solve_newton_amg
 
-    return _newton_result(solve_newton_amg(pb, **kw), scene)
+    sol = solve_newton_amg(pb, options, **kw)
+    if scene is not None:
+        sol = _finish(sol, scene)
+    return sol

@@ -109,7 +109,7 @@ def test_scene_problem_uses_hertz_of_the_scene():
     assert pb.physical and pb.a == pytest.approx(sc.hertz.a)
 
 
-@pytest.mark.parametrize("kw", [{"points": 100}, {"deformation": "spline"}, {"cycle": "F"},
+@pytest.mark.parametrize("kw", [{"points": 100}, {"deformation": "spline"}, {"cycle": "X"},
                                 {"xmin": 0.0}, {"tol": -1.0}, {"points": 65, "levels": 9}])
 def test_bad_options_raise_input_error(kw):
     with pytest.raises(InputError):
