@@ -1,6 +1,7 @@
 """PNG figures of Stribeck curves (as thesis Figs 4.4, 4.6, 4.7, 4.9-4.13, 5.9-5.10, 6.2-6.7).
 
-Matplotlib with the Agg backend; dpi <= 110.
+Figures are built with ``matplotlib.figure.Figure`` (no pyplot), so plotting never changes
+the process-wide backend; dpi <= 110.
 """
 
 from __future__ import annotations
@@ -10,17 +11,9 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 DPI = 100
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def _label(curve) -> str:
@@ -32,8 +25,8 @@ def _label(curve) -> str:
 
 def plot_friction(curve, path: Path, title: str = "") -> Path:
     """Total friction with its asperity and film parts (Fig. 4.6); thermal: temperature rise."""
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    fig = Figure(figsize=(6.4, 4.4))
+    ax = fig.subplots()
     us = curve.us
     fr = curve.friction
     ax.semilogx(us, fr.coefficient, "k-", label="total")
@@ -53,7 +46,6 @@ def plot_friction(curve, path: Path, title: str = "") -> Path:
     ax.set_title(title or f"{curve.scene.name}: Stribeck curve ({'thermal' if fr.thermal else 'isothermal'})", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
-    plt.close(fig)
     return path
 
 
@@ -68,8 +60,8 @@ def _shade_regimes(ax, curve) -> None:
 
 def plot_load_shares(curve, path: Path) -> Path:
     """Total, asperity and film loads against us (Fig. 4.7)."""
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    fig = Figure(figsize=(6.4, 4.4))
+    ax = fig.subplots()
     ls = curve.sharing
     ax.semilogx(ls.us, np.full_like(ls.us, ls.load), "k-", label="total load")
     ax.semilogx(ls.us, ls.Pa, "b--", label="asperity load Pa")
@@ -81,14 +73,13 @@ def plot_load_shares(curve, path: Path) -> Path:
     ax.set_title(f"{curve.scene.name}: load sharing ({_label(curve)})", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
-    plt.close(fig)
     return path
 
 
 def plot_film_separation(curve, path: Path) -> Path:
     """Film thickness hf,r and separation hs against us, full scale and near zero (Figs 4.12-4.13)."""
-    plt = _plt()
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    fig = Figure(figsize=(10, 4.2))
+    axes = fig.subplots(1, 2)
     ls = curve.sharing
     for ax, zoom in zip(axes, (False, True), strict=True):
         ax.semilogx(ls.us, ls.hfr, "k-", label="film thickness hf,r")
@@ -105,7 +96,6 @@ def plot_film_separation(curve, path: Path) -> Path:
         ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
-    plt.close(fig)
     return path
 
 
@@ -114,8 +104,8 @@ def plot_cases(curves: Sequence, path: Path, quantity: str, ylabel: str, title: 
 
     ``quantity``: ``friction``, ``hfr`` or ``hs``.
     """
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    fig = Figure(figsize=(6.4, 4.4))
+    ax = fig.subplots()
     for c in curves:
         if quantity == "friction":
             y = c.friction.coefficient
@@ -133,7 +123,6 @@ def plot_cases(curves: Sequence, path: Path, quantity: str, ylabel: str, title: 
     ax.set_title(title, fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
-    plt.close(fig)
     return path
 
 

@@ -1,25 +1,18 @@
-"""Figures of a traction :class:`Result` (matplotlib, Agg): traction curve, temperature map
-(as thesis Fig. 3.9), velocity profiles (Fig. 3.13) and inlet-region temperatures
-(Figs 3.15-3.17). Point-contact results are shown on the slice nearest the centre line."""
+"""Figures of a traction :class:`Result`: traction curve, temperature map (as thesis Fig. 3.9),
+velocity profiles (Fig. 3.13) and inlet-region temperatures (Figs 3.15-3.17). Point-contact
+results are shown on the slice nearest the centre line. Figures are built with
+``matplotlib.figure.Figure`` (no pyplot), so plotting never changes the process-wide backend."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from ehl_multigrid.model.results import Result
 
 DPI = 100
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def _slice(res: Result, name: str, k: int) -> np.ndarray:
@@ -37,9 +30,9 @@ def slip_index(res: Result, slip: float | None = None) -> int:
 
 def plot_traction_curve(res: Result, path: Path, reference: dict | None = None) -> Path:
     """Friction force and coefficient against slip (S in %)."""
-    plt = _plt()
     S = res["slip"] * 100
-    fig, ax = plt.subplots(figsize=(6, 3.8))
+    fig = Figure(figsize=(6, 3.8))
+    ax = fig.subplots()
     ax.plot(S, res["friction_force"], "o-", ms=3, label=f"{'thermal' if res.scalars.get('thermal') else 'isothermal'} ({res.scalars.get('input')})")
     bad = res["converged"] == 0
     if np.any(bad):
@@ -60,17 +53,16 @@ def plot_traction_curve(res: Result, path: Path, reference: dict | None = None) 
     ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
-    plt.close(fig)
     return path
 
 
 def plot_temperature_map(res: Result, path: Path, k: int | None = None, xlim: tuple[float, float] | None = (-1.2, 1.0)) -> Path:
     """T(X, Z) map and both surface temperatures along X at slip index ``k``."""
-    plt = _plt()
     k = slip_index(res) if k is None else k
     X, Z = res["X"], res["Z"]
     T = _slice(res, "T", k)
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 5.5), sharex=True, gridspec_kw={"height_ratios": [2, 1]})
+    fig = Figure(figsize=(6.5, 5.5))
+    a1, a2 = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
     m = a1.pcolormesh(X, Z, T.T, shading="auto", cmap="inferno")
     fig.colorbar(m, ax=a1, label="T [degC]")
     a1.set_ylabel("Z = z/h")
@@ -85,17 +77,16 @@ def plot_temperature_map(res: Result, path: Path, k: int | None = None, xlim: tu
         a2.set_xlim(max(xlim[0], X[0]), min(xlim[1], X[-1]))
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
-    plt.close(fig)
     return path
 
 
 def plot_velocity_profiles(res: Result, path: Path, k: int | None = None, Xs: tuple[float, ...] = (-1.0, -0.97, 0.0, 0.95)) -> Path:
     """u(Z) at chosen X (thesis Fig. 3.13)."""
-    plt = _plt()
     k = slip_index(res) if k is None else k
     X, Z = res["X"], res["Z"]
     U = _slice(res, "u", k)
-    fig, ax = plt.subplots(figsize=(5, 4))
+    fig = Figure(figsize=(5, 4))
+    ax = fig.subplots()
     for xv in Xs:
         i = int(np.argmin(np.abs(X - xv)))
         ax.plot(U[i], Z, label=f"X = {X[i]:.3g}")
@@ -106,18 +97,17 @@ def plot_velocity_profiles(res: Result, path: Path, k: int | None = None, Xs: tu
     ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
-    plt.close(fig)
     return path
 
 
 def plot_inlet_temperatures(res: Result, path: Path, k: int | None = None, x_end: float = -1.0) -> Path:
     """Inlet region X < -1: T(X, Z) map, surface temperatures and the centre line (Figs 3.15-3.17)."""
-    plt = _plt()
     k = slip_index(res) if k is None else k
     X, Z = res["X"], res["Z"]
     sel = X <= x_end + 1e-9
     T = _slice(res, "T", k)
-    fig, ax = plt.subplots(1, 3, figsize=(11, 3.4))
+    fig = Figure(figsize=(11, 3.4))
+    ax = fig.subplots(1, 3)
     m = ax[0].pcolormesh(X[sel], Z, T[sel].T, shading="auto", cmap="inferno")
     fig.colorbar(m, ax=ax[0], label="T [degC]")
     ax[0].set_xlabel("X")
@@ -137,7 +127,6 @@ def plot_inlet_temperatures(res: Result, path: Path, k: int | None = None, x_end
     fig.suptitle(f"S = {res['slip'][k] * 100:.3g} %", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
-    plt.close(fig)
     return path
 
 

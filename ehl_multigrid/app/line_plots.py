@@ -6,23 +6,20 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from ..line.solution import LineSolution
 
 
 def plot_solution(sol: LineSolution, path: str | Path, title: str = "") -> list[Path]:
     """Write ``<path>_PH.png`` (whole domain) and ``<path>_zoom.png``; return both paths."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     path = Path(path)
     out = []
     s = sol.scalars
     label = title or f"M = {s['M']:.4g}, L = {s['L']:.4g}"
     for suffix, lim in (("PH", None), ("zoom", (-1.3, 1.3))):
-        fig, ax = plt.subplots(figsize=(6.4, 3.8))
+        fig = Figure(figsize=(6.4, 3.8))
+        ax = fig.subplots()
         ax.plot(sol.X, sol.P, "C0", lw=1.2, label="P = p/pmax")
         ax.set_xlabel("X = x/b")
         ax.set_ylabel("P", color="C0")
@@ -41,6 +38,5 @@ def plot_solution(sol: LineSolution, path: str | Path, title: str = "") -> list[
         fig.tight_layout()
         p = path.with_name(f"{path.name}_{suffix}.png")
         fig.savefig(p, dpi=100)
-        plt.close(fig)
         out.append(p)
     return out

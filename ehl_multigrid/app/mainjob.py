@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from ..model.hertz import hertz_pressure_line, hertz_pressure_point
 from ..model.results import Result, save_results
@@ -89,13 +90,9 @@ _UNITS = {
 
 
 def plot_hertz(res: Result, path: Path) -> Path:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     sc = res.scene
-    fig, ax = plt.subplots(figsize=(6, 3.5))
+    fig = Figure(figsize=(6, 3.5))
+    ax = fig.subplots()
     x = res["x"]
     p = res["p"] if res["p"].ndim == 1 else res["p"][:, res["p"].shape[1] // 2]
     ax.plot(x * 1e3, p / 1e9, label="Hertz pressure")
@@ -110,7 +107,6 @@ def plot_hertz(res: Result, path: Path) -> Path:
     fig.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
-    plt.close(fig)
     return path
 
 

@@ -1,22 +1,15 @@
 """PNG plots of a point-contact result: P and H contour maps, centre-line profiles in X and
-Y, and an interference-style film map (Agg backend, dpi <= 110)."""
+Y, and an interference-style film map (dpi <= 110). Figures are built with
+``matplotlib.figure.Figure`` (no pyplot), so plotting never changes the process-wide backend."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from ..model.results import Result
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def interference_rgb(h_m: np.ndarray, n_oil: float = 1.5, wavelengths=(650e-9, 532e-9, 450e-9)) -> np.ndarray:
@@ -27,13 +20,13 @@ def interference_rgb(h_m: np.ndarray, n_oil: float = 1.5, wavelengths=(650e-9, 5
 
 def plot_result(res: Result, outdir: str | Path, name: str) -> list[Path]:
     """Write ``<name>_maps.png``, ``<name>_profiles.png``, ``<name>_interference.png``."""
-    plt = _plt()
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     X, Y = res["X"], res["Y"]
     P, H = res["P"].T, res["H"].T  # [j, i]
     files = []
-    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    fig = Figure(figsize=(10, 4))
+    ax = fig.subplots(1, 2)
     c0 = ax[0].contourf(X, Y, P, levels=30, cmap="viridis")
     fig.colorbar(c0, ax=ax[0], label="P = p/pmax")
     ax[0].set_title("pressure P")
@@ -52,13 +45,13 @@ def plot_result(res: Result, outdir: str | Path, name: str) -> list[Path]:
     fig.tight_layout()
     f = outdir / f"{name}_maps.png"
     fig.savefig(f, dpi=100)
-    plt.close(fig)
     files.append(f)
 
     jc = int(np.argmin(np.abs(Y)))
     i0 = int(np.argmin(np.abs(X - res.scalars["X_Hm"]))) if np.isfinite(res.scalars["X_Hm"]) else int(np.argmin(np.abs(X)))
     ic = int(np.argmin(np.abs(X)))
-    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    fig = Figure(figsize=(10, 4))
+    ax = fig.subplots(1, 2)
     ax[0].plot(X, P[jc], label="P(X, 0)")
     ax2 = ax[0].twinx()
     ax2.plot(X, H[jc], "r-", label="H(X, 0)")
@@ -79,7 +72,6 @@ def plot_result(res: Result, outdir: str | Path, name: str) -> list[Path]:
     fig.tight_layout()
     f = outdir / f"{name}_profiles.png"
     fig.savefig(f, dpi=100)
-    plt.close(fig)
     files.append(f)
 
     if "h" in res.fields:
@@ -88,7 +80,8 @@ def plot_result(res: Result, outdir: str | Path, name: str) -> list[Path]:
     else:  # Moes-only: an arbitrary but fixed scale, 1 Venner unit = 1 um
         hm = H * 1e-6
         label = "H x 1 um (no physical scale)"
-    fig, ax = plt.subplots(figsize=(5, 5))
+    fig = Figure(figsize=(5, 5))
+    ax = fig.subplots()
     ax.imshow(interference_rgb(np.maximum(hm, 0.0)), origin="lower",
               extent=(X[0], X[-1], Y[0], Y[-1]), interpolation="bilinear")
     ax.set_xlabel("X")
@@ -97,6 +90,5 @@ def plot_result(res: Result, outdir: str | Path, name: str) -> list[Path]:
     fig.tight_layout()
     f = outdir / f"{name}_interference.png"
     fig.savefig(f, dpi=100)
-    plt.close(fig)
     files.append(f)
     return files

@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from .analysis import Analysis
 from .statistics import height_histograms
@@ -14,13 +15,9 @@ MAX_MAP_POINTS = 1024  # the map panel is decimated to at most this many points 
 
 
 def plot_analysis(an: Analysis, path: str | Path, title: str = "") -> Path:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     hm, st, s = an.surface, an.stats, an.summits
-    fig, axs = plt.subplots(2, 2, figsize=(11, 8.5))
+    fig = Figure(figsize=(11, 8.5))
+    axs = fig.subplots(2, 2)
     # (a) map and summit positions
     ax = axs[0, 0]
     step = max(1, int(np.ceil(max(hm.shape) / MAX_MAP_POINTS)))
@@ -84,5 +81,4 @@ def plot_analysis(an: Analysis, path: str | Path, title: str = "") -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=100)
-    plt.close(fig)
     return path
