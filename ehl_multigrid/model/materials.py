@@ -99,7 +99,7 @@ def material(name: str, extra: dict[str, Material] | None = None) -> Solid:
         return table[name].solid
     except (KeyError, TypeError):
         raise InputError(
-            f"material {name!r} is not known; known materials are {sorted(table)} "
+            f"solid preset {name!r} is not known; known materials are {sorted(table)} "
             "(or give a table {preset, E, nu, rho, k, cp, hardness})"
         ) from None
 

@@ -277,8 +277,8 @@ class Scene:
         if self.element is not None:
             el = self.element.describe()
             out["element"] = el.pop("element")
-            for k in ("contact", "theta", "us", "slip", "entrainment_speed", "length",
-                      "load_per_length"):
+            for k in ("contact", "Rx", "Ry", "theta", "us", "slip", "entrainment_speed",
+                      "length", "load_per_length"):
                 el.pop(k, None)
             out.update({f"element_{k}": v for k, v in el.items()})
         if self.oil is not None:

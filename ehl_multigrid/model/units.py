@@ -97,7 +97,7 @@ def to_canonical(field: str, value: Any, kind: str) -> float:
         q = ureg.Quantity(value.strip())
     except Exception as exc:  # pint raises several unrelated types for unparsable text
         raise InputError(
-            f"{field} = {value!r} could not be read as a value with units ({exc}); "
+            f"{field} = {value!r} is not a number or a value with units ({exc}); "
             f"expected a {kind.replace('_', ' ')} such as '1.0 {shown}'"
         ) from None
     if not hasattr(q, "units") or str(q.units) == "dimensionless":
