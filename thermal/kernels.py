@@ -17,7 +17,7 @@ change by less than the tolerances (the thesis's 3-node sliding window: the two 
 already converged and fixed). Influences that point upstream (reverse flow in a thick EHL inlet,
 where a first-order forward difference with lagged downstream values is used, and the upstream
 reach of the moving-strip surface kernel) are lagged: :func:`sweep_line` does one sweep, and
-``thermal.line.solve_line`` repeats sweeps (Anderson-accelerated) until the field stops changing.
+``thermal.line.solve_thermal_line`` repeats sweeps (Anderson-accelerated) until the field stops changing.
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
-"""Thermal non-linear Roelands-Eyring model on one line profile (thesis 3.2, MODEL.md 9).
+"""Thermal non-linear Roelands-Eyring model on one line profile (thesis 3.2: constitutive law
+(3.3), momentum (3.4), energy (3.5), surface temperatures (3.6)-(3.7), mapping (3.14)-(3.17)).
 
-:func:`solve_line` runs the compiled march (kernels.py) for a :class:`LineProfile` and returns
+:func:`solve_thermal_line` runs the compiled march (kernels.py) for a :class:`LineProfile` and returns
 the fields, the friction per unit length, the heat budget and a convergence report.
 """
 
@@ -8,6 +9,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -51,7 +53,7 @@ class Surroundings:
 
 
 @dataclass
-class LineSolution:
+class ThermalLineSolution:
     """Fields of one line profile; arrays are (station, Z node).
 
     force_per_length : friction force per unit length of line [N/m], ``-int tau_mean dx``,
@@ -110,7 +112,8 @@ def _zmean(a: np.ndarray) -> np.ndarray:
     return np.trapezoid(a, dx=1.0 / (a.shape[1] - 1), axis=1)
 
 
-def solve_line(profile: LineProfile, env: Surroundings, options: ThermalOptions, kernel_length: float = math.inf) -> LineSolution:
+def solve_thermal_line(profile: LineProfile, env: Surroundings, options: ThermalOptions,
+                       kernel_length: float = math.inf) -> ThermalLineSolution:
     """Solve the thermal Eyring model on one line profile.
 
     Raises :class:`ConvergenceError` on non-finite values or temperatures outside the property
@@ -220,7 +223,7 @@ def solve_line(profile: LineProfile, env: Surroundings, options: ThermalOptions,
     F1 = float(np.trapezoid(tau[:, 0], x))
     F2 = -float(np.trapezoid(tau[:, -1], x))
     budget = heat_budget(profile, T, u, heat, q1, q2, env.lubricant) if options.thermal else {}
-    return LineSolution(
+    return ThermalLineSolution(
         profile=profile, Z=Z, T=T, tau=tau, u=u, gdot=gv, heat_rate=heat, q1=q1, q2=q2,
         force_per_length=F, traction1_per_length=F1, traction2_per_length=F2, heat=budget,
         report=report, T_oil=float(env.T_oil),
@@ -319,3 +322,17 @@ def heat_budget(
         "shear": shear, "conduction1": cond1, "conduction2": cond2, "convection": conv,
         "enthalpy_flux": enth, "balance": bal,
     }
+
+
+#: names of the previous release -> current names (``thermal.line.solve_line`` clashed with the
+#: EHL solver ``ehl_multigrid.line.solve_line``)
+_RENAMED = {"solve_line": "solve_thermal_line", "LineSolution": "ThermalLineSolution"}
+
+
+def __getattr__(name: str):
+    if name in _RENAMED:
+        new = _RENAMED[name]
+        warnings.warn(f"thermal.line.{name} is deprecated: use {new} (the old name will be removed "
+                      "in the next release)", DeprecationWarning, stacklevel=2)
+        return globals()[new]
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -23,7 +23,7 @@ from ehl_multigrid.model.lubricant import T_MAX_C, Lubricant, lubricant_preset
 from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import Scene
 
-from .line import LineSolution, Surroundings, solve_line
+from .line import Surroundings, ThermalLineSolution, solve_thermal_line
 from .options import ThermalOptions
 from .profiles import LineProfile, hertz_profile, hertz_slices, profiles_from_result
 
@@ -39,7 +39,7 @@ class TractionPoint:
     area : Hertz area [m^2]; h : central film used [m] (uniform-film input) or NaN;
     max/mean_temperature_rise : [K] (mean over the Hertz contact of the film-mean temperature);
     traction1, traction2 : shear force of the film on surface 1 / 2 along +x [N];
-    solutions : one :class:`LineSolution` per line (one for a line contact, one per slice).
+    solutions : one :class:`ThermalLineSolution` per line (one for a line contact, one per slice).
     """
 
     slip: float
@@ -58,7 +58,7 @@ class TractionPoint:
     traction2: float
     converged: bool
     report: ConvergenceReport
-    solutions: list[LineSolution]
+    solutions: list[ThermalLineSolution]
     input: str
     hertz: HertzContact
     thermal: bool
@@ -217,12 +217,12 @@ def solve_traction(
         klen = options.kernel_length
     else:
         klen = scene.length if scene.kind == "line" else 2.0 * hz.b
-    sols = [solve_line(prof, env, options, kernel_length=klen) for prof in profiles]
+    sols = [solve_thermal_line(prof, env, options, kernel_length=klen) for prof in profiles]
     return combine(scene, sols, hz, load, slip, us, u1, u2, h, input, options, time.perf_counter() - t0)
 
 
 def combine(
-    scene: Scene, sols: list[LineSolution], hz: HertzContact, load: float, slip: float, us: float,
+    scene: Scene, sols: list[ThermalLineSolution], hz: HertzContact, load: float, slip: float, us: float,
     u1: float, u2: float, h: float | None, input: str, options: ThermalOptions, wall: float,
 ) -> TractionPoint:
     """Integrate the line solutions over the contact width."""

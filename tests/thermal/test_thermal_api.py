@@ -181,3 +181,16 @@ def test_cli_traction_reads_ehl_result_file(tmp_path, capsys, line_lo):
     ref = solve_traction(line_lo, 0.3, nx=71)
     assert out["input"] == "ehl" and out["h_uniform"] is None
     assert out["friction_force"][0] == pytest.approx(ref.force, rel=2e-3)
+
+
+def test_renamed_line_solver_old_names_warn_and_give_the_new_objects():
+    import thermal
+    import thermal.line
+
+    for mod in (thermal, thermal.line):
+        with pytest.warns(DeprecationWarning, match="solve_thermal_line"):
+            assert mod.solve_line is thermal.line.solve_thermal_line
+        with pytest.warns(DeprecationWarning, match="ThermalLineSolution"):
+            assert mod.LineSolution is thermal.line.ThermalLineSolution
+    with pytest.raises(AttributeError):
+        thermal.line.no_such_name  # noqa: B018
