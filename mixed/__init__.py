@@ -1,4 +1,5 @@
-"""Mixed lubrication and Stribeck curves (thesis chapters 4-6; MODEL.md 7).
+"""Mixed lubrication and Stribeck curves (thesis chapters 4-6: Greenwood-Williamson
+asperity pressure (4.18), load sharing (4.21)-(4.22), friction (4.30)-(4.39), starvation).
 
 Modules: :mod:`mixed.gw` (Greenwood-Williamson F_j, asperity pressure, plasticity index),
 :mod:`mixed.film` (Johnson's film definition and its inverse, planes, equivalent surface),

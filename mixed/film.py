@@ -1,4 +1,5 @@
-"""Film thickness and separation of a rough contact (thesis 4.2.2, 2.4.3; MODEL.md 7).
+"""Film thickness and separation of a rough contact (thesis 4.2.2, 2.4.3; Johnson's film
+definition (4.20), planes (4.28)).
 
 Planes (Fig. 2.6): ``hs`` is the separation between the mean plane of the surface heights and
 the smooth counter-surface, ``hss = hs - dd`` (4.28) the separation from the mean plane of the

@@ -1,4 +1,5 @@
-"""Greenwood-Williamson asperity contact (thesis 2.4.1, 4.2.2; MODEL.md 7).
+"""Greenwood-Williamson asperity contact (thesis 2.4.1, 4.2.2; GW functions (2.45),
+asperity pressure (4.18)-(4.19)).
 
 ``F_j(lam) = int_lam^inf (s - lam)^j phi*(s) ds`` (2.45) with ``phi*`` the standard normal
 density, evaluated to near machine precision for every ``lam`` (tested for -10..8 against

@@ -1,4 +1,4 @@
-"""Starved lubrication (thesis chapter 6; MODEL.md 7).
+"""Starved lubrication (thesis chapter 6: starved film Hcs, limiting inlet film (6.4)).
 
 * Chevalier's reduction (6.1-6.4): ``Hcs = Hc r/(1 + r^delta)^(1/delta)``,
   ``r = Hoil/(Hc rho_bar(pmax))``; delta between 2 and 5, 3.5 by default. As the speed grows

@@ -1,4 +1,5 @@
-"""Compiled inner loops of the line-contact thermal model (thesis 3.2.2.2, MODEL.md 9).
+"""Compiled inner loops of the line-contact thermal model (thesis 3.2.2.2; energy
+equation (3.5), Eyring law (3.3), discretisation (3.18)-(3.19)).
 
 One station x_i carries the film profile T(Z), tau(Z), u(Z) on ``nz + 1`` nodes of the mapped
 film coordinate Z = z/h (3.14). At each station:

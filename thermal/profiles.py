@@ -1,5 +1,5 @@
 """Pressure and film input of the thermal model: one line profile per line contact or per
-point-contact slice (thesis 3.2.1.5, 3.2.2.2, MODEL.md 9).
+point-contact slice (thesis 3.2.1.5, 3.2.2.2; slice pressure (3.20)).
 
 Sources, one interface (:class:`LineProfile`):
 

@@ -1,4 +1,5 @@
-"""Lubricant property functions compiled for the thermal kernels (MODEL.md 3, thesis 3.2.1.7-3.2.1.10).
+"""Lubricant property functions compiled for the thermal kernels (thesis 3.2.1.7-3.2.1.10:
+Roelands (2.6), Dowson-Higginson with temperature (3.10), conductivity (3.12), specific heat (3.13)).
 
 The reference implementations live in :class:`ehl_multigrid.model.lubricant.Lubricant`; these are the
 same formulas as scalar numba functions so the inner loops can call them. The tests check both

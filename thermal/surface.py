@@ -1,14 +1,14 @@
 """Surface (flash) temperatures of the two solids: discrete influence weights.
 
 The wall temperature of solid i is its bulk temperature plus the response of a half-space to
-the heat flux ``q_i(x)`` the film sends into it (thesis 3.6-3.7, MODEL.md 9):
+the heat flux ``q_i(x)`` the film sends into it (thesis (3.6)-(3.7), Carslaw & Jaeger moving heat source):
 
 ``T_i(x) = T_bulk,i + int q_i(x') K_i(x - x') dx'``.
 
 Two kernels are offered.
 
 ``"carslaw-jaeger"``
-    The thesis's (3.6)-(3.7) as printed (with MODEL.md's rho1 -> rho2 correction):
+    The thesis's (3.6)-(3.7) as printed (with the second equation's misprinted rho1 read as rho2):
     ``K(xi) = 1/sqrt(pi rho c k u) xi^(-1/2)`` for ``xi > 0`` and 0 upstream. This is the
     high-Peclet limit of a moving heat source; it diverges as ``u -> 0``, so it rejects a
     surface at rest.

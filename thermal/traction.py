@@ -1,7 +1,7 @@
 """Friction of a scene at one slip (:func:`solve_traction`) and traction curves against slip
 (:func:`traction_curve`), line and point contacts (thesis 3.2.1.6, 3.2.2.2, 3.3).
 
-Slip ``S = 2 (u1 - u2)/(u1 + u2)`` (MODEL.md 1), ``|S| <= 2``; the thesis's "100 %" is S = 1.
+Slip ``S = 2 (u1 - u2)/(u1 + u2)`` (S = 2 is pure sliding), ``|S| <= 2``; the thesis's "100 %" is S = 1.
 The friction force is positive when surface 1 is the faster one, so the curve is odd in S.
 """
 

@@ -109,7 +109,8 @@ def fit_deviation_estimate(scene: Scene) -> tuple[float, str]:
     solution at the scene's (M, L), and where the number comes from.
 
     Uses the table measured by the fit-check studies when one is installed
-    (``ehl_multigrid/data/fit_deviation_<contact>.json``), else MODEL.md's stated range.
+    (``ehl_multigrid/data/fit_deviation_<contact>.json``), else the 10-25 % range the literature states for
+    Barus-type fits against Roelands + Dowson-Higginson solutions.
     """
     from importlib import resources
 
@@ -127,7 +128,7 @@ def fit_deviation_estimate(scene: Scene) -> tuple[float, str]:
         val = dev[i, j]
         if np.isfinite(val):
             return float(val), f"measured fit check ({tab.get('source', res.name)}) at M={Ms[i]:g}, L={Ls[j]:g}"
-    return 0.25, "MODEL.md 6: fits exceed Roelands + Dowson-Higginson solutions by 10-25 % (not yet measured here)"
+    return 0.25, "Barus-type, incompressible fits exceed Roelands + Dowson-Higginson solutions by 10-25 % (not yet measured here)"
 
 
 #: The thermal decision includes the model when ``THERMAL_DECISION_MARGIN * friction_sensitivity``
@@ -141,7 +142,7 @@ THERMAL_DECISION_MARGIN = 1.25
 def temperature_rise_estimate(scene: Scene, us: float, slip: float, h: float) -> dict[str, float]:
     """Cheap estimate of the contact temperature rise [K] and of the friction's relative change.
 
-    One decoupled pass of the thermal model of MODEL.md 9 on the Hertz pressure with a uniform
+    One decoupled pass of the thermal model (thesis chapter 3) on the Hertz pressure with a uniform
     film ``h`` [m]: the isothermal Eyring shear stress (3.3) at each point of the contact
     (``tau = tau0 asinh(eta(p) |u1-u2| / (h tau0))``, Roelands eta at T_oil) gives the heat flux
     ``q = tau |u1 - u2|``; the Carslaw-Jaeger moving-source integral (3.6-3.7),

@@ -1,4 +1,5 @@
-"""Dimensionless groups (MODEL.md section 4) and film-scale conversions (section 5).
+"""Dimensionless groups (Dowson-Higginson G, U, W; Moes M, L, thesis 2.1.4 and (2.23)) and
+the film-scale conversions between Moes and Venner's dimensionless films.
 
 ``us`` is always the *sum* velocity u1 + u2. The Moes groups are built on
 ``U = eta0 us / (E' R)``, which equals Venner's 2U (U on the mean velocity).

@@ -1,4 +1,4 @@
-"""Hertzian dry contact: line, circular and elliptic (MODEL.md section 2).
+"""Hertzian dry contact: line, circular and elliptic (exact, with complete elliptic integrals).
 
 These closed forms are the package's reference solutions: the EHL solvers tend to them at
 high load and the tests use them as oracles.

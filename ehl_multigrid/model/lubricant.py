@@ -1,5 +1,7 @@
 """Lubricant properties: Roelands and Barus viscosity, Dowson-Higginson density with the
-temperature term, conductivity, specific heat and the Eyring law (MODEL.md section 3).
+temperature term, conductivity, specific heat and the Eyring law: Roelands (2.6), Barus (2.4),
+Dowson-Higginson (2.7) with temperature (3.10), conductivity (3.12), specific heat (3.13),
+Eyring (2.36).
 
 All functions take SI units and temperatures in degrees Celsius, as the thesis does, and are
 vectorised over numpy arrays.
@@ -92,7 +94,7 @@ class Lubricant:
         return self.viscosity(0.0, T)
 
     def alpha(self, T: float | np.ndarray | None = None) -> np.ndarray | float:
-        """Pressure-viscosity coefficient equivalent to Roelands at p = 0 [1/Pa] (MODEL.md 3):
+        """Pressure-viscosity coefficient equivalent to Roelands at p = 0 [1/Pa] (from (2.6)):
         ``alpha = z (ln eta0(T) - ln eta_inf) / p_r``."""
         eta = self.eta0 if T is None else self.eta_at(T)
         return self.z * (np.log(eta) - np.log(ETA_INF)) / P_R

@@ -118,7 +118,7 @@ class Range:
 
 @dataclass(frozen=True)
 class Roughness:
-    """Equivalent rough surface (Greenwood-Williamson, MODEL.md 7-8). Lengths in metres.
+    """Equivalent rough surface (Greenwood-Williamson, thesis 2.4.1 and 4.4). Lengths in metres.
 
     Rq (= sigma) and the summit parameters; Whitehouse-Archard defaults (sigma_s = 0.7 sigma,
     dd = 0.82 sigma) fill in what is missing when only Rq is given.

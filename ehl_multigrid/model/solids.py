@@ -1,4 +1,4 @@
-"""Solid materials and the reduced modulus (MODEL.md section 1).
+"""Solid materials and the reduced modulus E' (Hertz's ``2/E' = (1-nu1^2)/E1 + (1-nu2^2)/E2``).
 
 Two moduli appear in the thesis and must not be mixed:
 
@@ -72,7 +72,7 @@ def solid_preset(name: str) -> Solid:
 
 
 def reduced_modulus(E1: float, nu1: float, E2: float, nu2: float) -> float:
-    """E' from ``2/E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2`` [Pa] (MODEL.md 1)."""
+    """E' from ``2/E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2`` [Pa] (Hertz; the thesis's E')."""
     for f, v in (("E1", E1), ("E2", E2)):
         require_positive(f, v, "Pa")
     for f, v in (("nu1", nu1), ("nu2", nu2)):

@@ -1,6 +1,6 @@
 """Rough-surface analysis: from a measured height map to the mixed-lubrication roughness
 parameters n, beta, sigma_s, dd, sigma and the plasticity index (thesis 4.4.1-4.4.2, 5.2-5.3;
-MODEL.md 8).
+plasticity index (2.48)).
 
 Typical use::
 

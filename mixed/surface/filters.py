@@ -1,7 +1,7 @@
 """Low-pass filters and the thesis's "filter until psi ~ 1" procedure (section 5.3).
 
 Two filters, each recorded in the map's history so the statistics say which filter produced
-them (MODEL.md 8):
+them (thesis 5.3):
 
 * :func:`lowpass_3x3` - the thesis's filter: "a standard WYKO filter which reduces the height at
   a point by the weighted average of its neighbours" (5.3, footnote 2), applied k times. The

@@ -3,7 +3,7 @@
 Every function of :mod:`mixed.surface` takes and returns a :class:`HeightMap`. Heights ``z`` are
 stored in metres on a ``(ny, nx)`` array (first axis y, second axis x); missing points are NaN.
 ``history`` records every processing step (levelling, filling, filters) so the statistics say
-which filter produced them (MODEL.md 8).
+which filter produced them (thesis 5.3 filters until psi ~ 1).
 """
 
 from __future__ import annotations

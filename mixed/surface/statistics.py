@@ -1,4 +1,5 @@
-"""Roughness statistics of a height map (thesis 4.4.1-4.4.2, MODEL.md 8).
+"""Roughness statistics of a height map (thesis 4.4.1-4.4.2; 9-point summits, plasticity
+index (2.48)).
 
 Definitions used here (all heights relative to the mean plane of the valid points):
 
@@ -125,7 +126,7 @@ def plasticity_index(sigma_s: float, beta: float, E_reduced: float = DEFAULT_E_R
                      hardness: float = DEFAULT_HARDNESS) -> float:
     """Greenwood-Williamson plasticity index (2.48): ``(E'_GW/H') sqrt(sigma_s/beta)``.
 
-    ``E_reduced`` is E' of MODEL.md 1 [Pa]; E'_GW = E'/2 (2.49). ``hardness`` H' [Pa].
+    ``E_reduced`` is Hertz's E' [Pa]; E'_GW = E'/2 (2.49). ``hardness`` H' [Pa].
     """
     if not (math.isfinite(sigma_s) and math.isfinite(beta)) or beta <= 0:
         return math.nan

@@ -1,4 +1,4 @@
-"""A fast subset of the extremes matrix (validation/extremes/extremes.py, issue 8 item 5): each
+"""A fast subset of the extremes matrix (validation/extremes/extremes.py): each
 corner must end converged or failed-with-a-clear-message, never wrong (NaN, negative film,
 P < 0, friction outside [0, fc], or unconverged returned as converged)."""
 

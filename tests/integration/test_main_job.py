@@ -18,7 +18,7 @@ def test_main_job_on_a_rough_line_contact_runs_film_traction_and_stribeck(capsys
     assert film.kind == "ehl_line" and film.scalars["converged"] is True
     # the stored plan says why the solver was used
     assert film.meta["plan"]["decisions"][0]["model"] == "film"
-    # the solver's central film is below the Moes fit (Roelands + Dowson-Higginson, MODEL.md 6)
+    # the solver's central film is below the Moes fit (Roelands + Dowson-Higginson against Barus-type fits)
     assert film.scalars["hc"] < load_scene("page63_line_2000N").central_film_fit()[1]
     assert results["stribeck"].scene.name == "page63_line_2000N"
     report = (tmp_path / "report.md").read_text()

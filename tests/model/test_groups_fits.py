@@ -1,4 +1,4 @@
-"""Dimensionless groups (MODEL.md 4-5) and the film-thickness fits (MODEL.md 6; 2.17-2.34, 4.23-4.26)."""
+"""Dimensionless groups (Moes, Dowson-Higginson, Venner) and the film-thickness fits (2.17-2.34, 4.23-4.26)."""
 
 import math
 
@@ -18,7 +18,7 @@ def test_moes_line_groups_from_dowson_higginson():
 
 
 def test_venner_line_lambda_and_alpha_bar_match_physical_definitions():
-    # lambda = 6 eta0 us R^2 / (b^3 pmax), alpha_bar = alpha pmax (MODEL.md 5)
+    # lambda = 6 eta0 us R^2 / (b^3 pmax), alpha_bar = alpha pmax (Venner's dimensionless form)
     w, us, eta0, alpha, E, R = 2e5, 3.0, 0.05, 2e-8, 2.3e11, 0.015
     hz = hertz_line(w * 0.01, 0.01, R, E)
     M, L = groups.moes_line(w, us, eta0, alpha, E, R)

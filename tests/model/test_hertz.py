@@ -1,4 +1,4 @@
-"""Hertz reference solutions (MODEL.md 2) against the thesis and analytic identities."""
+"""Hertz reference solutions (line, circular, exact elliptic) against the thesis and analytic identities."""
 
 import math
 

@@ -1,4 +1,4 @@
-"""Lubricant properties against hand calculations (MODEL.md 3; thesis 2.4, 2.6, 2.7, 3.10-3.13)."""
+"""Lubricant properties against hand calculations (thesis 2.4, 2.6, 2.7, 3.10-3.13)."""
 
 import math
 

@@ -1,4 +1,4 @@
-"""Statistics of analytic and planted surfaces (thesis 4.4.1-4.4.2, (2.48)-(2.49), MODEL.md 8)."""
+"""Statistics of analytic and planted surfaces (thesis 4.4.1-4.4.2, (2.48)-(2.49))."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Property functions of the thermal kernels (MODEL.md 3; thesis 2.6, 3.10, 3.12, 3.13)."""
+"""Property functions of the thermal kernels (thesis 2.6, 3.10, 3.12, 3.13)."""
 
 import math
 

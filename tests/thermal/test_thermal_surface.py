@@ -1,4 +1,4 @@
-"""Surface-temperature kernels (thesis 3.6-3.7, MODEL.md 9) and their discrete weights."""
+"""Surface-temperature kernels (thesis (3.6)-(3.7)) and their discrete weights."""
 
 import math
 

@@ -1,4 +1,4 @@
-"""The extremes matrix (issue 8, item 5): every solver over the corners of its range.
+"""The extremes matrix: every solver over the corners of its range.
 
 Each case ends as exactly one of
   converged  - the solver says converged and the answer passes the sanity checks;

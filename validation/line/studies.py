@@ -1,4 +1,4 @@
-"""Validation studies of the line-contact solver (issue 3). Writes JSON + PNG to ./out/.
+"""Validation studies of the line-contact solver. Writes JSON + PNG to ./out/.
 
     python validation/line/studies.py [--study grid|fit|limits|extremes|cost|all] [--full]
 

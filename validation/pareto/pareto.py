@@ -1,4 +1,4 @@
-"""Accuracy against cost (issue 8, item 4): for each model, the error against a reference
+"""Accuracy against cost: for each model, the error against a reference
 resolution versus wall time, across its resolution knobs; Pareto front per model and the
 recommended settings per fidelity level (cheapest setting whose error is within the fidelity's
 tolerance: fast 10 %, standard 2 %, reference 0.2 %).

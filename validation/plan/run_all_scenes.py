@@ -1,5 +1,5 @@
-"""`ehl run` on every built-in scene (issue 8: "ehl plan and ehl run work on every built-in
-scene"): exit code, wall time, what the plan chose and what each stage reported.
+"""`ehl run` on every built-in scene: exit code, wall time, what the plan chose and what each
+stage reported.
 
 Usage: python validation/plan/run_all_scenes.py [--fidelity standard]
 Writes validation/plan/out/run_all_<fidelity>.json (resumes: finished scenes are kept).

@@ -67,7 +67,7 @@ SCENES = (
 QUICK_SCENES = ("appendix_c_line_42400N", "page63_line_2000N", "appendix_d_point")
 SLIPS = (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0)
 SPEED_FACTORS = (0.1, 0.3, 1.0, 3.0, 10.0)
-US_RANGE = (0.01, 50.0)  # m/s, the thermal corner range of issue 8
+US_RANGE = (0.01, 50.0)  # m/s, the thermal corner range of the extremes matrix
 #: optical-rig glass disc (typical soda-lime / BK7 values)
 GLASS = {"name": "glass", "E": 81e9, "nu": 0.21, "rho": 2510.0, "k": 1.1, "cp": 840.0, "hardness": 6e9}
 

@@ -23,7 +23,7 @@ def main() -> None:
         if key in st:
             continue
         xmin, xmax, ymax = default_domain(problem_from_moes(M, L))
-        if M >= 5.0:  # the fixed MODEL.md box, scaled
+        if M >= 5.0:  # the classic fixed box X in [-4.5, 1.5], Y in [-3, 3], scaled
             xmin, xmax, ymax = -4.5, 1.5, 3.0
         row = solve_case(M, L, 1.0, "roelands", "dowson-higginson", n, xmin=xmin * f, xmax=xmax * f,
                          ymax=ymax * f, max_cycles=40)

@@ -1,4 +1,4 @@
-"""Robustness at the points where the classic code diverges (MODEL.md 5): (M, L) = (200, 20)
+"""Robustness at the points where the classic code diverges: (M, L) = (200, 20)
 and (100, 2) with Roelands + DH, and (20, 10) Barus + incompressible on fine grids; also the
 classic settings (V cycles, GS/JD switch 0.3, 16^2 coarsest grid) to show what the
 adaptation is needed for. Records what the solver did (report.extra['actions']).
