@@ -1,4 +1,4 @@
-"""Grid choice from the measured grid-error constants (ehl_multigrid/gridchoice.py)."""
+"""Grid choice from the measured grid-error constants (ehl_multigrid/app/gridchoice.py)."""
 
 import pytest
 
