@@ -23,7 +23,9 @@ MOVED: dict[str, str] = {
         "convergence", "errors", "fits", "groups", "hertz", "lubricant", "results", "scene",
         "solids")},
     **{f"ehl_multigrid.{m}": f"ehl_multigrid.app.{m}" for m in (
-        "cli", "gridchoice", "mainjob", "plan", "sweep", "tasks")},
+        "cli", "mainjob", "plan", "sweep", "tasks")},
+    "ehl_multigrid.gridchoice": "ehl_multigrid.multigrid.gridchoice",
+    "ehl_multigrid.app.gridchoice": "ehl_multigrid.multigrid.gridchoice",
     "ehl_multigrid.solve_cli": "ehl_multigrid.app.solve",
     "ehl_multigrid.line.cli": "ehl_multigrid.app.line_cli",
     "ehl_multigrid.line.plots": "ehl_multigrid.app.line_plots",

@@ -26,7 +26,7 @@ from ..model.constants import ETA_INF, P_R
 from ..model.errors import InputError, require_range
 from ..model.lubricant import density_ratio_dh
 from ..model.scene import Scene
-from .gridchoice import GridChoice, solver_grid
+from ..multigrid.gridchoice import GridChoice, solver_grid
 
 #: Relative accuracy targeted by each fidelity level.
 FIDELITY_TOLERANCE = {"fast": 0.1, "standard": 0.02, "reference": 0.002}
@@ -228,7 +228,7 @@ def temperature_rise_estimate(scene: Scene, us: float, slip: float, h: float) ->
 
 def film_grid(scene: Scene, tol: float) -> GridChoice:
     """Finest grid of the film solver for the scene at tolerance ``tol`` (measured grid-error
-    constants, :mod:`ehl_multigrid.app.gridchoice`; the point solver's own minimum grid as floor)."""
+    constants, :mod:`ehl_multigrid.multigrid.gridchoice`; the point solver's own minimum grid as floor)."""
     M, _ = scene.moes()
     if scene.kind == "line":
         return solver_grid("line", M, tol)

@@ -30,9 +30,11 @@ from typing import Any
 
 import numpy as np
 
-from ..model.errors import ConvergenceError, InputError
+from ..model.errors import ConvergenceError, InputError, require_range
 from ..model.fits import moes_line_central
+from ..multigrid.accuracy import solve_to_accuracy
 from ..multigrid.driver import Measurement, MultilevelSolver
+from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import LineOptions, build_scene_options, scene_solver_table
 from ..multigrid.policy import PolicyParameters, RobustnessPolicy, Settings
 from ..multigrid.result import EHLResult
@@ -44,6 +46,8 @@ from .problem import LineProblem, check_grid
 
 #: Largest grid solved directly by Newton at the start of FMG (dense Jacobian).
 MAX_START_POINTS = 2049
+#: Largest grid an accuracy target may refine to (about 2 s at M = 1000)
+MAX_ACCURACY_POINTS = 32769
 
 HINT = ("more levels or points (finer coarsest grid), W cycles (--cycle W), a smaller "
         "h00_gain, smaller under-relaxation (omega/omega_jd), or a longer inlet (--xmin)")
@@ -129,7 +133,9 @@ class LineHierarchy:
         Hc = self.central_film(lv, st)
         ok = bool(np.all(np.isfinite(lv.P)) and np.isfinite(lv.H0) and np.isfinite(res)
                   and np.all(np.isfinite(st.H)) and Hc > 0.0)
-        return Measurement(res, lv.load() / lv.g - 1.0, Hc, ok)
+        zone = (np.abs(lv.X) <= 1.5) | (lv.P > 0)
+        Hm = float(np.min(st.H[zone])) if zone.any() else math.nan
+        return Measurement(res, lv.load() / lv.g - 1.0, Hc, ok, Hm)
 
     def finite(self) -> bool:
         lv = self.levels[-1]
@@ -358,7 +364,8 @@ def line_solver(problem: LineProblem, options: LineOptions) -> MultilevelSolver:
 def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
                        callback: Callable[[dict[str, Any]], None] | None = None,
                        scene: Any = None, **kw: Any) -> EHLResult:
-    """Solve one :class:`LineProblem`; keyword arguments override ``options``."""
+    """Solve one :class:`LineProblem` as given (no error estimate); keywords override
+    ``options``."""
     from .solution import finish_line_result
 
     opts = LineOptions.build(options, **kw)
@@ -367,13 +374,37 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     return finish_line_result(res, solver, scene)
 
 
+def line_domain_change(problem: LineProblem, options: LineOptions, sol: EHLResult) -> tuple[float, float] | None:
+    """Relative change of (Hc, Hm) when the inlet is moved upstream by the box length at equal
+    mesh size, measured by two converged solves on a coarse grid of the solve (two grids below
+    the finest, not below the FMG start grid); None when either does not converge."""
+    top = sol.levels - 1
+    kp = max(top - 2, min(d["level"] for d in sol.fmg))
+    n_p = (sol.X.shape[0] - 1) // 2 ** (top - kp) + 1
+    wide = dataclasses.replace(problem, xmin=problem.xmin - (problem.xmax - problem.xmin))
+    out = []
+    for pb, n in ((problem, n_p), (wide, 2 * (n_p - 1) + 1)):
+        opts = dataclasses.replace(options, points=n, levels=None, fmg_start_points=None,
+                                   raise_on_failure=False)
+        try:
+            r = solve_line_problem(pb, opts)
+        except (ConvergenceError, InputError):
+            return None
+        if not r.success:
+            return None
+        out.append((r.scalars["Hc_venner"], r.scalars["Hm_venner"]))
+    (c0, m0), (c1, m1) = out
+    return (c1 / c0 - 1.0, m1 / m0 - 1.0)
+
+
 def solve_line(
     M: float | None = None, L: float | None = None, *, scene: Any = None,
     viscosity: str | None = None, density: str | None = None,
     alpha: float | None = None, eta0: float | None = None, p0: float | None = None,
     xmin: float | None = None, xmax: float | None = None, elastic: bool = True,
     callback: Callable[[dict[str, Any]], None] | None = None,
-    options: LineOptions | None = None, **kw: Any,
+    options: LineOptions | None = None, accuracy: float | None = None, estimate: bool = True,
+    max_points: int = MAX_ACCURACY_POINTS, **kw: Any,
 ) -> EHLResult:
     """Solve the steady isothermal EHL line contact (Venner's dimensionless Reynolds, film
     and load equations; Roelands (2.6) and Dowson-Higginson (2.7) by default).
@@ -384,6 +415,14 @@ def solve_line(
     below the explicit arguments. Defaults: Roelands, Dowson-Higginson, xmax = 1.5.
     Numerical options are a :class:`~ehl_multigrid.multigrid.options.LineOptions` and/or
     its fields as keywords (points, levels, cycle, deformation, tol, ...).
+
+    ``accuracy`` (relative, e.g. 0.005) asks for Hc and Hm within that error: the grid is
+    chosen from the measured grid-error constants and refined (one more FMG grid, a wider
+    box, tighter tolerances) until the estimated error meets it or ``max_points`` is reached;
+    an explicit ``points`` or ``xmin`` is kept and only judged. Every result carries its
+    estimated errors (``Hc_error``, ``Hm_error``, ``error.budget``: grid, domain, algebraic)
+    unless ``estimate=False``; with an accuracy, ``success`` also requires the estimate to
+    meet it (status ``"inaccurate"`` otherwise).
 
     Returns an :class:`~ehl_multigrid.multigrid.result.EHLResult`; ``.to_result()`` gives the
     package :class:`~ehl_multigrid.model.results.Result` (kind ``"ehl_line"``).
@@ -406,4 +445,27 @@ def solve_line(
             raise InputError("solve_line needs M and L (Moes groups) or a scene")
         pb = LineProblem.from_moes(M, L, alpha=alpha, eta0=eta0, p0=p0, elastic=elastic, **prob)
     opts = build_scene_options(LineOptions, options, table, kw)
-    return solve_line_problem(pb, opts, callback=callback, scene=scene)
+    if not estimate:
+        return solve_line_problem(pb, opts, callback=callback, scene=scene)
+    explicit = "points" in kw or "points" in table or (options is not None and accuracy is None)
+    fixed_box = xmin is not None or "xmin" in model
+    if accuracy is not None:
+        require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
+    points = opts.points
+    if accuracy is not None and not explicit:
+        points = max(solver_grid("line", pb.M, accuracy).points, 33)
+
+    def solve(n: int, box: float, tol_factor: float) -> EHLResult:
+        p = pb if box == 1.0 else dataclasses.replace(pb, xmin=pb.xmax - box * (pb.xmax - pb.xmin))
+        o = dataclasses.replace(opts, points=n, tol=opts.tol * tol_factor,
+                                tol_load=opts.tol_load * tol_factor, raise_on_failure=False)
+        return solve_line_problem(p, o, callback=callback, scene=scene)
+
+    def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
+        return line_domain_change(res.problem, res.options, res)
+
+    res = solve_to_accuracy(solve, probe, accuracy, points, max_points,
+                            refine=accuracy is not None and not (explicit or fixed_box))
+    if not res.success and opts.raise_on_failure:
+        raise ConvergenceError(f"line solver: {res.message}", res.report, HINT)
+    return res

@@ -54,7 +54,7 @@ class Measurement:
     load_error: float
     Hc: float
     ok: bool
-    level_residual: float = math.nan
+    Hm: float = math.nan
 
 
 @dataclass
@@ -68,6 +68,7 @@ class CycleRecord:
     Hc: float
     work_units: float
     level_residuals: list[float] = field(default_factory=list)
+    Hm: float = math.nan
 
 
 class _Stop(Exception):
@@ -196,7 +197,7 @@ class MultilevelSolver:
     def record(self, k: int, c: int, m: Measurement) -> None:
         """Append an accepted cycle (or a last-resort solve, ``c = -1``) to the histories and
         call the callback."""
-        rec = CycleRecord(k, c, m.residual, m.load_error, m.Hc, self.work_units, list(self._level_res))
+        rec = CycleRecord(k, c, m.residual, m.load_error, m.Hc, self.work_units, list(self._level_res), m.Hm)
         self.history.append(rec)
         if k == len(self.hierarchy.levels) - 1:
             self.residuals.append(m.residual)
@@ -232,13 +233,16 @@ class MultilevelSolver:
             try:
                 k0 = hz.start(self)
                 self.start_level = k0
-                Hc_prev = hz.measure(k0).Hc
-                self.fmg.append({"points": hz.levels[k0].shape[-1], "Hc": Hc_prev, "dHc": math.nan})
+                m0 = hz.measure(k0)
+                Hc_prev = m0.Hc
+                self.fmg.append({"level": k0, "points": hz.levels[k0].shape[-1], "Hc": m0.Hc,
+                                 "Hm": m0.Hm, "dHc": math.nan})
                 for k in range(k0 + 1, top + 1):
                     self._add(hz.fmg_interpolate(k, self.settings))
                     for c in range(o.cycles):
                         m = self.run_cycle(k, c)
-                    self.fmg.append({"points": hz.levels[k].shape[-1], "Hc": m.Hc, "dHc": m.Hc - Hc_prev})
+                    self.fmg.append({"level": k, "points": hz.levels[k].shape[-1], "Hc": m.Hc,
+                                     "Hm": m.Hm, "dHc": m.Hc - Hc_prev})
                     Hc_prev = m.Hc
                 if top == k0 and top > 0:
                     self.run_cycle(top, 0)

@@ -27,6 +27,7 @@ STATUS = {
     3: "diverged",      # every retry of a cycle was rejected, or the iterate holds NaN/inf
     4: "stopped",       # the callback raised StopIteration
     5: "start_failed",  # no usable solution on the start grid
+    6: "inaccurate",    # the iteration converged, but the estimated error exceeds the target
 }
 
 
@@ -36,7 +37,8 @@ class EHLResult:
 
     Attributes
     ----------
-    success : bool -- the iteration met every tolerance (``converged`` is an alias).
+    success : bool -- the iteration met every tolerance and, when an accuracy was requested,
+        the estimated errors of Hc and Hm meet it (``converged`` is an alias).
     status : int -- key of :data:`STATUS`; ``status_name`` its name.
     message : str -- why the solve stopped, and what to try when it failed.
     cycles : int -- accepted FAS cycles on all grids (Newton path: iterations).
@@ -48,7 +50,10 @@ class EHLResult:
     contact : ``"line"`` or ``"point"``; solver : ``"fas"`` or ``"newton"``.
     problem, options : the dimensionless problem and the (immutable) options solved with.
     X, Y, P, H, H0 : grid (Y None for a line contact), pressure, film, film constant.
-    scalars : contact observables (``Hc``, ``Hm``, ...), also readable as attributes.
+    scalars : contact observables (``Hc``, ``Hm``, ``Hc_error``, ``Hm_error`` ...), also
+        readable as attributes.
+    error : :class:`~ehl_multigrid.multigrid.accuracy.ErrorEstimate` (relative errors of Hc
+        and Hm, budget {grid, domain, algebraic}); accuracy : the requested target or None.
     """
 
     status: int
@@ -81,10 +86,17 @@ class EHLResult:
     scalars: dict[str, Any] = field(default_factory=dict)
     extra: dict[str, Any] = field(default_factory=dict)
     builder: Callable[[EHLResult, Any], Result] | None = field(default=None, repr=False)
+    error: Any = None
+    accuracy: float | None = None
 
     def __post_init__(self) -> None:
         self.status_name = STATUS[self.status]
         self.success = self.status == 0
+
+    def set_status(self, status: int, message: str) -> None:
+        self.status, self.message = status, message
+        self.status_name = STATUS[status]
+        self.success = status == 0
 
     def __getattr__(self, name: str) -> Any:
         scal = self.__dict__.get("scalars", {})
@@ -150,8 +162,12 @@ class EHLResult:
         keys = ["Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error",
                 "levels", "points", "cycles", "wall_s", "converged", "X_Hm", "X_spike",
                 "residual", "work_units", "M", "L", "theta", "pmax", "alpha_bar", "lambda_venner",
-                "Hc_dpdx0", "X_dpdx0", "Y_Hm", "Hm_centerline", "P_max", "H00", "final_residual"]
+                "Hc_dpdx0", "X_dpdx0", "Y_Hm", "Hm_centerline", "P_max", "H00", "final_residual",
+                "Hc_error", "Hm_error"]
         out = {k: self.scalars[k] for k in keys if k in self.scalars}
+        if self.error is not None:
+            out["error_budget"] = self.error.budget
+            out["accuracy"] = self.accuracy
         out.update(status=self.status_name, message=self.message, solver=self.solver,
                    actions=list(self.actions))
         return out

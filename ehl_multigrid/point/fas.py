@@ -289,7 +289,8 @@ class PointHierarchy:
         res = self.rel_residual(lev) if ok else math.inf
         lerr = abs(self.load(lev) - self.g_target) / self.g_target if ok else math.inf
         Hc = self.central_film(lev)
-        return Measurement(res, lerr, Hc, ok and bool(np.all(np.isfinite(lev.H))) and Hc > 0.0)
+        return Measurement(res, lerr, Hc, ok and bool(np.all(np.isfinite(lev.H))) and Hc > 0.0,
+                           float(lev.H.min()))
 
     def finite(self) -> bool:
         lev = self.levels[-1]

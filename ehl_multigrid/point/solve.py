@@ -8,17 +8,22 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
-from ..model.errors import InputError, require_choice
+from ..model.errors import ConvergenceError, InputError, require_choice, require_range
+from ..multigrid.accuracy import solve_to_accuracy
+from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import PointOptions, build_scene_options, scene_solver_table
 from ..multigrid.result import EHLResult
 from ..multigrid.threads import preserved_threads
-from .fas import point_solver
+from .fas import HINT, point_solver
 from .postprocess import build_result
-from .problem import PointProblem, min_points, problem_from_moes, problem_from_scene
+from .problem import PointProblem, min_points, problem_from_moes, problem_from_scene, resolve_domain
 
 SOLVERS = ("fas", "newton")
+#: Largest grid an accuracy target may refine to (about 10 s on two cores)
+MAX_ACCURACY_POINTS = 1025
 
 #: The answer of a point-contact solve is the package's one EHL result type.
 PointSolution = EHLResult
@@ -44,6 +49,7 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     sol.contact, sol.solver, sol.problem, sol.options = "point", "fas", problem, opt
     sol.X, sol.Y, sol.P, sol.H = fine.X, fine.Y, fine.P.copy(), fine.H.copy()
     sol.H0, sol.half, sol.levels = hz.H00, opt.half, len(hz.levels)
+    sol.extra.update(domain=(hz.xmin, hz.xmax, hz.ymax), y_ratio=hz.y_ratio)
     sol.extra.update(final_omega=sol.settings.omega, final_omega_jd=sol.settings.omega_jd,
                      final_h00_gain=sol.settings.h00_gain, final_cycle=sol.settings.cycle,
                      final_switch=sol.settings.switch)
@@ -57,13 +63,39 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     return _finish(sol, scene)
 
 
+def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult) -> tuple[float, float] | None:
+    """Relative change of (Hc, Hm) when the box is doubled in X and Y at equal mesh size,
+    measured by two converged solves on a coarse grid of the solve (two grids below the
+    finest, at least the solver's minimum grid); None when either does not converge."""
+    top = sol.levels - 1
+    n_f = sol.X.shape[0]
+    n_p = max((n_f - 1) // 4 + 1, min(min_points(problem.M, problem.b_over_a), n_f)) if top >= 2 else n_f
+    xmin, xmax, ymax = sol.extra["domain"]
+    out = []
+    for n, f in ((n_p, 1.0), (2 * (n_p - 1) + 1, 2.0)):
+        # the probes need the film to well below the domain change, not the load to 1e-5
+        opts = replace(options, points=n, levels=None, n_coarse=None, xmin=f * xmin, xmax=f * xmax,
+                       ymax=f * ymax, y_ratio=sol.extra["y_ratio"], raise_on_failure=False,
+                       tol_load=max(options.tol_load, 1e-4))
+        try:
+            r = solve_fas(problem, opts)
+        except (ConvergenceError, InputError):
+            return None
+        if not r.success:
+            return None
+        out.append((r.scalars["Hc_venner"], r.scalars["Hm_venner"]))
+    (c0, m0), (c1, m1) = out
+    return (c1 / c0 - 1.0, m1 / m0 - 1.0)
+
+
 def solve_point(
     M: float | None = None, L: float | None = None, *, theta: float = 1.0, scene: Any = None,
     viscosity: str | None = None, density: str | None = None,
     alpha: float | None = None, eta0: float | None = None, p0: float | None = None,
     solver: str = "fas", rigid: bool = False,
     callback: Callable[[dict[str, Any]], None] | None = None,
-    options: PointOptions | None = None, **kw: Any,
+    options: PointOptions | None = None, accuracy: float | None = None, estimate: bool = True,
+    max_points: int = MAX_ACCURACY_POINTS, **kw: Any,
 ) -> EHLResult:
     """Solve the steady isothermal EHL point or elliptic contact (Venner's dimensionless
     Reynolds, film and load equations; Roelands (2.6) and Dowson-Higginson (2.7) by default).
@@ -76,6 +108,14 @@ def solve_point(
     semi-system path with pyamg, :class:`~ehl_multigrid.point.newton.NewtonOptions`);
     ``rigid=True`` switches the elastic deformation off (FAS only). Remaining keyword
     arguments are options of the chosen solver.
+
+    ``accuracy`` (relative, e.g. 0.005) asks for Hc and Hm within that error: the grid is
+    chosen from the measured grid-error constants (at least :func:`min_points`) and refined
+    (one more FMG grid, a box twice as wide, tighter tolerances) until the estimated error
+    meets it or ``max_points`` is reached; an explicit ``points`` or box is kept and only
+    judged. Every FAS result carries its estimated errors (``Hc_error``, ``Hm_error``,
+    ``error.budget``: grid, domain, algebraic) unless ``estimate=False``; with an accuracy,
+    ``success`` also requires the estimate to meet it (status ``"inaccurate"`` otherwise).
 
     Returns an :class:`~ehl_multigrid.multigrid.result.EHLResult`.
     """
@@ -95,7 +135,35 @@ def solve_point(
         if rigid:
             kw["elastic"] = False
         opts = build_scene_options(PointOptions, options, table, kw)
-        return solve_fas(pb, opts, callback=callback, scene=scene)
+        if not estimate:
+            return solve_fas(pb, opts, callback=callback, scene=scene)
+        if accuracy is not None:
+            require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
+        explicit = "points" in kw or "points" in table or (options is not None and accuracy is None)
+        fixed_box = any(getattr(opts, k) is not None for k in ("xmin", "xmax", "ymax"))
+        points = opts.points
+        if accuracy is not None and not explicit:
+            points = solver_grid("point", pb.M, accuracy, floor=min_points(pb.M, pb.b_over_a)).points
+        base = resolve_domain(pb, opts.xmin, opts.xmax, opts.ymax)
+        if accuracy is not None and "half" not in kw and "half" not in table and options is None:
+            # smooth contacts are symmetric in Y: the half domain gives the same films (to 1e-8)
+            # in about half the time
+            opts = replace(opts, half=True)
+
+        def solve(n: int, box: float, tol_factor: float) -> EHLResult:
+            dom = {} if box == 1.0 else dict(xmin=box * base[0], xmax=box * base[1], ymax=box * base[2])
+            o = replace(opts, points=n, tol=opts.tol * tol_factor, tol_load=opts.tol_load * tol_factor,
+                        raise_on_failure=False, **dom)
+            return solve_fas(pb, o, callback=callback, scene=scene)
+
+        def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
+            return point_domain_change(pb, res.options, res)
+
+        res = solve_to_accuracy(solve, probe, accuracy, points, max_points,
+                                refine=accuracy is not None and not (explicit or fixed_box))
+        if not res.success and opts.raise_on_failure:
+            raise ConvergenceError(f"point solver: {res.message}", res.report, HINT)
+        return res
     if rigid:
         raise InputError("rigid = True is available with solver = 'fas' only")
     from .newton import solve_newton_amg

@@ -45,7 +45,7 @@ def test_unconverged_solver_film_falls_back_to_the_fit_and_says_so(capsys, tmp_p
     # M = 6114 at 1.93 GPa: forced onto a 129^2 grid (the planner would take 513) the point
     # solver returns converged=False, which must not reach the later stages
     import ehl_multigrid.app.mainjob as mainjob
-    from ehl_multigrid.app.gridchoice import GridChoice
+    from ehl_multigrid.multigrid.gridchoice import GridChoice
 
     monkeypatch.setattr(mainjob, "film_grid", lambda scene, tol: GridChoice(129, 1.0, 0.0, "test"))
     assert main(["run", "series_C_disc3_1.93GPa", "--fidelity", "fast", "--out", str(tmp_path), "--json", "--no-plots"]) == 0

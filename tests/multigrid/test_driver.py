@@ -104,4 +104,4 @@ def test_repr_lists_levels_points_and_mesh_sizes():
 
 
 def test_status_table_is_complete():
-    assert set(STATUS) == {0, 1, 2, 3, 4, 5}
+    assert set(STATUS) == {0, 1, 2, 3, 4, 5, 6}

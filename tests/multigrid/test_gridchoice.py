@@ -1,9 +1,9 @@
-"""Grid choice from the measured grid-error constants (ehl_multigrid/app/gridchoice.py)."""
+"""Grid choice from the measured grid-error constants (ehl_multigrid/multigrid/gridchoice.py)."""
 
 import pytest
 
-from ehl_multigrid.app.gridchoice import grid_error_constant, solver_grid
 from ehl_multigrid.line import solve_line
+from ehl_multigrid.multigrid.gridchoice import grid_error_constant, solver_grid
 
 
 @pytest.mark.parametrize("tol", [0.1, 0.02, 0.002])

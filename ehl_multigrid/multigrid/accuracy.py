@@ -1,0 +1,219 @@
+"""Error estimates of an EHL result: how far its central and minimum film are from the exact
+solution of the model, as relative errors, with the budget split into three parts.
+
+* **grid** -- Richardson from the FMG's own coarser grids: FMG leaves on each grid ``k`` a
+  solution within its algebraic error of that grid's discrete solution, so the films
+  ``F_{k-2}, F_{k-1}, F_k`` of the last three grids give the observed order
+  ``p = log2((F_{k-1} - F_{k-2})/(F_k - F_{k-1}))`` and the error of the finest grid
+  ``|F_k - F_{k-1}|/(2^p - 1)``. The order is capped at 2 (the discretisation's formal
+  order, so a lucky ratio never shrinks the estimate); where the differences change sign or
+  ``p < 1`` (pre-asymptotic, or the irregular minimum film) ``p = 1`` is used. The estimate
+  is multiplied by :data:`GRID_SAFETY`.
+* **domain** -- the change of the film when the box is doubled at equal mesh size (one cheap
+  solve on a coarse grid, done by the contact's solve function), times :data:`DOMAIN_SAFETY`
+  (a truncation error falling like 1/length leaves as much again beyond the doubled box).
+* **algebraic** -- the change of the film over the last finest-grid cycle (iteration error
+  of a contracting iteration with factor <= 1/2), plus the relative load error times the
+  film's load sensitivity (|d ln H / d ln W| < 0.5 over the whole map).
+
+The total is the sum of the three. Every estimate is checked against finer grids, wider
+boxes and tighter tolerances by validation/accuracy.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+#: multiplies the Richardson grid-error estimate
+GRID_SAFETY = 1.5
+#: multiplies the change of the film when the box is doubled
+DOMAIN_SAFETY = 1.5
+#: bound on |d ln H / d ln W| used to turn a load error into a film error
+LOAD_SENSITIVITY = 0.5
+
+
+@dataclass(frozen=True)
+class Richardson:
+    """Grid error of one film from a sequence of nested grids (coarse to fine)."""
+
+    error: float  # estimated absolute error of the finest value
+    order: float  # observed order (NaN with fewer than three grids)
+    extrapolated: float
+    regular: bool  # monotone with 1 <= p
+
+    @property
+    def relative(self) -> float:
+        last = self.extrapolated - self.error if math.isfinite(self.extrapolated) else math.nan
+        return abs(self.error / last) if last else math.inf
+
+
+def richardson(values: list[float], safety: float = GRID_SAFETY) -> Richardson:
+    """Grid-error estimate of ``values[-1]`` from films on grids refined by 2 each time."""
+    v = [float(x) for x in values if math.isfinite(x)]
+    if len(v) < 2:
+        return Richardson(math.inf, math.nan, math.nan, False)
+    d2 = v[-1] - v[-2]
+    if len(v) >= 3:
+        d1 = v[-2] - v[-3]
+        regular = d1 != 0.0 and d2 != 0.0 and (d1 > 0) == (d2 > 0) and abs(d1) > abs(d2)
+        order = math.log2(abs(d1 / d2)) if regular else math.nan
+        if regular and order < 1.0:
+            regular = False
+    else:
+        order, regular = math.nan, False
+    p = min(order, 2.0) if regular else 1.0
+    err = abs(d2) / (2.0**p - 1.0)
+    extrap = v[-1] + d2 / (2.0**p - 1.0)
+    return Richardson(safety * err, order, extrap, regular)
+
+
+@dataclass
+class ErrorEstimate:
+    """Estimated relative errors of Hc and Hm and their budget."""
+
+    Hc: float
+    Hm: float
+    budget: dict[str, dict[str, float]] = field(default_factory=dict)
+    order_Hc: float = math.nan
+    order_Hm: float = math.nan
+    Hc_extrapolated: float = math.nan
+    notes: list[str] = field(default_factory=list)
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"Hc_error": self.Hc, "Hm_error": self.Hm, "error_budget": self.budget,
+                "order_Hc": self.order_Hc, "order_Hm": self.order_Hm,
+                "Hc_extrapolated_venner": self.Hc_extrapolated, "error_notes": list(self.notes)}
+
+
+def estimate_error(result: Any, domain: tuple[float, float] | None = None) -> ErrorEstimate:
+    """Error estimate of a converged multilevel result (films in Venner units).
+
+    ``result`` has ``fmg`` (per FMG grid: ``Hc``, ``Hm``), ``history`` (per cycle: level,
+    ``Hc``, ``Hm``), ``load_error_history``, ``levels`` and the final ``Hc_venner``,
+    ``Hm_venner`` scalars; ``domain`` is the relative change of (Hc, Hm) when the box is
+    doubled, or None when it was not measured (then the domain part is NaN and the total
+    is not known).
+    """
+    Hc, Hm = float(result.scalars["Hc_venner"]), float(result.scalars["Hm_venner"])
+    top = result.levels - 1
+    fmg = [d for d in result.fmg if d.get("level", -1) < top]
+    notes = []
+    rc = richardson([d["Hc"] for d in fmg] + [Hc])
+    rm = richardson([d["Hm"] for d in fmg] + [Hm])
+    if not rc.regular:
+        notes.append("Hc converges irregularly over the last grids: first-order estimate")
+    if not rm.regular:
+        notes.append("Hm converges irregularly over the last grids: first-order estimate")
+    grid = {"Hc": abs(rc.error / Hc), "Hm": abs(rm.error / Hm)}
+    fin = [h for h in result.history if h.level == top]
+    if len(fin) >= 2:
+        alg_c = abs(fin[-1].Hc - fin[-2].Hc) / abs(Hc)
+        alg_m = abs(fin[-1].Hm - fin[-2].Hm) / abs(Hm)
+    else:
+        alg_c = alg_m = grid["Hc"]
+        notes.append("fewer than two finest-grid cycles: algebraic error bounded by the grid error")
+    le = abs(float(result.load_error_history[-1])) if len(result.load_error_history) else math.inf
+    algebraic = {"Hc": alg_c + LOAD_SENSITIVITY * le, "Hm": alg_m + LOAD_SENSITIVITY * le}
+    if domain is None:
+        dom = {"Hc": math.nan, "Hm": math.nan}
+        notes.append("domain error not measured")
+    else:
+        dom = {"Hc": DOMAIN_SAFETY * abs(domain[0]), "Hm": DOMAIN_SAFETY * abs(domain[1])}
+    budget = {"grid": grid, "domain": dom, "algebraic": algebraic}
+    tot = {k: grid[k] + algebraic[k] + (dom[k] if math.isfinite(dom[k]) else 0.0) for k in ("Hc", "Hm")}
+    if domain is None:
+        tot = {k: math.nan for k in tot}
+    return ErrorEstimate(tot["Hc"], tot["Hm"], budget, rc.order, rm.order, rc.extrapolated, notes)
+
+
+@dataclass(frozen=True)
+class Refinement:
+    """One solve of an accuracy-driven sequence: grid, box scale, tolerance and its estimate."""
+
+    points: int
+    box: float
+    tol: float
+    Hc_error: float
+    Hm_error: float
+    wall_s: float
+
+
+def attach_estimate(result: Any, estimate: ErrorEstimate, accuracy: float | None) -> None:
+    """Store the estimate in the result and judge it against ``accuracy``: a result whose
+    iteration converged but whose estimated error exceeds the target gets status 6."""
+    result.error = estimate
+    result.scalars.update(Hc_error=estimate.Hc, Hm_error=estimate.Hm)
+    result.extra["error_budget"] = estimate.budget
+    result.extra["error_notes"] = list(estimate.notes)
+    result.accuracy = accuracy
+    if accuracy is None or not result.success:
+        result.scalars["converged"] = bool(result.success)
+        return
+    worst = max(estimate.Hc, estimate.Hm)
+    if not worst <= accuracy:  # NaN (estimate incomplete) fails too
+        result.set_status(6, f"iteration converged but the estimated error (Hc {estimate.Hc:.2g}, "
+                             f"Hm {estimate.Hm:.2g}) exceeds the requested accuracy {accuracy:g}")
+    result.scalars["converged"] = bool(result.success)
+
+
+def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: int, max_points: int,
+                      box_limit: float = 4.0, refine: bool = True, time_budget: float = math.inf) -> Any:
+    """Solve, estimate, and refine until the estimated errors of Hc and Hm meet ``accuracy``.
+
+    ``solve(points, box, tol_factor) -> result`` runs the contact's solver on a grid of
+    ``points`` along X, the default box scaled by ``box`` and the iteration tolerances scaled
+    by ``tol_factor``; ``probe(result, box) -> (dHc, dHm)`` measures the relative change when
+    that box is doubled. The part of the budget that dominates is refined: one more FMG grid
+    (``points`` doubled, up to ``max_points``), a box twice as wide at the same mesh size
+    (twice the points; up to ``box_limit``) or tolerances ten times tighter. With ``refine=False`` (explicit grid or box) the first
+    result is only judged. Every solve is recorded in ``result.extra['refinements']``.
+    """
+    import time
+
+    t0 = time.perf_counter()
+    box, tol_factor = 1.0, 1.0
+    steps: list[Refinement] = []
+    last_domain: tuple[float, float] | None = None
+    while True:
+        res = solve(points, box, tol_factor)
+        if not res.success:
+            steps.append(Refinement(points, box, tol_factor, math.nan, math.nan, res.wall_s))
+            res.extra["refinements"] = [vars(s) for s in steps]
+            return res
+        dom = probe(res, box)
+        if dom is None and last_domain is not None:
+            # the change measured around a smaller box bounds the one around a wider box
+            dom = last_domain
+            res.extra["domain_note"] = "domain error bounded by the change measured at a smaller box"
+        last_domain = dom if dom is not None else last_domain
+        est = estimate_error(res, dom)
+        attach_estimate(res, est, accuracy)
+        steps.append(Refinement(points, box, tol_factor, est.Hc, est.Hm, res.wall_s))
+        res.extra["refinements"] = [vars(s) for s in steps]
+        if res.success or not refine or accuracy is None:
+            return res
+        b = est.budget
+        part = {k: max(b[k]["Hc"], b[k]["Hm"]) for k in b}
+        worst = max(part, key=lambda k: part[k] if math.isfinite(part[k]) else math.inf)
+        why = ""
+        if time.perf_counter() - t0 > time_budget:
+            why = f"the time budget of {time_budget:g} s is spent"
+        elif worst == "grid" and 2 * (points - 1) + 1 <= max_points:
+            points = 2 * (points - 1) + 1
+        elif worst == "domain" and 2.0 * box <= box_limit and 2 * (points - 1) + 1 <= max_points:
+            # twice the box at the same mesh size: twice the points
+            box, points = 2.0 * box, 2 * (points - 1) + 1
+        elif worst == "algebraic" and tol_factor > 1e-4:
+            tol_factor *= 0.1
+        elif worst == "grid":
+            why = f"the grid error needs more than {max_points} points"
+        elif worst == "domain":
+            why = (f"the domain error needs a box wider than {box:g} times the default, at the same "
+                   f"mesh size more than {max_points} points or a box beyond {box_limit:g} times")
+        else:
+            why = "the algebraic error does not fall with tighter tolerances"
+        if why:
+            res.message += f"; not refined further: {why}"
+            return res
