@@ -138,6 +138,17 @@ def test_numerical_packages_never_import_the_application_or_the_layers_above(gra
     assert violations(graph, NUMERICAL, lambda t: within(t, *above)) == []
 
 
+def test_multilevel_core_never_imports_a_contact(graph):
+    # the core is shared: line and point specialise it, never the other way round
+    contacts = ("ehl_multigrid.line", "ehl_multigrid.point")
+    assert violations(graph, ("ehl_multigrid.multigrid",), lambda t: within(t, *contacts)) == []
+
+
+def test_contacts_do_not_import_each_other(graph):
+    assert violations(graph, ("ehl_multigrid.line",), lambda t: within(t, "ehl_multigrid.point")) == []
+    assert violations(graph, ("ehl_multigrid.point",), lambda t: within(t, "ehl_multigrid.line")) == []
+
+
 def test_thermal_never_imports_mixed(graph):
     assert violations(graph, ("thermal",), lambda t: within(t, "mixed")) == []
 

@@ -1,5 +1,5 @@
 """Elastic deformation ``W_i = sum_j K_|i-j| P_j`` of a line contact, three ways behind one
-interface (MODEL.md 5, film equation; "Elastic deformation"):
+interface (the film equation's elastic integral):
 
 * :class:`DirectDeformation` -- the dense O(N^2) sum (reference, small grids);
 * :class:`FFTDeformation` -- linear convolution by FFT with zero padding (DC-FFT), O(N log N),

@@ -1,4 +1,4 @@
-"""Discrete line-contact EHL equations (MODEL.md 5), numba kernels.
+"""Discrete line-contact EHL equations (Reynolds, film and load in Venner's form), numba kernels.
 
 On a uniform grid ``X_i = X_0 + i h``, ``i = 0 .. n-1``, with ``P_0 = P_{n-1} = 0``:
 

@@ -1,4 +1,4 @@
-"""Elastic log kernel of the line-contact film equation (MODEL.md 5, film equation).
+"""Elastic log kernel of the line-contact film equation.
 
 The film equation ``H = H0 + X^2/2 - (1/pi) int ln|X - X'| P(X') dX'`` is discretised with
 ``P`` piecewise constant on cells of width ``h`` centred on the nodes, so the deformation

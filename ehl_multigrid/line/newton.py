@@ -1,7 +1,7 @@
 """Coarsest-grid solver: damped semismooth Newton on the full discrete system.
 
 Unknowns ``(P_1 .. P_{n-2}, H0)``; equations: the Reynolds complementarity
-``min(P_i, s_i r_i) = 0`` (``r = f - L(P)``, ``s_i = 1/|dL_i/dP_i|``, MODEL.md 5 cavitation)
+``min(P_i, s_i r_i) = 0`` (``r = f - L(P)``, ``s_i = 1/|dL_i/dP_i|``, cavitation as complementarity)
 and the load ``h sum P = g``. The Jacobian is dense (the film depends on every pressure through
 the log kernel, and ``eps`` on the film, density and viscosity), so this is only used on the
 coarsest grid (tens to a few hundred points), where it makes the bottom of every cycle

@@ -1,10 +1,10 @@
-"""The steady isothermal EHL line-contact problem in Venner's dimensionless form (MODEL.md 5).
+"""The steady isothermal EHL line-contact problem in Venner's dimensionless form (Venner & Lubrecht 2000).
 
 A :class:`LineProblem` holds the Moes groups (M, L), the lubricant model (viscosity and density
 laws with the oil data they need), the domain and whether the surfaces deform. Build it from a
 scene (physical units; ``eta0`` at the oil inlet temperature through Roelands' temperature
 term) with :meth:`LineProblem.from_scene`, or from Moes (M, L) with
-:meth:`LineProblem.from_moes` (oil defaults :data:`ehl_multigrid.solve_cli.MOES_ONLY_DEFAULTS`).
+:meth:`LineProblem.from_moes` (oil defaults :data:`ehl_multigrid.model.constants.MOES_ONLY_DEFAULTS`).
 """
 
 from __future__ import annotations
@@ -32,7 +32,7 @@ class LineProblem:
 
     Attributes
     ----------
-    M, L : Moes load and lubricant parameters (sum-velocity scaling, MODEL.md 4).
+    M, L : Moes load and lubricant parameters (sum-velocity scaling, thesis 2.1.4).
     viscosity : ``"roelands"`` or ``"barus"``.
     density : ``"dowson-higginson"`` or ``"incompressible"``.
     alpha : pressure-viscosity coefficient [1/Pa] (Roelands-equivalent at p = 0).
@@ -105,7 +105,7 @@ class LineProblem:
         xmin: float | None = None, xmax: float = 1.5, elastic: bool = True,
         us: float | None = None, load: float | None = None,
     ) -> LineProblem:
-        """Problem for a line-contact :class:`~ehl_multigrid.scene.Scene` at its operating
+        """Problem for a line-contact :class:`~ehl_multigrid.model.scene.Scene` at its operating
         point (or the given ``us`` [m/s], ``load`` [N]). ``eta0`` and ``alpha`` are taken at
         the oil temperature ``T_oil`` (Roelands' temperature term); ``z`` is the oil's."""
         if scene.kind != "line":
@@ -154,7 +154,7 @@ class LineProblem:
 
 
 def default_xmin(M: float, L: float) -> float:
-    """Default inlet ``X = x/b``: -4.5 (MODEL.md 5), moved upstream at low load.
+    """Default inlet ``X = x/b``: -4.5 (Venner & Lubrecht's classic box), moved upstream at low load.
 
     The inlet zone scales with the rigid length ``sqrt(2 H)`` (H Venner, from the Moes fit);
     the inlet is put 20 such lengths upstream of the contact edge when that is beyond -4.5.

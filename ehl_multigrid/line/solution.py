@@ -1,6 +1,6 @@
 """Result of a line-contact solve, and its conversion to the core :class:`Result`.
 
-Definitions (Venner's dimensionless variables, MODEL.md 5):
+Definitions (Venner's dimensionless variables, Venner & Lubrecht 2000):
 
 * ``Hc_venner`` -- film at ``X = 0`` (linear interpolation between nodes);
 * ``Hm_venner``, ``X_Hm`` -- minimum film and its position (the outlet constriction); the

@@ -1,4 +1,4 @@
-"""Elastic deformation ``W(X, Y) = ∫∫ P(X', Y') / r dX' dY'`` on a uniform grid (MODEL.md 5).
+"""Elastic deformation ``W(X, Y) = ∫∫ P(X', Y') / r dX' dY'`` on a uniform grid (the film equation's elastic integral).
 
 The pressure is taken uniform on each rectangular cell ``hx x hy`` centred on a node; the
 kernel is the exact integral of ``1/r`` over such a cell (Venner & Lubrecht, ch. 13):

@@ -1,5 +1,5 @@
 """Compiled kernels of the point-contact solver: lubricant relations, the discrete Reynolds
-operator (MODEL.md 5), zebra line relaxation and grid transfers.
+operator, zebra line relaxation and grid transfers.
 
 Arrays are ``[j, i]`` = (Y row, X column); lines run along X. ``sym`` marks a half-domain
 grid whose row 0 is the centre line Y = 0 (mirror neighbour row 1).
@@ -90,7 +90,7 @@ def operator(P, H, rho, eps, hx, hy, sym, order, out):
 @njit(cache=True, parallel=True)
 def residual(P, H, rho, eps, f, hx, hy, sym, order, out):
     """Complementarity residual: ``f - L(P)`` where P > 0; where P = 0 only the part that
-    would raise P (``min(r, 0)``) counts (cavitation, MODEL.md 5)."""
+    would raise P (``min(r, 0)``) counts (cavitation as complementarity)."""
     operator(P, H, rho, eps, hx, hy, sym, order, out)
     ny, nx = P.shape
     j0 = 0 if sym else 1
@@ -259,7 +259,7 @@ def _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order):
 
 @njit(cache=True, parallel=True)
 def relax_sweep(P, H, rho, eps, f, D, Kc, hx, hy, sym, thr, w_gs, w_jd, order):
-    """One zebra line-relaxation sweep along X (MODEL.md 5, Venner-style).
+    """One zebra line-relaxation sweep along X (Venner-style).
 
     Lines of even j, then odd j, are each relaxed in parallel (prange); within a line the
     points with ``eps/hx^2 >= thr`` (or P = 0) take a Gauss-Seidel change, the others a

@@ -1,4 +1,4 @@
-"""Dimensionless point-contact EHL problem (MODEL.md section 5, circular and elliptic).
+"""Dimensionless point-contact EHL problem (Venner's form, circular and elliptic).
 
 Scaling: ``X = x/a``, ``Y = y/a`` (``a`` the Hertz semi-axis along the rolling direction x),
 ``P = p/pmax``, ``H = h Rx/a^2``. With Hertz ``a = f W^(1/3) Rx``, ``pmax = g W^(1/3) E'``
@@ -11,7 +11,7 @@ equations become
 * load ``∫∫ P dX dY = 1/(g f^2) = 2 pi b/(3 a)``;
 * ``alpha_bar = alpha pmax = g L M^(1/3)``; ``H_Moes = H_Venner f^2 M^(2/3)``.
 
-For a circular contact f = (3/2)^(1/3), g = f/pi, which gives MODEL.md's
+For a circular contact f = (3/2)^(1/3), g = f/pi, which gives Venner's
 ``lambda = (128 pi^3/(3 M^4))^(1/3)``, ``cd = 2/pi^2``, load ``2 pi/3`` and
 ``H_Moes = H_Venner (3M/2)^(2/3)``.
 """
@@ -44,7 +44,7 @@ class PointProblem:
 
     Attributes
     ----------
-    M, L : Moes load and lubricant parameters (point-contact groups, MODEL.md 4) [-]
+    M, L : Moes load and lubricant parameters (point-contact groups used with (2.23)) [-]
     theta : ellipticity Rx/Ry [-]
     viscosity : ``roelands`` or ``barus``
     density : ``dowson-higginson`` or ``incompressible``
@@ -62,8 +62,8 @@ class PointProblem:
     theta: float = 1.0
     viscosity: str = "roelands"
     density: str = "dowson-higginson"
-    alpha: float = 2.2e-8
-    eta0: float = 0.04
+    alpha: float = MOES_ONLY_DEFAULTS["alpha"]
+    eta0: float = MOES_ONLY_DEFAULTS["eta0"]
     p_r: float = MOES_ONLY_DEFAULTS["p0"]
     a: float = math.nan
     b: float = math.nan
@@ -154,7 +154,7 @@ class PointProblem:
 def problem_from_moes(M: float, L: float, theta: float = 1.0, viscosity: str = "roelands",
                       density: str = "dowson-higginson", alpha: float | None = None,
                       eta0: float | None = None, p0: float | None = None) -> PointProblem:
-    """Moes-only problem; the oil defaults are ``ehl_multigrid.solve_cli.MOES_ONLY_DEFAULTS``."""
+    """Moes-only problem; the oil defaults are ``ehl_multigrid.model.constants.MOES_ONLY_DEFAULTS``."""
     from ..model.constants import MOES_ONLY_DEFAULTS as D
 
     return PointProblem(
@@ -197,13 +197,13 @@ def rigid_length(problem: PointProblem) -> float:
 def domain_scale(problem: PointProblem) -> float:
     """Factor >= 1 by which the default domain is widened in the thick-film (low M) regime:
     ``max(1, (1 + 3 s)/4.5)``, so that the inlet holds at least 3 inlet lengths ``s`` upstream
-    of the contact (s from :func:`rigid_length`). It is 1 (MODEL.md 5's domain) while
+    of the contact (s from :func:`rigid_length`). It is 1 (the classic domain) while
     s <= 1.17 (M >~ 5 at L = 0, every M >= 10 for L <= 25) and 5.5 at M = 1, L = 0."""
     return max(1.0, (1.0 + 3.0 * rigid_length(problem)) / 4.5)
 
 
 def default_domain(problem: PointProblem) -> tuple[float, float, float]:
-    """Default ``(xmin, xmax, ymax)`` in units of a: MODEL.md 5's X in [-4.5, 1.5],
+    """Default ``(xmin, xmax, ymax)`` in units of a: the classic X in [-4.5, 1.5],
     Y in [-3, 3] b/a, scaled by :func:`domain_scale` at low M.
 
     Measured (validation/point/REPORT.md): doubling the [-4.5, 1.5] x 3 domain at equal mesh

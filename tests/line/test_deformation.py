@@ -1,4 +1,4 @@
-"""Elastic deformation paths (MODEL.md 5 film equation): FFT and MLMI against the direct sum."""
+"""Elastic deformation paths (the film equation's elastic integral): FFT and MLMI against the direct sum."""
 
 import numpy as np
 import pytest

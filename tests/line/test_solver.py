@@ -1,4 +1,4 @@
-"""Line-contact multigrid solver (MODEL.md 5): balance, cavitation, limits, regression, errors."""
+"""Line-contact multigrid solver: balance, cavitation, limits, regression, errors."""
 
 import json
 import math
@@ -20,7 +20,7 @@ def sol_20_10():
 
 
 def test_load_balance_holds_at_convergence(sol_20_10):
-    # force balance: integral of P dX = pi/2 (MODEL.md 5)
+    # force balance: integral of P dX = pi/2 (Venner's load equation)
     s = sol_20_10
     h = s.X[1] - s.X[0]
     assert s.converged
@@ -55,7 +55,7 @@ def test_regression_against_stored_fine_grid_hc(sol_20_10):
 
 
 def test_moving_the_inlet_changes_hc_less_than_the_discretisation_error(sol_20_10):
-    # MODEL.md 5: the default inlet (default_xmin) is far enough upstream when moving it
+    # the default inlet (default_xmin) is far enough upstream when moving it
     # further changes Hc by less than the discretisation error. Same mesh size h: the domain
     # is doubled upstream with twice the intervals.
     case = REF["cases"]["M20_L10"]
@@ -69,7 +69,7 @@ def test_moving_the_inlet_changes_hc_less_than_the_discretisation_error(sol_20_1
 
 
 def test_rigid_isoviscous_limit_is_martins_2_45_over_M():
-    # L = 0, no deformation: Hc M = 2.45 exactly (Martin, Reynolds exit condition; MODEL.md 6)
+    # L = 0, no deformation: Hc M = 2.45 exactly (Martin, Reynolds exit condition)
     s = solve_line(10.0, 0.0, points=1025, elastic=False, xmin=-6.0, xmax=1.0, fmg_start_points=257)
     assert s.converged
     assert s.Hc * 10.0 == pytest.approx(2.45, rel=0.01)

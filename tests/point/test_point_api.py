@@ -111,7 +111,7 @@ def test_highly_piezoviscous_case_converges_with_the_default_switch():
     sol = solve_point(100, 20, points=257, max_cycles=30)
     assert sol.converged, sol.report.message
     assert sol.report.extra["final_switch"] >= 40.0
-    low = solve_point(100, 20, points=257, max_cycles=30, thr=1.0, adapt=False)
+    low = solve_point(100, 20, points=257, max_cycles=30, switch=1.0, adapt=False)
     assert not low.converged
 
 

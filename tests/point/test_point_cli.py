@@ -1,4 +1,4 @@
-"""``ehl solve --contact point|elliptic`` through ehl_multigrid.cli.main."""
+"""``ehl solve --contact point|elliptic`` through ehl_multigrid.app.cli.main."""
 
 import json
 

@@ -1,4 +1,4 @@
-"""Deformation paths against the direct O(N^2) sum (MODEL.md 5, film equation)."""
+"""Deformation paths against the direct O(N^2) sum (the film equation's elastic integral)."""
 
 import numpy as np
 import pytest
@@ -33,7 +33,7 @@ def test_cell_kernel_self_term_is_exact_square_integral():
 
 
 def test_hertz_deformation_at_centre_is_one():
-    # (2/pi^2) ∫∫ sqrt(1 - r^2)/r = 1 at the centre (circular Hertz, MODEL.md 5)
+    # (2/pi^2) ∫∫ sqrt(1 - r^2)/r = 1 at the centre (circular Hertz)
     n = 129
     X = np.linspace(-4.5, 1.5, n)
     Y = np.linspace(-3, 3, n)

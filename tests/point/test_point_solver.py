@@ -1,4 +1,4 @@
-"""FAS/FMG point-contact solver (MODEL.md 5): load balance, cavitation, symmetry, the rigid
+"""FAS/FMG point-contact solver: load balance, cavitation, symmetry, the rigid
 limit against an independent direct solve, the Newton/pyamg path, regression and errors."""
 
 import json
