@@ -32,6 +32,8 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
         raise InputError("--solver newton is the point-contact cross-check path; line contacts use "
                          "the FAS solver (whose coarsest grid is already solved by Newton)")
     opts = {key: getattr(args, arg) for arg, key in _ARG_OPTIONS.items() if getattr(args, arg, None) is not None}
+    opts["accuracy"] = getattr(args, "accuracy", None)
+    opts["raise_on_failure"] = False  # an unconverged or inaccurate result is written and says so
     model = {k: getattr(args, k, None) for k in ("viscosity", "density", "xmin", "xmax")}
     elastic = not getattr(args, "rigid", False)
     if scene is None:

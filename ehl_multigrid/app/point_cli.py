@@ -19,10 +19,9 @@ DEFAULT_POINTS = 257
 
 def options_from_args(args: argparse.Namespace, scene=None) -> dict:
     """FAS option keywords from the command line; the scene's ``[solver.ehl]`` table applies
-    below them in :func:`~ehl_multigrid.point.solve.solve_point`, and ``points`` defaults to
-    :data:`DEFAULT_POINTS` when neither gives it."""
-    table = (scene.solver.get("ehl") or {}) if scene is not None else {}
-    kw: dict = {} if "points" in table else {"points": DEFAULT_POINTS}
+    below them in :func:`~ehl_multigrid.point.solve.solve_point`; without ``points`` the
+    solver chooses the grid from the accuracy target (``--accuracy``)."""
+    kw: dict = {}
     cli = {
         "points": args.points, "levels": args.levels, "cycle": args.cycle, "cycles": args.cycles,
         "max_cycles": args.max_cycles, "deformation": args.deformation, "xmin": args.xmin,
@@ -87,7 +86,9 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
             raise InputError("--rigid applies to --solver fas only")
         opt = newton_options_from_args(args, scene)
     else:
-        opt = PointOptions.build(**options_from_args(args, scene))
+        fas_kw = options_from_args(args, scene)
+        fas_kw["accuracy"] = getattr(args, "accuracy", None)
+        opt = PointOptions.build(**{k: v for k, v in fas_kw.items() if k != "accuracy"})
     quiet = bool(getattr(args, "json", False))
     if not quiet:
         if scene is None:
@@ -104,10 +105,10 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
     if scene is None:
         sol = solve_point(pb.M, pb.L, theta=pb.theta, viscosity=pb.viscosity, density=pb.density,
                           alpha=pb.alpha, eta0=pb.eta0, p0=pb.p_r, solver=solver, rigid=rigid,
-                          **(vars(opt) if solver == "newton" else options_from_args(args, scene)))
+                          **(vars(opt) if solver == "newton" else fas_kw))
     else:
         sol = solve_point(scene=scene, viscosity=pb.viscosity, density=pb.density, solver=solver,
-                          rigid=rigid, **(vars(opt) if solver == "newton" else options_from_args(args, scene)))
+                          rigid=rigid, **(vars(opt) if solver == "newton" else fas_kw))
     res = sol.to_result(scene)
     name = scene.name if scene is not None else f"point_M{pb.M:g}_L{pb.L:g}_th{pb.theta:g}"
     out = Path(getattr(args, "out", "ehl_out"))

@@ -110,6 +110,9 @@ def line_result(sol: EHLResult, scene: Any = None) -> Result:
     for k, v in sol.scalars.items():
         res.set_scalar(k, v, units.get(k, "-"))
     res.set_scalar("status", sol.status_name)
+    if sol.error is not None:
+        res.meta["error_budget"] = sol.error.budget
+        res.meta["accuracy"] = sol.accuracy
     res.meta["problem"] = pb.describe()
     res.meta["options"] = sol.options.describe()
     res.meta["actions"] = list(sol.actions)

@@ -129,6 +129,11 @@ def build_result(sol, scene=None, extra_scalars: dict | None = None) -> Result:
     res.meta["actions"] = list(sol.actions)
     res.meta["solver"] = sol.solver
     res.set_scalar("status", sol.status_name)
+    if getattr(sol, "error", None) is not None:
+        res.set_scalar("Hc_error", float(sol.error.Hc))
+        res.set_scalar("Hm_error", float(sol.error.Hm))
+        res.meta["error_budget"] = sol.error.budget
+        res.meta["accuracy"] = sol.accuracy
     return res
 
 
@@ -137,7 +142,10 @@ def summary_payload(res: Result) -> dict:
     keys = ["Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error", "levels",
             "points", "cycles", "wall_s", "converged", "Hc_dpdx0", "X_dpdx0", "X_Hm", "Y_Hm",
             "Hm_centerline", "X_spike", "P_max", "H00", "M", "L", "theta", "final_residual",
-            "work_units", "message"]
+            "work_units", "message", "status", "Hc_error", "Hm_error"]
     out = {k: res.scalars.get(k) for k in keys}
     out["actions"] = res.meta.get("actions", [])
+    if "error_budget" in res.meta:
+        out["error_budget"] = res.meta["error_budget"]
+        out["accuracy"] = res.meta.get("accuracy")
     return out

@@ -7,6 +7,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
@@ -19,7 +20,14 @@ from ..multigrid.result import EHLResult
 from ..multigrid.threads import preserved_threads
 from .fas import HINT, point_solver
 from .postprocess import build_result
-from .problem import PointProblem, min_points, problem_from_moes, problem_from_scene, resolve_domain
+from .problem import (
+    PointProblem,
+    default_domain,
+    min_points,
+    problem_from_moes,
+    problem_from_scene,
+    resolve_domain,
+)
 
 SOLVERS = ("fas", "newton")
 #: Largest grid an accuracy target may refine to (about 10 s on two cores)
@@ -69,8 +77,12 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     finest, at least the solver's minimum grid); None when either does not converge."""
     top = sol.levels - 1
     n_f = sol.X.shape[0]
-    n_p = max((n_f - 1) // 4 + 1, min(min_points(problem.M, problem.b_over_a), n_f)) if top >= 2 else n_f
     xmin, xmax, ymax = sol.extra["domain"]
+    # the probe's mesh is no coarser than the solver's minimum grid on the default box
+    d0 = default_domain(problem)
+    scale = 2 ** max(0, round(math.log2((xmax - xmin) / (d0[1] - d0[0]))))
+    n_min = (min_points(problem.M, problem.b_over_a) - 1) * scale + 1
+    n_p = min(max((n_f - 1) // 4 + 1, n_min), n_f) if top >= 2 else n_f
     out = []
     for n, f in ((n_p, 1.0), (2 * (n_p - 1) + 1, 2.0)):
         # the probes need the film to well below the domain change, not the load to 1e-5

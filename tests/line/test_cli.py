@@ -20,7 +20,7 @@ def test_solve_line_json(capsys, tmp_path):
 
 
 def test_solve_line_prints_the_oil_used_without_json(capsys, tmp_path):
-    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "513",
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "513", "--accuracy", "none",
                "--out", str(tmp_path), "--no-plots"])
     assert rc == 0
     text = capsys.readouterr().out
@@ -28,7 +28,38 @@ def test_solve_line_prints_the_oil_used_without_json(capsys, tmp_path):
 
 
 def test_solve_line_bad_levels_exits_2(capsys, tmp_path):
-    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "257",
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "257", "--accuracy", "none",
                "--levels", "12", "--out", str(tmp_path)])
     assert rc == 2
     assert "levels" in capsys.readouterr().err
+
+
+def test_default_solve_meets_the_default_accuracy_and_states_its_error(capsys, tmp_path):
+    from ehl_multigrid.model.results import Result
+
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--json", "--no-plots",
+               "--out", str(tmp_path)])
+    d = json.loads(capsys.readouterr().out)
+    assert rc == 0 and d["status"] == "converged" and d["accuracy"] == 0.005
+    assert d["Hc_error"] <= 0.005 and d["Hm_error"] <= 0.005
+    assert set(d["error_budget"]) == {"grid", "domain", "algebraic"}
+    saved = Result.load(tmp_path / "line_M20_L10.h5")
+    assert saved.scalars["Hc_error"] == d["Hc_error"]
+
+
+def test_explicit_coarse_grid_is_judged_against_the_accuracy_and_exits_3(capsys, tmp_path):
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "257",
+               "--accuracy", "0.001", "--json", "--no-plots", "--out", str(tmp_path)])
+    d = json.loads(capsys.readouterr().out)
+    assert rc == 3 and d["status"] == "inaccurate" and d["converged"] is False
+    assert d["Hc_error"] > 0.001
+
+
+def test_accuracy_outside_its_range_is_a_usage_error(capsys, tmp_path):
+    import pytest
+
+    with pytest.raises(SystemExit) as exc:
+        main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--accuracy", "2",
+              "--out", str(tmp_path)])
+    assert exc.value.code == 2
+    assert "accuracy = 2 is outside the allowed range" in capsys.readouterr().err

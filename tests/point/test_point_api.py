@@ -82,16 +82,16 @@ def test_unconverged_coarse_high_M_solve_names_the_grid_it_needs():
 
 
 def test_cli_solver_newton_and_rigid(tmp_path, capsys):
-    rc = main(["solve", "--M", "20", "--L", "10", "--contact", "point", "--points", "65",
+    rc = main(["solve", "--M", "20", "--L", "10", "--contact", "point", "--points", "65", "--accuracy", "none",
                "--solver", "newton", "--json", "--no-plots", "--out", str(tmp_path)])
     assert rc == 0
     d = json.loads(capsys.readouterr().out)
     assert d["solver"] == "newton" and d["converged"]
-    rc = main(["solve", "--M", "3", "--L", "0", "--contact", "point", "--points", "65", "--rigid",
+    rc = main(["solve", "--M", "3", "--L", "0", "--contact", "point", "--points", "65", "--accuracy", "none", "--rigid",
                "--json", "--no-plots", "--out", str(tmp_path)])
     assert rc == 0
     rigid = json.loads(capsys.readouterr().out)
-    main(["solve", "--M", "3", "--L", "0", "--contact", "point", "--points", "65",
+    main(["solve", "--M", "3", "--L", "0", "--contact", "point", "--points", "65", "--accuracy", "none",
           "--json", "--no-plots", "--out", str(tmp_path)])
     elastic = json.loads(capsys.readouterr().out)
     # the elastic bodies flatten in the contact and carry the load on a thicker film

@@ -12,7 +12,7 @@ KEYS = {"Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error
 
 
 def test_cli_json_moes_only(tmp_path, capsys):
-    rc = main(["solve", "--contact", "point", "--M", "20", "--L", "10", "--points", "65",
+    rc = main(["solve", "--contact", "point", "--M", "20", "--L", "10", "--points", "65", "--accuracy", "none",
                "--json", "--out", str(tmp_path), "--no-plots"])
     out = capsys.readouterr().out
     assert rc == 0
@@ -29,7 +29,7 @@ def test_cli_json_moes_only(tmp_path, capsys):
 
 def test_cli_prints_the_oil_used_in_moes_only_mode(tmp_path, capsys):
     rc = main(["solve", "--contact", "elliptic", "--ellipticity", "4", "--M", "20", "--L", "5",
-               "--points", "65", "--out", str(tmp_path), "--alpha", "1.5e-8"])
+               "--points", "257", "--accuracy", "none", "--out", str(tmp_path), "--alpha", "1.5e-8"])
     out = capsys.readouterr().out
     assert rc == 0
     assert "alpha = 1.5e-08" in out and "eta0 = 0.04" in out and "p0 = 1.96e+08" in out
@@ -37,8 +37,8 @@ def test_cli_prints_the_oil_used_in_moes_only_mode(tmp_path, capsys):
 
 
 def test_cli_scene_gives_physical_films(tmp_path, capsys):
-    rc = main(["solve", "appendix_d_point", "--points", "65", "--json", "--no-plots", "--out", str(tmp_path),
-               "--max-cycles", "2"])
+    rc = main(["solve", "appendix_d_point", "--points", "257", "--accuracy", "none", "--json", "--no-plots",
+               "--out", str(tmp_path)])
     payload = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert rc == 0
     assert payload["hc"] > 0 and payload["hm"] > 0
