@@ -187,7 +187,7 @@ class PointOptions(MultigridOptions):
     Adds: ``n_coarse`` -- intervals of the coarsest grid along X (None: from M and the
     domain); ``xmin, xmax, ymax`` -- domain in units of a (None: the default box, widened at
     low M); ``y_ratio`` -- (points along Y - 1)/(points - 1), a power of 2 (None: near-square
-    cells); ``half`` -- solve Y >= 0 only (symmetric contact); ``coarse_sweeps`` -- relaxations
+    cells, stretched with the ellipse when b > a); ``half`` -- solve Y >= 0 only (symmetric contact); ``coarse_sweeps`` -- relaxations
     per coarsest-grid visit; ``elastic`` -- False for rigid surfaces.
     """
 
