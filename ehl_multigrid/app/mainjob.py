@@ -10,10 +10,25 @@
 4. All results go into one HDF5 file (rewritten atomically after every stage, so an interrupted
    run keeps the finished stages) and a Markdown report with the figures says what was modelled
    and why.
+
+Outputs are one set per scene: ``<stem>.h5``, ``<stem>_report.md`` and the figures, where
+``<stem>`` is the scene name made safe as a file name (:func:`~ehl_multigrid.model.paths.safe_stem`;
+nothing is ever written outside the output folder). The run writes into a hidden staging
+folder inside the output folder and then moves its files into place, removing the files of
+the scene's previous run that the new set does not replace (listed in ``.ehl-run-<stem>.json``),
+so a reused folder never shows old figures beside a new film, and runs of different scenes into
+one folder keep each other's outputs. The HDF5 file's root attribute ``complete`` is false until
+every stage has run; an interrupted run still moves its finished stages into place, marked
+incomplete in the file and in the report.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import json
+import os
+import shutil
+import tempfile
 import time
 from dataclasses import dataclass
 from importlib.metadata import entry_points
@@ -24,10 +39,11 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..model.hertz import hertz_pressure_line, hertz_pressure_point
+from ..model.paths import default_file_mode, safe_stem, writable_dir
 from ..model.results import Result, save_results
 from ..model.scene import Scene
 from .console import print_table
-from .plan import film_grid, make_plan, print_plan
+from .plan import make_plan, print_plan
 from .stages import RunContext, StageOutput
 
 __all__ = ["MainJobOptions", "RunContext", "StageOutput", "film_stage", "hertz_result",
@@ -117,35 +133,43 @@ def film_stage(ctx: RunContext) -> StageOutput:
     contact = "line" if scene.kind == "line" else "point"
     figures: list[Path] = []
     if dec.setting == "multigrid solver":
-        points = film_grid(scene, plan.tolerance).points
+        # the fidelity's tolerance is the solver's accuracy target: it picks and refines grid and
+        # box until its error estimate meets it (a [solver.ehl] grid in the scene is kept and judged)
         if contact == "line":
             from ..line import solve_line
 
-            sol = solve_line(scene=scene, points=points)
-            res = sol.to_result(scene)
+            sol = solve_line(scene=scene, accuracy=plan.tolerance, raise_on_failure=False)
         else:
             from ..point import solve_point
 
             # smooth point and elliptic contacts are symmetric in Y: the half domain gives the same
-            # films (tested to 1e-5, measured 4e-8) in about 80 % of the time
-            res = solve_point(scene=scene, points=points, half=True).to_result(scene)
-        if not res.scalars.get("converged") or not (res.scalars.get("hm") or 0.0) > 0.0:
+            # films (tested to 1e-5, measured 4e-8) in about half the time
+            sol = solve_point(scene=scene, accuracy=plan.tolerance, half=True)
+        res = sol.to_result(scene)
+        points = res.scalars.get("points")
+        if sol.status_name not in ("converged", "inaccurate") or not (res.scalars.get("hm") or 0.0) > 0.0:
             # an unconverged or non-positive film must not feed the later stages: fall back to
             # Hertz + fit and say so in the plan and the report
             note = (f"multigrid solve on {points} points did not give a converged positive film "
-                    f"(converged = {res.scalars.get('converged')}, hm = {res.scalars.get('hm')}); "
-                    "film from the fit instead")
+                    f"(status {sol.status_name}, hm = {res.scalars.get('hm')}); film from the fit instead")
             plan.notes.append(note)
             dec.setting = "fit (solver fallback)"
             out = _fit_film_output(ctx)
             out.text = note + ". " + out.text
             out.summary["solver_fallback"] = True
             return out
-        summary = {k: res.scalars.get(k) for k in ("Hc", "Hm", "hc", "hm", "p_spike", "load_error", "points", "converged")}
+        if sol.status_name == "inaccurate":
+            # still far closer than the fit (whose deviation made the planner call the solver):
+            # used, with its estimated error stated
+            plan.notes.append(f"film solve did not reach the {plan.tolerance:g} target: estimated "
+                              f"errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g}")
+        summary = {k: res.scalars.get(k) for k in ("Hc", "Hm", "hc", "hm", "p_spike", "load_error", "points",
+                                                     "converged", "Hc_error", "Hm_error")}
         summary["Hc_fit"], summary["hc_fit"] = scene.central_film_fit()
         text = (f"Film from the multigrid solver on {points} points per direction: hc = {res.scalars['hc'] * 1e9:.4g} nm, "
                 f"hm = {res.scalars['hm'] * 1e9:.4g} nm (fit: hc = {summary['hc_fit'] * 1e9:.4g} nm); "
-                f"load error {res.scalars['load_error']:.2g}, converged: {res.scalars['converged']}.")
+                f"estimated errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g} (target {plan.tolerance:g}); "
+                f"load error {res.scalars['load_error']:.2g}, status: {sol.status_name}.")
         if ctx.plots:
             if contact == "line":
                 from .line_plots import plot_solution
@@ -180,9 +204,13 @@ def registered_stages() -> list[tuple[str, Any]]:
     return [(name, fn) for _, name, fn in sorted(stages, key=lambda t: (t[0], t[1]))]
 
 
-def write_report(ctx: RunContext, path: Path) -> Path:
+def write_report(ctx: RunContext, path: Path, missing: list[str] | None = None) -> Path:
+    """The Markdown report of the run; ``missing`` names stages that did not run (interrupted)."""
     sc, plan = ctx.scene, ctx.plan
     lines = [f"# {sc.name}", "", sc.description, ""]
+    if missing:
+        lines += [f"**Incomplete run**: interrupted before the stage(s) {', '.join(missing)}; the results "
+                  "below are those that finished (the HDF5 file says complete = false).", ""]
     if sc.source:
         lines += [f"Source: {sc.source}", ""]
     s = sc.summary()
@@ -202,16 +230,61 @@ def write_report(ctx: RunContext, path: Path) -> Path:
     return path
 
 
+def _publish(staging: Path, out: Path, stem: str, scene_name: str) -> list[str]:
+    """Move the files of ``staging`` into ``out``, delete the files of the scene's previous run
+    that were not replaced, record the new set and remove ``staging``; return the file names."""
+    manifest = out / f".ehl-run-{stem}.json"
+    try:
+        old = set(json.loads(manifest.read_text()).get("files", []))
+    except (OSError, ValueError, AttributeError):
+        old = set()
+    legacy = out / "report.md"  # the single report of earlier versions: remove it if it was this scene's
+    try:
+        if legacy.is_file() and legacy.read_text().splitlines()[:1] == [f"# {scene_name}"]:
+            old.add(legacy.name)
+    except (OSError, UnicodeDecodeError):
+        pass
+    new = sorted(p.name for p in staging.iterdir() if p.is_file() and not p.name.startswith("."))
+    for name in new:
+        os.replace(staging / name, out / name)
+    for name in sorted(old - set(new)):
+        target = out / name
+        if Path(name).name == name and target.is_file():  # only plain names inside the folder
+            target.unlink()
+    fd, tmp = tempfile.mkstemp(prefix=f".{manifest.name}.", dir=out)
+    with os.fdopen(fd, "w") as f:
+        json.dump({"scene": scene_name, "files": new}, f)
+    os.chmod(tmp, default_file_mode())
+    os.replace(tmp, manifest)
+    shutil.rmtree(staging, ignore_errors=True)
+    return new
+
+
 def run_main_job(scene: Scene, options: MainJobOptions | None = None) -> dict[str, Any]:
-    """Plan ``scene``, run the film stage and every registered stage, write the HDF5 results and
-    ``report.md`` into ``options.out_dir``; return the payload ``ehl run --json`` prints."""
+    """Plan ``scene``, run the film stage and every registered stage, write the HDF5 results,
+    ``<stem>_report.md`` and the figures into ``options.out_dir`` as one set (see the module
+    docstring); return the payload ``ehl run --json`` prints."""
     options = options if options is not None else MainJobOptions()
-    out = Path(options.out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = writable_dir(options.out_dir)  # before any work: a read-only folder costs nothing
+    stem = safe_stem(scene.name)
     plan = make_plan(scene, fidelity=options.fidelity, tolerance=options.tolerance)
-    ctx = RunContext(scene, plan, out, plots=options.plots, progress=not options.quiet)
+    if stem != scene.name:
+        # stages name their figures after the scene: give them a name that is a safe file name
+        plan.notes.append(f"scene name {scene.name!r} is not a safe file name; outputs use {stem!r}")
+        scene = dataclasses.replace(scene, name=stem)
     stages: list[tuple[str, Any]] = [("film", film_stage)] + registered_stages()
-    h5 = out / f"{scene.name}.h5"
+    staging = Path(tempfile.mkdtemp(prefix=f".ehl-run-{stem}-", dir=out))
+    ctx = RunContext(scene, plan, staging, plots=options.plots, progress=not options.quiet)
+    h5_name, report_name = f"{stem}.h5", f"{stem}_report.md"
+    h5, report = out / h5_name, out / report_name
+    planned = [name for name, _ in stages]
+    ran: list[str] = []
+
+    def save(complete: bool) -> None:
+        save_results(staging / h5_name, {k: o.result for k, o in ctx.outputs.items() if o.result is not None},
+                     meta={"plan": plan.to_dict(), "scene": scene.name, "stages_planned": planned,
+                           "stages_run": list(ran)}, complete=complete, planned=planned)
+
     bar = None
     if ctx.progress:
         from tqdm import tqdm
@@ -223,21 +296,29 @@ def run_main_job(scene: Scene, options: MainJobOptions | None = None) -> dict[st
                 bar.set_postfix_str(name)
             t0 = time.perf_counter()
             output = stage(ctx)
+            ran.append(name)
             if output is not None:
                 output.wall_s = time.perf_counter() - t0
                 if output.result is not None:
                     output.result.meta["plan"] = plan.to_dict()
                 ctx.outputs[name] = output
-                save_results(h5, {k: o.result for k, o in ctx.outputs.items() if o.result is not None},
-                             meta={"plan": plan.to_dict(), "scene": scene.name})
+            save(complete=len(ran) == len(planned))
             if bar is not None:
                 bar.update(1)
     finally:
         if bar is not None:
             bar.close()
+        complete = len(ran) == len(planned)
         if ctx.outputs:
-            write_report(ctx, out / "report.md")
-    payload: dict[str, Any] = {"scene": scene.name, "hdf5": str(h5), "report": str(out / "report.md"),
+            if not complete:
+                save(complete=False)
+            write_report(ctx, staging / report_name, missing=[n for n in planned if n not in ran])
+            _publish(staging, out, stem, scene.name)
+        else:
+            shutil.rmtree(staging, ignore_errors=True)
+        for o in ctx.outputs.values():
+            o.figures = [out / Path(f).name for f in o.figures]
+    payload: dict[str, Any] = {"scene": scene.name, "hdf5": str(h5), "report": str(report), "complete": True,
                                "plan": {d.model: d.setting if d.include else "off" for d in plan.decisions}}
     for name, o in ctx.outputs.items():
         payload[name] = o.summary
@@ -245,5 +326,5 @@ def run_main_job(scene: Scene, options: MainJobOptions | None = None) -> dict[st
         print_plan(plan)
         for name, o in ctx.outputs.items():
             print(f"{name}: {o.text}")
-        print_table({"hdf5": str(h5), "report": str(out / "report.md")})
+        print_table({"hdf5": str(h5), "report": str(report)})
     return payload

@@ -21,7 +21,7 @@ def test_main_job_on_a_rough_line_contact_runs_film_traction_and_stribeck(capsys
     # the solver's central film is below the Moes fit (Roelands + Dowson-Higginson against Barus-type fits)
     assert film.scalars["hc"] < load_scene("page63_line_2000N").central_film_fit()[1]
     assert results["stribeck"].scene.name == "page63_line_2000N"
-    report = (tmp_path / "report.md").read_text()
+    report = (tmp_path / "page63_line_2000N_report.md").read_text()
     assert "What was modelled and why" in report and "## stribeck" in report
     assert out["stribeck"]["converged"] is True and out["traction"]["converged"] is True
 
@@ -42,12 +42,12 @@ def test_main_job_on_the_default_scene(capsys, tmp_path):
 
 
 def test_unconverged_solver_film_falls_back_to_the_fit_and_says_so(capsys, tmp_path, monkeypatch):
-    # M = 6114 at 1.93 GPa: forced onto a 129^2 grid (the planner would take 513) the point
-    # solver returns converged=False, which must not reach the later stages
-    import ehl_multigrid.app.mainjob as mainjob
-    from ehl_multigrid.multigrid.gridchoice import GridChoice
+    # M = 6114 at 1.93 GPa: forced onto a 129^2 grid (the accuracy target would take 513 or
+    # more) the point solver does not converge, which must not reach the later stages
+    import ehl_multigrid.point as point
 
-    monkeypatch.setattr(mainjob, "film_grid", lambda scene, tol: GridChoice(129, 1.0, 0.0, "test"))
+    real = point.solve_point
+    monkeypatch.setattr(point, "solve_point", lambda **kw: real(**kw, points=129))
     assert main(["run", "series_C_disc3_1.93GPa", "--fidelity", "fast", "--out", str(tmp_path), "--json", "--no-plots"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["plan"]["film"] == "fit (solver fallback)"
