@@ -5,25 +5,43 @@ The core defines ``scenes``, ``show``, ``fits``, ``run`` and ``solve``; the laye
 so this module never imports them. An entry point names a callable
 ``register(subparsers) -> None`` that adds one subparser whose ``func(args) -> dict``
 returns the JSON payload (and prints human-readable text when ``args.json`` is false).
+
+Exit codes, the same for every subcommand (the layers' included):
+
+* 0 -- success;
+* 2 -- bad input: an :class:`~ehl_multigrid.model.errors.InputError` or a usage error, with a
+  one-line message naming the field, the value and what is allowed;
+* 3 -- the computation did not converge or did not meet its accuracy: a
+  :class:`~ehl_multigrid.model.errors.ConvergenceError`, or a payload whose ``converged`` (or
+  a stage's ``converged``) is false; a result may still have been written, and it says so;
+* 1 -- an unexpected internal error (a bug: the traceback is printed to report it);
+* 130 / 143 -- interrupted by Ctrl-C / terminated by SIGTERM; finished work is kept.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
+import os
+import signal
 import sys
 from collections.abc import Callable, Sequence
 from importlib.metadata import entry_points
 from pathlib import Path
 from typing import Any
 
-from ..model.errors import ConvergenceError, InputError
+from ..model.errors import ConvergenceError, InputError, require_range
 from .console import add_common_options, jsonable, print_payload, print_table
 
 __all__ = ["add_common_options", "build_parser", "jsonable", "main", "print_payload", "print_table"]
 
+EXIT_OK = 0
+EXIT_INTERNAL = 1
 EXIT_INPUT = 2
 EXIT_CONVERGENCE = 3
+EXIT_INTERRUPTED = 130
+EXIT_TERMINATED = 143
 
 
 # -- core subcommands ------------------------------------------------------------------------
@@ -58,7 +76,13 @@ def _cmd_show(args: argparse.Namespace) -> dict:
 
 def _cmd_fits(args: argparse.Namespace) -> dict:
     from ..model import fits, groups
+    from ..model.constants import THETA_MAX, THETA_MIN
 
+    require_range("--M", args.M, 0.0, math.inf, "-", lo_open=True, hi_open=True)
+    require_range("--L", args.L, 0.0, math.inf, "-", hi_open=True)
+    require_range("--gamma1", args.gamma1, 1.0, math.inf, "-", hi_open=True)
+    if args.contact != "line":
+        require_range("--ellipticity", args.ellipticity, THETA_MIN, THETA_MAX, "-")
     if args.contact == "line":
         if args.ellipticity != 1.0:
             raise InputError("--ellipticity applies to point contacts only")
@@ -77,6 +101,11 @@ def _cmd_fits(args: argparse.Namespace) -> dict:
         "lambda_venner": lam, "alpha_bar": abar,
     }
     out.update({k: float(v) for k, v in terms.items()})
+    note = fits.extrapolation_note(args.contact, args.M, args.L, args.ellipticity)
+    out["extrapolated"] = note is not None
+    if note is not None:
+        out["warning"] = note
+        print(f"ehl fits: warning: {note}", file=sys.stderr)
     if not args.json:
         print_table(out)
     return out
@@ -86,41 +115,85 @@ def _cmd_run(args: argparse.Namespace) -> dict:
     from ..model.scene import load_scene
     from .mainjob import MainJobOptions, run_main_job
 
+    scene = load_scene(args.scene)
     options = MainJobOptions(out_dir=Path(args.out), fidelity=args.fidelity, tolerance=args.tolerance,
                              plots=not args.no_plots, quiet=args.json)
-    return run_main_job(load_scene(args.scene), options)
+    return run_main_job(scene, options)
 
 
 def _cmd_solve(args: argparse.Namespace) -> dict:
+    from ..model.paths import writable_dir
     from .solve import run_solve
 
+    if args.threads is not None:
+        require_range("--threads", args.threads, 1, max_threads(), "threads (numba's NUMBA_NUM_THREADS)")
+    writable_dir(args.out)
     return run_solve(args)
 
 
+def max_threads() -> int:
+    """The most threads a solve may ask for: numba's thread pool size (the cores by default)."""
+    try:
+        import numba
+
+        return int(numba.config.NUMBA_NUM_THREADS)
+    except Exception:  # numba missing or misconfigured: the solver will say so itself
+        return os.cpu_count() or 1
+
+
 def _cmd_sweep(args: argparse.Namespace) -> dict:
+    from ..model.paths import writable_dir
     from ..model.scene import load_scene
-    from .sweep import SweepSpec, parse_values, run_sweep
+    from .sweep import MAX_CASES, MAX_WORKERS, SweepSpec, check_spec, parse_values, run_sweep
+    from .tasks import get_task
 
     params: dict[str, list[float]] = {}
     for item in args.param:
         if "=" not in item:
             raise InputError(f"--param {item!r} must be NAME=VALUES (e.g. operating.us=0.01:10:20:log)")
         name, spec = item.split("=", 1)
-        params[name.strip()] = parse_values(spec)
+        params[name.strip()] = parse_values(spec, field=f"--param {name.strip()}")
     if not params:
         raise InputError("a sweep needs at least one --param NAME=VALUES")
+    n_cases = math.prod(len(v) for v in params.values())
+    if n_cases > MAX_CASES:
+        raise InputError(f"--param values give {n_cases} cases; a sweep runs at most {MAX_CASES} cases "
+                         "(split it into several sweeps)")
+    if args.workers is not None:
+        require_range("--workers", args.workers, 1, MAX_WORKERS, "worker processes")
     options: dict[str, Any] = {}
     for item in args.option:
         if "=" not in item:
             raise InputError(f"--option {item!r} must be KEY=VALUE")
         k, v = item.split("=", 1)
-        options[k.strip()] = json.loads(v) if v.strip()[:1] in "[{0123456789-tfn" else v
+        try:
+            options[k.strip()] = json.loads(v) if v.strip()[:1] in "[{0123456789-tfn" else v
+        except json.JSONDecodeError as exc:
+            raise InputError(f"--option {k.strip()}: {v!r} is not a valid JSON value ({exc.msg})") from None
+    get_task(args.task)  # an unknown task fails here, not in every case
     spec = SweepSpec(load_scene(args.scene), args.task, params, options)
-    out = Path(args.out)
+    check_spec(spec)
+    out = writable_dir(args.out)
     table = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler, progress=not args.json)
-    payload = {"cases": len(table.rows), "counts": table.counts, "table": str(out / "table.csv")}
+    counts = table.counts
+    payload = {"cases": len(table.rows), "counts": counts, "table": str(out / "table.csv")}
     if not args.json:
-        print_table({"cases": len(table.rows), **table.counts, "table": str(out / "table.csv")})
+        print_table({"cases": len(table.rows), **counts, "table": str(out / "table.csv")})
+    failed = [r for r in table.rows if r["status"] != "ok"]
+    if failed and len(failed) == len(table.rows) and all(str(r.get("error", "")).startswith("InputError")
+                                                           for r in failed):
+        # every case refused the same way: the sweep's input is bad, not one case of it
+        raise InputError(f"every case of the sweep failed; case {failed[0]['index']}: "
+                         f"{str(failed[0]['error']).removeprefix('InputError: ')}")
+    if counts.get("error"):
+        payload["converged"] = False
+        payload["failure"] = (f"{counts['error']} of {len(table.rows)} cases raised an unexpected error "
+                              f"(a bug; tracebacks in {out / 'cases'})")
+        payload["internal_error"] = True
+    elif failed:
+        payload["converged"] = False
+        payload["failure"] = (f"{len(failed)} of {len(table.rows)} cases failed (status 'failed' in "
+                              f"{out / 'table.csv'}); the others were written")
     return payload
 
 
@@ -140,6 +213,13 @@ def _positive_float(s: str) -> float:
     except ValueError:
         raise argparse.ArgumentTypeError(f"{s!r} is not a number") from None
     return v
+
+
+def _number(s: str) -> float:
+    try:
+        return float(s)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{s!r} is not a number") from None
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -171,7 +251,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("run", help="the main job on a scene (default: the built-in default scene)")
     p.add_argument("scene", nargs="?", default=None, help="built-in scene name or TOML file")
     p.add_argument("--fidelity", choices=["fast", "standard", "reference"], default=None)
-    p.add_argument("--tolerance", type=float, default=None, help="target relative accuracy (overrides --fidelity)")
+    p.add_argument("--tolerance", type=_number, default=None, help="target relative accuracy (overrides --fidelity)")
     add_common_options(p)
     p.set_defaults(func=_cmd_run)
 
@@ -185,7 +265,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("plan", help="which physics a scene needs, and why (numbers behind each decision)")
     p.add_argument("scene", help="built-in scene name or TOML file")
     p.add_argument("--fidelity", choices=["fast", "standard", "reference"], default=None)
-    p.add_argument("--tolerance", type=float, default=None, help="target relative accuracy (overrides --fidelity)")
+    p.add_argument("--tolerance", type=_number, default=None, help="target relative accuracy (overrides --fidelity)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(func=_cmd_plan)
 
@@ -195,7 +275,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--param", action="append", default=[], metavar="NAME=VALUES",
                    help="dotted scene path or task option, values a,b,c or min:max:n[:log]; repeat for a grid")
     p.add_argument("--option", action="append", default=[], metavar="KEY=VALUE", help="fixed task option")
-    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: all cores)")
+    p.add_argument("--workers", type=int, default=None, help="local worker processes, 1 to 256 (default: all cores)")
     p.add_argument("--scheduler", default=None, help="dask.distributed scheduler address (optional extra 'dask')")
     p.add_argument("--json", action="store_true")
     p.add_argument("--out", default="ehl_sweep", help="sweep folder (resumes if it holds finished cases)")
@@ -230,31 +310,95 @@ def _register_plugin(sub: Any, name: str, loader: Callable[[], Callable]) -> Non
     register(sub)
 
 
+class Terminated(BaseException):
+    """SIGTERM, turned into an exception so that ``finally`` blocks run (sweep workers are
+    stopped, the main job marks its partial results)."""
+
+
+def _raise_terminated(signum: int, frame: Any) -> None:
+    raise Terminated()
+
+
+def not_converged(payload: Any) -> str | None:
+    """Why ``payload`` reports a computation that did not converge (exit 3), or ``None``.
+
+    A payload (or one of its stage summaries, for ``ehl run``) says so by ``converged = False``
+    or a ``status`` other than ``"converged"``; ``failure`` or ``message`` give the reason.
+    """
+    if not isinstance(payload, dict):
+        return None
+
+    def verdict(d: dict) -> str | None:
+        status = d.get("status")
+        if d.get("converged") is False or (isinstance(status, str) and status != "converged"):
+            why = d.get("failure") or d.get("message") or (f"status {status}" if status else "converged = false")
+            return str(why).splitlines()[0]
+        return None
+
+    why = verdict(payload)
+    if why is not None:
+        return why
+    for name, sub in payload.items():
+        if isinstance(sub, dict) and (why := verdict(sub)) is not None:
+            return f"stage {name}: {why}"
+    return None
+
+
 def main(argv: Sequence[str] | None = None) -> int:
+    """Run ``ehl`` with ``argv``; returns the exit code (see the module docstring)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.version:
         from ..model.results import package_version
 
         print(package_version())
-        return 0
+        return EXIT_OK
     if not getattr(args, "func", None):
         parser.print_help()
-        return 0
+        return EXIT_OK
+    previous = None
+    try:
+        previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    except ValueError:  # not the main thread (main() called from a thread): keep the default
+        pass
     try:
         payload = args.func(args)
     except InputError as exc:
-        print(f"ehl {args.command}: error: {exc}", file=sys.stderr)
+        print(f"ehl {args.command}: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_INPUT
     except ConvergenceError as exc:
         print(f"ehl {args.command}: did not converge: {exc}", file=sys.stderr)
         return EXIT_CONVERGENCE
     except KeyboardInterrupt:
         print(f"ehl {args.command}: interrupted; finished work was kept", file=sys.stderr)
-        return 130
+        return EXIT_INTERRUPTED
+    except Terminated:
+        print(f"ehl {args.command}: terminated; finished work was kept", file=sys.stderr)
+        return EXIT_TERMINATED
+    except OSError as exc:
+        if exc.filename is None:
+            raise
+        # the disk filled up, a file vanished or permissions changed while writing
+        print(f"ehl {args.command}: error: cannot access {exc.filename!s}: {exc.strerror or exc}", file=sys.stderr)
+        return EXIT_INPUT
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
     if getattr(args, "json", False) and payload is not None:
         print_payload(payload)
-    return 0
+    if isinstance(payload, dict) and payload.get("internal_error"):
+        print(f"ehl {args.command}: internal error: {payload.get('failure')}", file=sys.stderr)
+        return EXIT_INTERNAL
+    why = not_converged(payload)
+    if why is not None:
+        print(f"ehl {args.command}: did not converge: {why}", file=sys.stderr)
+        return EXIT_CONVERGENCE
+    return EXIT_OK
+
+
+def _one_line(exc: BaseException) -> str:
+    """The message of ``exc`` on one line (an error is one line of stderr)."""
+    return " ".join(str(exc).split())
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -3,8 +3,14 @@
 * Parameters are dotted scene paths (``operating.us``, ``roughness.Rq``, ``lubricant.tau0``)
   or, without a dot, options passed to the task (``M``, ``L`` for Moes-only solves).
 * Cases are the Cartesian product of the parameter values. Each finished case is written at
-  once to ``<outdir>/cases/case_<i>.json`` (and ``.h5`` when the task returns a Result), by
+  once to ``<outdir>/cases/case_<key>.json`` (and ``.h5`` when the task returns a Result), by
   temporary file and rename, so an interrupted sweep resumes without redoing finished cases.
+* ``key`` fingerprints the whole case: the scene it runs (every value, after the sweep's
+  changes), the task and its options. A rerun into the same folder reuses exactly the cases
+  whose key matches and computes the others, so a sweep with other values, another scene or
+  other options never returns the rows of an earlier one.
+* Local worker processes die with the sweep: interrupted (Ctrl-C, SIGTERM) the sweep stops them,
+  and killed outright (SIGKILL) its workers notice the lost parent and exit.
 * Any :class:`concurrent.futures.Executor` can run the cases: processes locally by default, or
   a ``dask.distributed`` cluster when a scheduler address is given (optional extra ``dask``).
 * :func:`gather` collects the cases into one table (JSON and CSV), and into an
@@ -21,7 +27,9 @@ import json
 import math
 import multiprocessing
 import os
+import signal
 import tempfile
+import threading
 import time
 import traceback
 from dataclasses import dataclass, field
@@ -31,32 +39,52 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import ConvergenceError, InputError
+from ..model.paths import default_file_mode
 from ..model.scene import Scene
 
 STATUS_OK = "ok"
 STATUS_FAILED = "failed"  # clear error raised by the model (input or convergence)
 STATUS_ERROR = "error"  # unexpected exception: a bug
 
+#: Most cases one sweep may hold (the case list is built in memory; split larger studies).
+MAX_CASES = 100_000
+#: Most local worker processes a sweep may start.
+MAX_WORKERS = 256
 
-def parse_values(spec: str) -> list[float]:
-    """``"a,b,c"`` or ``"min:max:n"`` or ``"min:max:n:log"`` -> list of floats."""
+
+def parse_values(spec: str, field: str = "values") -> list[float]:
+    """``"a,b,c"`` or ``"min:max:n"`` or ``"min:max:n:log"`` -> list of finite floats; errors
+    name ``field`` (e.g. ``"--param operating.us"``)."""
     spec = spec.strip()
     if ":" in spec:
         parts = spec.split(":")
         if len(parts) not in (3, 4) or (len(parts) == 4 and parts[3] != "log"):
-            raise InputError(f"range {spec!r} must be min:max:n or min:max:n:log")
-        lo, hi, n = float(parts[0]), float(parts[1]), int(parts[2])
-        if n < 1:
-            raise InputError(f"range {spec!r}: n = {n} must be >= 1")
+            raise InputError(f"{field}: range {spec!r} must be min:max:n or min:max:n:log")
+        try:
+            lo, hi, n_f = float(parts[0]), float(parts[1]), float(parts[2])
+        except ValueError:
+            raise InputError(f"{field}: range {spec!r} must be numbers min:max:n (n an integer)") from None
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            raise InputError(f"{field}: range {spec!r} needs finite ends")
+        if not (n_f.is_integer() and 1 <= n_f <= MAX_CASES):
+            raise InputError(f"{field}: range {spec!r}: n = {parts[2]} must be an integer in [1, {MAX_CASES}]")
+        n = int(n_f)
         if len(parts) == 4:
             if lo <= 0 or hi <= 0:
-                raise InputError(f"range {spec!r}: a log range needs positive ends")
-            return list(np.geomspace(lo, hi, n))
-        return list(np.linspace(lo, hi, n))
+                raise InputError(f"{field}: range {spec!r}: a log range needs positive ends")
+            return [float(v) for v in np.geomspace(lo, hi, n)]
+        return [float(v) for v in np.linspace(lo, hi, n)]
     try:
-        return [float(v) for v in spec.split(",") if v.strip()]
+        values = [float(v) for v in spec.split(",") if v.strip()]
     except ValueError:
-        raise InputError(f"values {spec!r} must be numbers separated by commas") from None
+        raise InputError(f"{field}: values {spec!r} must be numbers separated by commas") from None
+    if not values:
+        raise InputError(f"{field}: no values given")
+    if not all(math.isfinite(v) for v in values):
+        raise InputError(f"{field}: values {spec!r} must be finite numbers")
+    if len(values) > MAX_CASES:
+        raise InputError(f"{field}: {len(values)} values; at most {MAX_CASES}")
+    return values
 
 
 @dataclass
@@ -72,13 +100,49 @@ class SweepSpec:
         names = list(self.params)
         return [dict(zip(names, combo, strict=True)) for combo in itertools.product(*(self.params[n] for n in names))]
 
+    def case_inputs(self, values: dict[str, float]) -> tuple[dict[str, Any], dict[str, Any], dict[str, Any]]:
+        """``(scene_changes, task_options, scene_dict)`` of the case with parameter ``values``."""
+        scene_changes = {k: v for k, v in values.items() if "." in k}
+        opts = dict(self.options)
+        opts.update({k: v for k, v in values.items() if "." not in k})
+        return scene_changes, opts, self.scene.to_dict()
+
+    def case_key(self, values: dict[str, float]) -> str:
+        """Fingerprint of one case: the scene it runs (every value, after the case's changes),
+        the task and the task options. Equal keys mean the same computation."""
+        changes, opts, scene_dict = self.case_inputs(values)
+        try:
+            scene = apply_changes(scene_dict, changes)
+        except InputError:
+            scene = {"base": scene_dict, "changes": changes}  # the case will fail; still a distinct key
+        return _digest({"scene": scene, "task": self.task, "options": opts})
+
     def fingerprint(self) -> str:
-        """Identifies the sweep so a resume never mixes cases of different sweeps."""
-        blob = json.dumps(
-            {"scene": self.scene.to_dict(), "task": self.task, "options": self.options, "params": list(self.params)},
-            sort_keys=True, default=str,
-        )
-        return hashlib.sha256(blob.encode()).hexdigest()[:16]
+        """Fingerprint of the whole sweep: every case's key, in order, and the parameter names."""
+        return _digest({"params": list(self.params), "cases": [self.case_key(v) for v in self.cases()]})
+
+
+def _digest(obj: Any) -> str:
+    blob = json.dumps(obj, sort_keys=True, default=_jsonable, allow_nan=True)
+    return hashlib.sha256(blob.encode()).hexdigest()[:20]
+
+
+def check_spec(spec: SweepSpec) -> None:
+    """Refuse, before any case runs, what would make every case fail: too many cases, a
+    parameter path that is not a table of the scene, or a key the scene does not know."""
+    n = math.prod(len(v) for v in spec.params.values())
+    if n > MAX_CASES:
+        raise InputError(f"the sweep has {n} cases; at most {MAX_CASES} (split it into several sweeps)")
+    base = spec.scene.to_dict()
+    for name, values in spec.params.items():
+        if "." not in name:
+            continue
+        try:
+            Scene.from_dict(apply_changes(base, {name: values[0]}), origin=f"sweep parameter {name}")
+        except InputError as exc:
+            if "unknown key" in str(exc) or "is not a table" in str(exc):
+                raise InputError(f"--param {name}: {exc}") from None
+            # a bad value fails its own cases only (recorded in the table)
 
 
 def apply_changes(scene_dict: dict[str, Any], changes: dict[str, float]) -> dict[str, Any]:
@@ -109,25 +173,32 @@ def _jsonable(o: Any) -> Any:
 
 def _write_json_atomic(path: Path, payload: dict[str, Any]) -> None:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    with os.fdopen(fd, "w") as f:
-        json.dump(payload, f, default=_jsonable, allow_nan=True)
-    os.replace(tmp, path)
+    try:
+        with os.fdopen(fd, "w") as f:
+            json.dump(payload, f, default=_jsonable, allow_nan=True)
+        os.chmod(tmp, default_file_mode())
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
 
 
 def run_case(scene_dict: dict[str, Any], task: str, scene_changes: dict[str, float], options: dict[str, Any],
-             index: int, outdir: str, case_values: dict[str, float], fingerprint: str) -> dict[str, Any]:
-    """Run one case and write its JSON (top-level so process and dask executors can pickle it)."""
+             index: int, outdir: str, case_values: dict[str, float], key: str) -> dict[str, Any]:
+    """Run one case and write its JSON ``case_<key>.json`` (top-level so process and dask
+    executors can pickle it)."""
     from .tasks import get_task
 
     t0 = time.perf_counter()
-    record: dict[str, Any] = {"index": index, "params": case_values, "fingerprint": fingerprint}
+    record: dict[str, Any] = {"index": index, "params": case_values, "key": key}
     try:
         scene = Scene.from_dict(apply_changes(scene_dict, scene_changes), origin=f"sweep case {index}")
         out = get_task(task)(scene, **options)
         result = out.pop("result", None)
         if result is not None:
-            result.save(Path(outdir) / f"case_{index:05d}.h5")
-            record["hdf5"] = f"case_{index:05d}.h5"
+            result.save(Path(outdir) / f"case_{key}.h5")
+            record["hdf5"] = f"case_{key}.h5"
         record["status"] = STATUS_OK
         record["outputs"] = out
     except (InputError, ConvergenceError) as exc:
@@ -138,32 +209,83 @@ def run_case(scene_dict: dict[str, Any], task: str, scene_changes: dict[str, flo
         record["error"] = f"{type(exc).__name__}: {exc}"
         record["traceback"] = traceback.format_exc()
     record["wall_s"] = time.perf_counter() - t0
-    _write_json_atomic(Path(outdir) / f"case_{index:05d}.json", record)
+    _write_json_atomic(Path(outdir) / f"case_{key}.json", record)
     return record
 
 
-def _finished(outdir: Path, fingerprint: str) -> dict[int, dict[str, Any]]:
+def _finished(outdir: Path, keys: set[str]) -> dict[str, dict[str, Any]]:
+    """Finished case records in ``outdir`` whose key is in ``keys`` (others belong to other
+    sweeps that used the folder, or to an older format, and are left alone)."""
     done = {}
     for f in outdir.glob("case_*.json"):
         try:
             rec = json.loads(f.read_text())
         except (json.JSONDecodeError, OSError):
             continue  # torn file from a crash: redo the case
-        if rec.get("fingerprint") == fingerprint:
-            done[int(rec["index"])] = rec
+        key = rec.get("key") if isinstance(rec, dict) else None
+        if key in keys and f.name == f"case_{key}.json":
+            done[key] = rec
     return done
 
 
 def make_executor(workers: int | None = None, scheduler: str | None = None) -> cf.Executor:
-    """Local process pool (spawn: safe with numba threads) or a dask.distributed executor."""
+    """Local process pool (spawn: safe with numba threads) whose workers die with this process,
+    or a dask.distributed executor."""
     if scheduler:
         try:
             from distributed import Client
         except ImportError:
             raise InputError("a scheduler address needs the optional extra: pip install 'ehl-multigrid[dask]'") from None
-        return Client(scheduler).get_executor()
+        try:
+            client = Client(scheduler, timeout="10s")
+        except (OSError, TimeoutError, ValueError, TypeError) as exc:
+            raise InputError(f"--scheduler {scheduler!r}: cannot connect to a dask scheduler there "
+                             f"({type(exc).__name__}: {' '.join(str(exc).split())[:200]})") from None
+        return client.get_executor()
     workers = workers or os.cpu_count() or 1
-    return cf.ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"))
+    return cf.ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
+                                  initializer=die_with_parent, initargs=(os.getpid(),))
+
+
+#: Seconds between a worker's checks that the sweep process still lives (where the kernel cannot
+#: signal it directly).
+PARENT_POLL_S = 1.0
+
+
+def die_with_parent(parent_pid: int) -> None:
+    """Worker initializer: end this worker when the sweep process ``parent_pid`` ends, even by
+    SIGKILL. Linux delivers SIGKILL at the parent's death (``prctl(PR_SET_PDEATHSIG)``); a daemon
+    thread that watches for re-parenting covers other systems and the race at start-up."""
+    if os.getppid() != parent_pid:
+        os._exit(1)
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        PR_SET_PDEATHSIG = 1
+        libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    except (OSError, AttributeError):
+        pass  # not Linux: the watcher below does it within PARENT_POLL_S
+    if os.getppid() != parent_pid:  # the parent died before prctl took effect
+        os._exit(1)
+
+    def watch() -> None:
+        while True:
+            time.sleep(PARENT_POLL_S)
+            if os.getppid() != parent_pid:
+                os._exit(1)
+
+    threading.Thread(target=watch, name="ehl-sweep-parent-watch", daemon=True).start()
+
+
+def _stop_workers(ex: cf.Executor) -> None:
+    """Terminate the processes of a local pool at once (an interrupted sweep must not wait for
+    the running cases; their results would be discarded anyway)."""
+    for proc in list((getattr(ex, "_processes", None) or {}).values()):
+        try:
+            proc.terminate()
+        except (OSError, AttributeError):
+            pass
 
 
 def run_sweep(spec: SweepSpec, outdir: str | os.PathLike, executor: cf.Executor | None = None,
@@ -176,14 +298,16 @@ def run_sweep(spec: SweepSpec, outdir: str | os.PathLike, executor: cf.Executor 
     outdir = Path(outdir)
     casedir = outdir / "cases"
     casedir.mkdir(parents=True, exist_ok=True)
-    fp = spec.fingerprint()
-    _write_json_atomic(outdir / "sweep.json", {
-        "task": spec.task, "params": spec.params, "options": spec.options, "fingerprint": fp,
-        "scene": spec.scene.to_dict(),
-    })
     cases = spec.cases()
-    done = _finished(casedir, fp)
-    todo = [i for i in range(len(cases)) if i not in done]
+    keys = [spec.case_key(v) for v in cases]
+    _write_json_atomic(outdir / "sweep.json", {
+        "task": spec.task, "params": spec.params, "options": spec.options,
+        "fingerprint": _digest({"params": list(spec.params), "cases": keys}),
+        "scene": spec.scene.to_dict(),
+        "cases": [{"index": i, "key": k, "params": v} for i, (k, v) in enumerate(zip(keys, cases, strict=True))],
+    })
+    done = _finished(casedir, set(keys))
+    todo = [i for i in range(len(cases)) if keys[i] not in done]
     scene_dict = spec.scene.to_dict()
     own = executor is None
     ex = executor or make_executor(workers, scheduler)
@@ -191,20 +315,20 @@ def run_sweep(spec: SweepSpec, outdir: str | os.PathLike, executor: cf.Executor 
     if progress and todo:
         from tqdm import tqdm
 
-        bar = tqdm(total=len(cases), initial=len(done), desc=f"sweep {spec.task}", unit="case")
+        bar = tqdm(total=len(cases), initial=len(cases) - len(todo), desc=f"sweep {spec.task}", unit="case")
     futures = []
+    interrupted = False
     try:
         for i in todo:
-            values = cases[i]
-            scene_changes = {k: v for k, v in values.items() if "." in k}
-            opts = dict(spec.options)
-            opts.update({k: v for k, v in values.items() if "." not in k})
-            futures.append(ex.submit(run_case, scene_dict, spec.task, scene_changes, opts, i, str(casedir), values, fp))
+            scene_changes, opts, _ = spec.case_inputs(cases[i])
+            futures.append(ex.submit(run_case, scene_dict, spec.task, scene_changes, opts, i, str(casedir),
+                                     cases[i], keys[i]))
         for fut in cf.as_completed(futures):
             fut.result()
             if bar is not None:
                 bar.update(1)
     except BaseException:
+        interrupted = True
         for fut in futures:
             fut.cancel()
         raise
@@ -212,6 +336,8 @@ def run_sweep(spec: SweepSpec, outdir: str | os.PathLike, executor: cf.Executor 
         if bar is not None:
             bar.close()
         if own:
+            if interrupted:
+                _stop_workers(ex)
             try:
                 ex.shutdown(wait=True, cancel_futures=True)
             except TypeError:  # dask's ClientExecutor has no cancel_futures
@@ -254,6 +380,7 @@ class SweepTable:
             w = csv.DictWriter(f, fieldnames=cols, extrasaction="ignore")
             w.writeheader()
             w.writerows(self.rows)
+        os.chmod(tmp, default_file_mode())
         os.replace(tmp, outdir / "table.csv")
 
     def to_xarray(self):
@@ -278,12 +405,22 @@ class SweepTable:
 
 
 def gather(outdir: str | os.PathLike) -> SweepTable:
-    """Collect the finished cases of the sweep in ``outdir``."""
+    """Collect the finished cases of the sweep last run in ``outdir`` (the cases listed in its
+    ``sweep.json``; records of other sweeps in the folder are not part of it)."""
     outdir = Path(outdir)
-    meta = json.loads((outdir / "sweep.json").read_text())
+    try:
+        meta = json.loads((outdir / "sweep.json").read_text())
+        listed = meta["cases"]
+    except (OSError, json.JSONDecodeError, KeyError, TypeError):
+        raise InputError(f"{str(outdir)!r} holds no sweep of this version (no readable sweep.json with its case list)") from None
+    done = _finished(outdir / "cases", {c["key"] for c in listed})
     rows = []
-    for i, rec in sorted(_finished(outdir / "cases", meta["fingerprint"]).items()):
-        row: dict[str, Any] = {"index": i, **rec["params"], "status": rec["status"], "wall_s": rec.get("wall_s")}
+    for case in listed:
+        rec = done.get(case["key"])
+        if rec is None:
+            continue
+        i = case["index"]
+        row: dict[str, Any] = {"index": i, **case["params"], "status": rec["status"], "wall_s": rec.get("wall_s")}
         if rec["status"] == STATUS_OK:
             for k, v in rec["outputs"].items():
                 row[k] = v

@@ -21,3 +21,9 @@ DH_B = 0.34615
 #: regression values were computed with it, so it stays until it is unified with P_R in a
 #: separate, measured change.
 MOES_ONLY_DEFAULTS = {"p0": 1.96e8, "alpha": 2.2e-8, "eta0": 0.04}
+
+#: Ellipticity ``theta = Rx/Ry`` an elliptic contact may have: the range of the point solver
+#: (:class:`ehl_multigrid.point.problem.PointProblem`), so a scene the solver would refuse is
+#: refused on load. Slenderer contacts are line contacts of finite length.
+THETA_MIN = 0.01
+THETA_MAX = 100.0

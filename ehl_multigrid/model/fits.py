@@ -113,6 +113,40 @@ def nijenbanning_central(
     return _out(np.sqrt(g) * (iso + piezo) ** (1.0 / s))
 
 
+#: Ellipticities at which the Nijenbanning fit was checked against the point solver
+#: (validation/point fit-check study: theta = 0.25, 1, 4).
+CHECKED_THETA = (0.25, 4.0)
+
+
+def checked_range(contact: str) -> dict[str, tuple[float, float]]:
+    """The (M, L) box (and theta for point contacts) over which the package's fit-check studies
+    compared the fit with converged solver solutions (``ehl_multigrid/data/fit_deviation_*.json``).
+    Outside it a fitted film is an extrapolation of the fit's asymptotes, unchecked here."""
+    import json
+    from importlib import resources
+
+    kind = "line" if contact == "line" else "point"
+    tab = json.loads((resources.files("ehl_multigrid") / "data" / f"fit_deviation_{kind}.json").read_text())
+    out = {"M": (float(min(tab["M"])), float(max(tab["M"]))), "L": (float(min(tab["L"])), float(max(tab["L"])))}
+    if kind == "point":
+        out["theta"] = CHECKED_THETA
+    return out
+
+
+def extrapolation_note(contact: str, M: float, L: float, theta: float = 1.0) -> str | None:
+    """A sentence saying which of ``M``, ``L``, ``theta`` lie outside :func:`checked_range`, or
+    ``None`` when the fit is used where it was checked."""
+    box = checked_range(contact)
+    values = {"M": M, "L": L, "theta": theta}
+    outside = [f"{k} = {values[k]:.4g} outside [{lo:g}, {hi:g}]" for k, (lo, hi) in box.items()
+               if not lo <= values[k] <= hi]
+    if not outside:
+        return None
+    name = "Moes line" if contact == "line" else "Nijenbanning"
+    return (f"the {name} fit is extrapolated here ({'; '.join(outside)}, the range where it was checked "
+            "against the solver); treat Hc as an estimate")
+
+
 def central_film_fit(contact: str, M: ArrayLike, L: ArrayLike, theta: ArrayLike = 1.0, gamma1: ArrayLike = 1.0) -> ArrayLike:
     """Moes fit for ``contact == 'line'``, Nijenbanning otherwise."""
     if contact == "line":

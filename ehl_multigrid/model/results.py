@@ -34,6 +34,7 @@ import h5py
 import numpy as np
 
 from .errors import InputError
+from .paths import default_file_mode
 
 FORMAT_VERSION = 1
 
@@ -182,10 +183,7 @@ class Result:
     @classmethod
     def load(cls, path: str | os.PathLike, group: str | None = None) -> Result:
         """Read a file written by :meth:`save` (or one result of :func:`save_results`)."""
-        path = Path(path)
-        if not path.is_file():
-            raise InputError(f"result file {str(path)!r} does not exist")
-        with h5py.File(path, "r") as f:
+        with _open_result_file(path) as f:
             if group is not None:
                 if group not in f:
                     raise InputError(f"{path} has no result {group!r}; it holds {sorted(f.keys())}")
@@ -196,6 +194,12 @@ class Result:
     def _read(cls, f: h5py.Group, path: Path) -> Result:
         if f.attrs.get("package") != "ehl-multigrid":
             raise InputError(f"{path} is not an ehl-multigrid result file")
+        if _str(f.attrs.get("kind", "")) == "collection":
+            raise InputError(f"{path} holds several results {sorted(f.keys())} (ehl run); "
+                             "read it with load_results, or name one of them")
+        missing = [g for g in ("coords", "fields", "scalars", "history", "meta") if g not in f]
+        if missing:
+            raise InputError(f"{path} is not a complete ehl-multigrid result (no {missing} group)")
         scene = None
         if "scene" in f:
             from .scene import Scene, tomllib
@@ -219,15 +223,23 @@ class Result:
         return res
 
 
-def save_results(path: str | os.PathLike, results: dict[str, Result], meta: dict[str, Any] | None = None) -> Path:
+def save_results(path: str | os.PathLike, results: dict[str, Result], meta: dict[str, Any] | None = None,
+                 complete: bool = True, planned: list[str] | None = None) -> Path:
     """Several results in one HDF5 file, each under ``/<name>`` with the layout above;
-    written atomically like :meth:`Result.save`."""
+    written atomically like :meth:`Result.save`.
+
+    The root attributes ``complete`` (bool) and ``planned`` (JSON list of the result names the
+    writer meant to store) say whether the file holds everything: a run interrupted after some of
+    its stages stores ``complete = False``, and :func:`load_results` readers can tell.
+    """
 
     def write(f: h5py.File) -> None:
         f.attrs["package"] = "ehl-multigrid"
         f.attrs["kind"] = "collection"
         f.attrs["package_version"] = package_version()
         f.attrs["format_version"] = FORMAT_VERSION
+        f.attrs["complete"] = np.bool_(complete)
+        f.attrs["planned"] = json.dumps(list(planned) if planned is not None else list(results))
         for k, v in (meta or {}).items():
             f.attrs[k] = json.dumps(v, default=_json_default)
         for name, res in results.items():
@@ -245,6 +257,7 @@ def _write_atomic(path: str | os.PathLike, write: Any) -> Path:
     try:
         with h5py.File(tmp, "w") as f:
             write(f)
+        os.chmod(tmp, default_file_mode())  # mkstemp creates 0600; the result gets the user's usual mode
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
@@ -255,13 +268,29 @@ def _write_atomic(path: str | os.PathLike, write: Any) -> Path:
 
 def load_results(path: str | os.PathLike) -> dict[str, Result]:
     """Every result stored by :func:`save_results`."""
-    path = Path(path)
-    if not path.is_file():
-        raise InputError(f"result file {str(path)!r} does not exist")
-    with h5py.File(path, "r") as f:
+    with _open_result_file(path) as f:
         if f.attrs.get("kind") != "collection":
             raise InputError(f"{path} is a single result; use Result.load")
         return {name: Result._read(f[name], path) for name in f.keys()}
+
+
+def is_complete(path: str | os.PathLike) -> bool:
+    """Whether the collection at ``path`` holds every result its writer planned (files written
+    before the ``complete`` attribute existed count as complete)."""
+    with _open_result_file(path) as f:
+        return bool(f.attrs.get("complete", True))
+
+
+def _open_result_file(path: str | os.PathLike) -> h5py.File:
+    """Open ``path`` for reading; a missing file, a folder or a file that is not HDF5 raises
+    :class:`InputError` naming it."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"result file {str(path)!r} does not exist")
+    try:
+        return h5py.File(path, "r")
+    except OSError as exc:
+        raise InputError(f"result file {str(path)!r} is not an HDF5 file ({exc})") from None
 
 
 def _json_default(o: Any) -> Any:

@@ -42,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from . import fits, groups, hertz
+from .constants import THETA_MAX, THETA_MIN
 from .elements import ElementContact, element_contact
 from .errors import (
     InputError,
@@ -62,6 +63,9 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 CONTACT_KINDS = ("line", "point", "elliptic")
+#: Largest sum velocity u1 + u2 [m/s] a scene may give (high-speed bearings and gears stay well
+#: below 200 m/s; a larger value is a unit mistake).
+US_MAX = 1e3
 TOP_KEYS = {
     "name", "description", "source", "contact", "geometry", "solids", "lubricant",
     "operating", "ranges", "roughness", "supply", "solver", "element", "materials",
@@ -361,6 +365,12 @@ def _section(data: dict, key: str, required: bool = True) -> dict:
     return sec
 
 
+def _text(field_name: str, value: Any) -> str:
+    if not isinstance(value, str):
+        raise InputError(f"{field_name} = {value!r} must be a string")
+    return value
+
+
 def _temperature(field_name: str, value: Any) -> float:
     return require_range(field_name, value, T_MIN_C, T_MAX_C, "degC")
 
@@ -411,7 +421,10 @@ def _range(field_name: str, spec: Any, lo: float, hi: float, units: str, lo_open
         n = spec["n"]
         if not isinstance(n, int) or isinstance(n, bool) or n < 1 or n > 100000:
             raise InputError(f"{name}.n = {n!r} must be an integer in [1, 100000]")
-        log = bool(spec.get("log", False))
+        log = spec.get("log", False)
+        if not isinstance(log, bool):
+            # TOML has true/false; a string such as "no" must not switch log spacing on
+            raise InputError(f"{name}.log = {log!r} must be true or false")
         if log and vmin <= 0:
             raise InputError(f"{name}.min = {vmin:.6g} {units} must be > 0 for a log range")
         return Range(field_name, None, vmin, vmax, n, log)
@@ -422,9 +435,9 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
     if not isinstance(data, dict):
         raise InputError(f"scene {origin} must be a table")
     reject_unknown_keys("scene top level", data, TOP_KEYS)
-    name = str(data.get("name", Path(origin).stem))
-    description = str(data.get("description", ""))
-    source = str(data.get("source", ""))
+    name = _text("name", data.get("name", Path(origin).stem))
+    description = _text("description", data.get("description", ""))
+    source = _text("source", data.get("source", ""))
 
     extra_materials = materials_from_tables(data["materials"]) if "materials" in data else {}
     element = element_contact(data["element"]) if "element" in data else None
@@ -503,11 +516,12 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
     if "us" in op and "entrainment_speed" in op:
         raise InputError("[operating] give us (sum velocity u1 + u2) or entrainment_speed ((u1 + u2)/2), not both")
     if "us" in op:
-        us = require_positive("operating.us", op["us"], "m/s")
+        us = require_range("operating.us", op["us"], 0.0, US_MAX, "m/s", lo_open=True)
     elif "entrainment_speed" in op:
-        us = 2.0 * require_positive("operating.entrainment_speed", op["entrainment_speed"], "m/s")
+        us = 2.0 * require_range("operating.entrainment_speed", op["entrainment_speed"], 0.0, US_MAX / 2.0, "m/s",
+                                 lo_open=True)
     elif element is not None:
-        us = require_positive("element sum velocity u1 + u2", element.us, "m/s")
+        us = require_range("element sum velocity u1 + u2", element.us, 0.0, US_MAX, "m/s", lo_open=True)
     else:
         raise InputError("operating.us (sum velocity u1 + u2, m/s) or operating.entrainment_speed is required")
     slip = require_range("operating.slip", op.get("slip", element.slip if element else 0.0), -2.0, 2.0, "-")
@@ -519,7 +533,7 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
     reject_unknown_keys("ranges", rng, {"us", "slip", "load", "pmax"})
     ranges: dict[str, Range] = {}
     if "us" in rng:
-        ranges["us"] = _range("us", rng["us"], 0.0, 1e3, "m/s", lo_open=True)
+        ranges["us"] = _range("us", rng["us"], 0.0, US_MAX, "m/s", lo_open=True)
     if "slip" in rng:
         ranges["slip"] = _range("slip", rng["slip"], -2.0, 2.0, "-", lo_open=False)
     if "load" in rng:
@@ -622,7 +636,7 @@ def _reduced_radii(geo: dict, kind: str) -> tuple[float, float]:
             raise InputError(
                 f"contact.kind = 'point' needs Rx = Ry (got Rx = {Rx:.6g} m, Ry = {Ry:.6g} m); use 'elliptic'"
             )
-        require_range("theta = Rx/Ry", Rx / Ry, 1e-3, 1e3, "-")
+        require_range("theta = Rx/Ry", Rx / Ry, THETA_MIN, THETA_MAX, "-")
     return Rx, Ry
 
 
@@ -641,10 +655,40 @@ def _roughness(sec: dict) -> Roughness | None:
     Ra = require_range("roughness.Ra", sec["Ra"], 1e-10, 1e-4, "m") if "Ra" in sec else math.nan
     fc = require_range("roughness.fc", sec.get("fc", 0.13), 0.0, 1.0, "-")
     hard = require_positive("roughness.hardness", sec.get("hardness", 5e9), "Pa")
+    for key, what in (("n", "summit density, 1/m^2"), ("beta", "summit radius, m")):
+        if key not in sec:
+            # the Greenwood-Williamson asperity model (2.43-2.45) needs both; refusing here
+            # saves a main job from failing at its Stribeck stage after the film solve
+            raise InputError(
+                f"roughness.{key} ({what}) is required: the Greenwood-Williamson asperity model needs "
+                "n and beta besides Rq (measure them from a height map with `ehl surface FILE --write-scene`)"
+            )
     return Roughness(Rq=Rq, sigma_s=sigma_s, dd=dd, n=n, beta=beta, Ra=Ra, fc=fc, hardness=hard)
 
 
 # -- loading ----------------------------------------------------------------------------------
+#: Largest scene file read [bytes]; a scene is a few kB of TOML.
+MAX_SCENE_BYTES = 1_000_000
+
+
+def _read_scene_text(path: Path) -> str:
+    try:
+        size = path.stat().st_size
+        if size > MAX_SCENE_BYTES:
+            raise InputError(f"scene file {str(path)!r} is {size} bytes; a scene is a TOML file of at most "
+                             f"{MAX_SCENE_BYTES} bytes")
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"scene file {str(path)!r} cannot be read ({exc.strerror or exc})") from None
+    if b"\x00" in raw:
+        raise InputError(f"scene file {str(path)!r} is not a TOML text file (it holds binary data)")
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"scene file {str(path)!r} is not UTF-8 text as TOML requires "
+                         f"(byte {exc.start}: {raw[exc.start:exc.start + 1]!r})") from None
+
+
 def builtin_scene_names() -> list[str]:
     """Names of the scenes shipped in ``ehl_multigrid/scenes``."""
     files = resources.files("ehl_multigrid") / "scenes"
@@ -660,9 +704,11 @@ def load_scene(name_or_path: str | Path | None = None) -> Scene:
         name_or_path = DEFAULT_SCENE
     path = Path(name_or_path)
     if path.suffix == ".toml" or path.exists():
+        if path.exists() and not path.is_file():
+            raise InputError(f"scene file {str(path)!r} is not a regular file")
         if not path.is_file():
             raise InputError(f"scene file {str(path)!r} does not exist")
-        text = path.read_text()
+        text = _read_scene_text(path)
         origin = str(path)
     else:
         res = resources.files("ehl_multigrid") / "scenes" / f"{name_or_path}.toml"

@@ -2,7 +2,13 @@
 
 import concurrent.futures as cf
 import json
+import os
+import signal
+import subprocess
+import sys
 import threading
+import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -124,3 +130,118 @@ def test_sweep_cli_json(capsys, tmp_path):
                  "--out", str(tmp_path), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["counts"]["ok"] == 2
+
+
+def _children(pid: int) -> list[int]:
+    out = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[1]) == pid:
+            out.append(int(stat.parent.name))
+    return out
+
+
+def _alive(pid: int) -> bool:
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return False
+    return state != "Z"
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads process tables from /proc")
+def test_sweep_workers_die_when_the_sweep_process_is_killed(tmp_path):
+    # a script run as __main__ (as a user's sweep script is): its workers, once past start-up,
+    # block on the task queue and used to live on after the sweep process was killed
+    script = tmp_path / "sweep_script.py"
+    script.write_text(
+        "import sys\n"
+        "from ehl_multigrid.app.sweep import SweepSpec, run_sweep\n"
+        "from ehl_multigrid.model.scene import load_scene\n"
+        "if __name__ == '__main__':\n"
+        "    spec = SweepSpec(load_scene('page63_line_500N'), 'fit',\n"
+        "                     {'operating.us': [0.01 + 1e-5 * i for i in range(50000)]})\n"
+        "    run_sweep(spec, sys.argv[1], workers=2, progress=False)\n"
+    )
+    proc = subprocess.Popen([sys.executable, str(script), str(tmp_path / "sw")],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    workers: list[int] = []
+    try:
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline:
+            workers = [c for c in _children(proc.pid)
+                       if "spawn_main" in Path(f"/proc/{c}/cmdline").read_bytes().decode(errors="replace")]
+            # well under way (a worker still starting up dies with its pipe anyway)
+            if len(workers) == 2 and len(list((tmp_path / "sw" / "cases").glob("case_*.json"))) >= 100:
+                break
+            time.sleep(0.2)
+        assert len(workers) == 2, "the sweep did not start its two workers"
+        proc.send_signal(signal.SIGKILL)  # no chance to clean up
+        proc.wait(timeout=30)
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline and any(_alive(w) for w in workers):
+            time.sleep(0.2)
+        assert not any(_alive(w) for w in workers), "sweep workers outlived the killed sweep process"
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        for w in workers:  # do not leave orphans behind when the test fails
+            if _alive(w):
+                os.kill(w, signal.SIGKILL)
+
+
+def test_rerun_with_other_values_computes_them_instead_of_returning_old_rows(tmp_path):
+    scene = load_scene("page63_line_500N")
+    CALLS.clear()
+    run_sweep(SweepSpec(scene, "counting", {"operating.us": [0.1, 0.2]}), tmp_path,
+              executor=cf.ThreadPoolExecutor(1), progress=False)
+    CALLS.clear()
+    table = run_sweep(SweepSpec(scene, "counting", {"operating.us": [0.3, 0.2]}), tmp_path,
+                      executor=cf.ThreadPoolExecutor(1), progress=False)
+    # same parameter names, other values: 0.3 is computed, 0.2 reused case by case, 0.1 not in the table
+    assert CALLS == [0.3]
+    assert sorted(r["operating.us"] for r in table.rows) == [0.2, 0.3]
+    assert gather(tmp_path).rows == table.rows
+
+
+def test_changed_task_options_are_a_different_case(tmp_path):
+    scene = load_scene("page63_line_500N")
+    spec_a = SweepSpec(scene, "counting", {"operating.us": [0.1]}, {"label": "a"})
+    spec_b = SweepSpec(scene, "counting", {"operating.us": [0.1]}, {"label": "b"})
+    assert spec_a.case_key({"operating.us": 0.1}) != spec_b.case_key({"operating.us": 0.1})
+    assert spec_a.case_key({"operating.us": 0.1}) == SweepSpec(scene, "counting", {"operating.us": [0.5, 0.1]},
+                                                               {"label": "a"}).case_key({"operating.us": 0.1})
+
+
+@pytest.mark.parametrize("spec, message", [
+    ("1:10:0", "n = 0 must be an integer"),
+    ("1:10:x", "must be numbers min:max:n"),
+    ("1:10:1e9", "must be an integer in"),
+    ("abc", "must be numbers separated by commas"),
+    ("nan,1", "finite"),
+    ("-1:10:5:log", "a log range needs positive ends"),
+])
+def test_bad_sweep_values_name_the_parameter(spec, message):
+    with pytest.raises(InputError, match=message) as err:
+        parse_values(spec, field="--param operating.us")
+    assert "--param operating.us" in str(err.value)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--param", "operating.sped=1,2"], "sped"),
+    (["--param", "operating.us=1", "--workers", "0"], "--workers"),
+    (["--param", "operating.us=1", "--workers", "10000"], "--workers"),
+    (["--param", "operating.us=0.1:10:1000", "--param", "operating.load=1:100:1000"], "1000000 cases"),
+    (["--param", "operating.us=1", "--task", "teleport"], "teleport"),
+    (["--param", "operating.us=1", "--option", "x=[1,"], "--option x"),
+    (["--param", "operating.us=1", "--option", "x=1"], "takes no options"),
+])
+def test_bad_sweep_command_lines_exit_2_naming_the_field(argv, message, tmp_path, capsys):
+    from ehl_multigrid.app.cli import main
+
+    assert main(["sweep", "page63_line_500N", "--out", str(tmp_path), "--workers", "1", *argv]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err
