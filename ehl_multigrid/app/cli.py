@@ -331,8 +331,8 @@ def not_converged(payload: Any) -> str | None:
     def verdict(d: dict) -> str | None:
         status = d.get("status")
         if d.get("converged") is False or (isinstance(status, str) and status != "converged"):
-            why = d.get("failure") or d.get("message") or (f"status {status}" if status else "converged = false")
-            return str(why).splitlines()[0]
+            why = str(d.get("failure") or d.get("message") or "converged = false").splitlines()[0]
+            return f"status {status}: {why}" if isinstance(status, str) else why
         return None
 
     why = verdict(payload)
@@ -391,7 +391,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_INTERNAL
     why = not_converged(payload)
     if why is not None:
-        print(f"ehl {args.command}: did not converge: {why}", file=sys.stderr)
+        print(f"ehl {args.command}: not converged or short of its accuracy ({why}); what was computed "
+              "is written and says so", file=sys.stderr)
         return EXIT_CONVERGENCE
     return EXIT_OK
 

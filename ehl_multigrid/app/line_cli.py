@@ -10,6 +10,7 @@ from typing import Any
 from ..line import solve_line
 from ..model.constants import MOES_ONLY_DEFAULTS
 from ..model.errors import InputError
+from ..model.paths import output_file, safe_stem
 
 #: command-line flag (argparse name) -> line solver option
 _ARG_OPTIONS = {"points": "points", "levels": "levels", "cycle": "cycle", "cycles": "cycles",
@@ -55,13 +56,19 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
         name = scene.name
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    h5 = sol.to_result(scene).save(out / f"{name}.h5")
+    stem = safe_stem(name)  # a scene name is a label: never a path out of --out
+    res = sol.to_result(scene)
+    h5 = res.save(output_file(out, stem, ".h5"))
     payload = sol.payload()
     payload["hdf5"] = str(h5)
+    if getattr(args, "csv", False):
+        from .profiles import write_profiles_csv
+
+        payload["csv"] = [str(p) for p in write_profiles_csv(res, out, stem)]
     if not args.no_plots:
         from .line_plots import plot_solution
 
-        payload["png"] = [str(p) for p in plot_solution(sol, out / name, name)]
+        payload["png"] = [str(p) for p in plot_solution(sol, out / stem, name)]
     if not args.json:
         from .console import print_table
 

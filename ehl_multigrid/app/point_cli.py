@@ -8,6 +8,7 @@ from dataclasses import fields
 from pathlib import Path
 
 from ..model.errors import InputError
+from ..model.paths import output_file, safe_stem
 from ..multigrid.options import PointOptions
 from ..point.newton import NewtonOptions
 from ..point.postprocess import summary_payload
@@ -112,14 +113,19 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
     res = sol.to_result(scene)
     name = scene.name if scene is not None else f"point_M{pb.M:g}_L{pb.L:g}_th{pb.theta:g}"
     out = Path(getattr(args, "out", "ehl_out"))
-    path = res.save(out / f"{name}.h5")
+    stem = safe_stem(name)  # a scene name is a label: never a path out of --out
+    path = res.save(output_file(out, stem, ".h5"))
     payload = summary_payload(res)
     payload["solver"] = solver
     payload["file"] = str(path)
+    if getattr(args, "csv", False):
+        from .profiles import write_profiles_csv
+
+        payload["csv"] = [str(p) for p in write_profiles_csv(res, out, stem)]
     if not getattr(args, "no_plots", False):
         from .point_plots import plot_result
 
-        payload["plots"] = [str(p) for p in plot_result(res, out, name)]
+        payload["plots"] = [str(p) for p in plot_result(res, out, stem)]
     if not quiet:
         from .console import print_table
 

@@ -62,6 +62,8 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--solver", choices=["fas", "newton"], default=None,
                    help="point contacts: FAS/FMG multigrid (default) or the Newton semi-system path with pyamg")
     p.add_argument("--rigid", action="store_true", help="rigid surfaces: elastic deformation off (FAS)")
+    p.add_argument("--csv", action="store_true",
+                   help="also write the centre-line profiles (P, H and, with a scene, p [Pa], h [m]) as CSV")
 
 
 def resolve_contact(args: argparse.Namespace):

@@ -1,0 +1,105 @@
+"""One exit-code convention for every ``ehl`` subcommand (0 ok, 2 bad input, 3 not converged or
+short of its accuracy, 1 internal error), bad flags refused with one line naming them, the
+fit's extrapolation warned about, and ``ehl solve --csv``."""
+
+import csv
+import json
+
+import pytest
+
+from ehl_multigrid.app.cli import main, not_converged
+from ehl_multigrid.model import fits
+
+
+def _err(capsys):
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    return err
+
+
+@pytest.mark.parametrize("payload, verdict", [
+    ({"converged": True, "status": "converged"}, None),
+    ({"converged": False, "message": "max cycles"}, "max cycles"),
+    ({"status": "inaccurate", "message": "error 0.09 > 0.005"}, "status inaccurate: error 0.09 > 0.005"),
+    ({"film": {"converged": True}, "traction": {"converged": False}}, "stage traction: converged = false"),
+    ({"cases": 3, "counts": {"ok": 3}}, None),
+])
+def test_payloads_that_did_not_converge_are_recognised(payload, verdict):
+    assert not_converged(payload) == verdict
+
+
+def test_solve_exits_3_when_the_result_is_not_a_success_and_still_writes_it(tmp_path, capsys):
+    # an explicit coarse grid judged against the default accuracy target: status 'inaccurate'
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "129", "--no-plots",
+               "--out", str(tmp_path), "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 3 and out["status"] != "converged"
+    assert (tmp_path / "line_M20_L10.h5").exists()
+
+
+@pytest.mark.parametrize("flags, field", [
+    (["--threads", "0"], "--threads"),
+    (["--threads", "1000"], "--threads"),
+    (["--points", "100"], "points"),
+    (["--levels", "0"], "levels"),
+])
+def test_solve_refuses_bad_flags_with_exit_2(flags, field, tmp_path, capsys):
+    assert main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--no-plots", "--out", str(tmp_path),
+                 *flags]) == 2
+    assert field in _err(capsys)
+
+
+def test_solve_into_a_file_is_refused_before_solving(tmp_path, capsys):
+    (tmp_path / "afile").write_text("x")
+    assert main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--out", str(tmp_path / "afile")]) == 2
+    assert "--out" in _err(capsys)
+
+
+def test_solve_csv_writes_the_centre_line_profiles(tmp_path, capsys):
+    rc = main(["solve", "appendix_d_point", "--points", "65", "--accuracy", "none", "--csv", "--no-plots",
+               "--out", str(tmp_path), "--json"])
+    payload = json.loads(capsys.readouterr().out)
+    assert rc in (0, 3) and len(payload["csv"]) == 2
+    with open(tmp_path / "appendix_d_point_profile_x.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert list(rows[0]) == ["X", "P", "H", "x_m", "p_Pa", "h_m"] and len(rows) == 65
+    # the SI columns are the dimensionless ones times one scale each (pmax, a, a^2/Rx)
+    loaded = [r for r in rows if float(r["P"]) > 1e-3 and abs(float(r["X"])) > 1e-3]
+    for num, den in (("p_Pa", "P"), ("x_m", "X"), ("h_m", "H")):
+        ratios = [float(r[num]) / float(r[den]) for r in loaded]
+        assert max(ratios) == pytest.approx(min(ratios), rel=1e-8)
+
+
+def test_fits_warns_when_extrapolating_and_not_inside_the_checked_range(capsys):
+    assert main(["fits", "--contact", "point", "--M", "1e9", "--L", "10", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert "extrapolated" in captured.err and "M = 1e+09 outside [5, 1000]" in captured.err
+    assert json.loads(captured.out)["extrapolated"] is True
+    assert main(["fits", "--contact", "point", "--M", "20", "--L", "10", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert "warning" not in captured.err and json.loads(captured.out)["extrapolated"] is False
+
+
+def test_checked_range_is_the_fit_check_tables():
+    line = fits.checked_range("line")
+    assert line["M"] == (2.0, 2000.0) and line["L"] == (0.0, 20.0)
+    assert fits.extrapolation_note("line", 20.0, 10.0) is None
+    assert "L = 1e+04" in fits.extrapolation_note("line", 20.0, 1e4)
+    assert "theta = 0.01" in fits.extrapolation_note("point", 20.0, 10.0, 0.01)
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["fits", "--contact", "elliptic", "--M", "20", "--L", "10", "--ellipticity", "0"], "--ellipticity"),
+    (["fits", "--contact", "point", "--M", "nan", "--L", "10"], "--M"),
+    (["fits", "--contact", "point", "--M", "inf", "--L", "10"], "--M"),
+    (["fits", "--contact", "point", "--M", "20", "--L", "10", "--gamma1", "0.5"], "--gamma1"),
+    (["plan", "default", "--tolerance", "nan"], "tolerance"),
+    (["plan", "default", "--tolerance", "tight"], "--tolerance"),
+])
+def test_bad_numbers_exit_2_naming_the_flag(argv, field, capsys):
+    try:
+        rc = main(argv)
+    except SystemExit as exc:  # argparse's own usage errors
+        rc = exc.code
+    assert rc == 2
+    assert field in _err(capsys)
