@@ -4,35 +4,57 @@ from __future__ import annotations
 
 import argparse
 import math
-from pathlib import Path
 from typing import Any
 
 from ehl_multigrid.app.console import add_common_options, print_table
 from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.paths import output_file, safe_stem, writable_dir
 from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import load_scene
 
 from .options import SLICE_PRESSURES, SLICE_RULES, SURFACE_KERNELS, ThermalOptions
 from .traction import default_slips, save_partial, traction_curve, traction_result
 
+#: Most slip values one ``ehl traction`` computes (each is a full thermal solve).
+MAX_SLIPS = 1000
+#: Grid limits of the command line: far beyond the thesis grid (80 x 20, 10 slices) and the
+#: reference fidelity (160 x 40), short of grids that run for many minutes (the surface
+#: temperature kernel costs nx^2 per sweep: nx = 1e5 takes several minutes per slip).
+GRID_LIMITS = {"nx": 10000, "nz": 1000, "slices": 200}
+
 
 def parse_slips(text: str) -> list[float]:
-    """``"0,0.1,0.5"`` (S values, thesis 100 % = 1) or ``"min:max:n"``."""
+    """``"0,0.1,0.5"`` (S values, thesis 100 % = 1) or ``"min:max:n"``; each S in [-2, 2]."""
     try:
         if ":" in text:
-            lo, hi, n = text.split(":")
-            n = int(n)
-            if n < 1:
-                raise ValueError
-            if n == 1:
-                return [float(lo)]
-            return [float(lo) + (float(hi) - float(lo)) * i / (n - 1) for i in range(n)]
-        vals = [float(s) for s in text.split(",") if s.strip()]
+            lo_s, hi_s, n_s = text.split(":")
+            lo, hi, n = float(lo_s), float(hi_s), int(n_s)
+        else:
+            vals = [float(s) for s in text.split(",") if s.strip()]
     except ValueError:
         raise InputError(f"--slip {text!r} must be a comma list of numbers or min:max:n") from None
+    if ":" in text:
+        if not 1 <= n <= MAX_SLIPS:
+            raise InputError(f"--slip {text!r}: n = {n} must be an integer in [1, {MAX_SLIPS}]")
+        vals = [lo] if n == 1 else [lo + (hi - lo) * i / (n - 1) for i in range(n)]
     if not vals:
         raise InputError("--slip is empty")
+    if len(vals) > MAX_SLIPS:
+        raise InputError(f"--slip gives {len(vals)} values; at most {MAX_SLIPS}")
+    for v in vals:
+        if not -2.0 <= v <= 2.0:  # also catches nan
+            raise InputError(f"--slip value {v:g} is outside [-2, 2] (S = 2(u1-u2)/(u1+u2); 2 = pure sliding)")
     return vals
+
+
+def check_grid(options: ThermalOptions) -> None:
+    """Refuse grids of the command line (or the scene's ``[solver.thermal]``) that would run
+    for many minutes; the limits are :data:`GRID_LIMITS`."""
+    for key, hi in GRID_LIMITS.items():
+        v = getattr(options, key)
+        if v > hi:
+            raise InputError(f"{key} = {v} (--{key} or [solver.thermal] {key}) is above {hi}, the largest grid "
+                             f"`ehl traction` runs (the thesis grid is nx = 80, nz = 20, 10 slices)")
 
 
 def register(subparsers: Any) -> None:
@@ -68,18 +90,22 @@ def run_traction(args: argparse.Namespace) -> dict[str, Any]:
         slice_pressure=args.slice_pressure, slice_rule=args.slice_rule, tol_T=args.tol, tol_tau=args.tol,
         thermal=False if args.isothermal else None,
     )
+    check_grid(options)
     slips = parse_slips(args.slip) if args.slip is not None else [float(s) for s in default_slips(scene)]
     ehl = None
     if args.input == "ehl":
         if args.ehl_file is None:
             raise InputError("--input ehl needs --ehl-file PATH (an HDF5 result of kind ehl_line/ehl_point, e.g. from 'ehl solve')")
         ehl = Result.load(args.ehl_file)
+        want = "ehl_line" if scene.kind == "line" else "ehl_point"
+        if ehl.kind != want:
+            raise InputError(f"--ehl-file {args.ehl_file!r} holds a result of kind {ehl.kind!r}; the {scene.kind} "
+                             f"contact of scene {scene.name!r} needs one of kind {want!r} (from 'ehl solve')")
     elif args.ehl_file is not None:
         raise InputError("--ehl-file applies to --input ehl only")
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    stem = f"traction_{scene.name}{'_iso' if not options.thermal else ''}"
-    h5 = out / f"{stem}.h5"
+    out = writable_dir(args.out)
+    stem = safe_stem(f"traction_{scene.name}{'_iso' if not options.thermal else ''}")
+    h5 = output_file(out, stem, ".h5")
     points = traction_curve(
         scene, slips, progress=not args.json, on_point=save_partial(h5, scene, options),
         options=options, input=args.input, ehl=ehl,
