@@ -9,13 +9,19 @@ import argparse
 import math
 import sys
 import time
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from ehl_multigrid.app.console import add_common_options, print_table
 from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.paths import output_file, safe_stem, writable_dir
+
+#: Most sum velocities of one curve (isothermal: GW load sharing per point, milliseconds).
+MAX_POINTS = 100000
+#: Most thermal film-friction solves of one ``ehl stribeck --thermal`` (curves x speeds; about
+#: 40 per second: 2000 take under a minute).
+MAX_THERMAL_SOLVES = 2000
 
 
 def _float_list(text: str) -> list[float]:
@@ -56,6 +62,9 @@ def run_stribeck(args: argparse.Namespace) -> dict:
     from .stribeck import default_us, stribeck_cases, stribeck_options, stribeck_result
 
     t0 = time.perf_counter()
+    if args.n is not None and not 1 <= args.n <= MAX_POINTS:
+        raise InputError(f"--n = {args.n} must be an integer in [1, {MAX_POINTS}] (number of sum velocities)")
+    out = writable_dir(args.out)
     scene = load_scene(args.scene)
     if scene.roughness is None:
         raise InputError(f"scene {scene.name!r} has no [roughness] table; `ehl stribeck` needs Rq, n, beta (and sigma_s, dd)")
@@ -65,9 +74,15 @@ def run_stribeck(args: argparse.Namespace) -> dict:
     opts = stribeck_options(scene, bl_fraction=args.bl_fraction, ehl_fraction=args.ehl_fraction)
     us = default_us(scene, args.n, args.us_min, args.us_max)
     hoil = list(scene.supply.hoil_over_sigma) if args.hoil is None else args.hoil
-    out = Path(args.out)
-    stem = f"stribeck_{scene.name}" + ("_thermal" if args.thermal else "")
-    h5 = out / f"{stem}.h5"
+    for v in hoil:
+        if not v > 0:
+            raise InputError(f"--hoil value {v:g} must be > 0 (inlet oil film hoil/Rq)")
+    if args.thermal and us.size * (1 + len(hoil)) > MAX_THERMAL_SOLVES:
+        raise InputError(f"--thermal with {us.size} sum velocities and {1 + len(hoil)} curve(s) needs "
+                         f"{us.size * (1 + len(hoil))} thermal solves; at most {MAX_THERMAL_SOLVES} "
+                         "(lower --n or the scene's ranges.us n)")
+    stem = safe_stem(f"stribeck_{scene.name}" + ("_thermal" if args.thermal else ""))
+    h5 = output_file(out, stem, ".h5")
 
     bar = None
     progress = None
