@@ -12,6 +12,8 @@ import re
 from dataclasses import dataclass, replace
 from typing import Any
 
+import numpy as np
+
 from ehl_multigrid.model.errors import InputError, require_choice, require_positive
 
 from .filters import FilterStudy, filter_until_psi, gaussian_lowpass, lowpass_3x3
@@ -138,6 +140,7 @@ def analyse_surface(
     spec = filter or FilterSpec()
     hm = handle_missing(hmap, nan)
     hm = level(hm, levelling, form_order)
+    _require_roughness(hmap, hm, levelling)
     study = None
     unfiltered = None
     if spec.kind != "none":
@@ -156,6 +159,25 @@ def analyse_surface(
     if study is not None and not study.reached:
         stats = _with_note(stats, f"psi did not fall to {spec.target:g} within the filter settings tried")
     return Analysis(hmap, hm, summits, stats, spec, study, unfiltered, nan)
+
+
+#: Rq below this fraction of the largest raw height is round-off of the levelling, not
+#: roughness (double precision keeps about 1e-16 of the heights; 1e-9 leaves a wide margin and
+#: stays far below any measured surface: Rq 1 nm under 10 um of tilt is 1e-4).
+FLAT_FRACTION = 1e-9
+
+
+def _require_roughness(raw: HeightMap, levelled: HeightMap, levelling: str) -> None:
+    """Refuse a map that is flat after levelling: its Rq is round-off and it has no summits,
+    so every Greenwood-Williamson parameter would be meaningless."""
+    z = levelled.z[np.isfinite(levelled.z)]
+    rq = float(np.sqrt(np.mean((z - z.mean()) ** 2))) if z.size else 0.0
+    top = float(np.nanmax(np.abs(raw.z))) if np.isfinite(raw.z).any() else 0.0
+    if not rq > FLAT_FRACTION * top or rq == 0.0:
+        raise InputError(
+            f"height map {raw.source or ''} is flat after {levelling} levelling (Rq = {rq:.3g} m against heights "
+            f"up to {top:.3g} m): it holds no roughness to analyse".replace("map  is", "map is")
+        )
 
 
 def _with_note(stats: SurfaceStats, note: str) -> SurfaceStats:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -17,8 +18,9 @@ import numpy as np
 
 from ehl_multigrid.app.console import add_common_options, print_table
 from ehl_multigrid.model.errors import InputError, require_positive, require_range
+from ehl_multigrid.model.paths import output_file, safe_stem, writable_dir, write_text_atomic
 
-from .readers import LAYOUTS
+from .readers import HDF5_SUFFIXES, LAYOUTS
 
 if TYPE_CHECKING:
     from .analysis import Analysis
@@ -112,6 +114,20 @@ def run_surface(args: argparse.Namespace) -> dict[str, Any]:
         require_range("--E-reduced", E, 1e6, 4e12, "Pa")
     if H is not None:
         require_positive("--hardness", H, "Pa")
+    if not isinstance(args.form_order, int) or not 0 <= args.form_order <= 6:
+        raise InputError(f"--form-order = {args.form_order} must be an integer in [0, 6]")
+    for flag, path in (("file", args.file), ("--counter", args.counter)):
+        if args.dataset is not None and path and Path(path).suffix.lower() not in HDF5_SUFFIXES:
+            raise InputError(f"--dataset applies to HDF5 height maps; {flag} {path!r} is not one "
+                             f"(suffixes {list(HDF5_SUFFIXES)})")
+    if args.write_scene:
+        target = Path(args.write_scene)
+        if target.is_dir():
+            raise InputError(f"--write-scene {args.write_scene!r} is a folder; give the TOML file to write")
+        writable_dir(target.parent if str(target.parent) else ".", "--write-scene folder")
+    if args.fc is not None:
+        require_range("--fc", args.fc, 0.0, 1.0, "-")
+    out = writable_dir(args.out)
 
     an = _analyse_file(args.file, args, E, H)
     payload = an.payload()
@@ -131,19 +147,20 @@ def run_surface(args: argparse.Namespace) -> dict[str, Any]:
         payload["Ra"] = stats.Ra  # Ra of the measured surface (not defined for the combination)
         stats = combined
 
-    out = Path(args.out)
-    stem = Path(args.file).stem
+    stem = safe_stem(f"surface_{Path(args.file).stem}")
     payload["files"] = {}
-    res_path = _save_result(an, payload, scene, out / f"surface_{stem}.h5")
+    res_path = _save_result(an, payload, scene, output_file(out, stem, ".h5"))
     payload["files"]["result"] = str(res_path)
     if not args.no_plots:
         from .plots import plot_analysis
 
-        payload["files"]["png"] = str(plot_analysis(an, out / f"surface_{stem}.png"))
+        payload["files"]["png"] = str(plot_analysis(an, output_file(out, stem, ".png")))
     if args.write_scene:
         payload["files"]["scene"] = str(write_scene(scene, stats, args.write_scene, args.file, an, args.fc))
         payload["scene_base"] = scene.name
 
+    for note in list(an.stats.notes) + list(an.raw.meta.get("notes", [])):
+        print(f"ehl surface: note: {note}", file=sys.stderr)
     if not args.json:
         print(f"# {args.file}: {an.surface.describe()}")
         print(f"# processing: {'; '.join(an.surface.history) or 'none'}")
@@ -179,7 +196,7 @@ def write_scene(scene: Any, stats: Any, path: str | Path, source: str, an: Analy
     d["source"] = f"ehl surface {source} on scene {scene.name}"
     new = Scene.from_dict(d, origin=str(path))
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(new.to_toml())
+    write_text_atomic(path, new.to_toml())
     return path
 
 
