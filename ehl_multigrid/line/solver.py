@@ -32,7 +32,7 @@ import numpy as np
 
 from ..model.errors import ConvergenceError, InputError, require_range
 from ..model.fits import moes_line_central
-from ..multigrid.accuracy import solve_to_accuracy
+from ..multigrid.accuracy import film_tol, solve_to_accuracy
 from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import LineOptions, build_scene_options, scene_solver_table
@@ -458,7 +458,8 @@ def solve_line(
     def solve(n: int, box: float, tol_factor: float) -> EHLResult:
         p = pb if box == 1.0 else dataclasses.replace(pb, xmin=pb.xmax - box * (pb.xmax - pb.xmin))
         o = dataclasses.replace(opts, points=n, tol=opts.tol * tol_factor,
-                                tol_load=opts.tol_load * tol_factor, raise_on_failure=False)
+                                tol_load=opts.tol_load * tol_factor, raise_on_failure=False,
+                                film_tol=film_tol(opts, accuracy, tol_factor))
         return solve_line_problem(p, o, callback=callback, scene=scene)
 
     def probe(res: EHLResult, box: float) -> tuple[float, float] | None:

@@ -133,6 +133,20 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None) -> Er
     return ErrorEstimate(tot["Hc"], tot["Hm"], budget, rc.order, rm.order, rc.extrapolated, notes)
 
 
+#: with an accuracy target the cycles stop when the films change by less than this fraction of it
+FILM_TOL_FRACTION = 0.05
+
+
+def film_tol(options: Any, accuracy: float | None, tol_factor: float = 1.0) -> float | None:
+    """Stopping rule of an accuracy-driven solve: the films' change per cycle below
+    :data:`FILM_TOL_FRACTION` of the target (the algebraic error then takes a twentieth of
+    the budget instead of the residual tolerance's tiny fraction); the options' own
+    ``film_tol`` when given, none without a target."""
+    if options.film_tol is not None or accuracy is None:
+        return None if options.film_tol is None else options.film_tol * tol_factor
+    return min(FILM_TOL_FRACTION * accuracy * tol_factor, 0.1)
+
+
 @dataclass(frozen=True)
 class Refinement:
     """One solve of an accuracy-driven sequence: grid, box scale, tolerance and its estimate."""

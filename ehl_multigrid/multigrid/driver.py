@@ -213,7 +213,17 @@ class MultilevelSolver:
 
     def converged(self) -> bool:
         o = self.options
-        return bool(self.residuals) and self.residuals[-1] < o.tol and abs(self.load_errors[-1]) < o.tol_load
+        if not self.residuals:
+            return False
+        if o.film_tol is not None:
+            top = len(self.hierarchy.levels) - 1
+            fin = [h for h in self.history[-2:] if h.level == top]
+            if len(fin) < 2 or abs(self.load_errors[-1]) >= o.film_tol:
+                return False
+            a, b = fin
+            return (abs(b.Hc - a.Hc) < o.film_tol * abs(b.Hc)
+                    and abs(b.Hm - a.Hm) < o.film_tol * abs(b.Hm))
+        return self.residuals[-1] < o.tol and abs(self.load_errors[-1]) < o.tol_load
 
     # -- driver ---------------------------------------------------------------------------
     def solve(self, callback: Callable[[dict[str, Any]], None] | None = None) -> EHLResult:

@@ -49,6 +49,9 @@ class MultigridOptions:
         which is restored afterwards).
     adapt : False disables the adaptive robustness policy (fixed classic settings).
     raise_on_failure : raise :class:`ConvergenceError` instead of returning ``success=False``.
+    film_tol : stop instead when the last finest-grid cycle changed Hc and Hm by less than this
+        (relative) and the relative load error is below it: the films' algebraic error, which
+        is what the error estimate counts, rather than a residual (None: residual rule).
     """
 
     points: int = 129
@@ -69,6 +72,7 @@ class MultigridOptions:
     threads: int | None = None
     adapt: bool = True
     raise_on_failure: bool = False
+    film_tol: float | None = None
 
     #: deprecated name -> current name
     ALIASES: ClassVar[dict[str, str]] = {
@@ -104,6 +108,8 @@ class MultigridOptions:
         require_choice("wedge_order", self.wedge_order, (1, 2))
         if self.threads is not None:
             require_range("threads", self.threads, 1, 1024, "threads")
+        if self.film_tol is not None:
+            require_range("film_tol", self.film_tol, 1e-12, 0.1, "- (relative film change)")
 
     @classmethod
     def build(cls, options: MultigridOptions | None = None, **kw: Any):

@@ -13,7 +13,7 @@ from dataclasses import replace
 from typing import Any
 
 from ..model.errors import ConvergenceError, InputError, require_choice, require_range
-from ..multigrid.accuracy import solve_to_accuracy
+from ..multigrid.accuracy import film_tol, solve_to_accuracy
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import PointOptions, build_scene_options, scene_solver_table
 from ..multigrid.result import EHLResult
@@ -165,7 +165,7 @@ def solve_point(
         def solve(n: int, box: float, tol_factor: float) -> EHLResult:
             dom = {} if box == 1.0 else dict(xmin=box * base[0], xmax=box * base[1], ymax=box * base[2])
             o = replace(opts, points=n, tol=opts.tol * tol_factor, tol_load=opts.tol_load * tol_factor,
-                        raise_on_failure=False, **dom)
+                        raise_on_failure=False, film_tol=film_tol(opts, accuracy, tol_factor), **dom)
             return solve_fas(pb, o, callback=callback, scene=scene)
 
         def probe(res: EHLResult, box: float) -> tuple[float, float] | None:

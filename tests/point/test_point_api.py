@@ -116,8 +116,9 @@ def test_highly_piezoviscous_case_converges_with_the_default_switch():
 
 
 def test_half_domain_equals_full_domain_for_an_elliptic_contact_with_square_cells():
-    full = solve_point(20, 10, theta=0.25, points=65)
-    half = solve_point(20, 10, theta=0.25, points=65, half=True)
+    # y_ratio 2: twice the intervals along Y (the default stretches the cells with the ellipse)
+    full = solve_point(20, 10, theta=0.25, points=65, y_ratio=2)
+    half = solve_point(20, 10, theta=0.25, points=65, half=True, y_ratio=2)
     assert full.P.shape == (129, 65) and half.P.shape == (65, 65)
     assert full.converged and half.converged
     assert half.Hc == pytest.approx(full.Hc, rel=1e-5)
