@@ -4,7 +4,10 @@ equation (3.5), Eyring law (3.3), discretisation (3.18)-(3.19)).
 One station x_i carries the film profile T(Z), tau(Z), u(Z) on ``nz + 1`` nodes of the mapped
 film coordinate Z = z/h (3.14). At each station:
 
-* momentum (3.4): ``tau(Z) = tau_m + (dp/dx) h (Z - 1/2)``, linear across the film;
+* momentum (3.4): ``tau(Z) = tau_m + G (Z - 1/2)``, linear across the film, with the stress
+  slope ``G = h dp/dx`` either taken from the given pressure gradient or, for an EHL field,
+  chosen so that the pressure-driven flux equals the one of the EHL solution (see
+  :func:`solve_stress_slope`);
 * Eyring-Maxwell flow (3.3): ``gdot = (um/G) dtau/dx + (tau0/eta) sinh(tau/tau0)``; the mid-film
   stress ``tau_m`` is fixed by ``h int_0^1 gdot dZ = u2 - u1`` (so u(0) = u1, u(h) = u2);
 * energy (3.5) in mapped form with the cross term dropped (3.17):
@@ -103,6 +106,191 @@ def solve_tau_mid(guess, d, w, inv_eta, tau0, mx_a, mx_r, target):
 
 
 @njit(cache=True)
+def _pressure_flow(G, guess, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target):
+    """Pressure-driven part of the flow at stress slope ``G`` [Pa].
+
+    Fills ``d = G (Z - 1/2)``, solves ``tau_m`` from the wall-speed condition and returns
+    ``(sum_j w_j (Z_j - 1/2) (gdot(tau_m + d_j) - gdot(tau_m)), tau_m, ok)``; the film's
+    volume flux is ``h um - h^2`` times that sum, so it is the flux the slope adds to (or takes
+    from) the shear flow of the same viscosity profile, divided by ``-h^2``.
+    """
+    for j in range(d.shape[0]):
+        d[j] = G * Zc[j]
+    tm, ok = solve_tau_mid(guess, d, w, inv_eta, tau0, mx_a, mx_r, target)
+    s0 = tm / tau0
+    if s0 > 700.0:
+        s0 = 700.0
+    elif s0 < -700.0:
+        s0 = -700.0
+    sh0 = math.sinh(s0)
+    B = 0.0
+    for j in range(d.shape[0]):
+        s = (tm + d[j]) / tau0
+        if s > 700.0:
+            s = 700.0
+        elif s < -700.0:
+            s = -700.0
+        B += w[j] * Zc[j] * (tau0 * inv_eta[j] * (math.sinh(s) - sh0) + mx_a * d[j])
+    return B, tm, ok
+
+
+@njit(cache=True)
+def _slope_residual(G, sgn, b, tm, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target):
+    """``asinh(flow / |b|) - asinh(1)`` at slope ``sgn G`` (increasing in G, zero at the root;
+    the asinh keeps the exponential growth of the Eyring flow in range)."""
+    B, tm, ok = _pressure_flow(sgn * G, tm, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target)
+    return math.asinh(B * sgn / abs(b)) - math.asinh(1.0), tm, ok
+
+
+@njit(cache=True)
+def _slope_newton(G, tm, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b):
+    """Newton on ``(tau_m, G)`` for the wall-speed condition and the pressure-driven flow ``b``
+    (the fast path of :func:`solve_stress_slope` from a warm start). Returns
+    ``(G, tau_m, ok)``; ``ok`` is False when it did not converge in a few damped steps."""
+    n = Zc.shape[0]
+    tolx = 1e-11 * tau0
+
+    def resid(tm_, G_):
+        s0 = min(max(tm_ / tau0, -700.0), 700.0)
+        sh0 = math.sinh(s0)
+        ch0 = math.cosh(s0)
+        fa = 0.0
+        fr = 0.0
+        a11 = 0.0
+        a12 = 0.0
+        a21 = 0.0
+        a22 = 0.0
+        for j in range(n):
+            dj = G_ * Zc[j]
+            s = min(max((tm_ + dj) / tau0, -700.0), 700.0)
+            gp = inv_eta[j] * math.cosh(s) + mx_a
+            fa += w[j] * (tau0 * inv_eta[j] * math.sinh(s) + mx_a * (tm_ + dj) + mx_r[j])
+            fr += w[j] * Zc[j] * (tau0 * inv_eta[j] * (math.sinh(s) - sh0) + mx_a * dj)
+            a11 += w[j] * gp
+            a12 += w[j] * Zc[j] * gp
+            a21 += w[j] * Zc[j] * (gp - inv_eta[j] * ch0 - mx_a)
+            a22 += w[j] * Zc[j] * Zc[j] * gp
+        return fa - target, fr - b, a11, a12, a21, a22
+
+    fa, fr, a11, a12, a21, a22 = resid(tm, G)
+    for _ in range(30):
+        det = a11 * a22 - a12 * a21
+        if not (math.isfinite(det) and det > 0.0 and math.isfinite(fa) and math.isfinite(fr)):
+            return G, tm, False
+        dtm = -(a22 * fa - a12 * fr) / det
+        dG = -(a11 * fr - a21 * fa) / det
+        # residual norm in stress units (the diagonal of the Jacobian scales each equation)
+        norm0 = abs(fa) / a11 + abs(fr) / a22
+        lam = 1.0
+        ok = False
+        for _k in range(20):
+            tn = tm + lam * dtm
+            Gn = G + lam * dG
+            fa_n, fr_n, b11, b12, b21, b22 = resid(tn, Gn)
+            if math.isfinite(fa_n) and math.isfinite(fr_n) and b11 > 0.0 and b22 > 0.0:
+                if abs(fa_n) / b11 + abs(fr_n) / b22 < norm0 or lam * (abs(dtm) + abs(dG)) <= tolx:
+                    ok = True
+                    break
+            lam *= 0.5
+        if not ok:
+            return G, tm, False
+        tm, G = tn, Gn
+        fa, fr, a11, a12, a21, a22 = fa_n, fr_n, b11, b12, b21, b22
+        if (lam * abs(dtm) <= tolx + 1e-14 * abs(tm)) and (lam * abs(dG) <= tolx + 1e-12 * abs(G)):
+            return G, tm, True
+    return G, tm, False
+
+
+@njit(cache=True)
+def solve_stress_slope(G_guess, tm_guess, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target, b):
+    """Stress slope ``G = dtau/dZ`` [Pa] whose pressure-driven flow is ``b`` [1/s].
+
+    ``b = -q_p / h^2`` with ``q_p`` the pressure-driven volume flux per unit width [m^2/s] of
+    the EHL solution, ``-h^3/(12 eta) dp/dx`` (Reynolds; :func:`sweep_line` scales it to the Z
+    quadrature). For a Newtonian fluid at the EHL solver's viscosity this returns
+    ``G = h dp/dx``; for an Eyring fluid
+    whose viscosity falls with temperature it keeps the flux instead of the gradient, so shear
+    thinning and heating cannot multiply the Poiseuille flow and its heat beyond what the film
+    carries (mass conservation, the condition the EHL pressure was solved for).
+
+    A damped Newton step on ``(tau_m, G)`` from the previous value (or the Newtonian slope
+    ``|b| / sum w Z^2/eta``, an upper bound for a shear-thinning fluid) usually converges in a
+    few steps. Otherwise the flow, increasing in G and zero at G = 0, is bracketed from that
+    value and the bracket closed by Illinois steps with bisection when it stops shrinking. Returns
+    ``(G, tau_m, ok)`` and leaves ``d = G (Z - 1/2)``.
+    """
+    if b == 0.0:
+        B, tm, ok = _pressure_flow(0.0, tm_guess, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target)
+        return 0.0, tm, ok
+    sgn = 1.0 if b > 0.0 else -1.0
+    s2 = 0.0
+    for j in range(Zc.shape[0]):
+        s2 += w[j] * Zc[j] * Zc[j] * (inv_eta[j] + mx_a)
+    g_newton = abs(b) / s2 if s2 > 0.0 else tau0
+    if not (g_newton > 0.0 and math.isfinite(g_newton)):
+        g_newton = tau0
+    g = G_guess * sgn
+    if not (g > 0.0 and math.isfinite(g)):
+        g = g_newton
+    Gn, tm, ok = _slope_newton(sgn * g, tm_guess, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b)
+    if ok and Gn * sgn > 0.0:
+        for j in range(d.shape[0]):
+            d[j] = Gn * Zc[j]
+        return Gn, tm, True
+    tm = tm_guess
+    f, tm, ok = _slope_residual(g, sgn, b, tm, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target)
+    if f == 0.0:
+        return sgn * g, tm, ok
+    lo = 0.0
+    f_lo = -math.asinh(1.0)
+    if f < 0.0:
+        lo = g
+        f_lo = f
+        hi = max(2.0 * g, g_newton)
+        f_hi, tm, ok = _slope_residual(hi, sgn, b, tm, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target)
+        k = 0
+        while f_hi < 0.0 and k < 2000:
+            lo = hi
+            f_lo = f_hi
+            hi *= 4.0
+            f_hi, tm, ok = _slope_residual(hi, sgn, b, tm, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target)
+            k += 1
+        if f_hi < 0.0:
+            return sgn * hi, tm, False
+    else:
+        hi = g
+        f_hi = f
+    side = 0
+    width = hi - lo
+    x = hi
+    for it in range(300):
+        x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+        if it % 3 == 2 and hi - lo > 0.5 * width:
+            # the Illinois steps stalled: bisect (geometrically across decades)
+            x = math.sqrt(lo * hi) if lo > 0.0 and hi > 4.0 * lo else 0.5 * (lo + hi)
+        if not (lo < x < hi):
+            x = 0.5 * (lo + hi)
+        if it % 3 == 2:
+            width = hi - lo
+        f, tm, ok = _slope_residual(x, sgn, b, tm, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target)
+        if abs(f) <= 1e-12 or hi - lo <= 1e-13 * hi:
+            return sgn * x, tm, ok
+        if f < 0.0:
+            lo = x
+            f_lo = f
+            if side == -1:
+                f_hi *= 0.5
+            side = -1
+        else:
+            hi = x
+            f_hi = f
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+    return sgn * x, tm, False
+
+
+@njit(cache=True)
 def _tridiag_solve(a, b, c, r, x):
     """Thomas algorithm: a_j x_{j-1} + b_j x_j + c_j x_{j+1} = r_j."""
     n = b.shape[0]
@@ -131,16 +319,19 @@ def _wall_weight(WL, WR, i, j, n):
 
 @njit(cache=True)
 def sweep_line(
-    dx, p, h, dpdx, oil, u1, u2, um, T_oil, Ts1, Ts2,
+    dx, p, h, dpdx, qp, flux, oil, u1, u2, um, T_oil, Ts1, Ts2,
     WL1, WR1, WL2, WR2, nz, thermal, first, q1_lag, q2_lag, T_lag,
     tol_T, tol_tau, max_inner, relax,
-    T, tau, u, gv, q1, q2, heat, inner_its,
+    T, tau, u, gv, q1, q2, heat, slope, inner_its,
 ):
     """One inlet-to-outlet sweep of the line-contact thermal model; fills the output arrays.
 
     Parameters (arrays have one row per station, ``nz + 1`` columns)
     ----------
     dx : station spacing [m]; p, h, dpdx : pressure [Pa], film [m], dp/dx [Pa/m] per station;
+    qp : pressure-driven volume flux of the EHL solution per station [m^2/s];
+    flux : True sets the stress slope from ``qp`` (:func:`solve_stress_slope`), False from
+        ``dpdx`` (``G = h dp/dx``; zeros switch the pressure term off);
     oil : properties.oil_params array; u1, u2 : wall speeds [m/s]; um : mean speed (Maxwell term);
     T_oil, Ts1, Ts2 : inlet oil and bulk wall temperatures [degC];
     WL1, WR1, WL2, WR2 : surface influence weights (surface.wall_weights);
@@ -153,7 +344,8 @@ def sweep_line(
     relax : initial under-relaxation of the temperature update (halved when the change grows).
 
     Outputs: T, tau [Pa], u [m/s], gv (viscous shear rate) [1/s], heat (tau*gv) [W/m^3],
-    q1, q2 (heat flux into solid 1 and 2) [W/m^2], inner_its per station.
+    q1, q2 (heat flux into solid 1 and 2) [W/m^2], slope (stress slope G = h dp/dx across the
+    film) [Pa], inner_its per station; ``slope`` also carries the previous sweep's values in.
 
     Returns ``(n_station_fail, n_tau_fail, n_reverse)``.
     """
@@ -169,6 +361,11 @@ def sweep_line(
     Zc = np.empty(nzp)
     for j in range(nzp):
         Zc[j] = j * dZ - 0.5
+    # the flux target in the Z quadrature's terms: a Newtonian film at the EHL viscosity then
+    # gets G = h dp/dx exactly (sum w Z^2 is 1/12 + dZ^2/6 for the trapezoid rule)
+    flux_scale = 0.0
+    for j in range(nzp):
+        flux_scale += 12.0 * wz[j] * Zc[j] * Zc[j]
 
     d = np.empty(nzp)
     inv_eta = np.empty(nzp)
@@ -189,8 +386,14 @@ def sweep_line(
         hi_ = h[i]
         k_i = conductivity(p[i], oil)
         target = (u2 - u1) / hi_
-        for j in range(nzp):
-            d[j] = dpdx[i] * hi_ * Zc[j]
+        use_flux = flux and qp[i] != 0.0
+        b_flux = -qp[i] * flux_scale / (hi_ * hi_) if use_flux else 0.0
+        G = dpdx[i] * hi_
+        if use_flux:
+            G = math.nan if first else slope[i]
+        else:
+            for j in range(nzp):
+                d[j] = G * Zc[j]
         # Maxwell term: dtau/dx by the same backward differences as the energy equation
         if i >= 2:
             mx_a = um * inv_G * 1.5 / dx
@@ -248,7 +451,10 @@ def sweep_line(
             its = it + 1
             for j in range(nzp):
                 inv_eta[j] = 1.0 / roelands(p[i], Ti[j], oil)
-            tm, ok = solve_tau_mid(tm_guess, d, wz, inv_eta, tau0, mx_a, mx_r, target)
+            if use_flux:
+                G, tm, ok = solve_stress_slope(G, tm_guess, Zc, d, wz, inv_eta, tau0, mx_a, mx_r, target, b_flux)
+            else:
+                tm, ok = solve_tau_mid(tm_guess, d, wz, inv_eta, tau0, mx_a, mx_r, target)
             if not ok:
                 n_tau_fail += 1
             tm_guess = tm
@@ -330,6 +536,7 @@ def sweep_line(
                 converged = True
                 break
         inner_its[i] = its
+        slope[i] = G
         if not converged:
             n_station_fail += 1
         for j in range(nzp):

@@ -59,6 +59,8 @@ class ThermalLineSolution:
     force_per_length : friction force per unit length of line [N/m], ``-int tau_mean dx``,
         positive when surface 1 is faster (it opposes surface 1's motion);
     traction1/2_per_length : shear force of the film on surface 1 / 2 along +x [N/m];
+    stress_slope : ``G = dtau/dZ = h dp/dx`` per station [Pa] (zero without the pressure term;
+        with ``momentum='flux'`` the slope that carries the EHL solution's pressure-driven flux);
     heat : dict of the heat budget per unit length [W/m]: shear, conduction1, conduction2,
         convection (the (3.5) convection term integrated), enthalpy_flux (outlet minus inlet
         of rho Cp u T h, for reference), balance (relative residual of
@@ -80,6 +82,7 @@ class ThermalLineSolution:
     heat: dict[str, float]
     report: ConvergenceReport
     T_oil: float
+    stress_slope: np.ndarray | None = None
     extra: dict = field(default_factory=dict)
 
     @property
@@ -129,10 +132,9 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     h = np.ascontiguousarray(profile.h, dtype=np.float64)
     if np.any(~(h > 0)):
         raise InputError("film thickness h must be > 0 m at every station (zero film)")
-    if uses_momentum(profile, options):
-        dpdx = np.ascontiguousarray(profile.dpdx, dtype=np.float64)
-    else:
-        dpdx = np.zeros(nx)
+    mode = momentum_mode(profile, options)
+    dpdx = np.ascontiguousarray(profile.dpdx if mode == "gradient" else np.zeros(nx), dtype=np.float64)
+    qp = np.ascontiguousarray(profile.poiseuille_flux if mode == "flux" else np.zeros(nx), dtype=np.float64)
     oil = oil_params(env.lubricant, options.G)
     um = 0.5 * (env.u1 + env.u2)
     if options.thermal:
@@ -147,6 +149,7 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     u = np.zeros((nx, nzp))
     gv = np.zeros((nx, nzp))
     heat = np.zeros((nx, nzp))
+    slope = np.zeros(nx)
     q1 = np.zeros(nx)
     q2 = np.zeros(nx)
     inner = np.zeros(nx, dtype=np.int64)
@@ -164,10 +167,10 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     for k in range(options.max_sweeps):
         sweeps = k + 1
         n_fail, n_tau_fail, n_rev = kernels.sweep_line(
-            dx, p, h, dpdx, oil, float(env.u1), float(env.u2), um, float(env.T_oil),
+            dx, p, h, dpdx, qp, mode == "flux", oil, float(env.u1), float(env.u2), um, float(env.T_oil),
             float(env.T_surface1), float(env.T_surface2), WL1, WR1, WL2, WR2, nz, bool(options.thermal), k == 0,
             q1_lag, q2_lag, T_lag, float(options.tol_T), float(options.tol_tau), int(options.max_inner),
-            float(options.relax), T, tau, u, gv, q1, q2, heat, inner,
+            float(options.relax), T, tau, u, gv, q1, q2, heat, slope, inner,
         )
         change = 1.0 if k == 0 else float(np.max(np.abs(T - T_lag) / np.abs(T_lag + kernels.T_KELVIN)))
         history.append(change)
@@ -207,6 +210,7 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
             "inner_iterations": inner.copy(),
             "reverse_flow_nodes": int(n_rev),
             "lagged_kernel": bool(lagged),
+            "momentum": mode,
         },
     )
     hint = "raise max_inner, lower relax, or check the film/pressure input"
@@ -226,15 +230,29 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     return ThermalLineSolution(
         profile=profile, Z=Z, T=T, tau=tau, u=u, gdot=gv, heat_rate=heat, q1=q1, q2=q2,
         force_per_length=F, traction1_per_length=F1, traction2_per_length=F2, heat=budget,
-        report=report, T_oil=float(env.T_oil),
+        report=report, T_oil=float(env.T_oil), stress_slope=slope,
     )
 
 
+def momentum_mode(profile: LineProfile, options: ThermalOptions) -> str:
+    """How the pressure term of (3.4) enters (see ThermalOptions.momentum): ``off``,
+    ``gradient`` (the given dp/dx) or ``flux`` (the EHL solution's pressure-driven flux)."""
+    m = options.momentum
+    if m == "auto":
+        if profile.source in ("hertz", "thesis-slice"):
+            return "off"
+        return "flux" if profile.poiseuille_flux is not None else "gradient"
+    if m == "flux":
+        if profile.poiseuille_flux is None:
+            raise InputError("momentum = 'flux' needs an EHL field (its pressure-driven flux); "
+                             f"the {profile.source!r} input has none: use 'on', 'off' or 'auto'")
+        return "flux"
+    return "gradient" if m == "on" else "off"
+
+
 def uses_momentum(profile: LineProfile, options: ThermalOptions) -> bool:
-    """Whether the pressure-gradient term of (3.4) is applied (see ThermalOptions.momentum)."""
-    if options.momentum == "auto":
-        return profile.source not in ("hertz", "thesis-slice")
-    return options.momentum == "on"
+    """Whether the pressure term of (3.4) is applied (see ThermalOptions.momentum)."""
+    return momentum_mode(profile, options) != "off"
 
 
 class _Anderson:

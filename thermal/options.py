@@ -17,7 +17,7 @@ from ehl_multigrid.model.errors import (
 SLICE_RULES = ("cosine", "midpoint")
 SLICE_PRESSURES = ("hertz", "thesis")
 SURFACE_KERNELS = ("moving-strip", "carslaw-jaeger")
-MOMENTUM = ("auto", "on", "off")
+MOMENTUM = ("auto", "flux", "on", "off")
 
 #: scene / thesis names accepted as aliases
 _ALIASES = {"ny": "slices"}
@@ -46,11 +46,19 @@ class ThermalOptions:
         the transverse contact width 2b for a point contact).
     G : fluid shear modulus override [Pa] (None: the lubricant's; 1e30 = Maxwell term off).
     thermal : False holds the temperature at the oil inlet value (isothermal switch).
-    momentum : pressure-gradient term of (3.4) (tau linear across the film). ``auto``: on for
-        EHL input, off for Hertz pressure with a uniform film. A uniform film carries no net
-        Poiseuille flux (mass conservation), and the square-root edges of the Hertz pressure
-        make the Eyring Poiseuille heating at the edge nodes grow without bound under grid
-        refinement; ``on`` keeps it anyway (validation/thermal measures the effect).
+    momentum : pressure term of (3.4) (tau linear across the film, slope G = h dp/dx).
+        ``flux``: G is chosen at each station so that the pressure-driven flow carries the EHL
+        solution's pressure-driven flux ``-h^3/(12 eta) dp/dx`` (Reynolds, isothermal
+        Newtonian, computed on the EHL grid); ``on``: G = h dp/dx of the given pressure;
+        ``off``: no pressure term; ``auto``: ``flux`` for EHL input, ``off`` for Hertz pressure
+        with a uniform film. A uniform film carries no net Poiseuille flux (mass conservation),
+        and the square-root edges of the Hertz pressure make the Eyring Poiseuille heating at
+        the edge nodes grow without bound under grid refinement; ``on`` keeps it anyway
+        (validation/thermal measures the effect). With a fixed gradient, the steep outlet of an
+        EHL field (wall stress h/2 |dp/dx| of several tau0 where the pressure falls from the
+        spike) drives an Eyring flow that the heating thins further: the Poiseuille flow and its
+        heat run away (hundreds of kelvin, then NaN) although the EHL film carries a modest
+        flux there; keeping the flux bounds them.
     """
 
     nx: int = 80

@@ -118,8 +118,20 @@ def build_profiles(
         return profiles_from_result(
             res, nx=options.nx, x_in=options.x_in, x_out=options.x_out, slices=options.slices,
             rule=options.slice_rule, b=hz.a, b_y=hz.b, length=scene.length if scene.kind == "line" else None,
+            viscosity=ehl_viscosity(res.scene if res.scene is not None else scene),
         )
     raise InputError(f"input = {input!r} is not one of {list(INPUTS)}")
+
+
+def ehl_viscosity(scene: Scene) -> Callable[[np.ndarray], np.ndarray]:
+    """The isothermal viscosity ``eta(p)`` [Pa s] the EHL solvers use for ``scene``: Roelands
+    (2.6) of the scene's oil at its inlet temperature."""
+    lub, T = scene.lubricant, scene.T_oil
+
+    def eta(p: np.ndarray) -> np.ndarray:
+        return np.asarray(lub.viscosity(p, T), dtype=float)
+
+    return eta
 
 
 def ehl_result_from(ehl: Any, scene: Scene) -> Result:
