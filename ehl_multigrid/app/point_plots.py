@@ -1,15 +1,28 @@
-"""PNG plots of a point-contact result: P and H contour maps, centre-line profiles in X and
-Y, and an interference-style film map (dpi <= 110). Figures are built with
-``matplotlib.figure.Figure`` (no pyplot), so plotting never changes the process-wide backend."""
+"""PNG plots of a point-contact result: pressure and film maps, centre-line profiles in x and y,
+and an interference-style film map (dpi <= 110). Figures are built with
+``matplotlib.figure.Figure`` (no pyplot), so plotting never changes the process-wide backend.
+
+What a tribologist reads: with a physical scale (a scene) the maps show the film in nm, the
+pressure in GPa and the plane in mm (or um), and the title quotes hc and hm in nm; without one
+(Moes-only) they show P = p/pmax and H in Moes's scaling, the scaling of the title's Hc and Hm.
+The maps keep the plane's true proportions (equal axes) unless the domain is more than
+:data:`MAX_TRUE_ASPECT` times longer one way than the other (slender ellipses); then each panel
+gets a readable shape and its title says by how much the axes are stretched.
+"""
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 from matplotlib.figure import Figure
 
 from ..model.results import Result
+
+#: Largest height/width (or width/height) of the plotted plane drawn with equal axes.
+MAX_TRUE_ASPECT = 3.0
 
 
 def interference_rgb(h_m: np.ndarray, n_oil: float = 1.5, wavelengths=(650e-9, 532e-9, 450e-9)) -> np.ndarray:
@@ -18,77 +31,158 @@ def interference_rgb(h_m: np.ndarray, n_oil: float = 1.5, wavelengths=(650e-9, 5
     return np.clip(np.stack(rgb, axis=-1), 0.0, 1.0)
 
 
+@dataclass
+class MapScales:
+    """The quantities the plots draw, in the units their labels and titles state."""
+
+    x: np.ndarray  # along the rolling direction (axis 0 of the fields)
+    y: np.ndarray
+    p: np.ndarray  # [j, i] (rows y, columns x) for contour plots
+    h: np.ndarray
+    xlabel: str
+    ylabel: str
+    plabel: str
+    hlabel: str
+    hc: float  # central and minimum film in the units of hlabel
+    hm: float
+    x_hm: float  # where the minimum film is, in plane units
+    y_hm: float
+    physical: bool
+    title: str
+    length_unit: float  # metres per plane unit (nan for X = x/a)
+
+
+def map_scales(res: Result, name: str = "") -> MapScales:
+    """Units of the plots of ``res``: physical (nm, GPa, mm or um) when the result carries
+    ``p``, ``h``, ``x``, ``y``; Moes-scaled otherwise."""
+    s = res.scalars
+    X, Y = np.asarray(res["X"]), np.asarray(res["Y"])
+    physical = {"p", "h"} <= set(res.fields) and {"x", "y"} <= set(res.coords)
+    if physical:
+        x_m, y_m = np.asarray(res["x"]), np.asarray(res["y"])
+        a = (x_m[-1] - x_m[0]) / (X[-1] - X[0])  # metres per X unit (the Hertz half-width a)
+        span = max(np.abs(x_m).max(), np.abs(y_m).max())
+        unit, per_m = ("mm", 1e3) if span >= 1e-3 else ("um", 1e6)
+        h_nm = np.asarray(res["h"]).T * 1e9
+        hc, hm = float(s["hc"]) * 1e9, float(s["hm"]) * 1e9
+        pmax = float(s.get("pmax", np.nan))
+        title = (f"{name + ': ' if name else ''}hc = {hc:.4g} nm, hm = {hm:.4g} nm"
+                 + (f", pmax = {pmax / 1e9:.3g} GPa" if math.isfinite(pmax) else ""))
+        return MapScales(x_m * per_m, y_m * per_m, np.asarray(res["p"]).T / 1e9, h_nm,
+                         f"x [{unit}]", f"y [{unit}]", "p [GPa]", "h [nm]", hc, hm,
+                         float(s["X_Hm"]) * a * per_m, float(s["Y_Hm"]) * a * per_m, True, title, 1.0 / per_m)
+    moes_per_venner = float(s["Hc"]) / float(s["Hc_venner"])  # H (Moes) = H (Venner) x this
+    title = (f"{name + ': ' if name else ''}M = {s['M']:.4g}, L = {s['L']:.4g}, theta = {s['theta']:.3g}; "
+             f"Hc = {s['Hc']:.4g}, Hm = {s['Hm']:.4g} (Moes)")
+    return MapScales(X, Y, np.asarray(res["P"]).T, np.asarray(res["H"]).T * moes_per_venner,
+                     "X = x/a", "Y = y/a", "P = p/pmax", "H (Moes)", float(s["Hc"]), float(s["Hm"]),
+                     float(s["X_Hm"]), float(s["Y_Hm"]), False, title, math.nan)
+
+
+def plane_aspect(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+    """``(box_aspect, stretch)`` of a map panel: the plane's height/width when within
+    :data:`MAX_TRUE_ASPECT` (``stretch`` 1: equal axes), else clipped to it, with ``stretch``
+    the factor by which the y axis is drawn longer (> 1) or shorter than true."""
+    true = float((y[-1] - y[0]) / (x[-1] - x[0]))
+    box = min(max(true, 1.0 / MAX_TRUE_ASPECT), MAX_TRUE_ASPECT)
+    return box, box / true
+
+
+def _stretch_note(stretch: float) -> str:
+    if math.isclose(stretch, 1.0):
+        return ""
+    return f" (y drawn x{stretch:.3g}: not to scale)" if stretch > 1 else f" (y drawn x{stretch:.2g}: not to scale)"
+
+
+def _plane_axes(ax, sc: MapScales, box: float, stretch: float) -> None:
+    ax.set_xlabel(sc.xlabel)
+    ax.set_ylabel(sc.ylabel)
+    if math.isclose(stretch, 1.0):
+        ax.set_aspect("equal")
+    else:
+        ax.set_box_aspect(box)
+
+
+def maps_figure(res: Result, name: str = "") -> Figure:
+    """Pressure and film maps of ``res`` (see the module docstring for units and aspect)."""
+    sc = map_scales(res, name)
+    box, stretch = plane_aspect(sc.x, sc.y)
+    tall = box > 1.0
+    # two panels side by side, each about 3.4 in wide once the colour bars have their room
+    fig = Figure(figsize=(10.0, 3.4 * max(box, 0.55) + 1.0), layout="constrained")
+    ax = fig.subplots(1, 2)
+    c0 = ax[0].contourf(sc.x, sc.y, sc.p, levels=30, cmap="viridis")
+    fig.colorbar(c0, ax=ax[0], label=sc.plabel, shrink=0.9 if tall else 1.0)
+    ax[0].set_title("pressure" + _stretch_note(stretch), fontsize=9)
+    hmax = min(float(np.nanmax(sc.h)), 3.0 * sc.hc)
+    c1 = ax[1].contourf(sc.x, sc.y, np.minimum(sc.h, hmax), levels=30, cmap="magma")
+    fig.colorbar(c1, ax=ax[1], label=sc.hlabel + " (clipped at 3 hc)" if sc.physical else sc.hlabel + " (clipped at 3 Hc)")
+    ax[1].plot([sc.x_hm], [sc.y_hm], "c+", ms=10, label="minimum film")
+    ax[1].set_title("film" + _stretch_note(stretch), fontsize=9)
+    ax[1].legend(loc="lower left", fontsize=7)
+    for a in ax:
+        _plane_axes(a, sc, box, stretch)
+    fig.suptitle(sc.title, fontsize=10)
+    return fig
+
+
+def profiles_figure(res: Result, name: str = "") -> Figure:
+    """Centre-line profiles: along the rolling direction at y = 0, across it at x = 0 and
+    through the minimum film."""
+    sc = map_scales(res, name)
+    jc = int(np.argmin(np.abs(sc.y)))
+    ic = int(np.argmin(np.abs(sc.x)))
+    i0 = int(np.argmin(np.abs(sc.x - sc.x_hm))) if np.isfinite(sc.x_hm) else ic
+    fig = Figure(figsize=(10, 4), layout="constrained")
+    ax = fig.subplots(1, 2)
+    ax[0].plot(sc.x, sc.p[jc], label="pressure")
+    ax2 = ax[0].twinx()
+    ax2.plot(sc.x, sc.h[jc], "r-", label="film")
+    ax2.set_ylim(0, 3.0 * sc.hc)
+    ax[0].set_xlabel(sc.xlabel)
+    ax[0].set_ylabel(sc.plabel)
+    ax2.set_ylabel(sc.hlabel, color="r")
+    ax[0].set_title("centre line y = 0", fontsize=9)
+    ax[1].plot(sc.y, sc.p[:, ic], label="pressure at x = 0")
+    ax[1].plot(sc.y, sc.p[:, i0], "--", label=f"pressure at x = {sc.x[i0]:.3g} (minimum film)")
+    ax3 = ax[1].twinx()
+    ax3.plot(sc.y, sc.h[:, ic], "r-")
+    ax3.plot(sc.y, sc.h[:, i0], "r--")
+    ax3.set_ylim(0, 3.0 * sc.hc)
+    ax3.set_ylabel(sc.hlabel, color="r")
+    ax[1].set_xlabel(sc.ylabel)
+    ax[1].set_ylabel(sc.plabel)
+    ax[1].legend(fontsize=7)
+    ax[1].set_title("across the contact", fontsize=9)
+    fig.suptitle(sc.title, fontsize=10)
+    return fig
+
+
+def interference_figure(res: Result, name: str = "") -> Figure:
+    """Interference-style film map (white light through oil of index 1.5 on the film in m; a
+    Moes-only result, having no physical scale, is drawn with 1 Moes unit = 1 um)."""
+    sc = map_scales(res, name)
+    h_m = sc.h * 1e-9 if sc.physical else sc.h * 1e-6
+    box, stretch = plane_aspect(sc.x, sc.y)
+    fig = Figure(figsize=(5.5, 5.5 * min(max(box, 0.5), 1.6) + 0.6), layout="constrained")
+    ax = fig.subplots()
+    ax.imshow(interference_rgb(np.maximum(h_m, 0.0)), origin="lower",
+              extent=(sc.x[0], sc.x[-1], sc.y[0], sc.y[-1]), interpolation="bilinear", aspect="auto")
+    _plane_axes(ax, sc, box, stretch)
+    scale = "film in nm" if sc.physical else "H (Moes) x 1 um: no physical scale"
+    ax.set_title(f"interference-style film map ({scale}){_stretch_note(stretch)}", fontsize=8)
+    fig.suptitle(sc.title, fontsize=9)
+    return fig
+
+
 def plot_result(res: Result, outdir: str | Path, name: str) -> list[Path]:
     """Write ``<name>_maps.png``, ``<name>_profiles.png``, ``<name>_interference.png``."""
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    X, Y = res["X"], res["Y"]
-    P, H = res["P"].T, res["H"].T  # [j, i]
+    label = res.scene.name if res.scene is not None else ""
     files = []
-    fig = Figure(figsize=(10, 4))
-    ax = fig.subplots(1, 2)
-    c0 = ax[0].contourf(X, Y, P, levels=30, cmap="viridis")
-    fig.colorbar(c0, ax=ax[0], label="P = p/pmax")
-    ax[0].set_title("pressure P")
-    Hmax = min(float(H.max()), 3.0 * float(res.scalars["Hc_venner"]))
-    c1 = ax[1].contourf(X, Y, np.minimum(H, Hmax), levels=30, cmap="magma")
-    fig.colorbar(c1, ax=ax[1], label="H (Venner)")
-    ax[1].plot([res.scalars["X_Hm"]], [res.scalars["Y_Hm"]], "c+", ms=10, label="Hm")
-    ax[1].set_title("film H (clipped at 3 Hc)")
-    ax[1].legend(loc="lower left", fontsize=7)
-    for a in ax:
-        a.set_xlabel("X = x/a")
-        a.set_ylabel("Y = y/a")
-        a.set_aspect("equal")
-    fig.suptitle(f"M = {res.scalars['M']:.4g}, L = {res.scalars['L']:.4g}, theta = {res.scalars['theta']:.3g}; "
-                 f"Hc = {res.scalars['Hc']:.4g}, Hm = {res.scalars['Hm']:.4g} (Moes)")
-    fig.tight_layout()
-    f = outdir / f"{name}_maps.png"
-    fig.savefig(f, dpi=100)
-    files.append(f)
-
-    jc = int(np.argmin(np.abs(Y)))
-    i0 = int(np.argmin(np.abs(X - res.scalars["X_Hm"]))) if np.isfinite(res.scalars["X_Hm"]) else int(np.argmin(np.abs(X)))
-    ic = int(np.argmin(np.abs(X)))
-    fig = Figure(figsize=(10, 4))
-    ax = fig.subplots(1, 2)
-    ax[0].plot(X, P[jc], label="P(X, 0)")
-    ax2 = ax[0].twinx()
-    ax2.plot(X, H[jc], "r-", label="H(X, 0)")
-    ax2.set_ylim(0, 3.0 * res.scalars["Hc_venner"])
-    ax[0].set_xlabel("X")
-    ax[0].set_ylabel("P")
-    ax2.set_ylabel("H", color="r")
-    ax[0].set_title("centre line Y = 0")
-    ax[1].plot(Y, P[:, ic], label="P(0, Y)")
-    ax[1].plot(Y, P[:, i0], "--", label=f"P(X={X[i0]:.2f}, Y)")
-    ax3 = ax[1].twinx()
-    ax3.plot(Y, H[:, ic], "r-")
-    ax3.plot(Y, H[:, i0], "r--")
-    ax3.set_ylim(0, 3.0 * res.scalars["Hc_venner"])
-    ax[1].set_xlabel("Y")
-    ax[1].legend(fontsize=7)
-    ax[1].set_title("cross sections at X = 0 and through Hm")
-    fig.tight_layout()
-    f = outdir / f"{name}_profiles.png"
-    fig.savefig(f, dpi=100)
-    files.append(f)
-
-    if "h" in res.fields:
-        hm = res["h"].T
-        label = "h [m]"
-    else:  # Moes-only: an arbitrary but fixed scale, 1 Venner unit = 1 um
-        hm = H * 1e-6
-        label = "H x 1 um (no physical scale)"
-    fig = Figure(figsize=(5, 5))
-    ax = fig.subplots()
-    ax.imshow(interference_rgb(np.maximum(hm, 0.0)), origin="lower",
-              extent=(X[0], X[-1], Y[0], Y[-1]), interpolation="bilinear")
-    ax.set_xlabel("X")
-    ax.set_ylabel("Y")
-    ax.set_title(f"interference-style film map ({label})", fontsize=8)
-    fig.tight_layout()
-    f = outdir / f"{name}_interference.png"
-    fig.savefig(f, dpi=100)
-    files.append(f)
+    for suffix, make in (("maps", maps_figure), ("profiles", profiles_figure), ("interference", interference_figure)):
+        f = outdir / f"{name}_{suffix}.png"
+        make(res, label).savefig(f, dpi=100)
+        files.append(f)
     return files
