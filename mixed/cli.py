@@ -9,6 +9,7 @@ import argparse
 import math
 import sys
 import time
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -95,6 +96,9 @@ def run_stribeck(args: argparse.Namespace) -> dict:
     try:
         curves = stribeck_cases(scene, us, hoil_over_sigma=hoil, thermal=args.thermal, options=opts,
                                 save_path=h5, progress=progress)
+    except BaseException:
+        mark_incomplete(h5)  # the finished curves stay, saying that the rest is missing
+        raise
     finally:
         if bar is not None:
             bar.close()
@@ -122,6 +126,17 @@ def run_stribeck(args: argparse.Namespace) -> dict:
         for f in files:
             print(f"  wrote {f}")
     return payload
+
+
+def mark_incomplete(path: Path) -> None:
+    """Set ``complete = False`` on the partial result at ``path`` (if one was written)."""
+    import h5py
+
+    try:
+        with h5py.File(path, "r+") as f:
+            f.attrs["complete"] = np.bool_(False)
+    except OSError:
+        pass  # nothing written yet
 
 
 def _curve_dict(c, thermal: bool) -> dict[str, Any]:

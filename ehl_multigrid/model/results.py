@@ -95,6 +95,9 @@ class Result:
     history: dict[str, np.ndarray] = field(default_factory=dict)
     meta: dict[str, Any] = field(default_factory=dict)
     package_version: str = field(default_factory=package_version)
+    #: False for a result saved part-way (an interrupted curve's finished points); also set by
+    #: ``meta["partial"] = True``. Stored as the root attribute ``complete``.
+    complete: bool = True
 
     # -- building -----------------------------------------------------------------------------
     def add_coord(self, name: str, data: np.ndarray, units: str = "-", long_name: str = "") -> None:
@@ -150,6 +153,7 @@ class Result:
         f.attrs["package_version"] = self.package_version
         f.attrs["format_version"] = FORMAT_VERSION
         f.attrs["created"] = _dt.datetime.now(_dt.timezone.utc).isoformat()
+        f.attrs["complete"] = np.bool_(self.complete and not self.meta.get("partial", False))
         if self.scene is not None:
             g = f.create_group("scene")
             g.attrs["toml"] = self.scene.to_toml()
@@ -205,7 +209,8 @@ class Result:
             from .scene import Scene, tomllib
 
             scene = Scene.from_dict(tomllib.loads(_str(f["scene"].attrs["toml"])), origin=str(path))
-        res = cls(kind=_str(f.attrs["kind"]), scene=scene, package_version=_str(f.attrs["package_version"]))
+        res = cls(kind=_str(f.attrs["kind"]), scene=scene, package_version=_str(f.attrs["package_version"]),
+                  complete=bool(f.attrs.get("complete", True)))
         for name, ds in f["coords"].items():
             res.coords[name] = Variable(ds[()], _str(ds.attrs["units"]), (name,), _str(ds.attrs["long_name"]))
         for name, ds in f["fields"].items():
@@ -275,8 +280,8 @@ def load_results(path: str | os.PathLike) -> dict[str, Result]:
 
 
 def is_complete(path: str | os.PathLike) -> bool:
-    """Whether the collection at ``path`` holds every result its writer planned (files written
-    before the ``complete`` attribute existed count as complete)."""
+    """Whether the result or collection at ``path`` holds everything its writer meant to store
+    (files written before the ``complete`` attribute existed count as complete)."""
     with _open_result_file(path) as f:
         return bool(f.attrs.get("complete", True))
 

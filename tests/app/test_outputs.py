@@ -152,3 +152,31 @@ def test_read_only_output_folder_is_a_clear_error(tmp_path):
             writable_dir(ro)
     finally:
         ro.chmod(0o755)
+
+
+def test_single_results_carry_the_completeness_attribute(tmp_path):
+    r = Result("demo")
+    r.set_scalar("x", 1.0)
+    assert is_complete(r.save(tmp_path / "done.h5")) and Result.load(tmp_path / "done.h5").complete
+    r.meta["partial"] = True  # how a curve's part-way saves mark themselves
+    assert not is_complete(r.save(tmp_path / "part.h5"))
+    assert Result.load(tmp_path / "part.h5").complete is False
+
+
+def test_interrupted_stribeck_curve_keeps_its_finished_curves_marked_incomplete(tmp_path, monkeypatch, capsys):
+    import mixed.stribeck as stribeck
+
+    real = stribeck.stribeck_curve
+    calls = []
+
+    def interrupt_second(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(stribeck, "stribeck_curve", interrupt_second)
+    rc = main(["stribeck", "chapter6_starved_0.5GPa", "--n", "5", "--hoil", "1,2", "--no-plots", "--out", str(tmp_path)])
+    assert rc == 130
+    h5 = next(tmp_path.glob("*.h5"))
+    assert not is_complete(h5)
