@@ -180,3 +180,21 @@ def test_interrupted_stribeck_curve_keeps_its_finished_curves_marked_incomplete(
     assert rc == 130
     h5 = next(tmp_path.glob("*.h5"))
     assert not is_complete(h5)
+
+
+@pytest.mark.parametrize("command", [
+    ["solve", "{scene}", "--points", "65", "--accuracy", "none", "--csv"],
+    ["traction", "{scene}", "--slip", "0.1", "--nx", "16", "--nz", "4"],
+    ["stribeck", "{scene}", "--n", "4"],
+])
+def test_every_writing_command_keeps_a_hostile_scene_name_inside_out(command, tmp_path, capsys):
+    d = load_scene("page63_line_500N").to_dict()
+    d["name"] = "../../escaped"
+    scene_file = tmp_path / "hostile.toml"
+    scene_file.write_text(Scene.from_dict(d).to_toml())
+    out = tmp_path / "a" / "b" / "out"
+    argv = [a.replace("{scene}", str(scene_file)) for a in command] + ["--out", str(out), "--json"]
+    assert main(argv) in (0, 3)
+    capsys.readouterr()
+    written = [p for p in tmp_path.rglob("*") if p.is_file() and p != scene_file]
+    assert written and all(p.parent == out for p in written), written
