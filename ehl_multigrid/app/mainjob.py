@@ -318,7 +318,7 @@ def run_main_job(scene: Scene, options: MainJobOptions | None = None) -> dict[st
             shutil.rmtree(staging, ignore_errors=True)
         for o in ctx.outputs.values():
             o.figures = [out / Path(f).name for f in o.figures]
-    payload: dict[str, Any] = {"scene": scene.name, "hdf5": str(h5), "report": str(report), "complete": True,
+    payload: dict[str, Any] = {"scene": scene.name, "hdf5": str(h5), "report": str(report),
                                "plan": {d.model: d.setting if d.include else "off" for d in plan.decisions}}
     for name, o in ctx.outputs.items():
         payload[name] = o.summary
