@@ -5,7 +5,9 @@ For each sum velocity the unknown is the fluid load-sharing factor ``gamma1 = P/
 
 1. the film ``hf,r`` is the mixed form of the Moes (line, (4.23)-(4.24)) or Nijenbanning
    (point/elliptic, (4.25)-(4.26)) fit, ``hf,r = Hc(M, L, gamma1) R sqrt(eta0 us/(E' R))``,
-   reduced by Chevalier's starvation formula (6.4) when an inlet film ``hoil`` is given;
+   times a ``film_factor`` (1, or ``hc_solved/hc_fit`` when an EHL solution of the smooth
+   contact replaces the fit), reduced by Chevalier's starvation formula (6.4) when an inlet
+   film ``hoil`` is given;
 2. the separation follows from Johnson's film definition (4.27) inverted, ``hss = hs - dd`` (4.28);
 3. Greenwood-Williamson gives the asperity load ``Anom pa(hss)`` (4.18, 4.29).
 
@@ -49,7 +51,7 @@ class LoadSharing:
     ``Pa``/``Ph`` [N] asperity and film loads; ``gamma1 = P/Ph``, ``gamma2 = P/Pa``;
     ``hc_fit`` [m] the flooded fit at the solved gamma1 (before starvation);
     ``boundary`` marks points where the starved film is below ``hs_min`` (all load on the
-    asperities, gamma1 = inf).
+    asperities, gamma1 = inf); ``film_factor`` multiplies the fitted film (``hc_fit`` includes it).
     """
 
     kind: str
@@ -72,6 +74,7 @@ class LoadSharing:
     delta: float
     roughness: Roughness
     report: ConvergenceReport = field(repr=False, default=None)  # type: ignore[assignment]
+    film_factor: float = 1.0
 
     @property
     def asperity_fraction(self) -> np.ndarray:
@@ -82,6 +85,11 @@ class LoadSharing:
     def film_fraction(self) -> np.ndarray:
         """``Ph/P = 1/gamma1``."""
         return self.Ph / self.load
+
+
+def require_film_factor(film_factor: float) -> float:
+    """The film calibration factor, checked: finite, in (0.01, 100]."""
+    return require_range("film_factor", film_factor, 0.01, 100.0, "-", lo_open=True)
 
 
 def require_gw_roughness(rough: Roughness | None, where: str = "scene") -> Roughness:
@@ -117,7 +125,8 @@ def _us_array(us: float | np.ndarray | None, scene: Scene) -> np.ndarray:
 class _Problem:
     """The load-sharing residual for a set of sum velocities (arrays indexed by point)."""
 
-    def __init__(self, scene: Scene, us: np.ndarray, load: float, rough: Roughness, hoil: float, delta: float) -> None:
+    def __init__(self, scene: Scene, us: np.ndarray, load: float, rough: Roughness, hoil: float, delta: float,
+                 film_factor: float = 1.0) -> None:
         self.kind = scene.kind
         self.load = load
         self.rough = rough
@@ -127,7 +136,7 @@ class _Problem:
         self.theta = 1.0 if scene.kind == "line" else scene.theta
         ML = np.array([scene.moes(float(u), load) for u in us])
         self.M, self.L = ML[:, 0], ML[:, 1]
-        self.log_scale = np.log([scene.film_scale(float(u)) for u in us])
+        self.log_scale = np.log([scene.film_scale(float(u)) for u in us]) + math.log(film_factor)
         self.rho_bar = density_ratio_at(self.contact.pmax)
         c = asperity_pressure_coefficient(rough.n, rough.beta, rough.sigma_s, scene.E_reduced)
         self.log_a0 = math.log(c) + math.log(self.contact.area / load)
@@ -158,16 +167,17 @@ def fitted_film(
     load: float | None = None,
     hoil: float | None = None,
     delta: float | None = None,
+    film_factor: float = 1.0,
 ) -> float:
-    """Film ``hf,r`` [m] of the mixed fit (4.23)/(4.25) at a given ``gamma1``, starved by (6.4)
-    when ``hoil`` is finite (defaults from the scene's supply)."""
+    """Film ``hf,r`` [m] of the mixed fit (4.23)/(4.25) at a given ``gamma1``, times
+    ``film_factor``, starved by (6.4) when ``hoil`` is finite (defaults from the scene's supply)."""
     P = scene.load if load is None else load
     hoil = scene.supply.hoil if hoil is None else hoil
     delta = scene.supply.delta if delta is None else delta
     M, L = scene.moes(us, P)
     theta = 1.0 if scene.kind == "line" else scene.theta
     Hc = float(fits.central_film_fit(scene.kind, M, L, theta, gamma1))
-    log_hc = math.log(Hc * scene.film_scale(us))
+    log_hc = math.log(Hc * scene.film_scale(us) * require_film_factor(film_factor))
     rho_bar = density_ratio_at(contact_at_load(scene, P).pmax)
     return float(np.exp(log_starved_film(np.array([log_hc]), hoil, rho_bar, delta))[0])
 
@@ -181,6 +191,7 @@ def load_sharing(
     hoil: float | None = None,
     delta: float | None = None,
     xtol: float = 1e-12,
+    film_factor: float = 1.0,
 ) -> LoadSharing:
     """Solve the mixed-lubrication load sharing (4.21)-(4.29) at the sum velocities ``us``.
 
@@ -194,6 +205,9 @@ def load_sharing(
         (default ``scene.supply.hoil``).
     delta : Chevalier exponent (default ``scene.supply.delta``, 3.5).
     xtol : absolute tolerance on ``ln(gamma1 - 1)``.
+    film_factor : multiplies the fitted film at every speed: ``hc_solved/hc_fit`` of an EHL
+        solution of the smooth contact at the operating point calibrates the fit on it
+        (default 1, the fit itself).
 
     Returns
     -------
@@ -210,7 +224,7 @@ def load_sharing(
     hoil = scene.supply.hoil if hoil is None else require_range("hoil", hoil, 0.0, math.inf, "m", lo_open=True)
     delta = scene.supply.delta if delta is None else require_range("delta", delta, 0.5, 20.0, "-")
     require_range("xtol", xtol, 1e-15, 1e-3, "-")
-    prob = _Problem(scene, us_arr, P, rough, hoil, delta)
+    prob = _Problem(scene, us_arr, P, rough, hoil, delta, require_film_factor(film_factor))
     n = us_arr.size
     idx = np.arange(n)
 
@@ -296,4 +310,5 @@ def load_sharing(
         kind=scene.kind, load=P, us=us_arr, Pa=Pa, Ph=Ph, gamma1=g1, gamma2=g2, hfr=hfr, hs=hs,
         hss=hss, Lambda=hfr / rough.Rq, hc_fit=hc_fit, boundary=boundary, pmax=prob.contact.pmax,
         area=prob.contact.area, hs_min=hs_lim, hoil=hoil, delta=delta, roughness=rough, report=report,
+        film_factor=float(film_factor),
     )

@@ -1,6 +1,9 @@
 """Main-job stage: the Stribeck curve of a rough scene (registered in ``ehl.stages``).
 
-Skipped for smooth scenes. Thermal film friction and starved curves as the plan decides.
+Skipped for smooth scenes. Thermal film friction and starved curves as the plan decides. When
+the film stage solved the film (the planner rejected the fit), the fitted film of the load
+sharing is calibrated on it: ``hc_solved/hc_fit`` at the operating point, applied over the
+speed range; the report says which film was used.
 """
 
 from __future__ import annotations
@@ -15,6 +18,21 @@ from ehl_multigrid.app.stages import RunContext, StageOutput
 THERMAL_GRID = {"fast": {"nx": 20, "nz": 5}, "standard": {"nx": 20, "nz": 5}, "reference": {"nx": 40, "nz": 10}}
 
 
+def film_calibration(ctx: RunContext) -> tuple[float, str]:
+    """``(film_factor, description)``: the solved central film over the fitted one at the
+    operating point when the film stage ran the EHL solver, else ``(1, why the fit)``."""
+    scene = ctx.scene
+    film = ctx.result("film")
+    hc_fit = scene.central_film_fit()[1]
+    if film is not None and film.kind in ("ehl_line", "ehl_point"):
+        hc = float(film.scalars["hc"])
+        k = hc / hc_fit
+        return k, (f"fitted film calibrated on the solved film: hc_solved/hc_fit = {hc * 1e9:.4g}/{hc_fit * 1e9:.4g} nm "
+                   f"= {k:.4g} at the operating point, applied over the speed range")
+    setting = ctx.plan.get("film").setting if ctx.plan is not None else "fit"
+    return 1.0, f"fitted film ({setting}; hc_fit = {hc_fit * 1e9:.4g} nm at the operating point)"
+
+
 def stribeck_stage(ctx: RunContext) -> StageOutput | None:
     from .stribeck import default_us, stribeck_cases, stribeck_options, stribeck_result
 
@@ -27,9 +45,11 @@ def stribeck_stage(ctx: RunContext) -> StageOutput | None:
     topts = None
     if thermal and not {"nx", "nz"} & set(scene.solver.get("thermal", {})):
         topts = THERMAL_GRID.get(plan.fidelity)
+    factor, film_source = film_calibration(ctx)
     curves = stribeck_cases(scene, us, hoil_over_sigma=hoil, thermal=thermal, thermal_options=topts,
-                            options=stribeck_options(scene))
+                            options=stribeck_options(scene), film_factor=factor)
     res = stribeck_result(scene, curves, thermal=thermal)
+    res.meta["film_source"] = film_source
     figures: list[Path] = []
     if ctx.plots:
         from .plots import stribeck_figures
@@ -41,12 +61,13 @@ def stribeck_stage(ctx: RunContext) -> StageOutput | None:
     summary = {
         "thermal": thermal, "us": c.us, "friction_coefficient": f,
         "Pa": c.sharing.Pa, "Ph": c.sharing.Ph, "gamma1": c.sharing.gamma1, "hfr": c.sharing.hfr, "hss": c.sharing.hss,
-        "converged": c.converged,
+        "converged": c.converged, "film_factor": factor, "film_source": film_source,
     }
     text = (f"{'Thermal' if thermal else 'Isothermal'} Stribeck curve over us = {us.min():.3g}-{us.max():.3g} m/s "
             f"at slip {c.friction.slip:g}: f = {f[0]:.3g} at the slowest speed, minimum {f[i_min]:.3g} at "
             f"{c.us[i_min]:.3g} m/s, {f[-1]:.3g} at the fastest"
-            + (f"; starved curves for hoil/sigma = {hoil}" if hoil else "") + f"; converged: {c.converged}.")
+            + (f"; starved curves for hoil/sigma = {hoil}" if hoil else "") + f"; converged: {c.converged}. "
+            f"Film: {film_source}.")
     return StageOutput("stribeck", res, summary, figures, text)
 
 

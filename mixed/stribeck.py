@@ -122,6 +122,7 @@ def transition_speed(
     load: float | None = None,
     hoil: float | None = None,
     us_bounds: tuple[float, float] = (1e-9, 1e5),
+    film_factor: float = 1.0,
 ) -> float:
     """Sum velocity [m/s] at which the asperities carry ``fraction`` of the load.
 
@@ -129,7 +130,8 @@ def transition_speed(
     ``hss``, Johnson's definition (4.27) the film it needs, and the speed is the root in
     ``ln us`` of "fitted (starved) film at that gamma1 = required film"; the fitted film grows
     monotonically with speed. NaN if the root is outside ``us_bounds`` (e.g. a starved
-    contact whose film is capped below the required one by its inlet supply).
+    contact whose film is capped below the required one by its inlet supply). ``film_factor``
+    as in :func:`~mixed.sharing.load_sharing`.
     """
     require_range("fraction", fraction, 0.0, 1.0, "-", lo_open=True, hi_open=True)
     rough = require_gw_roughness(scene.roughness)
@@ -140,7 +142,7 @@ def transition_speed(
     gamma1 = 1.0 / (1.0 - fraction)
 
     def g(lnu: float) -> float:
-        return math.log(fitted_film(scene, math.exp(lnu), gamma1, load=P, hoil=hoil)) - target
+        return math.log(fitted_film(scene, math.exp(lnu), gamma1, load=P, hoil=hoil, film_factor=film_factor)) - target
 
     a, b = math.log(us_bounds[0]), math.log(us_bounds[1])
     if not (g(a) < 0.0 < g(b)):
@@ -160,26 +162,28 @@ def stribeck_curve(
     options: dict[str, float] | None = None,
     transitions: bool = True,
     progress: Callable[[int], None] | None = None,
+    film_factor: float = 1.0,
 ) -> StribeckCurve:
     """Stribeck curve of ``scene`` at sum velocities ``us`` (default :func:`default_us`).
 
     ``hoil`` [m] starves the inlet (chapter 6; default ``scene.supply.hoil``); ``thermal`` takes
     the film stress from the thermal solver (chapter 5.4). ``options`` as
-    :func:`stribeck_options` returns them.
+    :func:`stribeck_options` returns them. ``film_factor`` multiplies the fitted film at every
+    speed (``hc_solved/hc_fit``: the fit calibrated on an EHL solution; default 1).
     """
     t0 = time.perf_counter()
     require_gw_roughness(scene.roughness)
     opts = options if options is not None else stribeck_options(scene)
     us_arr = default_us(scene) if us is None else np.asarray(us, dtype=float)
-    ls = load_sharing(scene, us_arr, load=load, hoil=hoil, xtol=opts["xtol"])
+    ls = load_sharing(scene, us_arr, load=load, hoil=hoil, xtol=opts["xtol"], film_factor=film_factor)
     fr = mixed_friction(scene, ls, slip=slip, thermal=thermal, thermal_options=thermal_options,
                         min_film_fraction=opts["min_film_fraction"], progress=progress)
     reg = classify_regime(ls.asperity_fraction, opts["bl_fraction"], opts["ehl_fraction"])
     curve = StribeckCurve(scene, ls, fr, reg, ls.hoil, opts)
     if transitions:
         curve.transitions = {
-            "us_bl_ml": transition_speed(scene, opts["bl_fraction"], load=load, hoil=hoil),
-            "us_ml_ehl": transition_speed(scene, opts["ehl_fraction"], load=load, hoil=hoil),
+            "us_bl_ml": transition_speed(scene, opts["bl_fraction"], load=load, hoil=hoil, film_factor=film_factor),
+            "us_ml_ehl": transition_speed(scene, opts["ehl_fraction"], load=load, hoil=hoil, film_factor=film_factor),
         }
     curve.wall_s = time.perf_counter() - t0
     return curve
@@ -200,7 +204,7 @@ _FIELDS: tuple[tuple[str, str, str, str], ...] = (
     ("hs", "sharing.hs", "m", "separation of the mean height plane"),
     ("hss", "sharing.hss", "m", "separation of the mean summit plane (4.28)"),
     ("Lambda", "sharing.Lambda", "-", "hf,r / Rq"),
-    ("hc_fit", "sharing.hc_fit", "m", "flooded fitted film at gamma1 (before starvation)"),
+    ("hc_fit", "sharing.hc_fit", "m", "flooded fitted film at gamma1 times film_factor (before starvation)"),
     ("AH", "friction.AH", "m^2", "film area (4.36)/(4.37)"),
     ("pavehl", "friction.pavehl", "Pa", "mean film pressure Ph/AH (4.35)"),
     ("tau_film", "friction.tau_film", "Pa", "mean film shear stress"),
@@ -262,6 +266,7 @@ def stribeck_result(scene: Scene, curves: list[StribeckCurve], *, thermal: bool,
     r.set_scalar("dd", rough.dd, "m")
     r.set_scalar("plasticity_index", plasticity_index(scene.E_reduced, rough.hardness, rough.sigma_s, rough.beta), "-")
     r.set_scalar("thermal", bool(thermal), "-")
+    r.set_scalar("film_factor", float(c0.sharing.film_factor), "-")
     for k, v in c0.options.items():
         r.set_scalar(k, v, "-")
     converged = all(c.converged for c in curves)
@@ -298,10 +303,12 @@ def stribeck_cases(
     slip: float | None = None,
     save_path: Path | None = None,
     progress: Callable[[int], None] | None = None,
+    film_factor: float = 1.0,
 ) -> list[StribeckCurve]:
     """The scene's own supply (flooded unless ``scene.supply.hoil`` is finite) followed by one
     starved curve per ``hoil/Rq`` value (chapter 6). With ``save_path`` the HDF5 result is
-    rewritten after every finished curve, so an interrupted run keeps its finished curves."""
+    rewritten after every finished curve, so an interrupted run keeps its finished curves.
+    ``film_factor`` as in :func:`stribeck_curve`."""
     rough = require_gw_roughness(scene.roughness)
     opts = options if options is not None else stribeck_options(scene)
     us_arr = default_us(scene) if us is None else np.asarray(us, dtype=float)
@@ -311,7 +318,8 @@ def stribeck_cases(
     curves: list[StribeckCurve] = []
     for h in hoils:
         curves.append(stribeck_curve(scene, us_arr, load=load, slip=slip, hoil=h, thermal=thermal,
-                                     thermal_options=thermal_options, options=opts, progress=progress))
+                                     thermal_options=thermal_options, options=opts, progress=progress,
+                                     film_factor=film_factor))
         if save_path is not None:
             save_partial(Path(save_path), scene, curves, thermal)
         if progress is not None and not thermal:

@@ -131,3 +131,25 @@ def test_missing_roughness_and_bad_speeds_raise_input_error():
     d["roughness"].pop("n")
     with pytest.raises(InputError, match="roughness.n"):
         load_sharing(Scene.from_dict(d))
+
+
+def test_film_factor_calibrates_the_fitted_film_at_every_speed():
+    from mixed.sharing import fitted_film
+    from mixed.stribeck import transition_speed
+
+    sc = load_scene("page63_line_2000N")
+    us = np.geomspace(0.01, 100.0, 25)
+    k = 0.8
+    ref = load_sharing(sc, us)
+    cal = load_sharing(sc, us, film_factor=k)
+    assert cal.film_factor == k and ref.film_factor == 1.0
+    # at a given load share the film is the fit times k, exactly
+    for u, g1 in ((0.05, 1.0), (0.5, 3.0), (20.0, 1.2)):
+        assert fitted_film(sc, u, g1, film_factor=k) == pytest.approx(k * fitted_film(sc, u, g1), rel=1e-14)
+    # full film (fast end): the film follows the factor; everywhere the thinner film puts more
+    # load on the asperities and the transitions to full film move to higher speed
+    assert cal.hfr[-1] == pytest.approx(k * ref.hfr[-1], rel=1e-9)
+    assert np.all(cal.Pa >= ref.Pa * (1 - 1e-12)) and cal.Pa[10] > 1.01 * ref.Pa[10]
+    assert transition_speed(sc, 0.05, film_factor=k) > transition_speed(sc, 0.05)
+    with pytest.raises(InputError, match="film_factor"):
+        load_sharing(sc, us, film_factor=0.0)
