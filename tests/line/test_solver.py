@@ -70,7 +70,8 @@ def test_moving_the_inlet_changes_hc_less_than_the_discretisation_error(sol_20_1
 
 def test_rigid_isoviscous_limit_is_martins_2_45_over_M():
     # L = 0, no deformation: Hc M = 2.45 exactly (Martin, Reynolds exit condition)
-    s = solve_line(10.0, 0.0, points=1025, elastic=False, xmin=-6.0, xmax=1.0, fmg_start_points=257)
+    s = solve_line(10.0, 0.0, points=1025, elastic=False, xmin=-6.0, xmax=1.0, fmg_start_points=257,
+                   estimate=False)
     assert s.converged
     assert s.Hc * 10.0 == pytest.approx(2.45, rel=0.01)
     assert s.Hm * 10.0 == pytest.approx(2.45, rel=0.02)
@@ -112,7 +113,7 @@ def test_bad_input_names_the_field(kw, field):
 def test_robustness_steps_fire_on_the_rigid_isoviscous_contact_and_it_still_converges():
     # rigid surfaces on the default box: the coarse Newton and the cycles struggle (measured:
     # 10 rejected cycles, a V-cycle stall, a W-cycle stall, then dense Newton finishes)
-    sol = solve_line(10.0, 0.0, points=513, elastic=False, raise_on_failure=False)
+    sol = solve_line(10.0, 0.0, points=513, elastic=False, raise_on_failure=False, estimate=False)
     acts = sol.actions
     assert any("rejected" in a and "omega = 0.25" in a for a in acts)  # halved under-relaxation
     assert any("stalled" in a and "V -> W" in a for a in acts)
