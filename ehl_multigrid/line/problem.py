@@ -73,7 +73,7 @@ class LineProblem:
         require_range("p0", self.p0, 1e6, 1e10, "Pa")
         if not math.isfinite(self.xmin):
             object.__setattr__(self, "xmin", default_xmin(self.M, self.L))
-        require_range("xmin", self.xmin, -100.0, -0.5, "- (x/b)")
+        require_range("xmin", self.xmin, -1000.0, -0.5, "- (x/b)")
         require_range("xmax", self.xmax, 0.1, 100.0, "- (x/b)")
         if not math.isfinite(self.z):
             object.__setattr__(self, "z", self.alpha * self.p0 / math.log(self.eta0 / ETA_INF))

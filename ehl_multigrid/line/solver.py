@@ -377,24 +377,28 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
 def line_domain_change(problem: LineProblem, options: LineOptions, sol: EHLResult) -> tuple[float, float] | None:
     """Relative change of (Hc, Hm) when the inlet is moved upstream by the box length at equal
     mesh size, measured by two converged solves on a coarse grid of the solve (two grids below
-    the finest, not below the FMG start grid); None when either does not converge."""
+    the finest, not below the FMG start grid; one grid finer when that does not converge);
+    None when no pair converges."""
     top = sol.levels - 1
-    kp = max(top - 2, min(d["level"] for d in sol.fmg))
-    n_p = (sol.X.shape[0] - 1) // 2 ** (top - kp) + 1
+    k0 = max(top - 2, min(d["level"] for d in sol.fmg))
     wide = dataclasses.replace(problem, xmin=problem.xmin - (problem.xmax - problem.xmin))
-    out = []
-    for pb, n in ((problem, n_p), (wide, 2 * (n_p - 1) + 1)):
-        opts = dataclasses.replace(options, points=n, levels=None, fmg_start_points=None,
-                                   raise_on_failure=False)
-        try:
-            r = solve_line_problem(pb, opts)
-        except (ConvergenceError, InputError):
-            return None
-        if not r.success:
-            return None
-        out.append((r.scalars["Hc_venner"], r.scalars["Hm_venner"]))
-    (c0, m0), (c1, m1) = out
-    return (c1 / c0 - 1.0, m1 / m0 - 1.0)
+    for kp in range(k0, top + 1):
+        n_p = (sol.X.shape[0] - 1) // 2 ** (top - kp) + 1
+        out = []
+        for pb, n in ((problem, n_p), (wide, 2 * (n_p - 1) + 1)):
+            opts = dataclasses.replace(options, points=n, levels=None, fmg_start_points=None,
+                                       raise_on_failure=False, film_tol=None)
+            try:
+                r = solve_line_problem(pb, opts)
+            except (ConvergenceError, InputError):
+                break
+            if not r.success:
+                break
+            out.append((r.scalars["Hc_venner"], r.scalars["Hm_venner"]))
+        if len(out) == 2:
+            (c0, m0), (c1, m1) = out
+            return (c1 / c0 - 1.0, m1 / m0 - 1.0)
+    return None
 
 
 def solve_line(

@@ -171,7 +171,13 @@ def attach_estimate(result: Any, estimate: ErrorEstimate, accuracy: float | None
         result.scalars["converged"] = bool(result.success)
         return
     worst = max(estimate.Hc, estimate.Hm)
-    if not worst <= accuracy:  # NaN (estimate incomplete) fails too
+    if not math.isfinite(worst):
+        unknown = [k for k, v in estimate.budget.items() if not all(map(math.isfinite, v.values()))]
+        result.set_status(6, f"iteration converged but its error is not known: the {' and '.join(unknown)} "
+                             f"part{'s' if len(unknown) > 1 else ''} could not be estimated (no converged "
+                             f"solve on a coarser grid or a wider box), so the accuracy {accuracy:g} "
+                             f"cannot be confirmed")
+    elif worst > accuracy:
         result.set_status(6, f"iteration converged but the estimated error (Hc {estimate.Hc:.2g}, "
                              f"Hm {estimate.Hm:.2g}) exceeds the requested accuracy {accuracy:g}")
     result.scalars["converged"] = bool(result.success)

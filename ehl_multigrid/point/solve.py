@@ -74,7 +74,8 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult) -> tuple[float, float] | None:
     """Relative change of (Hc, Hm) when the box is doubled in X and Y at equal mesh size,
     measured by two converged solves on a coarse grid of the solve (two grids below the
-    finest, at least the solver's minimum grid); None when either does not converge."""
+    finest, at least the solver's minimum grid; finer grids up to the solve's own when that does
+    not converge); None when no pair converges."""
     top = sol.levels - 1
     n_f = sol.X.shape[0]
     xmin, xmax, ymax = sol.extra["domain"]
@@ -83,21 +84,26 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     scale = 2 ** max(0, round(math.log2((xmax - xmin) / (d0[1] - d0[0]))))
     n_min = (min_points(problem.M, problem.b_over_a) - 1) * scale + 1
     n_p = min(max((n_f - 1) // 4 + 1, n_min), n_f) if top >= 2 else n_f
-    out = []
-    for n, f in ((n_p, 1.0), (2 * (n_p - 1) + 1, 2.0)):
-        # the probes need the film to well below the domain change, not the load to 1e-5
-        opts = replace(options, points=n, levels=None, n_coarse=None, xmin=f * xmin, xmax=f * xmax,
-                       ymax=f * ymax, y_ratio=sol.extra["y_ratio"], raise_on_failure=False,
-                       tol_load=max(options.tol_load, 1e-4))
-        try:
-            r = solve_fas(problem, opts)
-        except (ConvergenceError, InputError):
+    while True:
+        out = []
+        for n, f in ((n_p, 1.0), (2 * (n_p - 1) + 1, 2.0)):
+            # the probes need the film to well below the domain change, not the load to 1e-5
+            opts = replace(options, points=n, levels=None, n_coarse=None, xmin=f * xmin, xmax=f * xmax,
+                           ymax=f * ymax, y_ratio=sol.extra["y_ratio"], raise_on_failure=False,
+                           tol_load=max(options.tol_load, 1e-4), film_tol=None)
+            try:
+                r = solve_fas(problem, opts)
+            except (ConvergenceError, InputError):
+                break
+            if not r.success:
+                break
+            out.append((r.scalars["Hc_venner"], r.scalars["Hm_venner"]))
+        if len(out) == 2:
+            (c0, m0), (c1, m1) = out
+            return (c1 / c0 - 1.0, m1 / m0 - 1.0)
+        if n_p >= n_f:
             return None
-        if not r.success:
-            return None
-        out.append((r.scalars["Hc_venner"], r.scalars["Hm_venner"]))
-    (c0, m0), (c1, m1) = out
-    return (c1 / c0 - 1.0, m1 / m0 - 1.0)
+        n_p = 2 * (n_p - 1) + 1  # one grid finer when the coarse probe does not converge
 
 
 def solve_point(
