@@ -71,7 +71,7 @@ class DenseLine:
             d = 1e-7 * max(1.0, abs(P[j]))
             Pj = P.copy()
             Pj[j] += d
-            J[:, c] = (self.residual(Pj, H0, W + d * self.K[:, j]) - r) / d
+            J[:, c] = (self.residual(Pj, H0, W + d * self.K[j]) - r) / d  # K symmetric: row = column
         d = 1e-7 * max(1e-3, abs(H0))
         J[:, -1] = (self.residual(P, H0 + d, W) - r) / d
         return r, J
@@ -121,7 +121,7 @@ class DenseLine:
             J[pbranch] = 0.0
             J[np.flatnonzero(pbranch), np.flatnonzero(pbranch)] = 1.0
             J = np.vstack([J, np.r_[np.full(self.n - 2, self.h), 0.0]])
-            step = scipy.linalg.lu_solve(scipy.linalg.lu_factor(J, check_finite=False), -phi,
+            step = scipy.linalg.lu_solve(scipy.linalg.lu_factor(J, overwrite_a=True, check_finite=False), -phi,
                                          check_finite=False)
             t = 1.0
             while True:

@@ -1,0 +1,303 @@
+"""Independent reference values of Hc and Hm (Venner units) for the accuracy studies.
+
+Line (M, L) with tested grids up to N:
+
+* the default box at N, 2N, 4N, 8N (points ``k (N - 1) + 1``), tolerances 1e-8 / 1e-9:
+  Richardson from 4N and 8N, observed order from 2N, 4N, 8N (``R1``);
+* the box 2x and 4x longer upstream (``xmin = xmax - 4 (xmax - xmin_default)``) at the mesh
+  of N, and the 4x box at the meshes of 2N, 4N and 8N (4x the points): Richardson from the 4x
+  box's 4N and 8N (``R4``), and the box extrapolated beyond 4x from the decay of the change
+  per doubling measured at the mesh of N (``reference = R4 (1 + beyond/(1 + d4))``);
+* where the 4x box does not start at the fine meshes (the dense Newton start of the line
+  solver is limited to 2049 points, too few for a 4x box at M >= 1000), ``reference =
+  R1 (1 + d_box)`` with ``d_box`` the box change measured at the mesh of N (an additive
+  split of grid and box errors, checked at M <= 100 where both are available).
+
+Point (M, L, theta): the default box at 257, 513, 1025 (2049 for theta = 4, whose cells are
+halved in Y), half domain, tolerances 1e-7 / 1e-8 (the point iteration stalls near a residual
+of 2e-7: a solve that stops at max_cycles counts when its films moved by < 1e-5 over the last
+cycles): Richardson from the two finest, order from the three finest (``R1``); boxes 1x, 2x,
+4x at the mesh of the smallest tested grid (X and Y doubled, twice the points per doubling),
+extrapolated beyond 4x from the measured decay (``d_box``); ``reference = R1 (1 + d_box)``.
+For two cases the box series is repeated at a mesh twice as fine to measure how much the box
+change depends on the mesh.
+
+Uncertainty of a reference: the Richardson uncertainty (extrapolation with the order moved by
++-0.5, plus twice the algebraic noise of the reference solves) plus the box remainder beyond
+4x (the extrapolated remainder itself) plus, for the additive split, the change of the box
+effect between meshes where measured.
+
+    python validation/accuracy/references.py [--contact line|point] [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from typing import Any
+
+from common import (
+    LINE_CASES,
+    POINT_CASES,
+    POINT_TIGHT,
+    REFS,
+    box_extrapolation,
+    cached_solve,
+    consecutive_chain,
+    fmt,
+    line_reference_solve,
+    nan,
+    read_json,
+    richardson_reference,
+    usable,
+    write_json,
+)
+from tqdm import tqdm
+
+#: largest 4x-box line grid attempted (131073 points at M = 1000 ran > 8 minutes under load
+#: without converging; where the box change is 1e-5, as there, the additive split is exact enough)
+LINE_R4_MAX = 65537
+#: settling (relative spread of the films over the last cycles) accepted for a box solve
+BOX_SPREAD = 1e-3
+#: reference solves of these point cases use V cycles: the default W cycles diverge on the
+#: second grid at (1000, 10) (V cycles converge; the discrete problem is the same)
+POINT_REF_OPTIONS = {(1000.0, 10.0, 1.0): {"cycle": "V"}}
+#: largest point grid of a box series (half domain)
+POINT_BOX_MAX = 1025
+#: point cases whose box series is repeated at twice the mesh density (mesh dependence)
+POINT_BOX_MESH_CHECK = {(20.0, 10.0, 1.0), (5.0, 0.0, 1.0)}
+
+
+def refine(n: int, k: int) -> int:
+    return k * (n - 1) + 1
+
+
+def ref_path(contact: str, M: float, L: float, theta: float = 1.0):
+    return REFS / f"{contact}_M{fmt(M)}_L{fmt(L)}_t{fmt(theta)}.json"
+
+
+def _films(rec: dict[str, Any]) -> tuple[float, float]:
+    return nan(rec.get("Hc_venner")), nan(rec.get("Hm_venner"))
+
+
+#: algebraic error of a converged tight line solve: the dense direct solver agrees with it to
+#: <= 2e-7 in Hc and Hm (out/dense_check.json)
+LINE_TIGHT_ALGEBRAIC = 1e-6
+
+
+def _noise(recs: list[dict[str, Any]]) -> float:
+    """Relative algebraic uncertainty of reference solves: 0 for the dense direct solver (exact
+    to round-off), LINE_TIGHT_ALGEBRAIC for converged tight line solves, else the spread of
+    the films over the last finest-grid cycles plus half the load error."""
+    s = []
+    for r in recs:
+        if r.get("solver") == "dense":
+            s.append(0.0)
+        elif r.get("contact") == "line" and r.get("success"):
+            s.append(LINE_TIGHT_ALGEBRAIC)
+        else:
+            s.append(nan(r.get("spread")))
+    s = [x for x in s if math.isfinite(x)]
+    return max(s) if s else 0.0
+
+
+def line_reference(M: float, L: float, tested: tuple[int, ...], bar: Any = None) -> dict[str, Any]:
+    path = ref_path("line", M, L)
+    old = read_json(path)
+    if old is not None:
+        return old
+    N = max(tested)
+    fine = [refine(N, k) for k in (2, 4, 8)]
+
+    def solve(n: int, box: float, dense: bool = True) -> dict[str, Any]:
+        if bar is not None:
+            bar.set_postfix_str(f"line ({M:g}, {L:g}) {n} pts box {box:g}")
+        return line_reference_solve(M, L, n, box, dense)
+
+    one: dict[int, dict[str, Any]] = {}
+    for n in sorted(set(tested) | set(fine)):
+        one[n] = solve(n, 1.0)
+        if not usable(one[n]) and n > max(tested):
+            break  # beyond the dense solver's reach: finer grids would stall as well
+    b2, b4 = solve(refine(N, 2), 2.0), solve(refine(N, 4), 4.0)
+    four: dict[int, dict[str, Any]] = {refine(N, 4): b4}
+    if usable(b4):
+        for n in (m for m in fine if refine(m, 4) <= LINE_R4_MAX):
+            # no dense fallback here: the 4x box's grid sequence only counts when it reaches
+            # the finest default-box grid, beyond the dense solver's size
+            four[refine(n, 4)] = solve(refine(n, 4), 4.0, dense=False)
+            if not usable(four[refine(n, 4)]):
+                break
+    out: dict[str, Any] = {"contact": "line", "M": M, "L": L, "theta": 1.0, "tested": list(tested),
+                           "solves": {**{f"{n}_box1": r for n, r in one.items()},
+                                      f"{refine(N, 2)}_box2": b2,
+                                      **{f"{n}_box4": r for n, r in four.items()}}}
+    chain1 = consecutive_chain(one)
+    if len(chain1) < 2 or chain1[-1] <= N:
+        out.update(ok=False, reason="no converged default-box solve finer than the tested grids")
+        write_json(path, out)
+        return out
+    noise = _noise([one[n] for n in chain1[-3:]])
+    R1 = {k: richardson_reference([_films(one[n])[i] for n in chain1[-3:]], noise)
+          for i, k in enumerate(("Hc", "Hm"))}
+    R1["grids"] = chain1[-3:]
+    b1 = one[N]
+    if not (usable(b1) and usable(b2)):
+        out.update(ok=False, reason="the box solves at the mesh of N did not converge")
+        write_json(path, out)
+        return out
+    box = {k: box_extrapolation(_films(b1)[i], _films(b2)[i], _films(b4)[i] if usable(b4) else None)
+           for i, k in enumerate(("Hc", "Hm"))}
+    chain4 = consecutive_chain(four)
+    ref, unc = {}, {}
+    # the 4x box's own grid sequence is used when it reaches the default box's finest mesh
+    if len(chain4) >= 3 and chain4[-1] >= refine(chain1[-1], 4):
+        noise4 = _noise([four[n] for n in chain4[-3:]])
+        R4 = {k: richardson_reference([_films(four[n])[i] for n in chain4[-3:]], noise4)
+              for i, k in enumerate(("Hc", "Hm"))}
+        R4["grids"] = chain4[-3:]
+        out["R4"] = R4
+        out["box_change_by_mesh"] = {
+            str((n - 1) // 4 + 1): {k: _films(four[n])[i] / _films(one[(n - 1) // 4 + 1])[i] - 1.0
+                                    for i, k in enumerate(("Hc", "Hm"))}
+            for n in chain4 if usable(one.get((n - 1) // 4 + 1))}
+        for k in ("Hc", "Hm"):
+            bx = box[k]
+            beyond = bx["beyond"] / (1.0 + bx["d4"])
+            ref[k] = R4[k]["value"] * (1.0 + beyond)
+            unc[k] = R4[k]["uncertainty"] + abs(ref[k]) * bx["uncertainty"]
+        method = (f"Richardson on the 4x box ({', '.join(str(n) for n in chain4[-3:])} points) "
+                  f"+ box remainder beyond 4x")
+    else:
+        for k in ("Hc", "Hm"):
+            bx = box[k]
+            ref[k] = R1[k]["value"] * (1.0 + bx["total"])
+            unc[k] = R1[k]["uncertainty"] + abs(ref[k]) * bx["uncertainty"]
+        method = (f"Richardson on the default box ({', '.join(str(n) for n in chain1[-3:])}) x "
+                  f"(1 + box change at the mesh of {N}, boxes up to {'4x' if usable(b4) else '2x'})")
+    dense = sorted(key for key, r in out["solves"].items() if r.get("solver") == "dense" and usable(r))
+    if dense:
+        method += f"; dense direct solves: {', '.join(dense)}"
+    out.update(ok=True, R1=R1, box=box, method=method, Hc_ref=ref["Hc"], Hm_ref=ref["Hm"],
+               Hc_unc=unc["Hc"] / abs(ref["Hc"]), Hm_unc=unc["Hm"] / abs(ref["Hm"]),
+               grid_ref={k: R1[k]["value"] for k in ("Hc", "Hm")})
+    write_json(path, out)
+    return out
+
+
+def point_grids(theta: float, tested: tuple[int, ...]) -> list[int]:
+    top = 2049 if theta > 2.0 else 1025
+    return sorted(set(tested) | {(top - 1) // 4 + 1, (top - 1) // 2 + 1, top})
+
+
+def point_reference(M: float, L: float, theta: float, tested: tuple[int, ...], bar: Any = None) -> dict[str, Any]:
+    path = ref_path("point", M, L, theta)
+    old = read_json(path)
+    if old is not None:
+        return old
+    opts = {**POINT_TIGHT, "half": True, **POINT_REF_OPTIONS.get((M, L, theta), {})}
+    grids = point_grids(theta, tested)
+    n0 = min(tested)
+    plan = [(n0, 1.0), (refine(n0, 2), 2.0), (refine(n0, 4), 4.0)]
+    if (M, L, theta) in POINT_BOX_MESH_CHECK:
+        n1 = refine(n0, 2)
+        plan += [(n1, 1.0), (refine(n1, 2), 2.0), (refine(n1, 4), 4.0)]
+    plan += [(n, 1.0) for n in grids]
+    recs: dict[tuple[int, float], dict[str, Any]] = {}
+    for n, box in plan:
+        if (n, box) in recs:
+            continue
+        if bar is not None:
+            bar.set_postfix_str(f"point ({M:g}, {L:g}, {theta:g}) {n} pts box {box:g}")
+        recs[(n, box)] = cached_solve("point", M, L, theta, n, box, **opts)
+    out: dict[str, Any] = {"contact": "point", "M": M, "L": L, "theta": theta, "tested": list(tested),
+                           "solves": {f"{n}_box{fmt(b)}": r for (n, b), r in recs.items()}}
+    chain = consecutive_chain({n: recs[(n, 1.0)] for n in grids})
+    if len(chain) < 2 or chain[-1] <= max(tested):
+        out.update(ok=False, reason="no converged default-box solve finer than the tested grids")
+        write_json(path, out)
+        return out
+    seq = [recs[(n, 1.0)] for n in chain[-3:]]
+    noise = _noise(seq)
+    R1 = {k: richardson_reference([_films(r)[i] for r in seq], noise) for i, k in enumerate(("Hc", "Hm"))}
+    R1["grids"] = chain[-3:]
+
+    def box_series(n: int) -> dict[str, Any] | None:
+        bs = [recs.get((refine(n, f), float(f))) for f in (1, 2, 4, 8)]
+        # the box changes are percents: films settled to 1e-3 measure them well enough (the
+        # spread is added to the uncertainty)
+        ok = [usable(b, BOX_SPREAD) for b in bs]
+        if not (ok[0] and ok[1]):
+            return None
+        g = [_films(b) if good else None for b, good in zip(bs, ok, strict=True)]
+        if not ok[2]:
+            g[3] = None
+        noise = _noise([b for b, good in zip(bs, ok, strict=True) if good])
+        out = {}
+        for i, k in enumerate(("Hc", "Hm")):
+            bx = box_extrapolation(g[0][i], g[1][i], g[2][i] if g[2] else None, g[3][i] if g[3] else None)
+            bx["uncertainty"] += 2.0 * noise
+            out[k] = bx
+        return out
+
+    box = box_series(n0)
+    # where the box change decays slowly (< 3x per doubling) one more doubling, if affordable
+    slow = box is not None and any(not (box[k]["decay"] >= 3.0) for k in ("Hc", "Hm"))
+    if slow and refine(n0, 8) <= POINT_BOX_MAX:
+        if bar is not None:
+            bar.set_postfix_str(f"point ({M:g}, {L:g}, {theta:g}) {refine(n0, 8)} pts box 8")
+        recs[(refine(n0, 8), 8.0)] = cached_solve("point", M, L, theta, refine(n0, 8), 8.0, **opts)
+        out["solves"][f"{refine(n0, 8)}_box8"] = recs[(refine(n0, 8), 8.0)]
+        box = box_series(n0)
+    if box is None:
+        out.update(ok=False, reason="the box solves did not converge")
+        write_json(path, out)
+        return out
+    mesh_dep = {"Hc": 0.0, "Hm": 0.0}
+    if (M, L, theta) in POINT_BOX_MESH_CHECK:
+        fine_box = box_series(refine(n0, 2))
+        out["box_fine_mesh"] = fine_box
+        if fine_box is not None:
+            mesh_dep = {k: abs(fine_box[k]["total"] - box[k]["total"]) for k in ("Hc", "Hm")}
+    ref, unc = {}, {}
+    for k in ("Hc", "Hm"):
+        ref[k] = R1[k]["value"] * (1.0 + box[k]["total"])
+        unc[k] = R1[k]["uncertainty"] + abs(ref[k]) * (box[k]["uncertainty"] + mesh_dep[k])
+    out.update(ok=True, R1=R1, box=box, box_mesh_dependence=mesh_dep,
+               method=f"Richardson on the default box ({', '.join(str(n) for n in chain[-3:])}) x "
+                      f"(1 + box change at the mesh of {n0}, boxes 1x-{'8' if math.isfinite(box['Hc']['d8']) else '4'}x, "
+                      f"extrapolated)",
+               Hc_ref=ref["Hc"], Hm_ref=ref["Hm"], Hc_unc=unc["Hc"] / abs(ref["Hc"]),
+               Hm_unc=unc["Hm"] / abs(ref["Hm"]), grid_ref={k: R1[k]["value"] for k in ("Hc", "Hm")})
+    write_json(path, out)
+    return out
+
+
+def reference(contact: str, M: float, L: float, theta: float = 1.0, bar: Any = None) -> dict[str, Any]:
+    if contact == "line":
+        return line_reference(M, L, LINE_CASES[(M, L)], bar)
+    return point_reference(M, L, theta, POINT_CASES[(M, L, theta)], bar)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--contact", choices=("line", "point", "both"), default="both")
+    args = ap.parse_args()
+    todo = []
+    if args.contact in ("line", "both"):
+        todo += [("line", M, L, 1.0) for M, L in LINE_CASES]
+    if args.contact in ("point", "both"):
+        # cheapest first, so an interrupted run leaves the most cases done
+        todo += sorted((("point", *k) for k in POINT_CASES), key=lambda c: (c[3] != 1.0, c[1]))
+    bar = tqdm(todo, desc=f"references ({args.contact})")
+    for contact, M, L, theta in bar:
+        r = reference(contact, M, L, theta, bar)
+        if r.get("ok"):
+            tqdm.write(f"{contact} ({M:g}, {L:g}, {theta:g}): Hc {r['Hc_ref']:.7g} +- {100 * r['Hc_unc']:.3g} %, "
+                       f"Hm {r['Hm_ref']:.7g} +- {100 * r['Hm_unc']:.3g} %  [{r['method']}]")
+        else:
+            tqdm.write(f"{contact} ({M:g}, {L:g}, {theta:g}): no reference ({r.get('reason')})")
+
+
+if __name__ == "__main__":
+    main()
