@@ -35,7 +35,8 @@ class ThermalOptions:
     x_out : outlet X (None: 1 for Hertz input, the end of the EHL domain for solver input).
     tol_T : relative change of absolute temperature ending a station's iteration (thesis 1e-5).
     tol_tau : relative change of shear stress ending a station's iteration (thesis 1e-5).
-    max_inner, max_sweeps : iteration limits (station iteration, inlet-to-outlet sweeps).
+    max_inner, max_sweeps : iteration limits (station iteration, inlet-to-outlet sweeps; a thick
+        EHL inlet with strong back flow, e.g. appendix C from X = -4 with 40 degC oil, takes 63).
     relax : initial under-relaxation of the temperature update.
     slices : number of slices over half the point contact (thesis ny = 10).
     slice_rule : ``midpoint`` (uniform Y, thesis Fig. 3.7) or ``cosine`` (Y = sin(theta), theta at
@@ -68,7 +69,7 @@ class ThermalOptions:
     tol_T: float = 1e-5
     tol_tau: float = 1e-5
     max_inner: int = 200
-    max_sweeps: int = 50
+    max_sweeps: int = 100
     relax: float = 1.0
     slices: int = 10
     slice_rule: str = "midpoint"

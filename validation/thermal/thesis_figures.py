@@ -193,12 +193,9 @@ def ehl_point_result(sc) -> Result | None:
     path = CACHE / f"ehl_point_{sc.name}.h5"
     if path.exists():
         return Result.load(path)
-    try:
-        from ehl_multigrid.point import build_result, problem_from_scene, solve_point
-    except ImportError:
-        return None
-    sol = solve_point(problem_from_scene(sc, "roelands", "dowson-higginson"))
-    res = build_result(sol, sc)
+    from ehl_multigrid.point import solve_point
+
+    res = solve_point(scene=sc, points=257, half=True).to_result(sc)
     if not res.scalars.get("converged"):
         print("point EHL solve did not converge")
         return None
