@@ -144,11 +144,11 @@ def plot(rows: list[dict[str, Any]], path) -> None:
         for contact, mk, col in (("line", "o", "C0"), ("point", "s", "C3")):
             rr = [r for r in rows if r.get("usable") and r["contact"] == contact]
             est = np.array([r[k]["est"] for r in rr])
-            tru = np.array([max(abs(r[k]["true"]), 1e-7) for r in rr])
+            tru = np.array([max(abs(r[k]["true"]), 1e-5) for r in rr])
             unc = np.array([r[k]["ref_unc"] for r in rr])
             ax.errorbar(est, tru, yerr=np.minimum(unc, 0.999 * tru), fmt=mk, color=col, ms=5,
                         alpha=0.8, label=f"{contact} ({len(rr)})", elinewidth=0.8)
-        lo, hi = 1e-6, 1.0
+        lo, hi = 1e-4, 10.0
         ax.plot([lo, hi], [lo, hi], "k-", lw=1, label="true = estimate")
         ax.plot([lo, hi], [0.2 * lo, 0.2 * hi], "k:", lw=1, label="true = 0.2 x estimate")
         ax.set_xscale("log")
