@@ -1,8 +1,8 @@
 """Honest error estimates beyond the moderate-load circular case: high-load line, elliptic
 point, the algebraic part against a tight solve of the same grid, and the low-load point
-contact whose domain error decays too slowly for the doubled-box probe (strict xfail: it
-passes, and so reports itself, once the estimate covers it). References are independent
-solves on finer grids and wider boxes (the study: validation/accuracy/REPORT.md)."""
+contact whose domain error falls only 1.3-1.6x per doubling of the box (it needs the domain
+safety factor of 3; 1.5 missed it). References are independent solves on finer grids and
+wider boxes (the study: validation/accuracy/REPORT.md)."""
 
 import pytest
 
@@ -64,8 +64,6 @@ def test_elliptic_point_estimate_covers_the_error_against_finer_grids_and_wider_
         assert true <= est <= 5.0 * true
 
 
-@pytest.mark.xfail(strict=True, reason="the doubled-box probe assumes the domain error falls >= 3x "
-                   "per doubling; at (M, L) = (5, 0) it falls 1.3-1.6x (validation/accuracy/REPORT.md)")
 def test_low_load_point_estimate_covers_the_domain_error_of_the_default_box():
     M, L, n = 5.0, 0.0, 129
     sol = solve_point(M, L, points=n)

@@ -56,6 +56,21 @@ def load_avg() -> float:
     return os.getloadavg()[0]
 
 
+def code_version() -> str:
+    """Hash of the numerical code (multigrid core, line and point contacts): records of
+    estimated errors are redone when it changes, since the estimator and its constants live
+    there."""
+    import hashlib
+
+    root = HERE.parents[1] / "ehl_multigrid"
+    h = hashlib.sha1()
+    for sub in ("multigrid", "line", "point"):
+        for f in sorted((root / sub).glob("*.py")):
+            h.update(f.name.encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()[:12]
+
+
 def fmt(x: float) -> str:
     return f"{x:g}"
 

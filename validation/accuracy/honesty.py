@@ -26,6 +26,7 @@ from common import (
     LINE_CASES,
     OUT,
     POINT_CASES,
+    code_version,
     fmt,
     load_avg,
     nan,
@@ -51,7 +52,7 @@ def tested_solve(contact: str, M: float, L: float, theta: float, n: int) -> dict
     """The default solve with its error estimate, cached in out/tested."""
     path = TESTED / f"{contact}_M{fmt(M)}_L{fmt(L)}_t{fmt(theta)}_n{n}.json"
     rec = read_json(path)
-    if rec is not None:
+    if rec is not None and rec.get("code") == code_version():
         return rec
     from ehl_multigrid.line import solve_line
     from ehl_multigrid.point import solve_point
@@ -74,7 +75,8 @@ def tested_solve(contact: str, M: float, L: float, theta: float, n: int) -> dict
                "refinements": sol.extra.get("refinements"), "solver_wall_s": float(sol.wall_s)}
     except Exception as exc:  # noqa: BLE001 -- a failed default solve is a result of the study
         rec = {"status": "error", "success": False, "message": f"{type(exc).__name__}: {exc}"}
-    rec.update(contact=contact, M=M, L=L, theta=theta, points=n, wall_s=time.perf_counter() - t0,
+    rec.update(contact=contact, M=M, L=L, theta=theta, points=n, code=code_version(),
+               wall_s=time.perf_counter() - t0,
                cpu_s=time.process_time() - c0, load_before=load0, load_after=load_avg())
     write_json(path, rec)
     return rec

@@ -22,7 +22,7 @@ import os
 import time
 from typing import Any
 
-from common import OUT, load_avg, nan, read_json, write_json
+from common import OUT, code_version, load_avg, nan, read_json, write_json
 from references import reference
 from tqdm import tqdm
 
@@ -156,15 +156,15 @@ def main() -> None:
     for contact, M, L, a in bar:
         key = f"{contact}_M{M:g}_L{L:g}_a{a:g}"
         bar.set_postfix_str(key)
-        if key in data:
+        if key in data and data[key].get("code") == code_version():
             continue
         looser = [data.get(f"{contact}_M{M:g}_L{L:g}_a{b:g}") for b in ACCURACIES if b > a]
-        if any(r and r.get("status") == "skipped" for r in looser):
+        if any(r and r.get("status") == "skipped" and r.get("code") == code_version() for r in looser):
             row = {"status": "skipped", "success": False, "wall_s": math.nan,
                    "message": "a looser accuracy of this case already exceeded the time limit"}
         else:
             row = run_limited(contact, M, L, a)
-        row.update(contact=contact, M=M, L=L, accuracy=a)
+        row.update(contact=contact, M=M, L=L, accuracy=a, code=code_version())
         ref = reference(contact, M, L, 1.0)
         if ref.get("ok") and row.get("Hc_venner") is not None:
             row["Hc_ref"], row["Hm_ref"] = ref["Hc_ref"], ref["Hm_ref"]
