@@ -218,11 +218,11 @@ class PointOptions(MultigridOptions):
         super().__post_init__()
         require_range("points", self.points, 9, 8193)
         if self.xmin is not None:
-            require_range("xmin", self.xmin, -2000.0, -1.05, "- (x/a)")
+            require_range("xmin", self.xmin, -20000.0, -1.05, "- (x/a)")
         if self.xmax is not None:
-            require_range("xmax", self.xmax, 1.05, 2000.0, "- (x/a)")
+            require_range("xmax", self.xmax, 1.05, 20000.0, "- (x/a)")
         if self.ymax is not None:
-            require_range("ymax", self.ymax, 0.5, 2000.0, "- (y/a)")
+            require_range("ymax", self.ymax, 0.5, 20000.0, "- (y/a)")
         if self.y_ratio is not None:
             require_range("y_ratio", self.y_ratio, 0.125, 8.0, "-")
             if abs(math.log2(self.y_ratio) - round(math.log2(self.y_ratio))) > 1e-12:
