@@ -32,7 +32,7 @@ import numpy as np
 
 from ..model.errors import ConvergenceError, InputError, require_range
 from ..model.fits import moes_line_central
-from ..multigrid.accuracy import film_tol, solve_to_accuracy
+from ..multigrid.accuracy import film_change, film_tol, solve_to_accuracy
 from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import LineOptions, build_scene_options, scene_solver_table
@@ -384,20 +384,15 @@ def line_domain_change(problem: LineProblem, options: LineOptions, sol: EHLResul
     wide = dataclasses.replace(problem, xmin=problem.xmin - (problem.xmax - problem.xmin))
     for kp in range(k0, top + 1):
         n_p = (sol.X.shape[0] - 1) // 2 ** (top - kp) + 1
-        out = []
-        for pb, n in ((problem, n_p), (wide, 2 * (n_p - 1) + 1)):
-            opts = dataclasses.replace(options, points=n, levels=None, fmg_start_points=None,
-                                       raise_on_failure=False, film_tol=None)
-            try:
-                r = solve_line_problem(pb, opts)
-            except (ConvergenceError, InputError):
-                break
-            if not r.success:
-                break
-            out.append((r.scalars["Hc_venner"], r.scalars["Hm_venner"]))
-        if len(out) == 2:
-            (c0, m0), (c1, m1) = out
-            return (c1 / c0 - 1.0, m1 / m0 - 1.0)
+
+        def solve(pb: LineProblem, n: int) -> EHLResult:
+            return solve_line_problem(pb, dataclasses.replace(
+                options, points=n, levels=None, fmg_start_points=None, raise_on_failure=False,
+                film_tol=None))
+
+        change = film_change(lambda n=n_p: solve(problem, n), lambda n=n_p: solve(wide, 2 * (n - 1) + 1))
+        if change is not None:
+            return change
     return None
 
 

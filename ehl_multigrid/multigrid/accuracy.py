@@ -151,6 +151,24 @@ def film_tol(options: Any, accuracy: float | None, tol_factor: float = 1.0) -> f
     return min(FILM_TOL_FRACTION * accuracy * tol_factor, 0.1)
 
 
+def film_change(solve_default: Any, solve_wide: Any) -> tuple[float, float] | None:
+    """Relative change of (Hc, Hm) from the default-box solve to the wide-box solve (two
+    callables returning results); None when either raises a clear error or does not converge."""
+    from ..model.errors import ConvergenceError, InputError
+
+    films = []
+    for solve in (solve_default, solve_wide):
+        try:
+            r = solve()
+        except (ConvergenceError, InputError):
+            return None
+        if not r.success:
+            return None
+        films.append((r.scalars["Hc_venner"], r.scalars["Hm_venner"]))
+    (c0, m0), (c1, m1) = films
+    return (c1 / c0 - 1.0, m1 / m0 - 1.0)
+
+
 @dataclass(frozen=True)
 class Refinement:
     """One solve of an accuracy-driven sequence: grid, box scale, tolerance and its estimate."""

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from ..model.convergence import ConvergenceReport
-from ..model.results import Result
+from ..model.results import Result, ScalarAccess
 
 #: status code -> name
 STATUS = {
@@ -32,7 +32,7 @@ STATUS = {
 
 
 @dataclass
-class EHLResult:
+class EHLResult(ScalarAccess):
     """Answer of an EHL solve.
 
     Attributes
@@ -97,12 +97,6 @@ class EHLResult:
         self.status, self.message = status, message
         self.status_name = STATUS[status]
         self.success = status == 0
-
-    def __getattr__(self, name: str) -> Any:
-        scal = self.__dict__.get("scalars", {})
-        if name in scal:
-            return scal[name]
-        raise AttributeError(name)
 
     # -- aliases --------------------------------------------------------------------------
     @property

@@ -13,7 +13,7 @@ from dataclasses import replace
 from typing import Any
 
 from ..model.errors import ConvergenceError, InputError, require_choice, require_range
-from ..multigrid.accuracy import film_tol, solve_to_accuracy
+from ..multigrid.accuracy import film_change, film_tol, solve_to_accuracy
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import PointOptions, build_scene_options, scene_solver_table
 from ..multigrid.result import EHLResult
@@ -85,22 +85,16 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     n_min = (min_points(problem.M, problem.b_over_a) - 1) * scale + 1
     n_p = min(max((n_f - 1) // 4 + 1, n_min), n_f) if top >= 2 else n_f
     while True:
-        out = []
-        for n, f in ((n_p, 1.0), (2 * (n_p - 1) + 1, 2.0)):
+        def solve(n: int, f: float) -> EHLResult:
             # the probes need the film to well below the domain change, not the load to 1e-5
-            opts = replace(options, points=n, levels=None, n_coarse=None, xmin=f * xmin, xmax=f * xmax,
-                           ymax=f * ymax, y_ratio=sol.extra["y_ratio"], raise_on_failure=False,
-                           tol_load=max(options.tol_load, 1e-4), film_tol=None)
-            try:
-                r = solve_fas(problem, opts)
-            except (ConvergenceError, InputError):
-                break
-            if not r.success:
-                break
-            out.append((r.scalars["Hc_venner"], r.scalars["Hm_venner"]))
-        if len(out) == 2:
-            (c0, m0), (c1, m1) = out
-            return (c1 / c0 - 1.0, m1 / m0 - 1.0)
+            return solve_fas(problem, replace(
+                options, points=n, levels=None, n_coarse=None, xmin=f * xmin, xmax=f * xmax,
+                ymax=f * ymax, y_ratio=sol.extra["y_ratio"], raise_on_failure=False,
+                tol_load=max(options.tol_load, 1e-4), film_tol=None))
+
+        change = film_change(lambda n=n_p: solve(n, 1.0), lambda n=n_p: solve(2 * (n - 1) + 1, 2.0))
+        if change is not None:
+            return change
         if n_p >= n_f:
             return None
         n_p = 2 * (n_p - 1) + 1  # one grid finer when the coarse probe does not converge

@@ -17,10 +17,10 @@ from pathlib import Path
 
 
 def main(path: str, repeat: int = 5) -> None:
+    import inspect
+
     from ehl_multigrid.line import solve_line
     from ehl_multigrid.point import solve_point
-
-    import inspect
 
     # the same single solve before and after the error estimates existed
     kw = {"estimate": False} if "estimate" in inspect.signature(solve_line).parameters else {}
