@@ -1,0 +1,120 @@
+"""The EHL extremes matrix at an accuracy target: does every corner either meet the target or
+fail with a clear reason, and is no "converged" answer wrong?
+
+Each line and point case (M 1-5000, L 0-25, theta 0.1-10) is solved with ``accuracy=A``; a
+case that says converged is checked against an independent solve one grid finer (its error
+estimated and judged at ``A/4``): it is *wrong* when the two differ by more than the sum of
+their estimated errors. Each case runs in its own process with a time limit;
+results are written per case (resumable, keyed by the case and the target).
+
+Usage: python validation/extremes/accuracy_map.py [--accuracy 0.02] [--timeout 600] [--quick]
+Writes validation/extremes/out/accuracy_map_<A>.json.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+OUT = Path(__file__).parent / "out"
+
+
+def cases(quick: bool) -> list[dict]:
+    out = []
+    Ms = [1.0, 20.0, 1000.0, 5000.0] if not quick else [1.0, 5000.0]
+    Ls = [0.0, 10.0, 25.0] if not quick else [0.0, 25.0]
+    for contact, thetas in (("line", [1.0]), ("point", [0.1, 1.0, 10.0] if not quick else [1.0])):
+        for M in Ms:
+            for L in Ls:
+                for th in thetas:
+                    out.append({"contact": contact, "M": M, "L": L, "theta": th})
+    return out
+
+
+def solve(case: dict, accuracy: float, points: int | None = None) -> dict:
+    from ehl_multigrid.line import solve_line
+    from ehl_multigrid.point import solve_point
+
+    t0 = time.perf_counter()
+    try:
+        grid = {} if points is None else {"points": points}
+        if case["contact"] == "line":
+            s = solve_line(case["M"], case["L"], accuracy=accuracy, raise_on_failure=False, **grid)
+        else:
+            s = solve_point(case["M"], case["L"], theta=case["theta"], accuracy=accuracy, **grid)
+    except Exception as exc:  # a clear error is an outcome; its type and text are recorded
+        return {"status": "error", "message": f"{type(exc).__name__}: {exc}".splitlines()[0],
+                "wall_s": time.perf_counter() - t0}
+    return {"status": s.status_name, "message": s.message, "Hc": s.scalars.get("Hc"),
+            "Hm": s.scalars.get("Hm"), "Hc_error": s.scalars.get("Hc_error"),
+            "Hm_error": s.scalars.get("Hm_error"), "points": int(s.X.shape[0]),
+            "refinements": s.extra.get("refinements"), "wall_s": time.perf_counter() - t0}
+
+
+def run_case(case: dict, accuracy: float) -> dict:
+    r = solve(case, accuracy)
+    out = {"case": case, "accuracy": accuracy, "result": r}
+    if r["status"] == "converged":
+        # independent check: one grid finer than the tested solve's, judged at a quarter of the target
+        chk = solve(case, accuracy / 4, points=2 * (r["points"] - 1) + 1)
+        out["check"] = chk
+        if chk["status"] in ("converged", "inaccurate") and chk.get("Hc_error") is not None:
+            dc = abs(r["Hc"] / chk["Hc"] - 1.0)
+            dm = abs(r["Hm"] / chk["Hm"] - 1.0)
+            out["check_difference"] = {"Hc": dc, "Hm": dm}
+            out["wrong"] = bool(dc > r["Hc_error"] + chk["Hc_error"] or dm > r["Hm_error"] + chk["Hm_error"])
+    return out
+
+
+def classify(rec: dict) -> str:
+    st = rec["result"]["status"]
+    if st == "converged":
+        return "wrong" if rec.get("wrong") else "converged to target"
+    return "honest failure"
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--accuracy", type=float, default=0.02)
+    ap.add_argument("--timeout", type=float, default=600.0)
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--case", help=argparse.SUPPRESS)
+    a = ap.parse_args()
+    if a.case:  # child process: one case
+        print(json.dumps(run_case(json.loads(a.case), a.accuracy)))
+        return
+    from tqdm import tqdm
+
+    OUT.mkdir(parents=True, exist_ok=True)
+    path = OUT / f"accuracy_map_{a.accuracy:g}{'_quick' if a.quick else ''}.json"
+    done = json.loads(path.read_text()) if path.is_file() else {}
+    for case in tqdm(cases(a.quick)):
+        key = json.dumps(case, sort_keys=True)
+        if key in done:
+            continue
+        try:
+            p = subprocess.run([sys.executable, __file__, "--accuracy", str(a.accuracy), "--case", key],
+                               capture_output=True, text=True, timeout=a.timeout)
+            rec = json.loads(p.stdout.strip().splitlines()[-1]) if p.returncode == 0 else {
+                "case": case, "accuracy": a.accuracy,
+                "result": {"status": "crash", "message": p.stderr.strip().splitlines()[-1:]}}
+        except subprocess.TimeoutExpired:
+            rec = {"case": case, "accuracy": a.accuracy,
+                   "result": {"status": "timeout", "message": f"over {a.timeout:g} s"}}
+        rec["class"] = classify(rec)
+        done[key] = rec
+        tmp = path.with_suffix(".tmp")
+        tmp.write_text(json.dumps(done, indent=1))
+        tmp.replace(path)
+    counts: dict[str, int] = {}
+    for rec in done.values():
+        counts[rec["class"]] = counts.get(rec["class"], 0) + 1
+    print(json.dumps(counts))
+
+
+if __name__ == "__main__":
+    main()
