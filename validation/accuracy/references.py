@@ -279,10 +279,36 @@ def reference(contact: str, M: float, L: float, theta: float = 1.0, bar: Any = N
     return point_reference(M, L, theta, POINT_CASES[(M, L, theta)], bar)
 
 
+def table() -> str:
+    """Markdown table of the stored references."""
+    lines = ["| contact | (M, L, theta) | Hc ref (Venner) | +- | order Hc | Hm ref | +- | order Hm | "
+             "box change (Hc) 2x, 4x, limit | decay per doubling (Hc, Hm) | method |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for contact, M, L, theta in [("line", M, L, 1.0) for M, L in LINE_CASES] + \
+            [("point", *k) for k in POINT_CASES]:
+        r = read_json(ref_path(contact, M, L, theta))
+        case = f"({M:g}, {L:g}" + (f", {theta:g})" if contact == "point" else ")")
+        if r is None or not r.get("ok"):
+            lines.append(f"| {contact} | {case} | - | | | - | | | | | {r.get('reason') if r else 'not run'} |")
+            continue
+        bx = r["box"]
+        lines.append(
+            f"| {contact} | {case} | {r['Hc_ref']:.6g} | {100 * r['Hc_unc']:.2g} % | "
+            f"{r['R1']['Hc']['order']:.2f} | {r['Hm_ref']:.6g} | {100 * r['Hm_unc']:.2g} % | "
+            f"{r['R1']['Hm']['order']:.2f} | {100 * bx['Hc']['d2']:.3g}, {100 * nan(bx['Hc']['d4']):.3g}, "
+            f"{100 * bx['Hc']['total']:.3g} % | {nan(bx['Hc']['decay']):.2g}, {nan(bx['Hm']['decay']):.2g} | "
+            f"{r['method']} |")
+    return "\n".join(lines)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--contact", choices=("line", "point", "both"), default="both")
+    ap.add_argument("--table", action="store_true", help="only print the stored references")
     args = ap.parse_args()
+    if args.table:
+        print(table())
+        return
     todo = []
     if args.contact in ("line", "both"):
         todo += [("line", M, L, 1.0) for M, L in LINE_CASES]
