@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import ConvergenceError, InputError
-from ..model.paths import default_file_mode
+from ..model.paths import default_file_mode, write_text_atomic
 from ..model.scene import Scene
 
 STATUS_OK = "ok"
@@ -172,16 +172,7 @@ def _jsonable(o: Any) -> Any:
 
 
 def _write_json_atomic(path: Path, payload: dict[str, Any]) -> None:
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w") as f:
-            json.dump(payload, f, default=_jsonable, allow_nan=True)
-        os.chmod(tmp, default_file_mode())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    write_text_atomic(path, json.dumps(payload, default=_jsonable, allow_nan=True))
 
 
 def run_case(scene_dict: dict[str, Any], task: str, scene_changes: dict[str, float], options: dict[str, Any],
