@@ -239,6 +239,41 @@ def next_refinement(budget: dict[str, dict[str, float]], accuracy: float, points
     return best[2] if best[1] < 0.9 * now else None
 
 
+def points_needed(budget: dict[str, dict[str, float]], accuracy: float, points: int,
+                  order: float = 2.0) -> int | None:
+    """Finest grid (points along X, ``2^k m + 1``) predicted to bring the grid part of the
+    budget under what the other parts leave of ``accuracy`` (grid error ~ h^order); None when
+    the other parts alone exceed it."""
+    need = 1.0
+    for k in ("Hc", "Hm"):
+        rest = accuracy - sum(v[k] for name, v in budget.items() if name != "grid" and math.isfinite(v[k]))
+        if rest <= 0.0:
+            return None
+        need = max(need, (budget["grid"][k] / rest) ** (1.0 / order))
+    n = points
+    while need > 1.01:  # the prediction is not sharper than 1 %
+        n, need = 2 * (n - 1) + 1, need / 2.0
+    return n
+
+
+def _why_short(est: ErrorEstimate, accuracy: float, points: int, max_points: int, box: float,
+               box_limit: float) -> str:
+    """What the budget says is missing, in the user's terms."""
+    b = est.budget
+    part = max(("grid", "domain", "algebraic"),
+               key=lambda n: max(v if math.isfinite(v) else 0.0 for v in b[n].values()))
+    if part == "grid":
+        n = points_needed(b, accuracy, points)
+        if n is None:
+            return "the grid error dominates and the other parts alone exceed the target"
+        return (f"the grid error dominates: about {n} points along X are predicted to meet "
+                f"{accuracy:g} (max_points = {max_points}; pass a larger max_points to allow it)")
+    if part == "domain":
+        return (f"the domain (box truncation) error dominates at a box {box:g} times the default "
+                f"(limit {box_limit:g}); the film depends on the oil far upstream of the contact")
+    return "the iteration (algebraic) error dominates"
+
+
 def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: int, max_points: int,
                       box_limit: float = 4.0, refine: bool = True, time_budget: float = math.inf) -> Any:
     """Solve, estimate, and refine until the estimated errors of Hc and Hm meet ``accuracy``.
@@ -250,6 +285,11 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     (``points`` doubled, up to ``max_points``), a box twice as wide at the same mesh size
     (twice the points; up to ``box_limit``) or tolerances ten times tighter. With ``refine=False`` (explicit grid or box) the first
     result is only judged. Every solve is recorded in ``result.extra['refinements']``.
+
+    When the target is not met the returned result is the most accurate one of the sequence
+    (smallest estimated error among the solves whose iteration converged), so a finer solve
+    that fails to converge never replaces a converged coarser one; its message says why the
+    refinement stopped.
     """
     import time
 
@@ -257,12 +297,18 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     box, tol_factor = 1.0, 1.0
     steps: list[Refinement] = []
     last_domain: tuple[float, float] | None = None
+    best: Any = None  # most accurate converged-iteration result so far
+    why = ""
     while True:
         res = solve(points, box, tol_factor)
         if not res.success:
             steps.append(Refinement(points, box, tol_factor, math.nan, math.nan, res.wall_s))
             res.extra["refinements"] = [vars(s) for s in steps]
-            return res
+            if best is None:
+                return res
+            why = (f"the refinement to {points} points (box x{box:g}) did not converge "
+                   f"({res.status_name}: {res.message.split(';')[0]})")
+            break
         dom = probe(res, box)
         if dom is None and last_domain is not None:
             # the change measured around a smaller box bounds the one around a wider box
@@ -275,16 +321,23 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
         res.extra["refinements"] = [vars(s) for s in steps]
         if res.success or not refine or accuracy is None:
             return res
-        why = ""
+        worst = max(est.Hc, est.Hm)
+        if best is None or not (max(best.error.Hc, best.error.Hm) <= worst):  # NaN counts as worst
+            best = res
         if time.perf_counter() - t0 > time_budget:
             why = f"the time budget of {time_budget:g} s is spent"
-        else:
-            step = next_refinement(est.budget, accuracy, points, box, tol_factor, max_points, box_limit)
-            if step is None:
-                why = (f"no refinement within {max_points} points and a box of {box_limit:g} times "
-                       f"the default is predicted to help")
-            else:
-                points, box, tol_factor = step
-        if why:
-            res.message += f"; not refined further: {why}"
-            return res
+            break
+        step = next_refinement(est.budget, accuracy, points, box, tol_factor, max_points, box_limit)
+        if step is None:
+            why = (f"no refinement within {max_points} points and a box of {box_limit:g} times "
+                   f"the default is predicted to help")
+            if math.isfinite(worst):
+                why += ": " + _why_short(est, accuracy, points, max_points, box, box_limit)
+            break
+        points, box, tol_factor = step
+    best.extra["refinements"] = [vars(s) for s in steps]
+    if best is not res:
+        n_b = best.X.shape[0] if getattr(best, "X", None) is not None else "?"
+        best.message += f"; returned the most accurate solve of the sequence ({n_b} points)"
+    best.message += f"; not refined further: {why}"
+    return best

@@ -3,10 +3,18 @@ refinement choice, and the estimate of real solves against independent finer sol
 
 import math
 
+import numpy as np
 import pytest
 
 from ehl_multigrid.line import solve_line
-from ehl_multigrid.multigrid.accuracy import GRID_SAFETY, next_refinement, richardson
+from ehl_multigrid.multigrid.accuracy import (
+    GRID_SAFETY,
+    ErrorEstimate,
+    next_refinement,
+    points_needed,
+    richardson,
+    solve_to_accuracy,
+)
 from ehl_multigrid.point import solve_point
 
 
@@ -45,6 +53,62 @@ def test_refinement_goes_where_the_error_is():
     assert next_refinement(budget(1e-4, 1e-4, 0.02), 0.01, 257, 1.0, 1.0, 1025, 4.0) == (257, 1.0, 0.1)
     # nothing affordable helps: give up rather than spend
     assert next_refinement(budget(0.02, 0.001), 0.01, 1025, 4.0, 1e-5, 1025, 4.0) is None
+
+
+def _budget(g, d, a=1e-6):
+    return {"grid": {"Hc": g, "Hm": g}, "domain": {"Hc": d, "Hm": d}, "algebraic": {"Hc": a, "Hm": a}}
+
+
+def test_points_needed_follows_second_order_grid_error():
+    # grid error 0.04 at 257 points, target 0.01: a factor 4 in error is 2 in mesh size
+    assert points_needed(_budget(0.04, 0.0), 0.01, 257) == 513
+    assert points_needed(_budget(0.041, 0.0), 0.01, 257) == 1025
+    assert points_needed(_budget(0.005, 0.011), 0.01, 257) is None  # domain alone exceeds it
+
+
+class _Fake:
+    """Stand-in for a solve: success flag, films and a preset error estimate."""
+
+    def __init__(self, n, ok, err):
+        self.X = np.zeros(n)
+        self.success, self.status_name, self.message = ok, ("converged" if ok else "diverged"), "m"
+        self.err, self.extra, self.scalars, self.wall_s = err, {}, {}, 0.1
+
+
+def test_a_refinement_that_fails_never_replaces_a_converged_coarser_solve(monkeypatch):
+    import ehl_multigrid.multigrid.accuracy as acc
+
+    def fake_estimate(res, dom):
+        return ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4))
+
+    def fake_attach(res, est, accuracy):
+        res.error = est
+        if max(est.Hc, est.Hm) > accuracy:
+            res.success, res.status_name, res.message = False, "inaccurate", "inaccurate"
+
+    monkeypatch.setattr(acc, "estimate_error", fake_estimate)
+    monkeypatch.setattr(acc, "attach_estimate", fake_attach)
+    runs = {257: _Fake(257, True, 0.03), 513: _Fake(513, False, math.nan)}
+    out = solve_to_accuracy(lambda n, b, t: runs[n], lambda r, b: (0.0, 0.0), 0.01, 257, 1025)
+    assert out is runs[257] and out.status_name == "inaccurate"
+    assert "refinement to 513 points" in out.message and "did not converge" in out.message
+    assert [s["points"] for s in out.extra["refinements"]] == [257, 513]
+
+
+def test_running_out_of_points_says_how_many_would_meet_the_target(monkeypatch):
+    import ehl_multigrid.multigrid.accuracy as acc
+
+    monkeypatch.setattr(acc, "estimate_error", lambda res, dom: ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4)))
+
+    def fake_attach(res, est, accuracy):
+        res.error = est
+        res.success, res.status_name = False, "inaccurate"
+
+    monkeypatch.setattr(acc, "attach_estimate", fake_attach)
+    runs = {513: _Fake(513, True, 0.08), 1025: _Fake(1025, True, 0.019)}
+    out = solve_to_accuracy(lambda n, b, t: runs[n], lambda r, b: (0.0, 0.0), 0.005, 513, 1025)
+    assert out is runs[1025]
+    assert "about 2049 points" in out.message and "max_points = 1025" in out.message
 
 
 @pytest.fixture(scope="module")
