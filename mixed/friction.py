@@ -160,10 +160,10 @@ def _thermal_film(
     progress: Callable[[int], None] | None,
 ) -> None:
     try:
-        from thermal import film_friction
+        from thermal.film import film_frictions
     except (ImportError, AttributeError) as exc:
         raise InputError(
-            f"thermal friction needs thermal.film_friction, which is not available ({type(exc).__name__}: {exc})"
+            f"thermal friction needs thermal.film.film_frictions, which is not available ({type(exc).__name__}: {exc})"
         ) from None
     n = out.us.size
     out.mean_temperature_rise = np.zeros(n)
@@ -172,28 +172,33 @@ def _thermal_film(
     out.thermal_used = np.zeros(n, dtype=bool)
     out.eta_film = np.full(n, np.nan)
     P = sharing.load
-    for i in range(n):
-        if sharing.Ph[i] > min_film_fraction * P and slip != 0.0:
-            try:
-                ff = film_friction(
-                    scene, load=float(sharing.Ph[i]), h=float(sharing.hfr[i]), us=float(out.us[i]),
-                    slip=abs(slip), thermal=True, pressure="hertz", **options,
-                )
-            except ConvergenceError as exc:
-                out.thermal_converged[i] = False
-                out.film_force[i] = math.nan
-                out.tau_film[i] = math.nan
-                out.mean_temperature_rise[i] = math.nan
-                out.max_temperature_rise[i] = math.nan
-                out.thermal_messages.append(f"us = {out.us[i]:.4g} m/s: {exc}")
-            else:
-                out.thermal_used[i] = True
-                out.film_force[i] = abs(float(ff.force))
-                out.tau_film[i] = abs(float(ff.mean_shear_stress))
-                out.mean_temperature_rise[i] = float(ff.mean_temperature_rise)
-                out.max_temperature_rise[i] = float(ff.max_temperature_rise)
-                out.thermal_converged[i] = bool(ff.converged)
-                if not ff.converged:
-                    out.thermal_messages.append(f"us = {out.us[i]:.4g} m/s: thermal solve not converged")
+    solve = (sharing.Ph > min_film_fraction * P) & (slip != 0.0)
+    idx = np.flatnonzero(solve)
+    if progress is not None:
+        for _ in range(n - idx.size):
+            progress(1)
+    # all points' thermal film solves at once (threads over the line problems); each result is
+    # the one of thermal.film_friction at that point
+    results = film_frictions(
+        scene, loads=[float(sharing.Ph[i]) for i in idx], hs=[float(sharing.hfr[i]) for i in idx],
+        us=[float(out.us[i]) for i in idx], slip=abs(slip), thermal=True, pressure="hertz", **options,
+    )
+    for i, ff in zip(idx, results, strict=True):
+        if isinstance(ff, ConvergenceError):
+            out.thermal_converged[i] = False
+            out.film_force[i] = math.nan
+            out.tau_film[i] = math.nan
+            out.mean_temperature_rise[i] = math.nan
+            out.max_temperature_rise[i] = math.nan
+            out.thermal_messages.append(f"us = {out.us[i]:.4g} m/s: {ff}")
+        else:
+            out.thermal_used[i] = True
+            out.film_force[i] = abs(float(ff.force))
+            out.tau_film[i] = abs(float(ff.mean_shear_stress))
+            out.mean_temperature_rise[i] = float(ff.mean_temperature_rise)
+            out.max_temperature_rise[i] = float(ff.max_temperature_rise)
+            out.thermal_converged[i] = bool(ff.converged)
+            if not ff.converged:
+                out.thermal_messages.append(f"us = {out.us[i]:.4g} m/s: thermal solve not converged")
         if progress is not None:
             progress(1)

@@ -7,14 +7,18 @@ signature stable.
 
 from __future__ import annotations
 
+import time
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from ehl_multigrid.model.convergence import ConvergenceReport
-from ehl_multigrid.model.errors import require_choice, require_range
+from ehl_multigrid.model.errors import ConvergenceError, InputError, require_choice, require_range
 from ehl_multigrid.model.scene import Scene
 
-from .traction import solve_traction
+from .options import ThermalOptions
+from .parallel import solve_thermal_lines
+from .traction import TractionPoint, combine_setup, prepare_traction, solve_traction
 
 PRESSURES = ("hertz", "thesis")
 
@@ -58,6 +62,57 @@ def film_friction(
     if scene.kind != "line":
         options.setdefault("slice_pressure", pressure)
     tp = solve_traction(scene, slip, us=us, load=load, h=h, input="hertz", thermal=thermal, **extra, **options)
+    return _film_result(tp)
+
+
+def film_frictions(
+    scene: Scene,
+    *,
+    loads: Sequence[float],
+    hs: Sequence[float],
+    us: Sequence[float],
+    slip: float,
+    thermal: bool = True,
+    pressure: str = "hertz",
+    threads: int | None = None,
+    **options: Any,
+) -> Iterator[FilmFriction | ConvergenceError]:
+    """:func:`film_friction` at many operating points ``(loads[i], hs[i], us[i])``, yielded
+    in order; a point whose thermal solve fails yields its :class:`ConvergenceError`
+    instead. The line problems of all points run on ``threads`` threads
+    (:func:`~thermal.parallel.solve_thermal_lines`); each result is the one
+    :func:`film_friction` gives, except ``report.wall_s``: the time since the previous point
+    finished. Inputs are checked for every point before any is solved.
+    """
+    if not len(loads) == len(hs) == len(us):
+        raise InputError(f"loads, hs and us must have the same length ({len(loads)}, {len(hs)}, {len(us)})")
+    require_choice("pressure", pressure, PRESSURES)
+    extra = {k: options.pop(k) for k in ("lubricant", "T_oil", "T_surface1", "T_surface2") if k in options}
+    if scene.kind != "line":
+        options.setdefault("slice_pressure", pressure)
+    opts = ThermalOptions.from_scene(scene, thermal=thermal, **options)
+    setups = []
+    for load, h, u in zip(loads, hs, us, strict=True):
+        require_range("film thickness h", h, 0.0, 1e-2, "m", lo_open=True)
+        setups.append(prepare_traction(scene, slip, us=float(u), load=float(load), h=float(h), input="hertz",
+                                       options=opts, **extra))
+    lines = solve_thermal_lines([job for st in setups for job in st.jobs], threads=threads, keep_errors=True)
+    try:
+        t_prev = time.perf_counter()
+        for st in setups:
+            sols = [next(lines) for _ in st.jobs]
+            t_now = time.perf_counter()
+            failed = [s for s in sols if isinstance(s, ConvergenceError)]
+            if failed:
+                yield failed[0]
+            else:
+                yield _film_result(combine_setup(scene, st, sols, t_now - t_prev))
+            t_prev = t_now
+    finally:
+        lines.close()
+
+
+def _film_result(tp: TractionPoint) -> FilmFriction:
     return FilmFriction(
         force=tp.force,
         coefficient=tp.coefficient,

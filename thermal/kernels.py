@@ -31,7 +31,17 @@ import math
 import numpy as np
 from numba import njit
 
-from .properties import I_G, I_TAU0, conductivity, density, roelands, specific_heat
+from .properties import (
+    I_G,
+    I_TAU0,
+    conductivity,
+    density_at,
+    density_pressure_term,
+    roelands_at,
+    roelands_log_ratio,
+    roelands_pressure_term,
+    specific_heat,
+)
 
 T_KELVIN = 273.15
 
@@ -317,7 +327,7 @@ def _wall_weight(WL, WR, i, j, n):
     return WL[m] + WR[m]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def sweep_line(
     dx, p, h, dpdx, qp, flux, oil, u1, u2, um, T_oil, Ts1, Ts2,
     WL1, WR1, WL2, WR2, nz, thermal, first, q1_lag, q2_lag, T_lag,
@@ -382,9 +392,13 @@ def sweep_line(
     n_tau_fail = 0
     n_station_fail = 0
     n_reverse = 0
+    log_ratio = roelands_log_ratio(oil)
     for i in range(n):
         hi_ = h[i]
         k_i = conductivity(p[i], oil)
+        # pressure factors of viscosity and density, fixed along the station's film
+        pr_i = roelands_pressure_term(p[i], oil)
+        dh_i = density_pressure_term(p[i], oil)
         target = (u2 - u1) / hi_
         use_flux = flux and qp[i] != 0.0
         b_flux = -qp[i] * flux_scale / (hi_ * hi_) if use_flux else 0.0
@@ -450,7 +464,7 @@ def sweep_line(
         for it in range(max_inner):
             its = it + 1
             for j in range(nzp):
-                inv_eta[j] = 1.0 / roelands(p[i], Ti[j], oil)
+                inv_eta[j] = 1.0 / roelands_at(pr_i, log_ratio, Ti[j], oil)
             if use_flux:
                 G, tm, ok = solve_stress_slope(G, tm_guess, Zc, d, wz, inv_eta, tau0, mx_a, mx_r, target, b_flux)
             else:
@@ -485,7 +499,7 @@ def sweep_line(
             # energy equation rows: -A T_{j-1} + (2A + conv) T_j - A T_{j+1} = heat + conv rhs
             A = k_i / (hi_ * hi_ * dZ * dZ)
             for j in range(1, nzp - 1):
-                rc = density(p[i], Ti[j], oil) * specific_heat(Ti[j], oil) * u[i, j]
+                rc = density_at(dh_i, Ti[j], oil) * specific_heat(Ti[j], oil) * u[i, j]
                 aa[j] = -A
                 cc[j] = -A
                 bb[j] = 2.0 * A

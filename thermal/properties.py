@@ -40,16 +40,49 @@ def oil_params(lub: Lubricant, G: float | None = None) -> np.ndarray:
 @njit(cache=True)
 def roelands(p: float, T: float, oil: np.ndarray) -> float:
     """Roelands viscosity (2.6) [Pa s]: ``eta_inf (eta0/eta_inf)^[(1+p/pr)^z ((T0+135)/(T+135))^S0]``."""
+    return roelands_at(roelands_pressure_term(p, oil), roelands_log_ratio(oil), T, oil)
+
+
+@njit(cache=True)
+def roelands_pressure_term(p: float, oil: np.ndarray) -> float:
+    """The pressure factor ``(1 + p/pr)^z`` of (2.6) (p < 0 read as 0); constant along a
+    station's film, so the marching kernels evaluate it once per station."""
     pp = p if p > 0.0 else 0.0
-    expo = (1.0 + pp / P_R) ** oil[I_Z] * ((oil[I_T0] + 135.0) / (T + 135.0)) ** oil[I_S0]
-    return ETA_INF * math.exp(math.log(oil[I_ETA0] / ETA_INF) * expo)
+    return (1.0 + pp / P_R) ** oil[I_Z]
+
+
+@njit(cache=True)
+def roelands_log_ratio(oil: np.ndarray) -> float:
+    """``ln(eta0/eta_inf)`` of (2.6)."""
+    return math.log(oil[I_ETA0] / ETA_INF)
+
+
+@njit(cache=True)
+def roelands_at(pressure_term: float, log_ratio: float, T: float, oil: np.ndarray) -> float:
+    """Roelands viscosity (2.6) [Pa s] from :func:`roelands_pressure_term` and
+    :func:`roelands_log_ratio` (the same floating-point operations as :func:`roelands`)."""
+    expo = pressure_term * ((oil[I_T0] + 135.0) / (T + 135.0)) ** oil[I_S0]
+    return ETA_INF * math.exp(log_ratio * expo)
 
 
 @njit(cache=True)
 def density(p: float, T: float, oil: np.ndarray) -> float:
     """Density with temperature (3.10) [kg/m^3]."""
+    return density_at(density_pressure_term(p, oil), T, oil)
+
+
+@njit(cache=True)
+def density_pressure_term(p: float, oil: np.ndarray) -> float:
+    """The Dowson-Higginson factor ``1 + B p/(A + p)`` of (3.10) (p < 0 read as 0)."""
     pp = p if p > 0.0 else 0.0
-    return oil[I_RHO0] * (1.0 - oil[I_ALPHAT] * (T - oil[I_TRHO])) * (1.0 + DH_B * pp / (DH_A + pp))
+    return 1.0 + DH_B * pp / (DH_A + pp)
+
+
+@njit(cache=True)
+def density_at(pressure_term: float, T: float, oil: np.ndarray) -> float:
+    """Density (3.10) [kg/m^3] from :func:`density_pressure_term` (same operations as
+    :func:`density`)."""
+    return oil[I_RHO0] * (1.0 - oil[I_ALPHAT] * (T - oil[I_TRHO])) * pressure_term
 
 
 @njit(cache=True)

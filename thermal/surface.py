@@ -94,32 +94,96 @@ def moving_strip_kernel(xi: np.ndarray, u: float, solid: Solid, length: float) -
     return out
 
 
-@njit(cache=True)
-def _strip_kernel_values(xi, v, length, k_solid, nodes, wts):
-    """Compiled :func:`moving_strip_kernel` (``length <= 0`` means infinite)."""
-    out = np.empty(xi.shape[0])
-    for n in range(xi.shape[0]):
-        a = abs(xi[n])
-        va = v * a
-        if xi[n] < 0.0 and 2.0 * va > 700.0:
-            out[n] = 0.0
+@njit(cache=True, nogil=True)
+def _strip_kernel(xi, v, length, k_solid, nodes, wts):
+    """Compiled :func:`moving_strip_kernel` at one ``xi`` [m] (``length <= 0`` means infinite)."""
+    a = abs(xi)
+    va = v * a
+    if xi < 0.0 and 2.0 * va > 700.0:
+        return 0.0
+    tmax = math.asinh(length / (2.0 * a)) if length > 0.0 else 1e300
+    if va > 0.0:
+        cut = math.acosh(1.0 + 60.0 / va)
+        if cut < tmax:
+            tmax = cut
+    s = 0.0
+    for q in range(nodes.shape[0]):
+        t = 0.5 * tmax * (nodes[q] + 1.0)
+        if xi > 0.0:
+            sh = math.sinh(0.5 * t)
+            ch = 2.0 * sh * sh
+        else:
+            ch = math.cosh(t) + 1.0
+        s += wts[q] * math.exp(-va * ch)
+    return 0.5 * tmax * s / (math.pi * k_solid)
+
+
+@njit(cache=True, nogil=True)
+def _cell_moments(c, dx, v, length, k_solid, tn, tw, gx, gw):
+    """``(int_0^1 s K((c + s) dx) ds, int_0^1 (1 - s) K((c + s) dx) ds)`` by Gauss-Legendre
+    (nodes ``gx``, weights ``gw`` on [-1, 1]): the two hat halves over cell ``c``."""
+    m_s = 0.0
+    m_1s = 0.0
+    for q in range(gx.shape[0]):
+        s = 0.5 * (gx[q] + 1.0)
+        kq = _strip_kernel((c + s) * dx, v, length, k_solid, tn, tw)
+        m_s += kq * s * gw[q]
+        m_1s += kq * (1.0 - s) * gw[q]
+    return 0.5 * m_s, 0.5 * m_1s
+
+
+@njit(cache=True, nogil=True)
+def _strip_hat_weights(n, dx, v, length, k_solid, tn, tw, cx, cw, fx, fw, sx, sw):
+    """Half-hat weights ``(WL, WR)`` of the moving-strip kernel (see :func:`wall_weights`).
+
+    Cell ``c`` (``xi`` in ``[c dx, (c + 1) dx]``) carries ``WL[m = c]`` (weight ``1 - s``) and
+    ``WR[m = c + 1]`` (weight ``s``): one set of kernel values serves both. Cells with
+    ``|m| <= 3`` use the 24-point rule ``(cx, cw)``, the others the 8-point rule ``(fx, fw)``;
+    the two cells touching ``xi = 0`` (log singularity) use graded nodes ``r = sigma^2`` of the
+    48-point rule ``(sx, sw)`` from the singular end.
+    """
+    i0 = n - 1
+    WL = np.zeros(2 * n - 1)
+    WR = np.zeros(2 * n - 1)
+    for c in range(-n, n):
+        if c == 0 or c == -1:
             continue
-        tmax = math.asinh(length / (2.0 * a)) if length > 0.0 else 1e300
-        if va > 0.0:
-            cut = math.acosh(1.0 + 60.0 / va)
-            if cut < tmax:
-                tmax = cut
-        s = 0.0
-        for q in range(nodes.shape[0]):
-            t = 0.5 * tmax * (nodes[q] + 1.0)
-            if xi[n] > 0.0:
-                sh = math.sinh(0.5 * t)
-                ch = 2.0 * sh * sh
-            else:
-                ch = math.cosh(t) + 1.0
-            s += wts[q] * math.exp(-va * ch)
-        out[n] = 0.5 * tmax * s / (math.pi * k_solid)
-    return out
+        in_wl = -(n - 1) <= c <= n - 1
+        in_wr = -(n - 1) <= c + 1 <= n - 1
+        near_wl = abs(c) <= 3
+        near_wr = abs(c + 1) <= 3
+        if in_wl and in_wr and near_wl == near_wr:
+            gx, gw = (cx, cw) if near_wl else (fx, fw)
+            m_s, m_1s = _cell_moments(c, dx, v, length, k_solid, tn, tw, gx, gw)
+            WL[c + i0] = dx * m_1s
+            WR[c + 1 + i0] = dx * m_s
+            continue
+        if in_wl:
+            gx, gw = (cx, cw) if near_wl else (fx, fw)
+            WL[c + i0] = dx * _cell_moments(c, dx, v, length, k_solid, tn, tw, gx, gw)[1]
+        if in_wr:
+            gx, gw = (cx, cw) if near_wr else (fx, fw)
+            WR[c + 1 + i0] = dx * _cell_moments(c, dx, v, length, k_solid, tn, tw, gx, gw)[0]
+    # the cells touching xi = 0: d r = 2 g dg, g = (sigma + 1)/2
+    down_s = 0.0
+    down_1s = 0.0
+    up_s = 0.0
+    up_1s = 0.0
+    for q in range(sx.shape[0]):
+        g = 0.5 * (sx[q] + 1.0)
+        r = g * g
+        jac = g * sw[q]
+        kd = _strip_kernel(r * dx, v, length, k_solid, tn, tw)
+        ku = _strip_kernel(-r * dx, v, length, k_solid, tn, tw)
+        down_s += kd * r * jac
+        down_1s += kd * (1.0 - r) * jac
+        up_s += ku * r * jac
+        up_1s += ku * (1.0 - r) * jac
+    WR[i0 + 1] = dx * down_s   # m = 1: xi = s dx, weight s
+    WL[i0] = dx * down_1s      # m = 0: xi = s dx, weight 1 - s
+    WR[i0] = dx * up_1s        # m = 0: xi = (s - 1) dx, weight s = 1 - r
+    WL[i0 - 1] = dx * up_s     # m = -1: xi = (s - 1) dx, weight 1 - s = r
+    return WL, WR
 
 
 def carslaw_jaeger_kernel(xi: np.ndarray, u: float, solid: Solid) -> np.ndarray:
@@ -200,36 +264,4 @@ def _wall_weights(
 
     v = u / (2.0 * diffusivity(solid))
     L = length if math.isfinite(length) else -1.0
-    nodes, wts = _GL_THETA
-
-    def k_of(xi: np.ndarray) -> np.ndarray:
-        flat = np.ascontiguousarray(xi.ravel(), dtype=np.float64)
-        return _strip_kernel_values(flat, v, L, solid.k, nodes, wts).reshape(xi.shape)
-
-    WL = np.empty_like(m)
-    WR = np.empty_like(m)
-    # regular cells: xi in [m dx - dx, m dx] (WR) and [m dx, m dx + dx] (WL); 24 Gauss points
-    # next to the singular cells, 8 further away where the kernel is smooth on the cell scale
-    near = np.abs(m) <= 3
-    for sel, (gx, gw) in ((near, _GL_CELL), (~near, _GL_FAR)):
-        mm = m[sel]
-        s = 0.5 * (gx + 1.0)  # in (0, 1)
-        # WR: xi = (m - 1 + s) dx, weight (1 - m + xi/dx) = s
-        WR[sel] = 0.5 * dx * (k_of((mm[:, None] - 1.0 + s[None, :]) * dx) * s[None, :]) @ gw
-        # WL: xi = (m + s) dx, weight (1 + m - xi/dx) = 1 - s
-        WL[sel] = 0.5 * dx * (k_of((mm[:, None] + s[None, :]) * dx) * (1.0 - s[None, :])) @ gw
-    # cells touching xi = 0 (log singularity): graded nodes r = sigma^2 from the singular end
-    sx, sw = _GL_SING
-    g = 0.5 * (sx + 1.0)
-    r = g**2
-    jac = 0.5 * 2.0 * g * sw  # d r = 2 g dg, dg = dsig/2
-    i0 = n - 1
-    # WR, m = 1: xi = s dx in [0, dx], weight s; singular at s = 0
-    WR[i0 + 1] = dx * np.sum(k_of(r * dx) * r * jac)
-    # WR, m = 0: xi = (s - 1) dx in [-dx, 0], weight s; singular at s = 1 -> s = 1 - r
-    WR[i0] = dx * np.sum(k_of(-r * dx) * (1.0 - r) * jac)
-    # WL, m = 0: xi = s dx, weight 1 - s; singular at s = 0
-    WL[i0] = dx * np.sum(k_of(r * dx) * (1.0 - r) * jac)
-    # WL, m = -1: xi = (s - 1) dx, weight 1 - s; singular at s = 1 -> s = 1 - r
-    WL[i0 - 1] = dx * np.sum(k_of(-r * dx) * r * jac)
-    return WL, WR
+    return _strip_hat_weights(n, dx, v, L, solid.k, *_GL_THETA, *_GL_CELL, *_GL_FAR, *_GL_SING)

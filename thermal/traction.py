@@ -23,8 +23,9 @@ from ehl_multigrid.model.lubricant import T_MAX_C, Lubricant, lubricant_preset
 from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import Scene
 
-from .line import Surroundings, ThermalLineSolution, solve_thermal_line
+from .line import Surroundings, ThermalLineSolution
 from .options import ThermalOptions
+from .parallel import LineJob, solve_thermal_lines
 from .profiles import LineProfile, hertz_profile, hertz_slices, profiles_from_result
 
 INPUTS = ("hertz", "ehl")
@@ -168,7 +169,23 @@ def ehl_result_from(ehl: Any, scene: Scene) -> Result:
     return r
 
 
-def solve_traction(
+@dataclass
+class TractionSetup:
+    """One operating point ready for the line solves: what :func:`combine` needs besides them."""
+
+    slip: float
+    us: float
+    u1: float
+    u2: float
+    load: float
+    h: float | None
+    input: str
+    hz: HertzContact
+    options: ThermalOptions
+    jobs: list[LineJob]
+
+
+def prepare_traction(
     scene: Scene,
     slip: float | None = None,
     *,
@@ -182,25 +199,14 @@ def solve_traction(
     T_oil: float | None = None,
     T_surface1: float | None = None,
     T_surface2: float | None = None,
+    profiles: list[LineProfile] | None = None,
     **overrides: Any,
-) -> TractionPoint:
-    """Thermal (or isothermal) Eyring friction of ``scene`` at one slip.
+) -> TractionSetup:
+    """Check the inputs of :func:`solve_traction` and set up its line problems.
 
-    Parameters
-    ----------
-    scene : the contact; its operating values are defaults for slip, us, load and temperatures.
-    slip : S = 2 (u1 - u2)/(u1 + u2), in [-2, 2].
-    us : sum velocity [m/s]; load : normal force [N].
-    h : uniform film [m] for ``input='hertz'`` (default: Moes / Nijenbanning central film
-        ``scene.central_film_fit`` at us and load).
-    input : ``hertz`` (Hertz pressure, uniform film) or ``ehl`` (``ehl`` = an ``ehl_line`` /
-        ``ehl_point`` Result or plain arrays).
-    options : :class:`ThermalOptions`; ``overrides`` update it (or the scene's
-        ``[solver.thermal]`` when ``options`` is None), e.g. ``nx=120, thermal=False``.
-    lubricant : a Lubricant or preset name replacing the scene's oil.
-    T_oil, T_surface1, T_surface2 : temperatures [degC] replacing the scene's.
+    ``profiles`` reuses the line profiles of an earlier setup with the same load, film, input
+    and options (they do not depend on the slip).
     """
-    t0 = time.perf_counter()
     if options is None:
         options = ThermalOptions.from_scene(scene, **overrides)
     elif overrides:
@@ -224,13 +230,62 @@ def solve_traction(
         require_range("film thickness h", h, 0.0, 1e-2, "m", lo_open=True)
     elif h is not None:
         raise InputError("h applies to input = 'hertz' only; the EHL input carries its own film")
-    profiles = build_profiles(scene, hz, h if h is not None else math.nan, options, input, ehl)
+    if profiles is None:
+        profiles = build_profiles(scene, hz, h if h is not None else math.nan, options, input, ehl)
     if options.kernel_length is not None:
         klen = options.kernel_length
     else:
         klen = scene.length if scene.kind == "line" else 2.0 * hz.b
-    sols = [solve_thermal_line(prof, env, options, kernel_length=klen) for prof in profiles]
-    return combine(scene, sols, hz, load, slip, us, u1, u2, h, input, options, time.perf_counter() - t0)
+    jobs = [LineJob(prof, env, options, klen) for prof in profiles]
+    return TractionSetup(float(slip), float(us), u1, u2, float(load), h, input, hz, options, jobs)
+
+
+def solve_traction(
+    scene: Scene,
+    slip: float | None = None,
+    *,
+    us: float | None = None,
+    load: float | None = None,
+    h: float | None = None,
+    input: str = "hertz",
+    ehl: Any = None,
+    options: ThermalOptions | None = None,
+    lubricant: Lubricant | str | None = None,
+    T_oil: float | None = None,
+    T_surface1: float | None = None,
+    T_surface2: float | None = None,
+    threads: int | None = None,
+    **overrides: Any,
+) -> TractionPoint:
+    """Thermal (or isothermal) Eyring friction of ``scene`` at one slip.
+
+    Parameters
+    ----------
+    scene : the contact; its operating values are defaults for slip, us, load and temperatures.
+    slip : S = 2 (u1 - u2)/(u1 + u2), in [-2, 2].
+    us : sum velocity [m/s]; load : normal force [N].
+    h : uniform film [m] for ``input='hertz'`` (default: Moes / Nijenbanning central film
+        ``scene.central_film_fit`` at us and load).
+    input : ``hertz`` (Hertz pressure, uniform film) or ``ehl`` (``ehl`` = an ``ehl_line`` /
+        ``ehl_point`` Result or plain arrays).
+    options : :class:`ThermalOptions`; ``overrides`` update it (or the scene's
+        ``[solver.thermal]`` when ``options`` is None), e.g. ``nx=120, thermal=False``.
+    lubricant : a Lubricant or preset name replacing the scene's oil.
+    T_oil, T_surface1, T_surface2 : temperatures [degC] replacing the scene's.
+    threads : threads for the slices of a point contact (default: numba's thread count; see
+        :func:`~thermal.parallel.solve_thermal_lines`).
+    """
+    t0 = time.perf_counter()
+    st = prepare_traction(scene, slip, us=us, load=load, h=h, input=input, ehl=ehl, options=options,
+                          lubricant=lubricant, T_oil=T_oil, T_surface1=T_surface1, T_surface2=T_surface2,
+                          **overrides)
+    sols = list(solve_thermal_lines(st.jobs, threads=threads))
+    return combine_setup(scene, st, sols, time.perf_counter() - t0)
+
+
+def combine_setup(scene: Scene, st: TractionSetup, sols: list[ThermalLineSolution], wall: float) -> TractionPoint:
+    """:func:`combine` for a :class:`TractionSetup`."""
+    return combine(scene, sols, st.hz, st.load, st.slip, st.us, st.u1, st.u2, st.h, st.input, st.options, wall)
 
 
 def combine(
@@ -295,32 +350,49 @@ def traction_curve(
     *,
     progress: bool = False,
     on_point: Callable[[list[TractionPoint]], None] | None = None,
+    threads: int | None = None,
     **kwargs: Any,
 ) -> list[TractionPoint]:
-    """Solve :func:`solve_traction` at each slip (keyword arguments passed through).
+    """:func:`solve_traction` at each slip (keyword arguments passed through).
 
-    ``on_point(points_so_far)`` is called after each finished point (used to save partial
-    results, so an interrupted run keeps its finished points).
+    The line profiles (pressure and film on the thermal grid) do not depend on the slip: they
+    are built once. The line problems of all slips (and slices) run on ``threads`` threads
+    (:func:`~thermal.parallel.solve_thermal_lines`); each point is the one :func:`solve_traction`
+    gives. ``on_point(points_so_far)`` is called after each finished point, in slip order
+    (used to save partial results, so an interrupted run keeps its finished points); a point's
+    ``report.wall_s`` is the time since the previous point finished.
     """
     slips = default_slips(scene) if slips is None else np.asarray(slips, dtype=float)
     if slips.size == 0:
         raise InputError("slip list is empty")
     for i, s in enumerate(slips):
         require_range(f"slip[{i}]", float(s), -2.0, 2.0, "-")
+    t0 = time.perf_counter()
+    setups: list[TractionSetup] = []
+    for s in slips:
+        profiles = [job.profile for job in setups[0].jobs] if setups else None
+        setups.append(prepare_traction(scene, float(s), profiles=profiles, **kwargs))
+    jobs = [job for st in setups for job in st.jobs]
     points: list[TractionPoint] = []
-    it = slips
     bar = None
     if progress:
         from tqdm import tqdm
 
-        bar = tqdm(slips, desc=f"traction {scene.name}", unit="slip")
-        it = bar
+        bar = tqdm(total=len(setups), desc=f"traction {scene.name}", unit="slip")
+    lines = solve_thermal_lines(jobs, threads=threads)
     try:
-        for s in it:
-            points.append(solve_traction(scene, float(s), **kwargs))
+        t_prev = t0
+        for st in setups:
+            sols = [next(lines) for _ in st.jobs]
+            t_now = time.perf_counter()
+            points.append(combine_setup(scene, st, sols, t_now - t_prev))
+            t_prev = t_now
+            if bar is not None:
+                bar.update(1)
             if on_point is not None:
                 on_point(points)
     finally:
+        lines.close()
         if bar is not None:
             bar.close()
     return points
