@@ -328,11 +328,198 @@ def _wall_weight(WL, WR, i, j, n):
 
 
 @njit(cache=True, nogil=True)
+def _station(
+    i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil, Ts1, Ts2,
+    WL1, WR1, WL2, WR2, thermal, first, q1_down, q2_down, T_down, T_start,
+    tol_T, tol_tau, max_inner, relax, wz, Zc, flux_scale,
+    d, inv_eta, mx_r, Ti, Tn, tau_old, aa, bb, cc, rr, gtot,
+    T, tau, u, gv, q1, q2, heat, slope, inner_its,
+):
+    """Solve station ``i`` (see :func:`sweep_line`) with the values of the other stations in
+    ``T``, ``tau``, ``q1``, ``q2`` (upstream) and ``T_down``, ``q1_down``, ``q2_down``
+    (downstream; the lagged arrays in a forward sweep, the current ones in a backward pass);
+    the iteration starts from ``T_start[i]`` unless ``first``.
+
+    Returns ``(converged, failed shear-stress solves, reverse-flow nodes)``.
+    """
+    tau_fail = 0
+    rev = 0
+    hi_ = h[i]
+    k_i = conductivity(p[i], oil)
+    # pressure factors of viscosity and density, fixed along the station's film
+    pr_i = roelands_pressure_term(p[i], oil)
+    dh_i = density_pressure_term(p[i], oil)
+    target = (u2 - u1) / hi_
+    use_flux = flux and qp[i] != 0.0
+    b_flux = -qp[i] * flux_scale / (hi_ * hi_) if use_flux else 0.0
+    G = dpdx[i] * hi_
+    if use_flux:
+        G = math.nan if first else slope[i]
+    else:
+        for j in range(nzp):
+            d[j] = G * Zc[j]
+    # Maxwell term: dtau/dx by the same backward differences as the energy equation
+    if i >= 2:
+        mx_a = um * inv_G * 1.5 / dx
+        for j in range(nzp):
+            mx_r[j] = um * inv_G * (-2.0 * tau[i - 1, j] + 0.5 * tau[i - 2, j]) / dx
+    elif i == 1:
+        mx_a = um * inv_G / dx
+        for j in range(nzp):
+            mx_r[j] = -um * inv_G * tau[0, j] / dx
+    else:
+        mx_a = 0.0
+        for j in range(nzp):
+            mx_r[j] = 0.0
+    # wall influence of all other stations (downstream ones from q_down)
+    C1 = 0.0
+    C2 = 0.0
+    if thermal:
+        for jj in range(n):
+            if jj < i:
+                C1 += _wall_weight(WL1, WR1, i, jj, n) * q1[jj]
+                C2 += _wall_weight(WL2, WR2, i, jj, n) * q2[jj]
+            elif jj > i:
+                C1 += _wall_weight(WL1, WR1, i, jj, n) * q1_down[jj]
+                C2 += _wall_weight(WL2, WR2, i, jj, n) * q2_down[jj]
+    w1s = _wall_weight(WL1, WR1, i, i, n)
+    w2s = _wall_weight(WL2, WR2, i, i, n)
+    # starting values
+    if not thermal:
+        for j in range(nzp):
+            Ti[j] = T_oil
+    elif first:
+        if i == 0:
+            for j in range(nzp):
+                Ti[j] = T_oil
+            Ti[0] = Ts1
+            Ti[nzp - 1] = Ts2
+        else:
+            for j in range(nzp):
+                Ti[j] = T[i - 1, j]
+    else:
+        for j in range(nzp):
+            Ti[j] = T_start[i, j]
+    tm_guess = 0.0
+    if i > 0:
+        for j in range(nzp):
+            tm_guess += wz[j] * tau[i - 1, j]
+    for j in range(nzp):
+        tau_old[j] = 0.0
+
+    omega = relax
+    last_dT = 1e300
+    converged = False
+    its = 0
+    for it in range(max_inner):
+        its = it + 1
+        for j in range(nzp):
+            inv_eta[j] = 1.0 / roelands_at(pr_i, log_ratio, Ti[j], oil)
+        if use_flux:
+            G, tm, ok = solve_stress_slope(G, tm_guess, Zc, d, wz, inv_eta, tau0, mx_a, mx_r, target, b_flux)
+        else:
+            tm, ok = solve_tau_mid(tm_guess, d, wz, inv_eta, tau0, mx_a, mx_r, target)
+        if not ok:
+            tau_fail += 1
+        tm_guess = tm
+        dtau = 0.0
+        tmax = 1.0
+        for j in range(nzp):
+            t = tm + d[j]
+            s = t / tau0
+            if s > 700.0:
+                s = 700.0
+            elif s < -700.0:
+                s = -700.0
+            gv[i, j] = tau0 * inv_eta[j] * math.sinh(s)
+            gtot[j] = gv[i, j] + mx_a * t + mx_r[j]
+            heat[i, j] = t * gv[i, j]
+            dtau = max(dtau, abs(t - tau_old[j]))
+            tmax = max(tmax, abs(t))
+            tau[i, j] = t
+            tau_old[j] = t
+        dtau /= tmax
+        # velocity u(Z) = u1 + h int_0^Z gdot
+        u[i, 0] = u1
+        for j in range(1, nzp):
+            u[i, j] = u[i, j - 1] + hi_ * 0.5 * dZ * (gtot[j - 1] + gtot[j])
+        if not thermal:
+            converged = True
+            break
+        # energy equation rows: -A T_{j-1} + (2A + conv) T_j - A T_{j+1} = heat + conv rhs
+        A = k_i / (hi_ * hi_ * dZ * dZ)
+        for j in range(1, nzp - 1):
+            rc = density_at(dh_i, Ti[j], oil) * specific_heat(Ti[j], oil) * u[i, j]
+            aa[j] = -A
+            cc[j] = -A
+            bb[j] = 2.0 * A
+            rr[j] = heat[i, j]
+            if i == 0:
+                pass  # inlet column fixed below
+            elif u[i, j] >= 0.0:
+                if i >= 2:
+                    bb[j] += 1.5 * rc / dx
+                    rr[j] += rc * (2.0 * T[i - 1, j] - 0.5 * T[i - 2, j]) / dx
+                else:
+                    bb[j] += rc / dx
+                    rr[j] += rc * T[i - 1, j] / dx
+            elif i < n - 1:
+                # reverse flow: first-order forward difference with the downstream values T_down
+                bb[j] += -rc / dx
+                rr[j] += -rc * T_down[i + 1, j] / dx
+        c1 = w1s * k_i / (2.0 * hi_ * dZ)
+        c2 = w2s * k_i / (2.0 * hi_ * dZ)
+        jt = nzp - 1
+        jm = nzp - 2
+        if i == 0:
+            # inlet: oil at T_oil, walls respond to their own flux
+            for j in range(1, nzp - 1):
+                Tn[j] = T_oil
+            Tn[0] = (Ts1 + C1 + 3.0 * c1 * T_oil) / (1.0 + 3.0 * c1)
+            Tn[jt] = (Ts2 + C2 + 3.0 * c2 * T_oil) / (1.0 + 3.0 * c2)
+        else:
+            # wall rows (1 + 3c) T0 - 4c T1 + c T2 = Ts + C; T2 eliminated with row 1
+            aa[0] = 0.0
+            bb[0] = 1.0 + 3.0 * c1 - c1 * aa[1] / cc[1]
+            cc[0] = -4.0 * c1 - c1 * bb[1] / cc[1]
+            rr[0] = Ts1 + C1 - c1 * rr[1] / cc[1]
+            aa[jt] = -4.0 * c2 - c2 * bb[jm] / aa[jm]
+            bb[jt] = 1.0 + 3.0 * c2 - c2 * cc[jm] / aa[jm]
+            cc[jt] = 0.0
+            rr[jt] = Ts2 + C2 - c2 * rr[jm] / aa[jm]
+            _tridiag_solve(aa, bb, cc, rr, Tn)
+        dT = 0.0
+        for j in range(nzp):
+            dT = max(dT, abs(Tn[j] - Ti[j]) / (abs(Ti[j] + T_KELVIN)))
+        if dT > last_dT and omega > 0.05:
+            omega *= 0.5
+        last_dT = dT
+        for j in range(nzp):
+            Ti[j] = Ti[j] + omega * (Tn[j] - Ti[j])
+        if dT < tol_T and dtau < tol_tau:
+            converged = True
+            break
+    inner_its[i] = its
+    slope[i] = G
+    for j in range(nzp):
+        T[i, j] = Ti[j]
+        if u[i, j] < 0.0:
+            rev += 1
+    if thermal:
+        q1[i] = k_i / (hi_ * 2.0 * dZ) * (-3.0 * Ti[0] + 4.0 * Ti[1] - Ti[2])
+        q2[i] = -k_i / (hi_ * 2.0 * dZ) * (3.0 * Ti[nzp - 1] - 4.0 * Ti[nzp - 2] + Ti[nzp - 3])
+    else:
+        q1[i] = 0.0
+        q2[i] = 0.0
+    return converged, tau_fail, rev
+
+
+@njit(cache=True, nogil=True)
 def sweep_line(
     dx, p, h, dpdx, qp, flux, oil, u1, u2, um, T_oil, Ts1, Ts2,
     WL1, WR1, WL2, WR2, nz, thermal, first, q1_lag, q2_lag, T_lag,
     tol_T, tol_tau, max_inner, relax,
-    T, tau, u, gv, q1, q2, heat, slope, inner_its,
+    T, tau, u, gv, q1, q2, heat, slope, inner_its, backward=False,
 ):
     """One inlet-to-outlet sweep of the line-contact thermal model; fills the output arrays.
 
@@ -357,7 +544,13 @@ def sweep_line(
     q1, q2 (heat flux into solid 1 and 2) [W/m^2], slope (stress slope G = h dp/dx across the
     film) [Pa], inner_its per station; ``slope`` also carries the previous sweep's values in.
 
-    Returns ``(n_station_fail, n_tau_fail, n_reverse)``.
+    backward : after the forward sweep, solve the stations from the last one with reverse
+        flow back to the first one again, each with the current values of its downstream
+        neighbours (a symmetric Gauss-Seidel sweep). Heat carried upstream by reverse flow
+        then crosses the whole recirculation zone in one sweep instead of one station per
+        sweep; the converged field is the same.
+
+    Returns ``(n_station_fail, n_tau_fail, n_reverse)`` of the final state of each station.
     """
     n = p.shape[0]
     nzp = nz + 1
@@ -389,178 +582,39 @@ def sweep_line(
     rr = np.empty(nzp)
     gtot = np.empty(nzp)
 
-    n_tau_fail = 0
-    n_station_fail = 0
-    n_reverse = 0
     log_ratio = roelands_log_ratio(oil)
+    st_fail = np.zeros(n, dtype=np.int64)
+    st_tau = np.zeros(n, dtype=np.int64)
+    st_rev = np.zeros(n, dtype=np.int64)
     for i in range(n):
-        hi_ = h[i]
-        k_i = conductivity(p[i], oil)
-        # pressure factors of viscosity and density, fixed along the station's film
-        pr_i = roelands_pressure_term(p[i], oil)
-        dh_i = density_pressure_term(p[i], oil)
-        target = (u2 - u1) / hi_
-        use_flux = flux and qp[i] != 0.0
-        b_flux = -qp[i] * flux_scale / (hi_ * hi_) if use_flux else 0.0
-        G = dpdx[i] * hi_
-        if use_flux:
-            G = math.nan if first else slope[i]
-        else:
-            for j in range(nzp):
-                d[j] = G * Zc[j]
-        # Maxwell term: dtau/dx by the same backward differences as the energy equation
-        if i >= 2:
-            mx_a = um * inv_G * 1.5 / dx
-            for j in range(nzp):
-                mx_r[j] = um * inv_G * (-2.0 * tau[i - 1, j] + 0.5 * tau[i - 2, j]) / dx
-        elif i == 1:
-            mx_a = um * inv_G / dx
-            for j in range(nzp):
-                mx_r[j] = -um * inv_G * tau[0, j] / dx
-        else:
-            mx_a = 0.0
-            for j in range(nzp):
-                mx_r[j] = 0.0
-        # wall influence of all other stations (downstream ones lagged)
-        C1 = 0.0
-        C2 = 0.0
-        if thermal:
-            for jj in range(n):
-                if jj < i:
-                    C1 += _wall_weight(WL1, WR1, i, jj, n) * q1[jj]
-                    C2 += _wall_weight(WL2, WR2, i, jj, n) * q2[jj]
-                elif jj > i:
-                    C1 += _wall_weight(WL1, WR1, i, jj, n) * q1_lag[jj]
-                    C2 += _wall_weight(WL2, WR2, i, jj, n) * q2_lag[jj]
-        w1s = _wall_weight(WL1, WR1, i, i, n)
-        w2s = _wall_weight(WL2, WR2, i, i, n)
-        # starting values
-        if not thermal:
-            for j in range(nzp):
-                Ti[j] = T_oil
-        elif first:
-            if i == 0:
-                for j in range(nzp):
-                    Ti[j] = T_oil
-                Ti[0] = Ts1
-                Ti[nzp - 1] = Ts2
-            else:
-                for j in range(nzp):
-                    Ti[j] = T[i - 1, j]
-        else:
-            for j in range(nzp):
-                Ti[j] = T_lag[i, j]
-        tm_guess = 0.0
-        if i > 0:
-            for j in range(nzp):
-                tm_guess += wz[j] * tau[i - 1, j]
-        for j in range(nzp):
-            tau_old[j] = 0.0
-
-        omega = relax
-        last_dT = 1e300
-        converged = False
-        its = 0
-        for it in range(max_inner):
-            its = it + 1
-            for j in range(nzp):
-                inv_eta[j] = 1.0 / roelands_at(pr_i, log_ratio, Ti[j], oil)
-            if use_flux:
-                G, tm, ok = solve_stress_slope(G, tm_guess, Zc, d, wz, inv_eta, tau0, mx_a, mx_r, target, b_flux)
-            else:
-                tm, ok = solve_tau_mid(tm_guess, d, wz, inv_eta, tau0, mx_a, mx_r, target)
-            if not ok:
-                n_tau_fail += 1
-            tm_guess = tm
-            dtau = 0.0
-            tmax = 1.0
-            for j in range(nzp):
-                t = tm + d[j]
-                s = t / tau0
-                if s > 700.0:
-                    s = 700.0
-                elif s < -700.0:
-                    s = -700.0
-                gv[i, j] = tau0 * inv_eta[j] * math.sinh(s)
-                gtot[j] = gv[i, j] + mx_a * t + mx_r[j]
-                heat[i, j] = t * gv[i, j]
-                dtau = max(dtau, abs(t - tau_old[j]))
-                tmax = max(tmax, abs(t))
-                tau[i, j] = t
-                tau_old[j] = t
-            dtau /= tmax
-            # velocity u(Z) = u1 + h int_0^Z gdot
-            u[i, 0] = u1
-            for j in range(1, nzp):
-                u[i, j] = u[i, j - 1] + hi_ * 0.5 * dZ * (gtot[j - 1] + gtot[j])
-            if not thermal:
-                converged = True
-                break
-            # energy equation rows: -A T_{j-1} + (2A + conv) T_j - A T_{j+1} = heat + conv rhs
-            A = k_i / (hi_ * hi_ * dZ * dZ)
-            for j in range(1, nzp - 1):
-                rc = density_at(dh_i, Ti[j], oil) * specific_heat(Ti[j], oil) * u[i, j]
-                aa[j] = -A
-                cc[j] = -A
-                bb[j] = 2.0 * A
-                rr[j] = heat[i, j]
-                if i == 0:
-                    pass  # inlet column fixed below
-                elif u[i, j] >= 0.0:
-                    if i >= 2:
-                        bb[j] += 1.5 * rc / dx
-                        rr[j] += rc * (2.0 * T[i - 1, j] - 0.5 * T[i - 2, j]) / dx
-                    else:
-                        bb[j] += rc / dx
-                        rr[j] += rc * T[i - 1, j] / dx
-                elif i < n - 1:
-                    # reverse flow: first-order forward difference, downstream values lagged
-                    bb[j] += -rc / dx
-                    rr[j] += -rc * T_lag[i + 1, j] / dx
-            c1 = w1s * k_i / (2.0 * hi_ * dZ)
-            c2 = w2s * k_i / (2.0 * hi_ * dZ)
-            jt = nzp - 1
-            jm = nzp - 2
-            if i == 0:
-                # inlet: oil at T_oil, walls respond to their own flux
-                for j in range(1, nzp - 1):
-                    Tn[j] = T_oil
-                Tn[0] = (Ts1 + C1 + 3.0 * c1 * T_oil) / (1.0 + 3.0 * c1)
-                Tn[jt] = (Ts2 + C2 + 3.0 * c2 * T_oil) / (1.0 + 3.0 * c2)
-            else:
-                # wall rows (1 + 3c) T0 - 4c T1 + c T2 = Ts + C; T2 eliminated with row 1
-                aa[0] = 0.0
-                bb[0] = 1.0 + 3.0 * c1 - c1 * aa[1] / cc[1]
-                cc[0] = -4.0 * c1 - c1 * bb[1] / cc[1]
-                rr[0] = Ts1 + C1 - c1 * rr[1] / cc[1]
-                aa[jt] = -4.0 * c2 - c2 * bb[jm] / aa[jm]
-                bb[jt] = 1.0 + 3.0 * c2 - c2 * cc[jm] / aa[jm]
-                cc[jt] = 0.0
-                rr[jt] = Ts2 + C2 - c2 * rr[jm] / aa[jm]
-                _tridiag_solve(aa, bb, cc, rr, Tn)
-            dT = 0.0
-            for j in range(nzp):
-                dT = max(dT, abs(Tn[j] - Ti[j]) / (abs(Ti[j] + T_KELVIN)))
-            if dT > last_dT and omega > 0.05:
-                omega *= 0.5
-            last_dT = dT
-            for j in range(nzp):
-                Ti[j] = Ti[j] + omega * (Tn[j] - Ti[j])
-            if dT < tol_T and dtau < tol_tau:
-                converged = True
-                break
-        inner_its[i] = its
-        slope[i] = G
-        if not converged:
-            n_station_fail += 1
-        for j in range(nzp):
-            T[i, j] = Ti[j]
-            if u[i, j] < 0.0:
-                n_reverse += 1
-        if thermal:
-            q1[i] = k_i / (hi_ * 2.0 * dZ) * (-3.0 * Ti[0] + 4.0 * Ti[1] - Ti[2])
-            q2[i] = -k_i / (hi_ * 2.0 * dZ) * (3.0 * Ti[nzp - 1] - 4.0 * Ti[nzp - 2] + Ti[nzp - 3])
-        else:
-            q1[i] = 0.0
-            q2[i] = 0.0
-    return n_station_fail, n_tau_fail, n_reverse
+        ok, nt, nr = _station(
+            i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil, Ts1, Ts2,
+            WL1, WR1, WL2, WR2, thermal, first, q1_lag, q2_lag, T_lag, T_lag,
+            tol_T, tol_tau, max_inner, relax, wz, Zc, flux_scale,
+            d, inv_eta, mx_r, Ti, Tn, tau_old, aa, bb, cc, rr, gtot,
+            T, tau, u, gv, q1, q2, heat, slope, inner_its,
+        )
+        st_fail[i] = 0 if ok else 1
+        st_tau[i] = nt
+        st_rev[i] = nr
+    if backward and thermal:
+        lo = -1
+        hi = -1
+        for i in range(n):
+            if st_rev[i] > 0:
+                if lo < 0:
+                    lo = i
+                hi = i
+        if lo >= 0:
+            for i in range(hi, lo - 1, -1):
+                ok, nt, nr = _station(
+                    i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil,
+                    Ts1, Ts2, WL1, WR1, WL2, WR2, thermal, False, q1, q2, T, T,
+                    tol_T, tol_tau, max_inner, relax, wz, Zc, flux_scale,
+                    d, inv_eta, mx_r, Ti, Tn, tau_old, aa, bb, cc, rr, gtot,
+                    T, tau, u, gv, q1, q2, heat, slope, inner_its,
+                )
+                st_fail[i] = 0 if ok else 1
+                st_tau[i] = nt
+                st_rev[i] = nr
+    return np.sum(st_fail), np.sum(st_tau), np.sum(st_rev)
