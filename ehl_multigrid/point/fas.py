@@ -24,7 +24,7 @@ from ..multigrid.policy import PolicyParameters, RobustnessPolicy, Settings
 from ..multigrid.threads import ThreadBudget, resolve_threads
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
-from .problem import PointProblem, coarse_intervals, domain_scale, resolve_domain
+from .problem import PointProblem, coarse_intervals, domain_scale, resolve_domain, rigid_length
 
 #: grids with fewer points than this run single-threaded: their kernels are too small to pay
 #: for a thread barrier, which on a busy machine can cost a scheduler time slice each
@@ -143,7 +143,8 @@ class PointHierarchy:
         n = int(opt.points)
         nc = opt.n_coarse
         if nc is None:
-            nc = coarse_intervals(self.pb.M, self.xmax - self.xmin, n, domain_scale(self.pb))
+            nc = coarse_intervals(self.pb.M, self.xmax - self.xmin, n, domain_scale(self.pb),
+                                  rigid_length(self.pb))
         if opt.levels is not None:
             nlev = int(opt.levels)
             if (n - 1) % (2 ** (nlev - 1)) or (n - 1) // 2 ** (nlev - 1) < 4:
@@ -188,7 +189,8 @@ class PointHierarchy:
     # -- discrete operators ---------------------------------------------------------------
     def update_film(self, lev: Level) -> None:
         self.threads.for_size(lev.npts)
-        lev.W = lev.defo(lev.P) if self.cd != 0.0 else np.zeros_like(lev.P)
+        # written into the level's W: no large temporary per evaluation
+        lev.W = lev.defo(lev.P, out=lev.W) if self.cd != 0.0 else np.zeros_like(lev.P)
         nm.film(lev.W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
         nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
 

@@ -88,6 +88,22 @@ def test_newton_pyamg_path_reaches_the_fas_answer(sol65):
     assert a.scalars["Hm_venner"] == pytest.approx(b.scalars["Hm_venner"], rel=3e-3)
 
 
+def test_thick_film_wide_box_converges_to_the_newton_answer():
+    """At M = 1 the pressure spreads over the inlet length s = 8 a: on a box four times the
+    default the coarse mesh follows s, so the FAS cycles converge (a coarse mesh tied to a left
+    one level and stopped unconverged) and agree with the other solver path."""
+    from ehl_multigrid.point.newton import solve_newton_amg
+    from ehl_multigrid.point.problem import default_domain
+
+    pb = problem_from_moes(1.0, 0.0)
+    box = {k: 4.0 * v for k, v in zip(("xmin", "xmax", "ymax"), default_domain(pb), strict=True)}
+    fas = solve_fas(pb, points=65, **box)
+    assert fas.success and fas.levels >= 2 and fas.cycles <= 25, fas.message
+    nw = solve_newton_amg(pb, points=65, max_iter=60, **box)
+    assert nw.report.converged, nw.report.message
+    assert build_result(nw).scalars["Hc_venner"] == pytest.approx(fas.scalars["Hc_venner"], rel=3e-4)
+
+
 def test_elliptic_problem_load_and_scaling():
     pb = problem_from_moes(20.0, 10.0, 0.25)
     assert pb.b_over_a == pytest.approx(2.5007, rel=1e-3)
