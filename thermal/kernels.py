@@ -47,6 +47,16 @@ T_KELVIN = 273.15
 
 
 @njit(cache=True)
+def _sinh_cosh(s):
+    """``(sinh s, cosh s)`` from one ``expm1`` (accurate near 0, no overflow for |s| <= 700)."""
+    a = abs(s)
+    em = math.expm1(a)
+    inv = 1.0 / (em + 1.0)  # e^-|s|
+    sh = 0.5 * (em + em * inv)
+    return math.copysign(sh, s), sh + inv
+
+
+@njit(cache=True)
 def _tau_residual(t, d, w, inv_eta, tau0, mx_a, mx_r, target):
     """f(tau_m) = sum_j w_j gdot_j - target and its derivative."""
     f = 0.0
@@ -57,8 +67,9 @@ def _tau_residual(t, d, w, inv_eta, tau0, mx_a, mx_r, target):
             s = 700.0
         elif s < -700.0:
             s = -700.0
-        f += w[j] * (tau0 * inv_eta[j] * math.sinh(s) + mx_a * (t + d[j]) + mx_r[j])
-        df += w[j] * (inv_eta[j] * math.cosh(s) + mx_a)
+        sh, ch = _sinh_cosh(s)
+        f += w[j] * (tau0 * inv_eta[j] * sh + mx_a * (t + d[j]) + mx_r[j])
+        df += w[j] * (inv_eta[j] * ch + mx_a)
     return f - target, df
 
 
@@ -66,50 +77,40 @@ def _tau_residual(t, d, w, inv_eta, tau0, mx_a, mx_r, target):
 def solve_tau_mid(guess, d, w, inv_eta, tau0, mx_a, mx_r, target):
     """Mid-film shear stress tau_m [Pa] from the flow condition (safeguarded Newton).
 
-    Returns ``(tau_m, ok)``; the residual is monotone increasing in tau_m.
+    The residual is monotone increasing in tau_m. Newton steps from ``guess``; until the root
+    is bracketed a step may not exceed a search step that starts at tau0 and doubles (so a
+    poor guess cannot throw the iterate into the overflow range of sinh); once bracketed, a
+    step leaving the bracket is replaced by bisection. A warm guess (the previous iterate)
+    converges in two or three residual evaluations. Returns ``(tau_m, ok)``.
     """
-    t = guess
-    f, df = _tau_residual(t, d, w, inv_eta, tau0, mx_a, mx_r, target)
-    if f == 0.0:
-        return t, True
+    x = guess
+    lo = -math.inf
+    hi = math.inf
     step = tau0
-    if f < 0.0:
-        lo = t
-        hi = t + step
-        fh, _ = _tau_residual(hi, d, w, inv_eta, tau0, mx_a, mx_r, target)
-        k = 0
-        while fh < 0.0 and k < 200:
-            lo = hi
-            step *= 2.0
-            hi = t + step
-            fh, _ = _tau_residual(hi, d, w, inv_eta, tau0, mx_a, mx_r, target)
-            k += 1
-    else:
-        hi = t
-        lo = t - step
-        fl, _ = _tau_residual(lo, d, w, inv_eta, tau0, mx_a, mx_r, target)
-        k = 0
-        while fl > 0.0 and k < 200:
-            hi = lo
-            step *= 2.0
-            lo = t - step
-            fl, _ = _tau_residual(lo, d, w, inv_eta, tau0, mx_a, mx_r, target)
-            k += 1
-    x = t
     tolx = 1e-11 * tau0
-    for _ in range(300):
+    for _ in range(500):
         f, df = _tau_residual(x, d, w, inv_eta, tau0, mx_a, mx_r, target)
+        if f == 0.0:
+            return x, True
         if f < 0.0:
             lo = x
         else:
             hi = x
+        xn = math.nan
         if df > 0.0 and math.isfinite(df) and math.isfinite(f):
             xn = x - f / df
-        else:
-            xn = 0.5 * (lo + hi)
-        if not (lo < xn < hi):
-            xn = 0.5 * (lo + hi)
-        if abs(xn - x) <= tolx + 1e-14 * abs(x) or hi - lo <= tolx + 1e-14 * abs(x):
+        bracketed = math.isfinite(lo) and math.isfinite(hi)
+        if bracketed:
+            if not (lo < xn < hi):
+                xn = 0.5 * (lo + hi)
+        elif f < 0.0:
+            if not (x < xn <= x + step):
+                xn = x + step
+                step *= 2.0
+        elif not (x - step <= xn < x):
+            xn = x - step
+            step *= 2.0
+        if abs(xn - x) <= tolx + 1e-14 * abs(x) or (bracketed and hi - lo <= tolx + 1e-14 * abs(x)):
             return xn, True
         x = xn
     return x, False
@@ -162,8 +163,7 @@ def _slope_newton(G, tm, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b):
 
     def resid(tm_, G_):
         s0 = min(max(tm_ / tau0, -700.0), 700.0)
-        sh0 = math.sinh(s0)
-        ch0 = math.cosh(s0)
+        sh0, ch0 = _sinh_cosh(s0)
         fa = 0.0
         fr = 0.0
         a11 = 0.0
@@ -173,9 +173,10 @@ def _slope_newton(G, tm, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b):
         for j in range(n):
             dj = G_ * Zc[j]
             s = min(max((tm_ + dj) / tau0, -700.0), 700.0)
-            gp = inv_eta[j] * math.cosh(s) + mx_a
-            fa += w[j] * (tau0 * inv_eta[j] * math.sinh(s) + mx_a * (tm_ + dj) + mx_r[j])
-            fr += w[j] * Zc[j] * (tau0 * inv_eta[j] * (math.sinh(s) - sh0) + mx_a * dj)
+            sh, ch = _sinh_cosh(s)
+            gp = inv_eta[j] * ch + mx_a
+            fa += w[j] * (tau0 * inv_eta[j] * sh + mx_a * (tm_ + dj) + mx_r[j])
+            fr += w[j] * Zc[j] * (tau0 * inv_eta[j] * (sh - sh0) + mx_a * dj)
             a11 += w[j] * gp
             a12 += w[j] * Zc[j] * gp
             a21 += w[j] * Zc[j] * (gp - inv_eta[j] * ch0 - mx_a)
@@ -344,6 +345,10 @@ def _station(
     """
     tau_fail = 0
     rev = 0
+    # reverse flow is u below -1e-9 (u1 + u2): at a surface at rest the film velocity is zero
+    # only to the shear-stress solve's tolerance (|u| ~ 1e-11 us); those nodes' convection is
+    # negligible either way and must not be taken for recirculation
+    u_eps = 1e-9 * (abs(u1) + abs(u2))
     hi_ = h[i]
     k_i = conductivity(p[i], oil)
     # pressure factors of viscosity and density, fixed along the station's film
@@ -456,7 +461,7 @@ def _station(
             rr[j] = heat[i, j]
             if i == 0:
                 pass  # inlet column fixed below
-            elif u[i, j] >= 0.0:
+            elif u[i, j] >= -u_eps:
                 if i >= 2:
                     bb[j] += 1.5 * rc / dx
                     rr[j] += rc * (2.0 * T[i - 1, j] - 0.5 * T[i - 2, j]) / dx
@@ -503,7 +508,7 @@ def _station(
     slope[i] = G
     for j in range(nzp):
         T[i, j] = Ti[j]
-        if u[i, j] < 0.0:
+        if u[i, j] < -u_eps:
             rev += 1
     if thermal:
         q1[i] = k_i / (hi_ * 2.0 * dZ) * (-3.0 * Ti[0] + 4.0 * Ti[1] - Ti[2])
