@@ -406,11 +406,17 @@ def _station(
         for j in range(nzp):
             Ti[j] = T_start[i, j]
     tm_guess = 0.0
-    if i > 0:
+    if first:
+        if i > 0:
+            for j in range(nzp):
+                tm_guess += wz[j] * tau[i - 1, j]
         for j in range(nzp):
-            tm_guess += wz[j] * tau[i - 1, j]
-    for j in range(nzp):
-        tau_old[j] = 0.0
+            tau_old[j] = 0.0
+    else:
+        # this station's mid-film stress of the previous sweep
+        for j in range(nzp):
+            tm_guess += wz[j] * tau[i, j]
+            tau_old[j] = 0.0
 
     omega = relax
     last_dT = 1e300
