@@ -14,7 +14,8 @@ Cases (thermal Roelands-Eyring model, thesis ch. 3; Stribeck curves, thesis ch. 
   (1.93 GPa).
 
 Every case runs ``--repeat`` times (median reported) after one warm-up of the compiled kernels;
-the 1-minute load average is read before and after each case. The friction coefficients are
+the 1-minute load average is read before and after each case, and the process CPU time (all
+threads) is recorded next to the wall time: on a loaded machine it shows the work done. The friction coefficients are
 stored, and with ``--reference`` (default ``out/thermal_before.json`` when the label is not
 ``before``) each case's largest friction-coefficient difference against that run is
 reported (absolute and relative to the largest |f| of the curve).
@@ -156,16 +157,19 @@ def warm_up() -> None:
 
 
 def measure(case: dict, repeat: int) -> dict:
-    times, loads = [], []
+    times, cpus, loads = [], [], []
     coeff = conv = extra = None
     for _ in range(repeat):
         la0 = os.getloadavg()[0]
+        c = time.process_time()
         t = time.perf_counter()
         coeff, conv, extra = case["run"]()
         times.append(time.perf_counter() - t)
+        cpus.append(time.process_time() - c)
         loads.append([la0, os.getloadavg()[0]])
     rec = {k: v for k, v in case.items() if k != "run"}
-    rec.update(wall_s=times, median_s=statistics.median(times), loadavg=loads,
+    rec.update(wall_s=times, median_s=statistics.median(times), cpu_s=cpus, median_cpu_s=statistics.median(cpus),
+               loadavg=loads,
                coefficient=[float(c) for c in coeff], converged=bool(conv), extra=extra)
     return rec
 
@@ -184,6 +188,7 @@ def compare(rec: dict, ref: dict | None) -> None:
         rec["reference_warning"] = "EHL input differs from the reference run's"
     d = np.abs(a - b)
     rec["reference_median_s"] = r["median_s"]
+    rec["reference_median_cpu_s"] = r.get("median_cpu_s")
     rec["speedup"] = r["median_s"] / rec["median_s"]
     rec["max_abs_df"] = float(np.nanmax(d))
     rec["max_rel_df"] = float(np.nanmax(d) / np.nanmax(np.abs(b)))
@@ -191,20 +196,21 @@ def compare(rec: dict, ref: dict | None) -> None:
 
 def table(data: dict) -> str:
     ref = data.get("reference_label")
-    head = ["case", "points", f"{data['label']} median [s]", "runs [s]", "load before/after"]
+    head = ["case", "points", f"{data['label']} median [s]", "runs [s]", "CPU [s]", "load before/after"]
     if ref:
-        head += [f"{ref} median [s]", "speed-up", "max |df|", "max |df| / max |f|"]
+        head += [f"{ref} median [s]", f"{ref} CPU [s]", "speed-up", "max |df|", "max |df| / max |f|"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for rec in data["cases"].values():
         runs = ", ".join(f"{t:.3g}" for t in rec["wall_s"])
         la = "; ".join(f"{a:.2f}/{b:.2f}" for a, b in rec["loadavg"])
-        row = [rec["name"], str(rec["points"]), f"{rec['median_s']:.3g}", runs, la]
+        row = [rec["name"], str(rec["points"]), f"{rec['median_s']:.3g}", runs, f"{rec['median_cpu_s']:.3g}", la]
         if ref:
             if "reference_median_s" in rec:
-                row += [f"{rec['reference_median_s']:.3g}", f"{rec['speedup']:.2f}",
-                        f"{rec['max_abs_df']:.2e}", f"{rec['max_rel_df']:.2e}"]
+                ref_cpu = rec.get("reference_median_cpu_s")
+                row += [f"{rec['reference_median_s']:.3g}", "-" if ref_cpu is None else f"{ref_cpu:.3g}",
+                        f"{rec['speedup']:.2f}", f"{rec['max_abs_df']:.2e}", f"{rec['max_rel_df']:.2e}"]
             else:
-                row += ["-"] * 4
+                row += ["-"] * 5
         if not rec["converged"]:
             row[0] += " (not all converged)"
         lines.append("| " + " | ".join(row) + " |")
