@@ -3,14 +3,26 @@
 numba's thread count is process state: a solve that changes it (one thread on coarse grids,
 where a barrier costs more than the work) restores the caller's value when it ends, and
 the FFT worker count is passed to each deformation operator rather than set globally.
+
+OpenMP threads (numba's usual threading layer) wait passively at the end of a parallel region
+unless the environment already sets ``OMP_WAIT_POLICY``: this module sets the default before
+the first parallel kernel loads the OpenMP runtime. Spinning threads take the time slice of the
+thread doing the work when the other core is busy. Measured on a 2-core machine under load
+(load average about 7; circular (20, 10), half domain, 513^2, median of 2): 8.3 s with two
+spinning threads, 2.0 s with two passive threads, 4.0 s with one thread.
 """
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-import numba
+# before numba loads libgomp (it does at the first parallel kernel, not at import); an
+# explicit setting of the user's wins
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+import numba  # noqa: E402
 
 
 def resolve_threads(threads: int | None) -> int:
