@@ -629,3 +629,138 @@ def sweep_line(
                 st_tau[i] = nt
                 st_rev[i] = nr
     return np.sum(st_fail), np.sum(st_tau), np.sum(st_rev)
+
+
+@njit(cache=True, nogil=True)
+def _anderson_step(X, F, count, x, g, depth):
+    """One Anderson step (Walker & Ni 2011, type II, mixing 1) of the sweep map ``x -> g(x)``.
+
+    ``X``, ``F`` hold the last ``count`` (at most ``depth + 1``) iterates and residuals
+    ``g - x``, oldest first. Returns ``(x_new, count)``; on a degenerate or non-finite step
+    the history is cleared and ``g`` returned.
+    """
+    N = x.shape[0]
+    f = g - x
+    if count == depth + 1:
+        for r in range(depth):
+            X[r, :] = X[r + 1, :]
+            F[r, :] = F[r + 1, :]
+        count -= 1
+    X[count, :] = x
+    F[count, :] = f
+    count += 1
+    if count < 2:
+        return g.copy(), count
+    m = count - 1
+    dF = np.empty((N, m))
+    dX = np.empty((N, m))
+    norms = np.empty(m)
+    for c in range(m):
+        s = 0.0
+        for r in range(N):
+            dF[r, c] = F[c + 1, r] - F[c, r]
+            dX[r, c] = X[c + 1, r] - X[c, r]
+            s += dF[r, c] * dF[r, c]
+        norms[c] = math.sqrt(s)
+        if not (math.isfinite(norms[c]) and norms[c] > 0.0):
+            return g.copy(), 0
+    A = np.empty((N, m))
+    for c in range(m):
+        for r in range(N):
+            A[r, c] = dF[r, c] / norms[c]
+    gamma = np.linalg.lstsq(A, f, rcond=1e-10)[0]
+    out = np.empty(N)
+    for r in range(N):
+        t = 0.0
+        for c in range(m):
+            t += (dX[r, c] + dF[r, c]) * (gamma[c] / norms[c])
+        out[r] = g[r] - t
+    for r in range(N):
+        if not math.isfinite(out[r]):
+            return g.copy(), 0
+    return out, count
+
+
+@njit(cache=True, nogil=True)
+def march_line(
+    dx, p, h, dpdx, qp, flux, oil, u1, u2, um, T_oil, Ts1, Ts2,
+    WL1, WR1, WL2, WR2, nz, thermal, tol_T, tol_tau, max_inner, relax,
+    max_sweeps, lagged, symmetric, s1, s2, depth,
+    T, tau, u, gv, q1, q2, heat, slope, inner_its, history,
+):
+    """Repeat :func:`sweep_line` until the field stops changing (thesis 3.2.2.2 with the
+    upstream influences lagged; see ``thermal.line.solve_thermal_line``).
+
+    The lagged quantities (downstream wall fluxes scaled to kelvin by ``s1``, ``s2``, and the
+    temperatures) are updated by Anderson mixing of depth ``depth``. Sweeps stop after the
+    first when nothing is lagged (isothermal, or no upstream reach and no reverse flow), when
+    the largest relative temperature change falls below ``tol_T``, on non-finite temperatures
+    or after ``max_sweeps``. ``history[k]`` receives the change of sweep k (1 for the first).
+
+    Returns ``(sweeps, settled, n_station_fail, n_tau_fail, n_reverse)`` of the last sweep.
+    """
+    n = p.shape[0]
+    nzp = nz + 1
+    q1_lag = np.zeros(n)
+    q2_lag = np.zeros(n)
+    T_lag = T.copy()
+    N = 2 * n + n * nzp
+    X = np.empty((depth + 1, N))
+    F = np.empty((depth + 1, N))
+    count = 0
+    settled = False
+    n_fail = 0
+    n_tau_fail = 0
+    n_rev = 0
+    sweeps = 0
+    for k in range(max_sweeps):
+        sweeps = k + 1
+        n_fail, n_tau_fail, n_rev = sweep_line(
+            dx, p, h, dpdx, qp, flux, oil, u1, u2, um, T_oil, Ts1, Ts2,
+            WL1, WR1, WL2, WR2, nz, thermal, k == 0, q1_lag, q2_lag, T_lag,
+            tol_T, tol_tau, max_inner, relax, T, tau, u, gv, q1, q2, heat, slope, inner_its, symmetric,
+        )
+        change = 1.0
+        finite = True
+        if k > 0:
+            change = 0.0
+            for i in range(n):
+                for j in range(nzp):
+                    c = abs(T[i, j] - T_lag[i, j]) / abs(T_lag[i, j] + T_KELVIN)
+                    if not math.isfinite(c):
+                        change = math.nan
+                    elif c > change:
+                        change = c
+        history[k] = change
+        if not (thermal and (lagged or n_rev > 0)):
+            settled = True
+            break
+        if k > 0 and change < tol_T:
+            settled = True
+            break
+        for i in range(n):
+            for j in range(nzp):
+                if not math.isfinite(T[i, j]):
+                    finite = False
+        if not finite:
+            break
+        g = np.empty(N)
+        x_old = np.empty(N)
+        for i in range(n):
+            g[i] = q1[i] * s1
+            g[n + i] = q2[i] * s2
+            x_old[i] = q1_lag[i] * s1
+            x_old[n + i] = q2_lag[i] * s2
+            for j in range(nzp):
+                g[2 * n + i * nzp + j] = T[i, j]
+                x_old[2 * n + i * nzp + j] = T_lag[i, j]
+        if k == 0:
+            x_new = g
+        else:
+            x_new, count = _anderson_step(X, F, count, x_old, g, depth)
+        for i in range(n):
+            q1_lag[i] = x_new[i] / s1
+            q2_lag[i] = x_new[n + i] / s2
+            for j in range(nzp):
+                T_lag[i, j] = x_new[2 * n + i * nzp + j]
+    return sweeps, settled, n_fail, n_tau_fail, n_rev

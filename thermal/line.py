@@ -25,6 +25,10 @@ from .profiles import LineProfile
 from .properties import T_ROELANDS_MIN, oil_params
 from .surface import wall_weights
 
+#: Anderson mixing depth of the sweep iteration (Walker & Ni 2011): for a slow or stationary
+#: surface the plain sweep iteration is barely contractive; mixing makes it converge in a few sweeps
+ANDERSON_DEPTH = 6
+
 
 @dataclass(frozen=True)
 class Surroundings:
@@ -161,42 +165,18 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     q1 = np.zeros(nx)
     q2 = np.zeros(nx)
     inner = np.zeros(nx, dtype=np.int64)
-    q1_lag = np.zeros(nx)
-    q2_lag = np.zeros(nx)
-    T_lag = T.copy()
     # lagged fluxes enter through sum W q: scale them to kelvin by the self weights
     s1 = max(abs(WL1[nx - 1] + WR1[nx - 1]), 1e-300)
     s2 = max(abs(WL2[nx - 1] + WR2[nx - 1]), 1e-300)
-    acc = _Anderson(depth=6)
-    history: list[float] = []
-    sweeps_ok = False
-    n_fail = n_tau_fail = n_rev = 0
-    sweeps = 0
-    for k in range(options.max_sweeps):
-        sweeps = k + 1
-        n_fail, n_tau_fail, n_rev = kernels.sweep_line(
-            dx, p, h, dpdx, qp, mode == "flux", oil, float(env.u1), float(env.u2), um, float(env.T_oil),
-            float(env.T_surface1), float(env.T_surface2), WL1, WR1, WL2, WR2, nz, bool(options.thermal), k == 0,
-            q1_lag, q2_lag, T_lag, float(options.tol_T), float(options.tol_tau), int(options.max_inner),
-            float(options.relax), T, tau, u, gv, q1, q2, heat, slope, inner, bool(symmetric),
-        )
-        change = 1.0 if k == 0 else float(np.max(np.abs(T - T_lag) / np.abs(T_lag + kernels.T_KELVIN)))
-        history.append(change)
-        if not (options.thermal and (lagged or n_rev > 0)):
-            sweeps_ok = True
-            break
-        if k > 0 and change < options.tol_T:
-            sweeps_ok = True
-            break
-        if not np.all(np.isfinite(T)):
-            break
-        x_old = np.concatenate([q1_lag * s1, q2_lag * s2, T_lag.ravel()])
-        g = np.concatenate([q1 * s1, q2 * s2, T.ravel()])
-        x_new = g if k == 0 else acc.step(x_old, g)
-        q1_lag = x_new[:nx] / s1
-        q2_lag = x_new[nx:2 * nx] / s2
-        T_lag = x_new[2 * nx:].reshape(nx, nzp).copy()
-    sweep_change = np.array(history)
+    history = np.zeros(options.max_sweeps)
+    sweeps, sweeps_ok, n_fail, n_tau_fail, n_rev = kernels.march_line(
+        dx, p, h, dpdx, qp, mode == "flux", oil, float(env.u1), float(env.u2), um, float(env.T_oil),
+        float(env.T_surface1), float(env.T_surface2), WL1, WR1, WL2, WR2, nz, bool(options.thermal),
+        float(options.tol_T), float(options.tol_tau), int(options.max_inner), float(options.relax),
+        int(options.max_sweeps), bool(lagged), bool(symmetric), float(s1), float(s2), ANDERSON_DEPTH,
+        T, tau, u, gv, q1, q2, heat, slope, inner, history,
+    )
+    sweep_change = history[:sweeps].copy()
     wall = time.perf_counter() - t0
     converged = bool(sweeps_ok and n_fail == 0 and n_tau_fail == 0)
     parts = []
@@ -261,45 +241,6 @@ def momentum_mode(profile: LineProfile, options: ThermalOptions) -> str:
 def uses_momentum(profile: LineProfile, options: ThermalOptions) -> bool:
     """Whether the pressure term of (3.4) is applied (see ThermalOptions.momentum)."""
     return momentum_mode(profile, options) != "off"
-
-
-class _Anderson:
-    """Anderson acceleration of the sweep map x -> g(x) (Walker & Ni 2011, type II, mixing 1).
-
-    The lagged quantities (downstream wall fluxes, temperatures behind reverse flow) couple the
-    stations both ways; for a slow or stationary surface the plain sweep iteration is barely
-    contractive, Anderson mixing makes it converge in a few sweeps.
-    """
-
-    def __init__(self, depth: int = 6) -> None:
-        self.depth = depth
-        self.xs: list[np.ndarray] = []
-        self.fs: list[np.ndarray] = []
-
-    def step(self, x: np.ndarray, g: np.ndarray) -> np.ndarray:
-        f = g - x
-        self.xs.append(x.copy())
-        self.fs.append(f)
-        if len(self.fs) > self.depth + 1:
-            self.xs.pop(0)
-            self.fs.pop(0)
-        if len(self.fs) < 2:
-            return g
-        dF = np.stack([self.fs[i + 1] - self.fs[i] for i in range(len(self.fs) - 1)], axis=1)
-        dX = np.stack([self.xs[i + 1] - self.xs[i] for i in range(len(self.xs) - 1)], axis=1)
-        with np.errstate(over="ignore", invalid="ignore"):
-            norms = np.linalg.norm(dF, axis=0)
-            if not np.all(np.isfinite(norms)) or np.any(norms == 0):
-                self.xs.clear()
-                self.fs.clear()
-                return g
-            gamma, *_ = np.linalg.lstsq(dF / norms, f, rcond=1e-10)
-            out = g - (dX + dF) @ (gamma / norms)
-        if not np.all(np.isfinite(out)):
-            self.xs.clear()
-            self.fs.clear()
-            return g
-        return out
 
 
 def _reaches_upstream(WL: np.ndarray, WR: np.ndarray) -> bool:
