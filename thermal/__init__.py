@@ -4,14 +4,17 @@ surface temperatures (3.6)-(3.7)).
 
 Main entry points: :func:`solve_traction` (one slip), :func:`traction_curve` (friction against
 slip), :func:`film_friction` (uniform film under Hertz pressure; the contract used by the mixed
-lubrication layer) and :func:`solve_thermal_line` (one line profile).
+lubrication layer), :func:`film_frictions` (many such points at once) and
+:func:`solve_thermal_line` (one line profile; :func:`solve_thermal_lines` for a batch of them on
+a thread pool).
 """
 
 import warnings
 
-from .film import FilmFriction, film_friction
+from .film import FilmFriction, film_friction, film_frictions
 from .line import _RENAMED, Surroundings, ThermalLineSolution, solve_thermal_line
 from .options import ThermalOptions
+from .parallel import LineJob, solve_thermal_lines
 from .profiles import (
     LineProfile,
     hertz_profile,
@@ -22,8 +25,8 @@ from .profiles import (
 from .traction import TractionPoint, solve_traction, traction_curve, traction_result
 
 __all__ = [
-    "FilmFriction", "film_friction", "ThermalLineSolution", "Surroundings", "solve_thermal_line",
-    "ThermalOptions",
+    "FilmFriction", "film_friction", "film_frictions", "ThermalLineSolution", "Surroundings", "solve_thermal_line",
+    "LineJob", "solve_thermal_lines", "ThermalOptions",
     "LineProfile", "hertz_profile", "hertz_slices", "profile_from_arrays", "profiles_from_result",
     "TractionPoint", "solve_traction", "traction_curve", "traction_result",
 ]
