@@ -22,6 +22,7 @@ reported (absolute and relative to the largest |f| of the curve).
 
     python validation/bench/thermal.py --label before
     python validation/bench/thermal.py --label after
+    python validation/bench/thermal.py --label after --grid-study
 
 writes ``validation/bench/out/thermal_<label>.json``, ``thermal_<label>.md`` (table) and
 ``thermal_<label>.png`` (median wall time per case, with the reference's when given).
@@ -267,6 +268,45 @@ def plot(data: dict, ref: dict | None, path: Path) -> None:
     plt.close(fig)
 
 
+#: grids of the Stribeck grid study: the library default (appendix C/D grid), the Stribeck
+#: stage's (mixed.stage.THERMAL_GRID), the point "standard" fidelity and a finer reference
+GRID_STUDY = {
+    "reference 160x40, 20 slices": {"nx": 160, "nz": 40, "slices": 20},
+    "default 80x20, 10 slices": {},
+    "40x10, 5 slices": {"nx": 40, "nz": 10, "slices": 5},
+    "20x5, 5 slices": {"nx": 20, "nz": 5, "slices": 5},
+}
+
+
+def grid_study(label: str) -> None:
+    """Thermal 60-point Stribeck curve of the series C point contact on each grid of
+    :data:`GRID_STUDY`: wall/CPU time (one run) and the friction change against the finest."""
+    from ehl_multigrid.model.scene import load_scene
+    from mixed.stribeck import stribeck_curve
+
+    warm_up()
+    sc = load_scene(STRIBECK_SCENES[1])
+    out: dict = {"scene": sc.name, "us": US.tolist(), "grids": {}}
+    ref = None
+    for name, opts in GRID_STUDY.items():
+        la0 = os.getloadavg()[0]
+        c0, t0 = time.process_time(), time.perf_counter()
+        c = stribeck_curve(sc, US, thermal=True, thermal_options=opts or None)
+        rec = {"options": opts, "wall_s": time.perf_counter() - t0, "cpu_s": time.process_time() - c0,
+               "loadavg": [la0, os.getloadavg()[0]], "coefficient": c.friction.coefficient.tolist(),
+               "film": c.friction.film.tolist(), "converged": c.converged}
+        if ref is None:
+            ref = c.friction
+        else:
+            rec["max_abs_df"] = float(np.nanmax(np.abs(c.friction.coefficient - ref.coefficient)))
+            rec["max_rel_df"] = float(np.nanmax(np.abs(c.friction.coefficient - ref.coefficient) / ref.coefficient))
+            rec["max_rel_dfilm"] = float(np.nanmax(np.abs(c.friction.film - ref.film) / ref.coefficient))
+        out["grids"][name] = rec
+        print(f"{name:28s} wall {rec['wall_s']:7.2f} s  cpu {rec['cpu_s']:7.2f} s  "
+              f"max |df|/f {rec.get('max_rel_df', 0.0):.2e}", flush=True)
+    (OUT / f"thermal_grid_{label}.json").write_text(json.dumps(out, indent=1))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--label", required=True, help="run label: out/thermal_<label>.json")
@@ -274,8 +314,13 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true", help="two traction scenes, the line Stribeck curves only")
     ap.add_argument("--reference", default=None, help="JSON of an earlier run (default out/thermal_before.json)")
     ap.add_argument("--only", default=None, help="run only the cases whose name contains this text")
+    ap.add_argument("--grid-study", action="store_true",
+                    help="instead: the thermal Stribeck curve (series C) on four grids, out/thermal_grid_<label>.json")
     args = ap.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
+    if args.grid_study:
+        grid_study(args.label)
+        return
     ref_path = Path(args.reference) if args.reference else OUT / "thermal_before.json"
     ref = json.loads(ref_path.read_text()) if ref_path.exists() and (args.reference or args.label != "before") else None
     import numba
