@@ -13,7 +13,8 @@ solution of the model, as relative errors, with the budget split into three part
   solves on a coarse grid, done by the contact's solve function), times :data:`DOMAIN_SAFETY`
   (what is left beyond the doubled box: up to 1.5 times the change again at low M).
 * **algebraic** -- the change of the film over the last finest-grid cycle (iteration error
-  of a contracting iteration with factor <= 1/2), plus the relative load error times the
+  of a contracting iteration with factor <= 1/2; zero after a direct finest-grid solve, whose
+  residual is at round-off), plus the relative load error times the
   film's load sensitivity (|d ln H / d ln W| < 0.5 over the whole map).
 
 The total is the sum of the three. Every estimate is checked against finer grids, wider
@@ -117,7 +118,12 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None) -> Er
         notes.append("Hm converges irregularly over the last grids: first-order estimate")
     grid = {"Hc": abs(rc.error / Hc), "Hm": abs(rm.error / Hm)}
     fin = [h for h in result.history if h.level == top]
-    if len(fin) >= 2:
+    if fin and fin[-1].cycle == -1:
+        # finished by a direct solve of the finest grid (dense Newton): its residual, not the
+        # jump from the last cycle, measures what is left of the iteration
+        alg_c = alg_m = 0.0
+        notes.append("finished by a direct solve: iteration error from the load error only")
+    elif len(fin) >= 2:
         alg_c = abs(fin[-1].Hc - fin[-2].Hc) / abs(Hc)
         alg_m = abs(fin[-1].Hm - fin[-2].Hm) / abs(Hm)
     else:
@@ -213,7 +219,8 @@ def next_refinement(budget: dict[str, dict[str, float]], accuracy: float, points
                     tol_factor: float, max_points: int, box_limit: float) -> tuple[int, float, float] | None:
     """The cheapest refinement predicted to meet ``accuracy`` (else the one predicted to come
     closest): one more grid (grid error / 4), a box twice as wide at the same mesh (domain
-    error / :data:`DOMAIN_DECAY`), both, or tolerances ten times tighter (algebraic / 10)."""
+    error / :data:`DOMAIN_DECAY`) or on the same points (grid error x 4), both, or tolerances
+    ten times tighter (algebraic / 10)."""
     def total(g: float, d: float, a: float) -> float:
         return max(g * budget["grid"][k] + d * (budget["domain"][k] if math.isfinite(budget["domain"][k])
                                                 else math.inf) + a * budget["algebraic"][k]
@@ -221,6 +228,10 @@ def next_refinement(budget: dict[str, dict[str, float]], accuracy: float, points
 
     finer = 2 * (points - 1) + 1
     options = []  # (cost rank, predicted total, step)
+    if 2.0 * box <= box_limit:
+        # twice the box on the same points: a coarser mesh (grid error x4 at second order)
+        # that pays where the box error dominates and the mesh is fine for the film's scale
+        options.append((0, total(4.0, 1.0 / DOMAIN_DECAY, 1.0), (points, 2.0 * box, tol_factor)))
     if finer <= max_points:
         options.append((1, total(0.25, 1.0, 1.0), (finer, box, tol_factor)))
         if 2.0 * box <= box_limit:
@@ -235,7 +246,9 @@ def next_refinement(budget: dict[str, dict[str, float]], accuracy: float, points
     if meeting:
         return min(meeting, key=lambda o: (o[0], o[1]))[2]
     now = total(1.0, 1.0, 1.0)
-    best = min(options, key=lambda o: o[1])
+    lowest = min(o[1] for o in options)
+    # the cheapest of those predicted within 10 % of the lowest: predictions are not sharper
+    best = min((o for o in options if o[1] <= 1.1 * lowest), key=lambda o: (o[0], o[1]))
     return best[2] if best[1] < 0.9 * now else None
 
 

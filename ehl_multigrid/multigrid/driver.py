@@ -215,7 +215,9 @@ class MultilevelSolver:
         o = self.options
         if not self.residuals:
             return False
-        if o.film_tol is not None:
+        if o.film_tol is not None and not (self.history and self.history[-1].cycle == -1):
+            # (after a direct last-resort solve, c = -1, the film's jump to the discrete
+            # solution is no iteration error: its residual decides)
             top = len(self.hierarchy.levels) - 1
             fin = [h for h in self.history[-2:] if h.level == top]
             if len(fin) < 2 or abs(self.load_errors[-1]) >= o.film_tol:

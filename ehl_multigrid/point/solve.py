@@ -23,15 +23,20 @@ from .postprocess import build_result
 from .problem import (
     PointProblem,
     default_domain,
+    domain_scale,
     min_points,
     problem_from_moes,
     problem_from_scene,
     resolve_domain,
+    rigid_length,
 )
 
 SOLVERS = ("fas", "newton")
 #: Largest grid an accuracy target may refine to (about 10 s on two cores)
 MAX_ACCURACY_POINTS = 1025
+
+#: Widest box (times the default) an accuracy target may ask for in the thick-film regime
+THICK_FILM_BOX_LIMIT = 8.0
 
 #: The answer of a point-contact solve is the package's one EHL result type.
 PointSolution = EHLResult
@@ -83,6 +88,12 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     d0 = default_domain(problem)
     scale = 2 ** max(0, round(math.log2((xmax - xmin) / (d0[1] - d0[0]))))
     n_min = (min_points(problem.M, problem.b_over_a) - 1) * scale + 1
+    if domain_scale(problem) > 1.0:
+        # thick film: the film varies over the inlet length s, not a; a quarter of s per cell
+        s = rigid_length(problem)
+        n_min = min_points(problem.M, problem.b_over_a)
+        while (xmax - xmin) / (n_min - 1) > 0.25 * s:
+            n_min = 2 * (n_min - 1) + 1
     n_p = min(max((n_f - 1) // 4 + 1, n_min), n_f) if top >= 2 else n_f
     while True:
         def solve(n: int, f: float) -> EHLResult:
@@ -98,6 +109,25 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
         if n_p >= n_f:
             return None
         n_p = 2 * (n_p - 1) + 1  # one grid finer when the coarse probe does not converge
+
+
+def thick_film_reason(problem: PointProblem, res: EHLResult, accuracy: float) -> str:
+    """Why a thick-film (low M) point contact misses its target when the box error dominates:
+    the physics, the inlet predicted to meet the target and what to do instead."""
+    b = res.error.budget
+    dom = max(b["domain"].values())
+    if not (math.isfinite(dom) and dom > 0.5 * accuracy):
+        return ""
+    s = rigid_length(problem)
+    inlet = -res.extra["domain"][0]
+    # half of the target left to the box, the rest to the grid
+    need = f"about {inlet * dom / (0.5 * accuracy):.0f} a"
+    return (f"at M = {problem.M:.3g} the film is thick against the elastic deformation (rigid-"
+            f"isoviscous side): the pressure spreads over the inlet length s = (2H)^0.5 = {s:.3g} a and "
+            f"the fully flooded film still grows with the inlet, the box error falling only about as "
+            f"1/inlet length; meeting {accuracy:g} needs an inlet of {need} (this box: {inlet:.3g} a). "
+            f"A contact this lightly loaded is usually limited by its oil supply: give the meniscus "
+            f"position as xmin and read the result as the film for that supply")
 
 
 def solve_point(
@@ -171,8 +201,13 @@ def solve_point(
         def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
             return point_domain_change(pb, res.options, res)
 
-        res = solve_to_accuracy(solve, probe, accuracy, points, max_points,
+        # thick films (low M) spread over many inlet lengths: their box may grow further, on a
+        # mesh that coarsens with it (the coarse grid follows the inlet length)
+        box_limit = THICK_FILM_BOX_LIMIT if domain_scale(pb) > 1.0 else 4.0
+        res = solve_to_accuracy(solve, probe, accuracy, points, max_points, box_limit=box_limit,
                                 refine=accuracy is not None and not (explicit or fixed_box))
+        if res.status_name == "inaccurate" and domain_scale(pb) > 1.0:
+            res.message += "; " + thick_film_reason(pb, res, accuracy)
         if not res.success and opts.raise_on_failure:
             raise ConvergenceError(f"point solver: {res.message}", res.report, HINT)
         return res

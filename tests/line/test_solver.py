@@ -123,6 +123,17 @@ def test_robustness_steps_fire_on_the_rigid_isoviscous_contact_and_it_still_conv
     assert sol.residual_history[-1] < 1e-5 and abs(sol.load_error) < 1e-6
 
 
+def test_a_dense_newton_finish_counts_as_converged_under_the_film_stopping_rule():
+    # the film jumps from the stalled cycles to the discrete solution; that jump is no
+    # iteration error, so the film-change rule must not turn the finish into "stalled", and
+    # the estimate's algebraic part is the load error alone
+    sol = solve_line(100.0, 0.0, points=513, raise_on_failure=False, film_tol=5e-4)
+    assert any("dense Newton" in a for a in sol.actions)
+    assert sol.status_name == "converged", sol.message
+    alg = sol.error.budget["algebraic"]
+    assert alg["Hc"] == pytest.approx(0.5 * abs(sol.load_error_history[-1]))
+
+
 def test_stall_without_a_last_resort_raises_with_a_hint():
     pb = LineProblem.from_moes(100.0, 10.0)
     # max_cycles 0: FMG only; tol 1e-14 cannot be met, so the solve fails and says what to try

@@ -47,8 +47,10 @@ def test_refinement_goes_where_the_error_is():
 
     # grid error dominates: one more grid, same box
     assert next_refinement(budget(0.02, 0.001), 0.01, 257, 1.0, 1.0, 1025, 4.0) == (513, 1.0, 1.0)
-    # domain error dominates: twice the box at the same mesh
-    assert next_refinement(budget(0.001, 0.02), 0.01, 257, 1.0, 1.0, 1025, 4.0) == (513, 2.0, 1.0)
+    # domain error dominates on a fine mesh: twice the box on the same points (grid error x4)
+    assert next_refinement(budget(0.001, 0.02), 0.01, 257, 1.0, 1.0, 1025, 4.0) == (257, 2.0, 1.0)
+    # ... and when a coarser mesh would cost too much grid error: twice the box at the same mesh
+    assert next_refinement(budget(0.003, 0.02), 0.01, 257, 1.0, 1.0, 1025, 4.0) == (513, 2.0, 1.0)
     # algebraic error dominates: tighter tolerances, same grid and box
     assert next_refinement(budget(1e-4, 1e-4, 0.02), 0.01, 257, 1.0, 1.0, 1025, 4.0) == (257, 1.0, 0.1)
     # nothing affordable helps: give up rather than spend
