@@ -11,6 +11,8 @@ shear force of the film.
   (``thermal.film_friction``) run on the Hertz pressure of the load Ph (whose area and mean
   pressure are exactly AH and pavehl) with the uniform film hf,r; the temperature rises are
   reported. The asperity part and the load sharing are unchanged (the thesis's assumption).
+  All speeds are solved as one batch (``thermal.film.film_frictions``: the line problems of
+  every speed and slice on a thread pool), each with the answer of ``film_friction``.
 
 Friction is returned as a magnitude: the sign of the slip only sets its direction.
 """
