@@ -29,7 +29,7 @@ def _rel(a, b):
 
 
 @pytest.mark.parametrize("nx,ny,half", [(17, 17, False), (33, 33, False), (65, 33, False),
-                                        (33, 65, False), (17, 9, True), (33, 17, True),
+                                        (33, 65, False), (257, 129, False), (17, 9, True), (33, 17, True),
                                         (65, 33, True), (33, 9, True)])
 def test_fft_equals_direct_sum_to_round_off(nx, ny, half):
     hx, hy = 6.0 / (nx - 1), 0.23

@@ -27,6 +27,7 @@ writes ``validation/bench/out/<label>.json``, ``<label>.md`` (table) and ``<labe
 from __future__ import annotations
 
 import argparse
+import gc
 import json
 import math
 import os
@@ -65,9 +66,9 @@ def _count_deformations(contact: str, counter: dict) -> None:
                 def __getattr__(self, name):
                     return getattr(op, name)
 
-                def __call__(self, P):
+                def __call__(self, P, **k):
                     counter[npts] = counter.get(npts, 0) + 1
-                    return op(P)
+                    return op(P, **k)
 
             return Counted()
 
@@ -131,6 +132,10 @@ def child(spec: dict) -> dict:
             "deformation_wu": float(sum(c * n / fine for n, c in counter.items())),
             "deformations_by_size": {str(n): c for n, c in sorted(counter.items())},
         })
+        # the solver and its grid hierarchy reference each other: without a collection the
+        # previous solve's fields stay alive during the next one and double the peak
+        del res
+        gc.collect()
     walls = [r["wall_s"] for r in runs]
     last = runs[-1]
     return {
@@ -301,6 +306,34 @@ def plot(data: dict, path: Path) -> None:
     plt.close(fig)
 
 
+def compare(labels: list[str]) -> str:
+    """Markdown table of the runs ``labels`` side by side (wall, CPU, WU, cycles, peak MB)."""
+    runs = [json.loads((OUT / f"{lab}.json").read_text()) for lab in labels]
+    keys = list(dict.fromkeys((r["case"], r["points"]) for d in runs for r in d["rows"]))
+    cols = ["wall s", "CPU s", "WU", "cycles", "defo evals", "peak MB", "load"]
+    head = "| case | points | " + " | ".join(f"{c} {lab}" for c in cols for lab in labels) + " |"
+    lines = [head, "|" + "---|" * (2 + len(cols) * len(labels))]
+    for case, n in keys:
+        rows = [next((r for r in d["rows"] if (r["case"], r["points"]) == (case, n)), None)
+                for d in runs]
+
+        def cell(r, key, fmt):
+            if r is None:
+                return "-"
+            if r["status"] != "ok":
+                return r["status"]
+            v = r[key]
+            return fmt.format(v[0] if isinstance(v, list) else v)
+
+        cells = []
+        for key, fmt in (("wall_median_s", "{:.3f}"), ("cpu_median_s", "{:.3f}"),
+                         ("work_units", "{:.1f}"), ("cycles", "{:d}"), ("deformations", "{:d}"),
+                         ("rss_peak_mb", "{:.0f}"), ("load_before", "{:.1f}")):
+            cells += [cell(r, key, fmt) for r in rows]
+        lines.append(f"| {case} | {n} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--child", help=argparse.SUPPRESS)
@@ -316,7 +349,14 @@ def main() -> None:
     ap.add_argument("--timeout", type=float, default=900.0, help="seconds per (case, grid)")
     ap.add_argument("--append", action="store_true",
                     help="keep the other cases' rows of an existing <label>.json")
+    ap.add_argument("--compare", nargs="+", metavar="LABEL",
+                    help="only write out/compare.md from earlier runs")
     a = ap.parse_args()
+    if a.compare:
+        text = compare(a.compare)
+        (OUT / "compare.md").write_text(text)
+        print(text)
+        return
     if a.child:
         print(json.dumps(child(json.loads(a.child))))
         return
