@@ -83,11 +83,22 @@ class ThermalLineSolution:
     force_per_length: float
     traction1_per_length: float
     traction2_per_length: float
-    heat: dict[str, float]
     report: ConvergenceReport
     T_oil: float
     stress_slope: np.ndarray | None = None
     extra: dict = field(default_factory=dict)
+    #: oil of the heat budget (None: isothermal solution, empty budget)
+    lubricant: Lubricant | None = field(default=None, repr=False)
+    _heat: dict[str, float] | None = field(default=None, repr=False)
+
+    @property
+    def heat(self) -> dict[str, float]:
+        """Heat budget per unit length [W/m] (:func:`heat_budget`; computed on first use,
+        empty for an isothermal solution)."""
+        if self._heat is None:
+            self._heat = ({} if self.lubricant is None else
+                          heat_budget(self.profile, self.T, self.u, self.heat_rate, self.q1, self.q2, self.lubricant))
+        return self._heat
 
     @property
     def T_surface1(self) -> np.ndarray:
@@ -214,11 +225,11 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     F = -float(np.trapezoid(tau_m, x))
     F1 = float(np.trapezoid(tau[:, 0], x))
     F2 = -float(np.trapezoid(tau[:, -1], x))
-    budget = heat_budget(profile, T, u, heat, q1, q2, env.lubricant) if options.thermal else {}
     return ThermalLineSolution(
         profile=profile, Z=Z, T=T, tau=tau, u=u, gdot=gv, heat_rate=heat, q1=q1, q2=q2,
-        force_per_length=F, traction1_per_length=F1, traction2_per_length=F2, heat=budget,
+        force_per_length=F, traction1_per_length=F1, traction2_per_length=F2,
         report=report, T_oil=float(env.T_oil), stress_slope=slope,
+        lubricant=env.lubricant if options.thermal else None,
     )
 
 
