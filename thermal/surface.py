@@ -119,17 +119,39 @@ def _strip_kernel(xi, v, length, k_solid, nodes, wts):
 
 
 @njit(cache=True, nogil=True)
-def _cell_moments(c, dx, v, length, k_solid, tn, tw, gx, gw):
-    """``(int_0^1 s K((c + s) dx) ds, int_0^1 (1 - s) K((c + s) dx) ds)`` by Gauss-Legendre
-    (nodes ``gx``, weights ``gw`` on [-1, 1]): the two hat halves over cell ``c``."""
-    m_s = 0.0
-    m_1s = 0.0
-    for q in range(gx.shape[0]):
+def _mirror_cell_moments(k, dx, v, length, k_solid, tn, tw, gx, gw):
+    """Hat moments of the downstream cell ``[k dx, (k + 1) dx]`` and of its upstream mirror
+    ``[-(k + 1) dx, -k dx]`` by Gauss-Legendre (nodes ``gx``, weights ``gw`` on [-1, 1]).
+
+    Upstream of a source the moving-strip kernel is the downstream one times ``exp(-2 v |xi|)``
+    (the integrands ``exp(-v|xi| (cosh t -+ 1))`` differ by that factor over the same range of
+    t), and the Gauss nodes of the mirror cell are the mirror images of the downstream ones, so
+    one set of kernel values serves both cells. Returns ``(down_s, down_1s, up_s, up_1s)``:
+    ``int_0^1 s K((c + s) dx) ds`` and ``int_0^1 (1 - s) K((c + s) dx) ds`` for ``c = k`` and
+    ``c = -k - 1``.
+    """
+    nq = gx.shape[0]
+    kd = np.empty(nq)
+    ke = np.empty(nq)
+    down_s = 0.0
+    down_1s = 0.0
+    for q in range(nq):
         s = 0.5 * (gx[q] + 1.0)
-        kq = _strip_kernel((c + s) * dx, v, length, k_solid, tn, tw)
-        m_s += kq * s * gw[q]
-        m_1s += kq * (1.0 - s) * gw[q]
-    return 0.5 * m_s, 0.5 * m_1s
+        a = (k + s) * dx
+        kd[q] = _strip_kernel(a, v, length, k_solid, tn, tw)
+        two_va = 2.0 * v * a
+        ke[q] = kd[q] * math.exp(-two_va) if two_va <= 700.0 else 0.0
+        down_s += kd[q] * s * gw[q]
+        down_1s += kd[q] * (1.0 - s) * gw[q]
+    up_s = 0.0
+    up_1s = 0.0
+    for q in range(nq):
+        s = 0.5 * (gx[q] + 1.0)
+        # node q of the mirror cell sits at |xi| = (k + 1 - s) dx, the downstream node nq - 1 - q
+        kq = ke[nq - 1 - q]
+        up_s += kq * s * gw[q]
+        up_1s += kq * (1.0 - s) * gw[q]
+    return 0.5 * down_s, 0.5 * down_1s, 0.5 * up_s, 0.5 * up_1s
 
 
 @njit(cache=True, nogil=True)
@@ -137,33 +159,29 @@ def _strip_hat_weights(n, dx, v, length, k_solid, tn, tw, cx, cw, fx, fw, sx, sw
     """Half-hat weights ``(WL, WR)`` of the moving-strip kernel (see :func:`wall_weights`).
 
     Cell ``c`` (``xi`` in ``[c dx, (c + 1) dx]``) carries ``WL[m = c]`` (weight ``1 - s``) and
-    ``WR[m = c + 1]`` (weight ``s``): one set of kernel values serves both. Cells with
-    ``|m| <= 3`` use the 24-point rule ``(cx, cw)``, the others the 8-point rule ``(fx, fw)``;
-    the two cells touching ``xi = 0`` (log singularity) use graded nodes ``r = sigma^2`` of the
-    48-point rule ``(sx, sw)`` from the singular end.
+    ``WR[m = c + 1]`` (weight ``s``); downstream cell ``k`` and its upstream mirror ``-k - 1``
+    share their kernel values (:func:`_mirror_cell_moments`). ``WL[k]`` and ``WR[-k]`` use the
+    24-point rule ``(cx, cw)`` when ``k <= 3``, ``WR[k + 1]`` and ``WL[-k - 1]`` when
+    ``k + 1 <= 3``, the others the 8-point rule ``(fx, fw)``; the two cells touching ``xi = 0``
+    (log singularity) use graded nodes ``r = sigma^2`` of the 48-point rule ``(sx, sw)`` from
+    the singular end.
     """
     i0 = n - 1
     WL = np.zeros(2 * n - 1)
     WR = np.zeros(2 * n - 1)
-    for c in range(-n, n):
-        if c == 0 or c == -1:
-            continue
-        in_wl = -(n - 1) <= c <= n - 1
-        in_wr = -(n - 1) <= c + 1 <= n - 1
-        near_wl = abs(c) <= 3
-        near_wr = abs(c + 1) <= 3
-        if in_wl and in_wr and near_wl == near_wr:
-            gx, gw = (cx, cw) if near_wl else (fx, fw)
-            m_s, m_1s = _cell_moments(c, dx, v, length, k_solid, tn, tw, gx, gw)
-            WL[c + i0] = dx * m_1s
-            WR[c + 1 + i0] = dx * m_s
-            continue
-        if in_wl:
-            gx, gw = (cx, cw) if near_wl else (fx, fw)
-            WL[c + i0] = dx * _cell_moments(c, dx, v, length, k_solid, tn, tw, gx, gw)[1]
-        if in_wr:
-            gx, gw = (cx, cw) if near_wr else (fx, fw)
-            WR[c + 1 + i0] = dx * _cell_moments(c, dx, v, length, k_solid, tn, tw, gx, gw)[0]
+    for k in range(1, n):
+        near_a = k <= 3      # WL[k], WR[-k]
+        near_b = k + 1 <= 3  # WR[k + 1], WL[-k - 1] (exist for k + 1 <= n - 1)
+        gx, gw = (cx, cw) if near_a else (fx, fw)
+        d_s, d_1s, u_s, u_1s = _mirror_cell_moments(k, dx, v, length, k_solid, tn, tw, gx, gw)
+        WL[i0 + k] = dx * d_1s
+        WR[i0 - k] = dx * u_s
+        if k + 1 <= n - 1:
+            if near_b != near_a:
+                gx, gw = (cx, cw) if near_b else (fx, fw)
+                d_s, d_1s, u_s, u_1s = _mirror_cell_moments(k, dx, v, length, k_solid, tn, tw, gx, gw)
+            WR[i0 + k + 1] = dx * d_s
+            WL[i0 - k - 1] = dx * u_1s
     # the cells touching xi = 0: d r = 2 g dg, g = (sigma + 1)/2
     down_s = 0.0
     down_1s = 0.0
@@ -174,7 +192,8 @@ def _strip_hat_weights(n, dx, v, length, k_solid, tn, tw, cx, cw, fx, fw, sx, sw
         r = g * g
         jac = g * sw[q]
         kd = _strip_kernel(r * dx, v, length, k_solid, tn, tw)
-        ku = _strip_kernel(-r * dx, v, length, k_solid, tn, tw)
+        two_va = 2.0 * v * r * dx
+        ku = kd * math.exp(-two_va) if two_va <= 700.0 else 0.0
         down_s += kd * r * jac
         down_1s += kd * (1.0 - r) * jac
         up_s += ku * r * jac
