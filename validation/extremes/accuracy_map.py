@@ -59,7 +59,9 @@ def fit_cases(quick: bool) -> list[dict]:
                     continue  # elliptic contacts at M = 1000 need > 2049 points: out of budget
                 for L in Ls:
                     out.append({"contact": "point", "M": M, "L": L, "theta": th, "viscosity": v, "density": d})
-    return out
+    # point contacts first, then lines by rising M (the slowest last): an interrupted run still
+    # holds the most cases
+    return sorted(out, key=lambda c: (c["contact"] == "line", c["M"] if c["contact"] == "line" else 0.0))
 
 
 def fit_value(case: dict) -> float:
