@@ -143,7 +143,7 @@ def _stress_problem():
     return d, w, inv_eta, tau0, np.zeros(nzp), target, flow
 
 
-@pytest.mark.parametrize("guess", [0.0, 1e4, -3e8, 2.0e7, "warm"])
+@pytest.mark.parametrize("guess", [0.0, 1e4, -3e8, 2.0e7, "warm", "near"])
 def test_mid_film_stress_solve_meets_its_tolerance_from_any_guess(guess):
     from scipy.optimize import brentq
 
@@ -153,6 +153,8 @@ def test_mid_film_stress_solve_meets_its_tolerance_from_any_guess(guess):
         # a previous iterate just inside the one-step acceptance (1e-6 tau0): the Newton step
         # is accepted unconfirmed and must still meet the tolerance
         guess = root + 9e-7 * tau0
+    elif guess == "near":  # outside it: one unconfirmed step would leave ~1e-9 tau0
+        guess = root + 5e-5 * tau0
     tm, ok = solve_tau_mid(guess, d, w, inv_eta, tau0, 0.0, mx_r, target)
     assert ok
     assert abs(tm - root) <= 1e-11 * tau0
