@@ -68,3 +68,14 @@ def test_fft_kind_sums_directly_on_small_grids_only():
 def test_fft_rejects_a_pressure_of_another_grid():
     with pytest.raises(ValueError, match="shape"):
         FFTDeformation(33, 33, 0.1, 0.1)(np.zeros((17, 17)))
+
+
+@pytest.mark.parametrize("half", [False, True])
+def test_fft_with_two_workers_equals_one_worker(half):
+    # workers are used from 256^2 points on
+    nx, ny = 257, 257
+    P = _pressure(nx, ny, half)
+    one = FFTDeformation(nx, ny, 0.05, 0.05, half, workers=1)(P)
+    two = FFTDeformation(nx, ny, 0.05, 0.05, half, workers=2)
+    assert two._workers(P.size) == 2
+    assert _rel(two(P), one) < 1e-14

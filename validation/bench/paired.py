@@ -6,7 +6,8 @@ warm-up, then one timed solve), so both see the same background load.
     python validation/bench/paired.py --old /tmp/old --cases point,point_half --points 513 1025
 
 writes ``out/paired.json`` and ``out/paired.md`` (median wall and CPU time of each side, their
-ratio, the load average over the runs).
+ratio, the load average over the runs). ``--threads-pair`` compares one thread ("old" column)
+with two threads ("new" column) on the working tree instead.
 """
 
 from __future__ import annotations
@@ -39,22 +40,31 @@ def one(tree: str | None, name: str, points: int, threads: int | None) -> dict:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--old", required=True, help="source tree of the 'before' code")
+    ap.add_argument("--old", help="source tree of the 'before' code")
+    ap.add_argument("--new", default=None, help="source tree of the 'after' code (default: installed)")
+    ap.add_argument("--threads-pair", action="store_true",
+                    help="one thread against two threads, both on the working tree")
     ap.add_argument("--cases", default="point,point_half")
     ap.add_argument("--points", type=int, nargs="+", default=[513, 1025])
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--threads", type=int, default=None)
     ap.add_argument("--label", default="paired")
     a = ap.parse_args()
-    out = {"old": a.old, "threads": a.threads, "rounds": a.rounds, "rows": []}
+    if not (a.old or a.threads_pair):
+        ap.error("give --old TREE or --threads-pair")
+    out = {"old": a.old, "new": a.new, "threads_pair": a.threads_pair, "threads": a.threads, "rounds": a.rounds, "rows": []}
     lines = ["| case | points | wall old | wall new | new/old | CPU old | CPU new | new/old | "
              "WU old/new | Hc old | Hc new | load |", "|" + "---|" * 12]
     for name in a.cases.split(","):
         for n in a.points:
             runs = {"old": [], "new": []}
             for _ in range(a.rounds):
-                runs["old"].append(one(a.old, name, n, a.threads))
-                runs["new"].append(one(None, name, n, a.threads))
+                if a.threads_pair:
+                    runs["old"].append(one(a.new, name, n, 1))
+                    runs["new"].append(one(a.new, name, n, 2))
+                else:
+                    runs["old"].append(one(a.old, name, n, a.threads))
+                    runs["new"].append(one(a.new, name, n, a.threads))
             med = {k: {q: statistics.median(r[q] for r in v)
                        for q in ("wall_median_s", "cpu_median_s", "load")} for k, v in runs.items()}
             row = {"case": name, "points": n, "runs": runs, "median": med}
