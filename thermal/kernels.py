@@ -201,6 +201,10 @@ def _slope_newton(G, tm, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b):
             return G, tm, False
         dtm = -(a22 * fa - a12 * fr) / det
         dG = -(a11 * fr - a21 * fa) / det
+        if abs(dtm) <= 1e-6 * tau0 and abs(dG) <= 1e-6 * tau0:
+            # as in solve_tau_mid: the second derivatives are bounded by the first over tau0,
+            # so a full step this small leaves an error of order 1e-12 tau0
+            return G + dG, tm + dtm, True
         # residual norm in stress units (the diagonal of the Jacobian scales each equation)
         norm0 = abs(fa) / a11 + abs(fr) / a22
         lam = 1.0
