@@ -6,7 +6,12 @@ PYTHONPATH to measure that tree::
     PYTHONPATH=/tmp/old python validation/bench/evaluations.py old
     python validation/bench/evaluations.py new
 
-writes ``out/evaluations_<label>.json``.
+writes ``out/evaluations_<label>.json``. ``hierarchy N`` instead builds the circular (20, 10)
+grid hierarchy on N^2 points and times two film updates (deformation, film, fluid properties)
+of the finest grid with a random pressure, with the peak memory (a solve's storage without
+solving)::
+
+    python validation/bench/evaluations.py hierarchy 4097
 """
 
 from __future__ import annotations
@@ -60,5 +65,34 @@ def main(label: str, max_n: int = 2049) -> None:
     (OUT / f"evaluations_{label}.json").write_text(json.dumps(rows, indent=1))
 
 
+def hierarchy(n: int, half: bool = False) -> dict:
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.fas import PointHierarchy
+    from ehl_multigrid.point.problem import problem_from_moes
+
+    def rss() -> float:
+        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+    base = rss()
+    hz = PointHierarchy(problem_from_moes(20, 10), PointOptions(points=n, half=half, threads=1))
+    built = rss()
+    hz._initial_guess()
+    fine = hz.levels[-1]
+    fine.P = np.random.default_rng(0).random(fine.P.shape)
+    cpu = []
+    for _ in range(2):
+        c0 = time.process_time()
+        hz.update_film(fine)
+        cpu.append(time.process_time() - c0)
+    row = {"n": n, "half": half, "base_mb": base, "after_build_mb": built, "peak_mb": rss(),
+           "eight_fields_all_levels_mb": sum(lv.P.nbytes for lv in hz.levels) * 8 / 2**20,
+           "update_film_cpu_s": cpu}
+    print(json.dumps(row))
+    return row
+
+
 if __name__ == "__main__":
-    main(sys.argv[1], int(sys.argv[2]) if len(sys.argv) > 2 else 2049)
+    if sys.argv[1] == "hierarchy":
+        hierarchy(int(sys.argv[2]))
+    else:
+        main(sys.argv[1], int(sys.argv[2]) if len(sys.argv) > 2 else 2049)
