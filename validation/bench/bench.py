@@ -7,9 +7,10 @@ Cases (Roelands + Dowson-Higginson, plain solves at explicit grids, ``estimate=F
 * ``line``       (M, L) = (20, 10), 1025 .. 16385 points;
 * ``line_1000``  (M, L) = (1000, 10), 1025 .. 16385 points.
 
-Each (case, grid) runs in a fresh subprocess: one warm-up solve on a small grid (numba cache
-load, FFT plans, imports), then ``--repeat`` timed solves (the median is the solver time
-without start-up). Recorded per run: wall times, work units, cycles, Hc, Hm, success, numba
+Each (case, grid) runs in a fresh subprocess: one warm-up solve of (20, 10) on a small grid
+(numba cache load, imports), then ``--repeat`` timed solves (the median is the solver time
+without start-up), with a garbage collection between them (the solver and its grid hierarchy
+reference each other, so a previous solve's fields would otherwise still be alive). Recorded per run: wall times, work units, cycles, Hc, Hm, success, numba
 threads, peak resident memory of the child (``ru_maxrss``; tracemalloc misses numpy's and
 pocketfft's buffers) and its baseline after the warm-up, the number of deformation
 evaluations (total and in finest-grid units) and the load average before and after. Hc
