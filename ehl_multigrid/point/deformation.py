@@ -160,7 +160,7 @@ COL_BLOCK = 16
 
 
 class FFTDeformation(Deformation):
-    """DC-FFT (Liu, Wang & Lin 2000): the discrete sum as a linear convolution by FFT, exact to
+    """DC-FFT (Liu, Wang & Liu, Wear 243, 2000): the discrete sum as a linear convolution by FFT, exact to
     round-off, in ``O(N log N)``.
 
     The kernel is even in X and Y, so its spectrum is real and is computed once per grid by
