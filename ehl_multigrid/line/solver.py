@@ -371,7 +371,9 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     opts = LineOptions.build(options, **kw)
     solver = line_solver(problem, opts)
     res = solver.solve(callback=callback)
-    return finish_line_result(res, solver, scene)
+    out = finish_line_result(res, solver, scene)
+    solver.hierarchy.solver = None  # break the solver <-> hierarchy cycle (frees the grids)
+    return out
 
 
 def line_domain_change(problem: LineProblem, options: LineOptions, sol: EHLResult) -> tuple[float, float] | None:

@@ -58,6 +58,7 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
         solver = point_solver(problem, opt)
         sol = solver.solve(callback=callback)
     hz = solver.hierarchy
+    hz.solver = None  # break the solver <-> hierarchy cycle: the grids are freed with the solver
     fine = hz.levels[-1]
     sol.contact, sol.solver, sol.problem, sol.options = "point", "fas", problem, opt
     sol.X, sol.Y, sol.P, sol.H = fine.X, fine.Y, fine.P.copy(), fine.H.copy()

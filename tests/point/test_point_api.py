@@ -123,3 +123,28 @@ def test_half_domain_equals_full_domain_for_an_elliptic_contact_with_square_cell
     assert full.converged and half.converged
     assert half.Hc == pytest.approx(full.Hc, rel=1e-5)
     assert half.Hm == pytest.approx(full.Hm, rel=1e-5)
+
+
+def test_a_finished_solve_frees_its_grids_without_the_cycle_collector(monkeypatch):
+    # accuracy mode runs several solves and probes in a row: each one's grids must go when the
+    # solve returns, not when Python's cycle collector happens to run
+    import gc
+    import weakref
+
+    import ehl_multigrid.point.solve as ps
+
+    made = []
+    build = ps.point_solver
+
+    def tracked(*a, **k):
+        s = build(*a, **k)
+        made.append(weakref.ref(s.hierarchy))
+        return s
+
+    monkeypatch.setattr(ps, "point_solver", tracked)
+    gc.disable()
+    try:
+        ps.solve_point(20.0, 10.0, points=65, estimate=False)
+        assert made and all(r() is None for r in made)
+    finally:
+        gc.enable()
