@@ -34,6 +34,8 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
                          "the FAS solver (whose coarsest grid is already solved by Newton)")
     opts = {key: getattr(args, arg) for arg, key in _ARG_OPTIONS.items() if getattr(args, arg, None) is not None}
     opts["accuracy"] = getattr(args, "accuracy", None)
+    if getattr(args, "max_points", None) is not None:
+        opts["max_points"] = args.max_points
     opts["raise_on_failure"] = False  # an unconverged or inaccurate result is written and says so
     model = {k: getattr(args, k, None) for k in ("viscosity", "density", "xmin", "xmax")}
     elastic = not getattr(args, "rigid", False)

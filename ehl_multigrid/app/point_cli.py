@@ -89,7 +89,9 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
     else:
         fas_kw = options_from_args(args, scene)
         fas_kw["accuracy"] = getattr(args, "accuracy", None)
-        opt = PointOptions.build(**{k: v for k, v in fas_kw.items() if k != "accuracy"})
+        if getattr(args, "max_points", None) is not None:
+            fas_kw["max_points"] = args.max_points
+        opt = PointOptions.build(**{k: v for k, v in fas_kw.items() if k not in ("accuracy", "max_points")})
     quiet = bool(getattr(args, "json", False))
     if not quiet:
         if scene is None:

@@ -46,6 +46,9 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
                         "solver picks and refines grid and box until its error estimate meets it; "
                         "'none' only reports the estimate (the result is then judged on its "
                         "iteration alone)")
+    p.add_argument("--max-points", type=int, default=None,
+                   help="largest grid (points along X) the accuracy target may refine to (default: "
+                        "1025 for point, 32769 for line contacts)")
     p.add_argument("--levels", type=int, default=None, help="number of multigrid levels")
     p.add_argument("--points", type=int, default=None, help="finest-grid points per direction (2^k + 1)")
     p.add_argument("--cycle", choices=["V", "W", "F"], default=None, help="multigrid cycle type")

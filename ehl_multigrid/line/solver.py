@@ -452,9 +452,10 @@ def solve_line(
     fixed_box = xmin is not None or "xmin" in model
     if accuracy is not None:
         require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
+    require_range("max_points", max_points, 65, 65537, "points")
     points = opts.points
     if accuracy is not None and not explicit:
-        points = max(solver_grid("line", pb.M, accuracy).points, 33)
+        points = min(max(solver_grid("line", pb.M, accuracy).points, 33), max_points)
 
     def solve(n: int, box: float, tol_factor: float) -> EHLResult:
         p = pb if box == 1.0 else dataclasses.replace(pb, xmin=pb.xmax - box * (pb.xmax - pb.xmin))

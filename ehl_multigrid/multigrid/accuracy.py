@@ -280,7 +280,8 @@ def _why_short(est: ErrorEstimate, accuracy: float, points: int, max_points: int
         if n is None:
             return "the grid error dominates and the other parts alone exceed the target"
         return (f"the grid error dominates: about {n} points along X are predicted to meet "
-                f"{accuracy:g} (max_points = {max_points}; pass a larger max_points to allow it)")
+                f"{accuracy:g} (max_points = {max_points}; a larger max_points, ehl solve "
+                f"--max-points, allows it)")
     if part == "domain":
         return (f"the domain (box truncation) error dominates at a box {box:g} times the default "
                 f"(limit {box_limit:g}); the film depends on the oil far upstream of the contact")

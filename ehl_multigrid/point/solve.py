@@ -182,11 +182,13 @@ def solve_point(
             return solve_fas(pb, opts, callback=callback, scene=scene)
         if accuracy is not None:
             require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
+        require_range("max_points", max_points, 65, 65537, "points")
         explicit = "points" in kw or "points" in table or (options is not None and accuracy is None)
         fixed_box = any(getattr(opts, k) is not None for k in ("xmin", "xmax", "ymax"))
         points = opts.points
         if accuracy is not None and not explicit:
-            points = solver_grid("point", pb.M, accuracy, floor=min_points(pb.M, pb.b_over_a)).points
+            points = min(solver_grid("point", pb.M, accuracy, floor=min_points(pb.M, pb.b_over_a)).points,
+                         max_points)
         base = resolve_domain(pb, opts.xmin, opts.xmax, opts.ymax)
         if accuracy is not None and "half" not in kw and "half" not in table and options is None:
             # smooth contacts are symmetric in Y: the half domain gives the same films (to 1e-8)

@@ -42,11 +42,22 @@ def test_solve_exits_3_when_the_result_is_not_a_success_and_still_writes_it(tmp_
     (["--threads", "1000"], "--threads"),
     (["--points", "100"], "points"),
     (["--levels", "0"], "levels"),
+    (["--max-points", "5"], "max_points"),
 ])
 def test_solve_refuses_bad_flags_with_exit_2(flags, field, tmp_path, capsys):
     assert main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--no-plots", "--out", str(tmp_path),
                  *flags]) == 2
     assert field in _err(capsys)
+
+
+def test_max_points_caps_the_refinement_and_the_message_names_the_grid_needed(tmp_path, capsys):
+    # (20, 10) line at 0.1 %: 1025 points are predicted to fall short; capped at 513 the result
+    # is the most accurate solve within the cap and says how many points would meet the target
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--accuracy", "0.001",
+               "--max-points", "513", "--no-plots", "--out", str(tmp_path), "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 3 and out["status"] == "inaccurate"
+    assert "max_points = 513" in out["message"] and "points along X are predicted" in out["message"]
 
 
 def test_solve_into_a_file_is_refused_before_solving(tmp_path, capsys):
