@@ -72,13 +72,15 @@ def fit_value(case: dict) -> float:
     return float(nijenbanning_central(case["M"], case["L"], case["theta"]))
 
 
-def solve(case: dict, accuracy: float, points: int | None = None) -> dict:
+def solve(case: dict, accuracy: float, points: int | None = None, max_points: int | None = None) -> dict:
     from ehl_multigrid.line import solve_line
     from ehl_multigrid.point import solve_point
 
     t0 = time.perf_counter()
     try:
         grid = {} if points is None else {"points": points}
+        if max_points is not None:
+            grid["max_points"] = max_points
         model = {k: case[k] for k in ("viscosity", "density") if k in case}
         if case["contact"] == "line":
             s = solve_line(case["M"], case["L"], accuracy=accuracy, raise_on_failure=False, **model, **grid)
@@ -93,8 +95,8 @@ def solve(case: dict, accuracy: float, points: int | None = None) -> dict:
             "refinements": s.extra.get("refinements"), "wall_s": time.perf_counter() - t0}
 
 
-def run_case(case: dict, accuracy: float, check_max: int = 1 << 30) -> dict:
-    r = solve(case, accuracy)
+def run_case(case: dict, accuracy: float, check_max: int = 1 << 30, max_points: int | None = None) -> dict:
+    r = solve(case, accuracy, max_points=max_points)
     out = {"case": case, "accuracy": accuracy, "result": r}
     if "viscosity" in case:
         out["Hc_fit"] = fit_value(case)
@@ -131,24 +133,37 @@ def main() -> None:
     ap.add_argument("--map", choices=("extremes", "fits"), default="extremes")
     ap.add_argument("--check-max", type=int, default=1 << 30,
                     help="skip a point contact's check solve where its grid would exceed this many points")
+    ap.add_argument("--max-points", type=int, default=None,
+                    help="largest grid the accuracy target may refine to (default: the solver's)")
+    ap.add_argument("--retry-grid-budget", metavar="FILE",
+                    help="re-run only the cases of FILE (a map of this script) that stopped at the grid "
+                         "budget, with --max-points; writes <FILE stem>_max<N>.json")
     ap.add_argument("--case", help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.case:  # child process: one case
-        print(json.dumps(run_case(json.loads(a.case), a.accuracy, a.check_max)))
+        print(json.dumps(run_case(json.loads(a.case), a.accuracy, a.check_max, a.max_points)))
         return
     from tqdm import tqdm
 
     OUT.mkdir(parents=True, exist_ok=True)
     stem = "accuracy_map" if a.map == "extremes" else "fit_map"
     path = OUT / f"{stem}_{a.accuracy:g}{'_quick' if a.quick else ''}.json"
+    todo = cases(a.quick) if a.map == "extremes" else fit_cases(a.quick)
+    if a.retry_grid_budget:
+        src = Path(a.retry_grid_budget)
+        old = json.loads(src.read_text())
+        todo = [rec["case"] for rec in old.values()
+                if "grid error dominates" in str(rec["result"].get("message", ""))]
+        path = src.with_name(f"{src.stem}_max{a.max_points}.json")
     done = json.loads(path.read_text()) if path.is_file() else {}
-    for case in tqdm(cases(a.quick) if a.map == "extremes" else fit_cases(a.quick)):
+    for case in tqdm(todo):
         key = json.dumps(case, sort_keys=True)
         if key in done:
             continue
         try:
+            extra = [] if a.max_points is None else ["--max-points", str(a.max_points)]
             p = subprocess.run([sys.executable, __file__, "--accuracy", str(a.accuracy),
-                                "--check-max", str(a.check_max), "--case", key],
+                                "--check-max", str(a.check_max), *extra, "--case", key],
                                capture_output=True, text=True, timeout=a.timeout)
             rec = json.loads(p.stdout.strip().splitlines()[-1]) if p.returncode == 0 else {
                 "case": case, "accuracy": a.accuracy,
