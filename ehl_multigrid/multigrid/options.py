@@ -194,7 +194,8 @@ class PointOptions(MultigridOptions):
     domain); ``xmin, xmax, ymax`` -- domain in units of a (None: the default box, widened at
     low M); ``y_ratio`` -- (points along Y - 1)/(points - 1), a power of 2 (None: near-square
     cells, stretched with the ellipse when b > a); ``half`` -- solve Y >= 0 only (symmetric contact); ``coarse_sweeps`` -- relaxations
-    per coarsest-grid visit; ``elastic`` -- False for rigid surfaces.
+    per coarsest-grid visit; ``elastic`` -- False for rigid surfaces; ``alternating`` -- relax
+    Y lines after every X-line sweep (None: when b/a < 0.5, contacts long in the rolling direction).
     """
 
     points: int = 129
@@ -213,6 +214,7 @@ class PointOptions(MultigridOptions):
     half: bool = False
     coarse_sweeps: int = 10
     elastic: bool = True
+    alternating: bool | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
