@@ -205,6 +205,8 @@ def main() -> None:
     ap.add_argument("--retry-grid-budget", metavar="FILE",
                     help="re-run only the cases of FILE (a map of this script) that stopped at the grid "
                          "budget, with --max-points; writes <FILE stem>_max<N>.json")
+    ap.add_argument("--theta-min", type=float, default=None,
+                    help="only the point cases with theta >= this (written to <map>_theta<T>.json)")
     ap.add_argument("--recheck", metavar="FILE",
                     help="re-run every converged case of FILE whose check predates the same-box "
                          "check (rewrites FILE)")
@@ -228,6 +230,9 @@ def main() -> None:
         todo = [rec["case"] for rec in old.values()
                 if "grid error dominates" in str(rec["result"].get("message", ""))]
         path = src.with_name(f"{src.stem}_max{a.max_points}.json")
+    if a.theta_min is not None:
+        todo = [c for c in todo if c["contact"] == "point" and c["theta"] >= a.theta_min]
+        path = path.with_name(f"{path.stem}_theta{a.theta_min:g}.json")
     done = json.loads(path.read_text()) if path.is_file() else {}
     for case in tqdm(todo):
         key = json.dumps(case, sort_keys=True)
