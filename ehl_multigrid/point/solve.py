@@ -187,8 +187,9 @@ def solve_point(
         fixed_box = any(getattr(opts, k) is not None for k in ("xmin", "xmax", "ymax"))
         points = opts.points
         if accuracy is not None and not explicit:
-            points = min(solver_grid("point", pb.M, accuracy, floor=min_points(pb.M, pb.b_over_a)).points,
-                         max_points)
+            # within the budget, but never below the smallest grid the solver converges on
+            floor = min_points(pb.M, pb.b_over_a)
+            points = min(solver_grid("point", pb.M, accuracy, floor=floor).points, max(max_points, floor))
         base = resolve_domain(pb, opts.xmin, opts.xmax, opts.ymax)
         if accuracy is not None and "half" not in kw and "half" not in table and options is None:
             # smooth contacts are symmetric in Y: the half domain gives the same films (to 1e-8)
