@@ -135,13 +135,24 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--extremes", default=str(OUT / "accuracy_map_0.02.json"))
     ap.add_argument("--fits", default=str(OUT / "fit_map_0.01.json"))
+    ap.add_argument("--override", action="append", default=[],
+                    help="a later run of some of the cases (e.g. *_theta4.json after a solver change); "
+                         "its records replace those of the same case (repeatable)")
     a = ap.parse_args()
+    overrides: dict = {}
+    for f in a.override:
+        overrides.update(json.loads(Path(f).read_text()))
     summary = {}
     for name, path in (("extremes", Path(a.extremes)), ("fits", Path(a.fits))):
         if not path.is_file():
             continue
         recs = json.loads(path.read_text())
-        summary[name] = {"file": path.name, "cases": len(recs), **counts(recs), "by_model": by_contact(recs)}
+        replaced = [k for k in recs if k in overrides]
+        recs.update({k: overrides[k] for k in replaced})
+        if replaced:
+            print(f"\n{name}: {len(replaced)} records replaced by the later runs")
+        summary[name] = {"file": path.name, "cases": len(recs), "replaced_by_later_runs": len(replaced),
+                         **counts(recs), "by_model": by_contact(recs)}
         print(f"\n## {name} ({path.name}, {len(recs)} cases)\n")
         print(json.dumps(summary[name]["classes"]), json.dumps(summary[name]["failure_reasons"]))
         for k, v in summary[name]["by_model"].items():
