@@ -14,7 +14,6 @@ import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from scipy import optimize, special
 
 from .errors import require_positive
 
@@ -85,6 +84,9 @@ def _axis_ratio_from_curvatures(q: float) -> float:
     ``m = 1 - k^2``; monotone in k, equal to 1 at k = 1.
     """
 
+    # here, not at import: scipy.optimize costs ~0.3 s of start-up
+    from scipy import optimize, special
+
     def resid(logk: float) -> float:
         k = math.exp(logk)
         m = 1.0 - k * k
@@ -116,6 +118,8 @@ def hertz_elliptic(load: float, Rx: float, Ry: float, E_reduced: float) -> Hertz
     if abs(math.log(Rx / Ry)) < 1e-9:
         c = hertz_circular(P, Rx, E)
         return HertzContact("elliptic", P, c.pmax, c.a, c.b, c.area, c.mean_pressure)
+    from scipy import special
+
     R_large, R_small = max(Rx, Ry), min(Rx, Ry)
     k = _axis_ratio_from_curvatures(R_large / R_small)
     m = 1.0 - k * k

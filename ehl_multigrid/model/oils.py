@@ -386,15 +386,27 @@ def _presets() -> dict[str, Oil]:
     return out
 
 
-OILS: dict[str, Oil] = _presets()
+@lru_cache(maxsize=1)
+def preset_oils() -> dict[str, Oil]:
+    """The preset oils by name, built on first use (their VI inversion needs scipy.optimize,
+    which would otherwise cost every start-up about 0.3 s)."""
+    return _presets()
+
+
+def __getattr__(name: str) -> Any:
+    # ``OILS`` stays importable, built when first asked for
+    if name == "OILS":
+        return preset_oils()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def oil_preset(name: str) -> Oil:
     """A preset oil by name (``mineral-VG68``, ``PAO-VG68``, ``ester-VG46``, ``traction-fluid`` ...)."""
+    oils = preset_oils()
     try:
-        return OILS[name]
+        return oils[name]
     except KeyError:
-        raise InputError(f"lubricant.oil = {name!r} is not a known oil; known oils are {sorted(OILS)}") from None
+        raise InputError(f"lubricant.oil = {name!r} is not a known oil; known oils are {sorted(oils)}") from None
 
 
 #: Keys of a ``[lubricant]`` table read by :func:`oil_from_table`, with their kinds of quantity.
