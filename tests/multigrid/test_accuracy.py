@@ -163,3 +163,12 @@ def test_point_estimate_bounds_the_error_of_the_default_box_against_a_wider_fine
     ref = b.scalars["Hc_venner"] + (b.scalars["Hc_venner"] - a.scalars["Hc_venner"]) / 3.0
     true = abs(sol.scalars["Hc_venner"] / ref - 1.0)
     assert true <= sol.Hc_error <= 10.0 * true
+
+
+def test_slow_contraction_scales_the_iteration_error_by_rho_over_one_minus_rho():
+    from ehl_multigrid.multigrid.accuracy import MAX_ITERATION_FACTOR, iteration_factor
+
+    assert iteration_factor([1.0, 1.1, 1.15]) == 1.0  # rho = 1/2: the change bounds the error
+    assert iteration_factor([1.0, 1.1, 1.18]) == pytest.approx(4.0)  # rho = 0.8
+    assert iteration_factor([1.0, 1.1, 1.0]) == MAX_ITERATION_FACTOR  # no contraction
+    assert iteration_factor([1.0, 1.1]) == 1.0
