@@ -153,6 +153,43 @@ def _gfun(Kc, d, jd):
 
 
 @njit(cache=True)
+def _wedge_weight(s, ns):
+    """Weight of ``rho H`` at ``i - s`` in the upwind wedge term: second order (ns = 3) or first."""
+    if ns == 3:
+        return 1.5 if s == 0 else (-2.0 if s == 1 else 0.5)
+    return 1.0 if s == 0 else -1.0
+
+
+@njit(cache=True)
+def _solve_band5(A, rhs):
+    """Solve the pentadiagonal system ``A[r, 2 + (c - r)]`` (overwritten, as ``rhs``) by
+    banded elimination without pivoting (diagonally dominant in practice); None when the
+    solution is not finite (a singular line, e.g. zero film)."""
+    n = rhs.shape[0]
+    for r in range(n):
+        piv = A[r, 2]
+        if piv == 0.0 or not math.isfinite(piv):
+            piv = -1e-30
+            A[r, 2] = piv
+        for rr in range(r + 1, min(n, r + 3)):
+            fac = A[rr, 2 + r - rr] / piv
+            if fac != 0.0:
+                for c in range(r, min(n, r + 3)):
+                    A[rr, 2 + c - rr] -= fac * A[r, 2 + c - r]
+                rhs[rr] -= fac * rhs[r]
+    dlt = np.zeros(n)
+    for r in range(n - 1, -1, -1):
+        sm = rhs[r]
+        for c in range(r + 1, min(n, r + 3)):
+            sm -= A[r, 2 + c - r] * dlt[c]
+        dlt[r] = sm / A[r, 2]
+    for r in range(n):
+        if not math.isfinite(dlt[r]):
+            return None
+    return dlt
+
+
+@njit(cache=True)
 def _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order):
     ny, nx = P.shape
     n = nx - 2
@@ -219,35 +256,14 @@ def _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order):
             # wedge through the film
             wsum = 0.0
             for s in range(ns):
-                if ns == 3:
-                    ws = 1.5 if s == 0 else (-2.0 if s == 1 else 0.5)
-                else:
-                    ws = 1.0 if s == 0 else -1.0
+                ws = _wedge_weight(s, ns)
                 m = i - s
                 wsum += ws * rho[j, m] * _gfun(Kc, m - k, jd)
             a -= wsum / hx
             A[r, 2 + c - r] = a
-    # banded elimination without pivoting (diagonally dominant in practice)
-    for r in range(n):
-        piv = A[r, 2]
-        if piv == 0.0 or not math.isfinite(piv):
-            piv = -1e-30
-            A[r, 2] = piv
-        for rr in range(r + 1, min(n, r + 3)):
-            fac = A[rr, 2 + r - rr] / piv
-            if fac != 0.0:
-                for c in range(r, min(n, r + 3)):
-                    A[rr, 2 + c - rr] -= fac * A[r, 2 + c - r]
-                rhs[rr] -= fac * rhs[r]
-    dlt = np.zeros(n)
-    for r in range(n - 1, -1, -1):
-        s = rhs[r]
-        for c in range(r + 1, min(n, r + 3)):
-            s -= A[r, 2 + c - r] * dlt[c]
-        dlt[r] = s / A[r, 2]
-    for r in range(n):
-        if not math.isfinite(dlt[r]):
-            return  # singular line (e.g. zero film): leave it for this sweep
+    dlt = _solve_band5(A, rhs)
+    if dlt is None:
+        return  # singular line (e.g. zero film): leave it for this sweep
     for r in range(n):
         i = r + 1
         if typ[r] == 0:
@@ -379,36 +395,16 @@ def _relax_line_y(P, H, rho, eps, f, D, Ky, hx, hy, i, sym, thr, w_gs, w_jd, ord
             # wedge through the film at columns i - s (full-domain mirror image on a half grid)
             wsum = 0.0
             for s in range(ns):
-                if ns == 3:
-                    ws = 1.5 if s == 0 else (-2.0 if s == 1 else 0.5)
-                else:
-                    ws = 1.0 if s == 0 else -1.0
+                ws = _wedge_weight(s, ns)
                 g = _gfun_y(Ky, j - ll, s, jd)
                 if sym and ll > 0 and j + ll + 1 < kmax:
                     g += _gfun_y(Ky, j + ll, s, jd)
                 wsum += ws * rho[j, i - s] * g
             a -= wsum / hx
             A[r, 2 + c - r] = a
-    for r in range(n):
-        piv = A[r, 2]
-        if piv == 0.0 or not math.isfinite(piv):
-            piv = -1e-30
-            A[r, 2] = piv
-        for rr in range(r + 1, min(n, r + 3)):
-            fac = A[rr, 2 + r - rr] / piv
-            if fac != 0.0:
-                for c in range(r, min(n, r + 3)):
-                    A[rr, 2 + c - rr] -= fac * A[r, 2 + c - r]
-                rhs[rr] -= fac * rhs[r]
-    dlt = np.zeros(n)
-    for r in range(n - 1, -1, -1):
-        sm = rhs[r]
-        for c in range(r + 1, min(n, r + 3)):
-            sm -= A[r, 2 + c - r] * dlt[c]
-        dlt[r] = sm / A[r, 2]
-    for r in range(n):
-        if not math.isfinite(dlt[r]):
-            return
+    dlt = _solve_band5(A, rhs)
+    if dlt is None:
+        return
     for r in range(n):
         j = r + j0
         if typ[r] == 0:
