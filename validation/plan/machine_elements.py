@@ -22,6 +22,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from scene_run import run_scene
 
 OUT = Path(__file__).resolve().parent / "out"
 SCENES = ("bearing_6205_inner_race", "spur_gear_pitch_point", "roller_bearing_inner_race", "ball_on_disc_tribometer")
@@ -96,10 +97,7 @@ def main() -> None:
         if name in done:
             continue
         with tempfile.TemporaryDirectory() as tmp:
-            t0 = time.perf_counter()
-            p = subprocess.run([sys.executable, "-m", "ehl_multigrid", "run", name, "--fidelity", a.fidelity,
-                                "--no-plots", "--json", "--out", tmp], capture_output=True, text=True)
-            wall = time.perf_counter() - t0
+            p, wall = run_scene(name, a.fidelity, tmp)
             row = {"exit_code": p.returncode, "wall_s": wall}
             try:
                 d = json.loads(p.stdout)

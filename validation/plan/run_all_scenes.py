@@ -12,8 +12,9 @@ import json
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
+
+from scene_run import run_scene
 
 OUT = Path(__file__).resolve().parent / "out"
 
@@ -38,10 +39,7 @@ def main() -> None:
         if name in done:
             continue
         with tempfile.TemporaryDirectory() as tmp:
-            t0 = time.perf_counter()
-            p = subprocess.run([sys.executable, "-m", "ehl_multigrid", "run", name, "--fidelity", a.fidelity,
-                                "--no-plots", "--json", "--out", tmp], capture_output=True, text=True)
-            wall = time.perf_counter() - t0
+            p, wall = run_scene(name, a.fidelity, tmp)
         row = {"exit_code": p.returncode, "wall_s": wall}
         try:
             d = json.loads(p.stdout)
