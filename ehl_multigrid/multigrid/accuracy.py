@@ -146,9 +146,10 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None) -> Er
         alg_c = alg_m = 0.0
         notes.append("finished by a direct solve: iteration error from the load error only")
     elif len(fin) >= 2:
-        alg_c = abs(fin[-1].Hc - fin[-2].Hc) / abs(Hc) * iteration_factor([h.Hc for h in fin])
-        alg_m = abs(fin[-1].Hm - fin[-2].Hm) / abs(Hm) * iteration_factor([h.Hm for h in fin])
-        if max(iteration_factor([h.Hc for h in fin]), iteration_factor([h.Hm for h in fin])) > 1.0:
+        fc, fm = iteration_factor([h.Hc for h in fin]), iteration_factor([h.Hm for h in fin])
+        alg_c = abs(fin[-1].Hc - fin[-2].Hc) / abs(Hc) * fc
+        alg_m = abs(fin[-1].Hm - fin[-2].Hm) / abs(Hm) * fm
+        if max(fc, fm) > 1.0:
             notes.append("the last cycles contract slowly: iteration error scaled by rho/(1 - rho)")
     else:
         alg_c = alg_m = grid["Hc"]

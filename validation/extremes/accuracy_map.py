@@ -225,6 +225,8 @@ def main() -> None:
     path = OUT / f"{stem}_{a.accuracy:g}{'_quick' if a.quick else ''}.json"
     todo = cases(a.quick) if a.map == "extremes" else fit_cases(a.quick)
     if a.retry_grid_budget:
+        if a.max_points is None:
+            ap.error("--retry-grid-budget needs --max-points (the larger grid budget)")
         src = Path(a.retry_grid_budget)
         old = json.loads(src.read_text())
         todo = [rec["case"] for rec in old.values()

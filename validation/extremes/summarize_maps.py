@@ -4,7 +4,8 @@ and the fit-check map as the package's answer to "how good are the fits".
     python validation/extremes/summarize_maps.py [--extremes out/accuracy_map_0.02.json]
                                                  [--fits out/fit_map_0.01.json]
 
-Writes out/maps_summary.json and out/fit_map_<A>.png, and prints markdown tables.
+Writes maps_summary.json and <fits stem>.png into ``--out`` (default out/), and prints
+markdown tables.
 
 The fit deviation ``Hc/Hc_fit - 1`` is reported only for cases that converged to the target,
 with the solve's own estimated error beside it: a deviation larger than that error is the fit's,
@@ -135,10 +136,13 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--extremes", default=str(OUT / "accuracy_map_0.02.json"))
     ap.add_argument("--fits", default=str(OUT / "fit_map_0.01.json"))
+    ap.add_argument("--out", default=str(OUT), help="folder of maps_summary.json and the fit-map PNG")
     ap.add_argument("--override", action="append", default=[],
                     help="a later run of some of the cases (e.g. *_theta4.json after a solver change); "
                          "its records replace those of the same case (repeatable)")
     a = ap.parse_args()
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
     overrides: dict = {}
     for f in a.override:
         overrides.update(json.loads(Path(f).read_text()))
@@ -161,10 +165,10 @@ def main() -> None:
             rows = fit_rows(recs)
             summary[name]["rows"] = rows
             print(fit_table(rows))
-            fit_plot(rows, path.with_suffix(".png"))
-    tmp = OUT / "maps_summary.tmp"
+            fit_plot(rows, out / f"{path.stem}.png")
+    tmp = out / "maps_summary.tmp"
     tmp.write_text(json.dumps(summary, indent=1))
-    tmp.replace(OUT / "maps_summary.json")
+    tmp.replace(out / "maps_summary.json")
 
 
 if __name__ == "__main__":
