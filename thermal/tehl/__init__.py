@@ -1,0 +1,15 @@
+"""Thermal elastohydrodynamic lubrication (TEHL): pressure, film and temperature solved
+together with the generalised Reynolds equation (Yang & Wen 1990) and the Eyring law of the
+thermal layer acting on the flow.
+
+Main entry point: :func:`solve_tehl_line` (line contacts).
+"""
+
+from .coefficients import film_factors, flux_integrals
+from .hierarchy import FactorLevel, FactorLineHierarchy
+from .line import TEHLLineResult, TEHLOptions, isothermal_start, solve_tehl_line
+
+__all__ = [
+    "film_factors", "flux_integrals", "FactorLevel", "FactorLineHierarchy", "TEHLLineResult",
+    "TEHLOptions", "isothermal_start", "solve_tehl_line",
+]

@@ -1,0 +1,114 @@
+"""The line contact's multilevel hierarchy with the generalised Reynolds operator of a film
+whose viscosity and density vary across it (Yang & Wen 1990), for the shared FAS driver.
+
+The discrete equations are the core line contact's (:mod:`ehl_multigrid.line.discrete`),
+with two fields along X taken as given (frozen during a multilevel solve, updated by the
+thermal solve of the outer iteration, :mod:`thermal.tehl.line`):
+
+* the flow factor ``a``: Venner's ``eps = rho H^3/(eta lambda)`` becomes ``a eps``;
+* the Couette factor ``c``: the wedge term ``d(rho H)/dX`` becomes ``d(c rho H)/dX``.
+
+With ``a = c = 1`` every state, residual and relaxation system is the core's, bit for bit.
+Coarse grids take the fine factors at their nodes (injection, like ``P``). The coarsest grid
+is relaxed (with the film constant following the load error) instead of solved by the
+core's dense Newton, whose Jacobian is written for ``a = c = 1``; a multilevel solve starts on
+the finest grid from the previous outer iterate, so FMG and its dense start are not needed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ehl_multigrid.line.discrete import fluid_state, reynolds_residual
+from ehl_multigrid.line.level import LineLevel, State
+from ehl_multigrid.line.problem import LineProblem
+from ehl_multigrid.line.solver import LineHierarchy, line_levels
+from ehl_multigrid.multigrid.driver import MultilevelSolver
+from ehl_multigrid.multigrid.options import LineOptions
+from ehl_multigrid.multigrid.policy import Settings
+
+#: relaxation sweeps of one coarsest-grid solve
+COARSE_SWEEPS = 30
+
+
+@dataclass
+class FactorLevel(LineLevel):
+    """A :class:`LineLevel` whose Reynolds coefficients carry the flow and Couette factors."""
+
+    a: np.ndarray = field(init=False)
+    c: np.ndarray = field(init=False)
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        self.a = np.ones(self.n)
+        self.c = np.ones(self.n)
+
+    def state(self, P: np.ndarray | None = None, H0: float | None = None) -> State:
+        P = self.P if P is None else P
+        H0 = self.H0 if H0 is None else H0
+        W = self.deform(P)
+        H, rho, drho, lne, dlne, eps = fluid_state(P, W, self.X, H0, self.par, self.lam, self.elastic)
+        # the wedge carries c rho H, the Poiseuille term a eps (factors frozen: Picard)
+        rho = rho * self.c
+        drho = drho * self.c
+        eps = eps * self.a
+        r, scale = reynolds_residual(P, H, rho, eps, self.h, self.f, self.order)
+        return State(H, rho, drho, lne, dlne, eps, r, scale)
+
+
+class FactorLineHierarchy(LineHierarchy):
+    """:class:`~ehl_multigrid.line.solver.LineHierarchy` on :class:`FactorLevel` grids,
+    started on the finest grid from a given iterate."""
+
+    name = "line (generalised Reynolds)"
+
+    def __init__(self, problem: LineProblem, options: LineOptions) -> None:
+        super().__init__(problem, options)
+        par = problem.rheology()
+        nlev = line_levels(options, problem.M)
+        n_f = options.points
+        self.levels = [
+            FactorLevel((n_f - 1) // 2 ** (nlev - 1 - k) + 1, problem.xmin, problem.xmax, par,
+                        problem.lam, problem.elastic, options.deformation, options.wedge_order,
+                        options.mlmi_order, options.mlmi_radius)
+            for k in range(nlev)
+        ]
+        self._P0: np.ndarray | None = None
+        self._H00 = 0.0
+
+    def set_factors(self, a: np.ndarray, c: np.ndarray) -> None:
+        """Flow and Couette factors on the finest grid; coarse grids inject them."""
+        top = self.levels[-1]
+        if a.shape != (top.n,) or c.shape != (top.n,):
+            raise ValueError(f"factors must have the finest grid's {top.n} points")
+        for k, lv in enumerate(self.levels):
+            step = 2 ** (len(self.levels) - 1 - k)
+            lv.a = np.ascontiguousarray(a[::step], dtype=float)
+            lv.c = np.ascontiguousarray(c[::step], dtype=float)
+
+    def set_iterate(self, P: np.ndarray, H0: float) -> None:
+        """The finest-grid pressure and film constant a solve starts from."""
+        self._P0 = np.asarray(P, dtype=float).copy()
+        self._H00 = float(H0)
+
+    def start(self, solver: MultilevelSolver) -> int:
+        self.solver = solver
+        if self._P0 is None:
+            raise ValueError("set_iterate() before a solve: the hierarchy starts from a given iterate")
+        top = len(self.levels) - 1
+        lv = self.levels[top]
+        lv.P = self._P0.copy()
+        lv.H0 = self._H00
+        lv.f = np.zeros(lv.n)
+        lv.g = 0.5 * np.pi
+        lv.frozen[:] = False
+        return top
+
+    def coarse_solve(self, k: int, s: Settings) -> float:
+        return self.relax(k, COARSE_SWEEPS, s, True)
+
+    def last_resort(self, k: int, solver: MultilevelSolver) -> bool:
+        # the core's dense Newton assumes a = c = 1
+        return False

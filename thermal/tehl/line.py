@@ -1,0 +1,362 @@
+"""Thermal elastohydrodynamic line contact (TEHL): pressure, film and temperature solved
+together, with the Eyring law acting on the flow.
+
+The outer iteration (a fixed point in the across-film fields):
+
+1. the isothermal Newtonian solve of the core (:func:`ehl_multigrid.line.solve_line_problem`)
+   gives ``P_0``, ``H_0`` (and ``Hc_isothermal``);
+2. the thermal layer (:func:`thermal.line.solve_thermal_line`: Eyring law (3.3), momentum
+   (3.4) with the stress slope ``h dp/dx`` of the current pressure, energy (3.5) across and
+   along the film, moving-heat-source surface temperatures (3.6)-(3.7)) gives ``T(x, z)`` and
+   ``tau(x, z)`` on the current ``P``, ``H``;
+3. the generalised Reynolds factors ``a``, ``c`` (:mod:`thermal.tehl.coefficients`) of that
+   field are under-relaxed (in their logarithm) and handed to the multilevel solve of the
+   :class:`~thermal.tehl.hierarchy.FactorLineHierarchy` on the shared driver, started from
+   the previous ``P``, which gives the next ``P``, ``H``;
+4. steps 2-3 repeat until the changes of P (max |dP| / max P), of the films (Hc, Hm,
+   relative) and of the temperature (max |dT| in kelvin) between outer iterations are all
+   below their tolerances. The temperature and friction returned belong to the final P.
+
+The thermal stations are the EHL grid's nodes (the whole box, inlet back flow included) and
+the thermal grid has ``nz`` intervals across the film. Friction, temperature and the heat
+budget come from that one thermal solution.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+from ehl_multigrid.line.problem import LineProblem
+from ehl_multigrid.line.solution import finish_line_result
+from ehl_multigrid.line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
+from ehl_multigrid.model.convergence import ConvergenceReport
+from ehl_multigrid.model.errors import ConvergenceError, InputError, require_range
+from ehl_multigrid.model.scene import Scene
+from ehl_multigrid.multigrid.driver import MultilevelSolver
+from ehl_multigrid.multigrid.options import LineOptions
+from ehl_multigrid.multigrid.policy import RobustnessPolicy
+
+from ..line import Surroundings, ThermalLineSolution, solve_thermal_line
+from ..options import SURFACE_KERNELS, ThermalOptions
+from ..profiles import profile_from_arrays
+from ..traction import wall_speeds
+from .coefficients import film_factors
+from .hierarchy import FactorLineHierarchy
+
+OUTER_HINT = ("lower relax (under-relaxation of the across-film factors), raise max_outer, or "
+              "check the thermal loading (oil temperature limits, slip, speed)")
+
+
+@dataclass(frozen=True)
+class TEHLOptions:
+    """Options of a TEHL line solve.
+
+    points : EHL grid points (2^k + 1); the thermal stations are its nodes.
+    nz : thermal intervals across the film.
+    xmin : inlet X = x/b (None: the core's default box); xmax : outlet X.
+    relax : under-relaxation of the factors' logarithms per outer iteration (0, 1].
+    max_outer : outer iterations allowed.
+    tol_P : max |dP| / max P between outer iterations; tol_H : relative change of Hc and Hm;
+    tol_T : max |dT| [K] between outer iterations.
+    tol_thermal : relative temperature tolerance of the thermal march (tol_T, tol_tau of
+        :class:`~thermal.options.ThermalOptions`).
+    thermal : False holds T = T_oil (Eyring shear thinning on the flow only).
+    shear_thinning : False gives the flow the Newtonian eta(p, T) (Eyring stays in the friction).
+    surface_kernel : surface-temperature kernel of the thermal layer.
+    multigrid : overrides of the core :class:`LineOptions` (tol, cycle, levels ...).
+    """
+
+    points: int = 513
+    nz: int = 10
+    xmin: float | None = None
+    xmax: float = 1.5
+    relax: float = 0.8
+    max_outer: int = 40
+    tol_P: float = 1e-4
+    tol_H: float = 1e-4
+    tol_T: float = 1e-2
+    tol_thermal: float = 1e-7
+    thermal: bool = True
+    shear_thinning: bool = True
+    surface_kernel: str = "moving-strip"
+    multigrid: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        n = int(self.points) - 1
+        if isinstance(self.points, bool) or self.points != int(self.points) or self.points < 65 or n & (n - 1):
+            raise InputError(f"points = {self.points!r} must be 2^k + 1 >= 65 (e.g. 257, 513, 1025)")
+        if isinstance(self.nz, bool) or not isinstance(self.nz, int) or not 4 <= self.nz <= 400:
+            raise InputError(f"nz = {self.nz!r} must be an integer in [4, 400] (intervals across the film)")
+        if self.xmin is not None:
+            require_range("xmin", self.xmin, -1000.0, -1.0, "- (x/b)")
+        require_range("xmax", self.xmax, 1.0, 100.0, "- (x/b)")
+        require_range("relax", self.relax, 0.0, 1.0, "-", lo_open=True)
+        require_range("max_outer", self.max_outer, 1, 1000, "outer iterations")
+        require_range("tol_P", self.tol_P, 1e-10, 0.1, "-")
+        require_range("tol_H", self.tol_H, 1e-10, 0.1, "-")
+        require_range("tol_T", self.tol_T, 1e-8, 10.0, "K")
+        require_range("tol_thermal", self.tol_thermal, 1e-12, 1e-3, "-")
+        if self.surface_kernel not in SURFACE_KERNELS:
+            raise InputError(f"surface_kernel = {self.surface_kernel!r} is not one of {list(SURFACE_KERNELS)}")
+
+    def line_options(self) -> LineOptions:
+        return LineOptions.build(None, **{"points": self.points, "raise_on_failure": False, **self.multigrid})
+
+    def thermal_options(self) -> ThermalOptions:
+        return ThermalOptions(nx=self.points, nz=self.nz, tol_T=self.tol_thermal, tol_tau=self.tol_thermal,
+                              max_inner=500, max_sweeps=400, momentum="on", thermal=self.thermal,
+                              surface_kernel=self.surface_kernel)
+
+    def with_changes(self, **changes: Any) -> TEHLOptions:
+        return replace(self, **changes)
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+
+@dataclass
+class TEHLLineResult:
+    """A converged TEHL line solution (SI units unless stated; Venner's X, P, H).
+
+    X, P, H : grid x/b, p/pmax, h R/b^2 of the TEHL solution; x [m], p [Pa], h [m];
+    Z : z/h nodes; T : temperature (X, Z) [degC]; tau : shear stress (X, Z) [Pa];
+    Hc, Hm : Moes central and minimum films (TEHL); hc, hm [m];
+    Hc_isothermal, Hm_isothermal : the same of the isothermal Newtonian solve on the same grid;
+    friction : traction force [N] on the line length (positive when surface 1 is faster,
+        opposing its motion); friction_coefficient : friction / load;
+    friction_decoupled : the same thermal model on the isothermal film (thesis chapter 3);
+    T_max [degC]; heat : budget per unit length [W/m] of the thermal layer;
+    heat_partition : (share into solid 1, share into solid 2) of the conducted heat;
+    heat_balance_error : |shear - conduction - convection| / shear;
+    factors : final flow and Couette factors a(X), c(X);
+    outer : one dict per outer iteration (dP, dHc, dHm, dT, factor change, cycles, wall_s).
+    """
+
+    scene: Scene
+    slip: float
+    u1: float
+    u2: float
+    problem: LineProblem
+    X: np.ndarray
+    P: np.ndarray
+    H: np.ndarray
+    H0: float
+    Z: np.ndarray
+    T: np.ndarray
+    tau: np.ndarray
+    Hc: float
+    Hm: float
+    Hc_isothermal: float
+    Hm_isothermal: float
+    friction: float
+    friction_coefficient: float
+    friction_decoupled: float
+    T_max: float
+    heat: dict[str, float]
+    heat_partition: tuple[float, float]
+    heat_balance_error: float
+    a: np.ndarray
+    c: np.ndarray
+    outer: list[dict[str, float]]
+    report: ConvergenceReport
+    options: TEHLOptions
+    thermal: ThermalLineSolution = field(repr=False)
+    wall_s: float = math.nan
+
+    @property
+    def x(self) -> np.ndarray:
+        return self.X * self.problem.b
+
+    @property
+    def p(self) -> np.ndarray:
+        return self.P * self.problem.pmax
+
+    @property
+    def h(self) -> np.ndarray:
+        return self.H * self.problem.b ** 2 / self.problem.R
+
+    @property
+    def hc(self) -> float:
+        return self.Hc * self.problem.film_scale
+
+    @property
+    def hm(self) -> float:
+        return self.Hm * self.problem.film_scale
+
+    @property
+    def film_reduction(self) -> float:
+        """Thermal reduction factor ``Hc / Hc_isothermal``."""
+        return self.Hc / self.Hc_isothermal
+
+    def summary(self) -> dict[str, Any]:
+        """The scalar outputs (the ``--json`` keys of a thermal solve)."""
+        return {
+            "Hc": self.Hc, "Hm": self.Hm, "Hc_isothermal": self.Hc_isothermal,
+            "Hm_isothermal": self.Hm_isothermal, "hc": self.hc, "hm": self.hm,
+            "film_reduction": self.film_reduction, "friction": self.friction,
+            "friction_coefficient": self.friction_coefficient,
+            "friction_decoupled": self.friction_decoupled, "T_max": self.T_max,
+            "heat_partition": list(self.heat_partition), "heat_balance_error": self.heat_balance_error,
+            "outer_iterations": len(self.outer), "converged": bool(self.report.converged),
+            "slip": self.slip, "wall_s": self.wall_s,
+        }
+
+
+@dataclass
+class _State:
+    P: np.ndarray
+    H: np.ndarray
+    H0: float
+    Hc: float
+    Hm: float
+
+
+def _films(problem: LineProblem, X: np.ndarray, P: np.ndarray, H: np.ndarray) -> tuple[float, float]:
+    """Moes (Hc, Hm) as the core defines them (Hc at X = 0; Hm over |X| <= 1.5 or P > 0)."""
+    zone = (np.abs(X) <= 1.5) | (P > 0)
+    return problem.moes_from_venner(float(np.interp(0.0, X, H))), problem.moes_from_venner(float(np.min(H[zone])))
+
+
+def line_problem(scene: Scene, options: TEHLOptions) -> LineProblem:
+    if scene.kind != "line":
+        raise InputError(f"contact.kind = {scene.kind!r}: solve_tehl_line needs a line contact")
+    return LineProblem.from_scene(scene, xmin=options.xmin, xmax=options.xmax)
+
+
+def isothermal_start(scene: Scene, options: TEHLOptions) -> _State:
+    """The core isothermal Newtonian solve on the TEHL grid."""
+    pb = line_problem(scene, options)
+    res = solve_line_problem(pb, options.line_options(), scene=scene)
+    if not res.success:
+        raise ConvergenceError(f"TEHL: the isothermal start did not converge: {res.message}", res.report, HINT)
+    Hc, Hm = _films(pb, res.X, res.P, res.H)
+    return _State(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm)
+
+
+def _thermal(scene: Scene, pb: LineProblem, st: _State, env: Surroundings, topt: ThermalOptions,
+             X: np.ndarray) -> ThermalLineSolution:
+    x = X * pb.b
+    prof = profile_from_arrays(x, st.P * pb.pmax, st.H * pb.b ** 2 / pb.R, b=pb.b, nx=X.size,
+                               width=scene.length, x_in=None, x_out=None, source="tehl")
+    sol = solve_thermal_line(prof, env, topt, kernel_length=scene.length)
+    if not sol.report.converged:
+        raise ConvergenceError(f"TEHL: the thermal solve did not converge: {sol.report.message}",
+                               sol.report, OUTER_HINT)
+    return sol
+
+
+def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None, *,
+                    us: float | None = None, load: float | None = None, start: _State | None = None,
+                    **changes: Any) -> TEHLLineResult:
+    """Solve the thermal EHL line contact of ``scene`` at ``slip`` (S = 2 (u1 - u2)/(u1 + u2)).
+
+    Parameters
+    ----------
+    scene : a line-contact scene (oil, solids, temperatures, operating point).
+    slip : slide-to-roll ratio in [-2, 2] (None: the scene's).
+    options : :class:`TEHLOptions`; keyword ``changes`` update it.
+    us, load : sum velocity [m/s] and load [N] replacing the scene's.
+    start : the isothermal start of an earlier solve of the same scene, grid and box
+        (:func:`isothermal_start`; it does not depend on the slip).
+
+    Raises :class:`ConvergenceError` when a multilevel or thermal solve fails, the fields
+    become non-finite, or the outer iteration does not meet its tolerances in ``max_outer``.
+    """
+    t0 = time.perf_counter()
+    opts = (options or TEHLOptions()).with_changes(**changes) if changes else (options or TEHLOptions())
+    if us is not None or load is not None:
+        scene = scene.with_operating(**{k: v for k, v in (("us", us), ("load", load)) if v is not None})
+    slip = scene.slip if slip is None else float(slip)
+    u1, u2 = wall_speeds(scene.us, slip)
+    env = Surroundings(scene.lubricant, scene.body1, scene.body2, u1, u2, scene.T_oil,
+                       scene.T_surface1, scene.T_surface2)
+    pb = line_problem(scene, opts)
+    lopts = opts.line_options()
+    topt = opts.thermal_options()
+    iso = isothermal_start(scene, opts) if start is None else start
+    hz = FactorLineHierarchy(pb, lopts)
+    X = hz.levels[-1].X
+    if iso.P.shape != X.shape:
+        raise InputError(f"start has {iso.P.size} points; the options ask for {X.size}")
+    lub = scene.lubricant
+    st = iso
+    sol = _thermal(scene, pb, st, env, topt, X)
+    decoupled = sol
+    a = np.ones(X.size)
+    c = np.ones(X.size)
+    outer: list[dict[str, float]] = []
+    hist: list[float] = []
+    converged = False
+    for it in range(1, opts.max_outer + 1):
+        ti = time.perf_counter()
+        a_new, c_new = film_factors(sol.profile.p, sol.T, sol.tau, lub, scene.T_oil, u1, u2, opts.shear_thinning)
+        if not (np.all(np.isfinite(a_new)) and np.all(a_new > 0) and np.all(np.isfinite(c_new)) and np.all(c_new > 0)):
+            raise ConvergenceError(f"TEHL outer iteration {it}: non-finite or non-positive across-film factors",
+                                   None, OUTER_HINT)
+        dfac = float(max(np.max(np.abs(np.log(a_new / a))), np.max(np.abs(np.log(c_new / c)))))
+        w = opts.relax
+        a = np.exp((1.0 - w) * np.log(a) + w * np.log(a_new))
+        c = np.exp((1.0 - w) * np.log(c) + w * np.log(c_new))
+        hz.set_factors(a, c)
+        hz.set_iterate(st.P, st.H0)
+        solver = MultilevelSolver(hz, lopts, line_settings(pb, lopts), RobustnessPolicy(LINE_POLICY, lopts.adapt), HINT)
+        hz.solver = solver
+        res = solver.solve()
+        res = finish_line_result(res, solver, scene)
+        hz.solver = None
+        if not res.success:
+            raise ConvergenceError(f"TEHL outer iteration {it}: the multilevel solve failed: {res.message}",
+                                   res.report, HINT)
+        Hc, Hm = _films(pb, res.X, res.P, res.H)
+        new = _State(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm)
+        sol_new = _thermal(scene, pb, new, env, topt, X)
+        dP = float(np.max(np.abs(new.P - st.P)) / np.max(new.P))
+        dHc = abs(Hc - st.Hc) / Hc
+        dHm = abs(Hm - st.Hm) / Hm
+        dT = float(np.max(np.abs(sol_new.T - sol.T)))
+        rec = {"iteration": it, "dP": dP, "dHc": dHc, "dHm": dHm, "dT": dT, "factor_change": dfac,
+               "cycles": int(res.cycles), "Hc": Hc, "Hm": Hm, "T_max": float(np.max(sol_new.T)),
+               "wall_s": time.perf_counter() - ti}
+        outer.append(rec)
+        if not all(math.isfinite(v) for v in (dP, dHc, dHm, dT)):
+            raise ConvergenceError(f"TEHL outer iteration {it}: NaN in the pressure, film or temperature",
+                                   None, OUTER_HINT)
+        st, sol = new, sol_new
+        hist.append(max(dP / opts.tol_P, max(dHc, dHm) / opts.tol_H, dT / opts.tol_T))
+        if hist[-1] < 1.0:
+            converged = True
+            break
+        if len(hist) >= 6 and min(hist[-3:]) > 2.0 * min(hist[:-3]) and hist[-1] > 10.0:
+            raise ConvergenceError(
+                f"TEHL outer iteration diverged: after {it} iterations the changes (dP {dP:.3g}, "
+                f"dHc {dHc:.3g}, dT {dT:.3g} K) grow (scaled by the tolerances: {hist[-1]:.3g}, best "
+                f"{min(hist):.3g})", None, OUTER_HINT)
+    report = ConvergenceReport(
+        converged=converged,
+        message="converged" if converged else f"outer iteration not converged in {opts.max_outer} iterations",
+        iterations=len(outer), residual_history=np.array(hist),
+        tolerances={"P": opts.tol_P, "H": opts.tol_H, "T_K": opts.tol_T},
+        wall_s=time.perf_counter() - t0, extra={"outer": outer})
+    if not converged:
+        last = outer[-1]
+        raise ConvergenceError(
+            f"TEHL: the outer iteration did not converge in {opts.max_outer} iterations (last dP "
+            f"{last['dP']:.3g}, dHc {last['dHc']:.3g}, dHm {last['dHm']:.3g}, dT {last['dT']:.3g} K)",
+            report, OUTER_HINT)
+    heat = sol.heat
+    cond = heat.get("conduction1", 0.0) + heat.get("conduction2", 0.0)
+    part = (heat["conduction1"] / cond, heat["conduction2"] / cond) if cond > 0 else (math.nan, math.nan)
+    F = sol.force_per_length * scene.length
+    return TEHLLineResult(
+        scene=scene, slip=slip, u1=u1, u2=u2, problem=pb, X=X.copy(), P=st.P, H=st.H, H0=st.H0,
+        Z=sol.Z, T=sol.T, tau=sol.tau, Hc=st.Hc, Hm=st.Hm, Hc_isothermal=iso.Hc, Hm_isothermal=iso.Hm,
+        friction=F, friction_coefficient=F / scene.load,
+        friction_decoupled=decoupled.force_per_length * scene.length, T_max=float(np.max(sol.T)),
+        heat=heat, heat_partition=part, heat_balance_error=abs(heat.get("balance", 0.0)),
+        a=a, c=c, outer=outer, report=report, options=opts, thermal=sol, wall_s=time.perf_counter() - t0,
+    )
