@@ -1,0 +1,158 @@
+"""Surface features that move through a line contact with the surface that carries them.
+
+Heights are in Venner's film units (``A = a R / b^2`` for a physical height ``a``) and
+positions in ``X = x/b``. A positive height is a bump (it narrows the gap), a negative one a
+dent. The film equation with a feature on either body reads (Venner & Lubrecht 2000, ch. 12)
+
+``H(X, T) = H0(T) + X^2/2 - R(X - c T) - (1/pi) int ln|X - X'| P(X', T) dX'``
+
+where ``R`` is the feature's height in its own frame at ``T = 0`` and ``c`` its speed in
+units of the mean rolling speed ``u_m = (u1 + u2)/2`` (:func:`feature_speed`).
+
+Shapes:
+
+* :class:`Waviness` -- ``R(X) = A cos(2 pi X / Lambda + phase)``;
+* :class:`Bump` -- a single feature of width ``W`` centred at ``x0``:
+  ``"cosine-gaussian"``: ``R = A 10^(-10 (s/W)^2) cos(2 pi s / W)`` (the dent/bump shape of
+  Venner & Lubrecht's transient studies, ``s = X - x0``), or
+  ``"gaussian"``: ``R = A exp(-(s/W)^2)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from typing import Any
+
+import numpy as np
+
+from ..model.errors import InputError, require_choice, require_range
+
+SHAPES = ("cosine-gaussian", "gaussian")
+#: Largest feature height accepted [Venner film units]: far above the central film of any
+#: line contact the solver covers (Hc ~ 0.01-0.5); a larger one cuts through both surfaces.
+MAX_AMPLITUDE = 1.0
+
+
+def feature_speed(body: int, slide_roll: float) -> float:
+    """Speed of a feature on ``body`` (1 or 2) over the mean speed ``u_m``.
+
+    With the slide-to-roll ratio ``S = (u1 - u2)/u_m``: ``u1/u_m = 1 + S/2``,
+    ``u2/u_m = 1 - S/2``.
+    """
+    require_choice("body", body, (1, 2))
+    s = require_range("slide_roll", slide_roll, -2.0, 2.0, "- ((u1 - u2)/u_m)")
+    return 1.0 + 0.5 * s if body == 1 else 1.0 - 0.5 * s
+
+
+@dataclass(frozen=True)
+class Waviness:
+    """Sinusoidal waviness ``A cos(2 pi X / wavelength + phase)`` (transverse ridges of a
+    line contact: crests parallel to the contact line).
+
+    Attributes
+    ----------
+    amplitude : ``A`` [Venner film units, a R/b^2], >= 0.
+    wavelength : ``Lambda = lambda / b`` [-].
+    phase : phase at ``X = 0``, ``T = 0`` [rad].
+    """
+
+    amplitude: float
+    wavelength: float
+    phase: float = 0.0
+
+    kind = "waviness"
+
+    def __post_init__(self) -> None:
+        require_range("feature.amplitude", self.amplitude, 0.0, MAX_AMPLITUDE, "- (a R/b^2)")
+        require_range("feature.wavelength", self.wavelength, 1e-3, 1e3, "- (lambda/b)")
+        require_range("feature.phase", self.phase, -1e3, 1e3, "rad")
+
+    @property
+    def length_scale(self) -> float:
+        """The length a time step must resolve: the wavelength."""
+        return self.wavelength
+
+    def height(self, X: np.ndarray) -> np.ndarray:
+        return self.amplitude * np.cos(2.0 * math.pi * np.asarray(X) / self.wavelength + self.phase)
+
+    def check_domain(self, xmin: float, xmax: float) -> None:
+        """At least one wavelength must fit in the domain."""
+        require_range("feature.wavelength", self.wavelength, 1e-3, xmax - xmin,
+                      f"- (lambda/b; the domain [{xmin:g}, {xmax:g}] must hold one wavelength)")
+
+    def describe(self) -> dict[str, Any]:
+        return {"kind": self.kind, **asdict(self)}
+
+
+@dataclass(frozen=True)
+class Bump:
+    """A single bump (``amplitude > 0``) or dent (``amplitude < 0``) centred at ``x0`` at
+    ``T = 0``.
+
+    Attributes
+    ----------
+    amplitude : ``A`` [Venner film units, a R/b^2].
+    width : ``W`` [-, x/b]: the cosine-Gaussian's wavelength, or the Gaussian's 1/e
+        half-width.
+    x0 : centre at ``T = 0`` [-, x/b] (usually upstream of the contact, e.g. -3).
+    shape : ``"cosine-gaussian"`` or ``"gaussian"``.
+    """
+
+    amplitude: float
+    width: float
+    x0: float = -3.0
+    shape: str = "cosine-gaussian"
+
+    kind = "bump"
+
+    def __post_init__(self) -> None:
+        require_range("feature.amplitude", self.amplitude, -MAX_AMPLITUDE, MAX_AMPLITUDE, "- (a R/b^2)")
+        require_range("feature.width", self.width, 1e-3, 1e3, "- (x/b)")
+        require_range("feature.x0", self.x0, -1e3, 1e3, "- (x/b)")
+        require_choice("feature.shape", self.shape, SHAPES)
+
+    @property
+    def length_scale(self) -> float:
+        """The length a time step must resolve: the width (Gaussian) or the half wavelength
+        of the cosine-Gaussian's oscillation."""
+        return self.width if self.shape == "gaussian" else 0.5 * self.width
+
+    def height(self, X: np.ndarray) -> np.ndarray:
+        s = np.asarray(X) - self.x0
+        if self.shape == "gaussian":
+            return self.amplitude * np.exp(-((s / self.width) ** 2))
+        return self.amplitude * 10.0 ** (-10.0 * (s / self.width) ** 2) * np.cos(2.0 * math.pi * s / self.width)
+
+    def check_domain(self, xmin: float, xmax: float) -> None:
+        """The feature (``x0 +- W``, where the height has fallen below 1e-3 A for the
+        cosine-Gaussian and 0.37 A for the Gaussian, so ``x0 +- 2.6 W`` for that) must fit
+        in the domain at the start."""
+        reach = self.width if self.shape == "cosine-gaussian" else 2.6 * self.width
+        require_range("feature.width", self.width, 1e-3, 0.5 * (xmax - xmin) / (reach / self.width),
+                      f"- (x/b; the feature must fit in the domain [{xmin:g}, {xmax:g}])")
+        require_range("feature.x0", self.x0, xmin + reach, xmax - reach,
+                      f"- (x/b; the whole feature must start inside [{xmin:g}, {xmax:g}])")
+
+    def describe(self) -> dict[str, Any]:
+        return {"kind": self.kind, **asdict(self)}
+
+
+Feature = Waviness | Bump
+
+
+def feature_from_table(table: dict[str, Any]) -> Feature:
+    """A feature from a scene's ``[feature]`` table (dimensionless keys: ``kind``,
+    ``amplitude``, ``wavelength`` or ``width``, ``x0``, ``shape``, ``phase``); the keys
+    ``body`` and ``slide_roll`` are read by the caller."""
+    t = {k: v for k, v in table.items() if k not in ("body", "slide_roll")}
+    kind = t.pop("kind", None)
+    require_choice("feature.kind", kind, ("waviness", "bump", "dent"))
+    try:
+        if kind == "waviness":
+            return Waviness(**t)
+        if kind == "dent":
+            t["amplitude"] = -abs(float(t.get("amplitude", 0.0)))
+        return Bump(**t)
+    except TypeError as exc:
+        raise InputError(f"[feature] {exc}") from None

@@ -1,0 +1,242 @@
+"""Result of a transient line-contact run: time series, snapshots, per-step convergence.
+
+Definitions (Venner units: ``X = x/b``, ``H = h R/b^2``, ``P = p/pmax``, ``T = t u_m/b``):
+
+* ``Hc(T)`` -- film at ``X = 0``; ``Hm(T)`` -- minimum film where ``P > 0`` or ``|X| <= 1.5``;
+* ``dP(T)`` -- pressure fluctuation ``max_X |P(X, T) - P_s(X)|`` against the smooth steady
+  pressure ``P_s`` (the core steady solution); ``Pmax(T)`` -- the largest pressure;
+* ``xf(T)`` -- feature reference position (a bump's centre, a waviness crest at ``T = 0``
+  phase 0) moving at ``speed``; ``dH(T)`` -- the film's deviation from the smooth steady film
+  at ``xf``: ``H(xf, T) - H_s(xf)``;
+* deformed amplitude: a bump's ``-dH`` when its centre passes ``X = 0``
+  (:meth:`TransientResult.bump_amplitude_at_centre`); waviness: half the peak-to-peak of
+  ``Hc(T)`` over the last full period (:meth:`TransientResult.waviness_amplitude`);
+* ``mass_balance(T)`` -- the discrete flux balance of the pressurised (wetted) zone of the
+  converged step (discrete.flux_balance) over the total flux through it.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tempfile
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..line.problem import LineProblem
+from ..multigrid.options import LineOptions
+from ..multigrid.result import EHLResult
+from .discrete import flux_balance
+
+SERIES = ("step", "T", "Hc", "Hm", "H0", "Pmax", "dP", "xf", "dH", "residual", "load_error",
+          "cycles", "work_units", "wall_s", "mass_balance")
+
+
+@dataclass
+class TransientResult:
+    """Answer of :func:`~.solve.solve_transient_line` (see module docstring for the series).
+
+    Series are numpy arrays through attribute access (``res.Hc``, ``res.T`` ...); step 0 is
+    the start. ``snapshots`` maps step -> dict of P, H, rho arrays on ``X``.
+    """
+
+    problem: LineProblem
+    feature: Any
+    body: int
+    slide_roll: float
+    speed: float
+    dt: float
+    scheme: str
+    options: LineOptions
+    steady: EHLResult
+    X: np.ndarray
+    series: dict[str, list[float]] = field(default_factory=lambda: {k: [] for k in SERIES})
+    snapshots: dict[int, dict[str, np.ndarray]] = field(default_factory=dict)
+    setup_s: float = 0.0
+    wall_s: float = 0.0
+    failed_step: int | None = None
+
+    def __getattr__(self, name: str) -> Any:
+        series = self.__dict__.get("series")
+        if series is not None and name in series:
+            return np.asarray(series[name], dtype=float)
+        raise AttributeError(name)
+
+    # -- building -------------------------------------------------------------------------
+    def _x_feature(self, T: float) -> float:
+        x0 = getattr(self.feature, "x0", 0.0)
+        return x0 + self.speed * T
+
+    def record(self, n: int, T: float, hz: Any, res: EHLResult | None, wall: float, keep: bool) -> None:
+        lv = hz.fine
+        st = lv.state()
+        X, P, H = lv.X, lv.P, st.H
+        zone = (np.abs(X) <= 1.5) | (P > 0)
+        Ps, Hs = self.steady.P, self.steady.H
+        xf = self._x_feature(T)
+        inside = X[0] <= xf <= X[-1]
+        s = self.series
+        s["step"].append(n)
+        s["T"].append(T)
+        s["Hc"].append(float(np.interp(0.0, X, H)))
+        s["Hm"].append(float(np.min(H[zone])))
+        s["H0"].append(float(lv.H0))
+        s["Pmax"].append(float(np.max(P)))
+        s["dP"].append(float(np.max(np.abs(P - Ps))))
+        s["xf"].append(xf)
+        s["dH"].append(float(np.interp(xf, X, H - Hs)) if inside else math.nan)
+        if res is None:
+            s["residual"].append(math.nan)
+            s["load_error"].append(lv.load() / lv.g - 1.0)
+            s["cycles"].append(0)
+            s["work_units"].append(0.0)
+        else:
+            s["residual"].append(float(res.residual_history[-1]))
+            s["load_error"].append(float(res.load_error_history[-1]))
+            s["cycles"].append(int(res.residual_history.size))
+            s["work_units"].append(float(res.work_units))
+        s["wall_s"].append(wall)
+        s["mass_balance"].append(self._mass_balance(lv, st) if n > 0 else math.nan)
+        if keep:
+            self.snapshots[n] = {"P": P.copy(), "H": H.copy(), "rho": st.rho.copy()}
+
+    @staticmethod
+    def _mass_balance(lv: Any, st: Any) -> float:
+        """Relative flux balance of the wetted zone from node 2 to the last node before the
+        first cavitated node downstream of the contact centre."""
+        P = lv.P
+        cav = np.flatnonzero((P <= 0.0) & (lv.X > 0.0))
+        i1 = (int(cav[0]) if cav.size else lv.n - 1) - 2
+        i0 = 2
+        if i1 <= i0:
+            return math.nan
+        dq = lv.squeeze(st)
+        bal = flux_balance(P, st.H, st.rho, st.eps, lv.h, dq, i0, i1)
+        q = st.rho * st.H
+        return float(bal / max(abs(q[i0]), abs(q[i1]), 1e-300))
+
+    def last_step(self) -> dict[str, Any]:
+        return {k: v[-1] for k, v in self.series.items()}
+
+    # -- observables ----------------------------------------------------------------------
+    @property
+    def steps(self) -> int:
+        return len(self.series["step"]) - 1
+
+    def bump_amplitude_at_centre(self) -> float:
+        """``-dH`` interpolated to the time the feature centre passes ``X = 0`` (NaN when it
+        does not pass). For a bump of amplitude A this is the deformed amplitude Ad."""
+        xf, dH = self.xf, self.dH
+        ok = np.isfinite(dH)
+        xf, dH = xf[ok], dH[ok]
+        if xf.size < 2 or not (xf.min() <= 0.0 <= xf.max()):
+            return math.nan
+        order = np.argsort(xf)
+        return float(-np.interp(0.0, xf[order], dH[order]))
+
+    def waviness_amplitude(self, periods: float = 1.0) -> float:
+        """Half the peak-to-peak of ``Hc(T)`` over the last ``periods`` feature periods."""
+        wl = getattr(self.feature, "wavelength", math.nan)
+        if not math.isfinite(wl) or abs(self.speed) < 1e-12:
+            return math.nan
+        T, Hc = self.T, self.Hc
+        win = T >= T[-1] - periods * wl / abs(self.speed) - 1e-12
+        if T[-1] - T[0] < periods * wl / abs(self.speed):
+            return math.nan
+        return 0.5 * float(Hc[win].max() - Hc[win].min())
+
+    def summary(self) -> dict[str, Any]:
+        """JSON-ready scalars of the run."""
+        cyc = self.cycles[1:]
+        wall = self.wall_s_series()[1:]
+        amp = getattr(self.feature, "amplitude", math.nan)
+        out: dict[str, Any] = {
+            "M": self.problem.M, "L": self.problem.L, "points": int(self.X.size),
+            "xmin": self.problem.xmin, "xmax": self.problem.xmax,
+            "feature": self.feature.describe(), "body": self.body, "slide_roll": self.slide_roll,
+            "feature_speed": self.speed, "dt": self.dt, "scheme": self.scheme, "steps": self.steps,
+            "T_end": float(self.T[-1]),
+            "Hc_steady": float(self.steady.Hc_venner), "Hm_steady": float(self.steady.Hm_venner),
+            "Hc_min": float(np.min(self.Hc)), "Hc_max": float(np.max(self.Hc)),
+            "Hm_min": float(np.min(self.Hm)), "dP_max": float(np.max(self.dP)),
+            "Pmax_max": float(np.max(self.Pmax)),
+            "cycles_mean": float(np.mean(cyc)) if cyc.size else math.nan,
+            "cycles_max": int(np.max(cyc)) if cyc.size else 0,
+            "residual_max": float(np.nanmax(self.residual[1:])) if cyc.size else math.nan,
+            "load_error_max": float(np.max(np.abs(self.load_error[1:]))) if cyc.size else math.nan,
+            "mass_balance_max": float(np.nanmax(np.abs(self.mass_balance[1:]))) if cyc.size else math.nan,
+            "wall_per_step_s": float(np.mean(wall)) if wall.size else math.nan,
+            "work_units_per_step": float(np.mean(self.work_units[1:])) if cyc.size else math.nan,
+            "setup_s": self.setup_s, "wall_s": self.wall_s,
+        }
+        if self.feature.kind == "bump":
+            ad = self.bump_amplitude_at_centre()
+            out["Ad_over_Ai"] = ad / amp if amp else math.nan
+        else:
+            ad = self.waviness_amplitude()
+            out["Ad_over_Ai"] = ad / amp if amp else math.nan
+        out["Ad"] = ad
+        return out
+
+    def wall_s_series(self) -> np.ndarray:
+        return np.asarray(self.series["wall_s"], dtype=float)
+
+    # -- output ---------------------------------------------------------------------------
+    def to_hdf5(self, path: str | os.PathLike) -> str:
+        """Write the series, snapshots and summary to HDF5 (temporary file, then rename)."""
+        import json
+
+        import h5py
+
+        path = os.fspath(path)
+        folder = os.path.dirname(os.path.abspath(path))
+        fd, tmp = tempfile.mkstemp(suffix=".h5.tmp", dir=folder)
+        os.close(fd)
+        try:
+            with h5py.File(tmp, "w") as f:
+                f.attrs["kind"] = "ehl_transient_line"
+                f.attrs["summary"] = json.dumps(self.summary(), default=_jsonable)
+                f.attrs["problem"] = json.dumps(self.problem.describe(), default=_jsonable)
+                f.attrs["options"] = json.dumps(self.options.describe(), default=_jsonable)
+                f.create_dataset("X", data=self.X)
+                g = f.create_group("series")
+                for k in SERIES:
+                    g.create_dataset(k, data=np.asarray(self.series[k], dtype=float))
+                steps = sorted(self.snapshots)
+                s = f.create_group("snapshots")
+                s.create_dataset("step", data=np.asarray(steps, dtype=np.int64))
+                s.create_dataset("T", data=np.asarray([self.series["T"][i] for i in steps]))
+                for name in ("P", "H"):
+                    s.create_dataset(name, data=np.array([self.snapshots[i][name] for i in steps]),
+                                     compression="gzip")
+                st = f.create_group("steady")
+                st.create_dataset("P", data=self.steady.P)
+                st.create_dataset("H", data=self.steady.H)
+            os.replace(tmp, path)
+        finally:
+            if os.path.exists(tmp):
+                os.remove(tmp)
+        return path
+
+
+def _jsonable(v: Any) -> Any:
+    if isinstance(v, (np.floating, np.integer)):
+        return v.item()
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    return str(v)
+
+
+def load_series(path: str | os.PathLike) -> dict[str, Any]:
+    """Read the series, snapshots and summary written by :meth:`TransientResult.to_hdf5`."""
+    import json
+
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        out: dict[str, Any] = {"summary": json.loads(f.attrs["summary"]), "X": f["X"][()]}
+        out["series"] = {k: f["series"][k][()] for k in f["series"]}
+        out["snapshots"] = {k: f["snapshots"][k][()] for k in f["snapshots"]}
+    return out
