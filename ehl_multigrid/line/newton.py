@@ -14,6 +14,7 @@ import warnings
 
 import numpy as np
 import scipy.linalg
+from numba import njit
 
 from .discrete import fluid_state, reynolds_residual, wedge_coefficients
 from .level import LineLevel
@@ -23,48 +24,80 @@ class NewtonFailure(RuntimeError):
     """The coarse Newton iteration did not converge (the caller tries something else)."""
 
 
-def _system(level: LineLevel, P: np.ndarray, H0: float, Kmat: np.ndarray, jacobian: bool):
+def _system(level: LineLevel, P: np.ndarray, H0: float, jacobian: bool):
+    """Residual ``r`` and, with ``jacobian``, the rows ``dr/d(P_1..P_{n-2}, H0)`` of the inner
+    points (negated: ``dL``)."""
     # overflow/NaN in a trial step is detected by the caller (non-finite merit -> step halved)
     with np.errstate(all="ignore"):
-        return _system_unguarded(level, P, H0, Kmat, jacobian)
+        W = level.deform(P)
+        H, rho, drho, _, dlne, eps = fluid_state(P, W, level.X, H0, level.par, level.lam,
+                                                 level.elastic)
+        r, _ = reynolds_residual(P, H, rho, eps, level.h, level.f, level.order)
+        if not jacobian:
+            return r, None
+        return r, reynolds_jacobian(P, H, rho, drho, dlne, eps, level.kernel, level.h,
+                                    level.order, level.elastic)
 
 
-def _system_unguarded(level: LineLevel, P: np.ndarray, H0: float, Kmat: np.ndarray, jacobian: bool):
-    n, h = level.n, level.h
-    W = level.deform(P)
-    H, rho, drho, lne, dlne, eps = fluid_state(P, W, level.X, H0, level.par, level.lam, level.elastic)
-    r, _ = reynolds_residual(P, H, rho, eps, h, level.f, level.order)
-    if not jacobian:
-        return r, None
-    inv_pi = 1.0 / np.pi
-    dH = -Kmat * inv_pi if level.elastic else np.zeros((n, n))
-    pos = H > 0.0
-    Hs = np.where(pos, H, 1.0)
-    # columns: P_0 .. P_{n-1}, then H0
-    deps = np.zeros((n, n + 1))
-    deps[:, :n] = (eps * 3.0 / Hs)[:, None] * dH
-    deps[np.arange(n), np.arange(n)] += eps * (drho / rho - dlne)
-    deps[:, n] = eps * 3.0 / Hs
-    deps[~pos] = 0.0
-    dq = np.zeros((n, n + 1))
-    dq[:, :n] = rho[:, None] * dH
-    dq[np.arange(n), np.arange(n)] += drho * H
-    dq[:, n] = rho
+@njit(cache=True)
+def reynolds_jacobian(P, H, rho, drho, dlne, eps, kernel, h, order, elastic):
+    """``dL_i/dx_j`` of the discrete Reynolds operator (discrete.py) for the inner points
+    ``i = 1 .. n-2`` and the unknowns ``x = (P_1 .. P_{n-2}, H0)``: an ``(n-2, n-1)`` array.
+
+    ``eps`` depends on ``P_j`` through the film (``dH_m/dP_j = -K_|m-j|/pi``), the density and
+    the viscosity; ``rho H`` through the film and the density; ``H0`` shifts every film.
+    Points with ``H <= 0`` carry ``eps = 0`` and no ``eps`` derivative."""
+    n = P.shape[0]
+    m = n - 2
+    out = np.zeros((m, m + 1))
     ih2 = 1.0 / (h * h)
-    dL = np.zeros((n, n + 1))
-    i = np.arange(1, n - 1)
-    ep = 0.5 * (eps[i] + eps[i + 1])
-    em = 0.5 * (eps[i] + eps[i - 1])
-    dep = 0.5 * (deps[i] + deps[i + 1])
-    dem = 0.5 * (deps[i] + deps[i - 1])
-    dL[i] = ih2 * (dep * (P[i + 1] - P[i])[:, None] - dem * (P[i] - P[i - 1])[:, None])
-    dL[i, i + 1] += ih2 * ep
-    dL[i, i] -= ih2 * (ep + em)
-    dL[i, i - 1] += ih2 * em
-    for k in range(1, n - 1):
-        c0, c1, c2 = wedge_coefficients(k, level.order)
-        dL[k] -= (c0 * dq[k] + c1 * dq[k - 1] + (c2 * dq[k - 2] if c2 != 0.0 else 0.0)) / h
-    return r, dL
+    inv_pi = 1.0 / np.pi
+    # per-point factors: d eps_k = a_k dH_k + b_k dP_k, d(rho H)_k = rho_k dH_k + c_k dP_k
+    a = np.zeros(n)
+    b = np.zeros(n)
+    c = np.empty(n)
+    for k in range(n):
+        if H[k] > 0.0:
+            a[k] = 3.0 * eps[k] / H[k]
+            b[k] = eps[k] * (drho[k] / rho[k] - dlne[k])
+        c[k] = drho[k] * H[k]
+    for i in range(1, n - 1):
+        row = i - 1
+        ep = 0.5 * (eps[i] + eps[i + 1])
+        em = 0.5 * (eps[i] + eps[i - 1])
+        gp = 0.5 * ih2 * (P[i + 1] - P[i])
+        gm = 0.5 * ih2 * (P[i] - P[i - 1])
+        c0, c1, c2 = wedge_coefficients(i, order)
+        w0, w1, w2 = c0 / h, c1 / h, c2 / h
+        # film response: columns j = 1 .. n-2 (unknown pressures)
+        if elastic:
+            for j in range(1, n - 1):
+                dHi = -kernel[abs(i - j)] * inv_pi
+                dHp = -kernel[abs(i + 1 - j)] * inv_pi
+                dHm = -kernel[abs(i - 1 - j)] * inv_pi
+                v = gp * (a[i] * dHi + a[i + 1] * dHp) - gm * (a[i] * dHi + a[i - 1] * dHm)
+                v -= w0 * rho[i] * dHi + w1 * rho[i - 1] * dHm
+                if c2 != 0.0:
+                    v -= w2 * rho[i - 2] * (-kernel[abs(i - 2 - j)] * inv_pi)
+                out[row, j - 1] = v
+        # local (diagonal) parts: eps and rho through P_k itself, and the Poiseuille stencil
+        for k in range(i - 2, i + 2):
+            if k < 1 or k > n - 2:
+                continue
+            v = 0.0
+            if k == i:
+                v += (gp - gm) * b[i] - ih2 * (ep + em) - w0 * c[i]
+            elif k == i + 1:
+                v += gp * b[i + 1] + ih2 * ep
+            elif k == i - 1:
+                v += -gm * b[i - 1] + ih2 * em - w1 * c[i - 1]
+            elif k == i - 2:
+                v += -w2 * c[i - 2]
+            out[row, k - 1] += v
+        # H0: every film moves by dH0
+        out[row, m] = gp * (a[i] + a[i + 1]) - gm * (a[i] + a[i - 1]) \
+            - (w0 * rho[i] + w1 * rho[i - 1] + (w2 * rho[i - 2] if c2 != 0.0 else 0.0))
+    return out
 
 
 def _phi(level: LineLevel, P: np.ndarray, r: np.ndarray, s: np.ndarray, P_frozen: np.ndarray) -> np.ndarray:
@@ -84,14 +117,13 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10) -> in
     Raises :class:`NewtonFailure` when the damped iteration stalls or the film collapses.
     """
     n = level.n
-    Kmat = scipy.linalg.toeplitz(level.kernel) if level.elastic else np.zeros((n, n))
     P, H0 = level.P.copy(), float(level.H0)
     P_frozen = level.P.copy()
     inner = np.arange(1, n - 1)
     frozen = level.frozen[1:-1]
     for it in range(1, max_iter + 1):
-        r, dL = _system(level, P, H0, Kmat, True)
-        diag = np.abs(dL[inner, inner])
+        r, dL = _system(level, P, H0, True)
+        diag = np.abs(np.diagonal(dL))
         s = 1.0 / np.maximum(diag, 1e-300)
         phi = _phi(level, P, r, s, P_frozen)
         with np.errstate(all="ignore"):
@@ -101,10 +133,9 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10) -> in
         if np.max(np.abs(phi)) < tol:
             level.P, level.H0 = P, H0
             return it - 1
-        J = np.zeros((n - 1, n - 1))
+        J = np.empty((n - 1, n - 1))
         active = (P[inner] <= s * r[inner]) | frozen
-        rows = -s[:, None] * dL[inner][:, np.r_[inner, n]]  # d(s r)/dx = -s dL/dx
-        J[:-1] = rows
+        np.multiply(dL, -s[:, None], out=J[:-1])  # d(s r)/dx = -s dL/dx
         J[:-1][active] = 0.0
         J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
         J[-1, :-1] = level.h
@@ -120,7 +151,7 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10) -> in
             Pt = P.copy()
             Pt[inner] += t * step[:-1]
             H0t = H0 + t * step[-1]
-            rt, _ = _system(level, Pt, H0t, Kmat, False)
+            rt, _ = _system(level, Pt, H0t, False)
             with np.errstate(all="ignore"):
                 norm = float(np.linalg.norm(_phi(level, Pt, rt, s, P_frozen)))
             if np.isfinite(norm) and norm <= (1.0 - 1e-4 * t) * norm0:
