@@ -48,6 +48,9 @@ from ..traction import wall_speeds
 from .coefficients import film_factors
 from .hierarchy import FactorLineHierarchy
 
+#: smallest under-relaxation of the outer iteration before it is declared divergent
+MIN_RELAX = 1.0 / 64.0
+
 OUTER_HINT = ("lower relax (under-relaxation of the across-film factors), raise max_outer, or "
               "check the thermal loading (oil temperature limits, slip, speed)")
 
@@ -59,7 +62,8 @@ class TEHLOptions:
     points : EHL grid points (2^k + 1); the thermal stations are its nodes.
     nz : thermal intervals across the film.
     xmin : inlet X = x/b (None: the core's default box); xmax : outlet X.
-    relax : under-relaxation of the factors' logarithms per outer iteration (0, 1].
+    relax : starting under-relaxation of the factors' logarithms per outer iteration (0, 1];
+        halved (down to ``MIN_RELAX``) after an outer iteration whose changes grew.
     max_outer : outer iterations allowed.
     tol_P : max |dP| / max P between outer iterations; tol_H : relative change of Hc and Hm;
     tol_T : max |dT| [K] between outer iterations.
@@ -75,7 +79,7 @@ class TEHLOptions:
     nz: int = 10
     xmin: float | None = None
     xmax: float = 1.5
-    relax: float = 0.8
+    relax: float = 0.5
     max_outer: int = 40
     tol_P: float = 1e-4
     tol_H: float = 1e-4
@@ -252,7 +256,7 @@ def _thermal(scene: Scene, pb: LineProblem, st: _State, env: Surroundings, topt:
 
 def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None, *,
                     us: float | None = None, load: float | None = None, start: _State | None = None,
-                    **changes: Any) -> TEHLLineResult:
+                    guess: TEHLLineResult | None = None, **changes: Any) -> TEHLLineResult:
     """Solve the thermal EHL line contact of ``scene`` at ``slip`` (S = 2 (u1 - u2)/(u1 + u2)).
 
     Parameters
@@ -263,6 +267,8 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
     us, load : sum velocity [m/s] and load [N] replacing the scene's.
     start : the isothermal start of an earlier solve of the same scene, grid and box
         (:func:`isothermal_start`; it does not depend on the slip).
+    guess : a TEHL solution of the same scene, grid and box (another slip) to start the
+        outer iteration from (pressure, film constant and across-film factors).
 
     Raises :class:`ConvergenceError` when a multilevel or thermal solve fails, the fields
     become non-finite, or the outer iteration does not meet its tolerances in ``max_outer``.
@@ -289,9 +295,18 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
     decoupled = sol
     a = np.ones(X.size)
     c = np.ones(X.size)
+    if guess is not None:
+        # warm start from a neighbouring solution (e.g. the previous slip of a curve)
+        if guess.P.shape != X.shape:
+            raise InputError(f"guess has {guess.P.size} points; the options ask for {X.size}")
+        st = _State(guess.P.copy(), guess.H.copy(), guess.H0, guess.Hc, guess.Hm)
+        sol = _thermal(scene, pb, st, env, topt, X)
+        a, c = guess.a.copy(), guess.c.copy()
     outer: list[dict[str, float]] = []
     hist: list[float] = []
+    actions: list[str] = []
     converged = False
+    w = opts.relax
     for it in range(1, opts.max_outer + 1):
         ti = time.perf_counter()
         a_new, c_new = film_factors(sol.profile.p, sol.T, sol.tau, lub, scene.T_oil, u1, u2, opts.shear_thinning)
@@ -299,7 +314,6 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
             raise ConvergenceError(f"TEHL outer iteration {it}: non-finite or non-positive across-film factors",
                                    None, OUTER_HINT)
         dfac = float(max(np.max(np.abs(np.log(a_new / a))), np.max(np.abs(np.log(c_new / c)))))
-        w = opts.relax
         a = np.exp((1.0 - w) * np.log(a) + w * np.log(a_new))
         c = np.exp((1.0 - w) * np.log(c) + w * np.log(c_new))
         hz.set_factors(a, c)
@@ -314,13 +328,15 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
                                    res.report, HINT)
         Hc, Hm = _films(pb, res.X, res.P, res.H)
         new = _State(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm)
+        if not (np.all(np.isfinite(new.P)) and np.all(np.isfinite(new.H))):
+            raise ConvergenceError(f"TEHL outer iteration {it}: NaN in the pressure or film", None, OUTER_HINT)
         sol_new = _thermal(scene, pb, new, env, topt, X)
         dP = float(np.max(np.abs(new.P - st.P)) / np.max(new.P))
         dHc = abs(Hc - st.Hc) / Hc
         dHm = abs(Hm - st.Hm) / Hm
         dT = float(np.max(np.abs(sol_new.T - sol.T)))
         rec = {"iteration": it, "dP": dP, "dHc": dHc, "dHm": dHm, "dT": dT, "factor_change": dfac,
-               "cycles": int(res.cycles), "Hc": Hc, "Hm": Hm, "T_max": float(np.max(sol_new.T)),
+               "relax": w, "cycles": int(res.cycles), "Hc": Hc, "Hm": Hm, "T_max": float(np.max(sol_new.T)),
                "wall_s": time.perf_counter() - ti}
         outer.append(rec)
         if not all(math.isfinite(v) for v in (dP, dHc, dHm, dT)):
@@ -331,17 +347,21 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
         if hist[-1] < 1.0:
             converged = True
             break
-        if len(hist) >= 6 and min(hist[-3:]) > 2.0 * min(hist[:-3]) and hist[-1] > 10.0:
-            raise ConvergenceError(
-                f"TEHL outer iteration diverged: after {it} iterations the changes (dP {dP:.3g}, "
-                f"dHc {dHc:.3g}, dT {dT:.3g} K) grow (scaled by the tolerances: {hist[-1]:.3g}, best "
-                f"{min(hist):.3g})", None, OUTER_HINT)
+        if len(hist) >= 2 and hist[-1] > hist[-2]:
+            if w <= MIN_RELAX:
+                raise ConvergenceError(
+                    f"TEHL outer iteration diverged: at iteration {it} the changes (dP {dP:.3g}, dHc "
+                    f"{dHc:.3g}, dHm {dHm:.3g}, dT {dT:.3g} K) grew with the under-relaxation already at "
+                    f"{MIN_RELAX:g}", None, OUTER_HINT)
+            w = max(0.5 * w, MIN_RELAX)
+            actions.append(f"iteration {it}: changes grew ({hist[-2]:.3g} -> {hist[-1]:.3g} tolerances); "
+                           f"under-relaxation halved to {w:g}")
     report = ConvergenceReport(
         converged=converged,
         message="converged" if converged else f"outer iteration not converged in {opts.max_outer} iterations",
         iterations=len(outer), residual_history=np.array(hist),
         tolerances={"P": opts.tol_P, "H": opts.tol_H, "T_K": opts.tol_T},
-        wall_s=time.perf_counter() - t0, extra={"outer": outer})
+        wall_s=time.perf_counter() - t0, extra={"outer": outer, "actions": actions})
     if not converged:
         last = outer[-1]
         raise ConvergenceError(
@@ -360,3 +380,23 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
         heat=heat, heat_partition=part, heat_balance_error=abs(heat.get("balance", 0.0)),
         a=a, c=c, outer=outer, report=report, options=opts, thermal=sol, wall_s=time.perf_counter() - t0,
     )
+
+
+def tehl_traction_curve(scene: Scene, slips: Any = None, options: TEHLOptions | None = None,
+                        **changes: Any) -> list[TEHLLineResult]:
+    """TEHL solves over ``slips`` (default: the scene's slip range, else 21 slips over [0, 1]).
+
+    The isothermal start is solved once (it does not depend on the slip) and each slip's
+    outer iteration starts from the previous slip's solution.
+    """
+    from ..traction import default_slips
+
+    opts = (options or TEHLOptions()).with_changes(**changes) if changes else (options or TEHLOptions())
+    S = default_slips(scene) if slips is None else np.asarray(slips, dtype=float)
+    if S.size == 0:
+        raise InputError("slip list is empty")
+    iso = isothermal_start(scene, opts)
+    out: list[TEHLLineResult] = []
+    for s in S:
+        out.append(solve_tehl_line(scene, float(s), opts, start=iso, guess=out[-1] if out else None))
+    return out
