@@ -7,7 +7,13 @@ Main entry point: :func:`solve_tehl_line` (line contacts).
 
 from .coefficients import film_factors, flux_integrals
 from .hierarchy import FactorLevel, FactorLineHierarchy
-from .line import TEHLLineResult, TEHLOptions, isothermal_start, solve_tehl_line, tehl_traction_curve
+from .line import (
+    TEHLLineResult,
+    TEHLOptions,
+    isothermal_start,
+    solve_tehl_line,
+    tehl_traction_curve,
+)
 
 __all__ = [
     "film_factors", "flux_integrals", "FactorLevel", "FactorLineHierarchy", "TEHLLineResult",
