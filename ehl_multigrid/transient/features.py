@@ -34,6 +34,15 @@ SHAPES = ("cosine-gaussian", "gaussian")
 MAX_AMPLITUDE = 1.0
 
 
+def require_in(field: str, value: float, lo: float, hi: float, units: str, why: str,
+               lo_open: bool = False) -> float:
+    """:func:`require_range` with the reason for the range appended to the message."""
+    try:
+        return require_range(field, value, lo, hi, units, lo_open=lo_open)
+    except InputError as exc:
+        raise InputError(f"{exc} ({why})") from None
+
+
 def feature_speed(body: int, slide_roll: float) -> float:
     """Speed of a feature on ``body`` (1 or 2) over the mean speed ``u_m``.
 
@@ -78,8 +87,8 @@ class Waviness:
 
     def check_domain(self, xmin: float, xmax: float) -> None:
         """At least one wavelength must fit in the domain."""
-        require_range("feature.wavelength", self.wavelength, 1e-3, xmax - xmin,
-                      f"- (lambda/b; the domain [{xmin:g}, {xmax:g}] must hold one wavelength)")
+        require_in("feature.wavelength", self.wavelength, 1e-3, xmax - xmin, "- (lambda/b)",
+                   f"the domain [{xmin:g}, {xmax:g}] must hold one wavelength")
 
     def describe(self) -> dict[str, Any]:
         return {"kind": self.kind, **asdict(self)}
@@ -129,16 +138,38 @@ class Bump:
         cosine-Gaussian and 0.37 A for the Gaussian, so ``x0 +- 2.6 W`` for that) must fit
         in the domain at the start."""
         reach = self.width if self.shape == "cosine-gaussian" else 2.6 * self.width
-        require_range("feature.width", self.width, 1e-3, 0.5 * (xmax - xmin) / (reach / self.width),
-                      f"- (x/b; the feature must fit in the domain [{xmin:g}, {xmax:g}])")
-        require_range("feature.x0", self.x0, xmin + reach, xmax - reach,
-                      f"- (x/b; the whole feature must start inside [{xmin:g}, {xmax:g}])")
+        require_in("feature.width", self.width, 1e-3, 0.5 * (xmax - xmin) / (reach / self.width),
+                   "- (x/b)", f"the feature must fit in the domain [{xmin:g}, {xmax:g}]")
+        require_in("feature.x0", self.x0, xmin + reach, xmax - reach, "- (x/b)",
+                   f"the whole feature must start inside the domain [{xmin:g}, {xmax:g}]")
 
     def describe(self) -> dict[str, Any]:
         return {"kind": self.kind, **asdict(self)}
 
 
-Feature = Waviness | Bump
+@dataclass(frozen=True)
+class Smooth:
+    """No feature: smooth surfaces (start-up and steady-limit runs)."""
+
+    amplitude: float = 0.0
+    kind = "smooth"
+
+    @property
+    def length_scale(self) -> float:
+        """The Hertzian half-width (``X = 1``): the scale of the film's own transients."""
+        return 1.0
+
+    def height(self, X: np.ndarray) -> np.ndarray:
+        return np.zeros_like(np.asarray(X, dtype=float))
+
+    def check_domain(self, xmin: float, xmax: float) -> None:
+        return None
+
+    def describe(self) -> dict[str, Any]:
+        return {"kind": self.kind}
+
+
+Feature = Waviness | Bump | Smooth
 
 
 def feature_from_table(table: dict[str, Any]) -> Feature:

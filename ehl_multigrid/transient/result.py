@@ -171,12 +171,10 @@ class TransientResult:
             "work_units_per_step": float(np.mean(self.work_units[1:])) if cyc.size else math.nan,
             "setup_s": self.setup_s, "wall_s": self.wall_s,
         }
-        if self.feature.kind == "bump":
-            ad = self.bump_amplitude_at_centre()
-            out["Ad_over_Ai"] = ad / amp if amp else math.nan
-        else:
-            ad = self.waviness_amplitude()
-            out["Ad_over_Ai"] = ad / amp if amp else math.nan
+        kind = self.feature.kind
+        ad = (self.bump_amplitude_at_centre() if kind == "bump" else
+              self.waviness_amplitude() if kind == "waviness" else math.nan)
+        out["Ad_over_Ai"] = ad / amp if amp else math.nan
         out["Ad"] = ad
         return out
 

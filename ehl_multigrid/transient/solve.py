@@ -27,7 +27,7 @@ from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import LineOptions
 from ..multigrid.policy import RobustnessPolicy
 from ..multigrid.result import EHLResult
-from .features import Feature, feature_speed
+from .features import Feature, Smooth, feature_speed, require_in
 from .hierarchy import TransientLineHierarchy
 from .result import TransientResult
 
@@ -64,7 +64,7 @@ def _step_coefficients(scheme: str, n: int, dt: float, q1: np.ndarray, q0: np.nd
 
 
 def solve_transient_line(
-    problem: LineProblem, feature: Feature, *, body: int = 1, slide_roll: float = 0.0,
+    problem: LineProblem, feature: Feature | None, *, body: int = 1, slide_roll: float = 0.0,
     dt: float | None = None, steps: int | None = None, t_end: float | None = None,
     options: LineOptions | None = None, scheme: str = "bdf2", snapshot_every: int = 10,
     initial: tuple[np.ndarray, float] | None = None,
@@ -75,7 +75,8 @@ def solve_transient_line(
     Parameters
     ----------
     problem : the steady :class:`LineProblem` (Moes M, L, lubricant, domain); elastic only.
-    feature : :class:`~.features.Waviness` or :class:`~.features.Bump` (Venner units).
+    feature : :class:`~.features.Waviness` or :class:`~.features.Bump` (Venner units); None
+        for smooth surfaces.
     body : the surface carrying the feature (1 or 2); it moves at ``u_body/u_m`` in X.
     slide_roll : ``S = (u1 - u2)/u_m`` in [-2, 2] (0 = pure rolling).
     dt : time step ``dT`` (``T = t u_m/b``); default: one mesh size per step for the faster of
@@ -103,6 +104,7 @@ def solve_transient_line(
     if not problem.elastic:
         raise InputError("problem.elastic = False: the transient solver needs elastic surfaces")
     require_choice("scheme", scheme, SCHEMES)
+    feature = Smooth() if feature is None else feature
     feature.check_domain(problem.xmin, problem.xmax)
     speed = feature_speed(body, slide_roll)
     opts = transient_options(options, **kw)
@@ -110,9 +112,9 @@ def solve_transient_line(
     dt_max = max_time_step(feature, speed)
     if dt is None:
         dt = min(h / max(abs(speed), 1.0), dt_max)
-    require_range("dt", dt, 0.0, dt_max, f"- (T = t u_m/b; at most {MAX_STEP_FRACTION:g} of the "
-                  f"feature's length scale {feature.length_scale:g} per step at speed "
-                  f"{max(abs(speed), 1.0):g})", lo_open=True)
+    require_in("dt", dt, 0.0, dt_max, "- (T = t u_m/b)",
+               f"a step moves at most {MAX_STEP_FRACTION:g} of the feature's length scale "
+               f"{feature.length_scale:g} at speed {max(abs(speed), 1.0):g}", lo_open=True)
     if steps is None:
         if t_end is None:
             t_end = default_end_time(problem, feature, speed)
@@ -172,8 +174,17 @@ def solve_transient_line(
                 f"transient line solver: time step {n} (T = {T:.5g}, dT = {dt:.4g}) failed: "
                 f"{res.message}", res.report,
                 "a smaller time step (dt), more points, or a smaller feature amplitude")
+        st = fine.state()
+        wet = fine.P > 0.0
+        if wet.any() and float(st.H[wet].min()) <= 0.0:
+            out.failed_step = n
+            raise ConvergenceError(
+                f"transient line solver: time step {n} (T = {T:.5g}): the film collapsed "
+                f"(min H = {float(st.H[wet].min()):.3g} where P > 0); the feature cuts through the "
+                f"film, which needs a mixed-lubrication model", None,
+                "a smaller feature amplitude")
         P_prev, H0_prev = P_now, H0_now
-        q_prev, q_now = q_now, _mass(fine)
+        q_prev, q_now = q_now, st.rho * st.H
         out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
         if callback is not None:
             callback(out.last_step())
@@ -186,6 +197,8 @@ def default_end_time(problem: LineProblem, feature: Feature, speed: float) -> fl
     """A bump: until its centre reaches ``xmax`` (or, when it does not move, one transit of
     the domain at the mean speed). Waviness: one transit of the domain plus three periods."""
     span = problem.xmax - problem.xmin
+    if feature.kind == "smooth":
+        return 2.0 * span
     if feature.kind == "bump":
         return (problem.xmax - feature.x0) / speed if speed > 1e-9 else span
     period = feature.wavelength / abs(speed) if abs(speed) > 1e-9 else 0.0
