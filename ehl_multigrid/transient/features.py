@@ -87,7 +87,7 @@ class Waviness:
 
     def check_domain(self, xmin: float, xmax: float) -> None:
         """At least one wavelength must fit in the domain."""
-        require_in("feature.wavelength", self.wavelength, 1e-3, xmax - xmin, "- (lambda/b)",
+        require_in("feature.wavelength", self.wavelength, 1e-3, xmax - xmin, "-",
                    f"the domain [{xmin:g}, {xmax:g}] must hold one wavelength")
 
     def describe(self) -> dict[str, Any]:
@@ -139,8 +139,8 @@ class Bump:
         in the domain at the start."""
         reach = self.width if self.shape == "cosine-gaussian" else 2.6 * self.width
         require_in("feature.width", self.width, 1e-3, 0.5 * (xmax - xmin) / (reach / self.width),
-                   "- (x/b)", f"the feature must fit in the domain [{xmin:g}, {xmax:g}]")
-        require_in("feature.x0", self.x0, xmin + reach, xmax - reach, "- (x/b)",
+                   "-", f"the feature must fit in the domain [{xmin:g}, {xmax:g}]")
+        require_in("feature.x0", self.x0, xmin + reach, xmax - reach, "-",
                    f"the whole feature must start inside the domain [{xmin:g}, {xmax:g}]")
 
     def describe(self) -> dict[str, Any]:

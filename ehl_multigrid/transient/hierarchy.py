@@ -23,7 +23,12 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ..line.discrete import distribute_changes, fluid_state, line_relaxation_system, reynolds_residual
+from ..line.discrete import (
+    distribute_changes,
+    fluid_state,
+    line_relaxation_system,
+    reynolds_residual,
+)
 from ..line.level import LineLevel, State, _solve_band
 from ..line.problem import LineProblem
 from ..line.solver import LineHierarchy

@@ -20,8 +20,8 @@ from typing import Any
 
 import numpy as np
 
-from ..line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
 from ..line.problem import LineProblem
+from ..line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
 from ..model.errors import ConvergenceError, InputError, require_choice, require_range
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import LineOptions
@@ -112,8 +112,8 @@ def solve_transient_line(
     dt_max = max_time_step(feature, speed)
     if dt is None:
         dt = min(h / max(abs(speed), 1.0), dt_max)
-    require_in("dt", dt, 0.0, dt_max, "- (T = t u_m/b)",
-               f"a step moves at most {MAX_STEP_FRACTION:g} of the feature's length scale "
+    require_in("dt", dt, 0.0, dt_max, "-",
+               f"T = t u_m/b; a step moves at most {MAX_STEP_FRACTION:g} of the feature's length scale "
                f"{feature.length_scale:g} at speed {max(abs(speed), 1.0):g}", lo_open=True)
     if steps is None:
         if t_end is None:

@@ -14,6 +14,7 @@ import pytest
 from ehl_multigrid.line.problem import LineProblem
 from ehl_multigrid.line.solver import solve_line_problem
 from ehl_multigrid.model.errors import ConvergenceError, InputError
+from ehl_multigrid.multigrid.rheology import log_viscosity
 from ehl_multigrid.transient import (
     Bump,
     Waviness,
@@ -98,14 +99,20 @@ def test_backward_euler_is_first_order_and_less_accurate(time_refinement):
     assert np.max(np.abs(be[0] - ref)) > 3.0 * np.max(np.abs(bdf - ref))
 
 
+def _balance(storage, q, P, eps, h, i0, i1):
+    """h sum of the storage term over nodes i0..i1 minus the net inflow (Couette flux
+    1.5 q_i - 0.5 q_(i-1) through face i + 1/2, Poiseuille flux eps dP/dX), over q."""
+    flux_in = (1.5 * q[i0 - 1] - 0.5 * q[i0 - 2]) - 0.5 * (eps[i0 - 1] + eps[i0]) * (P[i0] - P[i0 - 1]) / h
+    flux_out = (1.5 * q[i1] - 0.5 * q[i1 - 1]) - 0.5 * (eps[i1] + eps[i1 + 1]) * (P[i1 + 1] - P[i1]) / h
+    return abs(h * np.sum(storage[i0:i1 + 1]) - (flux_in - flux_out)) / q[i1]
+
+
 def test_squeeze_formulation_conserves_mass_in_the_wetted_zone(problem):
     res = solve_transient_line(problem, Bump(0.03, 0.5, x0=-2.0), dt=0.05, steps=40, points=129,
                                snapshot_every=1)
     pb, X = res.problem, res.X
     h = X[1] - X[0]
     lam = pb.lam
-    from ehl_multigrid.multigrid.rheology import log_viscosity
-
     par = pb.rheology()
     worst, worst_wrong = 0.0, 0.0
     for n in range(2, 41):
@@ -120,13 +127,8 @@ def test_squeeze_formulation_conserves_mass_in_the_wetted_zone(problem):
         i0 = 2
         i1 = int(np.flatnonzero((P <= 0.0) & (X > 0.0))[0]) - 2
 
-        def balance(storage):
-            flux_in = (1.5 * q[i0 - 1] - 0.5 * q[i0 - 2]) - 0.5 * (eps[i0 - 1] + eps[i0]) * (P[i0] - P[i0 - 1]) / h
-            flux_out = (1.5 * q[i1] - 0.5 * q[i1 - 1]) - 0.5 * (eps[i1] + eps[i1 + 1]) * (P[i1 + 1] - P[i1]) / h
-            return abs(h * np.sum(storage[i0:i1 + 1]) - (flux_in - flux_out)) / q[i1]
-
-        worst = max(worst, balance(dq))
-        worst_wrong = max(worst_wrong, balance(wrong))
+        worst = max(worst, _balance(dq, q, P, eps, h, i0, i1))
+        worst_wrong = max(worst_wrong, _balance(wrong, q, P, eps, h, i0, i1))
     assert worst < 1e-5
     assert worst_wrong > 100.0 * worst
     assert np.nanmax(np.abs(res.mass_balance)) < 1e-5
