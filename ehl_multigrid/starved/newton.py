@@ -1,0 +1,176 @@
+"""Dense semismooth Newton for the mass-conserving line problem on one (coarse) grid, in the
+Fischer-Burmeister form of the complementarity ``P >= 0``, ``theta <= 1``,
+``P (1 - theta) = 0`` (Woloszynski et al. 2015). Used for the FMG start grid, the coarsest
+grid and as the last resort of a stalled solve on a small grid.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import scipy.linalg
+
+from ..line.discrete import fluid_state, reynolds_residual
+from .discrete import starved_inlet_correction, wedge_weights
+from .level import StarvedLevel
+
+
+_DEBUG = False
+
+
+class StarvedNewtonFailure(RuntimeError):
+    """The dense Newton iteration did not converge (the caller tries something else)."""
+
+
+def _residual(lv: StarvedLevel, P: np.ndarray, theta: np.ndarray, H0: float) -> np.ndarray:
+    with np.errstate(all="ignore"):
+        st = lv.state(P, H0, theta)
+    return st.r
+
+
+def _jacobian(lv: StarvedLevel, P: np.ndarray, theta: np.ndarray, H0: float, Kmat: np.ndarray):
+    """``(r, dL/dP (n x n), dL/dH0, dL/dtheta (n x n, banded), theta with the inlet value)``."""
+    n, h = lv.n, lv.h
+    W = lv.deform(P)
+    H, rho, drho, lne, dlne, eps = fluid_state(P, W, lv.X, H0, lv.par, lv.lam, lv.elastic)
+    th = theta.copy()
+    th[0] = lv.inlet_theta(H[0])
+    r, _ = reynolds_residual(P, H, th * rho, eps, h, lv.f, lv.order)
+    starved = bool(th[0] < 1.0)
+    if starved:
+        starved_inlet_correction(r, th * rho * H, eps, P, h, lv.order)
+    dH = -Kmat / np.pi if lv.elastic else np.zeros((n, n))
+    pos = H > 0.0
+    Hs = np.where(pos, H, 1.0)
+    deps = np.zeros((n, n + 1))
+    deps[:, :n] = (3.0 * eps / Hs)[:, None] * dH
+    deps[np.arange(n), np.arange(n)] += eps * (drho / rho - dlne)
+    deps[:, n] = 3.0 * eps / Hs
+    deps[~pos] = 0.0
+    dq = np.zeros((n, n + 1))
+    dq[:, :n] = (th * rho)[:, None] * dH
+    dq[np.arange(n), np.arange(n)] += th * drho * H
+    dq[:, n] = th * rho
+    if th[0] < 1.0:  # a starved inlet supplies exactly hoil: q_0 is fixed
+        dq[0] = 0.0
+    ih2 = 1.0 / (h * h)
+    dL = np.zeros((n, n + 1))
+    dT = np.zeros((n, n))
+    i = np.arange(1, n - 1)
+    ep = 0.5 * (eps[i] + eps[i + 1])
+    em = 0.5 * (eps[i] + eps[i - 1])
+    dep = 0.5 * (deps[i] + deps[i + 1])
+    dem = 0.5 * (deps[i] + deps[i - 1])
+    dL[i] = ih2 * (dep * (P[i + 1] - P[i])[:, None] - dem * (P[i] - P[i - 1])[:, None])
+    dL[i, i + 1] += ih2 * ep
+    dL[i, i] -= ih2 * (ep + em)
+    dL[i, i - 1] += ih2 * em
+    if starved:  # no pressure flow through the first face
+        dL[1] += ih2 * dem[0] * (P[1] - P[0])
+        dL[1, 1] += ih2 * em[0]
+        dL[1, 0] -= ih2 * em[0]
+    for k in range(1, n - 1):
+        c = wedge_weights(k, lv.order, starved)
+        for mm in range(3):
+            if c[mm] == 0.0:
+                continue
+            dL[k] -= c[mm] * dq[k - mm] / h
+            dT[k, k - mm] -= c[mm] * rho[k - mm] * H[k - mm] / h
+    return r, dL, dT, th
+
+
+def _fb(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Fischer-Burmeister function ``a + b - sqrt(a^2 + b^2)`` (zero iff ``a, b >= 0`` and
+    ``a b = 0``) and its partial derivatives (a generalised gradient at ``a = b = 0``)."""
+    rt = np.sqrt(a * a + b * b)
+    safe = np.where(rt > 0.0, rt, 1.0)
+    da = np.where(rt > 0.0, 1.0 - a / safe, 1.0 - 1.0 / np.sqrt(2.0))
+    db = np.where(rt > 0.0, 1.0 - b / safe, 1.0 - 1.0 / np.sqrt(2.0))
+    return a + b - rt, da, db
+
+
+def newton_solve(lv: StarvedLevel, max_iter: int = 80, tol: float = 1e-10) -> int:
+    """Solve the grid's problem in place (``P``, ``theta``, ``H0``); return the iterations.
+
+    Semismooth Newton on the Fischer-Burmeister form (Woloszynski, Podsiadlo & Stachowiak
+    2015): unknowns ``P_i``, ``theta_i`` of the interior points and ``H0``; equations: the
+    row-scaled Reynolds residual ``s_i r_i = 0``, ``FB(P_i, 1 - theta_i) = 0`` (``P >= 0``,
+    ``theta <= 1``, ``P (1 - theta) = 0``) and the load. The squared norm is smooth, so the
+    backtracking line search on it always has a descent direction. ``theta`` never falls
+    below a fifth of its previous value in one step (it stays positive).
+
+    Raises :class:`StarvedNewtonFailure` when the damped iteration stalls or breaks down."""
+    n = lv.n
+    m = n - 2
+    Kmat = scipy.linalg.toeplitz(lv.kernel) if lv.elastic else np.zeros((n, n))
+    P, theta, H0 = lv.P.copy(), lv.theta.copy(), float(lv.H0)
+    inner = np.arange(1, n - 1)
+    fr = lv.frozen[inner]
+    P_fr, T_fr = P.copy(), theta.copy()
+
+    def system(P, theta, H0, s):
+        r = _residual(lv, P, theta, H0)
+        phi = np.empty(2 * m + 1)
+        phi[:m] = s * r[inner]
+        phi[m:2 * m], _, _ = _fb(P[inner], 1.0 - theta[inner])
+        phi[:m][fr] = (P - P_fr)[inner][fr]
+        phi[m:2 * m][fr] = (theta - T_fr)[inner][fr]
+        phi[-1] = lv.h * np.sum(P) - lv.g
+        return phi
+
+    s = None
+    for it in range(1, max_iter + 1):
+        with np.errstate(all="ignore"):
+            r, dL, dT, th = _jacobian(lv, P, theta, H0, Kmat)
+        theta[0] = th[0]
+        if s is None:
+            # row scales from the first iterate (fixed, so the merit is one function)
+            d = np.where(P[inner] > 0.0, np.abs(dL[inner, inner]), np.abs(dT[inner, inner]))
+            s = 1.0 / np.maximum(d, 1e-300)
+        phi = system(P, theta, H0, s)
+        norm0 = float(np.linalg.norm(phi))
+        if not np.isfinite(norm0):
+            raise StarvedNewtonFailure("non-finite residual in the dense Newton iteration")
+        if np.max(np.abs(phi)) < tol:
+            lv.P, lv.theta, lv.H0 = np.maximum(P, 0.0), np.minimum(theta, 1.0), H0
+            return it - 1
+        J = np.zeros((2 * m + 1, 2 * m + 1))
+        J[:m, :m] = -s[:, None] * dL[np.ix_(inner, inner)]
+        J[:m, m:2 * m] = -s[:, None] * dT[np.ix_(inner, inner)]
+        J[:m, -1] = -s * dL[inner, n]
+        _, da, db = _fb(P[inner], 1.0 - theta[inner])
+        J[m + np.arange(m), np.arange(m)] = da
+        J[m + np.arange(m), m + np.arange(m)] = -db
+        J[-1, :m] = lv.h
+        for off in (0, m):
+            rows = off + np.flatnonzero(fr)
+            J[rows] = 0.0
+            J[rows, rows] = 1.0
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+                step = scipy.linalg.solve(J, -phi, check_finite=False)
+        except (np.linalg.LinAlgError, scipy.linalg.LinAlgError, ValueError) as exc:
+            raise StarvedNewtonFailure(f"singular Jacobian: {exc}") from None
+        dPs, dTs = step[:m], step[m:2 * m]
+        t = 1.0
+        while True:
+            Pt, Tt = P.copy(), theta.copy()
+            Pt[inner] += t * dPs
+            # theta stays positive: projected to at least a fifth of its value
+            Tt[inner] = np.maximum(theta[inner] + t * dTs, 0.2 * theta[inner])
+            H0t = H0 + t * step[-1]
+            with np.errstate(all="ignore"):
+                norm = float(np.linalg.norm(system(Pt, Tt, H0t, s)))
+            if np.isfinite(norm) and norm <= (1.0 - 1e-4 * t) * norm0:
+                break
+            t *= 0.5
+            if t < 1e-8:
+                if np.max(np.abs(phi)) < 1e3 * tol:
+                    lv.P, lv.theta, lv.H0 = np.maximum(P, 0.0), np.minimum(theta, 1.0), H0
+                    return it - 1
+                raise StarvedNewtonFailure(f"line search failed at iteration {it} (|phi| = {norm0:.3g})")
+        if _DEBUG: print(it, norm0, t, np.abs(phi[:m]).max(), np.abs(phi[m:2*m]).max(), phi[-1], int(np.argmax(np.abs(phi[:m]))))
+        P, theta, H0 = Pt, Tt, H0t
+    raise StarvedNewtonFailure(f"dense Newton did not converge in {max_iter} iterations")
