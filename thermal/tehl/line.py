@@ -41,6 +41,7 @@ from ehl_multigrid.multigrid.driver import MultilevelSolver
 from ehl_multigrid.multigrid.options import LineOptions
 from ehl_multigrid.multigrid.policy import RobustnessPolicy
 
+from ..kernels import _anderson_step
 from ..line import Surroundings, ThermalLineSolution, solve_thermal_line
 from ..options import SURFACE_KERNELS, ThermalOptions
 from ..profiles import profile_from_arrays
@@ -64,10 +65,14 @@ class TEHLOptions:
         appendix C line contacts at S = 0.5; 10 gives up to 1.4 %).
     xmin : inlet X = x/b (None: the core's default box); xmax : outlet X.
     relax : starting under-relaxation of the factors' logarithms per outer iteration (0, 1];
-        halved (down to ``MIN_RELAX``) after an outer iteration whose changes grew.
+        halved (down to ``MIN_RELAX``) when the changes double in one outer iteration or grow
+        in two in a row.
     max_outer : outer iterations allowed.
+    anderson : depth of the Anderson mixing (Walker & Ni 2011) of the damped factor update
+        (the thermal layer's :func:`thermal.kernels._anderson_step`); 0 = plain damping.
     tol_P : max |dP| / max P between outer iterations; tol_H : relative change of Hc and Hm;
-    tol_T : max |dT| [K] between outer iterations.
+    tol_T : max |dT| [K] between outer iterations; each change is divided by the iteration's
+        under-relaxation before it is compared with its tolerance.
     tol_thermal : relative temperature tolerance of the thermal march (tol_T, tol_tau of
         :class:`~thermal.options.ThermalOptions`).
     thermal : False holds T = T_oil (Eyring shear thinning on the flow only).
@@ -81,7 +86,8 @@ class TEHLOptions:
     xmin: float | None = None
     xmax: float = 1.5
     relax: float = 0.5
-    max_outer: int = 40
+    max_outer: int = 60
+    anderson: int = 4
     tol_P: float = 1e-4
     tol_H: float = 1e-4
     tol_T: float = 1e-2
@@ -102,6 +108,8 @@ class TEHLOptions:
         require_range("xmax", self.xmax, 1.0, 100.0, "- (x/b)")
         require_range("relax", self.relax, 0.0, 1.0, "-", lo_open=True)
         require_range("max_outer", self.max_outer, 1, 1000, "outer iterations")
+        if isinstance(self.anderson, bool) or not isinstance(self.anderson, int) or not 0 <= self.anderson <= 20:
+            raise InputError(f"anderson = {self.anderson!r} must be an integer in [0, 20] (mixing depth)")
         require_range("tol_P", self.tol_P, 1e-10, 0.1, "-")
         require_range("tol_H", self.tol_H, 1e-10, 0.1, "-")
         require_range("tol_T", self.tol_T, 1e-8, 10.0, "K")
@@ -328,6 +336,9 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
     actions: list[str] = []
     converged = False
     w = opts.relax
+    AX = np.empty((opts.anderson + 1, 2 * X.size))
+    AF = np.empty_like(AX)
+    count = 0
     for it in range(1, opts.max_outer + 1):
         ti = time.perf_counter()
         a_new, c_new = film_factors(sol.profile.p, sol.T, sol.tau, lub, scene.T_oil, u1, u2, opts.shear_thinning)
@@ -335,8 +346,14 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
             raise ConvergenceError(f"TEHL outer iteration {it}: non-finite or non-positive across-film factors",
                                    None, OUTER_HINT)
         dfac = float(max(np.max(np.abs(np.log(a_new / a))), np.max(np.abs(np.log(c_new / c)))))
-        a = np.exp((1.0 - w) * np.log(a) + w * np.log(a_new))
-        c = np.exp((1.0 - w) * np.log(c) + w * np.log(c_new))
+        w_used = w
+        x_old = np.concatenate([np.log(a), np.log(c)])
+        g = (1.0 - w) * x_old + w * np.concatenate([np.log(a_new), np.log(c_new)])
+        if opts.anderson > 0:
+            x_mix, count = _anderson_step(AX, AF, count, x_old, g, opts.anderson)
+        else:
+            x_mix = g
+        a, c = np.exp(x_mix[: X.size]), np.exp(x_mix[X.size:])
         hz.set_factors(a, c)
         hz.set_iterate(st.P, st.H0)
         solver = MultilevelSolver(hz, lopts, line_settings(pb, lopts), RobustnessPolicy(LINE_POLICY, lopts.adapt), HINT)
@@ -364,17 +381,22 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
             raise ConvergenceError(f"TEHL outer iteration {it}: NaN in the pressure, film or temperature",
                                    None, OUTER_HINT)
         st, sol = new, sol_new
-        hist.append(max(dP / opts.tol_P, max(dHc, dHm) / opts.tol_H, dT / opts.tol_T))
+        # changes of a damped iteration understate its distance to the fixed point: divided
+        # by the damping, a small under-relaxation cannot pass for convergence
+        hist.append(max(dP / opts.tol_P, max(dHc, dHm) / opts.tol_H, dT / opts.tol_T) / w_used)
         if hist[-1] < 1.0:
             converged = True
             break
-        if len(hist) >= 2 and hist[-1] > hist[-2]:
+        growing = len(hist) >= 2 and (hist[-1] > 2.0 * hist[-2]
+                                      or (len(hist) >= 3 and hist[-1] > hist[-2] > hist[-3]))
+        if growing:
             if w <= MIN_RELAX:
                 raise ConvergenceError(
                     f"TEHL outer iteration diverged: at iteration {it} the changes (dP {dP:.3g}, dHc "
                     f"{dHc:.3g}, dHm {dHm:.3g}, dT {dT:.3g} K) grew with the under-relaxation already at "
                     f"{MIN_RELAX:g}", None, OUTER_HINT)
             w = max(0.5 * w, MIN_RELAX)
+            count = 0  # restart the Anderson history with the new damping
             actions.append(f"iteration {it}: changes grew ({hist[-2]:.3g} -> {hist[-1]:.3g} tolerances); "
                            f"under-relaxation halved to {w:g}")
     report = ConvergenceReport(
