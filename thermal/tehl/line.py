@@ -41,19 +41,13 @@ from ehl_multigrid.multigrid.driver import MultilevelSolver
 from ehl_multigrid.multigrid.options import LineOptions
 from ehl_multigrid.multigrid.policy import RobustnessPolicy
 
-from ..kernels import _anderson_step
 from ..line import Surroundings, ThermalLineSolution, solve_thermal_line
 from ..options import SURFACE_KERNELS, ThermalOptions
 from ..profiles import profile_from_arrays
 from ..traction import wall_speeds
 from .coefficients import film_factors
 from .hierarchy import FactorLineHierarchy
-
-#: smallest under-relaxation of the outer iteration before it is declared divergent
-MIN_RELAX = 1.0 / 64.0
-
-OUTER_HINT = ("lower relax (under-relaxation of the across-film factors), raise max_outer, or "
-              "check the thermal loading (oil temperature limits, slip, speed)")
+from .outer import OUTER_HINT, Iterate, outer_iteration
 
 
 @dataclass(frozen=True)
@@ -221,13 +215,7 @@ class TEHLLineResult:
         }
 
 
-@dataclass
-class _State:
-    P: np.ndarray
-    H: np.ndarray
-    H0: float
-    Hc: float
-    Hm: float
+_State = Iterate
 
 
 def _films(problem: LineProblem, X: np.ndarray, P: np.ndarray, H: np.ndarray) -> tuple[float, float]:
@@ -331,86 +319,31 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
         st = _State(guess.P.copy(), guess.H.copy(), guess.H0, guess.Hc, guess.Hm)
         sol = _thermal(scene, pb, st, env, topt, X)
         a, c = guess.a.copy(), guess.c.copy()
-    outer: list[dict[str, float]] = []
-    hist: list[float] = []
-    actions: list[str] = []
-    converged = False
-    w = opts.relax
-    AX = np.empty((opts.anderson + 1, 2 * X.size))
-    AF = np.empty_like(AX)
-    count = 0
-    for it in range(1, opts.max_outer + 1):
-        ti = time.perf_counter()
-        a_new, c_new = film_factors(sol.profile.p, sol.T, sol.tau, lub, scene.T_oil, u1, u2, opts.shear_thinning)
-        if not (np.all(np.isfinite(a_new)) and np.all(a_new > 0) and np.all(np.isfinite(c_new)) and np.all(c_new > 0)):
-            raise ConvergenceError(f"TEHL outer iteration {it}: non-finite or non-positive across-film factors",
-                                   None, OUTER_HINT)
-        dfac = float(max(np.max(np.abs(np.log(a_new / a))), np.max(np.abs(np.log(c_new / c)))))
-        w_used = w
-        x_old = np.concatenate([np.log(a), np.log(c)])
-        g = (1.0 - w) * x_old + w * np.concatenate([np.log(a_new), np.log(c_new)])
-        if opts.anderson > 0:
-            x_mix, count = _anderson_step(AX, AF, count, x_old, g, opts.anderson)
-        else:
-            x_mix = g
-        a, c = np.exp(x_mix[: X.size]), np.exp(x_mix[X.size:])
-        hz.set_factors(a, c)
-        hz.set_iterate(st.P, st.H0)
+
+    def factors(th: ThermalLineSolution) -> tuple[np.ndarray, np.ndarray]:
+        return film_factors(th.profile.p, th.T, th.tau, lub, scene.T_oil, u1, u2, opts.shear_thinning)
+
+    def ehl(a_: np.ndarray, c_: np.ndarray, st_: _State, it: int) -> _State:
+        hz.set_factors(a_, c_)
+        hz.set_iterate(st_.P, st_.H0)
         solver = MultilevelSolver(hz, lopts, line_settings(pb, lopts), RobustnessPolicy(LINE_POLICY, lopts.adapt), HINT)
         hz.solver = solver
-        res = solver.solve()
-        res = finish_line_result(res, solver, scene)
+        res = finish_line_result(solver.solve(), solver, scene)
         hz.solver = None
         if not res.success:
             raise ConvergenceError(f"TEHL outer iteration {it}: the multilevel solve failed: {res.message}",
                                    res.report, HINT)
         Hc, Hm = _films(pb, res.X, res.P, res.H)
-        new = _State(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm)
-        if not (np.all(np.isfinite(new.P)) and np.all(np.isfinite(new.H))):
-            raise ConvergenceError(f"TEHL outer iteration {it}: NaN in the pressure or film", None, OUTER_HINT)
-        sol_new = _thermal(scene, pb, new, env, topt, X)
-        dP = float(np.max(np.abs(new.P - st.P)) / np.max(new.P))
-        dHc = abs(Hc - st.Hc) / Hc
-        dHm = abs(Hm - st.Hm) / Hm
-        dT = float(np.max(np.abs(sol_new.T - sol.T)))
-        rec = {"iteration": it, "dP": dP, "dHc": dHc, "dHm": dHm, "dT": dT, "factor_change": dfac,
-               "relax": w, "cycles": int(res.cycles), "Hc": Hc, "Hm": Hm, "T_max": float(np.max(sol_new.T)),
-               "wall_s": time.perf_counter() - ti}
-        outer.append(rec)
-        if not all(math.isfinite(v) for v in (dP, dHc, dHm, dT)):
-            raise ConvergenceError(f"TEHL outer iteration {it}: NaN in the pressure, film or temperature",
-                                   None, OUTER_HINT)
-        st, sol = new, sol_new
-        # changes of a damped iteration understate its distance to the fixed point: divided
-        # by the damping, a small under-relaxation cannot pass for convergence
-        hist.append(max(dP / opts.tol_P, max(dHc, dHm) / opts.tol_H, dT / opts.tol_T) / w_used)
-        if hist[-1] < 1.0:
-            converged = True
-            break
-        growing = len(hist) >= 2 and (hist[-1] > 2.0 * hist[-2]
-                                      or (len(hist) >= 3 and hist[-1] > hist[-2] > hist[-3]))
-        if growing:
-            if w <= MIN_RELAX:
-                raise ConvergenceError(
-                    f"TEHL outer iteration diverged: at iteration {it} the changes (dP {dP:.3g}, dHc "
-                    f"{dHc:.3g}, dHm {dHm:.3g}, dT {dT:.3g} K) grew with the under-relaxation already at "
-                    f"{MIN_RELAX:g}", None, OUTER_HINT)
-            w = max(0.5 * w, MIN_RELAX)
-            count = 0  # restart the Anderson history with the new damping
-            actions.append(f"iteration {it}: changes grew ({hist[-2]:.3g} -> {hist[-1]:.3g} tolerances); "
-                           f"under-relaxation halved to {w:g}")
-    report = ConvergenceReport(
-        converged=converged,
-        message="converged" if converged else f"outer iteration not converged in {opts.max_outer} iterations",
-        iterations=len(outer), residual_history=np.array(hist),
-        tolerances={"P": opts.tol_P, "H": opts.tol_H, "T_K": opts.tol_T},
-        wall_s=time.perf_counter() - t0, extra={"outer": outer, "actions": actions})
-    if not converged:
-        last = outer[-1]
-        raise ConvergenceError(
-            f"TEHL: the outer iteration did not converge in {opts.max_outer} iterations (last dP "
-            f"{last['dP']:.3g}, dHc {last['dHc']:.3g}, dHm {last['dHm']:.3g}, dT {last['dT']:.3g} K)",
-            report, OUTER_HINT)
+        return _State(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm, {"cycles": int(res.cycles)})
+
+    def thermal(st_: _State) -> tuple[ThermalLineSolution, np.ndarray]:
+        th = _thermal(scene, pb, st_, env, topt, X)
+        return th, th.T
+
+    done = outer_iteration(st, sol, sol.T, a, c, factors=factors, ehl=ehl, solve_thermal=thermal,
+                           relax=opts.relax, anderson=opts.anderson, max_outer=opts.max_outer,
+                           tol_P=opts.tol_P, tol_H=opts.tol_H, tol_T=opts.tol_T)
+    st, sol, a, c, outer, report = done.state, done.thermal, done.a, done.c, done.outer, done.report
     heat = interior_heat_budget(sol, lub) if opts.thermal else {}
     if heat:
         heat["whole_box_balance"] = sol.heat["balance"]
