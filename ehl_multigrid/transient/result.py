@@ -11,6 +11,7 @@ Definitions (Venner units: ``X = x/b``, ``H = h R/b^2``, ``P = p/pmax``, ``T = t
 * deformed amplitude: a bump's ``-dH`` when its centre passes ``X = 0``
   (:meth:`TransientResult.bump_amplitude_at_centre`); waviness: half the peak-to-peak of
   ``Hc(T)`` over the last full period (:meth:`TransientResult.waviness_amplitude`);
+* ``stalled(T)`` -- 1 for a step accepted with a stalled residual (below ``accept_stall``);
 * ``mass_balance(T)`` -- the discrete flux balance of the pressurised (wetted) zone of the
   converged step (discrete.flux_balance) over the total flux through it.
 """
@@ -31,7 +32,7 @@ from ..multigrid.result import EHLResult
 from .discrete import flux_balance
 
 SERIES = ("step", "T", "Hc", "Hm", "H0", "Pmax", "dP", "xf", "dH", "residual", "load_error",
-          "cycles", "work_units", "wall_s", "mass_balance")
+          "cycles", "work_units", "wall_s", "mass_balance", "stalled")
 
 
 @dataclass
@@ -99,6 +100,8 @@ class TransientResult:
             s["work_units"].append(float(res.work_units))
         s["wall_s"].append(wall)
         s["mass_balance"].append(self._mass_balance(lv, st) if n > 0 else math.nan)
+        if n == 0:
+            s["stalled"].append(0.0)
         if keep:
             self.snapshots[n] = {"P": P.copy(), "H": H.copy(), "rho": st.rho.copy()}
 
@@ -147,6 +150,18 @@ class TransientResult:
             return math.nan
         return 0.5 * float(Hc[win].max() - Hc[win].min())
 
+    def fraction_below(self, threshold: float) -> list[float]:
+        """Per kept step: the fraction of the Hertzian contact ``|X| <= 1`` where
+        ``H < threshold`` (Venner units)."""
+        inside = np.abs(self.X) <= 1.0
+        return [float(np.mean(self.snapshots[n]["H"][inside] < threshold)) for n in sorted(self.snapshots)]
+
+    def film_distribution(self, bins: int = 40) -> tuple[np.ndarray, np.ndarray]:
+        """Histogram (counts, edges) of H over ``|X| <= 1`` and all kept steps."""
+        inside = np.abs(self.X) <= 1.0
+        H = np.concatenate([self.snapshots[n]["H"][inside] for n in sorted(self.snapshots)])
+        return np.histogram(H, bins=bins)
+
     def summary(self) -> dict[str, Any]:
         """JSON-ready scalars of the run."""
         cyc = self.cycles[1:]
@@ -164,6 +179,7 @@ class TransientResult:
             "Pmax_max": float(np.max(self.Pmax)),
             "cycles_mean": float(np.mean(cyc)) if cyc.size else math.nan,
             "cycles_max": int(np.max(cyc)) if cyc.size else 0,
+            "stalled_steps": int(np.sum(self.stalled)),
             "residual_max": float(np.nanmax(self.residual[1:])) if cyc.size else math.nan,
             "load_error_max": float(np.max(np.abs(self.load_error[1:]))) if cyc.size else math.nan,
             "mass_balance_max": float(np.nanmax(np.abs(self.mass_balance[1:]))) if cyc.size else math.nan,
@@ -212,6 +228,9 @@ class TransientResult:
                 st = f.create_group("steady")
                 st.create_dataset("P", data=self.steady.P)
                 st.create_dataset("H", data=self.steady.H)
+            from ..model.paths import default_file_mode
+
+            os.chmod(tmp, default_file_mode())  # mkstemp makes it owner-only
             os.replace(tmp, path)
         finally:
             if os.path.exists(tmp):

@@ -185,3 +185,23 @@ def test_bad_step_count_and_scheme_are_rejected(problem):
 def test_a_bump_that_cuts_through_the_film_raises_a_convergence_error(problem):
     with pytest.raises(ConvergenceError, match=r"time step \d+ \(T = "):
         solve_transient_line(problem, Bump(1.0, 0.5, x0=-3.0), points=129)
+
+
+def test_scene_feature_table_in_metres_becomes_venner_units():
+    from ehl_multigrid.model.scene import load_scene
+    from ehl_multigrid.transient.scene_feature import feature_from_scene_table
+
+    pb = LineProblem.from_scene(load_scene("page63_line_2000N"), xmin=-4.5)
+    dent, body = feature_from_scene_table(
+        {"kind": "dent", "amplitude": 1e-8, "width": 0.5 * pb.b, "body": 2}, pb)
+    assert body == 2
+    assert dent.amplitude == pytest.approx(-1e-8 * pb.R / pb.b**2)
+    assert dent.width == pytest.approx(0.5)
+    wav, _ = feature_from_scene_table({"kind": "waviness", "amplitude": 1e-8, "wavelength": pb.b}, pb)
+    assert wav.wavelength == pytest.approx(1.0)
+    with pytest.raises(InputError, match="no \\[feature\\] table"):
+        feature_from_scene_table(None, pb)
+    with pytest.raises(InputError, match="unknown key"):
+        feature_from_scene_table({"kind": "dent", "depth": 1e-8}, pb)
+    with pytest.raises(InputError, match=r"feature.body = 3"):
+        feature_from_scene_table({"kind": "dent", "amplitude": 1e-8, "width": 1e-5, "body": 3}, pb)

@@ -1,0 +1,351 @@
+"""Validation of the transient line-contact solver (ehl_multigrid.transient).
+
+Parts (``--part``): ``steady`` (zero feature against the core steady solution; start-up from
+another speed), ``time`` (BDF2/Euler time-step refinement at a fixed grid), ``grid`` (grid
+refinement at Courant number 1), ``waviness`` (amplitude reduction Ad/Ai against Venner &
+Lubrecht's wavelength parameter, pure rolling), ``bump`` (dent and bump passing under rolling
+and with slip: profiles at several positions), ``cost`` (time per step against grid size).
+Each part writes ``out/<part>.json`` and a PNG; ``--quick`` runs a smaller set.
+
+Moes-only problems (default oil of the core), Roelands + Dowson-Higginson, domain
+X in [-4.5, 1.5] (Venner & Lubrecht's box) unless stated.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+from pathlib import Path
+
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from ehl_multigrid.line.problem import LineProblem  # noqa: E402
+from ehl_multigrid.line.solver import solve_line_problem  # noqa: E402
+from ehl_multigrid.model.fits import moes_line_central  # noqa: E402
+from ehl_multigrid.transient import Bump, Waviness, solve_transient_line, transient_options  # noqa: E402
+
+OUT = Path(__file__).resolve().parent / "out"
+
+
+def save(name: str, data: dict) -> None:
+    OUT.mkdir(exist_ok=True)
+    (OUT / f"{name}.json").write_text(json.dumps(data, indent=1, default=float))
+    print(f"wrote out/{name}.json")
+
+
+def problem(M: float, L: float, xmin: float = -4.5) -> LineProblem:
+    return LineProblem.from_moes(M, L, xmin=xmin)
+
+
+def hc_fit(M: float, L: float) -> float:
+    """Moes-fit central film in Venner units (H = H_moes pi/(8 M))."""
+    return float(moes_line_central(M, L)) * math.pi / (8.0 * M)
+
+
+def orders(values: list[float]) -> list[float]:
+    d = [abs(a - b) for a, b in zip(values, values[1:], strict=False)]
+    return [math.log2(a / b) if b > 0 else math.nan for a, b in zip(d, d[1:], strict=False)]
+
+
+# -- steady limit --------------------------------------------------------------------------
+def part_steady(quick: bool) -> None:
+    pb = problem(20, 10)
+    rows = []
+    for n in ((257,) if quick else (257, 1025)):
+        res = solve_transient_line(pb, Bump(0.0, 0.5, x0=-3.0), dt=0.05, steps=40, points=n,
+                                   snapshot_every=40)
+        st = res.steady
+        rows.append({"points": n, "Hc_core": st.Hc_venner, "Hm_core": st.Hm_venner,
+                     "dHc_rel_max": float(np.max(np.abs(res.Hc / st.Hc_venner - 1))),
+                     "dHm_rel_max": float(np.max(np.abs(res.Hm / st.Hm_venner - 1))),
+                     "dP_max": float(np.max(res.dP)), "cycles_mean": res.summary()["cycles_mean"]})
+        print(rows[-1])
+    # start-up: steady film at 1.2x M (same load, lambda changed: a speed step), then run
+    n = 257
+    M2 = 1.2 * pb.M
+    other = problem(M2, pb.L * math.sqrt(pb.M / M2))
+    opts = transient_options(points=n)
+    start = solve_line_problem(other, opts)
+    target = solve_line_problem(pb, opts).Hc_venner
+    res = solve_transient_line(pb, None, dt=0.05, steps=400, points=n, initial=(start.P, start.H0),
+                               snapshot_every=1000)
+    err = np.abs(res.Hc / target - 1.0)
+    settle = {f"T={T:g}": float(np.interp(T, res.T, err)) for T in (0, 1, 2, 4, 6, 8, 12, 16, 20)}
+    print(settle)
+    save("steady", {"zero_feature": rows, "startup": {"points": n, "M_start": M2, "Hc_target": target,
+                                                      "relative_error_at": settle,
+                                                      "T": res.T.tolist(), "Hc": res.Hc.tolist()}})
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.semilogy(res.T, err)
+    ax.set_xlabel("T = t u_m / b")
+    ax.set_ylabel("|Hc(T)/Hc_steady - 1|")
+    ax.set_title("Start-up from the steady film at 1.2 M (M = 20, L = 10, 257 points)")
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(OUT / "steady_startup.png", dpi=120)
+
+
+# -- time-step refinement ------------------------------------------------------------------
+def part_time(quick: bool) -> None:
+    pb = problem(20, 10)
+    n = 257
+    feat = Bump(0.02, 0.8, x0=-2.5, shape="gaussian")
+    T_end = 3.0
+    dts = (0.04, 0.02, 0.01) if quick else (0.04, 0.02, 0.01, 0.005)
+    out = {}
+    for scheme in ("bdf2", "euler"):
+        runs = []
+        for dt in dts:
+            t0 = time.perf_counter()
+            res = solve_transient_line(pb, feat, dt=dt, steps=int(round(T_end / dt)), points=n,
+                                       scheme=scheme, tol=1e-8, tol_load=1e-10, snapshot_every=10**5)
+            every = int(round(dts[0] / dt))
+            runs.append({"dt": dt, "Hc": res.Hc[::every], "H": res.snapshots[res.steps]["H"],
+                         "wall_s": time.perf_counter() - t0})
+            print(scheme, dt, res.Hc[-1], runs[-1]["wall_s"])
+        d_series = [float(np.max(np.abs(a["Hc"] - b["Hc"]))) for a, b in zip(runs, runs[1:], strict=False)]
+        d_film = [float(np.mean(np.abs(a["H"] - b["H"]))) for a, b in zip(runs, runs[1:], strict=False)]
+        out[scheme] = {"dt": list(dts), "max_dHc_series": d_series, "mean_dH_final": d_film,
+                       "order_Hc_series": [math.log2(a / b) for a, b in zip(d_series, d_series[1:], strict=False)],
+                       "order_H_final": [math.log2(a / b) for a, b in zip(d_film, d_film[1:], strict=False)],
+                       "T": (np.arange(len(runs[-1]["Hc"])) * dts[0]).tolist(),
+                       "Hc_finest": runs[-1]["Hc"].tolist()}
+        print(scheme, out[scheme]["order_Hc_series"], out[scheme]["order_H_final"])
+    save("time", {"M": 20, "L": 10, "points": n, "feature": feat.describe(), "T_end": T_end, **out})
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for scheme, mk in (("bdf2", "o-"), ("euler", "s--")):
+        ax.loglog(dts[:-1], out[scheme]["max_dHc_series"], mk, label=f"{scheme}: max |Hc(dT) - Hc(dT/2)|")
+    ref = np.array(dts[:-1])
+    ax.loglog(ref, out["bdf2"]["max_dHc_series"][0] * (ref / ref[0]) ** 2, "k:", label="slope 2")
+    ax.loglog(ref, out["euler"]["max_dHc_series"][0] * (ref / ref[0]), "k-.", label="slope 1")
+    ax.set_xlabel("dT")
+    ax.set_ylabel("successive difference of Hc(T), T in [0, 3]")
+    ax.legend(fontsize=8)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(OUT / "time_convergence.png", dpi=120)
+
+
+# -- grid refinement -----------------------------------------------------------------------
+def part_grid(quick: bool) -> None:
+    pb = problem(20, 10)
+    feat = Bump(0.02, 0.8, x0=-2.5, shape="gaussian")
+    T_end = 3.0
+    grids = (129, 257, 513) if quick else (129, 257, 513, 1025, 2049)
+    dt = 6.0 / 256  # the Courant-1 step of 257 points; the same dT on every grid
+    runs = []
+    for n in grids:
+        t0 = time.perf_counter()
+        res = solve_transient_line(pb, feat, dt=dt, steps=int(round(T_end / dt)), points=n,
+                                   tol=1e-7, tol_load=1e-9, snapshot_every=10**5)
+        runs.append({"points": n, "Hc": res.Hc, "Hm": res.Hm, "H": res.snapshots[res.steps]["H"][:: (n - 1) // 128],
+                     "wall_s": time.perf_counter() - t0, "Hc_steady": res.steady.Hc_venner})
+        print(n, res.Hc[-1], res.Hm[-1], runs[-1]["wall_s"])
+    d_Hc = [float(np.max(np.abs(a["Hc"] - b["Hc"]))) for a, b in zip(runs, runs[1:], strict=False)]
+    d_Hm = [float(np.max(np.abs(a["Hm"] - b["Hm"]))) for a, b in zip(runs, runs[1:], strict=False)]
+    d_H = [float(np.mean(np.abs(a["H"] - b["H"]))) for a, b in zip(runs, runs[1:], strict=False)]
+    data = {"M": 20, "L": 10, "feature": feat.describe(), "dt": dt, "T_end": T_end, "points": list(grids),
+            "Hc_final": [float(r["Hc"][-1]) for r in runs], "Hm_final": [float(r["Hm"][-1]) for r in runs],
+            "Hc_steady": [r["Hc_steady"] for r in runs],
+            "max_dHc_series": d_Hc, "max_dHm_series": d_Hm, "mean_dH_final_on_129": d_H,
+            "order_Hc_series": [math.log2(a / b) for a, b in zip(d_Hc, d_Hc[1:], strict=False)],
+            "order_Hm_series": [math.log2(a / b) for a, b in zip(d_Hm, d_Hm[1:], strict=False)],
+            "order_H_final": [math.log2(a / b) for a, b in zip(d_H, d_H[1:], strict=False)],
+            "wall_s": [r["wall_s"] for r in runs]}
+    print(data["order_Hc_series"], data["order_Hm_series"], data["order_H_final"])
+    save("grid", data)
+    fig, ax = plt.subplots(figsize=(6, 4))
+    T = np.arange(len(runs[0]["Hc"])) * dt
+    for r in runs:
+        ax.plot(T, r["Hc"], label=f"{r['points']} points")
+    ax.set_xlabel("T = t u_m / b")
+    ax.set_ylabel("Hc(T)")
+    ax.set_title("Gaussian bump A = 0.02, W = 0.8 entering the contact (M = 20, L = 10)")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(OUT / "grid_convergence.png", dpi=120)
+
+
+# -- waviness amplitude reduction ----------------------------------------------------------
+def venner_lubrecht_curve(nabla: np.ndarray) -> np.ndarray:
+    """Ad/Ai = 1/(1 + 0.15 nabla + 0.015 nabla^2): the pure-rolling fit quoted in the
+    amplitude-reduction literature (Venner & Lubrecht; Hooke) -- recalled, see REPORT.md."""
+    return 1.0 / (1.0 + 0.15 * nabla + 0.015 * nabla**2)
+
+
+def nabla(wavelength: float, M: float, L: float) -> float:
+    """Venner, Couhier, Lubrecht & Greenwood (1997): nabla = (lambda/b) M^(3/4) / L^(1/2)."""
+    return wavelength * M**0.75 / math.sqrt(L)
+
+
+WAVINESS_CASES = {
+    (20.0, 10.0): (0.25, 0.5, 1.0, 2.0, 3.0),
+    (10.0, 5.0): (0.5, 1.0, 2.0, 4.0),
+    (50.0, 10.0): (0.5, 1.0, 2.0),
+}
+
+
+#: checks of the measured points: one grid finer, and a longer inlet (the core's default box)
+WAVINESS_CHECKS = [(20.0, 10.0, 1.0, -4.5, 513), (20.0, 10.0, 2.0, -4.5, 513),
+                   (20.0, 10.0, 2.0, -10.0, None), (10.0, 5.0, 1.0, -10.0, None),
+                   (10.0, 5.0, 0.5, -4.5, 1025)]
+
+
+def part_waviness(quick: bool) -> None:
+    cases = {(20.0, 10.0): (0.5, 2.0)} if quick else WAVINESS_CASES
+    path = OUT / "waviness.json"
+    rows = json.loads(path.read_text())["rows"] if path.exists() and not quick else []
+    done = {(r["M"], r["L"], r["wavelength"], r["points"], r["xmin"]) for r in rows}
+    todo = [(M, L, lam, -4.5) for (M, L), lams in cases.items() for lam in lams]
+    todo = [(M, L, lam, xmin, None) for M, L, lam, xmin in todo]
+    if not quick:
+        todo += WAVINESS_CHECKS
+    for M, L, lam, xmin, n_given in todo:
+        n = 257
+        while (1.5 - xmin) / (n - 1) > lam / 24.0:
+            n = 2 * n - 1
+        n = n_given or n
+        if (M, L, lam, n, xmin) in done:
+            continue
+        Ai = 0.05 * hc_fit(M, L)
+        t0 = time.perf_counter()
+        res = solve_transient_line(problem(M, L, xmin), Waviness(Ai, lam), points=n, snapshot_every=10**5)
+        s = res.summary()
+        row = {"M": M, "L": L, "wavelength": lam, "xmin": xmin, "points": n, "Ai": Ai,
+               "nabla": nabla(lam, M, L), "Ad_over_Ai": s["Ad_over_Ai"],
+               "Ad_over_Ai_previous_period": _previous_period(res) / Ai,
+               "curve": float(venner_lubrecht_curve(np.array(nabla(lam, M, L)))),
+               "Hc_steady": s["Hc_steady"], "steps": s["steps"], "dt": s["dt"],
+               "cycles_mean": s["cycles_mean"], "wall_s": time.perf_counter() - t0}
+        print(row)
+        rows.append(row)
+        save("waviness", {"rows": rows})
+    save("waviness" + ("_quick" if quick else ""), {"rows": rows})
+    fig, ax = plt.subplots(figsize=(6, 4))
+    nb = np.linspace(0.1, 25, 300)
+    ax.plot(nb, venner_lubrecht_curve(nb), "k-", label="1/(1 + 0.15 nabla + 0.015 nabla^2)")
+    for (M, L), mk in zip(WAVINESS_CASES, ("o", "s", "^"), strict=False):
+        sel = [r for r in rows if r["M"] == M and r["L"] == L and r["xmin"] == -4.5]
+        ax.plot([r["nabla"] for r in sel], [r["Ad_over_Ai"] for r in sel], mk, label=f"M = {M:g}, L = {L:g}")
+    sel = [r for r in rows if r["xmin"] != -4.5]
+    if sel:
+        ax.plot([r["nabla"] for r in sel], [r["Ad_over_Ai"] for r in sel], "x", ms=9, label="inlet at X = -10")
+    ax.set_xlabel("nabla = (lambda/b) M^(3/4) / L^(1/2)")
+    ax.set_ylabel("Ad / Ai (film amplitude at X = 0)")
+    ax.set_xscale("log")
+    ax.set_title("Waviness on one surface, pure rolling")
+    ax.legend(fontsize=8)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(OUT / "waviness_amplitude.png", dpi=120)
+
+
+def _previous_period(res) -> float:
+    """Half peak-to-peak of Hc over the period before the last (periodicity check)."""
+    period = res.feature.wavelength / abs(res.speed)
+    T, Hc = res.T, res.Hc
+    win = (T >= T[-1] - 2 * period) & (T < T[-1] - period)
+    return 0.5 * float(Hc[win].max() - Hc[win].min()) if win.any() else math.nan
+
+
+# -- bump and dent passing -----------------------------------------------------------------
+BUMP_CASES = (("dent", -1, 0.0), ("dent", -1, 1.0), ("dent", -1, -1.0), ("bump", 1, 0.0), ("bump", 1, 1.0))
+POSITIONS = (-1.0, -0.5, 0.0, 0.5, 1.0)
+
+
+def part_bump(quick: bool) -> None:
+    M, L = 20.0, 10.0
+    n = 257 if quick else 513
+    Hc = hc_fit(M, L)
+    A = 0.5 * Hc
+    rows = []
+    fig, axes = plt.subplots(len(BUMP_CASES), 2, figsize=(11, 2.6 * len(BUMP_CASES)), sharex=True)
+    for (name, sign, S), ax in zip(BUMP_CASES, axes, strict=False):
+        feat = Bump(sign * A, 0.5, x0=-3.0)
+        t0 = time.perf_counter()
+        res = solve_transient_line(problem(M, L), feat, slide_roll=S, points=n, snapshot_every=1)
+        s = res.summary()
+        wall = time.perf_counter() - t0
+        X = res.X
+        prof = {}
+        for xf in POSITIONS:
+            k = int(np.argmin(np.abs(res.xf - xf)))
+            snap = res.snapshots[int(res.step[k])]
+            prof[f"{xf:g}"] = {"T": float(res.T[k]), "xf": float(res.xf[k]),
+                               "Hc": float(res.Hc[k]), "Hm": float(res.Hm[k]), "Pmax": float(res.Pmax[k]),
+                               "H_at_feature": float(np.interp(res.xf[k], X, snap["H"])),
+                               "H_smooth_at_feature": float(np.interp(res.xf[k], X, res.steady.H))}
+            ax[0].plot(X, snap["H"], lw=1, label=f"xf = {res.xf[k]:.2f}")
+            ax[1].plot(X, snap["P"], lw=1)
+        ax[0].plot(X, res.steady.H, "k:", lw=1, label="smooth")
+        ax[1].plot(X, res.steady.P, "k:", lw=1)
+        ax[0].set_ylim(0, 3 * Hc)
+        ax[0].set_ylabel(f"H ({name}, S = {S:g})")
+        ax[1].set_ylabel("P")
+        ax[0].legend(fontsize=6, ncol=3)
+        # film behind the dent: largest film rise above the smooth film within 1.5 of the
+        # feature, upstream side (X < xf), while the feature is in the contact
+        rise = []
+        for k in range(len(res.T)):
+            xf = res.xf[k]
+            if not -1.0 <= xf <= 1.0:
+                continue
+            snap = res.snapshots[int(res.step[k])]
+            m = (X < xf) & (X > xf - 1.5) & (np.abs(X) <= 1.0)
+            if m.any():
+                rise.append(float(np.max(snap["H"][m] - res.steady.H[m])))
+        row = {"case": name, "amplitude": feat.amplitude, "width": feat.width, "slide_roll": S,
+               "feature_speed": res.speed, "points": n, "dt": res.dt, "steps": s["steps"],
+               "Hc_steady": s["Hc_steady"], "Hm_steady": s["Hm_steady"],
+               "Hc_min": s["Hc_min"], "Hc_max": s["Hc_max"], "Hm_min": s["Hm_min"],
+               "dP_max": s["dP_max"], "Pmax_max": s["Pmax_max"], "Ad_over_Ai": s["Ad_over_Ai"],
+               "film_rise_upstream_max": max(rise) if rise else math.nan,
+               "cycles_mean": s["cycles_mean"], "cycles_max": s["cycles_max"],
+               "wall_per_step_s": s["wall_per_step_s"], "wall_s": wall, "profiles": prof}
+        print({k: v for k, v in row.items() if k != "profiles"})
+        rows.append(row)
+        if not quick:
+            res.to_hdf5(OUT / f"bump_{name}_S{S:g}.h5") if n <= 257 else None
+    axes[-1][0].set_xlabel("X")
+    axes[-1][1].set_xlabel("X")
+    for ax in axes:
+        ax[0].set_xlim(-2, 1.5)
+    fig.suptitle(f"Cosine-Gaussian feature |A| = 0.5 Hc, W = 0.5 on body 1 (M = 20, L = 10, {n} points)")
+    fig.tight_layout()
+    fig.savefig(OUT / "bump_profiles.png", dpi=110)
+    save("bump" + ("_quick" if quick else ""), {"M": M, "L": L, "rows": rows})
+
+
+# -- cost per step -------------------------------------------------------------------------
+def part_cost(quick: bool) -> None:
+    pb = problem(20, 10)
+    rows = []
+    for n in ((257, 513) if quick else (257, 513, 1025, 2049, 4097)):
+        h = 6.0 / (n - 1)
+        steps = 60
+        feat = Bump(0.5 * hc_fit(20, 10), 0.5, x0=-0.5 - steps * h / 2)  # passes X = 0 mid-run
+        res = solve_transient_line(pb, feat, dt=h, steps=steps, points=n, snapshot_every=10**5)
+        s = res.summary()
+        rows.append({"points": n, "dt": h, "steps": steps, "wall_per_step_s": s["wall_per_step_s"],
+                     "cycles_mean": s["cycles_mean"], "cycles_max": s["cycles_max"],
+                     "work_units_per_step": s["work_units_per_step"], "setup_s": s["setup_s"]})
+        print(rows[-1])
+    save("cost", {"M": 20, "L": 10, "rows": rows})
+
+
+PARTS = {"steady": part_steady, "time": part_time, "grid": part_grid, "waviness": part_waviness,
+         "bump": part_bump, "cost": part_cost}
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--part", choices=sorted(PARTS), action="append", required=True)
+    ap.add_argument("--quick", action="store_true")
+    a = ap.parse_args()
+    for p in a.part:
+        PARTS[p](a.quick)
