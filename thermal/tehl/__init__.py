@@ -2,7 +2,8 @@
 together with the generalised Reynolds equation (Yang & Wen 1990) and the Eyring law of the
 thermal layer acting on the flow.
 
-Main entry point: :func:`solve_tehl_line` (line contacts).
+Main entry points: :func:`solve_tehl_line` (line contacts), :func:`tehl_traction_curve`,
+:func:`solve_tehl_point` (point contacts).
 """
 
 from .coefficients import film_factors, flux_integrals
@@ -14,8 +15,10 @@ from .line import (
     solve_tehl_line,
     tehl_traction_curve,
 )
+from .point import TEHLPointResult, solve_tehl_point
 
 __all__ = [
     "film_factors", "flux_integrals", "FactorLevel", "FactorLineHierarchy", "TEHLLineResult",
-    "TEHLOptions", "isothermal_start", "solve_tehl_line", "tehl_traction_curve",
+    "TEHLOptions", "isothermal_start", "solve_tehl_line", "tehl_traction_curve", "TEHLPointResult",
+    "solve_tehl_point",
 ]
