@@ -5,9 +5,11 @@ Public API: :func:`solve_transient_line`, the features :class:`Waviness` and :cl
 ``u_m = (u1 + u2)/2``, ``b`` the Hertzian half-width).
 """
 
+from .accuracy import solve_with_time_error, time_error
 from .features import Bump, Waviness, feature_from_table, feature_speed
 from .result import TransientResult, load_series
 from .solve import max_time_step, solve_transient_line, transient_options
 
 __all__ = ["Bump", "TransientResult", "Waviness", "feature_from_table", "feature_speed",
-           "load_series", "max_time_step", "solve_transient_line", "transient_options"]
+           "load_series", "max_time_step", "solve_transient_line", "solve_with_time_error",
+           "time_error", "transient_options"]

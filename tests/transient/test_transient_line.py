@@ -205,3 +205,15 @@ def test_scene_feature_table_in_metres_becomes_venner_units():
         feature_from_scene_table({"kind": "dent", "depth": 1e-8}, pb)
     with pytest.raises(InputError, match=r"feature.body = 3"):
         feature_from_scene_table({"kind": "dent", "amplitude": 1e-8, "width": 1e-5, "body": 3}, pb)
+
+
+def test_time_error_estimate_matches_the_error_against_a_finer_step(problem):
+    from ehl_multigrid.transient import solve_with_time_error
+
+    feat = Bump(0.02, 0.8, x0=-2.0, shape="gaussian")
+    kw = dict(points=129, tol=1e-8, tol_load=1e-10, snapshot_every=10_000)
+    fine, est = solve_with_time_error(problem, feat, dt=0.02, steps=100, **kw)
+    ref = solve_transient_line(problem, feat, dt=0.005, steps=400, **kw)
+    true = np.max(np.abs(fine.Hc - ref.Hc[::4])) / fine.steady.Hc_venner
+    assert 0.5 < est["Hc"] / true < 2.0
+    assert est["Hm"] > 0.0
