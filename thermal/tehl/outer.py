@@ -3,8 +3,8 @@
 One outer iteration: the across-film factors of the last thermal solution, damped in their
 logarithm and Anderson-mixed, go to the multilevel solve of the pressure and film; the thermal
 solve on the new pressure and film gives the next temperature field. It stops when the changes
-of P, of the films (Hc, Hm) and of T between two iterations, divided by the iteration's
-damping, are all below their tolerances.
+of P (relative L2 norm), of the films (Hc, Hm) and of T (max, kelvin) between two iterations,
+divided by the iteration's damping, are all below their tolerances.
 """
 
 from __future__ import annotations
@@ -97,7 +97,9 @@ def outer_iteration(
         if not (np.all(np.isfinite(new.P)) and np.all(np.isfinite(new.H))):
             raise ConvergenceError(f"TEHL outer iteration {it}: NaN in the pressure or film", None, OUTER_HINT)
         thermal_new, T_new = solve_thermal(new)
-        dP = float(np.max(np.abs(new.P - state.P)) / np.max(new.P))
+        # relative L2 change: the max norm is dominated by the spike, which the algebraic
+        # tolerance of each multilevel solve leaves uncertain at the 1e-4 level
+        dP = float(np.linalg.norm(new.P - state.P) / np.linalg.norm(new.P))
         dHc = abs(new.Hc - state.Hc) / new.Hc
         dHm = abs(new.Hm - state.Hm) / new.Hm
         dT = float(np.max(np.abs(T_new - T)))
@@ -114,14 +116,18 @@ def outer_iteration(
         if hist[-1] < 1.0:
             converged = True
             break
-        growing = len(hist) >= 2 and (hist[-1] > 2.0 * hist[-2]
+        # growth near the tolerance is the algebraic noise of the inner solves, not divergence
+        growing = len(hist) >= 2 and hist[-1] > 10.0 and (hist[-1] > 2.0 * hist[-2]
                                       or (len(hist) >= 3 and hist[-1] > hist[-2] > hist[-3]))
         if growing:
             if w <= MIN_RELAX:
+                rep = ConvergenceReport(converged=False, message="diverged", iterations=len(outer),
+                                        residual_history=np.array(hist), tolerances={"P": tol_P, "H": tol_H, "T_K": tol_T},
+                                        wall_s=time.perf_counter() - t0, extra={"outer": outer, "actions": actions})
                 raise ConvergenceError(
                     f"TEHL outer iteration diverged: at iteration {it} the changes (dP {dP:.3g}, dHc "
                     f"{dHc:.3g}, dHm {dHm:.3g}, dT {dT:.3g} K) grew with the under-relaxation already at "
-                    f"{MIN_RELAX:g}", None, OUTER_HINT)
+                    f"{MIN_RELAX:g}", rep, OUTER_HINT)
             w = max(0.5 * w, MIN_RELAX)
             count = 0  # restart the Anderson history with the new damping
             actions.append(f"iteration {it}: changes grew ({hist[-2]:.3g} -> {hist[-1]:.3g} tolerances); "
