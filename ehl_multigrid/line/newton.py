@@ -139,6 +139,7 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10) -> in
         J[:-1][active] = 0.0
         J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
         J[-1, :-1] = level.h
+        J[-1, -1] = 0.0  # the load does not depend on H0
         try:
             # scipy's LAPACK: numpy's threaded OpenBLAS is ~700x slower on a busy 2-core box
             with warnings.catch_warnings():

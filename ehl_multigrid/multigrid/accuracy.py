@@ -340,6 +340,12 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     why = ""
     while True:
         res = solve(points, box, tol_factor)
+        if (res.status_name == "film_not_positive" and refine and accuracy is not None
+                and 2 * points - 1 <= max_points):
+            # a grid too coarse for the load: the finer grid is the only remedy
+            steps.append(Refinement(points, box, tol_factor, math.nan, math.nan, res.wall_s))
+            points = 2 * points - 1
+            continue
         if not res.success:
             steps.append(Refinement(points, box, tol_factor, math.nan, math.nan, res.wall_s))
             res.extra["refinements"] = [vars(s) for s in steps]

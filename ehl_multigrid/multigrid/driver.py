@@ -290,6 +290,14 @@ class MultilevelSolver:
         finite = hz.finite() if hasattr(hz, "finite") else True
         if status == 0 and not finite:
             status, message = 3, "the solution holds NaN or inf"
+        last = self.history[-1] if self.history else None
+        if status == 0 and last is not None and last.level == top and last.Hm <= 0.0:
+            # a converged discrete solution with touching surfaces: the grid cannot carry the
+            # film at this load (measured: circular (1000, 10, theta 10) at 257 points, Hm < 0)
+            status = 7
+            message = (f"the iteration converged to a film that is not positive (minimum film "
+                       f"{last.Hm:.3g}, Venner units) on the {hz.levels[top].shape[-1]}-point "
+                       f"grid: too coarse for this load, use more points")
         if status == 0:
             message = "converged"
         record = EHLResult(

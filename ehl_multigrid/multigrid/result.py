@@ -28,6 +28,7 @@ STATUS = {
     4: "stopped",       # the callback raised StopIteration
     5: "start_failed",  # no usable solution on the start grid
     6: "inaccurate",    # the iteration converged, but the estimated error exceeds the target
+    7: "film_not_positive",  # the iteration converged to a discrete film <= 0 (grid too coarse)
 }
 
 

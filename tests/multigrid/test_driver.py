@@ -104,4 +104,17 @@ def test_repr_lists_levels_points_and_mesh_sizes():
 
 
 def test_status_table_is_complete():
-    assert set(STATUS) == {0, 1, 2, 3, 4, 5, 6}
+    assert set(STATUS) == {0, 1, 2, 3, 4, 5, 6, 7}
+
+
+def test_a_converged_iterate_with_a_non_positive_film_is_not_a_success():
+    class TouchingFilm(PoissonHierarchy):
+        # the toy's "film": u - 0.5, negative near the ends of the interval
+        def measure(self, k):
+            m = super().measure(k)
+            m.Hm = float(self.levels[k].u.min() - 0.5)
+            return m
+
+    sol = toy_solver(hierarchy=TouchingFilm(129, 5), max_cycles=20, tol=1e-8, tol_load=1e-3).solve()
+    assert not sol.success and sol.status_name == "film_not_positive" and sol.status == 7
+    assert "not positive" in sol.message and "more points" in sol.message
