@@ -172,3 +172,19 @@ def test_slow_contraction_scales_the_iteration_error_by_rho_over_one_minus_rho()
     assert iteration_factor([1.0, 1.1, 1.18]) == pytest.approx(4.0)  # rho = 0.8
     assert iteration_factor([1.0, 1.1, 1.0]) == MAX_ITERATION_FACTOR  # no contraction
     assert iteration_factor([1.0, 1.1]) == 1.0
+
+
+def test_a_film_that_is_not_positive_makes_the_accuracy_loop_refine_the_grid(monkeypatch):
+    import ehl_multigrid.multigrid.accuracy as acc
+
+    monkeypatch.setattr(acc, "estimate_error", lambda res, dom: ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4)))
+    monkeypatch.setattr(acc, "attach_estimate", lambda res, est, accuracy: setattr(res, "error", est))
+    touching = _Fake(257, False, math.nan)
+    touching.status_name = "film_not_positive"
+    runs = {257: touching, 513: _Fake(513, True, 0.001)}
+    out = solve_to_accuracy(lambda n, b, t: runs[n], lambda r, b: (0.0, 0.0), 0.01, 257, 1025)
+    assert out is runs[513] and out.success
+    assert [s["points"] for s in out.extra["refinements"]] == [257, 513]
+    # without room for a finer grid the failure is returned as it is
+    out = solve_to_accuracy(lambda n, b, t: runs[n], lambda r, b: (0.0, 0.0), 0.01, 257, 257)
+    assert out is touching and out.status_name == "film_not_positive"
