@@ -73,7 +73,7 @@ class TEHLOptions:
     shear_thinning : False gives the flow the Newtonian eta(p, T) (Eyring stays in the friction).
     surface_kernel : surface-temperature kernel of the thermal layer.
     multigrid : overrides of the core :class:`LineOptions` (tol, cycle, levels ...); by default
-        each multilevel solve stops on the films (``film_tol = tol_H / 10``: Hc and Hm change by
+        each multilevel solve stops on the films (``film_tol = tol_H / 4``: Hc and Hm change by
         less between two finest-grid cycles, load error below it), since a residual of 1e-5
         leaves Hm uncertain to 7e-4 (measured: an outer iteration alternating between two
         films with the factors fixed).
@@ -117,7 +117,7 @@ class TEHLOptions:
 
     def line_options(self) -> LineOptions:
         return LineOptions.build(None, **{"points": self.points, "raise_on_failure": False,
-                                          "film_tol": 0.1 * self.tol_H, **self.multigrid})
+                                          "film_tol": 0.25 * self.tol_H, **self.multigrid})
 
     def thermal_options(self) -> ThermalOptions:
         return ThermalOptions(nx=self.points, nz=self.nz, tol_T=self.tol_thermal, tol_tau=self.tol_thermal,
@@ -257,6 +257,17 @@ def _thermal(scene: Scene, pb: LineProblem, st: _State, env: Surroundings, topt:
     return sol
 
 
+def film_noise(res: Any) -> float:
+    """Relative change of Hc and Hm over the last two finest-grid cycles of a multilevel solve
+    (the algebraic uncertainty of its films; inf with fewer than two such cycles)."""
+    top = res.levels - 1
+    fin = [h for h in res.history if h.level == top][-2:]
+    if len(fin) < 2:
+        return math.inf
+    a, b = fin
+    return float(max(abs(b.Hc - a.Hc) / abs(b.Hc), abs(b.Hm - a.Hm) / abs(b.Hm)))
+
+
 def interior_heat_budget(sol: ThermalLineSolution, lubricant: Any) -> dict[str, float]:
     """Heat budget per unit length [W/m] over the stations downstream of the inlet station.
 
@@ -325,6 +336,8 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
         sol = _thermal(scene, pb, st, env, topt, X)
         a, c = guess.a.copy(), guess.c.copy()
 
+    notes: list[str] = []
+
     def factors(th: ThermalLineSolution) -> tuple[np.ndarray, np.ndarray]:
         return film_factors(th.profile.p, th.T, th.tau, lub, scene.T_oil, u1, u2, opts.shear_thinning)
 
@@ -335,11 +348,20 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
         hz.solver = solver
         res = finish_line_result(solver.solve(), solver, scene)
         hz.solver = None
-        if not res.success:
+        noise = film_noise(res)
+        if not res.success and res.status == 1 and res.residual_history[-1] < lopts.tol and noise < 10.0 * opts.tol_H:
+            # the cycles reached the residual tolerance but the films keep alternating between
+            # two states (the outlet free boundary flips between neighbouring nodes; Hm by up
+            # to 6e-4 at residual 2.5e-6, measured): accepted, and the alternation is carried
+            # into the outer iteration as the films' algebraic uncertainty
+            notes.append(f"outer iteration {it}: films alternate by {noise:.2g} between cycles at residual "
+                         f"{res.residual_history[-1]:.3g}; accepted as their uncertainty")
+        elif not res.success:
             raise ConvergenceError(f"TEHL outer iteration {it}: the multilevel solve failed: {res.message}",
                                    res.report, HINT)
         Hc, Hm = _films(pb, res.X, res.P, res.H)
-        return _State(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm, {"cycles": int(res.cycles)})
+        return _State(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm,
+                      {"cycles": int(res.cycles), "film_noise": min(noise, 1.0)})
 
     def thermal(st_: _State) -> tuple[ThermalLineSolution, np.ndarray]:
         th = _thermal(scene, pb, st_, env, topt, X)
@@ -349,6 +371,7 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
                            relax=opts.relax, anderson=opts.anderson, max_outer=opts.max_outer,
                            tol_P=opts.tol_P, tol_H=opts.tol_H, tol_T=opts.tol_T)
     st, sol, a, c, outer, report = done.state, done.thermal, done.a, done.c, done.outer, done.report
+    report.extra["actions"] = notes + list(report.extra.get("actions", []))
     heat = interior_heat_budget(sol, lub) if opts.thermal else {}
     if heat:
         heat["whole_box_balance"] = sol.heat["balance"]

@@ -4,7 +4,8 @@ One outer iteration: the across-film factors of the last thermal solution, dampe
 logarithm and Anderson-mixed, go to the multilevel solve of the pressure and film; the thermal
 solve on the new pressure and film gives the next temperature field. It stops when the changes
 of P (relative L2 norm), of the films (Hc, Hm) and of T (max, kelvin) between two iterations,
-divided by the iteration's damping, are all below their tolerances.
+divided by the iteration's damping, are all below their tolerances (the film tolerance
+widened to twice the films' algebraic uncertainty when an inner solve reports one).
 """
 
 from __future__ import annotations
@@ -109,10 +110,14 @@ def outer_iteration(
         if not all(math.isfinite(v) for v in (dP, dHc, dHm, dT)):
             raise ConvergenceError(f"TEHL outer iteration {it}: NaN in the pressure, film or temperature",
                                    None, OUTER_HINT)
+        state_prev = state
         state, thermal, T = new, thermal_new, T_new
         # changes of a damped iteration understate its distance to the fixed point: divided
         # by the damping, a small under-relaxation cannot pass for convergence
-        hist.append(max(dP / tol_P, max(dHc, dHm) / tol_H, dT / tol_T) / w_used)
+        # the films cannot settle below the algebraic uncertainty of the inner solves
+        noise = max(float(new.extra.get("film_noise", 0.0)), float(state_prev.extra.get("film_noise", 0.0)))
+        outer[-1]["film_noise"] = noise
+        hist.append(max(dP / tol_P, max(dHc, dHm) / max(tol_H, 2.0 * noise), dT / tol_T) / w_used)
         if hist[-1] < 1.0:
             converged = True
             break

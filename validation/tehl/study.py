@@ -3,7 +3,7 @@ grid convergence along and across the film, thermal film reduction against publi
 correlations, the decoupled thesis method against TEHL over slip, and cost.
 
 Usage: ``python validation/tehl/study.py [PART ...]`` with parts ``limit``, ``energy``,
-``grid``, ``correlations``, ``decoupled``, ``cost`` (default: all); each writes
+``grid``, ``correlations``, ``decoupled``, ``cost``, ``point`` (default: all); each writes
 ``out/<part>.json``; ``plot`` draws the PNGs from the JSON files.
 """
 
@@ -317,8 +317,32 @@ def part_plot() -> None:
     print("plots written", flush=True)
 
 
+
+
+# -- 7. point contact --------------------------------------------------------------------------------
+def part_point() -> None:
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.problem import problem_from_scene
+    from ehl_multigrid.point.solve import solve_fas
+    from thermal.tehl import solve_tehl_point
+
+    sc = load_scene("appendix_d_point")
+    rows = []
+    iso = solve_fas(problem_from_scene(sc), PointOptions(points=257, half=True), scene=sc)
+    for S in (0.0, 0.25, 0.5, 1.0):
+        t = time.perf_counter()
+        r = solve_tehl_point(sc, S, points=257)
+        wall = time.perf_counter() - t
+        tp = solve_traction(sc, S, input="ehl", ehl=iso.to_result(sc), nx=80, nz=20, slices=10)
+        rows.append({**r.summary(), "wall_s": wall, "mu_decoupled_thermal_layer": tp.coefficient,
+                     "T_max_decoupled": tp.max_temperature_rise + sc.T_oil,
+                     "balance": r.heat["balance"], "rows": r.extra["thermal_rows"]})
+        print(rows[-1], flush=True)
+    dump("point", {"scene": sc.name, "points": 257, "rows": rows})
+
+
 PARTS = {"limit": part_limit, "energy": part_energy, "grid": part_grid, "correlations": part_correlations,
-         "decoupled": part_decoupled, "cost": part_cost, "plot": part_plot}
+         "decoupled": part_decoupled, "cost": part_cost, "point": part_point, "plot": part_plot}
 
 if __name__ == "__main__":
     names = sys.argv[1:] or [p for p in PARTS if p != "plot"] + ["plot"]
