@@ -95,7 +95,7 @@ def part_steady(quick: bool) -> None:
 def part_time(quick: bool) -> None:
     pb = problem(20, 10)
     n = 257
-    feat = Bump(0.02, 0.8, x0=-2.5, shape="gaussian")
+    feat = Bump(0.02, 0.8, x0=-2.4, shape="gaussian")
     T_end = 3.0
     dts = (0.04, 0.02, 0.01) if quick else (0.04, 0.02, 0.01, 0.005)
     out = {}
@@ -135,7 +135,7 @@ def part_time(quick: bool) -> None:
 # -- grid refinement -----------------------------------------------------------------------
 def part_grid(quick: bool) -> None:
     pb = problem(20, 10)
-    feat = Bump(0.02, 0.8, x0=-2.5, shape="gaussian")
+    feat = Bump(0.02, 0.8, x0=-2.4, shape="gaussian")
     T_end = 3.0
     grids = (129, 257, 513) if quick else (129, 257, 513, 1025, 2049)
     dt = 6.0 / 256  # the Courant-1 step of 257 points; the same dT on every grid
