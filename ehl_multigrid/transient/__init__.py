@@ -6,10 +6,10 @@ Public API: :func:`solve_transient_line`, the features :class:`Waviness` and :cl
 """
 
 from .accuracy import solve_with_time_error, time_error
-from .features import Bump, Waviness, feature_from_table, feature_speed
+from .features import Bump, Profile, Smooth, Waviness, feature_from_table, feature_speed
 from .result import TransientResult, load_series
 from .solve import max_time_step, solve_transient_line, transient_options
 
-__all__ = ["Bump", "TransientResult", "Waviness", "feature_from_table", "feature_speed",
+__all__ = ["Bump", "Profile", "Smooth", "TransientResult", "Waviness", "feature_from_table", "feature_speed",
            "load_series", "max_time_step", "solve_transient_line", "solve_with_time_error",
            "time_error", "transient_options"]

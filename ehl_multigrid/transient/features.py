@@ -12,6 +12,7 @@ units of the mean rolling speed ``u_m = (u1 + u2)/2`` (:func:`feature_speed`).
 Shapes:
 
 * :class:`Waviness` -- ``R(X) = A cos(2 pi X / Lambda + phase)``;
+* :class:`Profile` -- a sampled profile (measured or synthetic roughness), interpolated;
 * :class:`Bump` -- a single feature of width ``W`` centred at ``x0``:
   ``"cosine-gaussian"``: ``R = A 10^(-10 (s/W)^2) cos(2 pi s / W)`` (the dent/bump shape of
   Venner & Lubrecht's transient studies, ``s = X - x0``), or
@@ -147,6 +148,61 @@ class Bump:
         return {"kind": self.kind, **asdict(self)}
 
 
+@dataclass(frozen=True, eq=False)
+class Profile:
+    """A sampled height profile (measured or synthetic roughness, e.g. one row of a
+    ``mixed.surface`` height map), linearly interpolated and zero outside its samples.
+
+    Attributes
+    ----------
+    x : sample positions in the body's frame at ``T = 0`` [-, x/b], increasing, uniform.
+    z : heights [Venner film units, a R/b^2] (positive = up, narrowing the gap).
+    """
+
+    x: np.ndarray
+    z: np.ndarray
+
+    kind = "profile"
+
+    def __post_init__(self) -> None:
+        x = np.asarray(self.x, dtype=float)
+        z = np.asarray(self.z, dtype=float)
+        if x.ndim != 1 or x.shape != z.shape or x.size < 4:
+            raise InputError(f"feature.x and feature.z must be 1-D of one length >= 4 "
+                             f"(got shapes {x.shape} and {z.shape})")
+        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(z))):
+            raise InputError("feature.x and feature.z must be finite (fill missing points first)")
+        dx = np.diff(x)
+        if np.any(dx <= 0.0) or np.ptp(dx) > 1e-6 * dx.mean():
+            raise InputError("feature.x must be uniformly spaced and increasing")
+        require_range("feature.z (max |z|)", float(np.max(np.abs(z))), 0.0,
+                      MAX_AMPLITUDE, "- (a R/b^2)")
+        object.__setattr__(self, "x", x)
+        object.__setattr__(self, "z", z)
+
+    @property
+    def amplitude(self) -> float:
+        """RMS height [Venner units]."""
+        return float(np.sqrt(np.mean(self.z**2)))
+
+    @property
+    def length_scale(self) -> float:
+        """Four sample spacings: the shortest wavelength the samples describe well."""
+        return 4.0 * float(self.x[1] - self.x[0])
+
+    def height(self, X: np.ndarray) -> np.ndarray:
+        return np.interp(np.asarray(X, dtype=float), self.x, self.z, left=0.0, right=0.0)
+
+    def check_domain(self, xmin: float, xmax: float) -> None:
+        require_in("feature.x[0]", float(self.x[0]), xmin, xmax, "-",
+                   f"the profile must start inside the domain [{xmin:g}, {xmax:g}]")
+
+    def describe(self) -> dict[str, Any]:
+        return {"kind": self.kind, "points": int(self.x.size), "x_start": float(self.x[0]),
+                "x_end": float(self.x[-1]), "rms": self.amplitude,
+                "max": float(np.max(self.z)), "min": float(np.min(self.z))}
+
+
 @dataclass(frozen=True)
 class Smooth:
     """No feature: smooth surfaces (start-up and steady-limit runs)."""
@@ -169,7 +225,7 @@ class Smooth:
         return {"kind": self.kind}
 
 
-Feature = Waviness | Bump | Smooth
+Feature = Waviness | Bump | Profile | Smooth
 
 
 def feature_from_table(table: dict[str, Any]) -> Feature:

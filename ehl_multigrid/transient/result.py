@@ -67,7 +67,10 @@ class TransientResult:
 
     # -- building -------------------------------------------------------------------------
     def _x_feature(self, T: float) -> float:
-        x0 = getattr(self.feature, "x0", 0.0)
+        x0 = getattr(self.feature, "x0", None)
+        if x0 is None:  # a profile: its centre
+            x = getattr(self.feature, "x", None)
+            x0 = 0.5 * (float(x[0]) + float(x[-1])) if x is not None else 0.0
         return x0 + self.speed * T
 
     def record(self, n: int, T: float, hz: Any, res: EHLResult | None, wall: float, keep: bool) -> None:

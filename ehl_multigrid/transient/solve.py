@@ -211,6 +211,8 @@ def default_end_time(problem: LineProblem, feature: Feature, speed: float) -> fl
         return 2.0 * span
     if feature.kind == "bump":
         return (problem.xmax - feature.x0) / speed if speed > 1e-9 else span
+    if feature.kind == "profile":  # until its tail has left the domain
+        return (problem.xmax - float(feature.x[0])) / speed if speed > 1e-9 else span
     period = feature.wavelength / abs(speed) if abs(speed) > 1e-9 else 0.0
     return span + 3.0 * period
 

@@ -217,3 +217,18 @@ def test_time_error_estimate_matches_the_error_against_a_finer_step(problem):
     true = np.max(np.abs(fine.Hc - ref.Hc[::4])) / fine.steady.Hc_venner
     assert 0.5 < est["Hc"] / true < 2.0
     assert est["Hm"] > 0.0
+
+
+def test_sampled_profile_of_a_bump_runs_like_the_bump(problem):
+    from ehl_multigrid.transient import Profile
+
+    bump = Bump(0.03, 0.8, x0=-2.4, shape="gaussian")
+    x = np.linspace(-4.4, -0.4, 101)
+    prof = Profile(x, bump.height(x))
+    kw = dict(dt=0.04, steps=60, points=129, snapshot_every=10_000)
+    a = solve_transient_line(problem, bump, **kw)
+    b = solve_transient_line(problem, prof, **kw)
+    assert np.max(np.abs(a.Hc - b.Hc)) < 1e-3 * a.steady.Hc_venner
+    assert np.max(np.abs(a.Hc - a.steady.Hc_venner)) > 0.03 * a.steady.Hc_venner  # 0.043
+    with pytest.raises(InputError, match="uniformly spaced"):
+        Profile(np.array([0.0, 1.0, 3.0, 4.0]), np.zeros(4))
