@@ -1,0 +1,61 @@
+"""``ehl transient SCENE`` (registered by the lead through the ``ehl.commands`` entry point):
+the scene's [feature] table in metres, HDF5 + PNG output and the JSON payload."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+import pytest
+
+from ehl_multigrid.line.problem import LineProblem
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import load_scene
+from ehl_multigrid.transient import cli, load_series
+
+
+def _parser():
+    p = argparse.ArgumentParser()
+    cli.register(p.add_subparsers(dest="command"))
+    return p
+
+
+def _scene_with(feature):
+    sc = load_scene("page63_line_2000N")
+    sc.raw["feature"] = feature  # what the scene loader keeps once [feature] is a known table
+    return sc
+
+
+def test_transient_command_writes_series_plots_and_summary(monkeypatch, tmp_path):
+    sc = _scene_with(None)
+    pb = LineProblem.from_scene(sc, xmin=-4.5)
+    depth = 0.5 * 0.0084 * pb.b**2 / pb.R  # half the central film, in metres
+    sc.raw["feature"] = {"kind": "dent", "amplitude": depth, "width": 0.5 * pb.b, "x0": -3.0}
+    monkeypatch.setattr(cli, "load_scene", lambda name: sc)
+    args = _parser().parse_args(["transient", "x", "--points", "257", "--json", "--out", str(tmp_path),
+                                 "--threshold", "1e-8"])
+    out = args.func(args)
+    assert out["converged"] and out["slide_roll"] == sc.slip == 2.0
+    assert out["feature"]["kind"] == "bump" and out["feature"]["amplitude"] < 0
+    assert 0 < out["hm_min"] < out["hc_min"] <= out["hc_steady"] <= out["hc_max"]
+    assert len(out["plots"]) == 2 and all(p.endswith(".png") for p in out["plots"])
+    assert len(out["fraction_below_threshold"]) > 2
+    back = load_series(out["file"])
+    assert back["summary"]["steps"] == out["steps"]
+    json.dumps(out)
+
+
+def test_transient_command_without_feature_table_names_it(monkeypatch, tmp_path):
+    monkeypatch.setattr(cli, "load_scene", lambda name: _scene_with(None))
+    args = _parser().parse_args(["transient", "x", "--out", str(tmp_path)])
+    with pytest.raises(InputError, match=r"no \[feature\] table"):
+        args.func(args)
+
+
+def test_transient_command_rejects_point_scenes_and_huge_grids(tmp_path):
+    args = _parser().parse_args(["transient", "series_B_disc1_1GPa", "--out", str(tmp_path)])
+    with pytest.raises(InputError, match="line contacts"):
+        args.func(args)
+    args = _parser().parse_args(["transient", "page63_line_2000N", "--points", "9000", "--out", str(tmp_path)])
+    with pytest.raises(InputError, match=r"--points = 9000 .*\[65, 4097\]"):
+        args.func(args)
