@@ -66,7 +66,8 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
         "hc_max": summary["Hc_max"] * scale, "hm_min": summary["Hm_min"] * scale,
         "pressure_fluctuation": summary["dP_max"] * pb.pmax,
         "deformed_amplitude_ratio": summary["Ad_over_Ai"],
-        "cycles_mean": summary["cycles_mean"], "wall_per_step_s": summary["wall_per_step_s"],
+        "cycles_mean": summary["cycles_mean"], "stalled_steps": summary["stalled_steps"],
+        "residual_max": summary["residual_max"], "wall_per_step_s": summary["wall_per_step_s"],
         "wall_s": summary["wall_s"],
     }
     if args.threshold is not None:
