@@ -72,6 +72,7 @@ def outer_iteration(
     n = a.size
     outer: list[dict[str, float]] = []
     hist: list[float] = []
+    raw: list[float] = []
     actions: list[str] = []
     converged = False
     w = relax
@@ -117,13 +118,16 @@ def outer_iteration(
         # the films cannot settle below the algebraic uncertainty of the inner solves
         noise = max(float(new.extra.get("film_noise", 0.0)), float(state_prev.extra.get("film_noise", 0.0)))
         outer[-1]["film_noise"] = noise
-        hist.append(max(dP / tol_P, max(dHc, dHm) / max(tol_H, 2.0 * noise), dT / tol_T) / w_used)
+        raw.append(max(dP / tol_P, max(dHc, dHm) / max(tol_H, 2.0 * noise), dT / tol_T))
+        hist.append(raw[-1] / w_used)
         if hist[-1] < 1.0:
             converged = True
             break
-        # growth near the tolerance is the algebraic noise of the inner solves, not divergence
-        growing = len(hist) >= 2 and hist[-1] > 10.0 and (hist[-1] > 2.0 * hist[-2]
-                                      or (len(hist) >= 3 and hist[-1] > hist[-2] > hist[-3]))
+        # growth is judged on the changes themselves (divided by the damping they would grow
+        # by themselves each time the damping halves); growth near the tolerance is the
+        # algebraic noise of the inner solves, not divergence
+        growing = len(raw) >= 2 and raw[-1] > 10.0 and (raw[-1] > 2.0 * raw[-2]
+                                      or (len(raw) >= 3 and raw[-1] > raw[-2] > raw[-3]))
         if growing:
             if w <= MIN_RELAX:
                 rep = ConvergenceReport(converged=False, message="diverged", iterations=len(outer),
@@ -135,7 +139,7 @@ def outer_iteration(
                     f"{MIN_RELAX:g}", rep, OUTER_HINT)
             w = max(0.5 * w, MIN_RELAX)
             count = 0  # restart the Anderson history with the new damping
-            actions.append(f"iteration {it}: changes grew ({hist[-2]:.3g} -> {hist[-1]:.3g} tolerances); "
+            actions.append(f"iteration {it}: changes grew ({raw[-2]:.3g} -> {raw[-1]:.3g} tolerances); "
                            f"under-relaxation halved to {w:g}")
     report = ConvergenceReport(
         converged=converged,

@@ -74,17 +74,23 @@ def part_limit() -> None:
                                "Hc_ratio": r.Hc / r.Hc_isothermal, "Hm_ratio": r.Hm / r.Hm_isothermal,
                                "T_rise": r.T_max - s.T_oil, "outer": len(r.outer)})
         print(out["loading"][-1], flush=True)
-    # ... and by the oil at fixed M: temperature-viscosity index S0 and expansion alpha_T scaled
-    # by f, Eyring stress by 1/f (Newtonian limit), slip 0.1 S
+    # ... and by the oil at fixed M: the temperature-viscosity index S0 and the expansion
+    # alpha_T scaled by f (beta, hence the thermal loading, scales with S0; the viscosity at the
+    # oil temperature is kept by moving the reference to T_oil, so M and L stay); the Eyring
+    # stress is kept, so at f = 0 what remains is shear thinning, which shear_thinning=False
+    # removes as well
     out["oil"] = []
-    for f in (1.0, 0.1, 0.01, 0.001):
-        # the viscosity at the oil temperature is kept (reference moved to T_oil), so M and L stay
-        oil = lub.with_changes(eta0=sc.eta0, T0=sc.T_oil, S0=lub.S0 * f, alpha_T=lub.alpha_T * f, tau0=lub.tau0 / f)
-        s = dataclasses.replace(sc, lubricant=oil)
-        r = solve_tehl_line(s, 0.1, points=1025)
-        out["oil"].append({"scale": f, "Hc_ratio": r.Hc / r.Hc_isothermal, "Hm_ratio": r.Hm / r.Hm_isothermal,
-                           "T_rise": r.T_max - s.T_oil, "outer": len(r.outer)})
-        print(out["oil"][-1], flush=True)
+    for S in (0.0, 0.1):
+        for f in (1.0, 0.1, 0.01, 0.0):
+            oil = lub.with_changes(eta0=sc.eta0, T0=sc.T_oil, S0=lub.S0 * f, alpha_T=lub.alpha_T * f)
+            s = dataclasses.replace(sc, lubricant=oil)
+            for thin in ((True, False) if f == 0.0 else (True,)):
+                r = solve_tehl_line(s, S, points=1025, shear_thinning=thin)
+                out["oil"].append({"slip": S, "scale": f, "shear_thinning": thin,
+                                   "L_thermal": thermal_loading(oil, s.T_oil, s.us / 2),
+                                   "Hc_ratio": r.Hc / r.Hc_isothermal, "Hm_ratio": r.Hm / r.Hm_isothermal,
+                                   "T_rise": r.T_max - s.T_oil, "outer": len(r.outer)})
+                print(out["oil"][-1], flush=True)
     dump("limit", out)
 
 
