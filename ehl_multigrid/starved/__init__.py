@@ -9,7 +9,8 @@ Public API::
     sol.Hc, sol.Hc_flooded, sol.meniscus_x, sol.mass_balance_error, sol.extra["theta"]
 """
 
-from .line import StarvedLineHierarchy, solve_starved_line, solve_starved_problem
+from .line import StarvedLineHierarchy, solve_starved_problem
+from .meniscus import solve_starved_line
 from .supply import check_hoil, check_profile, hoil_venner
 
 __all__ = ["StarvedLineHierarchy", "solve_starved_line", "solve_starved_problem", "check_hoil",

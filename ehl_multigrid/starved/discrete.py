@@ -36,56 +36,105 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..line.discrete import FINE_H, wedge_coefficients
+from ..line.discrete import FINE_H
 
 
 @njit(cache=True)
-def wedge_weights(i, order, starved):
-    """Upwind weights ``c_m`` of ``q_{i-m}`` (times ``h``): the flooded solver's
-    (``wedge_coefficients``), except at ``i = 1`` of a starved inlet (``1.5, -1.5``)."""
-    if starved and order == 2 and i == 1:
-        return 1.5, -1.5, 0.0
-    return wedge_coefficients(i, order)
+def face_weights(i, theta, order, starved):
+    """Weights ``(w_i, w_{i-1})`` of the upwind face value ``Q_{i+1/2} = w_i q_i + w_{i-1} q_{i-1}``:
+    second order (1.5, -0.5); with a starved inlet, first order (1, 0) where either point is
+    not full (a front or a cavitated zone: the second-order extrapolation across the jump of
+    ``theta`` at the meniscus undershoots -- measured: a meniscus cell emptied below the
+    supplied flux and a relaxation stuck at a residual of 0.4); the first face: ``q_0`` at a
+    starved inlet, ``(q_0 + q_1)/2`` at a flooded one (the flooded solver's first-order
+    difference at i = 1). With a flooded inlet the scheme is the flooded solver's everywhere
+    (``theta`` only enters behind the rupture point)."""
+    if i == 0:
+        if starved or order == 1:
+            return 1.0, 0.0
+        return 0.5, 0.5  # weights of (q_0, q_1): see wedge_row
+    if order == 2 and (not starved or (theta[i] >= 1.0 and theta[i - 1] >= 1.0)):
+        return 1.5, -0.5
+    return 1.0, 0.0
 
 
 @njit(cache=True)
-def starved_inlet_correction(r, q, eps, P, h, order):
-    """Turn the flooded solver's residual at ``i = 1`` into the starved inlet's (in place):
-    wedge ``1.5 (q_1 - q_0)/h`` instead of ``(q_1 - q_0)/h`` and no pressure flow through
-    the first face."""
-    if order == 2:
-        r[1] += 0.5 * (q[1] - q[0]) / h
-    r[1] -= 0.5 * (eps[0] + eps[1]) * (P[1] - P[0]) / (h * h)
+def wedge_row(i, theta, order, starved):
+    """Upwind weights ``(c_0, c_1, c_2)`` of ``q_i, q_{i-1}, q_{i-2}`` (times ``h``) in the
+    wedge difference ``(Q_{i+1/2} - Q_{i-1/2})/h`` at interior point ``i``; equal to the
+    flooded solver's ``wedge_coefficients`` where the film is full."""
+    a0, a1 = face_weights(i, theta, order, starved)
+    c0, c1, c2 = a0, a1, 0.0
+    if i == 1:
+        b0, b1 = face_weights(0, theta, order, starved)
+        if b1 != 0.0:  # flooded first face (q_0 + q_1)/2
+            c0 -= b1
+            c1 -= b0
+        else:
+            c1 -= b0
+    else:
+        b0, b1 = face_weights(i - 1, theta, order, starved)
+        c1 -= b0
+        c2 -= b1
+    return c0, c1, c2
 
 
 @njit(cache=True)
-def face_fluxes(P, q, eps, h, order, starved):
+def elrod_adams_residual(P, H, rho, theta, eps, h, f, order, starved):
+    """Residual ``r = f - L(P, theta)`` (zero at the boundary points) and the sum of the
+    absolute Poiseuille and wedge terms (the scale of the relative residual). No pressure
+    flow passes the first face of a starved inlet."""
+    n = P.shape[0]
+    r = np.zeros(n)
+    scale = 0.0
+    ih2 = 1.0 / (h * h)
+    for i in range(1, n - 1):
+        ep = 0.5 * (eps[i] + eps[i + 1])
+        em = 0.5 * (eps[i] + eps[i - 1])
+        if i == 1 and starved:
+            em = 0.0
+        pois = (ep * (P[i + 1] - P[i]) - em * (P[i] - P[i - 1])) * ih2
+        c0, c1, c2 = wedge_row(i, theta, order, starved)
+        q = c0 * theta[i] * rho[i] * H[i] + c1 * theta[i - 1] * rho[i - 1] * H[i - 1]
+        if c2 != 0.0:
+            q += c2 * theta[i - 2] * rho[i - 2] * H[i - 2]
+        wedge = q / h
+        r[i] = f[i] - (pois - wedge)
+        scale += abs(pois) + abs(wedge)
+    return r, scale
+
+
+@njit(cache=True)
+def face_fluxes(P, theta, q, eps, h, order, starved):
     """Mass flux ``Q_{i+1/2} - eps_{i+1/2} (P_{i+1} - P_i)/h`` through every face
     ``i + 1/2``, ``i = 0 .. n-2`` (the fluxes whose differences are the discrete operator)."""
     n = P.shape[0]
     F = np.empty(n - 1)
     for i in range(n - 1):
         e = 0.5 * (eps[i] + eps[i + 1])
-        if order == 2 and i >= 1:
-            Q = 1.5 * q[i] - 0.5 * q[i - 1]
-        elif order == 2 and not starved:
-            Q = 0.5 * (q[0] + q[1])
+        w0, w1 = face_weights(i, theta, order, starved)
+        if i == 0:
+            Q = w0 * q[0] + w1 * q[1]
+            if starved:
+                e = 0.0
         else:
-            Q = q[i]
-        if i == 0 and starved:
-            e = 0.0
+            Q = w0 * q[i] + w1 * q[i - 1]
         F[i] = Q - e * (P[i + 1] - P[i]) / h
     return F
 
 
 @njit(cache=True)
-def cavitated(P, theta, r, frozen):
+def cavitated(P, theta, r, frozen, H):
     """Regime of each interior point: True where ``theta`` is the unknown (``P = 0`` and either
-    ``theta < 1`` or a residual that would push the pressure negative, ``r > 0``)."""
+    ``theta < 1`` or a residual that would push the pressure negative, ``r > 0``). A point
+    whose gap is closed (``H <= 0``, a coarse grid's elastic dent at a sharp meniscus) keeps
+    the pressure as its unknown: there ``dL/dtheta`` changes sign, so a film-content change
+    would empty it for good (measured: an empty, negative-gap pocket at the meniscus that
+    stopped the relaxation at a residual of 0.4)."""
     n = P.shape[0]
     cav = np.zeros(n, dtype=np.bool_)
     for i in range(1, n - 1):
-        if frozen[i]:
+        if frozen[i] or H[i] <= 0.0:
             continue
         if P[i] <= 0.0 and (theta[i] < 1.0 or r[i] > 0.0):
             cav[i] = True
@@ -93,38 +142,30 @@ def cavitated(P, theta, r, frozen):
 
 
 @njit(cache=True)
-def starved_relaxation_system(P, theta, q0_fixed, H, rho, drho, eps, r, K, h, order, elastic,
-                              threshold, band, frozen, cav, threshold_h):
-    """Banded system of one collective line-relaxation sweep in the universal variable.
+def band_jacobian(P, theta, q0_fixed, H, rho, drho, eps, K, h, order, elastic, band):
+    """Band parts of the Jacobian of ``L`` for one collective line-relaxation sweep.
 
-    Pressurised points get the change of ``P`` (Gauss-Seidel, or Jacobi-distributive where
-    ``eps/h^2`` is below the switch, as in the flooded solver, when both neighbours are
-    pressurised too); cavitated points (``cav``) get the change of ``theta``, whose column is
-    ``dL_i/dtheta_j = -c_{i-j} rho_j H_j/h`` (upwind weights). ``eps`` and the film content are
-    frozen in the pressure columns (Picard); the film's dependence on ``P`` is kept within the
-    band. ``q0_fixed``: the inlet flux ``q_0`` does not depend on ``P`` (a starved inlet
-    supplies exactly the oil layer).
-
-    Returns ``(ab, rhs, jac, dP, dT)``: LAPACK band storage of the matrix of the interior
-    unknowns, right-hand side, Jacobi flags, and the diagonal derivatives ``dL_i/dP_i`` and
-    ``dL_i/dtheta_i`` (to convert a change that crosses the regime boundary).
+    ``AP[i, band + 1 + d] = dL_i/dP_{i+d}`` for ``|d| <= band + 1``, with ``eps`` and the film
+    content frozen (Picard) and the film's elastic dependence on ``P`` kept within the band;
+    ``AT[i, mm] = dL_i/dtheta_{i-mm} = -c_mm rho H/h`` (upwind weights, ``mm = 0, 1, 2``).
+    ``q0_fixed``: a starved inlet's flux ``q_0 = Hoil`` does not depend on ``P``, and no
+    pressure flow passes its first face.
     """
     n = P.shape[0]
-    m = n - 2
     wq = band + 1
     AP = np.zeros((n, 2 * wq + 1))
-    AT = np.zeros((n, 3))  # dL_i/dtheta_{i-mm}, mm = 0, 1, 2
+    AT = np.zeros((n, 3))
     ih2 = 1.0 / (h * h)
     inv_pi = 1.0 / np.pi
     for i in range(1, n - 1):
         ep = 0.5 * (eps[i] + eps[i + 1])
         em = 0.5 * (eps[i] + eps[i - 1])
         if i == 1 and q0_fixed:
-            em = 0.0  # no pressure flow through a starved inlet's face
+            em = 0.0
         AP[i, wq - 1] += em * ih2
         AP[i, wq] += -(ep + em) * ih2
         AP[i, wq + 1] += ep * ih2
-        c0, c1, c2 = wedge_weights(i, order, q0_fixed)
+        c0, c1, c2 = wedge_row(i, theta, order, q0_fixed)
         for mm in range(3):
             c = c0 if mm == 0 else (c1 if mm == 1 else c2)
             if c == 0.0:
@@ -144,10 +185,26 @@ def starved_relaxation_system(P, theta, q0_fixed, H, rho, drho, eps, r, K, h, or
                 if j == k:
                     val += drho[k] * H[k]
                 AP[i, wq + d] -= c * theta[k] * val / h
+    return AP, AT
+
+
+@njit(cache=True)
+def line_system(AP, AT, r, P, theta, cav, frozen, eps, h, threshold, threshold_h, band):
+    """Band system of the sweep for a given regime of every point (``cav``: ``theta`` is the
+    unknown). A point whose regime differs from its current state starts from the regime
+    boundary: its known move there (``P -> 0`` or ``theta -> 1``) goes to the right-hand side,
+    so the system is the linearisation of the residual on the new regime (one step of a
+    primal-dual active-set iteration). Pressurised points are Jacobi-distributive where
+    ``eps/h^2`` is below the switch (as in the flooded solver) and both neighbours are
+    pressurised. Returns ``(ab, rhs, jac)`` (LAPACK band storage of the interior unknowns)."""
+    n = P.shape[0]
+    m = n - 2
+    wq = band + 1
+    ih2 = 1.0 / (h * h)
     jac = np.zeros(n, dtype=np.bool_)
     thr = max(threshold, threshold_h / h) if h < FINE_H else threshold
     for j in range(1, n - 1):
-        if cav[j] or cav[j - 1] or cav[j + 1]:
+        if cav[j] or cav[j - 1] or cav[j + 1] or frozen[j]:
             continue
         e = max(eps[j - 1], eps[j], eps[j + 1])
         jac[j] = e * ih2 < thr
@@ -159,46 +216,66 @@ def starved_relaxation_system(P, theta, q0_fixed, H, rho, drho, eps, r, K, h, or
             ab[band, row] = 1.0
             continue
         rhs[row] = r[i]
-        for d in range(-band, band + 1):
+        for d in range(-wq, wq + 1):
             j = i + d
             if j < 1 or j > n - 2 or frozen[j]:
                 continue
+            mm = i - j
+            # known move of a point that changes regime
+            if cav[j] and P[j] > 0.0:
+                rhs[row] += AP[i, wq + d] * P[j]
+            elif not cav[j] and theta[j] < 1.0 and 0 <= mm <= 2:
+                rhs[row] -= AT[i, mm] * (1.0 - theta[j])
+            if d < -band or d > band:
+                continue
             if cav[j]:
-                mm = i - j
                 b = AT[i, mm] if 0 <= mm <= 2 else 0.0
             else:
                 b = AP[i, wq + d]
                 if jac[j]:
-                    if j - 1 >= 1:
-                        b -= 0.5 * AP[i, wq + d - 1]
-                    if j + 1 <= n - 2:
-                        b -= 0.5 * AP[i, wq + d + 1]
+                    b -= 0.5 * AP[i, wq + d - 1]
+                    b -= 0.5 * AP[i, wq + d + 1]
             ab[band + row - (j - 1), j - 1] = b
-    dP = np.zeros(n)
-    dT = np.zeros(n)
-    for i in range(1, n - 1):
-        dP[i] = AP[i, wq]
-        dT[i] = AT[i, 0]
-    return ab, rhs, jac, dP, dT
+    return ab, rhs, jac
 
 
 @njit(cache=True)
-def apply_changes(P, theta, delta, jac, cav, dP, dT, omega_gs, omega_jac, omega_theta, frozen):
-    """Apply the under-relaxed changes of one sweep and move points across the regime
-    boundary: a pressure that would fall below 0 becomes a film content below 1 and a film
-    content above 1 a positive pressure, converted with the diagonal derivatives so the change
-    of the residual is the one the sweep asked for. ``theta`` never falls below a fifth of its
-    previous value (it stays positive)."""
+def regime_update(P, theta, delta, cav, frozen):
+    """Regimes after a trial solve: a film content pushed above 1 becomes a pressure, a
+    pressure pushed below 0 a film content. Returns the new regimes and how many changed."""
     n = P.shape[0]
-    dPv = np.zeros(n)
-    dTv = np.zeros(n)
+    new = cav.copy()
+    changed = 0
     for j in range(1, n - 1):
         if frozen[j]:
             continue
         d = delta[j - 1]
         if cav[j]:
-            dTv[j] += omega_theta * d
-        elif jac[j]:
+            base = theta[j] if P[j] <= 0.0 else 1.0
+            if base + d > 1.0:
+                new[j] = False
+                changed += 1
+        else:
+            base = P[j] if theta[j] >= 1.0 else 0.0
+            if base + d < 0.0:
+                new[j] = True
+                changed += 1
+    return new, changed
+
+
+@njit(cache=True)
+def apply_changes(P, theta, delta, jac, cav, omega_gs, omega_jac, omega_theta, frozen):
+    """Apply the under-relaxed changes of one sweep in the regimes ``cav``: a point that
+    changed regime starts from the boundary (``P = 0``, ``theta = 1``); pressures are
+    projected to ``P >= 0`` and film contents to ``theta <= 1``; ``theta`` never falls below
+    a fifth of its previous value (it stays positive)."""
+    n = P.shape[0]
+    dPv = np.zeros(n)
+    for j in range(1, n - 1):
+        if frozen[j] or cav[j]:
+            continue
+        d = delta[j - 1]
+        if jac[j]:
             d *= omega_jac
             dPv[j] += d
             dPv[j - 1] -= 0.5 * d
@@ -211,24 +288,15 @@ def apply_changes(P, theta, delta, jac, cav, dP, dT, omega_gs, omega_jac, omega_
         if frozen[j]:
             continue
         if cav[j]:
-            t = theta[j] + dTv[j]
-            if t > 1.0:
-                Tn[j] = 1.0
-                ratio = dT[j] / dP[j] if dP[j] != 0.0 else 0.0
-                Pn[j] = (t - 1.0) * ratio if ratio > 0.0 else 0.0
-            else:
-                Tn[j] = max(t, 0.2 * theta[j])
-                Pn[j] = 0.0
+            base = theta[j] if P[j] <= 0.0 else 1.0
+            t = base + omega_theta * delta[j - 1]
+            Tn[j] = min(1.0, max(t, 0.2 * theta[j]))
+            Pn[j] = 0.0
         else:
-            p = P[j] + dPv[j]
-            if p >= 0.0:
-                Pn[j] = p
-                Tn[j] = 1.0
-            else:
-                Pn[j] = 0.0
-                ratio = dP[j] / dT[j] if dT[j] != 0.0 else 0.0
-                t = 1.0 + p * ratio if ratio > 0.0 else 1.0
-                Tn[j] = min(1.0, max(t, 0.2 * theta[j]))
+            base = P[j] if theta[j] >= 1.0 else 0.0
+            p = base + dPv[j]
+            Pn[j] = p if p > 0.0 else 0.0
+            Tn[j] = 1.0
     Pn[0] = 0.0
     Pn[n - 1] = 0.0
     return Pn, Tn

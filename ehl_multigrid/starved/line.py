@@ -22,9 +22,12 @@ rheology, transfers, FMG start rules and the driver (:class:`MultilevelSolver`) 
   (newton.py), started from the flooded solution and, when that fails, by continuation in
   ``Hoil``.
 
-``solve_starved_line`` also solves the flooded problem (the core line solver on the same
-grid) for ``Hc_flooded``, ``Hm_flooded`` and as the start; it reports the meniscus, the
-rupture point, the outlet layer and the mass balance.
+:func:`solve_starved_problem` solves one problem as given: with ``Hoil`` below the flooded
+flux the meniscus is found inside the multilevel iteration (the fully coupled Elrod-Adams
+inlet; converges from the starved guess at moderate starvation, not robust at severe
+starvation, see validation/starved); with ``Hoil = inf`` the inlet is flooded and only the
+rupture is Elrod-Adams. The public solver (:func:`ehl_multigrid.starved.solve_starved_line`)
+locates the meniscus by an outer root search over flooded-inlet solves (meniscus.py).
 """
 
 from __future__ import annotations
@@ -36,20 +39,21 @@ from typing import Any
 
 import numpy as np
 
+from ..line.newton import NewtonFailure
+from ..line.newton import newton_solve as flooded_newton
 from ..line.problem import LineProblem
 from ..line.solution import finish_line_result
 from ..line.solver import (
     HINT,
     LINE_POLICY,
-    MAX_ACCURACY_POINTS,
     LineHierarchy,
+    coarse_points,
     line_levels,
     line_settings,
     solve_line_problem,
 )
-from ..model.errors import ConvergenceError, InputError, require_range
+from ..model.errors import ConvergenceError
 from ..model.lubricant import density_ratio_dh
-from ..multigrid.accuracy import film_change, film_tol, solve_to_accuracy
 from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.options import LineOptions
 from ..multigrid.policy import RobustnessPolicy, Settings
@@ -58,10 +62,23 @@ from ..multigrid.transfer import full_weighting, inject, interpolate_cubic, inte
 from .discrete import face_fluxes
 from .level import StarvedLevel
 from .newton import StarvedNewtonFailure, newton_solve
-from .supply import check_hoil
 
-#: largest grid the dense Newton may finish after a multigrid stall
-MAX_DENSE_POINTS = 1025
+#: largest grid the dense Newton may finish after a multigrid stall or on the start grid
+MAX_DENSE_POINTS = 513
+#: relaxation sweeps per visit of the coarsest grid
+COARSE_SWEEPS = 30
+#: most relaxation sweeps on the FMG start grid, and the fraction of the cycles' film-constant
+#: gain used there (measured at M = 20, L = 10, 257 points, Hoil = 0.02: the full gain 0.1
+#: per sweep drives the film through zero, a tenth of it settles in 500 sweeps)
+START_SWEEPS = 4000
+START_GAIN = 0.1
+#: start-grid resolution of the starved inlet: mesh size at most this fraction of the rigid
+#: inlet length sqrt(2 Hc) of the starved film (Hc ~ Hoil/rho_c); measured at M = 20,
+#: L = 10: Hoil = 0.02 on h = 0.045 (0.25) converges, Hoil = 0.002 on the same grid (0.78)
+#: leaves a negative film at the meniscus
+START_RESOLUTION = 0.25
+#: smallest FMG start grid (the flooded solver's coarse-grid rule applies above it)
+MIN_START_POINTS = 129
 #: default tolerances of the mass-conserving solve: the mass balance is the sum of the
 #: residuals, so the residual tolerance is tighter than the flooded solver's
 STARVED_TOL = 1e-7
@@ -80,8 +97,14 @@ class StarvedLineHierarchy(LineHierarchy):
         self.hoil = hoil
         self.flooded = flooded
         par = problem.rheology()
-        nlev = line_levels(options, problem.M)
         n_f = options.points
+        self.n_start = start_points(problem, options, hoil, flooded)
+        if options.levels is None and self.n_start == n_f:
+            nlev = line_levels(options, problem.M)  # the flooded solver's grids
+        else:
+            nlev = int(options.levels) if options.levels is not None else \
+                int(round(math.log2((n_f - 1) / (self.n_start - 1)))) + 1
+            line_levels(dataclasses.replace(options, levels=nlev), problem.M)  # validates the grid
         self.levels = [
             StarvedLevel((n_f - 1) // 2 ** (nlev - 1 - k) + 1, problem.xmin, problem.xmax, par,
                          problem.lam, problem.elastic, options.deformation, options.wedge_order,
@@ -167,16 +190,22 @@ class StarvedLineHierarchy(LineHierarchy):
         lv.H0 += cv.H0 - H0_start
 
     def coarse_solve(self, k: int, s: Settings) -> float:
+        """Flooded inlet: the flooded solver's dense Newton for ``(P, H0)`` (the coarse points
+        that are not pressurised are frozen, so the film content does not enter); starved
+        inlet: relaxation sweeps with the film constant following the load. Newton failing,
+        relaxation too."""
         lv = self.levels[k]
-        saved = (lv.P.copy(), lv.theta.copy(), lv.H0)
-        try:
-            its = newton_solve(lv)
-        except StarvedNewtonFailure as exc:
-            lv.P, lv.theta, lv.H0 = saved
-            self.solver.note(f"coarse Newton failed ({exc}); relaxed instead")
-            return self.relax(k, 20, s, True)
-        self.newton_iterations += its
-        return its * self.work(k)
+        if not self.starved_inlet:
+            saved = (lv.P.copy(), lv.H0)
+            try:
+                its = flooded_newton(lv)
+                lv.P = np.maximum(lv.P, 0.0)
+                self.newton_iterations += its
+                return its * self.work(k)
+            except NewtonFailure as exc:
+                lv.P, lv.H0 = saved
+                self.solver.note(f"coarse Newton failed ({exc}); relaxed instead")
+        return self.relax(k, COARSE_SWEEPS, s, True)
 
     def fmg_interpolate(self, k: int, s: Settings) -> float:
         lv, cv = self.levels[k], self.levels[k - 1]
@@ -204,44 +233,71 @@ class StarvedLineHierarchy(LineHierarchy):
         lv.frozen[:] = False
         lv.H0 = fl.H0
         lv.H0 += float(np.interp(0.0, fl.X, fl.H)) - self.central_film(lv)
+        if self.starved_inlet:
+            # starved guess: the film that carries the supply, no pressure upstream of the
+            # point where the gap shrinks to Hoil, the film content carrying Hoil elsewhere
+            st = lv.state()
+            rho_c = float(np.interp(0.0, lv.X, st.rho))
+            Hc = self.central_film(lv, st)
+            lv.H0 += min(self.hoil / rho_c, Hc) - Hc
+            st = lv.state()
+            peak = int(np.argmax(lv.P))
+            wide = np.flatnonzero((np.arange(lv.n) >= peak) | (st.H <= self.hoil))
+            first = int(wide[0]) if wide.size else peak
+            lv.P[:first] = 0.0
+            lv.theta[:first] = np.minimum(1.0, self.hoil / st.H[:first])
+            out = (np.arange(lv.n) > peak) & (lv.P <= 0.0)
+            lv.theta[out] = np.minimum(1.0, self.hoil / np.maximum(st.H[out], 1e-12))
+
+    def _start_level(self) -> int:
+        for k, lv in enumerate(self.levels):
+            if lv.n >= self.n_start:
+                return k
+        return len(self.levels) - 1
 
     def start(self, solver: MultilevelSolver) -> int:
-        """Solve the FMG start grid by dense Newton from the flooded solution; when that
-        fails, by continuation in ``Hoil`` (halved from the flooded central film)."""
+        """Solve the FMG start grid from the flooded solution: relaxation sweeps with the film
+        constant following the load slowly (a tenth of the cycles' gain: the starved film
+        settles to the supplied flux first), then dense Newton to finish when the grid is
+        small enough. The start grid resolves the starved inlet (:func:`start_points`)."""
         self.solver = solver
         k = self._start_level()
         lv = self.levels[k]
         self._from_flooded(lv)
-        try:
-            its = newton_solve(lv, max_iter=120)
-        except StarvedNewtonFailure as exc:
-            solver.note(f"FMG start on {lv.n} points: Newton from the flooded solution failed "
-                        f"({exc}); continuation in Hoil")
-            its = self._continuation(lv)
-        self.newton_iterations += its
-        solver.work_units += its * self.work(k)
-        if k > 0:
-            solver.note(f"FMG started on the {lv.n}-point grid (cycles still coarsen to {self.levels[0].n})")
-        return k
-
-    def _continuation(self, lv: StarvedLevel) -> int:
-        target = self.hoil
-        steps = [target]
-        while steps[-1] * 2.0 < 0.9 * self.flux_flooded:
-            steps.append(steps[-1] * 2.0)
-        self._from_flooded(lv)
-        total = 0
-        for hoil in reversed(steps):
-            lv.hoil = hoil
+        if not self.starved_inlet:
+            # the flooded solution on the same grid is the start: only the film content
+            # behind the rupture is new
+            return k
+        s = solver.settings
+        tol, tol_load = 0.1 * solver.options.tol, 0.1 * solver.options.tol_load
+        sweeps = 0
+        omega_theta = min(1.0, 2.0 * s.omega)
+        while sweeps < START_SWEEPS:
+            lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=s.switch_h,
+                     omega_theta=omega_theta)
+            lv.H0 += START_GAIN * s.h00_gain * (lv.load() - lv.g)
+            sweeps += 1
+            if sweeps % 50 == 0:
+                m = self.measure(k)
+                if not m.ok and not np.all(np.isfinite(lv.P)):
+                    raise ConvergenceError(f"the starved start on {lv.n} points produced NaN after "
+                                           f"{sweeps} sweeps", None, HINT)
+                if m.residual < tol and abs(m.load_error) < tol_load:
+                    break
+        solver.work_units += sweeps * self.work(k)
+        m = self.measure(k)
+        solver.note(f"FMG start on {lv.n} points: {sweeps} relaxation sweeps from the flooded "
+                    f"solution (residual {m.residual:.3g}, load error {m.load_error:.3g})")
+        if lv.n <= MAX_DENSE_POINTS and not (m.residual < tol and abs(m.load_error) < tol_load):
+            saved = (lv.P.copy(), lv.theta.copy(), lv.H0)
             try:
-                total += newton_solve(lv, max_iter=120)
+                its = newton_solve(lv, max_iter=40)
+                self.newton_iterations += its
+                solver.work_units += its * self.work(k)
             except StarvedNewtonFailure as exc:
-                lv.hoil = target
-                raise ConvergenceError(
-                    f"the starved start failed even with continuation in Hoil (at Hoil = {hoil:.4g}: "
-                    f"{exc})", None, HINT) from None
-        lv.hoil = target
-        return total
+                lv.P, lv.theta, lv.H0 = saved
+                solver.note(f"FMG start: dense Newton did not finish the start grid ({exc})")
+        return k
 
     # -- last resort ----------------------------------------------------------------------
     def last_resort(self, k: int, solver: MultilevelSolver) -> bool:
@@ -264,6 +320,31 @@ class StarvedLineHierarchy(LineHierarchy):
         return solver.converged()
 
 
+def start_points(problem: LineProblem, options: LineOptions, hoil: float, flooded: EHLResult) -> int:
+    """Points of the FMG start grid: the flooded solver's start grid, refined until the mesh
+    resolves the starved inlet (``h <= START_RESOLUTION sqrt(2 Hc)`` with the film that the
+    supply carries, ``Hc ~ min(Hoil, Hc_ff)/rho_c``), at most the finest grid."""
+    if options.fmg_start_points is not None:
+        return min(int(options.fmg_start_points), options.points)
+    if not hoil < flooded_flux_estimate(flooded):
+        return options.points  # flooded inlet: start from the flooded solution itself
+    n = max(MIN_START_POINTS, coarse_points(problem.M))
+    Hc_ff = float(flooded.scalars["Hc_venner"])
+    Hc = min(hoil, Hc_ff)
+    h_need = START_RESOLUTION * math.sqrt(2.0 * max(Hc, 1e-12))
+    while n < options.points and (problem.xmax - problem.xmin) / (n - 1) > h_need:
+        n = 2 * (n - 1) + 1
+    return min(n, options.points)
+
+
+def flooded_flux_estimate(flooded: EHLResult) -> float:
+    """Flux of the flooded contact ``rho H`` at the pressure maximum (its Couette part; the
+    hierarchy measures it exactly on its own discretisation)."""
+    i = int(np.argmax(flooded.P))
+    rho = density_ratio_dh(flooded.P[i] * flooded.problem.pmax) if flooded.problem.density == "dowson-higginson" else 1.0
+    return float(rho * flooded.H[i])
+
+
 def flooded_flux(lv: StarvedLevel, flooded: EHLResult) -> float:
     """Mass flux through the flooded contact (Venner units), at the face next to the
     pressure maximum (where the flux is all Couette), evaluated on grid ``lv``'s
@@ -271,7 +352,7 @@ def flooded_flux(lv: StarvedLevel, flooded: EHLResult) -> float:
     stride = (flooded.X.shape[0] - 1) // (lv.n - 1)
     P = np.maximum(flooded.P[::stride], 0.0)
     st = lv.state(P, flooded.H0, np.ones(lv.n))
-    F = face_fluxes(P, st.q, st.eps, lv.h, lv.order, False)
+    F = face_fluxes(P, st.theta, st.q, st.eps, lv.h, lv.order, False)
     return float(F[min(int(np.argmax(P)), F.shape[0] - 1)])
 
 
@@ -371,90 +452,3 @@ def solve_starved_problem(problem: LineProblem, hoil: float, options: LineOption
     out = finish_starved_result(res, solver, flooded, scene)
     hz.solver = None
     return out
-
-
-def starved_domain_change(problem: LineProblem, hoil: float, options: LineOptions,
-                          sol: EHLResult) -> tuple[float, float] | None:
-    """Relative change of (Hc, Hm) when the inlet moves upstream by the box length at equal
-    mesh size (two solves two grids below the finest, not below the FMG start grid)."""
-    top = sol.levels - 1
-    k0 = max(top - 2, min(d["level"] for d in sol.fmg))
-    wide = dataclasses.replace(problem, xmin=problem.xmin - (problem.xmax - problem.xmin))
-    n_p = (sol.X.shape[0] - 1) // 2 ** (top - k0) + 1
-
-    def solve(pb: LineProblem, n: int) -> EHLResult:
-        o = dataclasses.replace(options, points=n, levels=None, fmg_start_points=None,
-                                raise_on_failure=False, film_tol=None)
-        return solve_starved_problem(pb, hoil, o)
-
-    return film_change(lambda: solve(problem, n_p), lambda: solve(wide, 2 * (n_p - 1) + 1))
-
-
-def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions | None = None,
-                       accuracy: float | None = None, *, estimate: bool = True,
-                       callback: Callable[[dict[str, Any]], None] | None = None,
-                       max_points: int = MAX_ACCURACY_POINTS, scene: Any = None,
-                       **kw: Any) -> EHLResult:
-    """Solve the starved, mass-conserving isothermal EHL line contact.
-
-    Parameters
-    ----------
-    problem : the :class:`~ehl_multigrid.line.problem.LineProblem` (M, L, oil, domain).
-    hoil : supplied oil layer ahead of the contact in Venner units, ``Hoil = hoil R/b^2``
-        (both surfaces together, at ambient density; Moes units: ``Hoil 8M/pi``). ``inf``
-        or any layer thicker than the inlet gap gives a flooded inlet (still with the
-        mass-conserving outlet). Allowed: ``(0, inf]``.
-    options : :class:`~ehl_multigrid.multigrid.options.LineOptions` (default: the line
-        defaults with ``tol = tol_load = 1e-7``, so the mass balance, the sum of the
-        residuals, closes to about 1e-7); keywords override its fields.
-    accuracy : relative target for Hc and Hm (as :func:`ehl_multigrid.line.solve_line`): the
-        grid is refined until the estimated error meets it or ``max_points`` is reached.
-    estimate : attach the error estimate (grid part: Richardson from the FMG levels; domain
-        part: two coarse solves with a doubled box; algebraic part: last-cycle change).
-
-    Returns
-    -------
-    EHLResult
-        Line scalars (``Hc``, ``Hm`` in Moes units, ``Hc_venner`` ...) plus ``Hc_flooded``,
-        ``Hm_flooded`` (the core flooded solver on the same grid), ``Hc_ratio``,
-        ``Hm_ratio``, ``meniscus_x``, ``cavitation_x``, ``mass_balance_error`` (relative
-        difference of the mass flux through the first and last face), ``outlet_layer``
-        (the layer left behind the contact, Moes units; ``outlet_layer_venner``),
-        ``rho_c_Hc_over_hoil``; ``extra['theta']`` the film content. Histories: residual,
-        load error, cycles as every driver result.
-
-    Raises
-    ------
-    InputError : bad ``hoil`` (negative, zero, NaN) or options.
-    ConvergenceError : divergence, a stall or NaN (``raise_on_failure``, the default).
-    """
-    hoil = check_hoil(hoil)
-    opts = starved_options(options, **kw)
-    if accuracy is not None:
-        require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
-    if not estimate:
-        return solve_starved_problem(problem, hoil, opts, callback=callback, scene=scene)
-    explicit = "points" in kw or (options is not None and accuracy is None)
-
-    def solve(n: int, box: float, tol_factor: float) -> EHLResult:
-        p = problem if box == 1.0 else dataclasses.replace(
-            problem, xmin=problem.xmax - box * (problem.xmax - problem.xmin))
-        o = dataclasses.replace(opts, points=n, tol=opts.tol * tol_factor,
-                                tol_load=opts.tol_load * tol_factor, raise_on_failure=False,
-                                film_tol=film_tol(opts, accuracy, tol_factor))
-        return solve_starved_problem(p, hoil, o, callback=callback, scene=scene)
-
-    def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
-        return starved_domain_change(res.problem, hoil, res.options, res)
-
-    res = solve_to_accuracy(solve, probe, accuracy, opts.points, max_points,
-                            refine=accuracy is not None and not explicit)
-    if not res.success and opts.raise_on_failure:
-        raise ConvergenceError(f"starved line solver: {res.message}", res.report, HINT)
-    return res
-
-
-def validate_problem(problem: Any) -> LineProblem:
-    if not isinstance(problem, LineProblem):
-        raise InputError(f"problem = {type(problem).__name__}: expected a LineProblem")
-    return problem

@@ -11,12 +11,9 @@ import warnings
 import numpy as np
 import scipy.linalg
 
-from ..line.discrete import fluid_state, reynolds_residual
-from .discrete import starved_inlet_correction, wedge_weights
+from ..line.discrete import fluid_state
+from .discrete import elrod_adams_residual, wedge_row
 from .level import StarvedLevel
-
-
-_DEBUG = False
 
 
 class StarvedNewtonFailure(RuntimeError):
@@ -36,10 +33,8 @@ def _jacobian(lv: StarvedLevel, P: np.ndarray, theta: np.ndarray, H0: float, Kma
     H, rho, drho, lne, dlne, eps = fluid_state(P, W, lv.X, H0, lv.par, lv.lam, lv.elastic)
     th = theta.copy()
     th[0] = lv.inlet_theta(H[0])
-    r, _ = reynolds_residual(P, H, th * rho, eps, h, lv.f, lv.order)
     starved = bool(th[0] < 1.0)
-    if starved:
-        starved_inlet_correction(r, th * rho * H, eps, P, h, lv.order)
+    r, _ = elrod_adams_residual(P, H, rho, th, eps, h, lv.f, lv.order, starved)
     dH = -Kmat / np.pi if lv.elastic else np.zeros((n, n))
     pos = H > 0.0
     Hs = np.where(pos, H, 1.0)
@@ -71,7 +66,7 @@ def _jacobian(lv: StarvedLevel, P: np.ndarray, theta: np.ndarray, H0: float, Kma
         dL[1, 1] += ih2 * em[0]
         dL[1, 0] -= ih2 * em[0]
     for k in range(1, n - 1):
-        c = wedge_weights(k, lv.order, starved)
+        c = wedge_row(k, th, lv.order, starved)
         for mm in range(3):
             if c[mm] == 0.0:
                 continue
@@ -171,6 +166,5 @@ def newton_solve(lv: StarvedLevel, max_iter: int = 80, tol: float = 1e-10) -> in
                     lv.P, lv.theta, lv.H0 = np.maximum(P, 0.0), np.minimum(theta, 1.0), H0
                     return it - 1
                 raise StarvedNewtonFailure(f"line search failed at iteration {it} (|phi| = {norm0:.3g})")
-        if _DEBUG: print(it, norm0, t, np.abs(phi[:m]).max(), np.abs(phi[m:2*m]).max(), phi[-1], int(np.argmax(np.abs(phi[:m]))))
         P, theta, H0 = Pt, Tt, H0t
     raise StarvedNewtonFailure(f"dense Newton did not converge in {max_iter} iterations")

@@ -1,0 +1,290 @@
+"""The starved line contact for a given oil supply: the meniscus found by an outer root search.
+
+In a steady line contact under Elrod-Adams cavitation the film ahead of the meniscus ``X_m``
+is a film content ``theta = Hoil/H`` at zero pressure carrying the supplied flux ``Hoil``
+(Venner units, ``hoil R/b^2``), and from the meniscus on the gap is full. The solution
+downstream of ``X_m`` is therefore the flooded-inlet solution on the box ``[X_m, xmax]``,
+and the meniscus is where that solution's mass flux equals the supply:
+
+``F(X_m) = Hoil``,
+
+with ``F`` the flux through the box (Couette plus pressure flow at the inlet face: the
+pressure flow at the meniscus is the oil the full film pushes back into the partly filled
+zone, the Elrod-Adams front condition). ``F`` grows from 0 (meniscus at the Hertzian edge)
+to the flooded flux ``F_ff`` (meniscus far upstream); a supply ``Hoil >= F_ff`` floods the
+contact (the excess flows back). Each ``F(X_m)`` is one multilevel solve of the
+mass-conserving hierarchy (line.py, Elrod-Adams rupture behind the contact, so the layer left
+on the track is computed, not assumed); the root is bracketed by a scan from the contact
+outwards and refined by Brent's method, first on a coarse grid and then on the requested one.
+
+The result lives on the box grid (``X`` from ``X_m``); ``extra['upstream']`` holds the
+starved inlet ahead of it (``X``, ``H``, ``theta``) from the film equation.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import scipy.optimize
+
+from ..line.problem import LineProblem
+from ..line.solver import HINT
+from ..model.errors import ConvergenceError, require_range
+from ..multigrid.accuracy import (
+    HM_MAX_ORDER,
+    LOAD_SENSITIVITY,
+    ErrorEstimate,
+    attach_estimate,
+    estimate_error,
+    richardson,
+)
+from ..multigrid.options import LineOptions
+from ..multigrid.result import EHLResult
+from .line import solve_starved_problem, starved_options
+from .supply import check_hoil
+
+#: meniscus positions tried (from the contact outwards) to bracket ``F(X_m) = Hoil``; the
+#: flooded solver's start fails with the inlet at the Hertzian edge (measured at M = 20,
+#: L = 10: X_m = -1.0 fails, -1.05 converges), so the scan starts just upstream of it
+MENISCUS_SCAN = (-1.003, -1.006, -1.01, -1.02, -1.03, -1.05, -1.08, -1.12, -1.2, -1.35, -1.6, -2.0, -2.6, -3.5, -5.0,
+                 -7.0, -10.0, -15.0, -25.0, -50.0)
+#: relative tolerance of the flux match (the mass balance of the supply)
+FLUX_RTOL = 1e-9
+#: grid of the coarse root search
+COARSE_POINTS = 257
+
+
+def upstream_film(res: EHLResult, X: np.ndarray) -> np.ndarray:
+    """Film ``H = H0 + X^2/2 - (1/pi) int ln|X - x| P(x) dx`` at points ``X`` ahead of the box
+    (zero pressure there), with the box pressure piecewise constant on its cells (the cell
+    integrals of the line kernel, thesis (2.2))."""
+    Xb, P, h = res.X, res.P, res.X[1] - res.X[0]
+
+    def prim(u: np.ndarray) -> np.ndarray:  # antiderivative of ln|u|
+        au = np.abs(u)
+        return np.where(au > 0.0, u * np.log(np.where(au > 0.0, au, 1.0)) - u, 0.0)
+
+    d_hi = (Xb[None, :] + 0.5 * h) - X[:, None]
+    d_lo = (Xb[None, :] - 0.5 * h) - X[:, None]
+    W = (prim(d_hi) - prim(d_lo)) @ P
+    elastic = res.problem.elastic
+    return res.H0 + 0.5 * X**2 - (W / math.pi if elastic else 0.0)
+
+
+class _FluxMap:
+    """``X_m -> F(X_m)`` by box solves on ``points`` points (cached)."""
+
+    def __init__(self, problem: LineProblem, options: LineOptions, points: int) -> None:
+        self.problem, self.points = problem, points
+        self.options = dataclasses.replace(options, points=points, levels=None,
+                                           fmg_start_points=None, raise_on_failure=False)
+        self.cache: dict[float, EHLResult] = {}
+        self.work = 0.0
+
+    def solve(self, xm: float) -> EHLResult:
+        if xm not in self.cache:
+            pb = dataclasses.replace(self.problem, xmin=float(xm))
+            res = solve_starved_problem(pb, math.inf, self.options)
+            self.work += res.work_units if math.isfinite(res.work_units) else 0.0
+            self.cache[xm] = res
+        return self.cache[xm]
+
+    def flux(self, xm: float) -> float:
+        res = self.solve(xm)
+        return float(res.scalars["flux_in"]) if res.success else math.nan
+
+
+def _bracket(fm: _FluxMap, hoil: float, xmin: float, near: float | None = None) -> tuple[float, float]:
+    """Adjacent meniscus positions with ``F`` below and above ``hoil`` (scan from the contact
+    outwards; around ``near`` first when given)."""
+    if near is not None:
+        cands = [near + d for d in (0.0, 0.005, -0.005, 0.02, -0.02, 0.08, -0.08)]
+        cands = sorted({min(max(c, xmin), MENISCUS_SCAN[0]) for c in cands}, reverse=True)
+    else:
+        cands = [x for x in MENISCUS_SCAN if x > xmin] + [xmin]
+    prev = None
+    for x in cands:
+        F = fm.flux(x)
+        if not math.isfinite(F):
+            continue
+        if F >= hoil:
+            if prev is None:
+                raise _Unreachable(x, F)
+            return x, prev
+        prev = x
+    if near is not None:
+        return _bracket(fm, hoil, xmin)
+    raise ConvergenceError(f"no meniscus position in [{xmin:g}, {MENISCUS_SCAN[0]:g}] carries Hoil = "
+                           f"{hoil:.4g} (largest flux found below it)", None, HINT)
+
+
+class _Unreachable(Exception):
+    """The supply is below what the box solver reaches next to the Hertzian edge."""
+
+    def __init__(self, x: float, F: float) -> None:
+        super().__init__(f"X_m = {x:g}: F = {F:.4g}")
+        self.x, self.F = x, F
+
+
+def _root(fm: _FluxMap, hoil: float, lo: float, hi: float) -> float:
+    """Brent's method on ``ln F(X_m) - ln Hoil`` between the bracket ends."""
+    def g(x: float) -> float:
+        F = fm.flux(x)
+        if not math.isfinite(F):
+            raise ConvergenceError(f"the flooded-inlet box solve at X_m = {x:.6g} did not converge "
+                                   f"({fm.solve(x).message})", None, HINT)
+        return math.log(F / hoil)
+
+    return float(scipy.optimize.brentq(g, lo, hi, xtol=1e-12, rtol=1e-12, maxiter=60))
+
+
+def supply_estimate(res: EHLResult, ladder: list[tuple[int, float, EHLResult]]) -> ErrorEstimate:
+    """Error estimate at fixed supply: Richardson over the films of the nested root searches
+    (grids refined by 2; first order with fewer than three, as the core estimate), no domain
+    part (the box starts at the meniscus, ahead of which the starved inlet is exact), and the
+    algebraic part from the supply mismatch and the load error."""
+    Hc, Hm = float(res.scalars["Hc_venner"]), float(res.scalars["Hm_venner"])
+    rc = richardson([r.scalars["Hc_venner"] for _, _, r in ladder])
+    rm = richardson([r.scalars["Hm_venner"] for _, _, r in ladder], max_order=HM_MAX_ORDER)
+    grid = {"Hc": abs(rc.error / Hc), "Hm": abs(rm.error / Hm)}
+    le = abs(float(res.load_error_history[-1])) if len(res.load_error_history) else math.inf
+    alg = res.scalars.get("supply_mismatch", 0.0) + LOAD_SENSITIVITY * le
+    budget = {"grid": grid, "domain": {"Hc": 0.0, "Hm": 0.0}, "algebraic": {"Hc": alg, "Hm": alg}}
+    notes = ["grid part: Richardson over the root searches at fixed Hoil on "
+             + ", ".join(str(n) for n, _, _ in ladder) + " points",
+             "domain part 0: the box starts at the meniscus"]
+    if not rc.regular:
+        notes.append("Hc converges irregularly (or fewer than three grids): first-order estimate")
+    return ErrorEstimate(grid["Hc"] + alg, grid["Hm"] + alg, budget, rc.order, rm.order,
+                         rc.extrapolated, notes)
+
+
+def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions | None = None,
+                       accuracy: float | None = None, *, estimate: bool = True,
+                       callback: Callable[[dict[str, Any]], None] | None = None,
+                       scene: Any = None, **kw: Any) -> EHLResult:
+    """Solve the starved, mass-conserving isothermal EHL line contact for a supplied oil layer.
+
+    Parameters
+    ----------
+    problem : the :class:`~ehl_multigrid.line.problem.LineProblem` (M, L, oil, box).
+    hoil : supplied oil layer ahead of the contact in Venner units, ``Hoil = hoil R/b^2``
+        (both surfaces together, at ambient density; Moes units: ``Hoil 8M/pi``;
+        :func:`~ehl_multigrid.starved.supply.hoil_venner` converts metres). A layer at or
+        above the flooded contact's flux floods it. Allowed: ``(0, inf]``.
+    options : :class:`~ehl_multigrid.multigrid.options.LineOptions` (default: the line
+        defaults with ``tol = tol_load = 1e-7``: the mass balance is the sum of the residuals);
+        keywords override its fields (``points`` ...).
+    accuracy : relative target for Hc and Hm: the result's status is ``"inaccurate"`` when the
+        estimate exceeds it (no automatic refinement).
+    estimate : attach the error estimate (:func:`supply_estimate`: the core's Richardson
+        rule over the films of nested root searches on 257, 513, ... points at fixed Hoil; the
+        flooded solver's estimate when the inlet is flooded).
+
+    Returns
+    -------
+    EHLResult
+        On the box ``[meniscus_x, xmax]``: ``P``, ``H``, ``extra['theta']``, line scalars
+        (``Hc``, ``Hm`` Moes, ``Hc_venner`` ...) and ``Hc_flooded``, ``Hm_flooded``,
+        ``Hc_ratio``, ``Hm_ratio``, ``meniscus_x``, ``cavitation_x``, ``mass_balance_error``
+        (the larger of the box's flux imbalance and the supply mismatch ``|F - Hoil|/Hoil``),
+        ``outlet_layer`` (the layer left on the track, Moes; ``outlet_layer_venner``),
+        ``rho_c_Hc_over_hoil``; ``extra['upstream']`` the starved inlet ahead of the box,
+        ``extra['flooded']`` the flooded-inlet solution on the whole box, histories of the
+        final solve, ``extra['meniscus_solves']`` the number of box solves.
+
+    Raises
+    ------
+    InputError : bad ``hoil`` (negative, zero, NaN) or options.
+    ConvergenceError : a solve diverged or no meniscus carries the supply.
+    """
+    t0 = time.perf_counter()
+    hoil = check_hoil(hoil)
+    opts = starved_options(options, **kw)
+    if accuracy is not None:
+        require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
+    full = solve_starved_problem(problem, math.inf, dataclasses.replace(opts, raise_on_failure=False),
+                                 callback=callback, scene=scene)
+    if not full.success:
+        if opts.raise_on_failure:
+            raise ConvergenceError(f"starved line solver (flooded inlet): {full.message}", full.report, HINT)
+        return full
+    F_ff = float(full.scalars["flux_in"])
+    solves = 1
+    if hoil >= F_ff:
+        res = full
+        res.scalars["meniscus_x"] = -math.inf
+        res.extra["upstream"] = None
+        fm_work = 0.0
+    else:
+        xmin = problem.xmin
+        # nested root searches from COARSE_POINTS up to the requested grid: each starts near
+        # the previous meniscus, and their films give the grid error at fixed supply
+        grids = [min(COARSE_POINTS, opts.points)]
+        while grids[-1] < opts.points:
+            grids.append(2 * (grids[-1] - 1) + 1)
+        maps, roots = [], []
+        try:
+            for n in grids:
+                fm = _FluxMap(problem, opts, n)
+                lo, hi = _bracket(fm, hoil, xmin, near=roots[-1] if roots else None)
+                roots.append(_root(fm, hoil, lo, hi))
+                maps.append(fm)
+        except _Unreachable as exc:
+            msg = (f"Hoil = {hoil:.4g} is below the flux the solver reaches with the meniscus next "
+                   f"to the Hertzian edge ({exc.F:.4g} at X_m = {exc.x:g}, {exc.F / F_ff:.3g} of the "
+                   f"flooded flux): severe starvation beyond this solver's range")
+            if opts.raise_on_failure:
+                raise ConvergenceError(f"starved line solver: {msg}", None,
+                                       "a larger Hoil; the film then follows rho_c Hc = Hoil") from None
+            out = EHLResult(status=5, message=msg)
+            out.scalars["Hc_flooded"] = full.scalars["Hc_flooded"]
+            return out
+        fine, xm = maps[-1], roots[-1]
+        solves += sum(len(m.cache) for m in maps)
+        fm_work = sum(m.work for m in maps)
+        ladder = [(n, x, m.solve(x)) for n, x, m in zip(grids, roots, maps, strict=True)]
+        res = fine.solve(xm)
+        F = float(res.scalars["flux_in"])
+        res.scalars["meniscus_x"] = xm
+        res.scalars["supply_mismatch"] = abs(F / hoil - 1.0)
+        res.scalars["mass_balance_error"] = max(res.scalars["mass_balance_error"], abs(F / hoil - 1.0))
+        Xu = np.linspace(xmin, xm, max(int(round((xm - xmin) / (res.X[1] - res.X[0]))), 2) + 1)[:-1]
+        Hu = upstream_film(res, Xu)
+        res.extra["upstream"] = {"X": Xu, "H": Hu, "theta": np.minimum(1.0, hoil / Hu)}
+    fl = full.extra["flooded"]
+    for key in ("Hc_flooded_venner", "Hm_flooded_venner", "Hc_flooded", "Hm_flooded"):
+        res.scalars[key] = full.scalars[key]
+    res.scalars["Hc_ratio"] = res.scalars["Hc_venner"] / full.scalars["Hc_flooded_venner"]
+    res.scalars["Hm_ratio"] = res.scalars["Hm_venner"] / full.scalars["Hm_flooded_venner"]
+    res.scalars["hoil_venner"] = hoil
+    res.scalars["Hoil"] = problem.moes_from_venner(hoil) if math.isfinite(hoil) else math.inf
+    res.scalars["flux_flooded"] = F_ff
+    res.scalars["rho_c_Hc_over_hoil"] = (res.scalars["rho_c"] * res.scalars["Hc_venner"] / hoil
+                                         if math.isfinite(hoil) else math.nan)
+    res.scalars["inlet_flooded"] = bool(hoil >= F_ff)
+    # the Elrod-Adams outlet against the flooded (Reynolds-condition) solver on the same box
+    res.scalars["outlet_change_Hc"] = full.scalars["Hc_venner"] / fl.scalars["Hc_venner"] - 1.0
+    res.scalars["outlet_change_Hm"] = full.scalars["Hm_venner"] / fl.scalars["Hm_venner"] - 1.0
+    res.extra["flooded"] = full
+    res.extra["meniscus_solves"] = solves
+    res.work_units = float(res.work_units) + fm_work + float(full.work_units)
+    res.wall_s = time.perf_counter() - t0
+    res.scene = scene
+    if estimate and res.success:
+        if res.scalars["inlet_flooded"]:
+            est = estimate_error(fl, None)
+            est.notes.append("flooded inlet: the flooded solver's estimate (same grid)")
+        else:
+            est = supply_estimate(res, ladder)
+            res.extra["meniscus_ladder"] = [{"points": n, "meniscus_x": x, "Hc_venner": r.scalars["Hc_venner"],
+                                             "Hm_venner": r.scalars["Hm_venner"]} for n, x, r in ladder]
+        attach_estimate(res, est, accuracy)
+    if not res.success and opts.raise_on_failure:
+        raise ConvergenceError(f"starved line solver: {res.message}", res.report, HINT)
+    return res
