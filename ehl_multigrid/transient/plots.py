@@ -5,15 +5,15 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from .result import TransientResult
 
 
 def plot_series(res: TransientResult, path: str | Path) -> Path:
     """Hc(T), Hm(T) and the pressure fluctuation against time."""
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
+    fig = Figure(figsize=(7, 5), layout="constrained")
+    ax = fig.subplots(2, 1, sharex=True)
     ax[0].plot(res.T, res.Hc, label="Hc (X = 0)")
     ax[0].plot(res.T, res.Hm, label="Hm")
     ax[0].axhline(res.steady.Hc_venner, color="k", ls=":", lw=0.8, label="smooth steady Hc")
@@ -23,19 +23,16 @@ def plot_series(res: TransientResult, path: str | Path) -> Path:
     ax[1].plot(res.T, res.Pmax, label="max P")
     ax[1].set_xlabel("T = t u_m / b")
     ax[1].legend(fontsize=8)
-    fig.tight_layout()
     fig.savefig(path, dpi=110)
-    plt.close(fig)
     return Path(path)
 
 
 def plot_snapshots(res: TransientResult, path: str | Path, count: int = 6) -> Path:
     """Film and pressure at up to ``count`` kept steps spread over the run."""
-    import matplotlib.pyplot as plt
-
     steps = sorted(res.snapshots)
     pick = [steps[int(i)] for i in np.linspace(0, len(steps) - 1, min(count, len(steps)))]
-    fig, ax = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    fig = Figure(figsize=(7, 6), layout="constrained")
+    ax = fig.subplots(2, 1, sharex=True)
     T = res.T
     for n in pick:
         s = res.snapshots[n]
@@ -48,19 +45,17 @@ def plot_snapshots(res: TransientResult, path: str | Path, count: int = 6) -> Pa
     ax[1].set_ylabel("P")
     ax[1].set_xlabel("X = x / b")
     ax[1].set_xlim(max(res.X[0], -2.5), res.X[-1])
-    fig.tight_layout()
     fig.savefig(path, dpi=110)
-    plt.close(fig)
     return Path(path)
 
 
 def animate(res: TransientResult, path: str | Path, fps: int = 15) -> Path:
     """GIF of H and P over the kept steps (matplotlib's Pillow writer)."""
-    import matplotlib.pyplot as plt
     from matplotlib.animation import FuncAnimation, PillowWriter
 
     steps = sorted(res.snapshots)
-    fig, ax = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
+    fig = Figure(figsize=(6, 5))
+    ax = fig.subplots(2, 1, sharex=True)
     (lh,) = ax[0].plot(res.X, res.snapshots[steps[0]]["H"])
     (lp,) = ax[1].plot(res.X, res.snapshots[steps[0]]["P"])
     ax[0].plot(res.X, res.steady.H, "k:", lw=0.8)
@@ -77,5 +72,4 @@ def animate(res: TransientResult, path: str | Path, fps: int = 15) -> Path:
 
     anim = FuncAnimation(fig, frame, frames=steps, blit=False)
     anim.save(str(path), writer=PillowWriter(fps=fps))
-    plt.close(fig)
     return Path(path)

@@ -33,12 +33,12 @@ def test_transient_command_writes_series_plots_and_summary(monkeypatch, tmp_path
     sc.raw["feature"] = {"kind": "dent", "amplitude": depth, "width": 0.5 * pb.b, "x0": -3.0}
     monkeypatch.setattr(cli, "load_scene", lambda name: sc)
     args = _parser().parse_args(["transient", "x", "--points", "257", "--json", "--out", str(tmp_path),
-                                 "--threshold", "1e-8"])
+                                 "--threshold", "1e-8", "--animate", "--snapshot-every", "20"])
     out = args.func(args)
     assert out["converged"] and out["slide_roll"] == sc.slip == 2.0
     assert out["feature"]["kind"] == "bump" and out["feature"]["amplitude"] < 0
     assert 0 < out["hm_min"] < out["hc_min"] <= out["hc_steady"] <= out["hc_max"]
-    assert len(out["plots"]) == 2 and all(p.endswith(".png") for p in out["plots"])
+    assert [p.rsplit(".", 1)[1] for p in out["plots"]] == ["png", "png", "gif"]
     assert len(out["fraction_below_threshold"]) > 2
     back = load_series(out["file"])
     assert back["summary"]["steps"] == out["steps"]
