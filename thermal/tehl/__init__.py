@@ -11,6 +11,7 @@ from .hierarchy import FactorLevel, FactorLineHierarchy
 from .line import (
     TEHLLineResult,
     TEHLOptions,
+    estimate_error,
     isothermal_start,
     solve_tehl_line,
     tehl_traction_curve,
@@ -20,5 +21,5 @@ from .point import TEHLPointResult, solve_tehl_point
 __all__ = [
     "film_factors", "flux_integrals", "FactorLevel", "FactorLineHierarchy", "TEHLLineResult",
     "TEHLOptions", "isothermal_start", "solve_tehl_line", "tehl_traction_curve", "TEHLPointResult",
-    "solve_tehl_point",
+    "solve_tehl_point", "estimate_error",
 ]
