@@ -1,0 +1,100 @@
+"""Starved, mass-conserving (Elrod-Adams) line contact: flooded limit, mass balance, the
+starved limit rho_c Hc = rho_0 Hoil, monotone film, the coupled inlet relaxation, bad input."""
+
+import math
+
+import numpy as np
+import pytest
+
+from ehl_multigrid.line import LineProblem, solve_line
+from ehl_multigrid.model.errors import ConvergenceError, InputError
+from ehl_multigrid.starved import check_hoil, check_profile, hoil_venner, solve_starved_line
+from ehl_multigrid.starved.line import solve_starved_problem, starved_options
+
+PB = LineProblem.from_moes(20.0, 10.0)
+
+
+@pytest.fixture(scope="module")
+def half_starved():
+    # Hoil about half the flooded flux (Venner units): meniscus near X = -1.1
+    return solve_starved_line(PB, 0.05, points=513)
+
+
+def test_thick_supply_reproduces_the_flooded_core_solution_within_its_error():
+    core = solve_line(20.0, 10.0, points=513)
+    thick = solve_starved_line(PB, 10.0, points=513)
+    assert thick.success and thick.scalars["inlet_flooded"]
+    assert abs(thick.Hc / core.Hc - 1.0) <= core.Hc_error
+    assert abs(thick.Hm / core.Hm - 1.0) <= core.Hm_error
+    # the Elrod-Adams outlet against the Reynolds outlet on the same grid: in a steady line
+    # contact the rupture conserves mass either way, so the films change by round-off only
+    assert abs(thick.scalars["outlet_change_Hc"]) < 1e-5
+    assert abs(thick.scalars["outlet_change_Hm"]) < 1e-4
+
+
+def test_mass_is_conserved_to_1e6_relative(half_starved):
+    s = half_starved.scalars
+    assert half_starved.success
+    assert s["mass_balance_error"] < 1e-6
+    # what leaves on the track behind the contact is what the supply brought
+    assert s["outlet_layer_venner"] == pytest.approx(0.05, rel=1e-6)
+    # behind the rupture the film content carries that layer
+    theta = half_starved.extra["theta"]
+    assert np.all((theta > 0.0) & (theta <= 1.0))
+    assert theta[-1] < 1.0
+
+
+def test_starved_central_film_carries_the_supply_in_pure_rolling(half_starved):
+    # rho_c Hc = rho_0 Hoil when the pressure flow at the centre vanishes
+    assert half_starved.scalars["rho_c_Hc_over_hoil"] == pytest.approx(1.0, abs=1e-3)
+    deep = solve_starved_line(PB, 0.01, points=513)
+    assert deep.scalars["Hc_ratio"] < 0.15
+    assert deep.scalars["rho_c_Hc_over_hoil"] == pytest.approx(1.0, abs=1e-3)
+    assert deep.scalars["meniscus_x"] > half_starved.scalars["meniscus_x"]
+
+
+def test_central_film_decreases_monotonically_with_the_supply():
+    films, menisci = [], []
+    for hoil in (0.09, 0.06, 0.03, 0.015):
+        r = solve_starved_line(PB, hoil, points=257, estimate=False)
+        films.append(r.scalars["Hc_venner"])
+        menisci.append(r.scalars["meniscus_x"])
+    assert np.all(np.diff(films) < 0)
+    assert np.all(np.diff(menisci) > 0)  # the meniscus nears the contact
+    assert films[0] < solve_starved_line(PB, 10.0, points=257, estimate=False).scalars["Hc_venner"]
+
+
+def test_coupled_inlet_relaxation_agrees_with_the_meniscus_search():
+    # the same Elrod-Adams problem with the meniscus found inside the multilevel iteration
+    coupled = solve_starved_problem(PB, 0.05, starved_options(points=257, raise_on_failure=False))
+    outer = solve_starved_line(PB, 0.05, points=257, estimate=False)
+    assert coupled.success
+    assert coupled.scalars["Hc_venner"] == pytest.approx(outer.scalars["Hc_venner"], rel=2e-3)
+    assert coupled.scalars["mass_balance_error"] < 1e-5
+
+
+def test_supply_below_the_reachable_flux_raises_a_clear_convergence_error():
+    with pytest.raises(ConvergenceError, match="Hoil = 0.001 is below"):
+        solve_starved_line(PB, 0.001, points=257, estimate=False)
+
+
+@pytest.mark.parametrize("bad", [-0.01, 0.0, math.nan, "thick"])
+def test_bad_supply_is_rejected_naming_field_value_and_range(bad):
+    with pytest.raises(InputError, match=r"hoil = .*(outside the allowed range \(0, inf\]|not a number)"):
+        solve_starved_line(PB, bad, points=257)
+
+
+def test_bad_supply_in_metres_names_the_scene_field():
+    with pytest.raises(InputError, match=r"supply.hoil = -1e-06 m is outside the allowed range"):
+        hoil_venner(-1e-6, 1e-4, 0.01)
+    assert hoil_venner(1e-7, 1e-4, 0.01) == pytest.approx(0.1)
+    assert math.isinf(hoil_venner(math.inf, 1e-4, 0.01))
+    assert check_hoil(math.inf) == math.inf
+
+
+def test_supply_profile_longer_than_the_grid_is_rejected():
+    with pytest.raises(InputError, match=r"hoil_profile has 66 values; .* exactly 65"):
+        check_profile(np.full(66, 0.05), 65)
+    with pytest.raises(InputError, match=r"hoil_profile\[3\] = nan"):
+        check_profile([0.05, 0.05, 0.05, math.nan], 4)
+    assert check_profile([0.05, math.inf], 2).shape == (2,)
