@@ -96,3 +96,22 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
         for r in curve:
             print(f"  {r.slip:8.4g} {r.friction_coefficient:9.4g} {r.Hc:8.4g} {r.Hm:8.4g} {r.T_max:8.4g}")
     return payload
+
+
+def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
+    """``ehl solve SCENE --thermal``: one TEHL solve (line or point) at ``args.slip`` (default the
+    scene's), ``args.points`` (default 513 line, 257 point) and ``args.nz`` (default 20); returns
+    the payload of :func:`solve_payload` (printed as JSON by ``--json``)."""
+    from .point import solve_tehl_point
+
+    point = scene.kind != "line"
+    points = getattr(args, "points", None) or (257 if point else 513)
+    nz = getattr(args, "nz", None) or 20
+    slip = getattr(args, "slip", None)
+    opts = TEHLOptions(points=points, nz=nz)
+    r = solve_tehl_point(scene, slip, opts) if point else solve_tehl_line(scene, slip, opts)
+    payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),
+               "outer": [dict(o) for o in r.outer], "properties": thermal_properties(scene)}
+    if not getattr(args, "json", False):
+        print_table({k: v for k, v in payload.items() if k not in ("outer", "properties")})
+    return payload

@@ -45,3 +45,12 @@ def test_thermal_properties_of_T9_at_60C():
     assert p["beta"] == pytest.approx(beta, rel=1e-6)
     assert p["k_oil"] == pytest.approx(lub.k0)
     assert p["thermal_loading"] > 0
+
+
+def test_solve_mode_for_ehl_solve_thermal():
+    from thermal.tehl.cli import solve_mode
+
+    args = argparse.Namespace(points=129, nz=10, slip=0.3, json=True)
+    out = solve_mode(args, load_scene("appendix_c_line_4240N"))
+    assert out["contact"] == "line" and out["converged"] and out["Hc_isothermal"] > 0
+    assert 0 < out["heat_balance_error"] < 0.05
