@@ -10,8 +10,8 @@ Public API::
 """
 
 from .line import StarvedLineHierarchy, solve_starved_problem
-from .meniscus import solve_starved_line
+from .meniscus import solve_starved_line, solve_starved_scene
 from .supply import check_hoil, check_profile, hoil_venner
 
-__all__ = ["StarvedLineHierarchy", "solve_starved_line", "solve_starved_problem", "check_hoil",
+__all__ = ["StarvedLineHierarchy", "solve_starved_line", "solve_starved_scene", "solve_starved_problem", "check_hoil",
            "check_profile", "hoil_venner"]

@@ -288,3 +288,27 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
     if not res.success and opts.raise_on_failure:
         raise ConvergenceError(f"starved line solver: {res.message}", res.report, HINT)
     return res
+
+
+def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOptions | None = None,
+                        accuracy: float | None = None, **kw: Any) -> EHLResult:
+    """Starved line contact of a line-contact ``scene`` at its operating point, supplied with
+    the scene's ``[supply] hoil`` [m] (or ``hoil`` [m]), converted with
+    :func:`~ehl_multigrid.starved.supply.hoil_venner` (``Hoil = hoil R/b^2``). The scene's
+    ``[solver.ehl]`` table applies (problem keys: viscosity, density, xmin, xmax; the rest are
+    options below the keywords). Films in metres: ``hc = Hc_venner b^2/R`` (scalar ``hc``)."""
+    from ..multigrid.options import build_scene_options, scene_solver_table
+    from .supply import hoil_venner
+
+    model, table = scene_solver_table(scene, "line")
+    prob = {**{"viscosity": "roelands", "density": "dowson-higginson", "xmax": 1.5}, **model}
+    pb = LineProblem.from_scene(scene, **prob)
+    h_m = scene.supply.hoil if hoil is None else hoil
+    opts = build_scene_options(LineOptions, starved_options(options), table, kw)
+    res = solve_starved_line(pb, hoil_venner(h_m, pb.b, pb.R), opts, accuracy, scene=scene)
+    scale = pb.b**2 / pb.R
+    res.scalars["hoil"] = h_m
+    res.scalars["hc"] = res.scalars["Hc_venner"] * scale
+    res.scalars["hm"] = res.scalars["Hm_venner"] * scale
+    res.scalars["outlet_layer_m"] = res.scalars["outlet_layer_venner"] * scale
+    return res
