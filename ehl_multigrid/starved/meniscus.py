@@ -291,7 +291,7 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
 
 
 def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOptions | None = None,
-                        accuracy: float | None = None, **kw: Any) -> EHLResult:
+                        accuracy: float | None = None, *, estimate: bool = True, **kw: Any) -> EHLResult:
     """Starved line contact of a line-contact ``scene`` at its operating point, supplied with
     the scene's ``[supply] hoil`` [m] (or ``hoil`` [m]), converted with
     :func:`~ehl_multigrid.starved.supply.hoil_venner` (``Hoil = hoil R/b^2``). The scene's
@@ -305,7 +305,7 @@ def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOpti
     pb = LineProblem.from_scene(scene, **prob)
     h_m = scene.supply.hoil if hoil is None else hoil
     opts = build_scene_options(LineOptions, starved_options(options), table, kw)
-    res = solve_starved_line(pb, hoil_venner(h_m, pb.b, pb.R), opts, accuracy, scene=scene)
+    res = solve_starved_line(pb, hoil_venner(h_m, pb.b, pb.R), opts, accuracy, estimate=estimate, scene=scene)
     scale = pb.b**2 / pb.R
     res.scalars["hoil"] = h_m
     res.scalars["hc"] = res.scalars["Hc_venner"] * scale

@@ -98,3 +98,14 @@ def test_supply_profile_longer_than_the_grid_is_rejected():
     with pytest.raises(InputError, match=r"hoil_profile\[3\] = nan"):
         check_profile([0.05, 0.05, 0.05, math.nan], 4)
     assert check_profile([0.05, math.inf], 2).shape == (2,)
+
+
+def test_scene_supply_in_metres_gives_the_film_that_carries_it():
+    from ehl_multigrid.model.scene import load_scene
+    from ehl_multigrid.starved import solve_starved_scene
+
+    scene = load_scene("ehl_multigrid/scenes/page63_line_500N.toml")  # flooded hc about 25 nm
+    r = solve_starved_scene(scene, hoil=1.5e-8, points=257, estimate=False)
+    assert r.success and not r.scalars["inlet_flooded"]
+    assert r.scalars["hc"] * r.scalars["rho_c"] == pytest.approx(1.5e-8, rel=1e-4)
+    assert r.scalars["outlet_layer_m"] == pytest.approx(1.5e-8, rel=1e-6)

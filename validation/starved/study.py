@@ -176,7 +176,8 @@ def plot(data: dict, path: Path) -> None:
     a.plot(rr, chevalier_reduction(rr, d), "k:", label=f"Chevalier, best delta = {d:.1f}")
     for (M, L), mk in zip(CASES, "osd^", strict=False):
         rows = [x for x in data["map"] if x.get("M") == M and x.get("L") == L and "r" in x]
-        a.plot([x["r"] for x in rows], [x["Hc_ratio"] for x in rows], mk, label=f"solver M={M:g}, L={L:g}")
+        a.plot([x["r"] for x in rows], [x["Hc_ratio"] for x in rows], mk, mfc="none", ms=5 + 2 * CASES.index((M, L)),
+               label=f"solver M={M:g}, L={L:g}")
     a.set_xscale("log")
     a.set_xlabel("r = Hoil/(Hc_ff rho_bar(pmax))")
     a.set_ylabel("Hc/Hc_ff")
