@@ -27,6 +27,10 @@ from ehl_multigrid.point import point_solver
 from ehl_multigrid.point.fas import POINT_POLICY, PointHierarchy, point_settings
 from ehl_multigrid.point.problem import problem_from_moes
 
+if "ct" not in nm.relax_sweep.py_func.__code__.co_varnames:
+    raise SystemExit("point_prototype.py needs point_squeeze.diff applied to ehl_multigrid/point "
+                     "(without it the squeeze term would be silently missing)")
+
 
 class TransientPointHierarchy(PointHierarchy):
     """The point hierarchy with the geometry ``R(X - c T, Y)`` in the film and the squeeze
