@@ -93,9 +93,24 @@ def outer_iteration(
             x_mix, count = _anderson_step(AX, AF, count, x_old, g, anderson)
         else:
             x_mix = g
-        a = np.exp(x_mix[:n]).reshape(shape)
-        c = np.exp(x_mix[n:]).reshape(shape)
-        new = ehl(a, c, state, it)
+        x_new = np.concatenate([np.log(a_new).ravel(), np.log(c_new).ravel()])
+        while True:
+            a = np.exp(x_mix[:n]).reshape(shape)
+            c = np.exp(x_mix[n:]).reshape(shape)
+            try:
+                new = ehl(a, c, state, it)
+                break
+            except ConvergenceError as exc:
+                # a multilevel solve that fails on a large step of the factors: a smaller step
+                # from the same iterate (plain damping, Anderson history restarted)
+                if w <= MIN_RELAX:
+                    raise
+                w = max(0.5 * w, MIN_RELAX)
+                w_used = w
+                count = 0
+                x_mix = (1.0 - w) * x_old + w * x_new
+                actions.append(f"iteration {it}: multilevel solve failed ({str(exc).splitlines()[0][:120]}); "
+                               f"retried with the under-relaxation halved to {w:g}")
         if not (np.all(np.isfinite(new.P)) and np.all(np.isfinite(new.H))):
             raise ConvergenceError(f"TEHL outer iteration {it}: NaN in the pressure or film", None, OUTER_HINT)
         thermal_new, T_new = solve_thermal(new)
