@@ -418,8 +418,34 @@ def finish_starved_result(sol: EHLResult, solver: MultilevelSolver, flooded: EHL
     sol.scalars.update(starved_scalars(lv, hz.hoil, flooded, hz.problem))
     sol.scalars["Hc_ratio"] = sol.scalars["Hc_venner"] / sol.scalars["Hc_flooded_venner"]
     sol.scalars["Hm_ratio"] = sol.scalars["Hm_venner"] / sol.scalars["Hm_flooded_venner"]
-    sol.builder = None
+    sol.builder = starved_result
     return sol
+
+
+def starved_result(sol: EHLResult, scene: Any = None) -> Any:
+    """Package :class:`~ehl_multigrid.model.results.Result` (kind ``"ehl_line"``) with the
+    film content ``theta`` beside ``P`` and ``H`` and the starved scalars."""
+    from ..line.solution import line_result
+
+    res = line_result(sol, scene)
+    res.add_field("theta", sol.extra["theta"], "-", ("X",), "film content (Elrod-Adams)")
+    res.meta["definitions"] += ("; Elrod-Adams film content theta; meniscus_x where theta reaches 1 "
+                                "(-inf: flooded inlet); Hc_flooded from the flooded solver on the same "
+                                "grid; mass_balance_error relative flux imbalance (and supply mismatch)")
+    return res
+
+
+#: scalars of ``ehl solve --json`` for a starved line contact, beside the core payload
+PAYLOAD_KEYS = ("Hc_flooded", "Hm_flooded", "Hc_ratio", "Hm_ratio", "meniscus_x", "cavitation_x",
+                "mass_balance_error", "outlet_layer", "outlet_layer_m", "hoil", "Hoil",
+                "inlet_flooded", "rho_c_Hc_over_hoil", "meniscus_solves")
+
+
+def starved_payload(sol: EHLResult) -> dict[str, Any]:
+    """The JSON payload of a starved solve: the core payload plus :data:`PAYLOAD_KEYS`."""
+    out = sol.payload()
+    out.update({k: sol.scalars[k] for k in PAYLOAD_KEYS if k in sol.scalars})
+    return out
 
 
 # -- public API -----------------------------------------------------------------------------
