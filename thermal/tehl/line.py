@@ -216,7 +216,7 @@ class TEHLLineResult:
             "friction_decoupled": self.friction_decoupled, "T_max": self.T_max,
             "heat_partition": list(self.heat_partition), "heat_balance_error": self.heat_balance_error,
             "outer_iterations": len(self.outer), "converged": bool(self.report.converged),
-            "slip": self.slip, "wall_s": self.wall_s,
+            "slip": self.slip, "wall_s": self.wall_s, "momentum": self.report.extra.get("momentum", "gradient"),
         }
 
 
@@ -246,11 +246,31 @@ def isothermal_start(scene: Scene, options: TEHLOptions) -> _State:
 
 
 def _thermal(scene: Scene, pb: LineProblem, st: _State, env: Surroundings, topt: ThermalOptions,
-             X: np.ndarray) -> ThermalLineSolution:
+             X: np.ndarray, flux_factor: np.ndarray | None = None) -> ThermalLineSolution:
+    """The thermal layer on the current P, H.
+
+    Default: stress slope ``h dp/dx`` of the current pressure (momentum (3.4)). With
+    ``flux_factor`` (the flow factor ``a`` of the generalised Reynolds solve that gave P, ones
+    for the isothermal film) the slope instead carries the pressure-driven flux
+    ``-h^3 a/(12 eta(p, T_oil)) dp/dx`` of that solve (the thermal layer's ``flux`` mode, as for
+    its EHL input). The first solve on the isothermal film uses it: its steep outlet gradient
+    would drive an Eyring Poiseuille flow that its own heat thins further, the runaway the
+    thermal layer documents for a fixed gradient (measured here: NaN temperatures at thermal
+    loading 0.38 with slip).
+    """
     x = X * pb.b
+    visc = None
+    if flux_factor is not None:
+        lub, T0 = scene.lubricant, scene.T_oil
+        fac = np.asarray(flux_factor, dtype=float)
+
+        def visc(p: np.ndarray) -> np.ndarray:
+            # called on the EHL nodes (x = X b): the effective viscosity of the flow factor
+            return np.asarray(lub.viscosity(p, T0), dtype=float) / fac
     prof = profile_from_arrays(x, st.P * pb.pmax, st.H * pb.b ** 2 / pb.R, b=pb.b, nx=X.size,
-                               width=scene.length, x_in=None, x_out=None, source="tehl")
-    sol = solve_thermal_line(prof, env, topt, kernel_length=scene.length)
+                               width=scene.length, x_in=None, x_out=None, source="tehl", viscosity=visc)
+    opts = topt.with_changes(momentum="flux") if flux_factor is not None else topt
+    sol = solve_thermal_line(prof, env, opts, kernel_length=scene.length)
     if not sol.report.converged:
         raise ConvergenceError(f"TEHL: the thermal solve did not converge: {sol.report.message}",
                                sol.report, OUTER_HINT)
@@ -324,7 +344,7 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
         raise InputError(f"start has {iso.P.size} points; the options ask for {X.size}")
     lub = scene.lubricant
     st = iso
-    sol = _thermal(scene, pb, st, env, topt, X)
+    sol = _thermal(scene, pb, st, env, topt, X, flux_factor=np.ones(X.size))
     decoupled = sol
     a = np.ones(X.size)
     c = np.ones(X.size)
@@ -363,8 +383,19 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
         return _State(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm,
                       {"cycles": int(res.cycles), "film_noise": min(noise, 1.0)})
 
+    modes: list[str] = []
+
     def thermal(st_: _State) -> tuple[ThermalLineSolution, np.ndarray]:
-        th = _thermal(scene, pb, st_, env, topt, X)
+        try:
+            th = _thermal(scene, pb, st_, env, topt, X)
+            modes.append("gradient")
+        except ConvergenceError as exc:
+            # the fixed gradient ran away (NaN): the flux of the generalised Reynolds solve
+            th = _thermal(scene, pb, st_, env, topt, X, flux_factor=hz.levels[-1].a)
+            modes.append("flux")
+            if len(modes) == 1 or modes[-2] != "flux":
+                notes.append(f"thermal solve {len(modes)}: the stress slope h dp/dx ran away "
+                             f"({str(exc).splitlines()[0][:80]}); the slope keeps the solve's Poiseuille flux")
         return th, th.T
 
     done = outer_iteration(st, sol, sol.T, a, c, factors=factors, ehl=ehl, solve_thermal=thermal,
@@ -372,6 +403,7 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
                            tol_P=opts.tol_P, tol_H=opts.tol_H, tol_T=opts.tol_T)
     st, sol, a, c, outer, report = done.state, done.thermal, done.a, done.c, done.outer, done.report
     report.extra["actions"] = notes + list(report.extra.get("actions", []))
+    report.extra["momentum"] = modes[-1] if modes else "gradient"
     heat = interior_heat_budget(sol, lub) if opts.thermal else {}
     if heat:
         heat["whole_box_balance"] = sol.heat["balance"]
