@@ -9,6 +9,12 @@ previous solution extrapolated in time. The load is constant (``h sum P = pi/2``
 The start is the steady solution with the feature frozen at its ``T = 0`` position (the core
 steady line solver, then the steady equations with the feature on the same grids), or a given
 initial state.
+
+Limits: cavitation is the projection ``P >= 0`` of the steady solver (not mass-conserving). A dent
+much deeper than the film leaving the contact under heavy sliding re-pressurises oil behind the
+cavitation boundary, and those nodes can flip between wet and cavitated from cycle to cycle (a
+stalled step, :class:`ConvergenceError` above ``accept_stall``). A film that closes (a feature
+higher than the film) is mixed lubrication, which this solver does not model.
 """
 
 from __future__ import annotations
