@@ -5,7 +5,7 @@ another speed), ``time`` (BDF2/Euler time-step refinement at a fixed grid), ``gr
 refinement at Courant number 1), ``waviness`` (amplitude reduction Ad/Ai against Venner &
 Lubrecht's wavelength parameter, pure rolling), ``bump`` (dent and bump passing under rolling
 and with slip: profiles at several positions), ``cost`` (time per step against grid size).
-Each part writes ``out/<part>.json`` and a PNG; ``--quick`` runs a smaller set.
+Each part writes ``out/<part>.json`` and a PNG; ``--quick`` runs a smaller set into ``out/quick/``.
 
 Moes-only problems (default oil of the core), Roelands + Dowson-Higginson, domain
 X in [-4.5, 1.5] (Venner & Lubrecht's box) unless stated.
@@ -34,7 +34,7 @@ OUT = Path(__file__).resolve().parent / "out"
 
 
 def save(name: str, data: dict) -> None:
-    OUT.mkdir(exist_ok=True)
+    OUT.mkdir(parents=True, exist_ok=True)
     (OUT / f"{name}.json").write_text(json.dumps(data, indent=1, default=float))
     print(f"wrote out/{name}.json")
 
@@ -226,7 +226,7 @@ def part_waviness(quick: bool) -> None:
         print(row)
         rows.append(row)
         save("waviness", {"rows": rows})
-    save("waviness" + ("_quick" if quick else ""), {"rows": rows})
+    save("waviness", {"rows": rows})
     fig, ax = plt.subplots(figsize=(6, 4))
     nb = np.linspace(0.1, 25, 300)
     ax.plot(nb, venner_lubrecht_curve(nb), "k-", label="1/(1 + 0.15 nabla + 0.015 nabla^2)")
@@ -310,8 +310,6 @@ def part_bump(quick: bool) -> None:
                "wall_per_step_s": s["wall_per_step_s"], "wall_s": wall, "profiles": prof}
         print({k: v for k, v in row.items() if k != "profiles"})
         rows.append(row)
-        if not quick:
-            res.to_hdf5(OUT / f"bump_{name}_S{S:g}.h5") if n <= 257 else None
     axes[-1][0].set_xlabel("X")
     axes[-1][1].set_xlabel("X")
     for ax in axes:
@@ -319,7 +317,7 @@ def part_bump(quick: bool) -> None:
     fig.suptitle(f"Cosine-Gaussian feature |A| = 0.5 Hc, W = 0.5 on body 1 (M = 20, L = 10, {n} points)")
     fig.tight_layout()
     fig.savefig(OUT / "bump_profiles.png", dpi=110)
-    save("bump" + ("_quick" if quick else ""), {"M": M, "L": L, "rows": rows})
+    save("bump", {"M": M, "L": L, "rows": rows})
 
 
 # -- cost per step -------------------------------------------------------------------------
@@ -347,5 +345,7 @@ if __name__ == "__main__":
     ap.add_argument("--part", choices=sorted(PARTS), action="append", required=True)
     ap.add_argument("--quick", action="store_true")
     a = ap.parse_args()
+    if a.quick:  # never overwrite the measured full runs
+        OUT = OUT / "quick"
     for p in a.part:
         PARTS[p](a.quick)
