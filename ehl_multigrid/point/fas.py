@@ -159,6 +159,9 @@ class PointHierarchy:
         self.alternating = (self.boa < ALTERNATE_BELOW) if alt is None else bool(alt)
         self.sweep_work = 2.0 if self.alternating else 1.0
         self.g_target = problem.load
+        #: squeeze coefficient of a BDF time step (the new-time part ``ct rho H`` of
+        #: ``d(rho H)/dT``; the history part goes into the finest grid's ``f``); 0: steady
+        self.ct = 0.0
         self.H00 = 0.0
         self.h00_step_max = math.inf
         self.gain = math.nan
@@ -230,12 +233,13 @@ class PointHierarchy:
         lubricant properties recomputed after each)."""
         self.threads.for_size(lev.npts)
         nm.relax_sweep(lev.P, lev.H, lev.rho, lev.eps, lev.f, lev.D, lev.Kc, lev.hx, lev.hy,
-                       self.options.half, s.switch, s.omega, s.omega_jd, self.options.wedge_order)
+                       self.options.half, s.switch, s.omega, s.omega_jd, self.options.wedge_order,
+                       self.ct)
         self.update_film(lev)
         if self.alternating:
             nm.relax_sweep_y(lev.P, lev.H, lev.rho, lev.eps, lev.f, lev.D, lev.Ky, lev.hx,
                              lev.hy, self.options.half, s.switch, s.omega * Y_OMEGA,
-                             s.omega_jd * Y_OMEGA_JD, self.options.wedge_order, Y_JD_MODE)
+                             s.omega_jd * Y_OMEGA_JD, self.options.wedge_order, Y_JD_MODE, self.ct)
             self.update_film(lev)
 
     def load(self, lev: Level) -> float:
@@ -244,7 +248,7 @@ class PointHierarchy:
     def residual(self, lev: Level) -> np.ndarray:
         self.threads.for_size(lev.npts)
         nm.residual(lev.P, lev.H, lev.rho, lev.eps, lev.f, lev.hx, lev.hy, self.options.half,
-                    self.options.wedge_order, lev.r)
+                    self.options.wedge_order, lev.r, self.ct)
         return lev.r
 
     def rel_residual(self, lev: Level) -> float:
@@ -253,7 +257,7 @@ class PointHierarchy:
         r = self.residual(lev)
         sr = np.empty_like(r)
         nm.scaled_residual(r, lev.H, lev.rho, lev.eps, float(lev.Kc[0, 0]), lev.hx, lev.hy,
-                           self.options.half, sr)
+                           self.options.half, sr, self.ct)
         ny, nx = r.shape
         j0 = 0 if self.options.half else 1
         inner = sr[j0:ny - 1, 1:nx - 1]
@@ -302,7 +306,8 @@ class PointHierarchy:
         P0 = c.P.copy()
         self.update_film(c)
         Lc = np.empty_like(c.P)
-        nm.operator(c.P, c.H, c.rho, c.eps, c.hx, c.hy, self.options.half, self.options.wedge_order, Lc)
+        nm.operator(c.P, c.H, c.rho, c.eps, c.hx, c.hy, self.options.half, self.options.wedge_order, Lc,
+                    self.ct)
         Rr = np.empty_like(c.P)
         nm.restrict_full_weighting(r, self.options.half, Rr)
         c.f = Lc + Rr

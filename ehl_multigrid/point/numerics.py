@@ -52,11 +52,13 @@ def film(W, X, Y, H00, theta, cd, H):
 
 
 @njit(cache=True)
-def _wedge(rho, H, j, i, hx, order):
+def _wedge(rho, H, j, i, hx, order, ct=0.0):
+    """Upwind ``d(rho H)/dX`` plus ``ct rho H``, the new-time part of a BDF squeeze term
+    ``d(rho H)/dT`` (``ct = 0``: steady)."""
     if order == 2 and i >= 2:
         return (1.5 * rho[j, i] * H[j, i] - 2.0 * rho[j, i - 1] * H[j, i - 1]
-                + 0.5 * rho[j, i - 2] * H[j, i - 2]) / hx
-    return (rho[j, i] * H[j, i] - rho[j, i - 1] * H[j, i - 1]) / hx
+                + 0.5 * rho[j, i - 2] * H[j, i - 2]) / hx + ct * rho[j, i] * H[j, i]
+    return (rho[j, i] * H[j, i] - rho[j, i - 1] * H[j, i - 1]) / hx + ct * rho[j, i] * H[j, i]
 
 
 @njit(cache=True)
@@ -72,7 +74,7 @@ def _poiseuille(P, eps, j, jm, jp, i, hx2, hy2):
 
 
 @njit(cache=True, parallel=True)
-def operator(P, H, rho, eps, hx, hy, sym, order, out):
+def operator(P, H, rho, eps, hx, hy, sym, order, out, ct=0.0):
     """Discrete Reynolds operator ``L(P)`` at interior points (0 on the boundary)."""
     ny, nx = P.shape
     hx2, hy2 = hx * hx, hy * hy
@@ -84,14 +86,14 @@ def operator(P, H, rho, eps, hx, hy, sym, order, out):
             continue
         jm = 1 if (sym and j == 0) else j - 1
         for i in range(1, nx - 1):
-            out[j, i] = _poiseuille(P, eps, j, jm, j + 1, i, hx2, hy2) - _wedge(rho, H, j, i, hx, order)
+            out[j, i] = _poiseuille(P, eps, j, jm, j + 1, i, hx2, hy2) - _wedge(rho, H, j, i, hx, order, ct)
 
 
 @njit(cache=True, parallel=True)
-def residual(P, H, rho, eps, f, hx, hy, sym, order, out):
+def residual(P, H, rho, eps, f, hx, hy, sym, order, out, ct=0.0):
     """Complementarity residual: ``f - L(P)`` where P > 0; where P = 0 only the part that
     would raise P (``min(r, 0)``) counts (cavitation as complementarity)."""
-    operator(P, H, rho, eps, hx, hy, sym, order, out)
+    operator(P, H, rho, eps, hx, hy, sym, order, out, ct)
     ny, nx = P.shape
     j0 = 0 if sym else 1
     for j in prange(j0, ny - 1):
@@ -103,7 +105,7 @@ def residual(P, H, rho, eps, f, hx, hy, sym, order, out):
 
 
 @njit(cache=True, parallel=True)
-def scaled_residual(r, H, rho, eps, K00, hx, hy, sym, out):
+def scaled_residual(r, H, rho, eps, K00, hx, hy, sym, out, ct=0.0):
     """Residual divided by the magnitude of the operator's diagonal,
     ``|sum of face eps|/h^2 + 1.5 rho K00/hx`` (K00 = cd K[0,0], the film self-response): the
     pressure change (in units of pmax) that one Jacobi step would make. Unlike the raw
@@ -122,7 +124,7 @@ def scaled_residual(r, H, rho, eps, K00, hx, hy, sym, out):
             e = eps[j, i]
             d = ((0.5 * (eps[j, i - 1] + e) + 0.5 * (eps[j, i + 1] + e)) / hx2
                  + (0.5 * (eps[jm, i] + e) + 0.5 * (eps[j + 1, i] + e)) / hy2
-                 + 1.5 * rho[j, i] * K00 / hx)
+                 + (1.5 / hx + ct) * rho[j, i] * K00)
             out[j, i] = r[j, i] / d
 
 
@@ -190,7 +192,7 @@ def _solve_band5(A, rhs):
 
 
 @njit(cache=True)
-def _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order):
+def _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order, ct=0.0):
     ny, nx = P.shape
     n = nx - 2
     hx2, hy2 = hx * hx, hy * hy
@@ -216,7 +218,7 @@ def _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order):
         c0[r] = -(cw[r] + ce[r] + cy[r])
         lp = (cw[r] * (P[j, i - 1] - P[j, i]) + ce[r] * (P[j, i + 1] - P[j, i])
               + (eym * (P[jm, i] - P[j, i]) + eyp * (P[jp, i] - P[j, i])) / hy2)
-        rhs[r] = f[j, i] - (lp - _wedge(rho, H, j, i, hx, order))
+        rhs[r] = f[j, i] - (lp - _wedge(rho, H, j, i, hx, order, ct))
         if e / hx2 < thr and P[j, i] > 0.0:
             typ[r] = 1
     for r in range(n):
@@ -256,7 +258,7 @@ def _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order):
             # wedge through the film
             wsum = 0.0
             for s in range(ns):
-                ws = _wedge_weight(s, ns)
+                ws = _wedge_weight(s, ns) + (ct * hx if s == 0 else 0.0)
                 m = i - s
                 wsum += ws * rho[j, m] * _gfun(Kc, m - k, jd)
             a -= wsum / hx
@@ -274,7 +276,7 @@ def _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order):
 
 
 @njit(cache=True, parallel=True)
-def relax_sweep(P, H, rho, eps, f, D, Kc, hx, hy, sym, thr, w_gs, w_jd, order):
+def relax_sweep(P, H, rho, eps, f, D, Kc, hx, hy, sym, thr, w_gs, w_jd, order, ct=0.0):
     """One zebra line-relaxation sweep along X (Venner-style).
 
     Lines of even j, then odd j, are each relaxed in parallel (prange); within a line the
@@ -294,7 +296,7 @@ def relax_sweep(P, H, rho, eps, f, D, Kc, hx, hy, sym, thr, w_gs, w_jd, order):
         nl = (ny - 2 - first) // 2 + 1 if first <= ny - 2 else 0
         for t in prange(nl):
             j = first + 2 * t
-            _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order)
+            _relax_line(P, H, rho, eps, f, D, Kc, hx, hy, j, sym, thr, w_gs, order, ct)
     if w_jd != 0.0:
         for j in prange(j0, ny - 1):
             jm = 1 if (sym and j == 0) else j - 1
@@ -317,7 +319,7 @@ def _gfun_y(Ky, d, s, jd):
 
 
 @njit(cache=True)
-def _relax_line_y(P, H, rho, eps, f, D, Ky, hx, hy, i, sym, thr, w_gs, w_jd, order, jd_mode):
+def _relax_line_y(P, H, rho, eps, f, D, Ky, hx, hy, i, sym, thr, w_gs, w_jd, order, jd_mode, ct=0.0):
     """One line along Y at column ``i`` (see :func:`relax_sweep_y`)."""
     ny, nx = P.shape
     j0 = 0 if sym else 1
@@ -346,7 +348,7 @@ def _relax_line_y(P, H, rho, eps, f, D, Ky, hx, hy, i, sym, thr, w_gs, w_jd, ord
         c0[r] = -(cs[r] + cn[r] + cx[r])
         lp = ((exm * (P[j, i - 1] - P[j, i]) + exp_ * (P[j, i + 1] - P[j, i])) / hx2
               + cs[r] * (P[jm, i] - P[j, i]) + cn[r] * (P[jp, i] - P[j, i]))
-        rhs[r] = f[j, i] - (lp - _wedge(rho, H, j, i, hx, order))
+        rhs[r] = f[j, i] - (lp - _wedge(rho, H, j, i, hx, order, ct))
         if e / hx2 < thr and P[j, i] > 0.0:
             typ[r] = 1
     if order == 2 and i >= 2:
@@ -395,7 +397,7 @@ def _relax_line_y(P, H, rho, eps, f, D, Ky, hx, hy, i, sym, thr, w_gs, w_jd, ord
             # wedge through the film at columns i - s (full-domain mirror image on a half grid)
             wsum = 0.0
             for s in range(ns):
-                ws = _wedge_weight(s, ns)
+                ws = _wedge_weight(s, ns) + (ct * hx if s == 0 else 0.0)
                 g = _gfun_y(Ky, j - ll, s, jd)
                 if sym and ll > 0 and j + ll + 1 < kmax:
                     g += _gfun_y(Ky, j + ll, s, jd)
@@ -418,7 +420,7 @@ def _relax_line_y(P, H, rho, eps, f, D, Ky, hx, hy, i, sym, thr, w_gs, w_jd, ord
 
 
 @njit(cache=True, parallel=True)
-def relax_sweep_y(P, H, rho, eps, f, D, Ky, hx, hy, sym, thr, w_gs, w_jd, order, jd_mode):
+def relax_sweep_y(P, H, rho, eps, f, D, Ky, hx, hy, sym, thr, w_gs, w_jd, order, jd_mode, ct=0.0):
     """One zebra line-relaxation sweep along Y: columns of even i, then odd i, each relaxed
     in parallel. Alternated with :func:`relax_sweep` it is the alternating-direction line
     relaxation that Venner & Lubrecht (2000, "Multilevel methods in lubrication", ch. 3 and
@@ -444,7 +446,7 @@ def relax_sweep_y(P, H, rho, eps, f, D, Ky, hx, hy, sym, thr, w_gs, w_jd, order,
         nl = (nx - 2 - first) // 2 + 1 if first <= nx - 2 else 0
         for t in prange(nl):
             i = first + 2 * t
-            _relax_line_y(P, H, rho, eps, f, D, Ky, hx, hy, i, sym, thr, w_gs, w_jd, order, jd_mode)
+            _relax_line_y(P, H, rho, eps, f, D, Ky, hx, hy, i, sym, thr, w_gs, w_jd, order, jd_mode, ct)
     if jd_mode == 2 and w_jd != 0.0:
         for j in prange(j0, ny - 1):
             jm = 1 if (sym and j == 0) else j - 1
