@@ -209,6 +209,8 @@ def plot(data: dict, path: Path) -> None:
         ext = data["grid"][key]["extrapolated"]
         if math.isfinite(ext):
             a.loglog(n, np.abs(v / ext - 1.0), "o-", label=f"{key} vs Richardson")
+    a.set_xticks(n, [str(v) for v in n], minor=False)
+    a.minorticks_off()
     a.set_xlabel("points")
     a.set_ylabel("relative difference")
     a.legend(fontsize=8)
@@ -248,4 +250,10 @@ def main(quick: bool) -> None:
 if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="coarser grids, two (M, L)")
-    main(ap.parse_args().quick)
+    ap.add_argument("--replot", action="store_true", help="only redraw the PNG from the JSON")
+    a = ap.parse_args()
+    if a.replot:
+        stem = OUT / ("starved_line_quick" if a.quick else "starved_line")
+        plot(json.loads(stem.with_suffix(".json").read_text()), stem.with_suffix(".png"))
+    else:
+        main(a.quick)
