@@ -25,6 +25,8 @@ be a string with units, "7.94 mm", "1.5 GPa", "68 cSt", "70 degC", "1500 rpm")::
     [ranges]      us, slip, load: a list, or {min, max, n, log}
     [roughness]   Rq, Ra, sigma_s, dd [m]; n [1/m^2]; beta [m]; fc [-]; hardness [Pa]
     [supply]      hoil [m] (inf = flooded); hoil_over_sigma (list); delta [-]
+    [feature]     a surface feature for 'ehl transient': kind = "waviness" | "bump" | "dent";
+                  amplitude, width or wavelength [m]; x0 [b]; shape; body (1 or 2); validated there
     [solver.*]    free-form option tables per layer (ehl, thermal, mixed), validated there
 """
 
@@ -68,7 +70,7 @@ CONTACT_KINDS = ("line", "point", "elliptic")
 US_MAX = 1e3
 TOP_KEYS = {
     "name", "description", "source", "contact", "geometry", "solids", "lubricant",
-    "operating", "ranges", "roughness", "supply", "solver", "element", "materials",
+    "operating", "ranges", "roughness", "supply", "solver", "element", "materials", "feature",
 }
 
 #: Kind of quantity of each scalar key, per section, for values given with units.
@@ -92,6 +94,7 @@ UNIT_KINDS: dict[str, dict[str, str]] = {
         "n": "inverse_area", "beta": "length", "fc": "dimensionless", "hardness": "pressure",
     },
     "supply": {"hoil": "length"},
+    "feature": {"amplitude": "length", "width": "length", "wavelength": "length"},
 }
 RANGE_KINDS = {"us": "speed", "slip": "dimensionless", "load": "force", "pmax": "pressure"}
 
@@ -176,6 +179,8 @@ class Scene:
     roughness: Roughness | None = None
     supply: Supply = field(default_factory=Supply)
     solver: dict[str, dict[str, Any]] = field(default_factory=dict)
+    #: A surface feature ([feature] table, lengths in metres), read by the transient solver.
+    feature: dict[str, Any] = field(default_factory=dict)
     raw: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
     #: The machine element the contact came from ([element] table), if any.
     element: ElementContact | None = field(default=None, compare=False)
@@ -332,6 +337,8 @@ class Scene:
             d["roughness"] = {k: v for k, v in vars(self.roughness).items() if not _isnan(v)}
         if self.solver:
             d["solver"] = copy.deepcopy(self.solver)
+        if self.feature:
+            d["feature"] = copy.deepcopy(self.feature)
         return d
 
     def to_toml(self) -> str:
@@ -554,6 +561,8 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
     if hos_t and rough is None:
         raise InputError("supply.hoil_over_sigma needs a [roughness] table (sigma = Rq)")
 
+    feature = _with_units(data, "feature", required=False)
+
     solver = _section(data, "solver", required=False)
     reject_unknown_keys("solver", solver, {"ehl", "thermal", "mixed"})
     for k, v in solver.items():
@@ -565,6 +574,7 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         Rx=Rx, Ry=Ry, body1=body1, body2=body2, E_reduced=E_red, lubricant=lub,
         load=load, us=us, slip=slip, T_oil=T_oil, T_surface1=T_s1, T_surface2=T_s2,
         ranges=ranges, roughness=rough, supply=Supply(hoil, hos_t, delta), solver=solver,
+        feature=feature,
         raw=data, element=element, oil=oil,
     )
 

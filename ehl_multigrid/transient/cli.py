@@ -49,7 +49,7 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
     if scene.kind != "line":
         raise InputError(f"contact.kind = {scene.kind!r}: 'ehl transient' solves line contacts")
     pb = LineProblem.from_scene(scene, xmin=args.xmin)
-    feature, body = feature_from_scene_table(scene.raw.get("feature"), pb)
+    feature, body = feature_from_scene_table(scene.feature, pb)
     res = solve_transient_line(pb, feature, body=body, slide_roll=scene.slip, dt=args.dt,
                                steps=args.steps, t_end=args.t_end, points=args.points,
                                scheme=args.scheme, snapshot_every=args.snapshot_every)

@@ -155,3 +155,15 @@ def test_with_operating_revalidates():
     assert s.with_operating(load=2000.0).hertz.pmax == pytest.approx(load_scene("page63_line_2000N").hertz.pmax)
     with pytest.raises(InputError, match="operating.us"):
         s.with_operating(us=-1.0)
+
+
+def test_feature_table_converts_units_and_round_trips_through_toml(tmp_path):
+    d = scene_with("feature", {"kind": "dent", "amplitude": "0.1 um", "width": "40 um", "x0": -3.0})
+    s = Scene.from_dict(d)
+    assert s.feature["amplitude"] == pytest.approx(1e-7) and s.feature["width"] == pytest.approx(4e-5)
+    f = tmp_path / "dent.toml"
+    f.write_text(s.to_toml())
+    assert load_scene(f).feature == s.feature
+    assert Scene.from_dict(BASE).feature == {} and "feature" not in Scene.from_dict(BASE).to_dict()
+    with pytest.raises(InputError, match="feature.width"):
+        Scene.from_dict(scene_with("feature", {"kind": "dent", "width": "40 parsecs-per-volt"}))

@@ -10,7 +10,7 @@ import pytest
 
 from ehl_multigrid.line.problem import LineProblem
 from ehl_multigrid.model.errors import InputError
-from ehl_multigrid.model.scene import load_scene
+from ehl_multigrid.model.scene import Scene, load_scene
 from ehl_multigrid.transient import cli, load_series
 
 
@@ -21,16 +21,20 @@ def _parser():
 
 
 def _scene_with(feature):
-    sc = load_scene("page63_line_2000N")
-    sc.raw["feature"] = feature  # what the scene loader keeps once [feature] is a known table
-    return sc
+    d = load_scene("page63_line_2000N").to_dict()
+    if feature is not None:
+        d["feature"] = feature
+    return Scene.from_dict(d)
 
 
 def test_transient_command_writes_series_plots_and_summary(monkeypatch, tmp_path):
     sc = _scene_with(None)
     pb = LineProblem.from_scene(sc, xmin=-4.5)
     depth = 0.5 * 0.0084 * pb.b**2 / pb.R  # half the central film, in metres
-    sc.raw["feature"] = {"kind": "dent", "amplitude": depth, "width": 0.5 * pb.b, "x0": -3.0}
+    # the depth with units, as a user writes it: the scene converts it to metres
+    sc = _scene_with({"kind": "dent", "amplitude": f"{depth * 1e9:.6f} nm", "width": 0.5 * pb.b,
+                      "x0": -3.0})
+    assert sc.feature["amplitude"] == pytest.approx(depth, rel=1e-6)
     monkeypatch.setattr(cli, "load_scene", lambda name: sc)
     args = _parser().parse_args(["transient", "x", "--points", "257", "--json", "--out", str(tmp_path),
                                  "--threshold", "1e-8", "--animate", "--snapshot-every", "20"])
