@@ -196,7 +196,8 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
         ``outlet_layer`` (the layer left on the track, Moes; ``outlet_layer_venner``),
         ``rho_c_Hc_over_hoil``; ``extra['upstream']`` the starved inlet ahead of the box,
         ``extra['flooded']`` the flooded-inlet solution on the whole box, histories of the
-        final solve, ``extra['meniscus_solves']`` the number of box solves.
+        final solve, ``extra['meniscus_solves']`` the number of box solves and
+        ``extra['meniscus_history']`` each of them (grid, meniscus, flux, status, cycles).
 
     Raises
     ------
@@ -246,6 +247,10 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
             out.scalars["Hc_flooded"] = full.scalars["Hc_flooded"]
             return out
         fine, xm = maps[-1], roots[-1]
+        # the outer iteration: every box solve of the root searches (grid, meniscus, flux)
+        history = [{"points": m.points, "meniscus_x": x, "flux": float(r.scalars.get("flux_in", math.nan)),
+                    "status": r.status_name, "cycles": r.cycles}
+                   for m in maps for x, r in m.cache.items()]
         solves += sum(len(m.cache) for m in maps)
         fm_work = sum(m.work for m in maps)
         ladder = [(n, x, m.solve(x)) for n, x, m in zip(grids, roots, maps, strict=True)]
@@ -257,6 +262,7 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
         Xu = np.linspace(xmin, xm, max(int(round((xm - xmin) / (res.X[1] - res.X[0]))), 2) + 1)[:-1]
         Hu = upstream_film(res, Xu)
         res.extra["upstream"] = {"X": Xu, "H": Hu, "theta": np.minimum(1.0, hoil / Hu)}
+        res.extra["meniscus_history"] = history
     fl = full.extra["flooded"]
     for key in ("Hc_flooded_venner", "Hm_flooded_venner", "Hc_flooded", "Hm_flooded"):
         res.scalars[key] = full.scalars[key]

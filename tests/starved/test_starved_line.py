@@ -109,3 +109,20 @@ def test_scene_supply_in_metres_gives_the_film_that_carries_it():
     assert r.success and not r.scalars["inlet_flooded"]
     assert r.scalars["hc"] * r.scalars["rho_c"] == pytest.approx(1.5e-8, rel=1e-4)
     assert r.scalars["outlet_layer_m"] == pytest.approx(1.5e-8, rel=1e-6)
+
+
+def test_an_unconverged_solve_raises_a_convergence_error_with_the_reason():
+    with pytest.raises(ConvergenceError, match="not converged after 0 extra cycles"):
+        solve_starved_line(PB, 0.05, points=257, max_cycles=0)
+    r = solve_starved_line(PB, 0.05, points=257, max_cycles=0, raise_on_failure=False)
+    assert not r.success and r.status_name == "start_failed"  # the flooded start did not converge
+    assert "not converged after 0 extra cycles" in r.message
+
+
+def test_the_outer_iteration_is_recorded(half_starved):
+    hist = half_starved.extra["meniscus_history"]
+    assert len(hist) == half_starved.extra["meniscus_solves"] - 1  # plus the flooded-inlet solve
+    assert {h["points"] for h in hist} == {257, 513}
+    last = [h for h in hist if h["points"] == 513 and h["meniscus_x"] == half_starved.scalars["meniscus_x"]]
+    assert last and last[0]["flux"] == pytest.approx(0.05, rel=1e-8)
+    assert half_starved.residual_history.size >= 1 and half_starved.load_error_history.size >= 1
