@@ -300,18 +300,24 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
 
 
 def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOptions | None = None,
-                        accuracy: float | None = None, *, estimate: bool = True, **kw: Any) -> EHLResult:
+                        accuracy: float | None = None, *, estimate: bool = True,
+                        viscosity: str | None = None, density: str | None = None,
+                        xmin: float | None = None, xmax: float | None = None, elastic: bool = True,
+                        **kw: Any) -> EHLResult:
     """Starved line contact of a line-contact ``scene`` at its operating point, supplied with
     the scene's ``[supply] hoil`` [m] (or ``hoil`` [m]), converted with
     :func:`~ehl_multigrid.starved.supply.hoil_venner` (``Hoil = hoil R/b^2``). The scene's
     ``[solver.ehl]`` table applies (problem keys: viscosity, density, xmin, xmax; the rest are
-    options below the keywords). Films in metres: ``hc = Hc_venner b^2/R`` (scalar ``hc``)."""
+    options below the keywords); explicit ``viscosity``, ``density``, ``xmin``, ``xmax``,
+    ``elastic`` override it. Films in metres: ``hc = Hc_venner b^2/R`` (scalar ``hc``)."""
     from ..multigrid.options import build_scene_options, scene_solver_table
     from .supply import hoil_venner
 
     model, table = scene_solver_table(scene, "line")
-    prob = {**{"viscosity": "roelands", "density": "dowson-higginson", "xmax": 1.5}, **model}
-    pb = LineProblem.from_scene(scene, **prob)
+    given = {"viscosity": viscosity, "density": density, "xmin": xmin, "xmax": xmax}
+    prob = {**{"viscosity": "roelands", "density": "dowson-higginson", "xmax": 1.5}, **model,
+            **{k: v for k, v in given.items() if v is not None}}
+    pb = LineProblem.from_scene(scene, elastic=elastic, **prob)
     h_m = scene.supply.hoil if hoil is None else hoil
     opts = build_scene_options(LineOptions, starved_options(options), table, kw)
     res = solve_starved_line(pb, hoil_venner(h_m, pb.b, pb.R), opts, accuracy, estimate=estimate, scene=scene)
