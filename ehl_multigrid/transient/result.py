@@ -201,6 +201,12 @@ class TransientResult:
         return np.asarray(self.series["wall_s"], dtype=float)
 
     # -- output ---------------------------------------------------------------------------
+    #: HDF5 ``kind`` attribute of the file
+    file_kind = "ehl_transient_line"
+
+    def _problem_dict(self) -> dict[str, Any]:
+        return self.problem.describe()
+
     def to_hdf5(self, path: str | os.PathLike) -> str:
         """Write the series, snapshots and summary to HDF5 (temporary file, then rename)."""
         import json
@@ -213,11 +219,13 @@ class TransientResult:
         os.close(fd)
         try:
             with h5py.File(tmp, "w") as f:
-                f.attrs["kind"] = "ehl_transient_line"
+                f.attrs["kind"] = self.file_kind
                 f.attrs["summary"] = json.dumps(self.summary(), default=_jsonable)
-                f.attrs["problem"] = json.dumps(self.problem.describe(), default=_jsonable)
+                f.attrs["problem"] = json.dumps(self._problem_dict(), default=_jsonable)
                 f.attrs["options"] = json.dumps(self.options.describe(), default=_jsonable)
                 f.create_dataset("X", data=self.X)
+                if getattr(self, "Y", None) is not None:  # point contact: snapshots are [T, Y, X]
+                    f.create_dataset("Y", data=self.Y)
                 g = f.create_group("series")
                 for k in SERIES:
                     g.create_dataset(k, data=np.asarray(self.series[k], dtype=float))
@@ -256,7 +264,10 @@ def load_series(path: str | os.PathLike) -> dict[str, Any]:
     import h5py
 
     with h5py.File(path, "r") as f:
-        out: dict[str, Any] = {"summary": json.loads(f.attrs["summary"]), "X": f["X"][()]}
+        out: dict[str, Any] = {"summary": json.loads(f.attrs["summary"]), "X": f["X"][()],
+                               "kind": str(f.attrs["kind"])}
+        if "Y" in f:
+            out["Y"] = f["Y"][()]
         out["series"] = {k: f["series"][k][()] for k in f["series"]}
         out["snapshots"] = {k: f["snapshots"][k][()] for k in f["snapshots"]}
     return out
