@@ -33,7 +33,7 @@ import numpy as np
 import scipy.optimize
 
 from ..line.problem import LineProblem
-from ..line.solver import HINT, line_domain_change
+from ..line.solver import HINT, MAX_ACCURACY_POINTS, line_domain_change
 from ..model.errors import ConvergenceError, require_range
 from ..multigrid.accuracy import (
     HM_MAX_ORDER,
@@ -167,7 +167,7 @@ def supply_estimate(res: EHLResult, ladder: list[tuple[int, float, EHLResult]]) 
 def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions | None = None,
                        accuracy: float | None = None, *, estimate: bool = True,
                        callback: Callable[[dict[str, Any]], None] | None = None,
-                       scene: Any = None, **kw: Any) -> EHLResult:
+                       scene: Any = None, max_points: int = MAX_ACCURACY_POINTS, **kw: Any) -> EHLResult:
     """Solve the starved, mass-conserving isothermal EHL line contact for a supplied oil layer.
 
     Parameters
@@ -180,8 +180,9 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
     options : :class:`~ehl_multigrid.multigrid.options.LineOptions` (default: the line
         defaults with ``tol = tol_load = 1e-7``: the mass balance is the sum of the residuals);
         keywords override its fields (``points`` ...).
-    accuracy : relative target for Hc and Hm: the result's status is ``"inaccurate"`` when the
-        estimate exceeds it (no automatic refinement).
+    accuracy : relative target for Hc and Hm: while the estimate exceeds it the grid is
+        doubled (up to ``max_points``; not when ``points`` or ``options`` are given, which are
+        only judged); the result's status is ``"inaccurate"`` when it is still not met.
     estimate : attach the error estimate (:func:`supply_estimate`: the core's Richardson
         rule over the films of nested root searches on 257, 513, ... points at fixed Hoil; the
         flooded solver's estimate when the inlet is flooded).
@@ -204,11 +205,27 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
     InputError : bad ``hoil`` (negative, zero, NaN) or options.
     ConvergenceError : a solve diverged or no meniscus carries the supply.
     """
-    t0 = time.perf_counter()
     hoil = check_hoil(hoil)
     opts = starved_options(options, **kw)
     if accuracy is not None:
         require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
+    refine = accuracy is not None and estimate and "points" not in kw and options is None
+    while True:
+        res = _solve_once(problem, hoil, opts, accuracy, estimate, callback, scene)
+        if not refine or res.status != 6 or 2 * (opts.points - 1) + 1 > max_points:
+            if res.status == 6 and opts.raise_on_failure:
+                raise ConvergenceError(f"starved line solver: {res.message} ({opts.points} points)",
+                                       res.report, f"more points (up to max_points = {max_points})")
+            return res
+        # the estimate exceeds the target: one grid finer (the nested searches start again)
+        opts = dataclasses.replace(opts, points=2 * (opts.points - 1) + 1)
+
+
+def _solve_once(problem: LineProblem, hoil: float, opts: LineOptions, accuracy: float | None,
+                estimate: bool, callback: Callable[[dict[str, Any]], None] | None,
+                scene: Any) -> EHLResult:
+    """One starved solve on ``opts.points`` (see :func:`solve_starved_line`)."""
+    t0 = time.perf_counter()
     full = solve_starved_problem(problem, math.inf, dataclasses.replace(opts, raise_on_failure=False),
                                  callback=callback, scene=scene)
     if not full.success:
@@ -294,7 +311,7 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
             res.extra["meniscus_ladder"] = [{"points": n, "meniscus_x": x, "Hc_venner": r.scalars["Hc_venner"],
                                              "Hm_venner": r.scalars["Hm_venner"]} for n, x, r in ladder]
         attach_estimate(res, est, accuracy)
-    if not res.success and opts.raise_on_failure:
+    if not res.success and res.status != 6 and opts.raise_on_failure:
         raise ConvergenceError(f"starved line solver: {res.message}", res.report, HINT)
     return res
 

@@ -126,3 +126,12 @@ def test_the_outer_iteration_is_recorded(half_starved):
     last = [h for h in hist if h["points"] == 513 and h["meniscus_x"] == half_starved.scalars["meniscus_x"]]
     assert last and last[0]["flux"] == pytest.approx(0.05, rel=1e-8)
     assert half_starved.residual_history.size >= 1 and half_starved.load_error_history.size >= 1
+
+
+def test_an_accuracy_the_estimate_does_not_meet_is_reported(half_starved):
+    # 513 points: estimated Hm error about 4e-4 (the fixed-supply Richardson estimate)
+    assert 1e-4 < half_starved.Hm_error < 2e-3
+    r = solve_starved_line(PB, 0.05, accuracy=1e-4, points=513, raise_on_failure=False)
+    assert r.status_name == "inaccurate" and "exceeds the requested accuracy" in r.message
+    with pytest.raises(ConvergenceError, match="exceeds the requested accuracy 0.0001"):
+        solve_starved_line(PB, 0.05, accuracy=1e-4, points=513)
