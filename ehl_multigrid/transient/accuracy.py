@@ -18,7 +18,6 @@ from typing import Any
 import numpy as np
 
 from ..line.problem import LineProblem
-from .features import Feature
 from .result import TransientResult
 from .solve import solve_transient_line
 
@@ -33,15 +32,21 @@ def time_error(fine: TransientResult, coarse: TransientResult) -> dict[str, floa
     out = {}
     for name in ("Hc", "Hm"):
         f, c = getattr(fine, name)[::2][:m], getattr(coarse, name)[:m]
-        ref = getattr(fine.steady, f"{name}_venner")
+        # point results carry the smooth steady films themselves
+        ref = getattr(fine, f"{name}_steady", None) if fine.__dict__.get("Y") is not None else None
+        ref = getattr(fine.steady, f"{name}_venner") if ref is None else ref
         out[name] = float(np.max(np.abs(f - c)) / (2**p - 1) / ref)
     return out
 
 
-def solve_with_time_error(problem: LineProblem, feature: Feature | None, *, dt: float,
+def solve_with_time_error(problem: Any, feature: Any, *, dt: float,
                           steps: int, **kw: Any) -> tuple[TransientResult, dict[str, float]]:
     """Run at ``dt`` and at ``2 dt`` (``steps // 2`` steps) and return the fine run with its
-    estimated relative time errors of Hc and Hm (costs about 1.5 runs)."""
-    fine = solve_transient_line(problem, feature, dt=dt, steps=steps, **kw)
-    coarse = solve_transient_line(problem, feature, dt=2.0 * dt, steps=max(steps // 2, 1), **kw)
+    estimated relative time errors of Hc and Hm (costs about 1.5 runs). ``problem`` is a
+    :class:`LineProblem` or a point problem (then :func:`~.point_solve.solve_transient_point`)."""
+    run = solve_transient_line
+    if not isinstance(problem, LineProblem):
+        from .point_solve import solve_transient_point as run
+    fine = run(problem, feature, dt=dt, steps=steps, **kw)
+    coarse = run(problem, feature, dt=2.0 * dt, steps=max(steps // 2, 1), **kw)
     return fine, time_error(fine, coarse)

@@ -122,7 +122,9 @@ class PointTransientResult(TransientResult):
             s["cycles"].append(int(res.residual_history.size))
             s["work_units"].append(float(res.work_units))
         s["wall_s"].append(wall)
-        s["mass_balance"].append(point_mass_balance(hz) if n > 0 else math.nan)
+        bal = point_mass_balance(hz, terms=True) if n > 0 else {"balance": math.nan, "storage": math.nan}
+        s["mass_balance"].append(bal["balance"])
+        s.setdefault("storage", []).append(bal["storage"])
         if n == 0:
             s["stalled"].append(0.0)
         if keep:
@@ -195,23 +197,24 @@ class PointTransientResult(TransientResult):
         return out
 
 
-def point_mass_balance(hz: TransientPointHierarchy, box: float = 0.6) -> float:
+def point_mass_balance(hz: TransientPointHierarchy, box: float = 0.6, terms: bool = False) -> Any:
     """Discrete mass balance of the control volume ``|X| <= box``, ``|Y| <= box b/a`` (inside the
     pressurised zone) of the finest grid: storage ``hx hy sum d(rho H)/dT`` minus the net
     inflow through its faces (Poiseuille ``-eps_face dP/dn``, second-order upwind Couette
     ``1.5 q_i - 0.5 q_{i-1}`` along X), over the Couette flux through its inlet face. Zero (to the
     residual) when the discrete equations are in conservation form; NaN when the box holds a
-    cavitated node."""
+    cavitated node. ``terms``: a dict with the balance and the storage term (same scaling)."""
+    nan = {"balance": math.nan, "storage": math.nan} if terms else math.nan
     lv = hz.fine
     X, Y, P, q, eps = lv.X, lv.Y, lv.P, lv.rho * lv.H, lv.eps
     hx, hy = lv.hx, lv.hy
     ii = np.flatnonzero(np.abs(X) <= box)
     jj = np.flatnonzero(np.abs(Y) <= box * hz.boa)
     if ii.size < 2 or jj.size < 2 or ii[0] < 3:
-        return math.nan
+        return nan
     i0, i1, j0, j1 = ii[0], ii[-1], jj[0], jj[-1]
     if np.any(P[j0 - 1:j1 + 2, i0 - 1:i1 + 2] <= 0.0):
-        return math.nan
+        return nan
     rows = slice(j0, j1 + 1)
     cols = slice(i0, i1 + 1)
     storage = hx * hy * float(np.sum(hz.squeeze()[rows, cols]))
@@ -225,7 +228,9 @@ def point_mass_balance(hz: TransientPointHierarchy, box: float = 0.6) -> float:
     p_lo = 0.5 * (eps[j0 - 1, cols] + eps[j0, cols]) * (P[j0, cols] - P[j0 - 1, cols]) / hy
     p_hi = 0.5 * (eps[j1, cols] + eps[j1 + 1, cols]) * (P[j1 + 1, cols] - P[j1, cols]) / hy
     flow_y = hx * float(np.sum(-p_lo + p_hi))
-    return (storage - (flow_x + flow_y)) / max(hy * float(np.sum(np.abs(c_in))), 1e-300)
+    scale = max(hy * float(np.sum(np.abs(c_in))), 1e-300)
+    bal = (storage - (flow_x + flow_y)) / scale
+    return {"balance": bal, "storage": storage / scale} if terms else bal
 
 
 def solve_transient_point(

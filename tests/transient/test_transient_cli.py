@@ -56,9 +56,32 @@ def test_transient_command_without_feature_table_names_it(monkeypatch, tmp_path)
         args.func(args)
 
 
-def test_transient_command_rejects_point_scenes_and_huge_grids(tmp_path):
-    args = _parser().parse_args(["transient", "series_B_disc1_1GPa", "--out", str(tmp_path)])
-    with pytest.raises(InputError, match="line contacts"):
+def test_transient_command_runs_a_dent_through_a_point_scene(monkeypatch, tmp_path):
+    from ehl_multigrid.point.problem import problem_from_scene
+
+    d = load_scene("series_B_disc1_1GPa").to_dict()
+    d["operating"]["load"] *= 0.064  # pmax 0.4 GPa, M = 14: 65^2 converges (1 GPa: M = 222 needs 257^2)
+    pb = problem_from_scene(Scene.from_dict(d))
+    depth = 0.1 * pb.a**2 / pb.Rx  # 0.1 film units
+    d["feature"] = {"kind": "dent", "amplitude": depth, "width": 0.5 * pb.a, "x0": -2.0, "y0": 0.3}
+    sc = Scene.from_dict(d)
+    monkeypatch.setattr(cli, "load_scene", lambda name: sc)
+    args = _parser().parse_args(["transient", "x", "--points", "65", "--steps", "12", "--json",
+                                 "--out", str(tmp_path), "--threshold", "1e-7", "--snapshot-every", "4"])
+    out = args.func(args)
+    assert out["contact"] == "point" and out["points"] == out["points_y"] == 65
+    assert out["feature"]["amplitude"] == pytest.approx(-0.1) and out["feature"]["y0"] == 0.3
+    assert 0 < out["hm_min"] < out["hc_steady"]
+    assert len(out["load_fraction_below_threshold"]) == 4
+    assert [p.rsplit(".", 1)[1] for p in out["plots"]] == ["png", "png"]
+    back = load_series(out["file"])
+    assert back["kind"] == "ehl_transient_point" and back["summary"]["steps"] == 12
+    json.dumps(out)
+
+
+def test_transient_command_rejects_huge_grids(tmp_path):
+    args = _parser().parse_args(["transient", "series_B_disc1_1GPa", "--points", "1025", "--out", str(tmp_path)])
+    with pytest.raises(InputError, match=r"--points = 1025 .*\[65, 513\] for a point"):
         args.func(args)
     args = _parser().parse_args(["transient", "page63_line_2000N", "--points", "9000", "--out", str(tmp_path)])
     with pytest.raises(InputError, match=r"--points = 9000 .*\[65, 4097\]"):
