@@ -47,7 +47,7 @@ def test_mass_is_conserved_to_1e6_relative(half_starved):
 def test_starved_central_film_carries_the_supply_in_pure_rolling(half_starved):
     # rho_c Hc = rho_0 Hoil when the pressure flow at the centre vanishes
     assert half_starved.scalars["rho_c_Hc_over_hoil"] == pytest.approx(1.0, abs=1e-3)
-    deep = solve_starved_line(PB, 0.01, points=513)
+    deep = solve_starved_line(PB, 0.01, points=257, estimate=False)
     assert deep.scalars["Hc_ratio"] < 0.15
     assert deep.scalars["rho_c_Hc_over_hoil"] == pytest.approx(1.0, abs=1e-3)
     assert deep.scalars["meniscus_x"] > half_starved.scalars["meniscus_x"]
@@ -55,7 +55,7 @@ def test_starved_central_film_carries_the_supply_in_pure_rolling(half_starved):
 
 def test_central_film_decreases_monotonically_with_the_supply():
     films, menisci = [], []
-    for hoil in (0.09, 0.06, 0.03, 0.015):
+    for hoil in (0.09, 0.045, 0.015):
         r = solve_starved_line(PB, hoil, points=257, estimate=False)
         films.append(r.scalars["Hc_venner"])
         menisci.append(r.scalars["meniscus_x"])
@@ -131,7 +131,6 @@ def test_the_outer_iteration_is_recorded(half_starved):
 def test_an_accuracy_the_estimate_does_not_meet_is_reported(half_starved):
     # 513 points: estimated Hm error about 4e-4 (the fixed-supply Richardson estimate)
     assert 1e-4 < half_starved.Hm_error < 2e-3
-    r = solve_starved_line(PB, 0.05, accuracy=1e-4, points=513, raise_on_failure=False)
-    assert r.status_name == "inaccurate" and "exceeds the requested accuracy" in r.message
-    with pytest.raises(ConvergenceError, match="exceeds the requested accuracy 0.0001"):
+    with pytest.raises(ConvergenceError, match="exceeds the requested accuracy 0.0001") as exc:
         solve_starved_line(PB, 0.05, accuracy=1e-4, points=513)
+    assert exc.value.report.extra["status"] == "inaccurate"
