@@ -16,6 +16,7 @@ import numpy as np
 import scipy.linalg
 from numba import njit
 
+from ..multigrid.threads import serial_blas
 from .discrete import fluid_state, reynolds_residual, wedge_coefficients
 from .level import LineLevel
 
@@ -115,7 +116,13 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10) -> in
     """Solve the level's problem in place (``level.P``, ``level.H0``); return iterations.
 
     Raises :class:`NewtonFailure` when the damped iteration stalls or the film collapses.
+    The dense factorisations run on one BLAS thread (:func:`serial_blas`).
     """
+    with serial_blas():
+        return _newton_solve(level, max_iter, tol)
+
+
+def _newton_solve(level: LineLevel, max_iter: int, tol: float) -> int:
     n = level.n
     P, H0 = level.P.copy(), float(level.H0)
     P_frozen = level.P.copy()
@@ -141,7 +148,8 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10) -> in
         J[-1, :-1] = level.h
         J[-1, -1] = 0.0  # the load does not depend on H0
         try:
-            # scipy's LAPACK: numpy's threaded OpenBLAS is ~700x slower on a busy 2-core box
+            # scipy's LAPACK on one thread: threaded OpenBLAS is 25-700x slower on a busy
+            # 2-core box
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
                 step = scipy.linalg.solve(J, -phi, check_finite=False)

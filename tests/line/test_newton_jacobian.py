@@ -40,3 +40,34 @@ def test_newton_jacobian_matches_finite_differences(M, L, elastic, order):
         fd[:, col] = -(rp - rm)[1:-1] / (2.0 * step)
     scale = np.abs(fd).max()
     assert np.abs(J - fd).max() < 1e-6 * scale
+
+
+def test_a_start_from_another_box_solution_gives_the_same_film_in_fewer_newton_steps():
+    import dataclasses
+
+    from ehl_multigrid.line.solver import solve_line_problem
+
+    pb = LineProblem.from_moes(1000.0, 10.0)
+    opts = LineOptions(points=2049)
+    sol = solve_line_problem(pb, opts)
+    wide = dataclasses.replace(pb, xmin=pb.xmin - (pb.xmax - pb.xmin))
+    cold = solve_line_problem(wide, opts, points=4097)
+    warm = solve_line_problem(wide, opts, points=4097, guess=(sol.X, sol.P, sol.H0))
+    assert cold.success and warm.success
+    assert warm.scalars["Hc_venner"] == pytest.approx(cold.scalars["Hc_venner"], rel=1e-6)
+    assert warm.scalars["Hm_venner"] == pytest.approx(cold.scalars["Hm_venner"], rel=1e-6)
+    assert warm.extra["newton_iterations"] < cold.extra["newton_iterations"]
+
+
+def test_serial_blas_restores_the_callers_thread_count():
+    from threadpoolctl import threadpool_info
+
+    from ehl_multigrid.multigrid.threads import serial_blas
+
+    def blas_threads():
+        return [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
+
+    before = blas_threads()
+    with serial_blas():
+        assert all(n == 1 for n in blas_threads())
+    assert blas_threads() == before
