@@ -1,0 +1,368 @@
+"""Validation of the transient point-contact solver (ehl_multigrid.transient.solve_transient_point).
+
+Parts (``--part``): ``steady`` (zero feature against the core steady solution; start-up from
+another speed), ``time`` (BDF2 time-step refinement on one grid), ``waviness`` (amplitude
+reduction Ad/Ai of transverse waviness, circular contacts, pure rolling), ``dent`` (a dent
+through a circular contact, rolling and slip: profiles at several positions), ``cost`` (time
+per step at 257^2 and 513^2), ``rough`` (a synthetic surface with the statistics of a series-B
+disc through the contact: the load carried where the film is thin, against the mixed layer's
+Greenwood-Williamson asperity share). Each part writes ``out/point_<part>.json`` and a PNG.
+
+Moes-only circular problems (default oil of the core), Roelands + Dowson-Higginson, domain
+X in [-4.5, 1.5], |Y| <= 3 (the core's default box) unless stated.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+from pathlib import Path
+
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from ehl_multigrid.model.fits import nijenbanning_central  # noqa: E402
+from ehl_multigrid.point.problem import problem_from_moes, problem_from_scene  # noqa: E402
+from ehl_multigrid.point.solve import solve_fas  # noqa: E402
+from ehl_multigrid.transient import (  # noqa: E402
+    Dent2D,
+    HeightMap,
+    Waviness2D,
+    point_transient_options,
+    solve_transient_point,
+)
+
+OUT = Path(__file__).resolve().parent / "out"
+
+
+def save(name: str, data: dict) -> None:
+    OUT.mkdir(parents=True, exist_ok=True)
+    (OUT / f"{name}.json").write_text(json.dumps(data, indent=1, default=float))
+    print(f"wrote {OUT / name}.json")
+
+
+def hc_fit(M: float, L: float) -> float:
+    """Nijenbanning-fit central film in the point contact's units (H = h Rx/a^2)."""
+    pb = problem_from_moes(M, L)
+    return float(nijenbanning_central(M, L, 1.0)) / pb.moes_factor
+
+
+def orders(values: list[float]) -> list[float]:
+    d = [abs(a - b) for a, b in zip(values, values[1:], strict=False)]
+    return [math.log2(a / b) if b > 0 else math.nan for a, b in zip(d, d[1:], strict=False)]
+
+
+# -- steady limit --------------------------------------------------------------------------
+def part_steady(quick: bool) -> None:
+    pb = problem_from_moes(20, 10)
+    rows = []
+    for n in ((65,) if quick else (129, 257)):
+        res = solve_transient_point(pb, Dent2D(0.0, 0.5, x0=-2.5), dt=0.05, steps=20, points=n,
+                                    snapshot_every=20)
+        rows.append({"points": n, "Hc_core": res.Hc_steady, "Hm_core": res.Hm_steady,
+                     "max_rel_dHc": float(np.max(np.abs(res.Hc / res.Hc_steady - 1))),
+                     "max_rel_dHm": float(np.max(np.abs(res.Hm / res.Hm_steady - 1))),
+                     "max_dP": float(np.max(np.abs(res.snapshots[20]["P"] - res.steady.P))),
+                     "cycles_max": res.summary()["cycles_max"]})
+        print(rows[-1])
+    # start-up: the steady film of M' = 1.2 M at the same load (a speed step), then smooth steps
+    n = 65 if quick else 129
+    M2 = 1.2 * pb.M
+    other = problem_from_moes(M2, pb.L * (pb.M / M2) ** (1.0 / 3.0))  # same alpha_bar = g L M^(1/3)
+    start = solve_fas(other, point_transient_options(points=n))
+    res = solve_transient_point(pb, None, dt=0.1, steps=80, points=n, initial=(start.P, start.H0),
+                                snapshot_every=1000)
+    err = np.abs(res.Hc / res.Hc_steady - 1)
+    startup = {"points": n, "dt": 0.1, "T": res.T.tolist(), "rel_dHc": err.tolist(),
+               "alpha_bar_start": other.alpha_bar, "alpha_bar": pb.alpha_bar}
+    print({k: startup["rel_dHc"][k] for k in (0, 10, 20, 40, 60, 80)})
+    save("point_steady", {"zero_feature": rows, "startup": startup})
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.semilogy(res.T, err)
+    ax.set_xlabel("T = t u_m / a")
+    ax.set_ylabel("|Hc(T)/Hc_steady - 1|")
+    ax.set_title(f"Point start-up from M' = 1.2 M (M = 20, L = 10, {n}^2)")
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(OUT / "point_steady_startup.png", dpi=120)
+
+
+# -- time-step refinement ------------------------------------------------------------------
+def part_time(quick: bool) -> None:
+    pb = problem_from_moes(20, 10)
+    bump = Dent2D(0.1, 0.8, x0=-2.4, shape="gaussian")
+    n = 65 if quick else 129
+    dts = (0.1, 0.05, 0.025) if quick else (0.1, 0.05, 0.025, 0.0125)
+    runs = []
+    for dt in dts:
+        r = solve_transient_point(pb, bump, dt=dt, steps=round(1.6 / dt), points=n, tol=1e-8,
+                                  tol_load=1e-10, snapshot_every=100000)
+        runs.append(r)
+        print(dt, r.summary()["cycles_mean"])
+    dhc = [float(np.max(np.abs(a.Hc - b.Hc[::2]))) for a, b in zip(runs, runs[1:], strict=False)]
+    dfield = [float(np.mean(np.abs(a.snapshots[a.steps]["H"] - b.snapshots[b.steps]["H"])))
+              for a, b in zip(runs, runs[1:], strict=False)]
+    o_hc = [math.log2(a / b) for a, b in zip(dhc, dhc[1:], strict=False)]
+    o_f = [math.log2(a / b) for a, b in zip(dfield, dfield[1:], strict=False)]
+    data = {"points": n, "dt": list(dts), "max_dHc_successive": dhc, "order_Hc": o_hc,
+            "mean_dH_final_successive": dfield, "order_H_final": o_f,
+            "cycles_mean": [r.summary()["cycles_mean"] for r in runs]}
+    print(data)
+    save("point_time", data)
+
+
+# -- waviness amplitude reduction --------------------------------------------------------------
+def nabla(wavelength: float, M: float, L: float) -> float:
+    """(lambda/a) M^(3/4)/L^(1/2): Venner, Couhier, Lubrecht & Greenwood's (1997) line-contact
+    parameter, evaluated with the point contact's Moes M, L and semi-axis a."""
+    return wavelength * M**0.75 / math.sqrt(L)
+
+
+def recalled_curve(nb: np.ndarray) -> np.ndarray:
+    """The line study's recalled fit 1/(1 + 0.15 nabla + 0.015 nabla^2) (not confirmed)."""
+    return 1.0 / (1.0 + 0.15 * nb + 0.015 * nb**2)
+
+
+WAVINESS_CASES = {(20.0, 10.0): (0.5, 1.0, 2.0, 3.0), (50.0, 10.0): (0.5, 1.0, 2.0), (10.0, 5.0): (1.0, 2.0)}
+
+
+def _previous_period(res) -> float:
+    period = res.feature.wavelength_x / abs(res.speed)
+    T, Hc = res.T, res.Hc
+    win = (T >= T[-1] - 2 * period) & (T < T[-1] - period)
+    return 0.5 * float(Hc[win].max() - Hc[win].min()) if win.any() else math.nan
+
+
+def part_waviness(quick: bool) -> None:
+    cases = {(20.0, 10.0): (1.0,)} if quick else WAVINESS_CASES
+    name = "point_waviness_quick" if quick else "point_waviness"
+    path = OUT / f"{name}.json"
+    rows = json.loads(path.read_text())["rows"] if path.exists() else []
+    done = {(r["M"], r["L"], r["wavelength"], r["points"]) for r in rows}
+    todo = [(M, L, lam, 129) for (M, L), lams in cases.items() for lam in lams]
+    if not quick:
+        todo += [(20.0, 10.0, 1.0, 257), (20.0, 10.0, 0.5, 257)]
+    for M, L, lam, n in todo:
+        if (M, L, lam, n) in done:
+            continue
+        pb = problem_from_moes(M, L)
+        Ai = 0.05 * hc_fit(M, L)
+        t0 = time.perf_counter()
+        # one transit of the domain plus two periods; Ad over the last period
+        res = solve_transient_point(pb, Waviness2D(Ai, lam), points=n, t_end=6.0 + 2.0 * lam,
+                                    snapshot_every=100000)
+        s = res.summary()
+        row = {"M": M, "L": L, "wavelength": lam, "points": n, "Ai": Ai, "nabla": nabla(lam, M, L),
+               "Ad_over_Ai": s["Ad_over_Ai"], "Ad_over_Ai_previous_period": _previous_period(res) / Ai,
+               "recalled_line_curve": float(recalled_curve(np.array(nabla(lam, M, L)))),
+               "Hc_steady": s["Hc_steady"], "steps": s["steps"], "dt": s["dt"],
+               "cycles_mean": s["cycles_mean"], "wall_s": time.perf_counter() - t0}
+        print(row)
+        rows.append(row)
+        save(name, {"rows": rows})
+    fig, ax = plt.subplots(figsize=(6, 4))
+    nb = np.linspace(0.1, 25, 300)
+    ax.plot(nb, recalled_curve(nb), "k-", lw=0.8, label="recalled line fit 1/(1+0.15n+0.015n^2)")
+    line = OUT / "waviness.json"
+    if line.exists():
+        lr = [r for r in json.loads(line.read_text())["rows"] if r["xmin"] == -4.5]
+        ax.plot([r["nabla"] for r in lr], [r["Ad_over_Ai"] for r in lr], ".", color="0.6",
+                label="line contact (this package)")
+    for (M, L), mk in zip(WAVINESS_CASES, ("o", "s", "^"), strict=False):
+        sel = [r for r in rows if r["M"] == M and r["L"] == L and r["points"] == 129]
+        ax.plot([r["nabla"] for r in sel], [r["Ad_over_Ai"] for r in sel], mk, label=f"circular M = {M:g}, L = {L:g}")
+    sel = [r for r in rows if r["points"] == 257]
+    if sel:
+        ax.plot([r["nabla"] for r in sel], [r["Ad_over_Ai"] for r in sel], "x", ms=9, label="257^2")
+    ax.set_xlabel("nabla = (lambda/a) M^(3/4) / L^(1/2)")
+    ax.set_ylabel("Ad / Ai (film amplitude at X = Y = 0)")
+    ax.set_xscale("log")
+    ax.set_title("Transverse waviness on one surface, pure rolling")
+    ax.legend(fontsize=7)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(OUT / f"{name}_amplitude.png", dpi=120)
+
+
+# -- dent passing --------------------------------------------------------------------------
+DENT_CASES = (("dent", 0.0), ("dent", 1.0), ("dent", -1.0))
+POSITIONS = (-1.0, -0.5, 0.0, 0.5, 1.0)
+
+
+def part_dent(quick: bool) -> None:
+    pb = problem_from_moes(20, 10)
+    n = 65 if quick else 129
+    A = -0.5 * hc_fit(20, 10)
+    rows, prof = [], {}
+    for kind, S in DENT_CASES[:1] if quick else DENT_CASES:
+        f = Dent2D(A, 0.5, x0=-2.5)
+        speed = 1.0 + 0.5 * S
+        t0 = time.perf_counter()
+        res = solve_transient_point(pb, f, slide_roll=S, points=n, snapshot_every=1,
+                                    t_end=(1.5 + 2.5) / speed)
+        s = res.summary()
+        j = int(np.argmin(np.abs(res.Y)))
+        Hs = res.steady.H[j]
+        snaps = {}
+        rise_up, rise_down = [], []
+        for xf in POSITIONS:
+            k = int(np.argmin(np.abs(res.xf - xf)))
+            sn = res.snapshots[k]
+            snaps[xf] = {"T": float(res.T[k]), "xf": float(res.xf[k]), "H": sn["H"][j].tolist(),
+                         "P": sn["P"][j].tolist()}
+            # film rise beside the dent: largest H - H_smooth on the centre line inside the Hertzian
+            # zone, outside the dent's reach (|X - xf| > W), upstream and downstream of it
+            dH = sn["H"][j] - Hs
+            hz_ = np.abs(res.X) <= 1.0
+            up = hz_ & (res.X < res.xf[k] - 0.5)
+            down = hz_ & (res.X > res.xf[k] + 0.5)
+            rise_up.append(float(np.max(dH[up])) if up.any() else math.nan)
+            rise_down.append(float(np.max(dH[down])) if down.any() else math.nan)
+        # the film the dent leaves at X = 0: min and max of H(0, 0, T) - Hc_steady
+        row = {"case": kind, "S": S, "feature_speed": speed, "points": n, "A": A, "W": 0.5,
+               "Hc_steady": s["Hc_steady"], "Hm_steady": s["Hm_steady"],
+               "Hc_min": s["Hc_min"], "Hc_max": s["Hc_max"], "Hm_min": s["Hm_min"],
+               "Pmax": s["Pmax_max"], "dP_max": s["dP_max"],
+               "depth_in_film_at_centre_over_A": s["Ad_over_Ai"],
+               "film_rise_upstream_of_dent_max": float(np.nanmax(rise_up)),
+               "film_rise_downstream_of_dent_max": float(np.nanmax(rise_down)),
+               "rise_upstream_at_positions": dict(zip(map(str, POSITIONS), rise_up, strict=True)),
+               "rise_downstream_at_positions": dict(zip(map(str, POSITIONS), rise_down, strict=True)),
+               "cycles_mean": s["cycles_mean"], "cycles_max": s["cycles_max"],
+               "mass_balance_max": s["mass_balance_max"], "steps": s["steps"],
+               "wall_s": time.perf_counter() - t0}
+        print(row)
+        rows.append(row)
+        prof[f"{kind}_S{S:g}"] = {"X": res.X.tolist(), "H_smooth": Hs.tolist(), "snapshots": snaps}
+    save("point_dent" + ("_quick" if quick else ""), {"rows": rows, "profiles": prof})
+    fig, axes = plt.subplots(2, len(prof), figsize=(4.2 * len(prof), 6), squeeze=False, sharex=True)
+    for c, (key, d) in enumerate(prof.items()):
+        X = np.array(d["X"])
+        axes[0, c].plot(X, d["H_smooth"], "k:", lw=1, label="smooth")
+        for xf, sn in d["snapshots"].items():
+            axes[0, c].plot(X, sn["H"], lw=1, label=f"xf = {xf:g}")
+            axes[1, c].plot(X, sn["P"], lw=1)
+        axes[0, c].set_ylim(0, 3 * rows[0]["Hc_steady"])
+        axes[0, c].set_title(key)
+        axes[1, c].set_xlim(-2, 1.5)
+        axes[1, c].set_xlabel("X = x/a (Y = 0)")
+    axes[0, 0].set_ylabel("H")
+    axes[1, 0].set_ylabel("P")
+    axes[0, 0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(OUT / ("point_dent_profiles" + ("_quick" if quick else "") + ".png"), dpi=110)
+
+
+# -- cost ----------------------------------------------------------------------------------
+def part_cost(quick: bool) -> None:
+    pb = problem_from_moes(20, 10)
+    A = -0.5 * hc_fit(20, 10)
+    rows = []
+    for n, steps in (((129, 10),) if quick else ((257, 30), (513, 12))):
+        # dent of 0.5 Hc entering the Hertzian zone (centre from X = -1.0), Courant 1
+        res = solve_transient_point(pb, Dent2D(A, 0.5, x0=-1.0), points=n, steps=steps,
+                                    snapshot_every=100000)
+        s = res.summary()
+        rows.append({"points": n, "dt": s["dt"], "steps": steps, "cycles_mean": s["cycles_mean"],
+                     "cycles_max": s["cycles_max"], "work_units_per_step": s["work_units_per_step"],
+                     "s_per_step": s["wall_per_step_s"], "setup_s": s["setup_s"],
+                     "pass_estimate_s": s["wall_per_step_s"] * 4.0 / s["dt"]})
+        print(rows[-1])
+    save("point_cost" + ("_quick" if quick else ""), {"rows": rows})
+
+
+# -- rough surface through a series-B contact -------------------------------------------------
+def part_rough(quick: bool) -> None:
+    from ehl_multigrid.model.scene import Scene, load_scene
+    from mixed.sharing import load_sharing
+    from mixed.surface.synthetic import gaussian_random_surface
+
+    name = "series_B_disc1_0.78GPa"
+    base = load_scene(name).to_dict()
+    rows = []
+    n = 129 if quick else 257
+    for us in ((12.0,) if quick else (12.0, 6.0)):
+        d = json.loads(json.dumps(base))
+        d["operating"]["us"] = us
+        sc = Scene.from_dict(d)
+        pb = problem_from_scene(sc)
+        rough = sc.roughness
+        share = float(load_sharing(sc, us).asperity_fraction[0])
+        a, Rx = pb.a, pb.Rx
+        h_grid = 6.0 * a / (n - 1)
+        ell = 4.0 * h_grid  # the shortest correlation length the grid resolves
+        dx = 0.5 * h_grid
+        Lx, Ly = 2.5 * a, 3.0 * a
+        hmap = gaussian_random_surface((int(Ly / dx) + 1, int(Lx / dx) + 1), dx, rough.Rq,
+                                       corr_length=ell, seed=7)
+        z = np.asarray(hmap.z) * Rx / a**2
+        x_start = -4.4
+        feat = HeightMap(z, dx / a, dx / a, x_start, -0.5 * Ly / a)
+        t0 = time.perf_counter()
+        try:
+            res = solve_transient_point(pb, feat, slide_roll=sc.slip, points=n, snapshot_every=2,
+                                        t_end=(1.0 - (x_start + 0.5 * Lx / a)) / (1 + 0.5 * sc.slip))
+        except Exception as exc:  # the film closing is a result here: report it
+            rows.append({"us": us, "M": pb.M, "L": pb.L, "error": str(exc)[:300], "gw_asperity_share": share})
+            print(rows[-1])
+            continue
+        s = res.summary()
+        scale = a**2 / Rx
+        hc_smooth = s["Hc_steady"] * scale
+        # the late snapshots: the rough patch covers the Hertzian zone
+        inside = res._zone(res.X, res.Y)
+        late = [k for k in sorted(res.snapshots) if abs(res.xf[k]) <= 0.3]
+        thresholds = {"0.5 Rq": 0.5 * rough.Rq, "1 Rq": rough.Rq, "2 Rq": 2 * rough.Rq,
+                      "3 sigma_s": 3 * rough.sigma_s}
+        frac = {}
+        for key, th in thresholds.items():
+            vals = []
+            for k in late:
+                P, H = res.snapshots[k]["P"], res.snapshots[k]["H"]
+                vals.append(float(P[H * scale <= th].sum() / P.sum()))
+            frac[key] = {"mean": float(np.mean(vals)), "max": float(np.max(vals))}
+        dev = [float(np.std((res.snapshots[k]["H"] - res.steady.H)[inside])) * scale for k in late]
+        rows.append({"us": us, "M": pb.M, "L": pb.L, "a": a, "points": n, "Rq": rough.Rq, "corr_length": ell,
+                     "hc_smooth_m": hc_smooth, "Lambda_smooth": hc_smooth / rough.Rq,
+                     "hm_min_m": s["Hm_min"] * scale, "hc_min_m": s["Hc_min"] * scale,
+                     "load_fraction_below": frac, "film_rms_deviation_in_contact_m": float(np.mean(dev)),
+                     "film_rms_over_Rq": float(np.mean(dev)) / rough.Rq,
+                     "gw_asperity_share": share, "steps": s["steps"], "cycles_mean": s["cycles_mean"],
+                     "stalled_steps": s["stalled_steps"], "wall_s": time.perf_counter() - t0})
+        print(rows[-1])
+        save("point_rough" + ("_quick" if quick else ""), {"scene": name, "rows": rows})
+        k = late[len(late) // 2]
+        fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+        im = ax[0].pcolormesh(res.X, res.Y, res.snapshots[k]["H"] * scale * 1e9, shading="auto")
+        ax[0].set_xlim(-1.5, 1.5)
+        ax[0].set_ylim(-1.5, 1.5)
+        ax[0].set_aspect("equal")
+        fig.colorbar(im, ax=ax[0], label="h [nm]")
+        ax[0].set_title(f"{name}, us = {us:g} m/s, T = {res.T[k]:.2f}")
+        hist, edges = res.film_distribution(60)
+        ax[1].bar(edges[:-1] * scale * 1e9, hist / hist.sum(), width=np.diff(edges) * scale * 1e9, align="edge")
+        ax[1].axvline(hc_smooth * 1e9, color="k", ls=":", label="smooth hc")
+        ax[1].set_xlabel("h in the Hertzian circle [nm] (all kept steps)")
+        ax[1].legend()
+        fig.tight_layout()
+        fig.savefig(OUT / f"point_rough_us{us:g}.png", dpi=110)
+    save("point_rough" + ("_quick" if quick else ""), {"scene": name, "rows": rows})
+
+
+PARTS = {"steady": part_steady, "time": part_time, "waviness": part_waviness, "dent": part_dent,
+         "cost": part_cost, "rough": part_rough}
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--part", choices=sorted(PARTS), action="append", required=True)
+    ap.add_argument("--quick", action="store_true")
+    args = ap.parse_args()
+    if args.quick:
+        OUT = OUT / "quick"
+    for p in args.part:
+        PARTS[p](args.quick)
