@@ -8,14 +8,16 @@ The outer iteration (a fixed point in the across-film fields):
 2. the thermal layer (:func:`thermal.line.solve_thermal_line`: Eyring law (3.3), momentum
    (3.4) with the stress slope ``h dp/dx`` of the current pressure, energy (3.5) across and
    along the film, moving-heat-source surface temperatures (3.6)-(3.7)) gives ``T(x, z)`` and
-   ``tau(x, z)`` on the current ``P``, ``H``;
+   ``tau(x, z)`` on the current ``P``, ``H`` (the first solve, on the isothermal film, keeps
+   that film's Poiseuille flux instead: see :func:`_thermal`);
 3. the generalised Reynolds factors ``a``, ``c`` (:mod:`thermal.tehl.coefficients`) of that
-   field are under-relaxed (in their logarithm) and handed to the multilevel solve of the
-   :class:`~thermal.tehl.hierarchy.FactorLineHierarchy` on the shared driver, started from
-   the previous ``P``, which gives the next ``P``, ``H``;
-4. steps 2-3 repeat until the changes of P (max |dP| / max P), of the films (Hc, Hm,
-   relative) and of the temperature (max |dT| in kelvin) between outer iterations are all
-   below their tolerances. The temperature and friction returned belong to the final P.
+   field are under-relaxed (in their logarithm, Anderson-mixed) and handed to the multilevel
+   solve of the :class:`~thermal.tehl.hierarchy.FactorLineHierarchy` on the shared driver,
+   started from the previous ``P``, which gives the next ``P``, ``H``;
+4. steps 2-3 repeat (:func:`thermal.tehl.outer.outer_iteration`) until the changes of P
+   (relative L2), of the films (Hc, Hm, relative) and of the temperature (max, kelvin)
+   between outer iterations are all below their tolerances. The temperature and friction
+   returned belong to the final P.
 
 The thermal stations are the EHL grid's nodes (the whole box, inlet back flow included) and
 the thermal grid has ``nz`` intervals across the film. Friction, temperature and the heat
