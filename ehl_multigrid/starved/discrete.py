@@ -6,10 +6,10 @@ Venner's dimensionless line contact (thesis (2.1)-(2.3) in the form of Venner & 
 ``L_i = [eps_{i+1/2}(P_{i+1}-P_i) - eps_{i-1/2}(P_i-P_{i-1})]/h^2 - D_i(theta rho H)``,
 ``P_i (1 - theta_i) = 0``, ``P_i >= 0``, ``0 < theta_i <= 1`` (Elrod & Adams 1974; Elrod 1981).
 
-``D_i`` is the same upwind difference as the flooded solver (ehl_multigrid.line.discrete), so
-the residual is :func:`ehl_multigrid.line.discrete.reynolds_residual` with ``theta rho`` in
-place of ``rho``. Every interior point satisfies the equation (no inequality as in the Reynolds
-condition): a pressurised point (``theta = 1``) has ``P`` as its unknown, a cavitated or
+``D_i`` is the flooded solver's upwind difference (ehl_multigrid.line.discrete) wherever the
+film is full, written as a difference of face fluxes (:func:`wedge_row`,
+:func:`elrod_adams_residual`). Every interior point satisfies the equation (no inequality as in
+the Reynolds condition): a pressurised point (``theta = 1``) has ``P`` as its unknown, a cavitated or
 starved point (``P = 0``) has ``theta``. One *universal variable* per point (Elrod's switch
 variable; used in the Twente multigrid starvation studies of Venner, Damiens and Lubrecht)
 carries either: the relaxation solves for the change of whichever unknown is active, and a
@@ -24,8 +24,8 @@ Inlet. A flooded inlet (``theta_0 = 1``) keeps the flooded solver's first face,
 ``Q_{1/2} = (q_0 + q_1)/2`` with the pressure-driven flux (the first-order difference
 ``(q_1 - q_0)/h`` at ``i = 1``), so its limit is the core's scheme. A starved inlet lets in
 exactly the supplied layer: ``Q_{1/2} = q_0 = Hoil`` and no pressure flow through the first
-face (upstream of the meniscus the layer's flux is uniform, ghost ``q_{-1} = q_0``; the
-wedge difference at ``i = 1`` is ``1.5 (q_1 - q_0)/h``). Without that, the discrete problem
+face (upstream of the meniscus the layer's flux is uniform); faces next to a point that is
+not full are first order (:func:`face_weights`). Without the inlet face rule, the discrete problem
 also has a spurious solution with the meniscus on the inlet node and part of the supply
 pushed back out through the boundary (measured on 65 points, M = 20, L = 10, Hoil = 0.05:
 inflow 0.025 and a film a quarter of the right one).
