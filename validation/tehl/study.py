@@ -3,7 +3,7 @@ grid convergence along and across the film, thermal film reduction against publi
 correlations, the decoupled thesis method against TEHL over slip, and cost.
 
 Usage: ``python validation/tehl/study.py [PART ...]`` with parts ``limit``, ``energy``,
-``grid``, ``correlations``, ``decoupled``, ``cost``, ``point`` (default: all); each writes
+``grid``, ``correlations``, ``decoupled``, ``cost``, ``point``, ``chapter5`` (default: all); each writes
 ``out/<part>.json``; ``plot`` draws the PNGs from the JSON files.
 """
 
@@ -347,8 +347,35 @@ def part_point() -> None:
     dump("point", {"scene": sc.name, "points": 257, "rows": rows})
 
 
+# -- 8. chapter 5 point condition ------------------------------------------------------------------
+def part_chapter5() -> None:
+    """Series D (disc 3, 1.93 GPa, 12 m/s, 80 degC, T9 with tau0 = 8 MPa): TEHL point at 513
+    points against the thermal layer on the isothermal film, at the series' slip 0.05 and 0.5."""
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.problem import problem_from_scene
+    from ehl_multigrid.point.solve import solve_fas
+    from thermal.tehl import solve_tehl_point
+
+    sc = load_scene("series_D_disc3_1.93GPa")
+    iso = solve_fas(problem_from_scene(sc), PointOptions(points=513, half=True), scene=sc)
+    rows = []
+    for S in (0.05, 0.5):
+        t = time.perf_counter()
+        try:
+            r = solve_tehl_point(sc, S, points=513)
+            tp = solve_traction(sc, S, input="ehl", ehl=iso.to_result(sc), nx=80, nz=20, slices=10)
+            rec = {**r.summary(), "wall": time.perf_counter() - t, "mu_decoupled_thermal_layer": tp.coefficient,
+                   "T_max_decoupled": tp.max_temperature_rise + sc.T_oil, "balance": r.heat["balance"]}
+        except Exception as exc:  # recorded, not hidden
+            rec = {"slip": S, "error": str(exc).splitlines()[0], "wall": time.perf_counter() - t}
+        rows.append(rec)
+        print(rec, flush=True)
+    dump("chapter5", {"scene": sc.name, "points": 513, "M": sc.moes()[0], "rows": rows})
+
+
 PARTS = {"limit": part_limit, "energy": part_energy, "grid": part_grid, "correlations": part_correlations,
-         "decoupled": part_decoupled, "cost": part_cost, "point": part_point, "plot": part_plot}
+         "decoupled": part_decoupled, "cost": part_cost, "point": part_point, "chapter5": part_chapter5,
+         "plot": part_plot}
 
 if __name__ == "__main__":
     names = sys.argv[1:] or [p for p in PARTS if p != "plot"] + ["plot"]
