@@ -162,6 +162,27 @@ def starved_limit(points: int) -> list[dict]:
     return rows
 
 
+def estimate_check(cases: list[tuple[float, float, float]], points: int = 513, fine: int = 2049) -> list[dict]:
+    """Estimated errors on ``points`` against the change to a grid four times finer (the true
+    error is at least close to that change when the estimate is honest)."""
+    rows = []
+    for M, L, frac in cases:
+        pb = LineProblem.from_moes(M, L)
+        F_ff = solve_starved_line(pb, math.inf, points=points, estimate=False).scalars["flux_flooded"]
+        hoil = frac * F_ff
+        a = solve_starved_line(pb, hoil, points=points)
+        b = solve_starved_line(pb, hoil, points=fine, estimate=False)
+        row = {"M": M, "L": L, "fraction_of_flooded_flux": frac, "hoil_venner": hoil, "points": points,
+               "fine_points": fine}
+        for k in ("Hc", "Hm"):
+            row[f"{k}_error_estimated"] = float(getattr(a, f"{k}_error"))
+            row[f"{k}_change_to_fine"] = abs(a.scalars[f"{k}_venner"] / b.scalars[f"{k}_venner"] - 1.0)
+            row[f"{k}_within"] = bool(row[f"{k}_change_to_fine"] <= row[f"{k}_error_estimated"])
+        rows.append(row)
+        print("estimate", row, flush=True)
+    return rows
+
+
 def plot(data: dict, path: Path) -> None:
     import matplotlib
 
@@ -251,8 +272,14 @@ if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="coarser grids, two (M, L)")
     ap.add_argument("--replot", action="store_true", help="only redraw the PNG from the JSON")
+    ap.add_argument("--estimate-check", action="store_true",
+                    help="only the estimate honesty check (out/estimate_check.json)")
     a = ap.parse_args()
-    if a.replot:
+    if a.estimate_check:
+        OUT.mkdir(exist_ok=True)
+        rows = estimate_check([(100.0, 10.0, 0.6), (5.0, 5.0, 0.8), (50.0, 5.0, 0.6), (20.0, 10.0, 0.25)])
+        (OUT / "estimate_check.json").write_text(json.dumps(rows, indent=1))
+    elif a.replot:
         stem = OUT / ("starved_line_quick" if a.quick else "starved_line")
         plot(json.loads(stem.with_suffix(".json").read_text()), stem.with_suffix(".png"))
     else:
