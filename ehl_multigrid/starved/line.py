@@ -357,7 +357,7 @@ def flooded_flux(lv: StarvedLevel, flooded: EHLResult) -> float:
 
 
 # -- results --------------------------------------------------------------------------------
-def _crossing(X: np.ndarray, theta: np.ndarray, idx: np.ndarray) -> float:
+def _crossing(X: np.ndarray, theta: np.ndarray, idx: int) -> float:
     """X where ``theta`` reaches 1 between the nodes ``idx - 1`` and ``idx`` (linear)."""
     if idx <= 0:
         return float(X[0])

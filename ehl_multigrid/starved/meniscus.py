@@ -53,8 +53,6 @@ from .supply import check_hoil
 #: L = 10: X_m = -1.0 fails, -1.05 converges), so the scan starts just upstream of it
 MENISCUS_SCAN = (-1.003, -1.006, -1.01, -1.02, -1.03, -1.05, -1.08, -1.12, -1.2, -1.35, -1.6, -2.0, -2.6, -3.5, -5.0,
                  -7.0, -10.0, -15.0, -25.0, -50.0)
-#: relative tolerance of the flux match (the mass balance of the supply)
-FLUX_RTOL = 1e-9
 #: grid of the coarse root search
 COARSE_POINTS = 257
 
