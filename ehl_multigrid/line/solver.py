@@ -32,7 +32,7 @@ import numpy as np
 
 from ..model.errors import ConvergenceError, InputError, require_range
 from ..model.fits import moes_line_central
-from ..multigrid.accuracy import film_change, film_tol, solve_to_accuracy
+from ..multigrid.accuracy import PROBE_FILM_TOL, film_change, film_tol, solve_to_accuracy
 from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import LineOptions, build_scene_options, scene_solver_table
@@ -297,6 +297,15 @@ class LineHierarchy:
             k += 1
         if not self._film_ok(lv):
             capped = k < top and self.levels[k + 1].n > MAX_START_POINTS
+            if capped and self.guess is not None:
+                # the given solution replaces the direct start: cycles on the finest grid
+                # from it (the coarser grids still serve as coarse-grid corrections)
+                fin = self.levels[top]
+                self._initial_guess(fin)
+                solver.note(f"no positive film on the {lv.n}-point start grid (the dense Newton "
+                            f"start is limited to {MAX_START_POINTS} points): started on the "
+                            f"{fin.n}-point grid from the given solution")
+                return top
             hint = (f"the dense Newton start is limited to {MAX_START_POINTS} points, so more points do "
                     f"not help: this (M, L) is beyond the line solver's range (use the Moes fit)"
                     if capped else "more points (--points), or lower M")
@@ -401,7 +410,7 @@ def line_domain_change(problem: LineProblem, options: LineOptions, sol: EHLResul
         def solve(pb: LineProblem, n: int) -> EHLResult:
             return solve_line_problem(pb, dataclasses.replace(
                 options, points=n, levels=None, fmg_start_points=None, raise_on_failure=False,
-                film_tol=None), guess=(sol.X, sol.P, sol.H0))
+                film_tol=PROBE_FILM_TOL), guess=(sol.X, sol.P, sol.H0))
 
         change = film_change(lambda n=n_p: solve(problem, n), lambda n=n_p: solve(wide, 2 * (n - 1) + 1))
         if change is not None:

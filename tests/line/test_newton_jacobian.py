@@ -71,3 +71,22 @@ def test_serial_blas_restores_the_callers_thread_count():
     with serial_blas():
         assert all(n == 1 for n in blas_threads())
     assert blas_threads() == before
+
+
+def test_a_guess_replaces_a_start_grid_too_coarse_for_the_dense_newton(monkeypatch):
+    # M = 1000 needs a 1025-point start grid; with the dense start capped at 513 points the
+    # given solution starts the cycles on the finest grid and they reach the same films
+    from ehl_multigrid.line import solver as ls
+
+    pb = LineProblem.from_moes(1000.0, 10.0)
+    tight = dict(points=4097, film_tol=1e-7, tol_load=1e-9, max_cycles=60, raise_on_failure=False)
+    ref = ls.solve_line_problem(pb, LineOptions(), **tight)
+    coarse = ls.solve_line_problem(pb, LineOptions(points=2049))
+    monkeypatch.setattr(ls, "MAX_START_POINTS", 513)
+    with pytest.raises(Exception, match="not positive"):
+        ls.solve_line_problem(pb, LineOptions(), **{**tight, "raise_on_failure": True})
+    warm = ls.solve_line_problem(pb, LineOptions(), guess=(coarse.X, coarse.P, coarse.H0), **tight)
+    assert ref.success and warm.success
+    assert any("from the given solution" in a for a in warm.actions)
+    assert warm.scalars["Hc_venner"] == pytest.approx(ref.scalars["Hc_venner"], rel=1e-5)
+    assert warm.scalars["Hm_venner"] == pytest.approx(ref.scalars["Hm_venner"], rel=1e-5)
