@@ -318,7 +318,7 @@ def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOpti
                         accuracy: float | None = None, *, estimate: bool = True,
                         viscosity: str | None = None, density: str | None = None,
                         xmin: float | None = None, xmax: float | None = None, elastic: bool = True,
-                        **kw: Any) -> EHLResult:
+                        max_points: int = MAX_ACCURACY_POINTS, **kw: Any) -> EHLResult:
     """Starved line contact of a line-contact ``scene`` at its operating point, supplied with
     the scene's ``[supply] hoil`` [m] (or ``hoil`` [m]), converted with
     :func:`~ehl_multigrid.starved.supply.hoil_venner` (``Hoil = hoil R/b^2``). The scene's
@@ -335,10 +335,12 @@ def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOpti
     pb = LineProblem.from_scene(scene, elastic=elastic, **prob)
     h_m = scene.supply.hoil if hoil is None else hoil
     opts = build_scene_options(LineOptions, starved_options(options), table, kw)
-    res = solve_starved_line(pb, hoil_venner(h_m, pb.b, pb.R), opts, accuracy, estimate=estimate, scene=scene)
+    res = solve_starved_line(pb, hoil_venner(h_m, pb.b, pb.R), opts, accuracy, estimate=estimate,
+                             scene=scene, max_points=max_points)
     scale = pb.b**2 / pb.R
     res.scalars["hoil"] = h_m
-    res.scalars["hc"] = res.scalars["Hc_venner"] * scale
-    res.scalars["hm"] = res.scalars["Hm_venner"] * scale
-    res.scalars["outlet_layer_m"] = res.scalars["outlet_layer_venner"] * scale
+    if "Hc_venner" in res.scalars:  # (not when the supply is out of reach)
+        res.scalars["hc"] = res.scalars["Hc_venner"] * scale
+        res.scalars["hm"] = res.scalars["Hm_venner"] * scale
+        res.scalars["outlet_layer_m"] = res.scalars["outlet_layer_venner"] * scale
     return res
