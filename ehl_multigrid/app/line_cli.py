@@ -4,12 +4,13 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 from typing import Any
 
 from ..line import solve_line
 from ..model.constants import MOES_ONLY_DEFAULTS
-from ..model.errors import InputError
+from ..model.errors import ConvergenceError, InputError
 from ..model.paths import output_file, safe_stem
 
 #: command-line flag (argparse name) -> line solver option
@@ -54,14 +55,30 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
             if getattr(args, k, None) is not None:
                 raise InputError(f"--{k} applies to Moes-only mode (--M/--L); with a scene the "
                                  f"oil comes from the scene's [lubricant] table")
-        sol = solve_line(scene=scene, **model, elastic=elastic, **opts)
+        if math.isfinite(scene.supply.hoil):
+            # a finite [supply] hoil: the mass-conserving (Elrod-Adams) solver finds the meniscus
+            from ..starved import solve_starved_scene
+
+            sopts = {k: v for k, v in opts.items() if k != "accuracy"}
+            sol = solve_starved_scene(scene, accuracy=opts["accuracy"], elastic=elastic,
+                                      **{k: v for k, v in model.items() if v is not None}, **sopts)
+            if sol.X is None:  # nothing to write: e.g. a supply below the solver's reach
+                raise ConvergenceError(f"starved line solver: {sol.message}")
+        else:
+            sol = solve_line(scene=scene, **model, elastic=elastic, **opts)
         name = scene.name
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     stem = safe_stem(name)  # a scene name is a label: never a path out of --out
     res = sol.to_result(scene)
     h5 = res.save(output_file(out, stem, ".h5"))
-    payload = sol.payload()
+    starved = "meniscus_x" in sol.scalars
+    if starved:
+        from ..starved.line import starved_payload
+
+        payload = starved_payload(sol)  # adds Hc_flooded, meniscus_x, mass_balance_error ...
+    else:
+        payload = sol.payload()
     payload["hdf5"] = str(h5)
     if getattr(args, "csv", False):
         from .profiles import write_profiles_csv
@@ -71,6 +88,10 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
         from .line_plots import plot_solution
 
         payload["png"] = [str(p) for p in plot_solution(sol, out / stem, name)]
+        if starved:
+            from ..starved.plots import plot_starved
+
+            payload["png"].append(str(plot_starved(sol, out / stem, name)))
     if not args.json:
         from .console import print_table
 

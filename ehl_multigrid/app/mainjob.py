@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 import os
 import shutil
 import tempfile
@@ -135,7 +136,12 @@ def film_stage(ctx: RunContext) -> StageOutput:
     if dec.setting == "multigrid solver":
         # the fidelity's tolerance is the solver's accuracy target: it picks and refines grid and
         # box until its error estimate meets it (a [solver.ehl] grid in the scene is kept and judged)
-        if contact == "line":
+        if contact == "line" and math.isfinite(scene.supply.hoil):
+            # a finite inlet oil layer: the mass-conserving starved solver finds the meniscus
+            from ..starved import solve_starved_scene
+
+            sol = solve_starved_scene(scene, accuracy=plan.tolerance, raise_on_failure=False)
+        elif contact == "line":
             from ..line import solve_line
 
             sol = solve_line(scene=scene, accuracy=plan.tolerance, raise_on_failure=False)
@@ -166,10 +172,18 @@ def film_stage(ctx: RunContext) -> StageOutput:
         summary = {k: res.scalars.get(k) for k in ("Hc", "Hm", "hc", "hm", "p_spike", "load_error", "points",
                                                      "converged", "Hc_error", "Hm_error")}
         summary["Hc_fit"], summary["hc_fit"] = scene.central_film_fit()
+        starved = "meniscus_x" in sol.scalars
+        if starved:
+            summary.update({k: sol.scalars.get(k) for k in (
+                "Hc_flooded", "Hm_flooded", "Hc_ratio", "meniscus_x", "mass_balance_error", "hoil")})
         text = (f"Film from the multigrid solver on {points} points per direction: hc = {res.scalars['hc'] * 1e9:.4g} nm, "
                 f"hm = {res.scalars['hm'] * 1e9:.4g} nm (fit: hc = {summary['hc_fit'] * 1e9:.4g} nm); "
                 f"estimated errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g} (target {plan.tolerance:g}); "
                 f"load error {res.scalars['load_error']:.2g}, status: {sol.status_name}.")
+        if starved:
+            text += (f" Starved inlet (oil layer {scene.supply.hoil * 1e9:.4g} nm, mass-conserving "
+                     f"Elrod-Adams solver): meniscus at X = {sol.scalars['meniscus_x']:.3g}, "
+                     f"Hc/Hc_flooded = {sol.scalars['Hc_ratio']:.3g}.")
         if ctx.plots:
             if contact == "line":
                 from .line_plots import plot_solution

@@ -301,7 +301,9 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     elif math.isfinite(scene.supply.hoil):
         hs = scene.supply.hoil / (scene.roughness.Rq if scene.roughness else hcs.max())
         ref = HOIL_FLOODED_OVER_SIGMA if scene.roughness else 1.0 / float(density_ratio_dh(scene.hertz.pmax))
-        plan.decisions.append(Decision("starvation", hs < ref, "Chevalier (chapter 6)", hs, ref, "-",
+        # line contacts: the mass-conserving solver (ehl_multigrid.starved) replaces the fit
+        method = "Elrod-Adams solver (starved line)" if scene.kind == "line" else "Chevalier (chapter 6)"
+        plan.decisions.append(Decision("starvation", hs < ref, method, hs, ref, "-",
                                        f"inlet oil film {scene.supply.hoil:.3g} m"))
     else:
         plan.decisions.append(Decision("starvation", False, "flooded", math.inf, HOIL_FLOODED_OVER_SIGMA, "sigma",
