@@ -1,0 +1,271 @@
+"""Starved, mass-conserving point contact: Elrod-Adams film content on the point hierarchy.
+
+The steady Reynolds equation with the Elrod-Adams cavitation model (Elrod 1981; Woloszynski
+et al. 2015 for the complementarity form), in the point core's dimensionless variables
+(thesis (2.14)):
+
+    d/dX(eps dP/dX) + d/dY(eps dP/dY) - d(theta rho H)/dX = 0,
+    P >= 0,  0 <= theta <= 1,  P (1 - theta) = 0,
+
+with a uniform supplied layer ``Hoil`` at the inlet boundary (``theta rho H = Hoil`` at
+``X = xmin``, the layer at ambient pressure and density; ``Hoil = inf`` floods the inlet).
+The meniscus, the curve where the film fills the gap, is found inside the iteration.
+
+Discretisation: the point core's five-point Poiseuille terms and a first-order upwind wedge on
+the mass flux ``q = theta rho H`` (flux form, so the sum of the residuals telescopes into the
+boundary fluxes: discrete mass conservation). Relaxation on the universal variable: the point
+core's zebra X-line relaxation on P with the density replaced by ``theta rho`` (P held at
+zero where ``theta < 1``), then a march along X in the unpressurised points that solves each
+point's mass balance for ``theta`` (capped at 1: the point joins the pressurised zone at the
+next sweep; a pressurised point has ``theta = 1``, a point whose P is projected to 0 frees its
+``theta``). On coarse grids of a cycle ``theta`` is frozen (injected from the finer grid),
+as the line solver does with its free boundaries.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+from numba import njit
+
+from ..multigrid.driver import Measurement, MultilevelSolver
+from ..multigrid.options import PointOptions
+from ..multigrid.policy import RobustnessPolicy, Settings
+from ..multigrid.result import EHLResult
+from ..multigrid.threads import preserved_threads
+from ..point import numerics as nm
+from ..point.fas import HINT, POINT_POLICY, Level, PointHierarchy, point_settings
+from ..point.postprocess import build_result
+from ..point.problem import PointProblem
+from .supply import check_hoil
+
+
+@njit(cache=True)
+def march_theta(P, H, rho, eps, theta, f, hx, hy, sym, hoil):
+    """Solve each unpressurised point's discrete mass balance for ``theta`` (marching along X,
+    first-order upwind flux ``q = theta rho H``); ``theta = 1`` where ``P > 0``; clipped to
+    ``[0, 1]``. Column 0 carries the supply ``q = hoil`` (``theta <= 1``)."""
+    ny, nx = P.shape
+    hx2, hy2 = hx * hx, hy * hy
+    j0 = 0 if sym else 1
+    for j in range(ny):
+        q0 = hoil
+        t0 = q0 / (rho[j, 0] * H[j, 0]) if H[j, 0] > 0.0 else 1.0
+        theta[j, 0] = 1.0 if t0 > 1.0 else t0
+        if j < j0 or j > ny - 2:
+            for i in range(1, nx):  # boundary rows: P = 0, the supply is carried along
+                theta[j, i] = theta[j, 0]
+            continue
+        jm = 1 if (sym and j == 0) else j - 1
+        for i in range(1, nx - 1):
+            if P[j, i] > 0.0:
+                theta[j, i] = 1.0
+                continue
+            q = theta[j, i - 1] * rho[j, i - 1] * H[j, i - 1]
+            q += hx * (nm._poiseuille(P, eps, j, jm, j + 1, i, hx2, hy2) - f[j, i])
+            d = rho[j, i] * H[j, i]
+            t = q / d if d > 0.0 else 1.0
+            theta[j, i] = 1.0 if t > 1.0 else (0.0 if t < 0.0 else t)
+        theta[j, nx - 1] = theta[j, nx - 2]
+
+
+def face_fluxes(P: np.ndarray, H: np.ndarray, rho: np.ndarray, eps: np.ndarray, theta: np.ndarray,
+                hx: float, hy: float, half: bool) -> dict[str, float]:
+    """Mass flow through the boundaries of the interior cells (flux form of the discrete
+    operator): in at the inlet face, out at the outlet face and the side faces, per unit
+    ``hy``-weighted row (a half domain counts the centre row once, i.e. the full-domain flow
+    halved)."""
+    ny, nx = P.shape
+    q = theta * rho * H
+    j0 = 0 if half else 1
+    rows = np.arange(j0, ny - 1)
+    w = np.ones(rows.size)
+    if half:
+        w[0] = 0.5
+    ex_in = 0.5 * (eps[rows, 0] + eps[rows, 1])
+    F_in = q[rows, 0] - ex_in * (P[rows, 1] - P[rows, 0]) / hx
+    ex_out = 0.5 * (eps[rows, nx - 2] + eps[rows, nx - 1])
+    F_out = q[rows, nx - 2] - ex_out * (P[rows, nx - 1] - P[rows, nx - 2]) / hx
+    ey = 0.5 * (eps[ny - 2, 1:nx - 1] + eps[ny - 1, 1:nx - 1])
+    G_side = -ey * (P[ny - 1, 1:nx - 1] - P[ny - 2, 1:nx - 1]) / hy
+    side = float(G_side.sum() * hx)
+    if not half:
+        ey0 = 0.5 * (eps[0, 1:nx - 1] + eps[1, 1:nx - 1])
+        side += float((ey0 * (P[1, 1:nx - 1] - P[0, 1:nx - 1]) / hy).sum() * hx)
+    return {"in": float((w * F_in).sum() * hy), "out": float((w * F_out).sum() * hy), "side": side}
+
+
+class StarvedPointHierarchy(PointHierarchy):
+    """Point hierarchy with an Elrod-Adams film content ``theta`` and a supplied layer ``hoil``
+    (Venner units ``h R/a^2``; ``inf``: flooded)."""
+
+    name = "starved point"
+
+    def __init__(self, problem: PointProblem, options: PointOptions, hoil: float) -> None:
+        super().__init__(problem, options)
+        self.hoil = check_hoil(hoil)
+        for lev in self.levels:
+            lev.theta = np.ones(lev.shape)
+        self._top = 0
+
+    # -- discrete operators ---------------------------------------------------------------
+    def _q_density(self, lev: Level) -> np.ndarray:
+        return np.ascontiguousarray(lev.theta * lev.rho)
+
+    def _march(self, lev: Level) -> None:
+        nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
+        march_theta(lev.P, lev.H, lev.rho, lev.eps, lev.theta, lev.f, lev.hx, lev.hy,
+                    self.options.half, min(self.hoil, 1e300))
+
+    def _sweep_free(self, lev: Level, s: Settings, free: bool) -> None:
+        """One X-line sweep on P (density ``theta rho``; P stays 0 where ``theta < 1``), then,
+        when the free boundaries move on this grid, the ``theta`` march."""
+        self.threads.for_size(lev.npts)
+        rq = self._q_density(lev)
+        dry = lev.theta < 1.0
+        nm.relax_sweep(lev.P, lev.H, rq, lev.eps, lev.f, lev.D, lev.Kc, lev.hx, lev.hy,
+                       self.options.half, s.switch, s.omega, s.omega_jd, 1, 0.0)
+        lev.P[dry] = 0.0
+        self.update_film(lev)
+        if free:
+            self._march(lev)
+
+    def _sweep(self, lev: Level, s: Settings) -> None:  # used by the core's coarse solve
+        self._sweep_free(lev, s, lev is self.levels[self._top])
+
+    def residual(self, lev: Level) -> np.ndarray:
+        """``f - L(P, theta)``; where ``P = 0`` and ``theta = 1`` only the part that would raise
+        P counts when ``theta`` cannot fall (never: theta is free there), so the full residual
+        is the mass-balance error; at ``theta = 0`` only a deficit counts."""
+        self.threads.for_size(lev.npts)
+        nm.operator(lev.P, lev.H, self._q_density(lev), lev.eps, lev.hx, lev.hy, self.options.half,
+                    1, lev.r, 0.0)
+        r = lev.f - lev.r
+        ny, nx = r.shape
+        j0 = 0 if self.options.half else 1
+        mask = np.zeros(r.shape, dtype=bool)
+        mask[j0:ny - 1, 1:nx - 1] = True
+        r[~mask] = 0.0
+        r[(lev.theta <= 0.0) & (r < 0.0)] = 0.0
+        lev.r = np.ascontiguousarray(r)
+        return lev.r
+
+    def relax(self, k: int, sweeps: int, s: Settings, coarse: bool) -> float:
+        lev = self.levels[k]
+        if not coarse:
+            self._top = k
+        for _ in range(sweeps):
+            self._sweep_free(lev, s, not coarse)
+        return sweeps * self.sweep_work * self.work(k)
+
+    def restrict(self, k: int, s: Settings) -> tuple[np.ndarray, None]:
+        lev, c = self.levels[k], self.levels[k - 1]
+        r = self.residual(lev)
+        c.P = np.ascontiguousarray(lev.P[::2, ::2])
+        c.theta = np.ascontiguousarray(lev.theta[::2, ::2])
+        P0 = c.P.copy()
+        self.update_film(c)
+        Lc = np.empty_like(c.P)
+        nm.operator(c.P, c.H, self._q_density(c), c.eps, c.hx, c.hy, self.options.half, 1, Lc, 0.0)
+        Rr = np.empty_like(c.P)
+        nm.restrict_full_weighting(r, self.options.half, Rr)
+        c.f = Lc + Rr
+        c.g = self.load(c) + (lev.g - self.load(lev))
+        return P0, None
+
+    def correct(self, k: int, P0: np.ndarray, s: Settings) -> None:
+        lev, c = self.levels[k], self.levels[k - 1]
+        nm.add_bilinear(lev.P, c.P - P0, True)
+        lev.P[lev.theta < 1.0] = 0.0
+        self.update_film(lev)
+
+    def fmg_interpolate(self, k: int, s: Settings) -> float:
+        cost = super().fmg_interpolate(k, s)
+        lev, c = self.levels[k], self.levels[k - 1]
+        t = np.ones(lev.shape)
+        nm.add_bilinear(t, c.theta - 1.0, False)
+        lev.theta = np.ascontiguousarray(np.clip(t, 0.0, 1.0))
+        lev.P[lev.theta < 1.0] = 0.0
+        self._top = k
+        self.update_film(lev)
+        self._march(lev)
+        return cost
+
+    def coarse_solve(self, k: int, s: Settings, sweeps: int | None = None) -> float:
+        cost = super().coarse_solve(k, s, sweeps)
+        return cost
+
+    def snapshot(self, k: int) -> tuple[np.ndarray, float, np.ndarray]:
+        return (self.levels[k].P.copy(), self.H00, self.levels[k].theta.copy())
+
+    def restore(self, k: int, saved: tuple[np.ndarray, float, np.ndarray]) -> None:
+        self.levels[k].theta = saved[2].copy()
+        super().restore(k, saved[:2])
+
+    def start(self, solver: MultilevelSolver) -> int:
+        self._top = 0
+        k0 = super().start(solver)
+        return k0
+
+    def measure(self, k: int) -> Measurement:
+        m = super().measure(k)
+        return m
+
+
+def meniscus_x(X: np.ndarray, theta: np.ndarray, row: int) -> float:
+    """First X along grid row ``row`` where the film fills the gap (``theta = 1``), linearly
+    placed between the last unfilled and first filled node by ``theta``; ``xmin`` when
+    flooded."""
+    t = theta[row]
+    full = np.nonzero(t >= 1.0)[0]
+    if full.size == 0:
+        return math.nan
+    i = int(full[0])
+    if i == 0:
+        return float(X[0])
+    # the unfilled node's film content tells how far into the cell the meniscus sits
+    return float(X[i - 1] + (X[i] - X[i - 1]) * (1.0 - t[i - 1]))
+
+
+def solve_starved_point(problem: PointProblem, hoil: float, options: PointOptions | None = None,
+                        **kw: Any) -> EHLResult:
+    """One multilevel (FMG + cycles) solve of a point contact with a uniform supplied layer
+    ``hoil`` (Venner units ``h R/a^2``, total on both surfaces at ambient density; ``inf``:
+    flooded inlet) and Elrod-Adams cavitation, the meniscus found inside the iteration.
+
+    The result carries ``theta`` (``sol.extra["theta"]``), ``meniscus_x`` (centre line),
+    ``mass_balance_error`` (relative imbalance of the boundary flows), ``outlet_layer`` (mean
+    ``theta rho H`` leaving at the outlet face, per width, relative to the supply)."""
+    hoil = check_hoil(hoil)
+    opt = PointOptions.build(options, **kw)
+    if opt.wedge_order != 1:
+        opt = replace(opt, wedge_order=1)
+    with preserved_threads():
+        hz = StarvedPointHierarchy(problem, opt, hoil)
+        solver = MultilevelSolver(hz, opt, point_settings(problem, opt),
+                                  RobustnessPolicy(POINT_POLICY, opt.adapt), HINT)
+        hz.solver = solver
+        sol = solver.solve()
+    hz.solver = None
+    fine = hz.levels[-1]
+    sol.contact, sol.solver, sol.problem, sol.options = "point", "starved-fas", problem, opt
+    sol.X, sol.Y, sol.P, sol.H = fine.X, fine.Y, fine.P.copy(), fine.H.copy()
+    sol.H0, sol.half, sol.levels = hz.H00, opt.half, len(hz.levels)
+    row = 0 if opt.half else (fine.ny - 1) // 2
+    fl = face_fluxes(fine.P, fine.H, fine.rho, fine.eps, fine.theta, fine.hx, fine.hy, opt.half)
+    imbalance = (fl["in"] - fl["out"] - fl["side"]) / max(abs(fl["in"]), 1e-300)
+    width = (fine.ny - 1 - (0 if opt.half else 1) - (0.5 if opt.half else 0.0)) * fine.hy
+    i0 = int(np.argmin(np.abs(fine.X)))
+    sol.extra.update(theta=fine.theta.copy(), rho=fine.rho.copy(), hoil=hoil,
+                     meniscus_x=meniscus_x(fine.X, fine.theta, row),
+                     mass_balance_error=float(abs(imbalance)), fluxes=fl,
+                     outlet_layer=fl["out"] / width if math.isfinite(hoil) else math.nan,
+                     rho_c=float(fine.rho[row, i0]), domain=(hz.xmin, hz.xmax, hz.ymax))
+    sol.builder = build_result
+    sol.scalars = dict(build_result(sol, None).scalars)
+    sol.scalars.update(meniscus_x=sol.extra["meniscus_x"],
+                       mass_balance_error=sol.extra["mass_balance_error"])
+    return sol
