@@ -76,6 +76,13 @@ def richardson(values: list[float], safety: float = GRID_SAFETY, max_order: floa
         order, regular = math.nan, False
     p = min(order, max_order) if regular else 1.0
     err = abs(d2) / (2.0**p - 1.0)
+    if not regular and len(v) >= 3:
+        # a non-monotone (or slower than first order) sequence: the last difference may be
+        # small by accident; first order from the one before bounds it. Measured: line
+        # (100, 20) at 2049 points, Hm 0.017595, 0.018897, 0.018845 on 513-2049 gave 0.17 %
+        # for a true 1.04 % (now 5.3 %); the honesty set goes from 69 to 70 of 70 covered,
+        # median true/estimate 0.43 -> 0.42
+        err = max(err, 0.5 * abs(d1))
     extrap = v[-1] + d2 / (2.0**p - 1.0)
     return Richardson(safety * err, order, extrap, regular)
 

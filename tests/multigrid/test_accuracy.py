@@ -188,3 +188,14 @@ def test_a_film_that_is_not_positive_makes_the_accuracy_loop_refine_the_grid(mon
     # without room for a finer grid the failure is returned as it is
     out = solve_to_accuracy(lambda n, b, t: runs[n], lambda r, b: (0.0, 0.0), 0.01, 257, 257)
     assert out is touching and out.status_name == "film_not_positive"
+
+
+def test_a_non_monotone_grid_sequence_is_bounded_by_the_difference_before_the_last():
+    # line (100, 20) at 2049 points: Hm on 513, 1025, 2049; the last difference is small by
+    # accident (true error of the finest value 1.04 %)
+    r = richardson([0.017595106, 0.018896639, 0.018845172])
+    assert not r.regular
+    assert r.error / 0.018845172 > 0.0104
+    # a regular second-order sequence keeps its Richardson estimate
+    reg = richardson([1.0 - 0.04, 1.0 - 0.01, 1.0 - 0.0025])
+    assert reg.regular and reg.error == pytest.approx(1.5 * 0.0075 / 3.0)
