@@ -77,6 +77,7 @@ class PointTransientResult(TransientResult):
     yf: float = 0.0
     Hc_steady: float = math.nan
     Hm_steady: float = math.nan
+    stop_reason: str = ""
 
     file_kind = "ehl_transient_point"
 
@@ -238,6 +239,7 @@ def solve_transient_point(
     dt: float | None = None, steps: int | None = None, t_end: float | None = None,
     options: PointOptions | None = None, scheme: str = "bdf2", snapshot_every: int = 10,
     initial: tuple[np.ndarray, float] | None = None, accept_stall: float = 1e-3,
+    on_film_collapse: str = "raise",
     callback: Callable[[dict[str, Any]], None] | None = None, **kw: Any,
 ) -> PointTransientResult:
     """Run a surface feature through an EHL point contact at constant load.
@@ -263,6 +265,10 @@ def solve_transient_point(
         patch leaves the contact) is accepted when the relative residual and load error of
         the iterate it leaves are below this; it is flagged in the ``stalled`` series and
         counted in the summary. 0 accepts no such step.
+    on_film_collapse : ``"raise"`` (:class:`ConvergenceError`) or ``"stop"``: end the run at
+        the step whose film closes (a feature or rough patch cutting through it: mixed
+        lubrication, not modelled) and return the steps before it, with ``failed_step`` and
+        ``stop_reason`` set (rough-surface studies: the time of first contact).
 
     Returns
     -------
@@ -274,6 +280,7 @@ def solve_transient_point(
     ConvergenceError : a step's multilevel solve failed, or the film closed, naming the step.
     """
     require_choice("scheme", scheme, SCHEMES)
+    require_choice("on_film_collapse", on_film_collapse, ("raise", "stop"))
     feature = Smooth2D() if feature is None else feature
     speed = feature_speed(body, slide_roll)
     opts = point_transient_options(options, **kw)
@@ -359,14 +366,20 @@ def solve_transient_point(
                 # residual and load error are below accept_stall
                 m = hz.measure(len(hz.levels) - 1)
                 stalled_ok = m.ok and m.residual < accept_stall and m.load_error < accept_stall
+            wet = fine.P > 0.0
+            closed = res.status == 7 or (finite and wet.any() and float(fine.H[wet].min()) <= 0.0)
+            if closed and on_film_collapse == "stop":
+                out.failed_step = n
+                out.stop_reason = (f"the film closed at step {n} (T = {T:.5g}): min H = "
+                                   f"{float(fine.H[wet].min()) if wet.any() else math.nan:.3g}")
+                break
             if not (res.success or stalled_ok) or not finite:
                 out.failed_step = n
                 raise ConvergenceError(
                     f"transient point solver: time step {n} (T = {T:.5g}, dT = {dt:.4g}) failed: "
                     f"{res.message}", res.report,
                     "a smaller time step (dt), more points, or a smaller feature amplitude")
-            wet = fine.P > 0.0
-            if wet.any() and float(fine.H[wet].min()) <= 0.0:
+            if closed:
                 out.failed_step = n
                 raise ConvergenceError(
                     f"transient point solver: time step {n} (T = {T:.5g}): the film collapsed "

@@ -58,10 +58,10 @@ def test_bdf2_time_step_order_is_two_on_a_coarse_grid(problem):
 def test_squeeze_formulation_conserves_mass_in_the_pressurised_zone(problem):
     # a dent (0.5 Hc deep) crossing the centre: storage d(rho H)/dT is a real part of the balance
     dent = Dent2D(-0.2, 0.6, x0=-1.5)
-    res = solve_transient_point(problem, dent, dt=0.04, steps=30, points=65, tol=1e-6, tol_load=1e-8)
+    res = solve_transient_point(problem, dent, dt=0.06, steps=20, points=65, tol=1e-6, tol_load=1e-8)
     bal, storage = np.abs(res.mass_balance[1:]), np.abs(np.asarray(res.series["storage"][1:]))
     ok = np.isfinite(bal)
-    assert ok.sum() > 20
+    assert ok.sum() > 15
     assert storage[ok].max() > 1e-2  # squeeze flow reaches > 1 % of the through-flow (measured 4 %)
     assert bal[ok].max() < 1e-4  # measured 3e-6 at a residual of 1e-6
 
@@ -70,21 +70,21 @@ def test_longitudinal_waviness_is_steady_and_transverse_waviness_is_reduced(prob
     lon = solve_transient_point(problem, Waviness2D(0.04, 1.0, angle=90.0), dt=0.1, steps=10, points=65)
     assert np.ptp(lon.Hc) < 1e-5 * lon.Hc_steady  # ridges along the rolling direction do not move
     assert abs(lon.Hc[0] - lon.Hc_steady) > 1e-3  # ... but they do change the film
-    tr = solve_transient_point(problem, Waviness2D(0.02, 1.5), t_end=4.5, points=65)
+    tr = solve_transient_point(problem, Waviness2D(0.02, 1.5), t_end=3.0, points=65)
     s = tr.summary()
     assert 0.05 < s["Ad_over_Ai"] < 0.9
-    ang = solve_transient_point(problem, Waviness2D(0.02, 1.5, angle=45.0), steps=20, points=65)
+    ang = solve_transient_point(problem, Waviness2D(0.02, 1.5, angle=45.0), steps=8, points=65)
     assert ang.summary()["stalled_steps"] == 0
 
 
 def test_height_map_of_a_dent_moves_like_the_dent(problem):
     dent = Dent2D(-0.1, 0.8, x0=-2.0, shape="gaussian")
-    h = 0.05
+    h = 0.1  # about the 65^2 grid's spacing (0.094); a step may move 0.25 of 4 h
     xs, ys = np.arange(-2.0, 2.0 + h / 2, h) - 2.0, np.arange(-2.0, 2.0 + h / 2, h)
     hm = HeightMap(dent.height(xs[None, :], ys[:, None]), h, h, float(xs[0]), float(ys[0]))
-    a = solve_transient_point(problem, dent, dt=0.05, steps=40, points=65)
-    b = solve_transient_point(problem, hm, dt=0.05, steps=40, points=65)
-    assert np.min(a.Hc) < a.Hc_steady - 0.005  # the dent reaches the centre
+    a = solve_transient_point(problem, dent, dt=0.1, steps=20, points=65)
+    b = solve_transient_point(problem, hm, dt=0.1, steps=20, points=65)
+    assert np.max(a.Hc) > a.Hc_steady + 0.02  # the dent (0.1 deep) reaches the centre
     assert np.max(np.abs(a.Hc - b.Hc)) < 2e-3 * a.Hc_steady
 
 

@@ -146,7 +146,9 @@ def part_waviness(quick: bool) -> None:
     done = {(r["M"], r["L"], r["wavelength"], r["points"]) for r in rows}
     todo = [(M, L, lam, 129) for (M, L), lams in cases.items() for lam in lams]
     if not quick:
-        todo += [(20.0, 10.0, 1.0, 257), (20.0, 10.0, 0.5, 257)]
+        # one grid finer (129^2 resolves lambda = 1 with 21 points only)
+        todo += [(20.0, 10.0, 1.0, 257), (20.0, 10.0, 0.5, 257), (20.0, 10.0, 2.0, 257),
+                 (50.0, 10.0, 1.0, 257), (10.0, 5.0, 2.0, 257), (50.0, 10.0, 0.5, 257)]
     for M, L, lam, n in todo:
         if (M, L, lam, n) in done:
             continue
@@ -196,7 +198,7 @@ POSITIONS = (-1.0, -0.5, 0.0, 0.5, 1.0)
 
 def part_dent(quick: bool) -> None:
     pb = problem_from_moes(20, 10)
-    n = 65 if quick else 129
+    n = 65 if quick else 257  # 21 points across the dent's width W = 0.5
     A = -0.5 * hc_fit(20, 10)
     rows, prof = [], {}
     for kind, S in DENT_CASES[:1] if quick else DENT_CASES:
@@ -286,8 +288,8 @@ def part_rough(quick: bool) -> None:
     name = "series_B_disc1_0.78GPa"
     base = load_scene(name).to_dict()
     rows = []
-    n = 129 if quick else 257
-    for us in ((12.0,) if quick else (12.0, 8.0, 6.0)):
+    runs = [(129, 12.0)] if quick else [(129, 12.0), (129, 8.0), (129, 6.0), (257, 12.0), (257, 8.0), (257, 6.0)]
+    for n, us in runs:
         d = json.loads(json.dumps(base))
         d["operating"]["us"] = us
         sc = Scene.from_dict(d)
@@ -307,7 +309,7 @@ def part_rough(quick: bool) -> None:
         ny_, nx_ = z.shape
         ramp = 0.3 * a / dx
 
-        def window(m: int) -> np.ndarray:
+        def window(m: int, ramp: float = ramp) -> np.ndarray:
             i = np.arange(m, dtype=float)
             e = np.minimum(i, m - 1 - i) / ramp
             return np.where(e >= 1.0, 1.0, 0.5 - 0.5 * np.cos(np.pi * np.clip(e, 0.0, 1.0)))
@@ -316,53 +318,60 @@ def part_rough(quick: bool) -> None:
         x_start = -4.4
         feat = HeightMap(z, dx / a, dx / a, x_start, -0.5 * Ly / a)
         t0 = time.perf_counter()
-        try:
-            res = solve_transient_point(pb, feat, slide_roll=sc.slip, points=n, snapshot_every=2,
-                                        t_end=(1.0 - (x_start + 0.5 * Lx / a)) / (1 + 0.5 * sc.slip))
-        except Exception as exc:  # the film closing is a result here: report it
-            rows.append({"us": us, "M": pb.M, "L": pb.L, "error": str(exc)[:300], "gw_asperity_share": share})
-            print(rows[-1])
-            continue
+        res = solve_transient_point(pb, feat, slide_roll=sc.slip, points=n, snapshot_every=2,
+                                    t_end=(1.0 - (x_start + 0.5 * Lx / a)) / (1 + 0.5 * sc.slip),
+                                    on_film_collapse="stop")
         s = res.summary()
         scale = a**2 / Rx
         hc_smooth = s["Hc_steady"] * scale
-        # the late snapshots: the rough patch covers the Hertzian zone
         inside = res._zone(res.X, res.Y)
-        late = [k for k in sorted(res.snapshots) if abs(res.xf[k]) <= 0.3]
+        # kept steps with the patch's downstream (tapered) part inside the Hertzian circle
+        half = 0.5 * Lx / a
+        over = [k for k in sorted(res.snapshots) if k > 0 and res.xf[k] + half - 0.3 >= -0.5]
         thresholds = {"0.5 Rq": 0.5 * rough.Rq, "1 Rq": rough.Rq, "2 Rq": 2 * rough.Rq,
                       "3 sigma_s": 3 * rough.sigma_s}
         frac = {}
         for key, th in thresholds.items():
             vals = []
-            for k in late:
+            for k in over:
                 P, H = res.snapshots[k]["P"], res.snapshots[k]["H"]
                 vals.append(float(P[H * scale <= th].sum() / P.sum()))
-            frac[key] = {"mean": float(np.mean(vals)), "max": float(np.max(vals))}
-        dev = [float(np.std((res.snapshots[k]["H"] - res.steady.H)[inside])) * scale for k in late]
-        rows.append({"us": us, "M": pb.M, "L": pb.L, "a": a, "points": n, "Rq": rough.Rq, "corr_length": ell,
+            frac[key] = {"mean": float(np.mean(vals)) if vals else math.nan,
+                         "max": float(np.max(vals)) if vals else math.nan,
+                         "last": vals[-1] if vals else math.nan}
+        dev = [float(np.std((res.snapshots[k]["H"] - res.steady.H)[inside])) * scale for k in over]
+        rows.append({"us": us, "M": pb.M, "L": pb.L, "a": a, "points": n, "Rq": rough.Rq,
+                     "sigma_s": rough.sigma_s, "corr_length": ell,
                      "hc_smooth_m": hc_smooth, "Lambda_smooth": hc_smooth / rough.Rq,
                      "hm_min_m": s["Hm_min"] * scale, "hc_min_m": s["Hc_min"] * scale,
-                     "load_fraction_below": frac, "film_rms_deviation_in_contact_m": float(np.mean(dev)),
-                     "film_rms_over_Rq": float(np.mean(dev)) / rough.Rq,
+                     "film_closed_at_step": res.failed_step, "stop_reason": res.stop_reason,
+                     "T_end": float(res.T[-1]), "patch_centre_at_end": float(res.xf[-1]),
+                     "steps_with_patch_in_contact": len(over),
+                     "load_fraction_below": frac, "film_rms_deviation_in_contact_m": float(np.mean(dev)) if dev else math.nan,
+                     "film_rms_over_Rq": float(np.mean(dev)) / rough.Rq if dev else math.nan,
                      "gw_asperity_share": share, "steps": s["steps"], "cycles_mean": s["cycles_mean"],
                      "stalled_steps": s["stalled_steps"], "wall_s": time.perf_counter() - t0})
         print(rows[-1])
         save("point_rough" + ("_quick" if quick else ""), {"scene": name, "rows": rows})
-        k = late[len(late) // 2]
+        if not over:
+            continue
+        k = over[-1]
         fig, ax = plt.subplots(1, 2, figsize=(10, 4))
         im = ax[0].pcolormesh(res.X, res.Y, res.snapshots[k]["H"] * scale * 1e9, shading="auto")
+        ax[0].contour(res.X, res.Y, res.snapshots[k]["P"], levels=[0.25, 0.5, 0.75, 1.0], colors="w",
+                      linewidths=0.4)
         ax[0].set_xlim(-1.5, 1.5)
         ax[0].set_ylim(-1.5, 1.5)
         ax[0].set_aspect("equal")
         fig.colorbar(im, ax=ax[0], label="h [nm]")
-        ax[0].set_title(f"{name}, us = {us:g} m/s, T = {res.T[k]:.2f}")
-        hist, edges = res.film_distribution(60)
-        ax[1].bar(edges[:-1] * scale * 1e9, hist / hist.sum(), width=np.diff(edges) * scale * 1e9, align="edge")
+        ax[0].set_title(f"{n}^2, us = {us:g} m/s, T = {res.T[k]:.2f}", fontsize=9)
+        H = np.concatenate([res.snapshots[j]["H"][inside] for j in over]) * scale * 1e9
+        ax[1].hist(H, bins=60, density=True)
         ax[1].axvline(hc_smooth * 1e9, color="k", ls=":", label="smooth hc")
-        ax[1].set_xlabel("h in the Hertzian circle [nm] (all kept steps)")
+        ax[1].set_xlabel("h in the Hertzian circle [nm] (kept steps with the patch inside)")
         ax[1].legend()
         fig.tight_layout()
-        fig.savefig(OUT / f"point_rough_us{us:g}.png", dpi=110)
+        fig.savefig(OUT / f"point_rough_{n}_us{us:g}.png", dpi=110)
     save("point_rough" + ("_quick" if quick else ""), {"scene": name, "rows": rows})
 
 
