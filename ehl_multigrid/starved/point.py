@@ -55,9 +55,10 @@ STARVED_TOL = 1e-8
 #: which the gap of a starved inlet doubles the supplied layer); below them it is frozen
 #: (injected). Measured at (20, 10), 129^2: theta free on all grids converges at mild
 #: starvation (Hoil/Hc_ff = 2: residual factor ~0.4 per cycle) but stalls or diverges at
-#: severe starvation (Hoil/Hc_ff <= 0.7); free on one grid only converges at severe
-#: starvation but slowly (factor ~0.87) at mild starvation; frozen on all coarse grids stalls
-#: at mild starvation.
+#: severe starvation (Hoil/Hc_ff <= 0.7); free on one grid only converges at mild
+#: starvation, slowly (factor ~0.87); frozen on all coarse grids stalls
+#: at mild starvation. Frozen below the current grid unless the mesh resolves the inlet
+#: converges (20, 10) at Hoil/Hc_ff = 0.1 and 0.03 (129^2), but diverges (100, 10) at 257^2.
 COARSE_THETA_MESH = 0.2
 
 
