@@ -65,6 +65,12 @@ def register(subparsers: Any) -> None:
     )
     p.add_argument("scene", help="built-in scene name or TOML file")
     p.add_argument("--isothermal", action="store_true", help="hold the temperature at the oil inlet value")
+    p.add_argument("--coupled", action="store_true",
+                   help="traction curve from thermal EHL solves (pressure, film and temperature "
+                        "together, Eyring flow; line contacts) instead of the thermal model on a "
+                        "given film")
+    p.add_argument("--points", type=int, default=None,
+                   help="EHL grid points of --coupled solves (2^k + 1, default 513)")
     p.add_argument("--slip", default=None,
                    help="slip values S: comma list or min:max:n; write --slip=-1,0,1 when the list starts negative "
                    "(default: scene ranges.slip)")
@@ -85,6 +91,14 @@ def register(subparsers: Any) -> None:
 
 def run_traction(args: argparse.Namespace) -> dict[str, Any]:
     scene = load_scene(args.scene)
+    if args.coupled:
+        from .tehl.cli import run_tehl
+
+        if args.slip is None:
+            args.slip = ",".join(f"{s:g}" for s in default_slips(scene))
+        return run_tehl(args)
+    if args.points is not None:
+        raise InputError("--points applies to --coupled traction curves only")
     options = ThermalOptions.from_scene(
         scene, nx=args.nx, nz=args.nz, slices=args.slices, x_in=args.x_in, surface_kernel=args.surface_kernel,
         slice_pressure=args.slice_pressure, slice_rule=args.slice_rule, tol_T=args.tol, tol_tau=args.tol,

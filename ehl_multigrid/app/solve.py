@@ -65,6 +65,13 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--solver", choices=["fas", "newton"], default=None,
                    help="point contacts: FAS/FMG multigrid (default) or the Newton semi-system path with pyamg")
     p.add_argument("--rigid", action="store_true", help="rigid surfaces: elastic deformation off (FAS)")
+    p.add_argument("--thermal", action="store_true",
+                   help="thermal EHL: pressure, film and temperature solved together with Eyring "
+                        "shear thinning (a scene, line or point; provided by the thermal layer)")
+    p.add_argument("--slip", type=float, default=None,
+                   help="slide-to-roll ratio S for --thermal (default: the scene's)")
+    p.add_argument("--nz", type=int, default=None,
+                   help="intervals across the film for --thermal (default 20)")
     p.add_argument("--csv", action="store_true",
                    help="also write the centre-line profiles (P, H and, with a scene, p [Pa], h [m]) as CSV")
 
@@ -92,8 +99,29 @@ def run_solve(args: argparse.Namespace) -> dict:
     """Solve the contact of ``args`` (a scene or Moes ``--M``/``--L``) with the line or the
     point solver; return the payload that ``ehl solve --json`` prints."""
     contact, scene = resolve_contact(args)
+    if getattr(args, "thermal", False):
+        return run_solve_mode("thermal", args, scene)
+    for flag in ("slip", "nz"):
+        if getattr(args, flag, None) is not None:
+            raise InputError(f"--{flag} applies to --thermal solves only")
     if contact == "line":
         from .line_cli import run_solve as run_contact
     else:
         from .point_cli import run_solve as run_contact
     return run_contact(args, scene)
+
+
+def run_solve_mode(name: str, args: argparse.Namespace, scene) -> dict:
+    """An ``ehl solve`` mode a layer above the core provides through the ``ehl.solve_modes``
+    entry-point group (``--thermal``: the thermal layer's coupled TEHL solve), so the core never
+    imports it."""
+    from importlib.metadata import entry_points
+
+    if scene is None:
+        raise InputError(f"--{name} needs a scene (the lubricant's thermal properties and the "
+                         f"surfaces' speeds come from it), not --M/--L")
+    found = [e for e in entry_points(group="ehl.solve_modes") if e.name == name]
+    if not found:
+        raise InputError(f"--{name} is provided by a layer that is not installed "
+                         f"(no entry point ehl.solve_modes:{name})")
+    return found[0].load()(args, scene)

@@ -33,6 +33,11 @@ def _system(level: LineLevel, P: np.ndarray, H0: float, jacobian: bool):
         W = level.deform(P)
         H, rho, drho, _, dlne, eps = fluid_state(P, W, level.X, H0, level.par, level.lam,
                                                  level.elastic)
+        a = getattr(level, "a", None)
+        if a is not None:
+            # generalised Reynolds (thermal EHL): frozen flow and Couette density factors; the
+            # Jacobian follows from eps, rho and drho
+            eps, rho, drho = eps * a, rho * level.c, drho * level.c
         r, _ = reynolds_residual(P, H, rho, eps, level.h, level.f, level.order)
         if not jacobian:
             return r, None

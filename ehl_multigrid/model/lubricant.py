@@ -89,6 +89,13 @@ class Lubricant:
         require_positive(f"{p}.G", self.G, "Pa")
 
     # -- viscosity --------------------------------------------------------------------------
+    def beta(self, T: float) -> float:
+        """Temperature-viscosity coefficient ``-d ln(eta)/dT`` at ambient pressure [1/K], from
+        the temperature term of Roelands (2.6):
+        ``ln(eta0/eta_inf) S0 (T0 + 135)^S0 / (T + 135)^(S0 + 1)``."""
+        return float(np.log(self.eta0 / ETA_INF) * self.S0 * (self.T0 + 135.0) ** self.S0
+                     / (float(T) + 135.0) ** (self.S0 + 1.0))
+
     def eta_at(self, T: float | np.ndarray) -> np.ndarray | float:
         """Ambient-pressure viscosity at temperature ``T`` [degC] (Roelands temperature term) [Pa s]."""
         return self.viscosity(0.0, T)

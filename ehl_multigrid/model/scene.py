@@ -242,6 +242,18 @@ class Scene:
         Hc = float(fits.central_film_fit(self.kind, M, L, 1.0 if self.kind == "line" else self.theta, gamma1))
         return Hc, Hc * self.film_scale(us)
 
+    def thermal_properties(self) -> dict[str, float]:
+        """The oil's thermal properties at the oil temperature and the thermal loading:
+        ``beta`` = -d ln(eta)/dT [1/K] (Roelands (2.6)), ``k_oil`` [W/(m K)] (3.12) and
+        ``cp_oil`` [J/(kg K)] (3.13) at ambient pressure, and ``thermal_loading`` =
+        ``beta eta0 um^2 / k_oil`` with the entrainment speed ``um = us/2`` (the parameter of the
+        thermal film-reduction correlations: Murch & Wilson 1975, Gupta et al. 1992)."""
+        lub = self.lubricant
+        beta = lub.beta(self.T_oil)
+        k_oil = float(lub.conductivity(0.0))
+        return {"beta": beta, "k_oil": k_oil, "cp_oil": float(lub.specific_heat(self.T_oil)),
+                "thermal_loading": beta * self.eta0 * (0.5 * self.us) ** 2 / k_oil}
+
     def summary(self) -> dict[str, Any]:
         """Main scalars as a flat dict (what ``ehl show --json`` prints)."""
         hz = self.hertz
@@ -281,6 +293,7 @@ class Scene:
             lam, abar = groups.venner_point(M, L)
         out["lambda_venner"] = lam
         out["alpha_bar"] = abar
+        out.update(self.thermal_properties())
         if self.roughness is not None:
             out["Lambda_fit"] = hc / self.roughness.Rq
         if self.element is not None:

@@ -4,8 +4,6 @@ and the thermal properties ``ehl show --json`` can list."""
 from __future__ import annotations
 
 import argparse
-import json
-import math
 from typing import Any
 
 import numpy as np
@@ -18,20 +16,8 @@ from .line import TEHLLineResult, TEHLOptions, solve_tehl_line, tehl_traction_cu
 
 
 def thermal_properties(scene: Scene) -> dict[str, float]:
-    """The oil's thermal properties at the scene's oil temperature and the thermal loading.
-
-    ``beta`` = -d ln(eta)/dT at ambient pressure [1/K] (Roelands temperature term (2.6));
-    ``k_oil`` [W/(m K)] (3.12) and ``cp_oil`` [J/(kg K)] (3.13) at ambient pressure;
-    ``thermal_loading`` = beta eta0 um^2 / k_oil with um = us/2 (the parameter of the thermal
-    film-reduction correlations of Murch & Wilson 1975, Wilson & Sheu 1983, Gupta et al. 1992).
-    """
-    lub, T = scene.lubricant, scene.T_oil
-    dT = 0.01
-    beta = -(math.log(lub.eta_at(T + dT)) - math.log(lub.eta_at(T - dT))) / (2.0 * dT)
-    k = float(lub.conductivity(0.0))
-    um = 0.5 * scene.us
-    return {"beta": beta, "k_oil": k, "cp_oil": float(lub.specific_heat(T)),
-            "thermal_loading": beta * float(lub.eta_at(T)) * um * um / k}
+    """The oil's thermal properties and the thermal loading (:meth:`Scene.thermal_properties`)."""
+    return scene.thermal_properties()
 
 
 def solve_payload(r: TEHLLineResult) -> dict[str, Any]:
@@ -77,9 +63,7 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
     if len(slips) == 1:
         r = solve_tehl_line(scene, slips[0], opts)
         payload = {"scene": scene.name, **solve_payload(r), **{"properties": thermal_properties(scene)}}
-        if args.json:
-            print(json.dumps(payload, default=float))
-        else:
+        if not args.json:  # with --json the ehl command prints the returned payload
             print_table({k: v for k, v in payload.items() if k not in ("outer", "properties")})
         return payload
     curve = tehl_traction_curve(scene, np.asarray(slips), opts)
@@ -89,9 +73,7 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
                "Hc_isothermal": curve[0].Hc_isothermal, "T_max": [r.T_max for r in curve],
                "heat_balance_error": [r.heat_balance_error for r in curve],
                "wall_s": sum(r.wall_s for r in curve)}
-    if args.json:
-        print(json.dumps(payload, default=float))
-    else:
+    if not args.json:
         print(f"  {'slip':>8} {'mu':>9} {'Hc':>8} {'Hm':>8} {'T_max':>8}")
         for r in curve:
             print(f"  {r.slip:8.4g} {r.friction_coefficient:9.4g} {r.Hc:8.4g} {r.Hm:8.4g} {r.T_max:8.4g}")
@@ -112,6 +94,18 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
     r = solve_tehl_point(scene, slip, opts) if point else solve_tehl_line(scene, slip, opts)
     payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),
                "outer": [dict(o) for o in r.outer], "properties": thermal_properties(scene)}
+    out = getattr(args, "out", None)
+    if out is not None:
+        from pathlib import Path
+
+        from ehl_multigrid.model.paths import output_file, safe_stem
+
+        from .results import tehl_line_result, tehl_point_result
+
+        folder = Path(out)
+        folder.mkdir(parents=True, exist_ok=True)
+        res = tehl_point_result(r) if point else tehl_line_result(r)
+        payload["hdf5"] = str(res.save(output_file(folder, safe_stem(f"{scene.name}_tehl"), ".h5")))
     if not getattr(args, "json", False):
         print_table({k: v for k, v in payload.items() if k not in ("outer", "properties")})
     return payload

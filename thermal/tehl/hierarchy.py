@@ -10,14 +10,13 @@ thermal solve of the outer iteration, :mod:`thermal.tehl.line`):
 
 With ``a = c = 1`` every state, residual and relaxation system is the core's, bit for bit.
 Coarse grids take the fine factors at their nodes (injection, like ``P``). The coarsest grid
-is relaxed (with the film constant following the load error) instead of solved by the
-core's dense Newton, whose Jacobian is written for ``a = c = 1``; a multilevel solve starts on
-the finest grid from the previous outer iterate, so FMG and its dense start are not needed.
+is solved by the core's dense Newton, which scales ``eps``, ``rho`` and ``drho/dP`` by the
+level's factors (the Jacobian follows); a multilevel solve starts on the finest grid from the
+previous outer iterate, so FMG and its dense start are not needed.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -28,10 +27,6 @@ from ehl_multigrid.line.problem import LineProblem
 from ehl_multigrid.line.solver import LineHierarchy, line_levels
 from ehl_multigrid.multigrid.driver import MultilevelSolver
 from ehl_multigrid.multigrid.options import LineOptions
-from ehl_multigrid.multigrid.policy import Settings
-
-#: relaxation sweeps of one coarsest-grid solve
-COARSE_SWEEPS = 30
 
 
 @dataclass
@@ -78,8 +73,6 @@ class FactorLineHierarchy(LineHierarchy):
         ]
         self._P0: np.ndarray | None = None
         self._H00 = 0.0
-        self._gain = math.nan
-        self._last_err: float | None = None
 
     def set_factors(self, a: np.ndarray, c: np.ndarray) -> None:
         """Flow and Couette factors on the finest grid; coarse grids inject them."""
@@ -107,30 +100,5 @@ class FactorLineHierarchy(LineHierarchy):
         lv.f = np.zeros(lv.n)
         lv.g = 0.5 * np.pi
         lv.frozen[:] = False
-        self._gain = math.nan
-        self._last_err = None
         return top
 
-    def coarse_solve(self, k: int, s: Settings) -> float:
-        """Relaxation sweeps with the film constant moved against the load error after each;
-        the gain halves when the error changes sign (an overshooting H0 made the cycles
-        converge by a factor 0.9 with the load error alternating), and recovers by 1.25 up to
-        the settings' gain while the sign holds."""
-        lv = self.levels[k]
-        if not math.isfinite(self._gain):
-            self._gain = s.h00_gain
-        self._gain = min(self._gain, s.h00_gain)
-        for _ in range(COARSE_SWEEPS):
-            self.relax(k, 1, s, False)
-            err = lv.load() - lv.g
-            if self._last_err is not None and err * self._last_err < 0.0:
-                self._gain = max(0.5 * self._gain, s.h00_gain / 1024.0)
-            elif self._last_err is not None:
-                self._gain = min(1.25 * self._gain, s.h00_gain)
-            self._last_err = err
-            lv.H0 += self._gain * err
-        return COARSE_SWEEPS * self.work(k)
-
-    def last_resort(self, k: int, solver: MultilevelSolver) -> bool:
-        # the core's dense Newton assumes a = c = 1
-        return False

@@ -20,9 +20,11 @@ def _parse(argv):
 
 
 def test_tehl_json_has_the_documented_keys(capsys):
-    a = _parse(["tehl", "appendix_c_line_4240N", "--slip", "0.3", "--points", "129", "--nz", "10", "--json"])
-    a.func(a)
+    from ehl_multigrid.app.cli import main
+
+    rc = main(["tehl", "appendix_c_line_4240N", "--slip", "0.3", "--points", "129", "--nz", "10", "--json"])
     out = json.loads(capsys.readouterr().out)
+    assert rc == 0
     for key in ("Hc", "Hm", "Hc_isothermal", "friction", "T_max", "heat_balance_error"):
         assert key in out
     assert out["converged"] and out["friction"] > 0
@@ -36,13 +38,14 @@ def test_tehl_refuses_a_point_contact():
 
 def test_thermal_properties_of_T9_at_60C():
     p = thermal_properties(load_scene("appendix_c_line_4240N"))
-    # Roelands temperature term (2.6): beta = ln(eta0/eta_inf) S0 (T0+135)^S0 / (T+135)^(S0+1)
+    # beta = -d ln(eta)/dT: against a central difference of the viscosity itself
     lub = load_scene("appendix_c_line_4240N").lubricant
     import math
 
-    lnr = math.log(lub.eta0 / ETA_INF)
-    beta = lnr * lub.S0 * (lub.T0 + 135) ** lub.S0 / (60 + 135) ** (lub.S0 + 1)
+    d = 1e-3
+    beta = -(math.log(lub.eta_at(60 + d)) - math.log(lub.eta_at(60 - d))) / (2 * d)
     assert p["beta"] == pytest.approx(beta, rel=1e-6)
+    assert ETA_INF < lub.eta_at(60.0)
     assert p["k_oil"] == pytest.approx(lub.k0)
     assert p["thermal_loading"] > 0
 
@@ -54,3 +57,41 @@ def test_solve_mode_for_ehl_solve_thermal():
     out = solve_mode(args, load_scene("appendix_c_line_4240N"))
     assert out["contact"] == "line" and out["converged"] and out["Hc_isothermal"] > 0
     assert 0 < out["heat_balance_error"] < 0.05
+
+
+def test_ehl_solve_thermal_writes_the_solution_and_show_lists_the_thermal_properties(tmp_path, capsys):
+    from ehl_multigrid.app.cli import main
+    from ehl_multigrid.model.results import Result
+
+    rc = main(["solve", "appendix_c_line_4240N", "--thermal", "--slip", "0.3", "--points", "129",
+               "--nz", "10", "--json", "--out", str(tmp_path)])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0 and out["converged"]
+    for key in ("Hc", "Hm", "Hc_isothermal", "friction", "T_max", "heat_balance_error"):
+        assert key in out
+    res = Result.load(out["hdf5"])
+    assert res.kind == "tehl_line" and res["T"].shape == (129, 11)
+    assert res.scalars["Hc"] == pytest.approx(out["Hc"])
+    assert main(["show", "appendix_c_line_4240N", "--json"]) == 0
+    shown = json.loads(capsys.readouterr().out)
+    assert shown["beta"] == pytest.approx(out["properties"]["beta"])
+    assert {"k_oil", "cp_oil", "thermal_loading"} <= set(shown)
+
+
+def test_thermal_flags_are_refused_where_they_do_not_apply(capsys):
+    from ehl_multigrid.app.cli import main
+
+    assert main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--thermal"]) == 2
+    assert "needs a scene" in capsys.readouterr().err
+    assert main(["solve", "appendix_c_line_4240N", "--slip", "0.3"]) == 2
+    assert "--thermal" in capsys.readouterr().err
+
+
+def test_traction_coupled_gives_a_curve_from_tehl_solves(capsys):
+    from ehl_multigrid.app.cli import main
+
+    rc = main(["traction", "appendix_c_line_4240N", "--coupled", "--slip", "0.1,0.3", "--points", "129",
+               "--nz", "10", "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0 and out["slip"] == [0.1, 0.3]
+    assert 0 < out["friction_coefficient"][0] < out["friction_coefficient"][1]
