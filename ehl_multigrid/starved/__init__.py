@@ -10,6 +10,10 @@
 * :func:`solve_starved_problem` -- one multilevel solve of the hierarchy as given (flooded
   inlet with ``hoil = inf``; with a finite supply the meniscus inside the multilevel iteration,
   the coupled path, robust only at moderate starvation).
+* :func:`solve_starved_point` -- the point (circular) contact: a
+  :class:`~ehl_multigrid.point.problem.PointProblem` and ``Hoil = hoil Rx/a^2``; the meniscus
+  is found inside the multilevel iteration (point.py); :func:`solve_starved_point_scene` for a
+  point scene and its ``[supply] hoil`` [m].
 
 Example::
 
@@ -21,7 +25,9 @@ Example::
 
 from .line import StarvedLineHierarchy, solve_starved_problem
 from .meniscus import solve_starved_line, solve_starved_scene
+from .point import StarvedPointHierarchy, solve_starved_point, solve_starved_point_scene
 from .supply import check_hoil, check_profile, hoil_venner
 
 __all__ = ["StarvedLineHierarchy", "solve_starved_line", "solve_starved_scene", "solve_starved_problem",
+           "StarvedPointHierarchy", "solve_starved_point", "solve_starved_point_scene",
            "check_hoil", "check_profile", "hoil_venner"]

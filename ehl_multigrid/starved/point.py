@@ -25,6 +25,7 @@ as the line solver does with its free boundaries.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -59,6 +60,11 @@ STARVED_TOL = 1e-8
 #: at mild starvation. Frozen below the current grid unless the mesh resolves the inlet
 #: converges (20, 10) at Hoil/Hc_ff = 0.1 and 0.03 (129^2), but diverges (100, 10) at 257^2.
 COARSE_THETA_MESH = 0.2
+
+#: The point core's policy, but a cycle is rejected only when its residual grows 30x over the
+#: best of the last 4 (the core: 3x over the best ever): while the meniscus travels from the
+#: flooded FMG state to its starved place the residual rises for several cycles.
+STARVED_POLICY = replace(POINT_POLICY, growth=30.0, growth_window=4)
 
 #: default upwind order of the wedge term ``d(theta rho H)/dX`` (``wedge_order`` option).
 #: Measured at (20, 10), 129^2: second order reproduces the core's second-order flooded film
@@ -141,8 +147,11 @@ class StarvedPointHierarchy(PointHierarchy):
     name = "starved point"
 
     def __init__(self, problem: PointProblem, options: PointOptions, hoil: float,
-                 coarse_theta: int | None = None) -> None:
+                 coarse_theta: int | None = None,
+                 initial: tuple[np.ndarray, np.ndarray, float] | None = None) -> None:
         super().__init__(problem, options)
+        #: finest-grid (P, theta, H00) to start from instead of the FMG start (continuation)
+        self.initial = initial
         self.hoil = check_hoil(hoil)
         self.coarse_theta = coarse_theta
         self.order = int(options.wedge_order)
@@ -197,6 +206,28 @@ class StarvedPointHierarchy(PointHierarchy):
         r[(lev.theta <= 0.0) & (r > 0.0)] = 0.0
         lev.r = np.ascontiguousarray(r)
         return lev.r
+
+    def start(self, solver: MultilevelSolver) -> int:
+        """FMG start on the coarsest grid, or (``initial``) the given finest-grid state, from
+        which the driver cycles on the finest grid only."""
+        if self.initial is None:
+            return super().start(solver)
+        self.solver = solver
+        self.gain = solver.settings.h00_gain
+        top = len(self.levels) - 1
+        lev = self.levels[top]
+        P, theta, self.H00 = self.initial
+        lev.P = np.ascontiguousarray(P, dtype=float).copy()
+        lev.theta = np.ascontiguousarray(theta, dtype=float).copy()
+        lev.f = np.zeros_like(lev.P)
+        lev.g = self.g_target
+        self._top = top
+        self.update_film(lev)
+        self.h00_step_max = 0.1 * max(self.central_film(lev), 1e-12)
+        self._march(lev)
+        lev.P[lev.theta < 1.0] = 0.0
+        self.update_film(lev)
+        return top
 
     def _free(self, k: int) -> bool:
         """Does ``theta`` move on grid ``k``? On the current fine grid and the grid below it
@@ -295,11 +326,29 @@ def meniscus_x(X: np.ndarray, theta: np.ndarray, row: int) -> float:
     return float(X[i - 1] + (X[i] - X[i - 1]) * (1.0 - t[i - 1]))
 
 
+def _solve_once(problem: PointProblem, hoil: float, opt: PointOptions, coarse_theta: int | None,
+                initial: tuple[np.ndarray, np.ndarray, float] | None
+                ) -> tuple[EHLResult, StarvedPointHierarchy]:
+    with preserved_threads():
+        hz = StarvedPointHierarchy(problem, opt, hoil, coarse_theta, initial)
+        solver = MultilevelSolver(hz, opt, point_settings(problem, opt),
+                                  RobustnessPolicy(STARVED_POLICY, opt.adapt), HINT)
+        hz.solver = solver
+        sol = solver.solve()
+    hz.solver = None
+    return sol, hz
+
+
 def solve_starved_point(problem: PointProblem, hoil: float, options: PointOptions | None = None,
-                        coarse_theta: int | None = None, **kw: Any) -> EHLResult:
+                        coarse_theta: int | None = None, continuation: bool = False,
+                        **kw: Any) -> EHLResult:
     """One multilevel (FMG + cycles) solve of a point contact with a uniform supplied layer
     ``hoil`` (Venner units ``h R/a^2``, total on both surfaces at ambient density; ``inf``:
     flooded inlet) and Elrod-Adams cavitation, the meniscus found inside the iteration.
+
+    With ``continuation`` the flooded solution is solved first (FMG) and the supply is lowered
+    from twice its central film by factors of 2 to ``hoil``, each solve cycling on the finest
+    grid from the previous one (``sol.extra["continuation"]`` lists the steps).
 
     The result carries ``theta`` (``sol.extra["theta"]``), ``meniscus_x`` (centre line),
     ``mass_balance_error`` (relative imbalance of the boundary flows), ``outlet_layer`` (mean
@@ -309,13 +358,23 @@ def solve_starved_point(problem: PointProblem, hoil: float, options: PointOption
     if options is None:
         kw.setdefault("wedge_order", STARVED_WEDGE_ORDER)
     opt = PointOptions.build(options, **kw)
-    with preserved_threads():
-        hz = StarvedPointHierarchy(problem, opt, hoil, coarse_theta)
-        solver = MultilevelSolver(hz, opt, point_settings(problem, opt),
-                                  RobustnessPolicy(POINT_POLICY, opt.adapt), HINT)
-        hz.solver = solver
-        sol = solver.solve()
-    hz.solver = None
+    steps: list[dict[str, Any]] = []
+    initial = None
+    if continuation and math.isfinite(hoil):
+        sol, hz = _solve_once(problem, math.inf, opt, coarse_theta, None)
+        fine = hz.levels[-1]
+        steps.append({"hoil": math.inf, "status": sol.status_name, "cycles": len(sol.residual_history)})
+        initial = (fine.P, fine.theta, hz.H00)
+        h = 2.0 * hz.central_film(fine)
+        while h > hoil * 1.5:
+            sol, hz = _solve_once(problem, h, opt, coarse_theta, initial)
+            fine = hz.levels[-1]
+            steps.append({"hoil": h, "status": sol.status_name, "cycles": len(sol.residual_history)})
+            initial = (fine.P, fine.theta, hz.H00)
+            h *= 0.5
+    sol, hz = _solve_once(problem, hoil, opt, coarse_theta, initial)
+    if steps:
+        steps.append({"hoil": hoil, "status": sol.status_name, "cycles": len(sol.residual_history)})
     fine = hz.levels[-1]
     sol.contact, sol.solver, sol.problem, sol.options = "point", "starved-fas", problem, opt
     sol.X, sol.Y, sol.P, sol.H = fine.X, fine.Y, fine.P.copy(), fine.H.copy()
@@ -330,9 +389,40 @@ def solve_starved_point(problem: PointProblem, hoil: float, options: PointOption
                      meniscus_x=meniscus_x(fine.X, fine.theta, row),
                      mass_balance_error=float(abs(imbalance)), fluxes=fl,
                      outlet_layer=fl["out"] / width if math.isfinite(hoil) else math.nan,
-                     rho_c=float(fine.rho[row, i0]), domain=(hz.xmin, hz.xmax, hz.ymax))
+                     rho_c=float(fine.rho[row, i0]), domain=(hz.xmin, hz.xmax, hz.ymax),
+                     continuation=steps)
     sol.builder = build_result
     sol.scalars = dict(build_result(sol, None).scalars)
     sol.scalars.update(meniscus_x=sol.extra["meniscus_x"],
                        mass_balance_error=sol.extra["mass_balance_error"])
     return sol
+
+
+def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: PointOptions | None = None,
+                              *, flooded: bool = True, viscosity: str = "roelands",
+                              density: str = "dowson-higginson", **kw: Any) -> EHLResult:
+    """Starved point (circular) contact of a point-contact ``scene`` at its operating point,
+    supplied with the scene's ``[supply] hoil`` [m] (or ``hoil`` [m]): ``Hoil = hoil Rx/a^2``.
+
+    With ``flooded`` the flooded film of the same discretisation is solved too (scalars
+    ``Hc_flooded``, ``Hm_flooded``, ``Hc_ratio``, ``Hm_ratio``). Films in metres: ``hc``,
+    ``hm``; ``hoil`` [m]. Solved on the half domain Y >= 0 by default (the contact is
+    symmetric); keywords are :class:`PointOptions` fields."""
+    from ..point.problem import problem_from_scene
+    from .supply import hoil_venner
+
+    pb = problem_from_scene(scene, viscosity=viscosity, density=density)
+    h_m = scene.supply.hoil if hoil is None else hoil
+    Hoil = hoil_venner(h_m, pb.a, pb.Rx)
+    kw.setdefault("half", True)
+    res = solve_starved_point(pb, Hoil, options, **kw)
+    scale = pb.a**2 / pb.Rx
+    res.scalars.update(hoil=h_m, hoil_venner=Hoil, hc=res.scalars["Hc_venner"] * scale,
+                       hm=res.scalars["Hm_venner"] * scale)
+    if flooded:
+        ff = solve_starved_point(pb, math.inf, res.options)
+        res.scalars.update(Hc_flooded=ff.scalars["Hc_venner"], Hm_flooded=ff.scalars["Hm_venner"],
+                           Hc_ratio=res.scalars["Hc_venner"] / ff.scalars["Hc_venner"],
+                           Hm_ratio=res.scalars["Hm_venner"] / ff.scalars["Hm_venner"],
+                           flooded_status=ff.status_name)
+    return res
