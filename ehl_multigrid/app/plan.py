@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from ..model import fits
 from ..model.constants import ETA_INF, P_R
 from ..model.errors import InputError, require_range
 from ..model.lubricant import density_ratio_dh
@@ -292,6 +293,22 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     else:
         plan.decisions.append(Decision("thermal", False, "isothermal", 0.0, tol, "-", "no slip: no shear heating"))
         plan.decisions.append(Decision("eyring", False, "Newtonian", 0.0, tol, "-", "no slip: no shear stress"))
+
+    # 3b. thermal EHL: heat in the inlet thins the film (the decoupled method keeps its friction
+    # within 0.6 % on the thesis's line conditions, validation/tehl/REPORT.md, but not its film)
+    reductions = []
+    for u in speeds:
+        L_T = scene.with_operating(us=float(u)).thermal_properties()["thermal_loading"]
+        reductions.append((1.0 - float(fits.gupta_thermal_factor(L_T, s_worst, scene.hertz.pmax / scene.E_reduced)),
+                           L_T, float(u)))
+    red, L_T, u_red = max(reductions)
+    need = red > tol
+    plan.decisions.append(Decision(
+        "tehl", need, "thermal EHL advised (ehl solve SCENE --thermal)" if need else "isothermal film",
+        red, tol, "-",
+        f"thermal film reduction {red:.2g} by Gupta et al. (1992) at thermal loading {L_T:.3g} "
+        f"(us {u_red:.3g} m/s), slip {s_worst:g}; the coupled solver measured 35-70 % of it",
+    ))
 
     # 4. starvation
     if scene.roughness is not None and scene.supply.hoil_over_sigma:

@@ -154,3 +154,17 @@ def central_film_fit(contact: str, M: ArrayLike, L: ArrayLike, theta: ArrayLike 
     if contact in ("point", "circular", "elliptic"):
         return nijenbanning_central(M, L, theta, gamma1)
     raise InputError(f"contact = {contact!r} is not one of ['line', 'point', 'elliptic']")
+
+
+def gupta_thermal_factor(L: ArrayLike, S: ArrayLike, ph_over_E: float) -> ArrayLike:
+    """Thermal reduction of the central film ``hc,thermal/hc,isothermal`` of Gupta et al. (1992),
+    in the form commonly quoted (not checked against the paper here):
+    ``(1 - 13.2 (ph/E') L^0.42) / (1 + 0.213 (1 + 2.23 |S|^0.83) L^0.64)`` with the thermal
+    loading ``L = beta eta0 um^2/k`` (:meth:`Scene.thermal_properties`), the slide-to-roll ratio
+    ``S`` and ``ph/E'``. The package's coupled thermal EHL solver measured 35-70 % of this
+    reduction on line contacts (validation/tehl/REPORT.md), so it is a conservative flag."""
+    L = np.asarray(L, dtype=float)
+    S = np.abs(np.asarray(S, dtype=float))
+    if np.any(L < 0.0):
+        raise InputError(f"thermal loading L = {L} must be >= 0")
+    return _out((1.0 - 13.2 * ph_over_E * L**0.42) / (1.0 + 0.213 * (1.0 + 2.23 * S**0.83) * L**0.64))

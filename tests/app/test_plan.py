@@ -135,5 +135,18 @@ def test_bad_fidelity_and_tolerance_are_named():
 def test_plan_cli_json_lists_every_decision(capsys):
     assert main(["plan", "default", "--fidelity", "fast", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert {d["model"] for d in out["decisions"]} == {"film", "asperities", "thermal", "eyring", "starvation", "maxwell"}
+    assert {d["model"] for d in out["decisions"]} == {"film", "asperities", "thermal", "eyring", "tehl", "starvation", "maxwell"}
     assert out["tolerance"] == 0.1
+
+
+def test_thermal_ehl_is_advised_where_the_thermal_film_reduction_exceeds_the_tolerance():
+    from ehl_multigrid.model.fits import gupta_thermal_factor
+
+    sc = load_scene("appendix_c_line_4240N")  # 8 m/s, slip up to 1: L_T = 0.015
+    tight = make_plan(sc, tolerance=0.01).get("tehl")
+    loose = make_plan(sc, tolerance=0.1).get("tehl")
+    assert tight.include and not loose.include and "--thermal" in tight.setting
+    L_T = sc.thermal_properties()["thermal_loading"]
+    assert tight.estimate >= 1.0 - float(gupta_thermal_factor(L_T, 1.0, sc.hertz.pmax / sc.E_reduced)) - 1e-12
+    # no thermal loading, no reduction: the correlation's limit
+    assert float(gupta_thermal_factor(0.0, 1.0, 0.004)) == 1.0

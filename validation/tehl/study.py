@@ -157,9 +157,10 @@ def thermal_loading(lub, T: float, um: float) -> float:
 
 
 def gupta(L: float, S: float, ph_over_E: float) -> float:
-    """Gupta et al. (1992), as commonly quoted: ``(1 - 13.2 (ph/E') L^0.42) /
-    (1 + 0.213 (1 + 2.23 S^0.83) L^0.64)``."""
-    return (1 - 13.2 * ph_over_E * L**0.42) / (1 + 0.213 * (1 + 2.23 * abs(S) ** 0.83) * L**0.64)
+    """Gupta et al. (1992) (the package's :func:`~ehl_multigrid.model.fits.gupta_thermal_factor`)."""
+    from ehl_multigrid.model.fits import gupta_thermal_factor
+
+    return float(gupta_thermal_factor(L, S, ph_over_E))
 
 
 def wilson_sheu(L: float, S: float) -> float:
