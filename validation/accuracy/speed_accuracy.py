@@ -11,7 +11,7 @@ used more than LIMIT_CPU_S seconds of CPU time (CPU rather than wall time, so th
 not depend on what else the shared machine runs). A stopped run, and every tighter accuracy
 of the same contact and (M, L), is recorded as skipped with the reason.
 
-    python validation/accuracy/speed_accuracy.py    # writes out/speed_accuracy.json|png
+    python validation/accuracy/speed_accuracy.py [--contact line]   # writes out/speed_accuracy.json|png
 """
 
 from __future__ import annotations
@@ -150,8 +150,15 @@ def plot(rows: list[dict[str, Any]], path) -> None:
 
 
 def main() -> None:
+    import argparse
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--contact", choices=("line", "point", "all"), default="all",
+                    help="re-run the records of this contact only (the others are kept as stored)")
+    args = ap.parse_args()
+    contacts = ("line", "point") if args.contact == "all" else (args.contact,)
     data = read_json(PATH) or {}
-    todo = [(c, M, L, a) for c in ("line", "point") for M, L in POINTS_ML for a in ACCURACIES]
+    todo = [(c, M, L, a) for c in contacts for M, L in POINTS_ML for a in ACCURACIES]
     bar = tqdm(todo, desc="speed-accuracy")
     for contact, M, L, a in bar:
         key = f"{contact}_M{M:g}_L{L:g}_a{a:g}"
