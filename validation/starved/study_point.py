@@ -34,7 +34,6 @@ from ehl_multigrid.starved.point import STARVED_TOL, solve_starved_point
 from mixed.starvation import chevalier_reduction
 
 OUT = Path(__file__).resolve().parent / "out"
-CASES = [(20.0, 10.0), (100.0, 10.0)]
 #: supplied layer as multiples of the flooded central film
 RATIOS = [4.0, 2.0, 1.5, 1.2, 1.0, 0.8, 0.6, 0.4, 0.25, 0.1, 0.03]
 DELTA_MIXED = 3.5
@@ -178,7 +177,8 @@ def main() -> None:
     if args.quick:
         plan = [(20.0, 10.0, 129)]
     else:
-        plan = [(20.0, 10.0, 129), (20.0, 10.0, 257), (100.0, 10.0, 257)]
+        plan = [(20.0, 10.0, 129), (20.0, 10.0, 257), (100.0, 10.0, 257), (100.0, 5.0, 257),
+                (179.0, 4.17, 257)]  # the last: the chapter-6 0.5 GPa scene's (M, L)
     cases = [run_case(M, L, n, RATIOS) for M, L, n in plan]
     runs = [r for c in cases for r in c["runs"]]
     data = {"tol": STARVED_TOL, "delta_mixed": DELTA_MIXED, "cases": cases, "fit": fit_delta(runs)}
