@@ -11,7 +11,9 @@ film coordinate Z = z/h (3.14). At each station:
 * Eyring-Maxwell flow (3.3): ``gdot = (um/G) dtau/dx + (tau0/eta) sinh(tau/tau0)``; the mid-film
   stress ``tau_m`` is fixed by ``h int_0^1 gdot dZ = u2 - u1`` (so u(0) = u1, u(h) = u2);
 * energy (3.5) in mapped form with the cross term dropped (3.17):
-  ``k/h^2 T_ZZ - rho Cp u T_x + tau gdot_v = 0``, three-point backward differences in x (3.18)
+  ``k/h^2 T_ZZ - rho Cp u T_x + tau gdot_v = 0``, optionally with the compressive heating
+  ``+ T alpha* u dp/dx`` (``alpha* = -(1/rho) d rho/dT`` of (3.10), T absolute; off in the
+  thesis's model), three-point backward differences in x (3.18)
   (two-point at the first station), central in Z (3.19);
 * walls: ``T = T_bulk + sum_j W(i, j) q_j`` (surface.py), with the wall flux from a second-order
   one-sided difference.
@@ -37,6 +39,7 @@ from .properties import (
     conductivity,
     density_at,
     density_pressure_term,
+    expansivity,
     roelands_at,
     roelands_log_ratio,
     roelands_pressure_term,
@@ -345,7 +348,7 @@ def _wall_weight(WL, WR, i, j, n):
 
 @njit(cache=True, nogil=True)
 def _station(
-    i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil, Ts1, Ts2,
+    i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, compress, dpdx_c, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil, Ts1, Ts2,
     WL1, WR1, WL2, WR2, thermal, first, q1_down, q2_down, T_down, T_start,
     tol_T, tol_tau, max_inner, relax, wz, Zc, flux_scale,
     d, inv_eta, mx_r, Ti, Tn, tau_old, aa, bb, cc, rr, gtot,
@@ -480,6 +483,10 @@ def _station(
             cc[j] = -A
             bb[j] = 2.0 * A
             rr[j] = heat[i, j]
+            if compress:
+                # compression work T alpha* u dp/dx (T absolute; alpha* the expansivity of (3.10)),
+                # at the station iterate like the shear heat: heats where the oil is compressed
+                rr[j] += (Ti[j] + T_KELVIN) * expansivity(Ti[j], oil) * u[i, j] * dpdx_c[i]
             if i == 0:
                 pass  # inlet column fixed below
             elif u[i, j] >= -u_eps:
@@ -542,7 +549,7 @@ def _station(
 
 @njit(cache=True, nogil=True)
 def sweep_line(
-    dx, p, h, dpdx, qp, flux, oil, u1, u2, um, T_oil, Ts1, Ts2,
+    dx, p, h, dpdx, qp, flux, compress, dpdx_c, oil, u1, u2, um, T_oil, Ts1, Ts2,
     WL1, WR1, WL2, WR2, nz, thermal, first, q1_lag, q2_lag, T_lag,
     tol_T, tol_tau, max_inner, relax,
     T, tau, u, gv, q1, q2, heat, slope, inner_its, backward=False,
@@ -555,6 +562,9 @@ def sweep_line(
     qp : pressure-driven volume flux of the EHL solution per station [m^2/s];
     flux : True sets the stress slope from ``qp`` (:func:`solve_stress_slope`), False from
         ``dpdx`` (``G = h dp/dx``; zeros switch the pressure term off);
+    compress : add the compressive heating ``-(T/rho)(d rho/d T)_p u dp/dx`` to the energy
+        equation (Bruyere et al. 2012, Habchi 2008; (3.5) has none), with ``dpdx_c`` [Pa/m]
+        the pressure gradient per station (read only when ``compress``);
     oil : properties.oil_params array; u1, u2 : wall speeds [m/s]; um : mean speed (Maxwell term);
     T_oil, Ts1, Ts2 : inlet oil and bulk wall temperatures [degC];
     WL1, WR1, WL2, WR2 : surface influence weights (surface.wall_weights);
@@ -614,7 +624,7 @@ def sweep_line(
     st_rev = np.zeros(n, dtype=np.int64)
     for i in range(n):
         ok, nt, nr = _station(
-            i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil, Ts1, Ts2,
+            i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, compress, dpdx_c, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil, Ts1, Ts2,
             WL1, WR1, WL2, WR2, thermal, first, q1_lag, q2_lag, T_lag, T_lag,
             tol_T, tol_tau, max_inner, relax, wz, Zc, flux_scale,
             d, inv_eta, mx_r, Ti, Tn, tau_old, aa, bb, cc, rr, gtot,
@@ -634,7 +644,7 @@ def sweep_line(
         if lo >= 0:
             for i in range(hi, lo - 1, -1):
                 ok, nt, nr = _station(
-                    i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil,
+                    i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, compress, dpdx_c, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil,
                     Ts1, Ts2, WL1, WR1, WL2, WR2, thermal, False, q1, q2, T, T,
                     tol_T, tol_tau, max_inner, relax, wz, Zc, flux_scale,
                     d, inv_eta, mx_r, Ti, Tn, tau_old, aa, bb, cc, rr, gtot,
@@ -698,7 +708,7 @@ def _anderson_step(X, F, count, x, g, depth):
 
 @njit(cache=True, nogil=True)
 def march_line(
-    dx, p, h, dpdx, qp, flux, oil, u1, u2, um, T_oil, Ts1, Ts2,
+    dx, p, h, dpdx, qp, flux, compress, dpdx_c, oil, u1, u2, um, T_oil, Ts1, Ts2,
     WL1, WR1, WL2, WR2, nz, thermal, tol_T, tol_tau, max_inner, relax,
     max_sweeps, lagged, symmetric, s1, s2, depth,
     T, tau, u, gv, q1, q2, heat, slope, inner_its, history,
@@ -731,7 +741,7 @@ def march_line(
     for k in range(max_sweeps):
         sweeps = k + 1
         n_fail, n_tau_fail, n_rev = sweep_line(
-            dx, p, h, dpdx, qp, flux, oil, u1, u2, um, T_oil, Ts1, Ts2,
+            dx, p, h, dpdx, qp, flux, compress, dpdx_c, oil, u1, u2, um, T_oil, Ts1, Ts2,
             WL1, WR1, WL2, WR2, nz, thermal, k == 0, q1_lag, q2_lag, T_lag,
             tol_T, tol_tau, max_inner, relax, T, tau, u, gv, q1, q2, heat, slope, inner_its, symmetric,
         )

@@ -20,6 +20,7 @@ from ehl_multigrid.model.lubricant import T_MAX_C, T_MIN_C, Lubricant
 from ehl_multigrid.model.solids import Solid
 
 from . import kernels
+from .kernels import T_KELVIN
 from .options import ThermalOptions
 from .profiles import LineProfile
 from .properties import T_ROELANDS_MIN, oil_params
@@ -65,10 +66,11 @@ class ThermalLineSolution:
     traction1/2_per_length : shear force of the film on surface 1 / 2 along +x [N/m];
     stress_slope : ``G = dtau/dZ = h dp/dx`` per station [Pa] (zero without the pressure term;
         with ``momentum='flux'`` the slope that carries the EHL solution's pressure-driven flux);
-    heat : dict of the heat budget per unit length [W/m]: shear, conduction1, conduction2,
-        convection (the (3.5) convection term integrated), enthalpy_flux (outlet minus inlet
-        of rho Cp u T h, for reference), balance (relative residual of
-        shear - conduction - convection).
+    heat : dict of the heat budget per unit length [W/m]: shear, compression (the compressive
+        heating integrated; 0 when it is off), conduction1, conduction2, convection (the (3.5)
+        convection term integrated), enthalpy_flux (outlet minus inlet of rho Cp u T h, for
+        reference), balance (relative residual of shear + compression - conduction -
+        convection, over the shear heat).
     """
 
     profile: LineProfile
@@ -89,6 +91,8 @@ class ThermalLineSolution:
     extra: dict = field(default_factory=dict)
     #: oil of the heat budget (None: isothermal solution, empty budget)
     lubricant: Lubricant | None = field(default=None, repr=False)
+    #: the energy equation carried the compressive heating (ThermalOptions.compressive_heating)
+    compressive_heating: bool = False
     _heat: dict[str, float] | None = field(default=None, repr=False)
 
     @property
@@ -97,7 +101,8 @@ class ThermalLineSolution:
         empty for an isothermal solution)."""
         if self._heat is None:
             self._heat = ({} if self.lubricant is None else
-                          heat_budget(self.profile, self.T, self.u, self.heat_rate, self.q1, self.q2, self.lubricant))
+                          heat_budget(self.profile, self.T, self.u, self.heat_rate, self.q1, self.q2, self.lubricant,
+                                      compression=self.compressive_heating))
         return self._heat
 
     @property
@@ -157,6 +162,8 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
         raise InputError("film thickness h must be > 0 m at every station (zero film)")
     mode = momentum_mode(profile, options)
     dpdx = np.ascontiguousarray(profile.dpdx if mode == "gradient" else np.zeros(nx), dtype=np.float64)
+    compress = bool(options.compressive_heating and options.thermal)
+    dpdx_c = np.ascontiguousarray(profile.dpdx if compress else np.zeros(nx), dtype=np.float64)
     qp = np.ascontiguousarray(profile.poiseuille_flux if mode == "flux" else np.zeros(nx), dtype=np.float64)
     oil = oil_params(env.lubricant, options.G)
     um = 0.5 * (env.u1 + env.u2)
@@ -181,7 +188,7 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     s2 = max(abs(WL2[nx - 1] + WR2[nx - 1]), 1e-300)
     history = np.zeros(options.max_sweeps)
     sweeps, sweeps_ok, n_fail, n_tau_fail, n_rev = kernels.march_line(
-        dx, p, h, dpdx, qp, mode == "flux", oil, float(env.u1), float(env.u2), um, float(env.T_oil),
+        dx, p, h, dpdx, qp, mode == "flux", compress, dpdx_c, oil, float(env.u1), float(env.u2), um, float(env.T_oil),
         float(env.T_surface1), float(env.T_surface2), WL1, WR1, WL2, WR2, nz, bool(options.thermal),
         float(options.tol_T), float(options.tol_tau), int(options.max_inner), float(options.relax),
         int(options.max_sweeps), bool(lagged), bool(symmetric), float(s1), float(s2), ANDERSON_DEPTH,
@@ -229,7 +236,7 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
         profile=profile, Z=Z, T=T, tau=tau, u=u, gdot=gv, heat_rate=heat, q1=q1, q2=q2,
         force_per_length=F, traction1_per_length=F1, traction2_per_length=F2,
         report=report, T_oil=float(env.T_oil), stress_slope=slope,
-        lubricant=env.lubricant if options.thermal else None,
+        lubricant=env.lubricant if options.thermal else None, compressive_heating=compress,
     )
 
 
@@ -274,12 +281,15 @@ def kernels_check(T: np.ndarray, tau: np.ndarray, report: ConvergenceReport, hin
 
 def heat_budget(
     profile: LineProfile, T: np.ndarray, u: np.ndarray, heat: np.ndarray, q1: np.ndarray, q2: np.ndarray,
-    lub: Lubricant,
+    lub: Lubricant, compression: bool = False,
 ) -> dict[str, float]:
     """Heat budget per unit length of line [W/m] from the converged fields.
 
     Computed with quadratures independent of the solver's stencils: trapezoid in Z and x,
-    second-order central differences for dT/dx. Rho and Cp from the core Lubricant.
+    second-order central differences for dT/dx. Rho and Cp from the core Lubricant. With
+    ``compression`` the work of compression ``int h int T alpha* u dp/dx dZ dx`` is a source,
+    with ``alpha* = -(1/rho) d rho/dT`` from a central difference (0.01 K) of the core
+    Lubricant's density (not the kernels' closed form) and ``dp/dx`` the profile's.
     """
     x = profile.x
     h = profile.h
@@ -295,9 +305,15 @@ def heat_budget(
     conv = float(np.trapezoid(h * np.trapezoid(rho * cp * u * dTdx, dx=dZ, axis=1), x))
     flux = h * np.trapezoid(rho * cp * u * T, dx=dZ, axis=1)
     enth = float(flux[-1] - flux[0])
-    bal = (shear - cond1 - cond2 - conv) / shear if shear > 0 else 0.0
+    comp = 0.0
+    if compression:
+        dT = 0.01
+        alpha = -(lub.density(P, T + dT) - lub.density(P, T - dT)) / (2.0 * dT * rho)
+        work = (T + T_KELVIN) * alpha * u * profile.dpdx[:, None]
+        comp = float(np.trapezoid(h * np.trapezoid(work, dx=dZ, axis=1), x))
+    bal = (shear + comp - cond1 - cond2 - conv) / shear if shear > 0 else 0.0
     return {
-        "shear": shear, "conduction1": cond1, "conduction2": cond2, "convection": conv,
+        "shear": shear, "compression": comp, "conduction1": cond1, "conduction2": cond2, "convection": conv,
         "enthalpy_flux": enth, "balance": bal,
     }
 

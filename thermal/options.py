@@ -47,6 +47,10 @@ class ThermalOptions:
         the transverse contact width 2b for a point contact).
     G : fluid shear modulus override [Pa] (None: the lubricant's; 1e30 = Maxwell term off).
     thermal : False holds the temperature at the oil inlet value (isothermal switch).
+    compressive_heating : add the compression work ``-(T/rho)(d rho/d T)_p u dp/dx`` (T
+        absolute, density (3.10)) to the energy equation (3.5), as in the TEHL energy equation
+        of Bruyere et al. (2012) and Habchi (2008): heating where the oil is compressed (the
+        inlet), cooling where it expands (the outlet). False (default) is the thesis's (3.5).
     momentum : pressure term of (3.4) (tau linear across the film, slope G = h dp/dx).
         ``flux``: G is chosen at each station so that the pressure-driven flow carries the EHL
         solution's pressure-driven flux ``-h^3/(12 eta) dp/dx`` (Reynolds, isothermal
@@ -79,6 +83,7 @@ class ThermalOptions:
     G: float | None = None
     thermal: bool = True
     momentum: str = "auto"
+    compressive_heating: bool = False
 
     def __post_init__(self) -> None:
         _int("nx", self.nx, 8, 100000)
@@ -102,6 +107,8 @@ class ThermalOptions:
             require_range("G", self.G, 0.0, math.inf, "Pa", lo_open=True)
         if not isinstance(self.thermal, bool):
             raise InputError(f"thermal = {self.thermal!r} must be true or false")
+        if not isinstance(self.compressive_heating, bool):
+            raise InputError(f"compressive_heating = {self.compressive_heating!r} must be true or false")
 
     @classmethod
     def from_scene(cls, scene: Any = None, **overrides: Any) -> ThermalOptions:

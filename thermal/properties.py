@@ -1,5 +1,6 @@
 """Lubricant property functions compiled for the thermal kernels (thesis 3.2.1.7-3.2.1.10:
-Roelands (2.6), Dowson-Higginson with temperature (3.10), conductivity (3.12), specific heat (3.13)).
+Roelands (2.6), Dowson-Higginson with temperature (3.10) and its thermal expansivity, conductivity (3.12),
+specific heat (3.13)).
 
 The reference implementations live in :class:`ehl_multigrid.model.lubricant.Lubricant`; these are the
 same formulas as scalar numba functions so the inner loops can call them. The tests check both
@@ -83,6 +84,13 @@ def density_at(pressure_term: float, T: float, oil: np.ndarray) -> float:
     """Density (3.10) [kg/m^3] from :func:`density_pressure_term` (same operations as
     :func:`density`)."""
     return oil[I_RHO0] * (1.0 - oil[I_ALPHAT] * (T - oil[I_TRHO])) * pressure_term
+
+
+@njit(cache=True)
+def expansivity(T: float, oil: np.ndarray) -> float:
+    """Volumetric thermal expansivity ``-(1/rho) (d rho/d T)_p`` [1/K] of the density (3.10),
+    ``alpha_T / (1 - alpha_T (T - T_rho))`` (the Dowson-Higginson pressure factor (2.7) cancels)."""
+    return oil[I_ALPHAT] / (1.0 - oil[I_ALPHAT] * (T - oil[I_TRHO]))
 
 
 @njit(cache=True)

@@ -74,6 +74,10 @@ class TEHLOptions:
     thermal : False holds T = T_oil (Eyring shear thinning on the flow only).
     shear_thinning : False gives the flow the Newtonian eta(p, T) (Eyring stays in the friction).
     surface_kernel : surface-temperature kernel of the thermal layer.
+    compressive_heating : the energy equation carries the compression work
+        ``-(T/rho)(d rho/d T)_p u dp/dx`` (Bruyere et al. 2012; Habchi 2008) besides the
+        thesis's terms (3.5) (:class:`~thermal.options.ThermalOptions`); False is the thesis's
+        energy equation.
     multigrid : overrides of the core :class:`LineOptions` (tol, cycle, levels ...); by default
         each multilevel solve stops on the films (``film_tol = tol_H / 4``: Hc and Hm change by
         less between two finest-grid cycles, load error below it), since a residual of 1e-5
@@ -95,6 +99,7 @@ class TEHLOptions:
     thermal: bool = True
     shear_thinning: bool = True
     surface_kernel: str = "moving-strip"
+    compressive_heating: bool = True
     multigrid: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -116,6 +121,8 @@ class TEHLOptions:
         require_range("tol_thermal", self.tol_thermal, 1e-12, 1e-3, "-")
         if self.surface_kernel not in SURFACE_KERNELS:
             raise InputError(f"surface_kernel = {self.surface_kernel!r} is not one of {list(SURFACE_KERNELS)}")
+        if not isinstance(self.compressive_heating, bool):
+            raise InputError(f"compressive_heating = {self.compressive_heating!r} must be true or false")
 
     def line_options(self) -> LineOptions:
         return LineOptions.build(None, **{"points": self.points, "raise_on_failure": False,
@@ -124,7 +131,7 @@ class TEHLOptions:
     def thermal_options(self) -> ThermalOptions:
         return ThermalOptions(nx=self.points, nz=self.nz, tol_T=self.tol_thermal, tol_tau=self.tol_thermal,
                               max_inner=500, max_sweeps=400, momentum="on", thermal=self.thermal,
-                              surface_kernel=self.surface_kernel)
+                              surface_kernel=self.surface_kernel, compressive_heating=self.compressive_heating)
 
     def with_changes(self, **changes: Any) -> TEHLOptions:
         return replace(self, **changes)
@@ -298,15 +305,18 @@ def interior_heat_budget(sol: ThermalLineSolution, lubricant: Any) -> dict[str, 
     layer, and a whole-box budget (:func:`thermal.line.heat_budget`) counts the heat it carries
     out through the inlet as a residual. This budget starts at the second station, with the
     same independent quadratures (trapezoid in Z and x, second-order differences of T in x):
-    ``balance = (shear - conduction1 - conduction2 - convection) / shear``.
+    ``balance = (shear + compression - conduction1 - conduction2 - convection) / shear``
+    (compression: the work of compression when the solve carried it, else 0).
     """
     from ..line import heat_budget
     from ..profiles import LineProfile
 
     prof = sol.profile
     k = slice(1, None)
-    sub = LineProfile(prof.X[k], prof.b, prof.p[k], prof.h[k], prof.width, prof.source)
-    return heat_budget(sub, sol.T[k], sol.u[k], sol.heat_rate[k], sol.q1[k], sol.q2[k], lubricant)
+    sub = LineProfile(prof.X[k], prof.b, prof.p[k], prof.h[k], prof.width, prof.source,
+                      gradient=None if prof.gradient is None else prof.gradient[k])
+    return heat_budget(sub, sol.T[k], sol.u[k], sol.heat_rate[k], sol.q1[k], sol.q2[k], lubricant,
+                       compression=sol.compressive_heating)
 
 
 def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None, *,

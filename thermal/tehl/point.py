@@ -273,13 +273,13 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
     st, th = done.state, done.thermal
     done.report.extra["actions"] = notes + list(done.report.extra.get("actions", []))
     F = float(sum(s.force_per_length * w for s, w in zip(th.sols, th.widths, strict=True)))
-    keys = ("shear", "conduction1", "conduction2", "convection")
+    keys = ("shear", "compression", "conduction1", "conduction2", "convection")
     heat = dict.fromkeys(keys, 0.0)
     for s, w in zip(th.sols, th.widths, strict=True):
         hb = interior_heat_budget(s, lub)
         for k in keys:
             heat[k] += hb[k] * w
-    heat["balance"] = ((heat["shear"] - heat["conduction1"] - heat["conduction2"] - heat["convection"]) / heat["shear"]
+    heat["balance"] = ((heat["shear"] + heat["compression"] - heat["conduction1"] - heat["conduction2"] - heat["convection"]) / heat["shear"]
                        if heat["shear"] > 0 else 0.0)
     cond = heat["conduction1"] + heat["conduction2"]
     part = (float(heat["conduction1"] / cond), float(heat["conduction2"] / cond)) if cond > 0 else (math.nan, math.nan)
