@@ -12,6 +12,7 @@ from ehl_multigrid.app.console import print_table
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.scene import Scene, load_scene
 
+from ..slips import parse_slips
 from .line import TEHLLineResult, TEHLOptions, solve_tehl_line, tehl_traction_curve
 
 
@@ -26,12 +27,6 @@ def solve_payload(r: TEHLLineResult) -> dict[str, Any]:
     out = r.summary()
     out["outer"] = [{k: v for k, v in o.items()} for o in r.outer]
     return out
-
-
-def parse_slips(text: str) -> list[float]:
-    from ..cli import parse_slips as _parse
-
-    return _parse(text)
 
 
 def register(subparsers: Any) -> None:
