@@ -3,8 +3,8 @@ grid convergence along and across the film, thermal film reduction against publi
 correlations, the decoupled thesis method against TEHL over slip, and cost.
 
 Usage: ``python validation/tehl/study.py [PART ...]`` with parts ``limit``, ``energy``,
-``grid``, ``correlations``, ``decoupled``, ``cost``, ``point``, ``chapter5`` (default: all); each writes
-``out/<part>.json``; ``plot`` draws the PNGs from the JSON files.
+``grid``, ``correlations``, ``decoupled``, ``cost``, ``point``, ``chapter5``, ``compression``
+(default: all); each writes ``out/<part>.json``; ``plot`` draws the PNGs from the JSON files.
 """
 
 from __future__ import annotations
@@ -348,6 +348,68 @@ def part_point() -> None:
     dump("point", {"scene": sc.name, "points": 257, "rows": rows})
 
 
+# -- 9. compressive heating -------------------------------------------------------------------------
+def compression_split(r) -> tuple[float, float]:
+    """Gross work of compression (heating, > 0) and of expansion (cooling, < 0) per unit length
+    [W/m] of a TEHL line solution, as the heat budget integrates it."""
+    th = r.thermal
+    lub = r.scene.lubricant
+    P = np.repeat(th.profile.p[:, None], th.T.shape[1], axis=1)
+    rho = lub.density(P, th.T)
+    alpha = -(lub.density(P, th.T + 0.01) - lub.density(P, th.T - 0.01)) / (0.02 * rho)
+    w = (th.T + 273.15) * alpha * th.u * th.profile.dpdx[:, None]
+    line = th.profile.h * np.trapezoid(w, dx=1.0 / (th.T.shape[1] - 1), axis=1)
+    x = th.profile.x
+    return float(np.trapezoid(np.clip(line, 0, None), x)), float(np.trapezoid(np.clip(line, None, 0), x))
+
+
+def part_compression() -> None:
+    """TEHL with and without the compressive heating term at the thesis's chapter 3 line
+    conditions (appendix C, 4240 N and 42400 N, 8 m/s), S = 0, 0.5, 1, 1025 points, nz = 20."""
+    out = {}
+    slips = [0.0, 0.5, 1.0]
+    for name in ("appendix_c_line_4240N", "appendix_c_line_42400N"):
+        sc = load_scene(name)
+        rows = []
+        for comp in (False, True):
+            t = time.perf_counter()
+            curve = tehl_traction_curve(sc, slips, points=1025, compressive_heating=comp)
+            for r in curve:
+                heat_in, heat_out = compression_split(r) if comp else (0.0, 0.0)
+                rows.append({**scalars(r), "compressive_heating": comp, "compression": r.heat.get("compression"),
+                             "shear": r.heat.get("shear"), "compression_gross_heating": heat_in,
+                             "compression_gross_cooling": heat_out})
+                print(name, rows[-1], flush=True)
+            print(name, comp, f"{time.perf_counter() - t:.1f} s", flush=True)
+        out[name] = {"points": 1025, "nz": 20, "rows": rows}
+    # the difference on and off against the grid (42400 N, S = 0.5) and at higher thermal
+    # loading (4240 N at 20 and 40 m/s, the correlations' range, S = 0 and 1)
+    sc = load_scene("appendix_c_line_42400N")
+    grid = []
+    for n in (513, 1025, 2049):
+        on, off = (solve_tehl_line(sc, 0.5, points=n, compressive_heating=c) for c in (True, False))
+        grid.append({"points": n, "Hc_on": on.Hc, "Hc_off": off.Hc, "Hm_on": on.Hm, "Hm_off": off.Hm,
+                     "mu_on": on.friction_coefficient, "mu_off": off.friction_coefficient,
+                     "T_max_on": on.T_max, "T_max_off": off.T_max})
+        print(grid[-1], flush=True)
+    out["grid_42400N_S0.5"] = grid
+    sc = load_scene("appendix_c_line_4240N")
+    speed = []
+    for us in (20.0, 40.0):
+        for S in (0.0, 1.0):
+            on, off = (solve_tehl_line(sc, S, points=1025, us=us, compressive_heating=c) for c in (True, False))
+            heat_in, heat_out = compression_split(on)
+            speed.append({"us": us, "slip": S, "Hc_iso": on.Hc_isothermal, "Hc_on": on.Hc, "Hc_off": off.Hc,
+                          "Hm_on": on.Hm, "Hm_off": off.Hm, "mu_on": on.friction_coefficient,
+                          "mu_off": off.friction_coefficient, "T_max_on": on.T_max, "T_max_off": off.T_max,
+                          "balance_on": on.heat["balance"], "compression": on.heat["compression"],
+                          "shear": on.heat["shear"], "compression_gross_heating": heat_in,
+                          "compression_gross_cooling": heat_out})
+            print(speed[-1], flush=True)
+    out["speed_4240N"] = speed
+    dump("compression", out)
+
+
 # -- 8. chapter 5 point condition ------------------------------------------------------------------
 def part_chapter5() -> None:
     """Series D (disc 3, 1.93 GPa, 12 m/s, 80 degC, T9 with tau0 = 8 MPa): TEHL point at 513
@@ -376,7 +438,7 @@ def part_chapter5() -> None:
 
 PARTS = {"limit": part_limit, "energy": part_energy, "grid": part_grid, "correlations": part_correlations,
          "decoupled": part_decoupled, "cost": part_cost, "point": part_point, "chapter5": part_chapter5,
-         "plot": part_plot}
+         "compression": part_compression, "plot": part_plot}
 
 if __name__ == "__main__":
     names = sys.argv[1:] or [p for p in PARTS if p != "plot"] + ["plot"]
