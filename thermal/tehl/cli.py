@@ -45,6 +45,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--slip", default=None, help="slip S (comma list or min:max:n gives a curve; default: the scene's)")
     p.add_argument("--points", type=int, default=None, help="EHL grid points (2^k + 1, default 513)")
     p.add_argument("--nz", type=int, default=None, help="thermal intervals across the film (default 20)")
+    p.add_argument("--no-compression", dest="compressive_heating", action="store_false",
+                   help="leave the compressive heating out of the energy equation (the thesis's (3.5))")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
 
 
@@ -53,7 +55,7 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
     if scene.kind != "line":
         raise InputError(f"scene {scene.name!r} is a {scene.kind} contact; 'ehl tehl' solves line contacts")
     changes = {k: v for k, v in (("points", args.points), ("nz", args.nz)) if v is not None}
-    opts = TEHLOptions(**changes)
+    opts = TEHLOptions(**changes, compressive_heating=getattr(args, "compressive_heating", True))
     slips = parse_slips(args.slip) if args.slip is not None else [scene.slip]
     if len(slips) == 1:
         r = solve_tehl_line(scene, slips[0], opts)

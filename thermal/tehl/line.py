@@ -226,6 +226,7 @@ class TEHLLineResult:
             "heat_partition": list(self.heat_partition), "heat_balance_error": self.heat_balance_error,
             "outer_iterations": len(self.outer), "converged": bool(self.report.converged),
             "slip": self.slip, "wall_s": self.wall_s, "momentum": self.report.extra.get("momentum", "gradient"),
+            "compressive_heating": self.options.compressive_heating,
         }
 
 

@@ -30,6 +30,18 @@ def test_tehl_json_has_the_documented_keys(capsys):
     assert out["converged"] and out["friction"] > 0
 
 
+def test_tehl_no_compression_flag_solves_the_thesis_energy_equation(capsys):
+    from ehl_multigrid.app.cli import main
+
+    base = ["tehl", "appendix_c_line_4240N", "--slip", "0.3", "--points", "129", "--nz", "10", "--json"]
+    assert main(base) == 0
+    on = json.loads(capsys.readouterr().out)
+    assert main(base + ["--no-compression"]) == 0
+    off = json.loads(capsys.readouterr().out)
+    assert on["compressive_heating"] is True and off["compressive_heating"] is False
+    assert on["Hc"] != off["Hc"]
+
+
 def test_tehl_refuses_a_point_contact():
     a = _parse(["tehl", "appendix_d_point"])
     with pytest.raises(InputError, match="line contacts"):
