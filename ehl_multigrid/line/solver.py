@@ -164,25 +164,7 @@ class LineHierarchy:
         lv, cv = self.levels[k], self.levels[k - 1]
         st = lv.state()
         lres = self.relative_residual(lv, st)
-        cv.P = inject(lv.P)
-        cv.H0 = lv.H0
-        # Brandt & Cryer: a coarse point is free only if its fine neighbourhood is free
-        # (positive pressure, not frozen); the others keep their value, so the coarse grid
-        # never moves the free (cavitation) boundary -- relaxation does
-        free = (lv.P > 0.0) & ~lv.frozen
-        cfree = free[::2].copy()
-        cfree[1:] &= free[1::2]
-        cfree[:-1] &= free[1::2]
-        cv.frozen = ~cfree
-        cv.frozen[0] = cv.frozen[-1] = False
-        P_start, H0_start = cv.P.copy(), cv.H0
-        cv.f = np.zeros(cv.n)
-        cst = cv.state()
-        rc = full_weighting(projected(st.r, lv.P))
-        # f_H = L_H(I P_h) + R r_h, with L = f - r on the coarse grid at f = 0
-        cv.f = -cst.r + rc
-        cv.f[0] = cv.f[-1] = 0.0
-        cv.g = cv.load() + (lv.g - lv.load())
+        P_start, H0_start = fas_coarse_problem(lv, cv, projected(st.r, lv.P))
         return (P_start, H0_start, st), lres
 
     def correct(self, k: int, token: Any, s: Settings) -> None:
@@ -360,6 +342,33 @@ class LineHierarchy:
                     f"{fin.n}-point grid")
         solver.record(k, -1, self.measure(k))
         return solver.converged()
+
+
+def fas_coarse_problem(lv: LineLevel, cv: LineLevel, r_fine: np.ndarray) -> tuple[np.ndarray, float]:
+    """Set up the FAS problem of the coarse grid ``cv`` from the fine grid ``lv`` and its
+    residual ``r_fine`` (already restricted to what the coarse grid may correct): injected P
+    and H0, the Brandt & Cryer free set, ``f_H = L_H(I P_h) + R r_h`` and the load target.
+    Returns the coarse start ``(P, H0)`` the correction is measured from.
+
+    Brandt & Cryer: a coarse point is free only if its fine neighbourhood is free (positive
+    pressure, not frozen); the others keep their value, so the coarse grid never moves the
+    free (cavitation) boundary -- relaxation does."""
+    cv.P = inject(lv.P)
+    cv.H0 = lv.H0
+    free = (lv.P > 0.0) & ~lv.frozen
+    cfree = free[::2].copy()
+    cfree[1:] &= free[1::2]
+    cfree[:-1] &= free[1::2]
+    cv.frozen = ~cfree
+    cv.frozen[0] = cv.frozen[-1] = False
+    P_start, H0_start = cv.P.copy(), cv.H0
+    cv.f = np.zeros(cv.n)
+    cst = cv.state()
+    # with f = 0 the coarse residual is -L_H(I P_h)
+    cv.f = -cst.r + full_weighting(r_fine)
+    cv.f[0] = cv.f[-1] = 0.0
+    cv.g = cv.load() + (lv.g - lv.load())
+    return P_start, H0_start
 
 
 def line_settings(problem: LineProblem, options: LineOptions) -> Settings:

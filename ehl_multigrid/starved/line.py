@@ -48,6 +48,7 @@ from ..line.solver import (
     LINE_POLICY,
     LineHierarchy,
     coarse_points,
+    fas_coarse_problem,
     line_levels,
     line_settings,
     solve_line_problem,
@@ -58,7 +59,7 @@ from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.options import LineOptions
 from ..multigrid.policy import RobustnessPolicy, Settings
 from ..multigrid.result import EHLResult
-from ..multigrid.transfer import full_weighting, inject, interpolate_cubic, interpolate_linear
+from ..multigrid.transfer import inject, interpolate_cubic, interpolate_linear
 from .discrete import face_fluxes
 from .level import StarvedLevel
 from .newton import StarvedNewtonFailure, newton_solve
@@ -159,24 +160,10 @@ class StarvedLineHierarchy(LineHierarchy):
         lv, cv = self.levels[k], self.levels[k - 1]
         st = lv.state()
         lres = self.relative_residual(lv, st)
-        cv.P = inject(lv.P)
+        # the meniscus and the rupture point move by fine-grid relaxation only (the core's
+        # Brandt & Cryer free set); the film content is injected like P
         cv.theta = inject(lv.theta)
-        cv.H0 = lv.H0
-        # a coarse point is free only if its fine neighbourhood is pressurised and free: the
-        # meniscus and the rupture point move by fine-grid relaxation only (Brandt & Cryer)
-        free = (lv.P > 0.0) & ~lv.frozen
-        cfree = free[::2].copy()
-        cfree[1:] &= free[1::2]
-        cfree[:-1] &= free[1::2]
-        cv.frozen = ~cfree
-        cv.frozen[0] = cv.frozen[-1] = False
-        P_start, H0_start = cv.P.copy(), cv.H0
-        cv.f = np.zeros(cv.n)
-        cst = cv.state()
-        rc = full_weighting(np.where(lv.frozen, 0.0, st.r))
-        cv.f = -cst.r + rc
-        cv.f[0] = cv.f[-1] = 0.0
-        cv.g = cv.load() + (lv.g - lv.load())
+        P_start, H0_start = fas_coarse_problem(lv, cv, np.where(lv.frozen, 0.0, st.r))
         return (P_start, H0_start, st), lres
 
     def correct(self, k: int, token: Any, s: Settings) -> None:
