@@ -20,7 +20,8 @@ from .point_solve import (
     solve_transient_point,
 )
 from .result import TransientResult, load_series
-from .solve import max_time_step, solve_transient_line, transient_options
+from .solve import solve_transient_line, transient_options
+from .stepping import max_time_step
 
 __all__ = ["Bump", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth", "Smooth2D",
            "TransientResult", "Waviness", "Waviness2D", "feature_from_table", "feature_speed",

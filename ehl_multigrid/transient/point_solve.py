@@ -8,7 +8,7 @@ Venner's dimensionless transient Reynolds equation of a point contact (Venner & 
 
 (wedge and squeeze terms carry the same factor, so neither has a coefficient), with the film
 of :mod:`.point_features` and the load ``int int P dX dY = 2 pi b/(3a)`` at every step
-(constant load, H00(T) free). The design is the line contact's (:mod:`.solve`): BDF2 steps
+(constant load, H00(T) free). The design is the line contact's (the time loop of :mod:`.stepping`): BDF2 steps
 (the first backward Euler), one FAS solve per step by the shared driver on
 :class:`~.point_hierarchy.TransientPointHierarchy` started from the previous solution
 extrapolated in time, the deformation (FFT) recomputed after every relaxation sweep. The
@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from ..model.errors import ConvergenceError, InputError, require_choice, require_range
+from ..model.errors import InputError, require_choice
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import PointOptions
 from ..multigrid.policy import RobustnessPolicy
@@ -39,11 +39,11 @@ from ..multigrid.threads import preserved_threads
 from ..point.fas import HINT, POINT_POLICY, point_settings
 from ..point.problem import PointProblem
 from ..point.solve import solve_fas
-from .features import feature_speed, require_in
+from .features import feature_speed
 from .point_features import PointFeature, Smooth2D
 from .point_hierarchy import TransientPointHierarchy
 from .result import TransientResult
-from .solve import MAX_STEP_FRACTION, MAX_STEPS, SCHEMES, _step_coefficients
+from .stepping import SCHEMES, march, max_time_step, require_steady_start, start, time_steps
 
 #: Default numerics of a point time step: FFT deformation, a residual below the time error of
 #: the default step (measured: 4-6 cycles per step at Courant 1).
@@ -63,8 +63,8 @@ def point_transient_options(options: PointOptions | None = None, **kw: Any) -> P
 
 def max_point_time_step(feature: PointFeature, speed: float) -> float:
     """Largest ``dT`` accepted: the feature and the free film waves (the mean speed) move at
-    most :data:`~.solve.MAX_STEP_FRACTION` of the feature's length scale along X."""
-    return MAX_STEP_FRACTION * feature.length_scale / max(abs(speed), 1.0)
+    most :data:`~.stepping.MAX_STEP_FRACTION` of the feature's length scale along X."""
+    return max_time_step(feature, speed)
 
 
 @dataclass
@@ -91,110 +91,53 @@ class PointTransientResult(TransientResult):
             return 0.5 * (x_start + x_end) + self.speed * T
         return getattr(f, "x0", 0.0) + self.speed * T
 
-    def _zone(self, X: np.ndarray, Y: np.ndarray) -> np.ndarray:
+    def _zone(self, X: np.ndarray, Y: np.ndarray, r: float = 1.0) -> np.ndarray:
+        """Nodes of ``(X, Y)`` inside ``r`` times the Hertzian ellipse."""
         boa = self.problem.b_over_a
-        return X[None, :] ** 2 + (Y[:, None] / boa) ** 2 <= 1.0
+        return X[None, :] ** 2 + (Y[:, None] / boa) ** 2 <= r**2
 
-    def record(self, n: int, T: float, hz: Any, res: EHLResult | None, wall: float, keep: bool) -> None:
-        lv = hz.fine
-        X, Y, P, H = lv.X, lv.Y, lv.P, lv.H
-        boa = self.problem.b_over_a
-        zone = (X[None, :] ** 2 + (Y[:, None] / boa) ** 2 <= 1.5**2) | (P > 0)
-        xf = self._x_feature(T)
-        j = int(np.argmin(np.abs(Y - self.yf)))
-        s = self.series
-        s["step"].append(n)
-        s["T"].append(T)
-        s["Hc"].append(hz.central_film(lv))
-        s["Hm"].append(float(np.min(H[zone])))
-        s["H0"].append(float(hz.H00))
-        s["Pmax"].append(float(np.max(P)))
-        s["dP"].append(float(np.max(np.abs(P - self.steady.P))))
-        s["xf"].append(xf)
-        s["dH"].append(float(np.interp(xf, X, H[j] - self.steady.H[j])) if X[0] <= xf <= X[-1] else math.nan)
-        if res is None:
-            s["residual"].append(math.nan)
-            s["load_error"].append(hz.load(lv) / hz.g_target - 1.0)
-            s["cycles"].append(0)
-            s["work_units"].append(0.0)
-        else:
-            s["residual"].append(float(res.residual_history[-1]))
-            s["load_error"].append(float(res.load_error_history[-1]))
-            s["cycles"].append(int(res.residual_history.size))
-            s["work_units"].append(float(res.work_units))
-        s["wall_s"].append(wall)
+    def _fields(self, hz: Any) -> tuple[Any, Any]:
+        return hz.fine, hz.fine
+
+    def _within(self, r: float) -> np.ndarray:
+        return self._zone(self.X, self.Y, r)
+
+    def _row(self, F: np.ndarray) -> np.ndarray:
+        return F[int(np.argmin(np.abs(self.Y - self.yf)))]
+
+    def _central_film(self, hz: Any, H: np.ndarray) -> float:
+        return hz.central_film(hz.fine)
+
+    def _film_constant(self, hz: Any) -> float:
+        return hz.H00
+
+    def _start_load_error(self, hz: Any) -> float:
+        return hz.load(hz.fine) / hz.g_target - 1.0
+
+    def _steady_film(self, name: str) -> float:
+        return getattr(self, f"{name}_steady")
+
+    def _wavelength_x(self) -> float:
+        return getattr(self.feature, "wavelength_x", math.nan)
+
+    def _summary_head(self) -> dict[str, Any]:
+        pb = self.problem
+        return {"contact": "point", "M": pb.M, "L": pb.L, "theta": pb.theta,
+                "points": int(self.X.size), "points_y": int(self.Y.size),
+                "xmin": float(self.X[0]), "xmax": float(self.X[-1]), "ymax": float(self.Y[-1])}
+
+    def _record_mass_balance(self, hz: Any, st: Any, n: int) -> None:
         bal = point_mass_balance(hz, terms=True) if n > 0 else {"balance": math.nan, "storage": math.nan}
-        s["mass_balance"].append(bal["balance"])
-        s.setdefault("storage", []).append(bal["storage"])
-        if n == 0:
-            s["stalled"].append(0.0)
-        if keep:
-            self.snapshots[n] = {"P": P.copy(), "H": H.copy(), "rho": lv.rho.copy()}
+        self.series["mass_balance"].append(bal["balance"])
+        self.series.setdefault("storage", []).append(bal["storage"])
 
     # -- observables ----------------------------------------------------------------------
-    def fraction_below(self, threshold: float) -> list[float]:
-        """Per kept step: the fraction of the Hertzian contact ellipse where ``H < threshold``."""
-        inside = self._zone(self.X, self.Y)
-        return [float(np.mean(self.snapshots[n]["H"][inside] < threshold)) for n in sorted(self.snapshots)]
-
     def load_fraction_below(self, threshold: float) -> list[float]:
         """Per kept step: the fraction of the load carried where ``H <= threshold``."""
         out = []
         for n in sorted(self.snapshots):
             P, H = self.snapshots[n]["P"], self.snapshots[n]["H"]
             out.append(float(P[H <= threshold].sum() / max(P.sum(), 1e-300)))
-        return out
-
-    def film_distribution(self, bins: int = 40) -> tuple[np.ndarray, np.ndarray]:
-        """Histogram (counts, edges) of H over the Hertzian ellipse and all kept steps."""
-        inside = self._zone(self.X, self.Y)
-        H = np.concatenate([self.snapshots[n]["H"][inside] for n in sorted(self.snapshots)])
-        return np.histogram(H, bins=bins)
-
-    def waviness_amplitude(self, periods: float = 1.0) -> float:
-        """Half the peak-to-peak of ``Hc(T)`` over the last ``periods`` periods along X."""
-        wl = getattr(self.feature, "wavelength_x", math.nan)
-        if not math.isfinite(wl) or abs(self.speed) < 1e-12:
-            return math.nan
-        T, Hc = self.T, self.Hc
-        per = periods * wl / abs(self.speed)
-        if T[-1] - T[0] < per:
-            return math.nan
-        win = T >= T[-1] - per - 1e-12
-        return 0.5 * float(Hc[win].max() - Hc[win].min())
-
-    def summary(self) -> dict[str, Any]:
-        cyc = self.cycles[1:]
-        wall = self.wall_s_series()[1:]
-        amp = getattr(self.feature, "amplitude", math.nan)
-        pb = self.problem
-        out: dict[str, Any] = {
-            "contact": "point", "M": pb.M, "L": pb.L, "theta": pb.theta,
-            "points": int(self.X.size), "points_y": int(self.Y.size),
-            "xmin": float(self.X[0]), "xmax": float(self.X[-1]), "ymax": float(self.Y[-1]),
-            "feature": self.feature.describe(), "body": self.body, "slide_roll": self.slide_roll,
-            "feature_speed": self.speed, "dt": self.dt, "scheme": self.scheme, "steps": self.steps,
-            "T_end": float(self.T[-1]),
-            "Hc_steady": float(self.Hc_steady), "Hm_steady": float(self.Hm_steady),
-            "Hc_min": float(np.min(self.Hc)), "Hc_max": float(np.max(self.Hc)),
-            "Hm_min": float(np.min(self.Hm)), "dP_max": float(np.max(self.dP)),
-            "Pmax_max": float(np.max(self.Pmax)),
-            "cycles_mean": float(np.mean(cyc)) if cyc.size else math.nan,
-            "cycles_max": int(np.max(cyc)) if cyc.size else 0,
-            "stalled_steps": int(np.sum(self.stalled)),
-            "residual_max": float(np.nanmax(self.residual[1:])) if cyc.size else math.nan,
-            "load_error_max": float(np.max(np.abs(self.load_error[1:]))) if cyc.size else math.nan,
-            "mass_balance_max": float(np.nanmax(np.abs(self.mass_balance[1:])))
-            if cyc.size and np.any(np.isfinite(self.mass_balance[1:])) else math.nan,
-            "wall_per_step_s": float(np.mean(wall)) if wall.size else math.nan,
-            "work_units_per_step": float(np.mean(self.work_units[1:])) if cyc.size else math.nan,
-            "setup_s": self.setup_s, "wall_s": self.wall_s,
-        }
-        kind = self.feature.kind
-        ad = (self.bump_amplitude_at_centre() if kind == "bump" else
-              self.waviness_amplitude() if kind == "waviness" else math.nan)
-        out["Ad_over_Ai"] = ad / amp if amp else math.nan
-        out["Ad"] = ad
         return out
 
 
@@ -290,30 +233,15 @@ def solve_transient_point(
         hz = TransientPointHierarchy(problem, opts, feature.height)
     fine = hz.fine
     feature.check_domain(hz.xmin, hz.xmax, hz.ymax)
-    dt_max = max_point_time_step(feature, speed)
-    if dt is None:
-        dt = min(fine.hx / max(abs(speed), 1.0), dt_max)
-    require_in("dt", dt, 0.0, dt_max, "-",
-               f"T = t u_m/a; a step moves at most {MAX_STEP_FRACTION:g} of the feature's length scale "
-               f"{feature.length_scale:g} at speed {max(abs(speed), 1.0):g}", lo_open=True)
-    if steps is None:
-        if t_end is None:
-            t_end = default_point_end_time(hz.xmin, hz.xmax, feature, speed)
-        require_range("t_end", t_end, dt, dt * MAX_STEPS, "- (T = t u_m/a)")
-        steps = int(math.ceil(t_end / dt - 1e-9))
-    if isinstance(steps, bool) or int(steps) != steps:
-        raise InputError(f"steps = {steps!r} must be an integer in [1, {MAX_STEPS}]")
-    require_range("steps", steps, 1, MAX_STEPS, "time steps")
-    require_range("snapshot_every", snapshot_every, 1, MAX_STEPS, "steps")
-    require_range("accept_stall", accept_stall, 0.0, 0.01, "- (relative residual)")
-    steps, snapshot_every = int(steps), int(snapshot_every)
+    dt, steps, snapshot_every = time_steps(
+        feature, speed, fine.hx, dt, steps, t_end, snapshot_every, accept_stall, "a",
+        lambda: default_point_end_time(hz.xmin, hz.xmax, feature, speed))
 
     t0 = time.perf_counter()
+    stepper = _PointStepper(hz, problem, opts)
     with preserved_threads():
         steady = solve_fas(problem, opts)
-        if not steady.success and initial is None:
-            raise ConvergenceError(f"transient point solver: the steady start failed: {steady.message}",
-                                   steady.report, HINT)
+        require_steady_start("point", steady, initial, HINT)
         out = PointTransientResult(problem=problem, feature=feature, body=body, slide_roll=slide_roll,
                                    speed=speed, dt=float(dt), scheme=scheme, options=opts, steady=steady,
                                    X=fine.X.copy(), Y=fine.Y.copy(), yf=float(getattr(feature, "y0", 0.0)))
@@ -324,75 +252,10 @@ def solve_transient_point(
         out.Hc_steady = float(steady.H[jc, ic])
         out.Hm_steady = float(np.min(steady.H[zone]))
         hz.h00_step_max = 0.1 * max(out.Hc_steady, 1e-6)
-        if initial is not None:
-            P0, H00 = initial
-            P0 = np.asarray(P0, dtype=float)
-            if P0.shape != fine.P.shape:
-                raise InputError(f"initial P has shape {P0.shape}; the finest grid has {fine.P.shape}")
-            fine.P, hz.H00 = np.ascontiguousarray(np.maximum(P0, 0.0)), float(H00)
-            hz.set_step(0.0, 0.0, np.zeros_like(fine.P))
-        else:
-            fine.P, hz.H00 = np.ascontiguousarray(steady.P), float(steady.H0)
-            hz.set_step(0.0, 0.0, np.zeros_like(fine.P))
-            if feature.kind != "smooth":
-                res = _solve_point_step(hz, problem, opts)
-                if not res.success:
-                    raise ConvergenceError(f"transient point solver: the steady start with the feature "
-                                           f"at T = 0 failed: {res.message}", res.report, HINT)
-        out.record(0, 0.0, hz, None, 0.0, keep=True)
-        out.setup_s = time.perf_counter() - t0
-
-        q_prev: np.ndarray | None = None
-        q_now = fine.rho * fine.H
-        P_prev, H00_prev = fine.P.copy(), hz.H00
-        for n in range(1, steps + 1):
-            T = n * dt
-            ct, hist = _step_coefficients(scheme, n, dt, q_now, q_prev)
-            P_now, H00_now = fine.P.copy(), hz.H00
-            if n > 1:  # linear extrapolation in time: the start iterate of the step
-                Pn = np.maximum(2.0 * P_now - P_prev, 0.0)
-                Pn[0, :] = Pn[-1, :] = Pn[:, 0] = Pn[:, -1] = 0.0
-                fine.P = np.ascontiguousarray(Pn)
-                hz.H00 = 2.0 * H00_now - H00_prev
-            hz.set_step(speed * T, ct, hist)
-            ts = time.perf_counter()
-            res = _solve_point_step(hz, problem, opts)
-            wall = time.perf_counter() - ts
-            finite = bool(np.all(np.isfinite(fine.P)) and math.isfinite(hz.H00))
-            stalled_ok = False
-            if not res.success and finite and res.status in (1, 2, 3):
-                # cycles that stall, hit the cycle limit or are rejected (a limit cycle of the
-                # free boundary) leave the best accepted iterate: accept it when its own
-                # residual and load error are below accept_stall
-                m = hz.measure(len(hz.levels) - 1)
-                stalled_ok = m.ok and m.residual < accept_stall and m.load_error < accept_stall
-            wet = fine.P > 0.0
-            closed = res.status == 7 or (finite and wet.any() and float(fine.H[wet].min()) <= 0.0)
-            if closed and on_film_collapse == "stop":
-                out.failed_step = n
-                out.stop_reason = (f"the film closed at step {n} (T = {T:.5g}): min H = "
-                                   f"{float(fine.H[wet].min()) if wet.any() else math.nan:.3g}")
-                break
-            if not (res.success or stalled_ok) or not finite:
-                out.failed_step = n
-                raise ConvergenceError(
-                    f"transient point solver: time step {n} (T = {T:.5g}, dT = {dt:.4g}) failed: "
-                    f"{res.message}", res.report,
-                    "a smaller time step (dt), more points, or a smaller feature amplitude")
-            if closed:
-                out.failed_step = n
-                raise ConvergenceError(
-                    f"transient point solver: time step {n} (T = {T:.5g}): the film collapsed "
-                    f"(min H = {float(fine.H[wet].min()):.3g} where P > 0); the feature cuts through "
-                    f"the film, which needs a mixed-lubrication model", None, "a smaller feature amplitude")
-            P_prev, H00_prev = P_now, H00_now
-            q_prev, q_now = q_now, fine.rho * fine.H
-            out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
-            out.series["stalled"].append(0.0 if res.success else 1.0)
-            if callback is not None:
-                callback(out.last_step())
-    out.wall_s = time.perf_counter() - t0
-    hz.solver = None
+        start(stepper, out, steady.P, steady.H0, initial, feature.kind != "smooth", t0)
+        march(stepper, out, speed=speed, dt=dt, steps=steps, scheme=scheme,
+              snapshot_every=snapshot_every, accept_stall=accept_stall,
+              on_film_collapse=on_film_collapse, callback=callback, t0=t0)
     return out
 
 
@@ -412,9 +275,39 @@ def default_point_end_time(xmin: float, xmax: float, feature: PointFeature, spee
     return span + 3.0 * period
 
 
-def _solve_point_step(hz: TransientPointHierarchy, problem: PointProblem, opts: PointOptions) -> EHLResult:
-    solver = MultilevelSolver(hz, opts, point_settings(problem, opts),
-                              RobustnessPolicy(POINT_POLICY, opts.adapt), HINT)
-    return solver.solve()
+class _PointStepper:
+    """The point contact's side of the time loop (:class:`~.stepping.Stepper`)."""
 
+    name = "point"
+    hint = HINT
 
+    def __init__(self, hz: TransientPointHierarchy, problem: PointProblem, opts: PointOptions) -> None:
+        self.hz, self.problem, self.opts = hz, problem, opts
+        self.grid_text = f"{hz.fine.P.shape}"
+
+    @property
+    def H0(self) -> float:
+        return self.hz.H00
+
+    def unknowns(self) -> tuple[np.ndarray, float]:
+        return self.hz.fine.P.copy(), self.hz.H00
+
+    def set_unknowns(self, P: np.ndarray, H0: float) -> None:
+        self.hz.fine.P, self.hz.H00 = np.ascontiguousarray(P), H0
+
+    def film(self) -> tuple[np.ndarray, np.ndarray]:
+        fine = self.hz.fine
+        return fine.H, fine.rho * fine.H
+
+    def solve_step(self) -> EHLResult:
+        solver = MultilevelSolver(self.hz, self.opts, point_settings(self.problem, self.opts),
+                                  RobustnessPolicy(POINT_POLICY, self.opts.adapt), HINT)
+        return solver.solve()
+
+    def accept_stalled(self, res: EHLResult, accept_stall: float) -> bool:
+        # cycles that stall, hit the cycle limit or are rejected leave the best accepted
+        # iterate: accept it when its own residual and load error are below accept_stall
+        if res.status not in (1, 2, 3):
+            return False
+        m = self.hz.measure(len(self.hz.levels) - 1)
+        return bool(m.ok and m.residual < accept_stall and m.load_error < accept_stall)

@@ -74,26 +74,26 @@ class TransientResult:
         return x0 + self.speed * T
 
     def record(self, n: int, T: float, hz: Any, res: EHLResult | None, wall: float, keep: bool) -> None:
-        lv = hz.fine
-        st = lv.state()
+        """Append step ``n`` (time ``T``) of the finest grid of ``hz`` to the series (``res``
+        the step's solve, None for the start) and keep a snapshot when ``keep``."""
+        lv, st = self._fields(hz)
         X, P, H = lv.X, lv.P, st.H
-        zone = (np.abs(X) <= 1.5) | (P > 0)
-        Ps, Hs = self.steady.P, self.steady.H
+        zone = self._within(1.5) | (P > 0)
         xf = self._x_feature(T)
-        inside = X[0] <= xf <= X[-1]
         s = self.series
         s["step"].append(n)
         s["T"].append(T)
-        s["Hc"].append(float(np.interp(0.0, X, H)))
+        s["Hc"].append(self._central_film(hz, H))
         s["Hm"].append(float(np.min(H[zone])))
-        s["H0"].append(float(lv.H0))
+        s["H0"].append(float(self._film_constant(hz)))
         s["Pmax"].append(float(np.max(P)))
-        s["dP"].append(float(np.max(np.abs(P - Ps))))
+        s["dP"].append(float(np.max(np.abs(P - self.steady.P))))
         s["xf"].append(xf)
-        s["dH"].append(float(np.interp(xf, X, H - Hs)) if inside else math.nan)
+        s["dH"].append(float(np.interp(xf, X, self._row(H) - self._row(self.steady.H)))
+                       if X[0] <= xf <= X[-1] else math.nan)
         if res is None:
             s["residual"].append(math.nan)
-            s["load_error"].append(lv.load() / lv.g - 1.0)
+            s["load_error"].append(self._start_load_error(hz))
             s["cycles"].append(0)
             s["work_units"].append(0.0)
         else:
@@ -102,11 +102,47 @@ class TransientResult:
             s["cycles"].append(int(res.residual_history.size))
             s["work_units"].append(float(res.work_units))
         s["wall_s"].append(wall)
-        s["mass_balance"].append(self._mass_balance(lv, st) if n > 0 else math.nan)
+        self._record_mass_balance(hz, st, n)
         if n == 0:
             s["stalled"].append(0.0)
         if keep:
             self.snapshots[n] = {"P": P.copy(), "H": H.copy(), "rho": st.rho.copy()}
+
+    # -- the contact's geometry (line here; the point result overrides) -------------------
+    def _fields(self, hz: Any) -> tuple[Any, Any]:
+        """The finest grid and its fluid state (``H``, ``rho``)."""
+        return hz.fine, hz.fine.state()
+
+    def _within(self, r: float) -> np.ndarray:
+        """Nodes inside ``r`` Hertzian half-widths of the centre."""
+        return np.abs(self.X) <= r
+
+    def _row(self, F: np.ndarray) -> np.ndarray:
+        """The line of nodes through the feature's reference point."""
+        return F
+
+    def _central_film(self, hz: Any, H: np.ndarray) -> float:
+        return float(np.interp(0.0, self.X, H))
+
+    def _film_constant(self, hz: Any) -> float:
+        return hz.fine.H0
+
+    def _start_load_error(self, hz: Any) -> float:
+        return hz.fine.load() / hz.fine.g - 1.0
+
+    def _steady_film(self, name: str) -> float:
+        """The smooth steady film ``"Hc"`` or ``"Hm"``."""
+        return getattr(self.steady, f"{name}_venner")
+
+    def _wavelength_x(self) -> float:
+        return getattr(self.feature, "wavelength", math.nan)
+
+    def _summary_head(self) -> dict[str, Any]:
+        return {"M": self.problem.M, "L": self.problem.L, "points": int(self.X.size),
+                "xmin": self.problem.xmin, "xmax": self.problem.xmax}
+
+    def _record_mass_balance(self, hz: Any, st: Any, n: int) -> None:
+        self.series["mass_balance"].append(self._mass_balance(hz.fine, st) if n > 0 else math.nan)
 
     @staticmethod
     def _mass_balance(lv: Any, st: Any) -> float:
@@ -143,25 +179,26 @@ class TransientResult:
         return float(-np.interp(0.0, xf[order], dH[order]))
 
     def waviness_amplitude(self, periods: float = 1.0) -> float:
-        """Half the peak-to-peak of ``Hc(T)`` over the last ``periods`` feature periods."""
-        wl = getattr(self.feature, "wavelength", math.nan)
+        """Half the peak-to-peak of ``Hc(T)`` over the last ``periods`` feature periods along X."""
+        wl = self._wavelength_x()
         if not math.isfinite(wl) or abs(self.speed) < 1e-12:
             return math.nan
         T, Hc = self.T, self.Hc
-        win = T >= T[-1] - periods * wl / abs(self.speed) - 1e-12
-        if T[-1] - T[0] < periods * wl / abs(self.speed):
+        per = periods * wl / abs(self.speed)
+        if T[-1] - T[0] < per:
             return math.nan
+        win = T >= T[-1] - per - 1e-12
         return 0.5 * float(Hc[win].max() - Hc[win].min())
 
     def fraction_below(self, threshold: float) -> list[float]:
-        """Per kept step: the fraction of the Hertzian contact ``|X| <= 1`` where
-        ``H < threshold`` (Venner units)."""
-        inside = np.abs(self.X) <= 1.0
+        """Per kept step: the fraction of the Hertzian contact (line ``|X| <= 1``, point the
+        Hertzian ellipse) where ``H < threshold`` (Venner units)."""
+        inside = self._within(1.0)
         return [float(np.mean(self.snapshots[n]["H"][inside] < threshold)) for n in sorted(self.snapshots)]
 
     def film_distribution(self, bins: int = 40) -> tuple[np.ndarray, np.ndarray]:
-        """Histogram (counts, edges) of H over ``|X| <= 1`` and all kept steps."""
-        inside = np.abs(self.X) <= 1.0
+        """Histogram (counts, edges) of H over the Hertzian contact and all kept steps."""
+        inside = self._within(1.0)
         H = np.concatenate([self.snapshots[n]["H"][inside] for n in sorted(self.snapshots)])
         return np.histogram(H, bins=bins)
 
@@ -171,12 +208,11 @@ class TransientResult:
         wall = self.wall_s_series()[1:]
         amp = getattr(self.feature, "amplitude", math.nan)
         out: dict[str, Any] = {
-            "M": self.problem.M, "L": self.problem.L, "points": int(self.X.size),
-            "xmin": self.problem.xmin, "xmax": self.problem.xmax,
+            **self._summary_head(),
             "feature": self.feature.describe(), "body": self.body, "slide_roll": self.slide_roll,
             "feature_speed": self.speed, "dt": self.dt, "scheme": self.scheme, "steps": self.steps,
             "T_end": float(self.T[-1]),
-            "Hc_steady": float(self.steady.Hc_venner), "Hm_steady": float(self.steady.Hm_venner),
+            "Hc_steady": float(self._steady_film("Hc")), "Hm_steady": float(self._steady_film("Hm")),
             "Hc_min": float(np.min(self.Hc)), "Hc_max": float(np.max(self.Hc)),
             "Hm_min": float(np.min(self.Hm)), "dP_max": float(np.max(self.dP)),
             "Pmax_max": float(np.max(self.Pmax)),
@@ -185,7 +221,8 @@ class TransientResult:
             "stalled_steps": int(np.sum(self.stalled)),
             "residual_max": float(np.nanmax(self.residual[1:])) if cyc.size else math.nan,
             "load_error_max": float(np.max(np.abs(self.load_error[1:]))) if cyc.size else math.nan,
-            "mass_balance_max": float(np.nanmax(np.abs(self.mass_balance[1:]))) if cyc.size else math.nan,
+            "mass_balance_max": float(np.nanmax(np.abs(self.mass_balance[1:])))
+            if cyc.size and np.any(np.isfinite(self.mass_balance[1:])) else math.nan,
             "wall_per_step_s": float(np.mean(wall)) if wall.size else math.nan,
             "work_units_per_step": float(np.mean(self.work_units[1:])) if cyc.size else math.nan,
             "setup_s": self.setup_s, "wall_s": self.wall_s,

@@ -3,7 +3,8 @@
 Each time step ``T_n = n dT`` (``T = t u_m / b``) solves the implicit (BDF2; the first step
 backward Euler) discrete Reynolds, film and load equations at the new time level by FAS
 cycles of the shared multilevel driver on :class:`TransientLineHierarchy`, starting from the
-previous solution extrapolated in time. The load is constant (``h sum P = pi/2`` every step,
+previous solution extrapolated in time (the time loop of :mod:`.stepping`, shared with the
+point contact). The load is constant (``h sum P = pi/2`` every step,
 ``H0(T)`` free); the elastic deformation is recomputed in every relaxation of every step.
 
 The start is the steady solution with the feature frozen at its ``T = 0`` position (the core
@@ -19,7 +20,6 @@ higher than the film) is mixed lubrication, which this solver does not model.
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -28,21 +28,15 @@ import numpy as np
 
 from ..line.problem import LineProblem
 from ..line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
-from ..model.errors import ConvergenceError, InputError, require_choice, require_range
+from ..model.errors import InputError, require_choice
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import LineOptions
 from ..multigrid.policy import RobustnessPolicy
 from ..multigrid.result import EHLResult
-from .features import Feature, Smooth, feature_speed, require_in
+from .features import Feature, Smooth, feature_speed
 from .hierarchy import TransientLineHierarchy
 from .result import TransientResult
-
-SCHEMES = ("bdf2", "euler")
-#: A step may move the feature at most this fraction of its length scale (wavelength, width):
-#: beyond it a step cannot resolve the feature's passage (the implicit scheme stays stable
-#: but damps and delays it, and the per-step nonlinear solve loses its good start).
-MAX_STEP_FRACTION = 0.25
-MAX_STEPS = 200_000
+from .stepping import SCHEMES, march, require_steady_start, start, time_steps
 
 #: Default numerics of a time step: FFT deformation (exact), a tighter residual than the
 #: steady default so the algebraic error of a step stays below its time error.
@@ -55,18 +49,6 @@ def transient_options(options: LineOptions | None = None, **kw: Any) -> LineOpti
     keywords."""
     base = LineOptions.build(None, **TRANSIENT_DEFAULTS) if options is None else options
     return LineOptions.build(base, **{**kw, "raise_on_failure": False})
-
-
-def max_time_step(feature: Feature, speed: float) -> float:
-    """Largest ``dT`` accepted: the feature (speed ``speed``) and the free film waves (speed 1,
-    the mean speed) move at most :data:`MAX_STEP_FRACTION` of the feature's length scale."""
-    return MAX_STEP_FRACTION * feature.length_scale / max(abs(speed), 1.0)
-
-
-def _step_coefficients(scheme: str, n: int, dt: float, q1: np.ndarray, q0: np.ndarray | None):
-    if scheme == "euler" or n == 1 or q0 is None:
-        return 1.0 / dt, q1 / dt
-    return 1.5 / dt, (2.0 * q1 - 0.5 * q0) / dt
 
 
 def solve_transient_line(
@@ -86,7 +68,8 @@ def solve_transient_line(
     body : the surface carrying the feature (1 or 2); it moves at ``u_body/u_m`` in X.
     slide_roll : ``S = (u1 - u2)/u_m`` in [-2, 2] (0 = pure rolling).
     dt : time step ``dT`` (``T = t u_m/b``); default: one mesh size per step for the faster of
-        the feature and the mean flow (Courant number 1). Allowed: ``(0, max_time_step]``.
+        the feature and the mean flow (Courant number 1). Allowed: ``(0, max_time_step]``
+        (:func:`~.stepping.max_time_step`).
     steps, t_end : number of steps, or the end time (default: until a bump has crossed to
         ``xmax``, or three waviness periods past one transit of the domain).
     options : :class:`LineOptions` of every step (defaults :data:`TRANSIENT_DEFAULTS`);
@@ -119,93 +102,20 @@ def solve_transient_line(
     speed = feature_speed(body, slide_roll)
     opts = transient_options(options, **kw)
     h = (problem.xmax - problem.xmin) / (opts.points - 1)
-    dt_max = max_time_step(feature, speed)
-    if dt is None:
-        dt = min(h / max(abs(speed), 1.0), dt_max)
-    require_in("dt", dt, 0.0, dt_max, "-",
-               f"T = t u_m/b; a step moves at most {MAX_STEP_FRACTION:g} of the feature's length scale "
-               f"{feature.length_scale:g} at speed {max(abs(speed), 1.0):g}", lo_open=True)
-    if steps is None:
-        if t_end is None:
-            t_end = default_end_time(problem, feature, speed)
-        require_range("t_end", t_end, dt, dt * MAX_STEPS, "- (T = t u_m/b)")
-        steps = int(math.ceil(t_end / dt - 1e-9))
-    if isinstance(steps, bool) or int(steps) != steps:
-        raise InputError(f"steps = {steps!r} must be an integer in [1, {MAX_STEPS}]")
-    require_range("steps", steps, 1, MAX_STEPS, "time steps")
-    require_range("snapshot_every", snapshot_every, 1, MAX_STEPS, "steps")
-    require_range("accept_stall", accept_stall, 0.0, 0.01, "- (relative residual)")
-    steps, snapshot_every = int(steps), int(snapshot_every)
+    dt, steps, snapshot_every = time_steps(
+        feature, speed, h, dt, steps, t_end, snapshot_every, accept_stall, "b",
+        lambda: default_end_time(problem, feature, speed))
 
     t0 = time.perf_counter()
     steady = solve_line_problem(problem, opts)
-    if not steady.success and initial is None:
-        raise ConvergenceError(f"transient line solver: the steady start failed: {steady.message}",
-                               steady.report, HINT)
-    hz = TransientLineHierarchy(problem, opts, feature.height)
-    fine = hz.fine
+    require_steady_start("line", steady, initial, HINT)
+    stepper = _LineStepper(TransientLineHierarchy(problem, opts, feature.height), problem, opts)
     out = TransientResult(problem=problem, feature=feature, body=body, slide_roll=slide_roll,
                           speed=speed, dt=float(dt), scheme=scheme, options=opts, steady=steady,
-                          X=fine.X.copy())
-    if initial is not None:
-        P0, H00 = initial
-        P0 = np.asarray(P0, dtype=float)
-        if P0.shape != (fine.n,):
-            raise InputError(f"initial P has shape {P0.shape}; the finest grid has {fine.n} points")
-        fine.P, fine.H0 = np.maximum(P0, 0.0), float(H00)
-        hz.set_step(0.0, 0.0, np.zeros(fine.n))
-    else:
-        fine.P, fine.H0 = steady.P.copy(), float(steady.H0)
-        hz.set_step(0.0, 0.0, np.zeros(fine.n))
-        res = _solve_step(hz, problem, opts)
-        if not res.success:
-            raise ConvergenceError(f"transient line solver: the steady start with the feature at "
-                                   f"T = 0 failed: {res.message}", res.report, HINT)
-    out.record(0, 0.0, hz, None, 0.0, keep=True)
-    out.setup_s = time.perf_counter() - t0
-
-    q_prev: np.ndarray | None = None
-    q_now = _mass(fine)
-    P_prev, H0_prev = fine.P.copy(), fine.H0
-    for n in range(1, steps + 1):
-        T = n * dt
-        ct, hist = _step_coefficients(scheme, n, dt, q_now, q_prev)
-        P_now, H0_now = fine.P.copy(), fine.H0
-        if n > 1:  # linear extrapolation in time: the start iterate of the step
-            fine.P = np.maximum(2.0 * P_now - P_prev, 0.0)
-            fine.P[0] = fine.P[-1] = 0.0
-            fine.H0 = 2.0 * H0_now - H0_prev
-        hz.set_step(speed * T, ct, hist)
-        ts = time.perf_counter()
-        res = _solve_step(hz, problem, opts)
-        wall = time.perf_counter() - ts
-        finite = bool(np.all(np.isfinite(fine.P)) and math.isfinite(fine.H0))
-        stalled_ok = (res.status == 2 and finite and res.residual_history.size > 0
-                      and res.residual_history[-1] < accept_stall
-                      and abs(res.load_error_history[-1]) < accept_stall)
-        if not (res.success or stalled_ok) or not finite:
-            out.failed_step = n
-            raise ConvergenceError(
-                f"transient line solver: time step {n} (T = {T:.5g}, dT = {dt:.4g}) failed: "
-                f"{res.message}", res.report,
-                "a smaller time step (dt), more points, or a smaller feature amplitude")
-        st = fine.state()
-        wet = fine.P > 0.0
-        if wet.any() and float(st.H[wet].min()) <= 0.0:
-            out.failed_step = n
-            raise ConvergenceError(
-                f"transient line solver: time step {n} (T = {T:.5g}): the film collapsed "
-                f"(min H = {float(st.H[wet].min()):.3g} where P > 0); the feature cuts through the "
-                f"film, which needs a mixed-lubrication model", None,
-                "a smaller feature amplitude")
-        P_prev, H0_prev = P_now, H0_now
-        q_prev, q_now = q_now, st.rho * st.H
-        out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
-        out.series["stalled"].append(0.0 if res.success else 1.0)
-        if callback is not None:
-            callback(out.last_step())
-    out.wall_s = time.perf_counter() - t0
-    hz.solver = None
+                          X=stepper.hz.fine.X.copy())
+    start(stepper, out, steady.P.copy(), steady.H0, initial, True, t0)
+    march(stepper, out, speed=speed, dt=dt, steps=steps, scheme=scheme, snapshot_every=snapshot_every,
+          accept_stall=accept_stall, on_film_collapse="raise", callback=callback, t0=t0)
     return out
 
 
@@ -223,12 +133,37 @@ def default_end_time(problem: LineProblem, feature: Feature, speed: float) -> fl
     return span + 3.0 * period
 
 
-def _mass(lv) -> np.ndarray:
-    st = lv.state()
-    return st.rho * st.H
+class _LineStepper:
+    """The line contact's side of the time loop (:class:`~.stepping.Stepper`)."""
 
+    name = "line"
+    hint = HINT
 
-def _solve_step(hz: TransientLineHierarchy, problem: LineProblem, opts: LineOptions) -> EHLResult:
-    solver = MultilevelSolver(hz, opts, line_settings(problem, opts),
-                              RobustnessPolicy(LINE_POLICY, opts.adapt), HINT)
-    return solver.solve()
+    def __init__(self, hz: TransientLineHierarchy, problem: LineProblem, opts: LineOptions) -> None:
+        self.hz, self.problem, self.opts = hz, problem, opts
+        self.grid_text = f"{hz.fine.n} points"
+
+    @property
+    def H0(self) -> float:
+        return self.hz.fine.H0
+
+    def unknowns(self) -> tuple[np.ndarray, float]:
+        return self.hz.fine.P.copy(), self.hz.fine.H0
+
+    def set_unknowns(self, P: np.ndarray, H0: float) -> None:
+        self.hz.fine.P, self.hz.fine.H0 = P, H0
+
+    def film(self) -> tuple[np.ndarray, np.ndarray]:
+        st = self.hz.fine.state()
+        return st.H, st.rho * st.H
+
+    def solve_step(self) -> EHLResult:
+        solver = MultilevelSolver(self.hz, self.opts, line_settings(self.problem, self.opts),
+                                  RobustnessPolicy(LINE_POLICY, self.opts.adapt), HINT)
+        return solver.solve()
+
+    def accept_stalled(self, res: EHLResult, accept_stall: float) -> bool:
+        # the cycles stalled (the residual stopped falling) below accept_stall
+        return bool(res.status == 2 and res.residual_history.size > 0
+                    and res.residual_history[-1] < accept_stall
+                    and abs(res.load_error_history[-1]) < accept_stall)

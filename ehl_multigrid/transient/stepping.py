@@ -1,0 +1,202 @@
+"""The time loop shared by the line and point contacts: input checks of a run, the start
+(steady solution or a given state, then the feature frozen at ``T = 0``), and the implicit
+steps.
+
+Each step ``T_n = n dT`` solves the BDF2 (first step backward Euler) equations at the new time
+level by one FAS solve of the contact's hierarchy, started from the previous solution
+extrapolated linearly in time; a step whose cycles stall below ``accept_stall`` is accepted
+and flagged, a step that fails or whose film closes ends the run (:class:`ConvergenceError`,
+or a stop with ``failed_step`` set). The contact supplies a :class:`Stepper` (its unknowns,
+film, step solve and stall rule); the result object records every step.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from typing import Any, Protocol
+
+import numpy as np
+
+from ..model.errors import ConvergenceError, InputError, require_range
+from ..multigrid.result import EHLResult
+from .features import require_in
+
+SCHEMES = ("bdf2", "euler")
+#: A step may move the feature at most this fraction of its length scale (wavelength, width):
+#: beyond it a step cannot resolve the feature's passage (the implicit scheme stays stable
+#: but damps and delays it, and the per-step nonlinear solve loses its good start).
+MAX_STEP_FRACTION = 0.25
+MAX_STEPS = 200_000
+
+
+class Stepper(Protocol):
+    """What the time loop needs of a contact: ``name`` (``"line"``, ``"point"``) for messages,
+    ``hz`` (the hierarchy of one step: ``fine``, ``set_step``, ``solver``), ``hint`` (the
+    :class:`ConvergenceError` hint of the steady start), ``grid_text`` (the finest grid, for
+    messages), and the methods below."""
+
+    name: str
+    hz: Any
+    hint: str
+    grid_text: str
+
+    @property
+    def H0(self) -> float:
+        """The finest grid's film constant (``H0`` line, ``H00`` point)."""
+
+    def unknowns(self) -> tuple[np.ndarray, float]:
+        """A copy of the finest grid's pressure and its film constant."""
+
+    def set_unknowns(self, P: np.ndarray, H0: float) -> None:
+        """Set the finest grid's pressure and film constant."""
+
+    def film(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(H, rho H)`` of the finest grid's iterate."""
+
+    def solve_step(self) -> EHLResult:
+        """One FAS solve of the step set by ``hz.set_step``."""
+
+    def accept_stalled(self, res: EHLResult, accept_stall: float) -> bool:
+        """Whether an unsuccessful, finite step is accepted as stalled below ``accept_stall``."""
+
+
+def step_coefficients(scheme: str, n: int, dt: float, q1: np.ndarray,
+                      q0: np.ndarray | None) -> tuple[float, np.ndarray]:
+    """``(c_t, s)`` of ``d(rho H)/dT ~ c_t (rho H)^(n+1) - s`` at step ``n`` from the films
+    ``q1 = (rho H)^n`` and ``q0 = (rho H)^(n-1)`` (BDF2; backward Euler for ``"euler"``, the
+    first step, or without ``q0``)."""
+    if scheme == "euler" or n == 1 or q0 is None:
+        return 1.0 / dt, q1 / dt
+    return 1.5 / dt, (2.0 * q1 - 0.5 * q0) / dt
+
+
+def max_time_step(feature: Any, speed: float) -> float:
+    """Largest ``dT`` accepted: the feature (speed ``speed``) and the free film waves (speed 1,
+    the mean speed) move at most :data:`MAX_STEP_FRACTION` of the feature's length scale."""
+    return MAX_STEP_FRACTION * feature.length_scale / max(abs(speed), 1.0)
+
+
+def time_steps(feature: Any, speed: float, mesh: float, dt: float | None, steps: int | None,
+               t_end: float | None, snapshot_every: int, accept_stall: float, length: str,
+               default_end: Callable[[], float]) -> tuple[float, int, int]:
+    """Checked ``(dt, steps, snapshot_every)`` of a run: ``dt`` defaults to one mesh size
+    ``mesh`` per step at the faster of the feature and the mean flow (Courant 1), ``steps`` to
+    ``t_end`` (default ``default_end()``) over ``dt``. ``length`` names the length unit of
+    ``T = t u_m/length`` in messages."""
+    dt_max = max_time_step(feature, speed)
+    if dt is None:
+        dt = min(mesh / max(abs(speed), 1.0), dt_max)
+    require_in("dt", dt, 0.0, dt_max, "-",
+               f"T = t u_m/{length}; a step moves at most {MAX_STEP_FRACTION:g} of the feature's length "
+               f"scale {feature.length_scale:g} at speed {max(abs(speed), 1.0):g}", lo_open=True)
+    if steps is None:
+        if t_end is None:
+            t_end = default_end()
+        require_range("t_end", t_end, dt, dt * MAX_STEPS, f"- (T = t u_m/{length})")
+        steps = int(math.ceil(t_end / dt - 1e-9))
+    if isinstance(steps, bool) or int(steps) != steps:
+        raise InputError(f"steps = {steps!r} must be an integer in [1, {MAX_STEPS}]")
+    require_range("steps", steps, 1, MAX_STEPS, "time steps")
+    require_range("snapshot_every", snapshot_every, 1, MAX_STEPS, "steps")
+    require_range("accept_stall", accept_stall, 0.0, 0.01, "- (relative residual)")
+    return dt, int(steps), int(snapshot_every)
+
+
+def require_steady_start(name: str, steady: EHLResult, initial: Any, hint: str) -> None:
+    """Raise when the steady solution a run starts from (no ``initial``) failed."""
+    if not steady.success and initial is None:
+        raise ConvergenceError(f"transient {name} solver: the steady start failed: {steady.message}",
+                               steady.report, hint)
+
+
+def start(stepper: Stepper, out: Any, P_steady: np.ndarray, H0_steady: float,
+          initial: tuple[np.ndarray, float] | None, presolve: bool, t0: float) -> None:
+    """Put the start on the finest grid and record it as step 0: ``initial`` ``(P, H0)``, or
+    the steady ``(P_steady, H0_steady)`` followed (``presolve``) by the steady equations with
+    the feature frozen at its ``T = 0`` position."""
+    hz = stepper.hz
+    fine = hz.fine
+    if initial is not None:
+        P0, H00 = initial
+        P0 = np.asarray(P0, dtype=float)
+        if P0.shape != fine.P.shape:
+            raise InputError(f"initial P has shape {P0.shape}; the finest grid has {stepper.grid_text}")
+        stepper.set_unknowns(np.maximum(P0, 0.0), float(H00))
+        hz.set_step(0.0, 0.0, np.zeros_like(fine.P))
+    else:
+        stepper.set_unknowns(P_steady, float(H0_steady))
+        hz.set_step(0.0, 0.0, np.zeros_like(fine.P))
+        if presolve:
+            res = stepper.solve_step()
+            if not res.success:
+                raise ConvergenceError(f"transient {stepper.name} solver: the steady start with the "
+                                       f"feature at T = 0 failed: {res.message}", res.report, stepper.hint)
+    out.record(0, 0.0, hz, None, 0.0, keep=True)
+    out.setup_s = time.perf_counter() - t0
+
+
+def _extrapolate(P_now: np.ndarray, P_prev: np.ndarray) -> np.ndarray:
+    """Linear extrapolation in time, projected on ``P >= 0`` with ``P = 0`` on the boundary."""
+    P = np.maximum(2.0 * P_now - P_prev, 0.0)
+    for axis in range(P.ndim):
+        edges = [slice(None)] * P.ndim
+        for end in (0, -1):
+            edges[axis] = end
+            P[tuple(edges)] = 0.0
+    return P
+
+
+def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, scheme: str,
+          snapshot_every: int, accept_stall: float, on_film_collapse: str,
+          callback: Callable[[dict[str, Any]], None] | None, t0: float) -> None:
+    """Steps ``1 .. steps`` from the recorded start, each recorded in ``out``."""
+    hz = stepper.hz
+    fine = hz.fine
+    name = stepper.name
+    q_prev: np.ndarray | None = None
+    q_now = stepper.film()[1]
+    P_prev, H0_prev = stepper.unknowns()
+    for n in range(1, steps + 1):
+        T = n * dt
+        ct, hist = step_coefficients(scheme, n, dt, q_now, q_prev)
+        P_now, H0_now = stepper.unknowns()
+        if n > 1:  # linear extrapolation in time: the start iterate of the step
+            stepper.set_unknowns(_extrapolate(P_now, P_prev), 2.0 * H0_now - H0_prev)
+        hz.set_step(speed * T, ct, hist)
+        ts = time.perf_counter()
+        res = stepper.solve_step()
+        wall = time.perf_counter() - ts
+        finite = bool(np.all(np.isfinite(fine.P)) and math.isfinite(stepper.H0))
+        # cycles that stall (a limit cycle of the free boundary) leave an iterate that the
+        # contact's rule may accept below accept_stall
+        stalled_ok = (not res.success and finite and stepper.accept_stalled(res, accept_stall))
+        H, q = stepper.film()
+        wet = fine.P > 0.0
+        closed = res.status == 7 or (finite and wet.any() and float(H[wet].min()) <= 0.0)
+        if closed and on_film_collapse == "stop":
+            out.failed_step = n
+            out.stop_reason = (f"the film closed at step {n} (T = {T:.5g}): min H = "
+                               f"{float(H[wet].min()) if wet.any() else math.nan:.3g}")
+            break
+        if not (res.success or stalled_ok) or not finite:
+            out.failed_step = n
+            raise ConvergenceError(
+                f"transient {name} solver: time step {n} (T = {T:.5g}, dT = {dt:.4g}) failed: "
+                f"{res.message}", res.report,
+                "a smaller time step (dt), more points, or a smaller feature amplitude")
+        if closed:
+            out.failed_step = n
+            raise ConvergenceError(
+                f"transient {name} solver: time step {n} (T = {T:.5g}): the film collapsed "
+                f"(min H = {float(H[wet].min()):.3g} where P > 0); the feature cuts through the "
+                f"film, which needs a mixed-lubrication model", None, "a smaller feature amplitude")
+        P_prev, H0_prev = P_now, H0_now
+        q_prev, q_now = q_now, q
+        out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
+        out.series["stalled"].append(0.0 if res.success else 1.0)
+        if callback is not None:
+            callback(out.last_step())
+    out.wall_s = time.perf_counter() - t0
+    hz.solver = None
