@@ -232,14 +232,20 @@ def feature_from_table(table: dict[str, Any]) -> Feature:
     """A feature from a scene's ``[feature]`` table (dimensionless keys: ``kind``,
     ``amplitude``, ``wavelength`` or ``width``, ``x0``, ``shape``, ``phase``); the keys
     ``body`` and ``slide_roll`` are read by the caller."""
+    return feature_of_kind(table, Waviness, Bump)
+
+
+def feature_of_kind(table: dict[str, Any], waviness: type, bump: type) -> Any:
+    """``waviness(**keys)`` or ``bump(**keys)`` from a dimensionless ``[feature]`` table by its
+    ``kind`` (``"waviness"``, ``"bump"``, or ``"dent"``: a bump of amplitude ``-|amplitude|``);
+    the keys ``body`` and ``slide_roll`` are left to the caller."""
     t = {k: v for k, v in table.items() if k not in ("body", "slide_roll")}
-    kind = t.pop("kind", None)
-    require_choice("feature.kind", kind, ("waviness", "bump", "dent"))
+    kind = require_choice("feature.kind", t.pop("kind", None), ("waviness", "bump", "dent"))
     try:
         if kind == "waviness":
-            return Waviness(**t)
+            return waviness(**t)
         if kind == "dent":
             t["amplitude"] = -abs(float(t.get("amplitude", 0.0)))
-        return Bump(**t)
+        return bump(**t)
     except TypeError as exc:
         raise InputError(f"[feature] {exc}") from None

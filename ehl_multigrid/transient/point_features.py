@@ -34,7 +34,7 @@ import numpy as np
 from scipy.ndimage import map_coordinates
 
 from ..model.errors import InputError, require_choice, require_range
-from .features import MAX_AMPLITUDE, SHAPES, require_in
+from .features import MAX_AMPLITUDE, SHAPES, feature_of_kind, require_in
 
 #: a waviness closer than this to longitudinal (degrees) does not move through the contact
 LONGITUDINAL_TOL = 1e-9
@@ -253,13 +253,4 @@ PointFeature = Waviness2D | Dent2D | HeightMap | Smooth2D
 def point_feature_from_table(table: dict[str, Any]) -> PointFeature:
     """A point feature from a dimensionless table (``kind`` = ``waviness``, ``bump`` or
     ``dent``, with the keys of :class:`Waviness2D` or :class:`Dent2D`)."""
-    t = {k: v for k, v in table.items() if k not in ("body", "slide_roll")}
-    kind = require_choice("feature.kind", t.pop("kind", None), ("waviness", "bump", "dent"))
-    try:
-        if kind == "waviness":
-            return Waviness2D(**t)
-        if kind == "dent":
-            t["amplitude"] = -abs(float(t.get("amplitude", 0.0)))
-        return Dent2D(**t)
-    except TypeError as exc:
-        raise InputError(f"[feature] {exc}") from None
+    return feature_of_kind(table, Waviness2D, Dent2D)

@@ -36,43 +36,41 @@ POINT_KEYS = KEYS | {"angle", "y0"}
 
 def feature_from_scene_table(table: dict[str, Any] | None, problem: LineProblem) -> tuple[Feature, int]:
     """``(feature, body)`` from a ``[feature]`` table in metres (see module docstring)."""
-    if not table:
-        raise InputError("the scene has no [feature] table; add one (kind, amplitude, width or "
-                         "wavelength [m], x0 [b], body) to run 'ehl transient'")
-    reject_unknown_keys("feature", table, KEYS)
-    if not problem.physical:
-        raise InputError("a [feature] in metres needs a scene with known geometry (R, b)")
-    kind = require_choice("feature.kind", table.get("kind"), ("waviness", "bump", "dent"))
-    body = int(require_range("feature.body", table.get("body", 1), 1, 2, "-"))
-    a = require_range("feature.amplitude", table.get("amplitude"), 0.0, 1e-3, "m")
+    kind, body, amp, length = _read_table(table, KEYS, problem, "b", "R, b")
     scale = problem.R / problem.b**2
     if kind == "waviness":
-        lam = require_range("feature.wavelength", table.get("wavelength"), 1e-9, 1.0, "m")
-        return Waviness(a * scale, lam / problem.b, float(table.get("phase", 0.0))), body
-    w = require_range("feature.width", table.get("width"), 1e-9, 1.0, "m")
+        return Waviness(amp * scale, length / problem.b, float(table.get("phase", 0.0))), body
     sign = -1.0 if kind == "dent" else 1.0
-    return Bump(sign * a * scale, w / problem.b, float(table.get("x0", -3.0)),
+    return Bump(sign * amp * scale, length / problem.b, float(table.get("x0", -3.0)),
                 str(table.get("shape", "cosine-gaussian"))), body
 
 
 def point_feature_from_scene_table(table: dict[str, Any] | None, problem: Any) -> tuple[PointFeature, int]:
     """``(feature, body)`` of a point or elliptic scene from a ``[feature]`` table in metres
     (``problem`` a physical :class:`~ehl_multigrid.point.problem.PointProblem`)."""
+    kind, body, amp, length = _read_table(table, POINT_KEYS, problem, "a", "Rx, a")
+    scale = problem.Rx / problem.a**2
+    if kind == "waviness":
+        return Waviness2D(amp * scale, length / problem.a, float(table.get("angle", 0.0)),
+                          float(table.get("phase", 0.0))), body
+    sign = -1.0 if kind == "dent" else 1.0
+    return Dent2D(sign * amp * scale, length / problem.a, float(table.get("x0", -2.5)),
+                  float(table.get("y0", 0.0)), str(table.get("shape", "cosine-gaussian"))), body
+
+
+def _read_table(table: dict[str, Any] | None, keys: set[str], problem: Any, unit: str,
+                geometry: str) -> tuple[str, int, float, float]:
+    """``(kind, body, amplitude [m], wavelength or width [m])`` of a checked ``[feature]``
+    table; ``unit`` names the length unit of ``x0`` and ``geometry`` the scene's lengths it
+    needs, in messages."""
     if not table:
-        raise InputError("the scene has no [feature] table; add one (kind, amplitude, width or "
-                         "wavelength [m], x0 [a], body) to run 'ehl transient'")
-    reject_unknown_keys("feature", table, POINT_KEYS)
+        raise InputError(f"the scene has no [feature] table; add one (kind, amplitude, width or "
+                         f"wavelength [m], x0 [{unit}], body) to run 'ehl transient'")
+    reject_unknown_keys("feature", table, keys)
     if not problem.physical:
-        raise InputError("a [feature] in metres needs a scene with known geometry (Rx, a)")
+        raise InputError(f"a [feature] in metres needs a scene with known geometry ({geometry})")
     kind = require_choice("feature.kind", table.get("kind"), ("waviness", "bump", "dent"))
     body = int(require_range("feature.body", table.get("body", 1), 1, 2, "-"))
     amp = require_range("feature.amplitude", table.get("amplitude"), 0.0, 1e-3, "m")
-    scale = problem.Rx / problem.a**2
-    if kind == "waviness":
-        lam = require_range("feature.wavelength", table.get("wavelength"), 1e-9, 1.0, "m")
-        return Waviness2D(amp * scale, lam / problem.a, float(table.get("angle", 0.0)),
-                          float(table.get("phase", 0.0))), body
-    w = require_range("feature.width", table.get("width"), 1e-9, 1.0, "m")
-    sign = -1.0 if kind == "dent" else 1.0
-    return Dent2D(sign * amp * scale, w / problem.a, float(table.get("x0", -2.5)),
-                  float(table.get("y0", 0.0)), str(table.get("shape", "cosine-gaussian"))), body
+    key = "wavelength" if kind == "waviness" else "width"
+    return kind, body, amp, require_range(f"feature.{key}", table.get(key), 1e-9, 1.0, "m")
