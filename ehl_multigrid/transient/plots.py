@@ -12,16 +12,23 @@ from .result import TransientResult
 
 def plot_series(res: TransientResult, path: str | Path) -> Path:
     """Hc(T), Hm(T) and the pressure fluctuation against time."""
+    return series_figure(res, path, "Hc (X = 0)", res.steady.Hc_venner, "H (Venner)", "T = t u_m / b")
+
+
+def series_figure(res: TransientResult, path: str | Path, hc_label: str, hc_steady: float,
+                  film_label: str, time_label: str) -> Path:
+    """Hc(T), Hm(T) with the smooth steady ``hc_steady`` (top) and the pressure fluctuation
+    and the largest pressure (bottom) against time, written to ``path``."""
     fig = Figure(figsize=(7, 5), layout="constrained")
     ax = fig.subplots(2, 1, sharex=True)
-    ax[0].plot(res.T, res.Hc, label="Hc (X = 0)")
+    ax[0].plot(res.T, res.Hc, label=hc_label)
     ax[0].plot(res.T, res.Hm, label="Hm")
-    ax[0].axhline(res.steady.Hc_venner, color="k", ls=":", lw=0.8, label="smooth steady Hc")
-    ax[0].set_ylabel("H (Venner)")
+    ax[0].axhline(hc_steady, color="k", ls=":", lw=0.8, label="smooth steady Hc")
+    ax[0].set_ylabel(film_label)
     ax[0].legend(fontsize=8)
     ax[1].plot(res.T, res.dP, label="max |P - P_smooth|")
     ax[1].plot(res.T, res.Pmax, label="max P")
-    ax[1].set_xlabel("T = t u_m / b")
+    ax[1].set_xlabel(time_label)
     ax[1].legend(fontsize=8)
     fig.savefig(path, dpi=110)
     return Path(path)

@@ -4,10 +4,12 @@ maps, and an animation of the film map."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
 
+from .plots import series_figure
 from .point_solve import PointTransientResult
 
 
@@ -17,19 +19,18 @@ def _centre_row(res: PointTransientResult) -> int:
 
 def plot_point_series(res: PointTransientResult, path: str | Path) -> Path:
     """Hc(T), Hm(T) and the pressure fluctuation against time."""
-    fig = Figure(figsize=(7, 5), layout="constrained")
-    ax = fig.subplots(2, 1, sharex=True)
-    ax[0].plot(res.T, res.Hc, label="Hc (X = Y = 0)")
-    ax[0].plot(res.T, res.Hm, label="Hm")
-    ax[0].axhline(res.Hc_steady, color="k", ls=":", lw=0.8, label="smooth steady Hc")
-    ax[0].set_ylabel("H = h Rx / a^2")
-    ax[0].legend(fontsize=8)
-    ax[1].plot(res.T, res.dP, label="max |P - P_smooth|")
-    ax[1].plot(res.T, res.Pmax, label="max P")
-    ax[1].set_xlabel("T = t u_m / a")
-    ax[1].legend(fontsize=8)
-    fig.savefig(path, dpi=110)
-    return Path(path)
+    return series_figure(res, path, "Hc (X = Y = 0)", res.Hc_steady, "H = h Rx / a^2", "T = t u_m / a")
+
+
+def _film_map(ax: Any, res: PointTransientResult, snap: dict[str, np.ndarray], hi: float,
+              xmin: float) -> Any:
+    """Film map ``0 .. hi`` with pressure contours on ``X in [xmin, 1.5]``, ``|Y| <= 1.5``."""
+    im = ax.pcolormesh(res.X, res.Y, snap["H"], vmin=0, vmax=hi, shading="auto", cmap="viridis")
+    ax.contour(res.X, res.Y, snap["P"], levels=[0.2, 0.5, 0.8], colors="w", linewidths=0.5)
+    ax.set_xlim(xmin, 1.5)
+    ax.set_ylim(-1.5, 1.5)
+    ax.set_aspect("equal")
+    return im
 
 
 def plot_point_snapshots(res: PointTransientResult, path: str | Path, count: int = 4) -> Path:
@@ -44,11 +45,7 @@ def plot_point_snapshots(res: PointTransientResult, path: str | Path, count: int
     for k, n in enumerate(pick):
         s = res.snapshots[n]
         ax = axes[0, k]
-        im = ax.pcolormesh(res.X, res.Y, s["H"], vmin=0, vmax=hi, shading="auto", cmap="viridis")
-        ax.contour(res.X, res.Y, s["P"], levels=[0.2, 0.5, 0.8], colors="w", linewidths=0.5)
-        ax.set_xlim(-1.8, 1.5)
-        ax.set_ylim(-1.5, 1.5)
-        ax.set_aspect("equal")
+        im = _film_map(ax, res, s, hi, -1.8)
         ax.set_title(f"H, T = {res.T[n]:.3g}", fontsize=9)
         ax2 = axes[1, k]
         ax2.plot(res.X, s["H"][j], label="H")
@@ -76,12 +73,7 @@ def animate_point(res: PointTransientResult, path: str | Path, fps: int = 12) ->
 
     def frame(n: int):
         ax.clear()
-        s = res.snapshots[n]
-        ax.pcolormesh(res.X, res.Y, s["H"], vmin=0, vmax=hi, shading="auto", cmap="viridis")
-        ax.contour(res.X, res.Y, s["P"], levels=[0.2, 0.5, 0.8], colors="w", linewidths=0.5)
-        ax.set_xlim(-2.0, 1.5)
-        ax.set_ylim(-1.5, 1.5)
-        ax.set_aspect("equal")
+        _film_map(ax, res, res.snapshots[n], hi, -2.0)
         ax.set_title(f"H (0 .. {hi:.3g}), T = {res.T[n]:.3f}", fontsize=9)
         return []
 
