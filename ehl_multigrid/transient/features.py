@@ -95,8 +95,28 @@ class Waviness:
         return {"kind": self.kind, **asdict(self)}
 
 
+class ShapedFeature:
+    """The width rules of the single-feature shapes (``width``, ``shape``), shared by the line
+    contact's :class:`Bump` and the point contact's dent."""
+
+    width: float
+    shape: str
+
+    @property
+    def reach(self) -> float:
+        """Distance from the centre beyond which the height is negligible: ``W`` for the
+        cosine-Gaussian (below 1e-3 A), ``2.6 W`` for the Gaussian (1e-3 A)."""
+        return self.width if self.shape == "cosine-gaussian" else 2.6 * self.width
+
+    @property
+    def length_scale(self) -> float:
+        """The length a time step must resolve: the width (Gaussian) or the half wavelength
+        of the cosine-Gaussian's oscillation."""
+        return self.width if self.shape == "gaussian" else 0.5 * self.width
+
+
 @dataclass(frozen=True)
-class Bump:
+class Bump(ShapedFeature):
     """A single bump (``amplitude > 0``) or dent (``amplitude < 0``) centred at ``x0`` at
     ``T = 0``.
 
@@ -122,12 +142,6 @@ class Bump:
         require_range("feature.x0", self.x0, -1e3, 1e3, "- (x/b)")
         require_choice("feature.shape", self.shape, SHAPES)
 
-    @property
-    def length_scale(self) -> float:
-        """The length a time step must resolve: the width (Gaussian) or the half wavelength
-        of the cosine-Gaussian's oscillation."""
-        return self.width if self.shape == "gaussian" else 0.5 * self.width
-
     def height(self, X: np.ndarray) -> np.ndarray:
         s = np.asarray(X) - self.x0
         if self.shape == "gaussian":
@@ -135,10 +149,8 @@ class Bump:
         return self.amplitude * 10.0 ** (-10.0 * (s / self.width) ** 2) * np.cos(2.0 * math.pi * s / self.width)
 
     def check_domain(self, xmin: float, xmax: float) -> None:
-        """The feature (``x0 +- W``, where the height has fallen below 1e-3 A for the
-        cosine-Gaussian and 0.37 A for the Gaussian, so ``x0 +- 2.6 W`` for that) must fit
-        in the domain at the start."""
-        reach = self.width if self.shape == "cosine-gaussian" else 2.6 * self.width
+        """The feature (``x0 +- reach``) must fit in the domain at the start."""
+        reach = self.reach
         require_in("feature.width", self.width, 1e-3, 0.5 * (xmax - xmin) / (reach / self.width),
                    "-", f"the feature must fit in the domain [{xmin:g}, {xmax:g}]")
         require_in("feature.x0", self.x0, xmin + reach, xmax - reach, "-",
@@ -212,7 +224,8 @@ class Smooth:
 
     @property
     def length_scale(self) -> float:
-        """The Hertzian half-width (``X = 1``): the scale of the film's own transients."""
+        """The Hertzian half-width (``X = 1``; point contacts: the semi-axis ``a``): the scale
+        of the film's own transients."""
         return 1.0
 
     def height(self, X: np.ndarray) -> np.ndarray:

@@ -34,7 +34,7 @@ import numpy as np
 from scipy.ndimage import map_coordinates
 
 from ..model.errors import InputError, require_choice, require_range
-from .features import MAX_AMPLITUDE, SHAPES, feature_of_kind, require_in
+from .features import MAX_AMPLITUDE, SHAPES, ShapedFeature, Smooth, feature_of_kind, require_in
 
 #: a waviness closer than this to longitudinal (degrees) does not move through the contact
 LONGITUDINAL_TOL = 1e-9
@@ -99,7 +99,7 @@ class Waviness2D:
 
 
 @dataclass(frozen=True)
-class Dent2D:
+class Dent2D(ShapedFeature):
     """A single dent (``amplitude < 0``) or bump (``> 0``), circular in plan.
 
     Attributes
@@ -124,16 +124,6 @@ class Dent2D:
         require_range("feature.x0", self.x0, -1e3, 1e3, "- (x/a)")
         require_range("feature.y0", self.y0, -1e3, 1e3, "- (y/a)")
         require_choice("feature.shape", self.shape, SHAPES)
-
-    @property
-    def reach(self) -> float:
-        """Radius beyond which the height is negligible (1e-3 A cosine-Gaussian; for the
-        Gaussian 2.6 W, 1e-3 A)."""
-        return self.width if self.shape == "cosine-gaussian" else 2.6 * self.width
-
-    @property
-    def length_scale(self) -> float:
-        return self.width if self.shape == "gaussian" else 0.5 * self.width
 
     def height(self, X: np.ndarray, Y: np.ndarray) -> np.ndarray:
         r2 = ((np.asarray(X) - self.x0) ** 2 + (np.asarray(Y) - self.y0) ** 2) / self.width**2
@@ -226,15 +216,8 @@ class HeightMap:
 
 
 @dataclass(frozen=True)
-class Smooth2D:
+class Smooth2D(Smooth):
     """No feature: smooth surfaces."""
-
-    amplitude: float = 0.0
-    kind = "smooth"
-
-    @property
-    def length_scale(self) -> float:
-        return 1.0
 
     def height(self, X: np.ndarray, Y: np.ndarray) -> np.ndarray:
         X, Y = np.broadcast_arrays(np.asarray(X, dtype=float), np.asarray(Y, dtype=float))
@@ -242,9 +225,6 @@ class Smooth2D:
 
     def check_domain(self, xmin: float, xmax: float, ymax: float) -> None:
         return None
-
-    def describe(self) -> dict[str, Any]:
-        return {"kind": self.kind}
 
 
 PointFeature = Waviness2D | Dent2D | HeightMap | Smooth2D
