@@ -24,6 +24,15 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from common import (  # noqa: E402
+    amplitude_curve,
+    log2_ratios,
+    nabla,
+    plot_startup,
+    previous_period_amplitude,
+    successive,
+    write_json,
+)
 
 from ehl_multigrid.line.problem import LineProblem  # noqa: E402
 from ehl_multigrid.line.solver import solve_line_problem  # noqa: E402
@@ -34,8 +43,7 @@ OUT = Path(__file__).resolve().parent / "out"
 
 
 def save(name: str, data: dict) -> None:
-    OUT.mkdir(parents=True, exist_ok=True)
-    (OUT / f"{name}.json").write_text(json.dumps(data, indent=1, default=float))
+    write_json(OUT, name, data)
     print(f"wrote out/{name}.json")
 
 
@@ -46,11 +54,6 @@ def problem(M: float, L: float, xmin: float = -4.5) -> LineProblem:
 def hc_fit(M: float, L: float) -> float:
     """Moes-fit central film in Venner units (H = H_moes pi/(8 M))."""
     return float(moes_line_central(M, L)) * math.pi / (8.0 * M)
-
-
-def orders(values: list[float]) -> list[float]:
-    d = [abs(a - b) for a, b in zip(values, values[1:], strict=False)]
-    return [math.log2(a / b) if b > 0 else math.nan for a, b in zip(d, d[1:], strict=False)]
 
 
 # -- steady limit --------------------------------------------------------------------------
@@ -81,14 +84,8 @@ def part_steady(quick: bool) -> None:
     save("steady", {"zero_feature": rows, "startup": {"points": n, "M_start": M2, "Hc_target": target,
                                                       "relative_error_at": settle,
                                                       "T": res.T.tolist(), "Hc": res.Hc.tolist()}})
-    fig, ax = plt.subplots(figsize=(6, 4))
-    ax.semilogy(res.T, err)
-    ax.set_xlabel("T = t u_m / b")
-    ax.set_ylabel("|Hc(T)/Hc_steady - 1|")
-    ax.set_title("Start-up from the steady film at 1.2 M (M = 20, L = 10, 257 points)")
-    ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(OUT / "steady_startup.png", dpi=120)
+    plot_startup(OUT / "steady_startup.png", res.T, err, "T = t u_m / b",
+                 "Start-up from the steady film at 1.2 M (M = 20, L = 10, 257 points)", which="both")
 
 
 # -- time-step refinement ------------------------------------------------------------------
@@ -109,11 +106,10 @@ def part_time(quick: bool) -> None:
             runs.append({"dt": dt, "Hc": res.Hc[::every], "H": res.snapshots[res.steps]["H"],
                          "wall_s": time.perf_counter() - t0})
             print(scheme, dt, res.Hc[-1], runs[-1]["wall_s"])
-        d_series = [float(np.max(np.abs(a["Hc"] - b["Hc"]))) for a, b in zip(runs, runs[1:], strict=False)]
-        d_film = [float(np.mean(np.abs(a["H"] - b["H"]))) for a, b in zip(runs, runs[1:], strict=False)]
+        d_series = successive(runs, lambda a, b: np.max(np.abs(a["Hc"] - b["Hc"])))
+        d_film = successive(runs, lambda a, b: np.mean(np.abs(a["H"] - b["H"])))
         out[scheme] = {"dt": list(dts), "max_dHc_series": d_series, "mean_dH_final": d_film,
-                       "order_Hc_series": [math.log2(a / b) for a, b in zip(d_series, d_series[1:], strict=False)],
-                       "order_H_final": [math.log2(a / b) for a, b in zip(d_film, d_film[1:], strict=False)],
+                       "order_Hc_series": log2_ratios(d_series), "order_H_final": log2_ratios(d_film),
                        "T": (np.arange(len(runs[-1]["Hc"])) * dts[0]).tolist(),
                        "Hc_finest": runs[-1]["Hc"].tolist()}
         print(scheme, out[scheme]["order_Hc_series"], out[scheme]["order_H_final"])
@@ -147,16 +143,15 @@ def part_grid(quick: bool) -> None:
         runs.append({"points": n, "Hc": res.Hc, "Hm": res.Hm, "H": res.snapshots[res.steps]["H"][:: (n - 1) // 128],
                      "wall_s": time.perf_counter() - t0, "Hc_steady": res.steady.Hc_venner})
         print(n, res.Hc[-1], res.Hm[-1], runs[-1]["wall_s"])
-    d_Hc = [float(np.max(np.abs(a["Hc"] - b["Hc"]))) for a, b in zip(runs, runs[1:], strict=False)]
-    d_Hm = [float(np.max(np.abs(a["Hm"] - b["Hm"]))) for a, b in zip(runs, runs[1:], strict=False)]
-    d_H = [float(np.mean(np.abs(a["H"] - b["H"]))) for a, b in zip(runs, runs[1:], strict=False)]
+    d_Hc = successive(runs, lambda a, b: np.max(np.abs(a["Hc"] - b["Hc"])))
+    d_Hm = successive(runs, lambda a, b: np.max(np.abs(a["Hm"] - b["Hm"])))
+    d_H = successive(runs, lambda a, b: np.mean(np.abs(a["H"] - b["H"])))
     data = {"M": 20, "L": 10, "feature": feat.describe(), "dt": dt, "T_end": T_end, "points": list(grids),
             "Hc_final": [float(r["Hc"][-1]) for r in runs], "Hm_final": [float(r["Hm"][-1]) for r in runs],
             "Hc_steady": [r["Hc_steady"] for r in runs],
             "max_dHc_series": d_Hc, "max_dHm_series": d_Hm, "mean_dH_final_on_129": d_H,
-            "order_Hc_series": [math.log2(a / b) for a, b in zip(d_Hc, d_Hc[1:], strict=False)],
-            "order_Hm_series": [math.log2(a / b) for a, b in zip(d_Hm, d_Hm[1:], strict=False)],
-            "order_H_final": [math.log2(a / b) for a, b in zip(d_H, d_H[1:], strict=False)],
+            "order_Hc_series": log2_ratios(d_Hc), "order_Hm_series": log2_ratios(d_Hm),
+            "order_H_final": log2_ratios(d_H),
             "wall_s": [r["wall_s"] for r in runs]}
     print(data["order_Hc_series"], data["order_Hm_series"], data["order_H_final"])
     save("grid", data)
@@ -173,17 +168,6 @@ def part_grid(quick: bool) -> None:
 
 
 # -- waviness amplitude reduction ----------------------------------------------------------
-def venner_lubrecht_curve(nabla: np.ndarray) -> np.ndarray:
-    """Ad/Ai = 1/(1 + 0.15 nabla + 0.015 nabla^2): the pure-rolling fit quoted in the
-    amplitude-reduction literature (Venner & Lubrecht; Hooke) -- recalled, see REPORT.md."""
-    return 1.0 / (1.0 + 0.15 * nabla + 0.015 * nabla**2)
-
-
-def nabla(wavelength: float, M: float, L: float) -> float:
-    """Venner, Couhier, Lubrecht & Greenwood (1997): nabla = (lambda/b) M^(3/4) / L^(1/2)."""
-    return wavelength * M**0.75 / math.sqrt(L)
-
-
 WAVINESS_CASES = {
     (20.0, 10.0): (0.25, 0.5, 1.0, 2.0, 3.0),
     (10.0, 5.0): (0.5, 1.0, 2.0, 4.0),
@@ -219,8 +203,8 @@ def part_waviness(quick: bool) -> None:
         s = res.summary()
         row = {"M": M, "L": L, "wavelength": lam, "xmin": xmin, "points": n, "Ai": Ai,
                "nabla": nabla(lam, M, L), "Ad_over_Ai": s["Ad_over_Ai"],
-               "Ad_over_Ai_previous_period": _previous_period(res) / Ai,
-               "curve": float(venner_lubrecht_curve(np.array(nabla(lam, M, L)))),
+               "Ad_over_Ai_previous_period": previous_period_amplitude(res, lam) / Ai,
+               "curve": float(amplitude_curve(np.array(nabla(lam, M, L)))),
                "Hc_steady": s["Hc_steady"], "steps": s["steps"], "dt": s["dt"],
                "cycles_mean": s["cycles_mean"], "wall_s": time.perf_counter() - t0}
         print(row)
@@ -229,7 +213,7 @@ def part_waviness(quick: bool) -> None:
     save("waviness", {"rows": rows})
     fig, ax = plt.subplots(figsize=(6, 4))
     nb = np.linspace(0.1, 25, 300)
-    ax.plot(nb, venner_lubrecht_curve(nb), "k-", label="1/(1 + 0.15 nabla + 0.015 nabla^2)")
+    ax.plot(nb, amplitude_curve(nb), "k-", label="1/(1 + 0.15 nabla + 0.015 nabla^2)")
     for (M, L), mk in zip(WAVINESS_CASES, ("o", "s", "^"), strict=False):
         sel = [r for r in rows if r["M"] == M and r["L"] == L and r["xmin"] == -4.5]
         ax.plot([r["nabla"] for r in sel], [r["Ad_over_Ai"] for r in sel], mk, label=f"M = {M:g}, L = {L:g}")
@@ -244,14 +228,6 @@ def part_waviness(quick: bool) -> None:
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     fig.savefig(OUT / "waviness_amplitude.png", dpi=120)
-
-
-def _previous_period(res) -> float:
-    """Half peak-to-peak of Hc over the period before the last (periodicity check)."""
-    period = res.feature.wavelength / abs(res.speed)
-    T, Hc = res.T, res.Hc
-    win = (T >= T[-1] - 2 * period) & (T < T[-1] - period)
-    return 0.5 * float(Hc[win].max() - Hc[win].min()) if win.any() else math.nan
 
 
 # -- bump and dent passing -----------------------------------------------------------------

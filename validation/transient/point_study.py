@@ -25,6 +25,15 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from common import (  # noqa: E402
+    amplitude_curve,
+    log2_ratios,
+    nabla,
+    plot_startup,
+    previous_period_amplitude,
+    successive,
+    write_json,
+)
 
 from ehl_multigrid.model.fits import nijenbanning_central  # noqa: E402
 from ehl_multigrid.point.problem import problem_from_moes, problem_from_scene  # noqa: E402
@@ -41,8 +50,7 @@ OUT = Path(__file__).resolve().parent / "out"
 
 
 def save(name: str, data: dict) -> None:
-    OUT.mkdir(parents=True, exist_ok=True)
-    (OUT / f"{name}.json").write_text(json.dumps(data, indent=1, default=float))
+    write_json(OUT, name, data)
     print(f"wrote {OUT / name}.json")
 
 
@@ -50,11 +58,6 @@ def hc_fit(M: float, L: float) -> float:
     """Nijenbanning-fit central film in the point contact's units (H = h Rx/a^2)."""
     pb = problem_from_moes(M, L)
     return float(nijenbanning_central(M, L, 1.0)) / pb.moes_factor
-
-
-def orders(values: list[float]) -> list[float]:
-    d = [abs(a - b) for a, b in zip(values, values[1:], strict=False)]
-    return [math.log2(a / b) if b > 0 else math.nan for a, b in zip(d, d[1:], strict=False)]
 
 
 # -- steady limit --------------------------------------------------------------------------
@@ -82,14 +85,8 @@ def part_steady(quick: bool) -> None:
                "alpha_bar_start": other.alpha_bar, "alpha_bar": pb.alpha_bar}
     print({k: startup["rel_dHc"][k] for k in (0, 10, 20, 40, 60, 80)})
     save("point_steady", {"zero_feature": rows, "startup": startup})
-    fig, ax = plt.subplots(figsize=(6, 4))
-    ax.semilogy(res.T, err)
-    ax.set_xlabel("T = t u_m / a")
-    ax.set_ylabel("|Hc(T)/Hc_steady - 1|")
-    ax.set_title(f"Point start-up from M' = 1.2 M (M = 20, L = 10, {n}^2)")
-    ax.grid(True, alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(OUT / "point_steady_startup.png", dpi=120)
+    plot_startup(OUT / "point_steady_startup.png", res.T, err, "T = t u_m / a",
+                 f"Point start-up from M' = 1.2 M (M = 20, L = 10, {n}^2)")
 
 
 # -- time-step refinement ------------------------------------------------------------------
@@ -104,11 +101,10 @@ def part_time(quick: bool) -> None:
                                   tol_load=1e-10, snapshot_every=100000)
         runs.append(r)
         print(dt, r.summary()["cycles_mean"])
-    dhc = [float(np.max(np.abs(a.Hc - b.Hc[::2]))) for a, b in zip(runs, runs[1:], strict=False)]
-    dfield = [float(np.mean(np.abs(a.snapshots[a.steps]["H"] - b.snapshots[b.steps]["H"])))
-              for a, b in zip(runs, runs[1:], strict=False)]
-    o_hc = [math.log2(a / b) for a, b in zip(dhc, dhc[1:], strict=False)]
-    o_f = [math.log2(a / b) for a, b in zip(dfield, dfield[1:], strict=False)]
+    dhc = successive(runs, lambda a, b: np.max(np.abs(a.Hc - b.Hc[::2])))
+    dfield = successive(runs, lambda a, b: np.mean(np.abs(a.snapshots[a.steps]["H"] - b.snapshots[b.steps]["H"])))
+    o_hc = log2_ratios(dhc)
+    o_f = log2_ratios(dfield)
     data = {"points": n, "dt": list(dts), "max_dHc_successive": dhc, "order_Hc": o_hc,
             "mean_dH_final_successive": dfield, "order_H_final": o_f,
             "cycles_mean": [r.summary()["cycles_mean"] for r in runs]}
@@ -117,25 +113,7 @@ def part_time(quick: bool) -> None:
 
 
 # -- waviness amplitude reduction --------------------------------------------------------------
-def nabla(wavelength: float, M: float, L: float) -> float:
-    """(lambda/a) M^(3/4)/L^(1/2): Venner, Couhier, Lubrecht & Greenwood's (1997) line-contact
-    parameter, evaluated with the point contact's Moes M, L and semi-axis a."""
-    return wavelength * M**0.75 / math.sqrt(L)
-
-
-def recalled_curve(nb: np.ndarray) -> np.ndarray:
-    """The line study's recalled fit 1/(1 + 0.15 nabla + 0.015 nabla^2) (not confirmed)."""
-    return 1.0 / (1.0 + 0.15 * nb + 0.015 * nb**2)
-
-
 WAVINESS_CASES = {(20.0, 10.0): (0.5, 1.0, 2.0, 3.0), (50.0, 10.0): (0.5, 1.0, 2.0), (10.0, 5.0): (1.0, 2.0)}
-
-
-def _previous_period(res) -> float:
-    period = res.feature.wavelength_x / abs(res.speed)
-    T, Hc = res.T, res.Hc
-    win = (T >= T[-1] - 2 * period) & (T < T[-1] - period)
-    return 0.5 * float(Hc[win].max() - Hc[win].min()) if win.any() else math.nan
 
 
 def part_waviness(quick: bool) -> None:
@@ -160,8 +138,8 @@ def part_waviness(quick: bool) -> None:
                                     snapshot_every=100000)
         s = res.summary()
         row = {"M": M, "L": L, "wavelength": lam, "points": n, "Ai": Ai, "nabla": nabla(lam, M, L),
-               "Ad_over_Ai": s["Ad_over_Ai"], "Ad_over_Ai_previous_period": _previous_period(res) / Ai,
-               "recalled_line_curve": float(recalled_curve(np.array(nabla(lam, M, L)))),
+               "Ad_over_Ai": s["Ad_over_Ai"], "Ad_over_Ai_previous_period": previous_period_amplitude(res, res.feature.wavelength_x) / Ai,
+               "recalled_line_curve": float(amplitude_curve(np.array(nabla(lam, M, L)))),
                "Hc_steady": s["Hc_steady"], "steps": s["steps"], "dt": s["dt"],
                "cycles_mean": s["cycles_mean"], "wall_s": time.perf_counter() - t0}
         print(row)
@@ -169,7 +147,7 @@ def part_waviness(quick: bool) -> None:
         save(name, {"rows": rows})
     fig, ax = plt.subplots(figsize=(6, 4))
     nb = np.linspace(0.1, 25, 300)
-    ax.plot(nb, recalled_curve(nb), "k-", lw=0.8, label="recalled line fit 1/(1+0.15n+0.015n^2)")
+    ax.plot(nb, amplitude_curve(nb), "k-", lw=0.8, label="recalled line fit 1/(1+0.15n+0.015n^2)")
     line = OUT / "waviness.json"
     if line.exists():
         lr = [r for r in json.loads(line.read_text())["rows"] if r["xmin"] == -4.5]

@@ -1,0 +1,73 @@
+"""Helpers shared by the transient studies (line_study.py, point_study.py): JSON output,
+successive differences and their observed orders, the waviness parameter and the recalled
+amplitude-reduction curve, the periodicity check of a waviness run, the start-up figure.
+
+The studies run as scripts (``python validation/transient/line_study.py``), so this folder
+is on ``sys.path`` and they import it as ``common``."""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def write_json(folder: Path, name: str, data: dict) -> Path:
+    """``folder/name.json`` (the folder made when missing); returns the path."""
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / f"{name}.json"
+    path.write_text(json.dumps(data, indent=1, default=float))
+    return path
+
+
+def successive(runs: Sequence[Any], diff: Callable[[Any, Any], float]) -> list[float]:
+    """``diff(run_k, run_k+1)`` of successive runs (a refinement sequence)."""
+    return [float(diff(a, b)) for a, b in zip(runs, runs[1:], strict=False)]
+
+
+def log2_ratios(d: Sequence[float]) -> list[float]:
+    """Observed orders ``log2(d_k / d_k+1)`` of successive differences at halved steps."""
+    return [math.log2(a / b) for a, b in zip(d, d[1:], strict=False)]
+
+
+def nabla(wavelength: float, M: float, L: float) -> float:
+    """Venner, Couhier, Lubrecht & Greenwood (1997): ``nabla = (lambda/b) M^(3/4) / L^(1/2)``
+    (a point contact: evaluated with its Moes M, L and the semi-axis a)."""
+    return wavelength * M**0.75 / math.sqrt(L)
+
+
+def amplitude_curve(nb: np.ndarray) -> np.ndarray:
+    """``Ad/Ai = 1/(1 + 0.15 nabla + 0.015 nabla^2)``: the pure-rolling fit quoted in the
+    amplitude-reduction literature (Venner & Lubrecht; Hooke) -- recalled, not confirmed (see
+    REPORT.md)."""
+    return 1.0 / (1.0 + 0.15 * nb + 0.015 * nb**2)
+
+
+def previous_period_amplitude(res: Any, wavelength: float) -> float:
+    """Half peak-to-peak of Hc over the period before the last (periodicity check of a
+    waviness run; ``wavelength`` along the rolling direction)."""
+    period = wavelength / abs(res.speed)
+    T, Hc = res.T, res.Hc
+    win = (T >= T[-1] - 2 * period) & (T < T[-1] - period)
+    return 0.5 * float(Hc[win].max() - Hc[win].min()) if win.any() else math.nan
+
+
+def plot_startup(path: Path, T: np.ndarray, err: np.ndarray, time_label: str, title: str,
+                 which: str = "major") -> None:
+    """``|Hc(T)/Hc_steady - 1|`` of a start-up run on a log scale."""
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.semilogy(T, err)
+    ax.set_xlabel(time_label)
+    ax.set_ylabel("|Hc(T)/Hc_steady - 1|")
+    ax.set_title(title)
+    ax.grid(True, which=which, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
