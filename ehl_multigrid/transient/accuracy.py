@@ -32,10 +32,7 @@ def time_error(fine: TransientResult, coarse: TransientResult) -> dict[str, floa
     out = {}
     for name in ("Hc", "Hm"):
         f, c = getattr(fine, name)[::2][:m], getattr(coarse, name)[:m]
-        # point results carry the smooth steady films themselves
-        ref = getattr(fine, f"{name}_steady", None) if fine.__dict__.get("Y") is not None else None
-        ref = getattr(fine.steady, f"{name}_venner") if ref is None else ref
-        out[name] = float(np.max(np.abs(f - c)) / (2**p - 1) / ref)
+        out[name] = float(np.max(np.abs(f - c)) / (2**p - 1) / fine.steady_film(name))
     return out
 
 

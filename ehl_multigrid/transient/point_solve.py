@@ -31,9 +31,7 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import InputError, require_choice
-from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import PointOptions
-from ..multigrid.policy import RobustnessPolicy
 from ..multigrid.result import EHLResult
 from ..multigrid.threads import preserved_threads
 from ..point.fas import HINT, POINT_POLICY, point_settings
@@ -43,7 +41,15 @@ from .features import feature_speed
 from .point_features import PointFeature, Smooth2D
 from .point_hierarchy import TransientPointHierarchy
 from .result import TransientResult
-from .stepping import SCHEMES, march, max_time_step, require_steady_start, start, time_steps
+from .stepping import (
+    SCHEMES,
+    Stepper,
+    march,
+    max_time_step,
+    require_steady_start,
+    start,
+    time_steps,
+)
 
 #: Default numerics of a point time step: FFT deformation, a residual below the time error of
 #: the default step (measured: 4-6 cycles per step at Courant 1).
@@ -114,7 +120,7 @@ class PointTransientResult(TransientResult):
     def _start_load_error(self, hz: Any) -> float:
         return hz.load(hz.fine) / hz.g_target - 1.0
 
-    def _steady_film(self, name: str) -> float:
+    def steady_film(self, name: str) -> float:
         return getattr(self, f"{name}_steady")
 
     def _wavelength_x(self) -> float:
@@ -275,22 +281,21 @@ def default_point_end_time(xmin: float, xmax: float, feature: PointFeature, spee
     return span + 3.0 * period
 
 
-class _PointStepper:
-    """The point contact's side of the time loop (:class:`~.stepping.Stepper`)."""
+class _PointStepper(Stepper):
+    """The point contact's side of the time loop."""
 
     name = "point"
     hint = HINT
+    policy = POINT_POLICY
+    settings = staticmethod(point_settings)
 
-    def __init__(self, hz: TransientPointHierarchy, problem: PointProblem, opts: PointOptions) -> None:
-        self.hz, self.problem, self.opts = hz, problem, opts
-        self.grid_text = f"{hz.fine.P.shape}"
+    @property
+    def grid_text(self) -> str:
+        return f"{self.hz.fine.P.shape}"
 
     @property
     def H0(self) -> float:
         return self.hz.H00
-
-    def unknowns(self) -> tuple[np.ndarray, float]:
-        return self.hz.fine.P.copy(), self.hz.H00
 
     def set_unknowns(self, P: np.ndarray, H0: float) -> None:
         self.hz.fine.P, self.hz.H00 = np.ascontiguousarray(P), H0
@@ -298,11 +303,6 @@ class _PointStepper:
     def film(self) -> tuple[np.ndarray, np.ndarray]:
         fine = self.hz.fine
         return fine.H, fine.rho * fine.H
-
-    def solve_step(self) -> EHLResult:
-        solver = MultilevelSolver(self.hz, self.opts, point_settings(self.problem, self.opts),
-                                  RobustnessPolicy(POINT_POLICY, self.opts.adapt), HINT)
-        return solver.solve()
 
     def accept_stalled(self, res: EHLResult, accept_stall: float) -> bool:
         # cycles that stall, hit the cycle limit or are rejected leave the best accepted

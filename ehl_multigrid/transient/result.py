@@ -130,7 +130,7 @@ class TransientResult:
     def _start_load_error(self, hz: Any) -> float:
         return hz.fine.load() / hz.fine.g - 1.0
 
-    def _steady_film(self, name: str) -> float:
+    def steady_film(self, name: str) -> float:
         """The smooth steady film ``"Hc"`` or ``"Hm"``."""
         return getattr(self.steady, f"{name}_venner")
 
@@ -212,7 +212,7 @@ class TransientResult:
             "feature": self.feature.describe(), "body": self.body, "slide_roll": self.slide_roll,
             "feature_speed": self.speed, "dt": self.dt, "scheme": self.scheme, "steps": self.steps,
             "T_end": float(self.T[-1]),
-            "Hc_steady": float(self._steady_film("Hc")), "Hm_steady": float(self._steady_film("Hm")),
+            "Hc_steady": float(self.steady_film("Hc")), "Hm_steady": float(self.steady_film("Hm")),
             "Hc_min": float(np.min(self.Hc)), "Hc_max": float(np.max(self.Hc)),
             "Hm_min": float(np.min(self.Hm)), "dP_max": float(np.max(self.dP)),
             "Pmax_max": float(np.max(self.Pmax)),

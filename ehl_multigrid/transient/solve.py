@@ -29,14 +29,12 @@ import numpy as np
 from ..line.problem import LineProblem
 from ..line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
 from ..model.errors import InputError, require_choice
-from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import LineOptions
-from ..multigrid.policy import RobustnessPolicy
 from ..multigrid.result import EHLResult
 from .features import Feature, Smooth, feature_speed
 from .hierarchy import TransientLineHierarchy
 from .result import TransientResult
-from .stepping import SCHEMES, march, require_steady_start, start, time_steps
+from .stepping import SCHEMES, Stepper, march, require_steady_start, start, time_steps
 
 #: Default numerics of a time step: FFT deformation (exact), a tighter residual than the
 #: steady default so the algebraic error of a step stays below its time error.
@@ -133,22 +131,21 @@ def default_end_time(problem: LineProblem, feature: Feature, speed: float) -> fl
     return span + 3.0 * period
 
 
-class _LineStepper:
-    """The line contact's side of the time loop (:class:`~.stepping.Stepper`)."""
+class _LineStepper(Stepper):
+    """The line contact's side of the time loop."""
 
     name = "line"
     hint = HINT
+    policy = LINE_POLICY
+    settings = staticmethod(line_settings)
 
-    def __init__(self, hz: TransientLineHierarchy, problem: LineProblem, opts: LineOptions) -> None:
-        self.hz, self.problem, self.opts = hz, problem, opts
-        self.grid_text = f"{hz.fine.n} points"
+    @property
+    def grid_text(self) -> str:
+        return f"{self.hz.fine.n} points"
 
     @property
     def H0(self) -> float:
         return self.hz.fine.H0
-
-    def unknowns(self) -> tuple[np.ndarray, float]:
-        return self.hz.fine.P.copy(), self.hz.fine.H0
 
     def set_unknowns(self, P: np.ndarray, H0: float) -> None:
         self.hz.fine.P, self.hz.fine.H0 = P, H0
@@ -156,11 +153,6 @@ class _LineStepper:
     def film(self) -> tuple[np.ndarray, np.ndarray]:
         st = self.hz.fine.state()
         return st.H, st.rho * st.H
-
-    def solve_step(self) -> EHLResult:
-        solver = MultilevelSolver(self.hz, self.opts, line_settings(self.problem, self.opts),
-                                  RobustnessPolicy(LINE_POLICY, self.opts.adapt), HINT)
-        return solver.solve()
 
     def accept_stalled(self, res: EHLResult, accept_stall: float) -> bool:
         # the cycles stalled (the residual stopped falling) below accept_stall

@@ -15,11 +15,13 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 
 from ..model.errors import ConvergenceError, InputError, require_range
+from ..multigrid.driver import MultilevelSolver
+from ..multigrid.policy import RobustnessPolicy
 from ..multigrid.result import EHLResult
 from .features import require_in
 
@@ -31,35 +33,51 @@ MAX_STEP_FRACTION = 0.25
 MAX_STEPS = 200_000
 
 
-class Stepper(Protocol):
-    """What the time loop needs of a contact: ``name`` (``"line"``, ``"point"``) for messages,
-    ``hz`` (the hierarchy of one step: ``fine``, ``set_step``, ``solver``), ``hint`` (the
-    :class:`ConvergenceError` hint of the steady start), ``grid_text`` (the finest grid, for
-    messages), and the methods below."""
+class Stepper:
+    """The contact's side of the time loop: the hierarchy ``hz`` of one step (``fine``,
+    ``set_step``, ``solver``), solved by the shared driver with the contact's ``settings``,
+    robustness ``policy`` and ``hint``; ``name`` (``"line"``, ``"point"``) and ``grid_text``
+    (the finest grid) for messages. Subclasses give the film constant, the film and the rule
+    that accepts a stalled step."""
 
     name: str
-    hz: Any
     hint: str
-    grid_text: str
+    policy: Any
+    settings: Callable[[Any, Any], Any]
+
+    def __init__(self, hz: Any, problem: Any, opts: Any) -> None:
+        self.hz, self.problem, self.opts = hz, problem, opts
+
+    @property
+    def grid_text(self) -> str:
+        raise NotImplementedError
 
     @property
     def H0(self) -> float:
         """The finest grid's film constant (``H0`` line, ``H00`` point)."""
-
-    def unknowns(self) -> tuple[np.ndarray, float]:
-        """A copy of the finest grid's pressure and its film constant."""
+        raise NotImplementedError
 
     def set_unknowns(self, P: np.ndarray, H0: float) -> None:
         """Set the finest grid's pressure and film constant."""
+        raise NotImplementedError
 
     def film(self) -> tuple[np.ndarray, np.ndarray]:
         """``(H, rho H)`` of the finest grid's iterate."""
-
-    def solve_step(self) -> EHLResult:
-        """One FAS solve of the step set by ``hz.set_step``."""
+        raise NotImplementedError
 
     def accept_stalled(self, res: EHLResult, accept_stall: float) -> bool:
         """Whether an unsuccessful, finite step is accepted as stalled below ``accept_stall``."""
+        raise NotImplementedError
+
+    def unknowns(self) -> tuple[np.ndarray, float]:
+        """A copy of the finest grid's pressure and its film constant."""
+        return self.hz.fine.P.copy(), self.H0
+
+    def solve_step(self) -> EHLResult:
+        """One FAS solve of the step set by ``hz.set_step``."""
+        solver = MultilevelSolver(self.hz, self.opts, type(self).settings(self.problem, self.opts),
+                                  RobustnessPolicy(self.policy, self.opts.adapt), self.hint)
+        return solver.solve()
 
 
 def step_coefficients(scheme: str, n: int, dt: float, q1: np.ndarray,
