@@ -7,6 +7,7 @@ is on ``sys.path`` and they import it as ``common``."""
 
 from __future__ import annotations
 
+import argparse
 import json
 import math
 from collections.abc import Callable, Sequence
@@ -71,3 +72,44 @@ def plot_startup(path: Path, T: np.ndarray, err: np.ndarray, time_label: str, ti
     ax.grid(True, which=which, alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
+
+
+def amplitude_figure(curve_label: str, **style: Any) -> tuple[Any, Any]:
+    """``(fig, ax)`` of an Ad/Ai-against-nabla figure holding the recalled curve."""
+    fig, ax = plt.subplots(figsize=(6, 4))
+    nb = np.linspace(0.1, 25, 300)
+    ax.plot(nb, amplitude_curve(nb), "k-", label=curve_label, **style)
+    return fig, ax
+
+
+def finish_amplitude_figure(fig: Any, ax: Any, path: Path, length: str, centre: str, title: str,
+                            legend_size: int = 8) -> None:
+    """Axes of an Ad/Ai figure (``length``: the unit of lambda; ``centre``: where Ad is read),
+    then :func:`finish_figure`."""
+    ax.set_xlabel(f"nabla = (lambda/{length}) M^(3/4) / L^(1/2)")
+    ax.set_ylabel(f"Ad / Ai (film amplitude at {centre})")
+    ax.set_xscale("log")
+    ax.set_title(title)
+    finish_figure(fig, ax, path, legend_size)
+
+
+def finish_figure(fig: Any, ax: Any, path: Path, legend_size: int = 8) -> None:
+    """Legend, grid on major and minor ticks, tight layout, PNG at 120 dpi."""
+    ax.legend(fontsize=legend_size)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
+def main(doc: str, parts: dict[str, Callable[[bool], None]], study: Any) -> None:
+    """Command line of a study: ``--part`` (repeatable) runs those parts; ``--quick`` a smaller
+    set, written below ``out/quick/`` (the study module's ``OUT`` is redirected there, so the
+    measured full runs are never overwritten)."""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
+    ap.add_argument("--part", choices=sorted(parts), action="append", required=True)
+    ap.add_argument("--quick", action="store_true")
+    args = ap.parse_args()
+    if args.quick:
+        study.OUT = study.OUT / "quick"
+    for p in args.part:
+        parts[p](args.quick)

@@ -13,9 +13,9 @@ X in [-4.5, 1.5] (Venner & Lubrecht's box) unless stated.
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -23,16 +23,8 @@ import matplotlib
 import numpy as np
 
 matplotlib.use("Agg")
+import common  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
-from common import (  # noqa: E402
-    amplitude_curve,
-    log2_ratios,
-    nabla,
-    plot_startup,
-    previous_period_amplitude,
-    successive,
-    write_json,
-)
 
 from ehl_multigrid.line.problem import LineProblem  # noqa: E402
 from ehl_multigrid.line.solver import solve_line_problem  # noqa: E402
@@ -43,7 +35,7 @@ OUT = Path(__file__).resolve().parent / "out"
 
 
 def save(name: str, data: dict) -> None:
-    write_json(OUT, name, data)
+    common.write_json(OUT, name, data)
     print(f"wrote out/{name}.json")
 
 
@@ -84,7 +76,7 @@ def part_steady(quick: bool) -> None:
     save("steady", {"zero_feature": rows, "startup": {"points": n, "M_start": M2, "Hc_target": target,
                                                       "relative_error_at": settle,
                                                       "T": res.T.tolist(), "Hc": res.Hc.tolist()}})
-    plot_startup(OUT / "steady_startup.png", res.T, err, "T = t u_m / b",
+    common.plot_startup(OUT / "steady_startup.png", res.T, err, "T = t u_m / b",
                  "Start-up from the steady film at 1.2 M (M = 20, L = 10, 257 points)", which="both")
 
 
@@ -106,10 +98,10 @@ def part_time(quick: bool) -> None:
             runs.append({"dt": dt, "Hc": res.Hc[::every], "H": res.snapshots[res.steps]["H"],
                          "wall_s": time.perf_counter() - t0})
             print(scheme, dt, res.Hc[-1], runs[-1]["wall_s"])
-        d_series = successive(runs, lambda a, b: np.max(np.abs(a["Hc"] - b["Hc"])))
-        d_film = successive(runs, lambda a, b: np.mean(np.abs(a["H"] - b["H"])))
+        d_series = common.successive(runs, lambda a, b: np.max(np.abs(a["Hc"] - b["Hc"])))
+        d_film = common.successive(runs, lambda a, b: np.mean(np.abs(a["H"] - b["H"])))
         out[scheme] = {"dt": list(dts), "max_dHc_series": d_series, "mean_dH_final": d_film,
-                       "order_Hc_series": log2_ratios(d_series), "order_H_final": log2_ratios(d_film),
+                       "order_Hc_series": common.log2_ratios(d_series), "order_H_final": common.log2_ratios(d_film),
                        "T": (np.arange(len(runs[-1]["Hc"])) * dts[0]).tolist(),
                        "Hc_finest": runs[-1]["Hc"].tolist()}
         print(scheme, out[scheme]["order_Hc_series"], out[scheme]["order_H_final"])
@@ -122,10 +114,7 @@ def part_time(quick: bool) -> None:
     ax.loglog(ref, out["euler"]["max_dHc_series"][0] * (ref / ref[0]), "k-.", label="slope 1")
     ax.set_xlabel("dT")
     ax.set_ylabel("successive difference of Hc(T), T in [0, 3]")
-    ax.legend(fontsize=8)
-    ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(OUT / "time_convergence.png", dpi=120)
+    common.finish_figure(fig, ax, OUT / "time_convergence.png")
 
 
 # -- grid refinement -----------------------------------------------------------------------
@@ -143,15 +132,15 @@ def part_grid(quick: bool) -> None:
         runs.append({"points": n, "Hc": res.Hc, "Hm": res.Hm, "H": res.snapshots[res.steps]["H"][:: (n - 1) // 128],
                      "wall_s": time.perf_counter() - t0, "Hc_steady": res.steady.Hc_venner})
         print(n, res.Hc[-1], res.Hm[-1], runs[-1]["wall_s"])
-    d_Hc = successive(runs, lambda a, b: np.max(np.abs(a["Hc"] - b["Hc"])))
-    d_Hm = successive(runs, lambda a, b: np.max(np.abs(a["Hm"] - b["Hm"])))
-    d_H = successive(runs, lambda a, b: np.mean(np.abs(a["H"] - b["H"])))
+    d_Hc = common.successive(runs, lambda a, b: np.max(np.abs(a["Hc"] - b["Hc"])))
+    d_Hm = common.successive(runs, lambda a, b: np.max(np.abs(a["Hm"] - b["Hm"])))
+    d_H = common.successive(runs, lambda a, b: np.mean(np.abs(a["H"] - b["H"])))
     data = {"M": 20, "L": 10, "feature": feat.describe(), "dt": dt, "T_end": T_end, "points": list(grids),
             "Hc_final": [float(r["Hc"][-1]) for r in runs], "Hm_final": [float(r["Hm"][-1]) for r in runs],
             "Hc_steady": [r["Hc_steady"] for r in runs],
             "max_dHc_series": d_Hc, "max_dHm_series": d_Hm, "mean_dH_final_on_129": d_H,
-            "order_Hc_series": log2_ratios(d_Hc), "order_Hm_series": log2_ratios(d_Hm),
-            "order_H_final": log2_ratios(d_H),
+            "order_Hc_series": common.log2_ratios(d_Hc), "order_Hm_series": common.log2_ratios(d_Hm),
+            "order_H_final": common.log2_ratios(d_H),
             "wall_s": [r["wall_s"] for r in runs]}
     print(data["order_Hc_series"], data["order_Hm_series"], data["order_H_final"])
     save("grid", data)
@@ -202,32 +191,24 @@ def part_waviness(quick: bool) -> None:
         res = solve_transient_line(problem(M, L, xmin), Waviness(Ai, lam), points=n, snapshot_every=10**5)
         s = res.summary()
         row = {"M": M, "L": L, "wavelength": lam, "xmin": xmin, "points": n, "Ai": Ai,
-               "nabla": nabla(lam, M, L), "Ad_over_Ai": s["Ad_over_Ai"],
-               "Ad_over_Ai_previous_period": previous_period_amplitude(res, lam) / Ai,
-               "curve": float(amplitude_curve(np.array(nabla(lam, M, L)))),
+               "nabla": common.nabla(lam, M, L), "Ad_over_Ai": s["Ad_over_Ai"],
+               "Ad_over_Ai_previous_period": common.previous_period_amplitude(res, lam) / Ai,
+               "curve": float(common.amplitude_curve(np.array(common.nabla(lam, M, L)))),
                "Hc_steady": s["Hc_steady"], "steps": s["steps"], "dt": s["dt"],
                "cycles_mean": s["cycles_mean"], "wall_s": time.perf_counter() - t0}
         print(row)
         rows.append(row)
         save("waviness", {"rows": rows})
     save("waviness", {"rows": rows})
-    fig, ax = plt.subplots(figsize=(6, 4))
-    nb = np.linspace(0.1, 25, 300)
-    ax.plot(nb, amplitude_curve(nb), "k-", label="1/(1 + 0.15 nabla + 0.015 nabla^2)")
+    fig, ax = common.amplitude_figure("1/(1 + 0.15 nabla + 0.015 nabla^2)")
     for (M, L), mk in zip(WAVINESS_CASES, ("o", "s", "^"), strict=False):
         sel = [r for r in rows if r["M"] == M and r["L"] == L and r["xmin"] == -4.5]
         ax.plot([r["nabla"] for r in sel], [r["Ad_over_Ai"] for r in sel], mk, label=f"M = {M:g}, L = {L:g}")
     sel = [r for r in rows if r["xmin"] != -4.5]
     if sel:
         ax.plot([r["nabla"] for r in sel], [r["Ad_over_Ai"] for r in sel], "x", ms=9, label="inlet at X = -10")
-    ax.set_xlabel("nabla = (lambda/b) M^(3/4) / L^(1/2)")
-    ax.set_ylabel("Ad / Ai (film amplitude at X = 0)")
-    ax.set_xscale("log")
-    ax.set_title("Waviness on one surface, pure rolling")
-    ax.legend(fontsize=8)
-    ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(OUT / "waviness_amplitude.png", dpi=120)
+    common.finish_amplitude_figure(fig, ax, OUT / "waviness_amplitude.png", "b", "X = 0",
+                            "Waviness on one surface, pure rolling")
 
 
 # -- bump and dent passing -----------------------------------------------------------------
@@ -317,11 +298,4 @@ PARTS = {"steady": part_steady, "time": part_time, "grid": part_grid, "waviness"
          "bump": part_bump, "cost": part_cost}
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--part", choices=sorted(PARTS), action="append", required=True)
-    ap.add_argument("--quick", action="store_true")
-    a = ap.parse_args()
-    if a.quick:  # never overwrite the measured full runs
-        OUT = OUT / "quick"
-    for p in a.part:
-        PARTS[p](a.quick)
+    common.main(__doc__, PARTS, sys.modules[__name__])

@@ -14,9 +14,9 @@ X in [-4.5, 1.5], |Y| <= 3 (the core's default box) unless stated.
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -24,16 +24,8 @@ import matplotlib
 import numpy as np
 
 matplotlib.use("Agg")
+import common  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
-from common import (  # noqa: E402
-    amplitude_curve,
-    log2_ratios,
-    nabla,
-    plot_startup,
-    previous_period_amplitude,
-    successive,
-    write_json,
-)
 
 from ehl_multigrid.model.fits import nijenbanning_central  # noqa: E402
 from ehl_multigrid.point.problem import problem_from_moes, problem_from_scene  # noqa: E402
@@ -50,7 +42,7 @@ OUT = Path(__file__).resolve().parent / "out"
 
 
 def save(name: str, data: dict) -> None:
-    write_json(OUT, name, data)
+    common.write_json(OUT, name, data)
     print(f"wrote {OUT / name}.json")
 
 
@@ -85,7 +77,7 @@ def part_steady(quick: bool) -> None:
                "alpha_bar_start": other.alpha_bar, "alpha_bar": pb.alpha_bar}
     print({k: startup["rel_dHc"][k] for k in (0, 10, 20, 40, 60, 80)})
     save("point_steady", {"zero_feature": rows, "startup": startup})
-    plot_startup(OUT / "point_steady_startup.png", res.T, err, "T = t u_m / a",
+    common.plot_startup(OUT / "point_steady_startup.png", res.T, err, "T = t u_m / a",
                  f"Point start-up from M' = 1.2 M (M = 20, L = 10, {n}^2)")
 
 
@@ -101,10 +93,10 @@ def part_time(quick: bool) -> None:
                                   tol_load=1e-10, snapshot_every=100000)
         runs.append(r)
         print(dt, r.summary()["cycles_mean"])
-    dhc = successive(runs, lambda a, b: np.max(np.abs(a.Hc - b.Hc[::2])))
-    dfield = successive(runs, lambda a, b: np.mean(np.abs(a.snapshots[a.steps]["H"] - b.snapshots[b.steps]["H"])))
-    o_hc = log2_ratios(dhc)
-    o_f = log2_ratios(dfield)
+    dhc = common.successive(runs, lambda a, b: np.max(np.abs(a.Hc - b.Hc[::2])))
+    dfield = common.successive(runs, lambda a, b: np.mean(np.abs(a.snapshots[a.steps]["H"] - b.snapshots[b.steps]["H"])))
+    o_hc = common.log2_ratios(dhc)
+    o_f = common.log2_ratios(dfield)
     data = {"points": n, "dt": list(dts), "max_dHc_successive": dhc, "order_Hc": o_hc,
             "mean_dH_final_successive": dfield, "order_H_final": o_f,
             "cycles_mean": [r.summary()["cycles_mean"] for r in runs]}
@@ -137,17 +129,15 @@ def part_waviness(quick: bool) -> None:
         res = solve_transient_point(pb, Waviness2D(Ai, lam), points=n, t_end=6.0 + 2.0 * lam,
                                     snapshot_every=100000)
         s = res.summary()
-        row = {"M": M, "L": L, "wavelength": lam, "points": n, "Ai": Ai, "nabla": nabla(lam, M, L),
-               "Ad_over_Ai": s["Ad_over_Ai"], "Ad_over_Ai_previous_period": previous_period_amplitude(res, res.feature.wavelength_x) / Ai,
-               "recalled_line_curve": float(amplitude_curve(np.array(nabla(lam, M, L)))),
+        row = {"M": M, "L": L, "wavelength": lam, "points": n, "Ai": Ai, "nabla": common.nabla(lam, M, L),
+               "Ad_over_Ai": s["Ad_over_Ai"], "Ad_over_Ai_previous_period": common.previous_period_amplitude(res, res.feature.wavelength_x) / Ai,
+               "recalled_line_curve": float(common.amplitude_curve(np.array(common.nabla(lam, M, L)))),
                "Hc_steady": s["Hc_steady"], "steps": s["steps"], "dt": s["dt"],
                "cycles_mean": s["cycles_mean"], "wall_s": time.perf_counter() - t0}
         print(row)
         rows.append(row)
         save(name, {"rows": rows})
-    fig, ax = plt.subplots(figsize=(6, 4))
-    nb = np.linspace(0.1, 25, 300)
-    ax.plot(nb, amplitude_curve(nb), "k-", lw=0.8, label="recalled line fit 1/(1+0.15n+0.015n^2)")
+    fig, ax = common.amplitude_figure("recalled line fit 1/(1+0.15n+0.015n^2)", lw=0.8)
     line = OUT / "waviness.json"
     if line.exists():
         lr = [r for r in json.loads(line.read_text())["rows"] if r["xmin"] == -4.5]
@@ -161,14 +151,8 @@ def part_waviness(quick: bool) -> None:
     sel = [r for r in rows if r["points"] == 257]
     if sel:
         ax.plot([r["nabla"] for r in sel], [r["Ad_over_Ai"] for r in sel], "x", ms=9, label="257^2")
-    ax.set_xlabel("nabla = (lambda/a) M^(3/4) / L^(1/2)")
-    ax.set_ylabel("Ad / Ai (film amplitude at X = Y = 0)")
-    ax.set_xscale("log")
-    ax.set_title("Transverse waviness on one surface, pure rolling")
-    ax.legend(fontsize=7)
-    ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(OUT / f"{name}_amplitude.png", dpi=120)
+    common.finish_amplitude_figure(fig, ax, OUT / f"{name}_amplitude.png", "a", "X = Y = 0",
+                            "Transverse waviness on one surface, pure rolling", legend_size=7)
 
 
 # -- dent passing --------------------------------------------------------------------------
@@ -360,11 +344,4 @@ PARTS = {"steady": part_steady, "time": part_time, "waviness": part_waviness, "d
          "cost": part_cost, "rough": part_rough}
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--part", choices=sorted(PARTS), action="append", required=True)
-    ap.add_argument("--quick", action="store_true")
-    args = ap.parse_args()
-    if args.quick:
-        OUT = OUT / "quick"
-    for p in args.part:
-        PARTS[p](args.quick)
+    common.main(__doc__, PARTS, sys.modules[__name__])
