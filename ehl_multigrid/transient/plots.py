@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
@@ -36,8 +38,7 @@ def series_figure(res: TransientResult, path: str | Path, hc_label: str, hc_stea
 
 def plot_snapshots(res: TransientResult, path: str | Path, count: int = 6) -> Path:
     """Film and pressure at up to ``count`` kept steps spread over the run."""
-    steps = sorted(res.snapshots)
-    pick = [steps[int(i)] for i in np.linspace(0, len(steps) - 1, min(count, len(steps)))]
+    pick = spread_steps(res, count)
     fig = Figure(figsize=(7, 6), layout="constrained")
     ax = fig.subplots(2, 1, sharex=True)
     T = res.T
@@ -58,8 +59,6 @@ def plot_snapshots(res: TransientResult, path: str | Path, count: int = 6) -> Pa
 
 def animate(res: TransientResult, path: str | Path, fps: int = 15) -> Path:
     """GIF of H and P over the kept steps (matplotlib's Pillow writer)."""
-    from matplotlib.animation import FuncAnimation, PillowWriter
-
     steps = sorted(res.snapshots)
     fig = Figure(figsize=(6, 5))
     ax = fig.subplots(2, 1, sharex=True)
@@ -76,6 +75,20 @@ def animate(res: TransientResult, path: str | Path, fps: int = 15) -> Path:
         lp.set_ydata(res.snapshots[n]["P"])
         title.set_text(f"T = {res.T[n]:.3f}")
         return lh, lp, title
+
+    return save_animation(fig, frame, steps, path, fps)
+
+
+def spread_steps(res: TransientResult, count: int) -> list[int]:
+    """Up to ``count`` kept steps spread evenly over the run (first and last included)."""
+    steps = sorted(res.snapshots)
+    return [steps[int(i)] for i in np.linspace(0, len(steps) - 1, min(count, len(steps)))]
+
+
+def save_animation(fig: Figure, frame: Callable[[int], Any], steps: list[int], path: str | Path,
+                   fps: int) -> Path:
+    """GIF of ``frame(step)`` over ``steps`` (matplotlib's Pillow writer)."""
+    from matplotlib.animation import FuncAnimation, PillowWriter
 
     anim = FuncAnimation(fig, frame, frames=steps, blit=False)
     anim.save(str(path), writer=PillowWriter(fps=fps))

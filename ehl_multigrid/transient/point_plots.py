@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from .plots import series_figure
+from .plots import save_animation, series_figure, spread_steps
 from .point_solve import PointTransientResult
 
 
@@ -36,8 +36,7 @@ def _film_map(ax: Any, res: PointTransientResult, snap: dict[str, np.ndarray], h
 def plot_point_snapshots(res: PointTransientResult, path: str | Path, count: int = 4) -> Path:
     """Film maps at up to ``count`` kept steps (top) and the film and pressure on the row
     through the feature (bottom)."""
-    steps = sorted(res.snapshots)
-    pick = [steps[int(i)] for i in np.linspace(0, len(steps) - 1, min(count, len(steps)))]
+    pick = spread_steps(res, count)
     fig = Figure(figsize=(3 * len(pick), 7), layout="constrained")
     axes = fig.subplots(2, len(pick), squeeze=False)
     j = _centre_row(res)
@@ -64,8 +63,6 @@ def plot_point_snapshots(res: PointTransientResult, path: str | Path, count: int
 
 def animate_point(res: PointTransientResult, path: str | Path, fps: int = 12) -> Path:
     """GIF of the film map with pressure contours over the kept steps (Pillow writer)."""
-    from matplotlib.animation import FuncAnimation, PillowWriter
-
     steps = sorted(res.snapshots)
     fig = Figure(figsize=(5, 4.5))
     ax = fig.subplots()
@@ -77,6 +74,4 @@ def animate_point(res: PointTransientResult, path: str | Path, fps: int = 12) ->
         ax.set_title(f"H (0 .. {hi:.3g}), T = {res.T[n]:.3f}", fontsize=9)
         return []
 
-    anim = FuncAnimation(fig, frame, frames=steps, blit=False)
-    anim.save(str(path), writer=PillowWriter(fps=fps))
-    return Path(path)
+    return save_animation(fig, frame, steps, path, fps)
