@@ -9,34 +9,38 @@ lubrication layer), :func:`film_frictions` (many such points at once) and
 a thread pool).
 """
 
+import importlib
 import warnings
 
-from .film import FilmFriction, film_friction, film_frictions
-from .line import _RENAMED, Surroundings, ThermalLineSolution, solve_thermal_line
-from .options import ThermalOptions
-from .parallel import LineJob, solve_thermal_lines
-from .profiles import (
-    LineProfile,
-    hertz_profile,
-    hertz_slices,
-    profile_from_arrays,
-    profiles_from_result,
-)
-from .traction import TractionPoint, solve_traction, traction_curve, traction_result
+#: public name -> submodule; loaded on first use so that the command line (which registers the
+#: thermal subcommands at every start of ``ehl``) does not import the kernels
+_LAZY = {
+    "FilmFriction": "film", "film_friction": "film", "film_frictions": "film",
+    "Surroundings": "line", "ThermalLineSolution": "line", "solve_thermal_line": "line",
+    "ThermalOptions": "options", "LineJob": "parallel", "solve_thermal_lines": "parallel",
+    "LineProfile": "profiles", "hertz_profile": "profiles", "hertz_slices": "profiles",
+    "profile_from_arrays": "profiles", "profiles_from_result": "profiles",
+    "TractionPoint": "traction", "solve_traction": "traction", "traction_curve": "traction",
+    "traction_result": "traction",
+}
+#: names of the previous release (thermal.solve_line, thermal.LineSolution)
+_RENAMED = {"solve_line": "solve_thermal_line", "LineSolution": "ThermalLineSolution"}
 
-__all__ = [
-    "FilmFriction", "film_friction", "film_frictions", "ThermalLineSolution", "Surroundings", "solve_thermal_line",
-    "LineJob", "solve_thermal_lines", "ThermalOptions",
-    "LineProfile", "hertz_profile", "hertz_slices", "profile_from_arrays", "profiles_from_result",
-    "TractionPoint", "solve_traction", "traction_curve", "traction_result",
-]
+__all__ = list(_LAZY)
 
 
 def __getattr__(name: str):
-    # thermal.solve_line / thermal.LineSolution of the previous release
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
     if name in _RENAMED:
         new = _RENAMED[name]
         warnings.warn(f"thermal.{name} is deprecated: use thermal.{new} (the old name will be "
                       "removed in the next release)", DeprecationWarning, stacklevel=2)
-        return globals()[new]
+        return __getattr__(new)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

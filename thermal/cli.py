@@ -14,7 +14,6 @@ from ehl_multigrid.model.scene import load_scene
 
 from .options import SLICE_PRESSURES, SLICE_RULES, SURFACE_KERNELS, ThermalOptions
 from .slips import parse_slips
-from .traction import default_slips, save_partial, traction_curve, traction_result
 
 #: Grid limits of the command line: far beyond the thesis grid (80 x 20, 10 slices) and the
 #: reference fidelity (160 x 40), short of grids that run for many minutes (the surface
@@ -65,6 +64,8 @@ def register(subparsers: Any) -> None:
 
 
 def run_traction(args: argparse.Namespace) -> dict[str, Any]:
+    from .traction import default_slips, save_partial, traction_curve, traction_result
+
     scene = load_scene(args.scene)
     if args.coupled:
         from .tehl.cli import run_tehl

@@ -6,20 +6,28 @@ Main entry points: :func:`solve_tehl_line` (line contacts), :func:`tehl_traction
 :func:`solve_tehl_point` (point contacts).
 """
 
-from .coefficients import film_factors, flux_integrals
-from .hierarchy import FactorLevel, FactorLineHierarchy
-from .line import (
-    TEHLLineResult,
-    TEHLOptions,
-    estimate_error,
-    isothermal_start,
-    solve_tehl_line,
-    tehl_traction_curve,
-)
-from .point import TEHLPointResult, solve_tehl_point
+import importlib
 
-__all__ = [
-    "film_factors", "flux_integrals", "FactorLevel", "FactorLineHierarchy", "TEHLLineResult",
-    "TEHLOptions", "isothermal_start", "solve_tehl_line", "tehl_traction_curve", "TEHLPointResult",
-    "solve_tehl_point", "estimate_error",
-]
+#: public name -> submodule, loaded on first use (the command line registers 'ehl tehl' at every
+#: start of 'ehl' and must not import the solver)
+_LAZY = {
+    "film_factors": "coefficients", "flux_integrals": "coefficients",
+    "FactorLevel": "hierarchy", "FactorLineHierarchy": "hierarchy",
+    "TEHLLineResult": "line", "TEHLOptions": "line", "estimate_error": "line",
+    "isothermal_start": "line", "solve_tehl_line": "line", "tehl_traction_curve": "line",
+    "TEHLPointResult": "point", "solve_tehl_point": "point",
+}
+
+__all__ = list(_LAZY)
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

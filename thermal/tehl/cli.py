@@ -13,7 +13,6 @@ from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.scene import Scene, load_scene
 
 from ..slips import parse_slips
-from .line import TEHLLineResult, TEHLOptions, solve_tehl_line, tehl_traction_curve
 
 
 def thermal_properties(scene: Scene) -> dict[str, float]:
@@ -21,7 +20,7 @@ def thermal_properties(scene: Scene) -> dict[str, float]:
     return scene.thermal_properties()
 
 
-def solve_payload(r: TEHLLineResult) -> dict[str, Any]:
+def solve_payload(r: Any) -> dict[str, Any]:
     """The ``--json`` keys of a thermal solve (``Hc``, ``Hm``, ``Hc_isothermal``, ``friction``,
     ``T_max``, ``heat_balance_error`` and the rest of :meth:`TEHLLineResult.summary`)."""
     out = r.summary()
@@ -51,6 +50,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
+    from .line import TEHLOptions, solve_tehl_line, tehl_traction_curve
+
     scene = load_scene(args.scene)
     if scene.kind != "line":
         raise InputError(f"scene {scene.name!r} is a {scene.kind} contact; 'ehl tehl' solves line contacts")
@@ -81,6 +82,7 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
     """``ehl solve SCENE --thermal``: one TEHL solve (line or point) at ``args.slip`` (default the
     scene's), ``args.points`` (default 513 line, 257 point) and ``args.nz`` (default 20); returns
     the payload of :func:`solve_payload` (printed as JSON by ``--json``)."""
+    from .line import TEHLOptions, solve_tehl_line
     from .point import solve_tehl_point
 
     point = scene.kind != "line"
