@@ -258,7 +258,7 @@ def solve_transient_point(
         out.Hc_steady = float(steady.H[jc, ic])
         out.Hm_steady = float(np.min(steady.H[zone]))
         hz.h00_step_max = 0.1 * max(out.Hc_steady, 1e-6)
-        start(stepper, out, steady.P, steady.H0, initial, feature.kind != "smooth", t0)
+        start(stepper, out, steady.P.copy(), steady.H0, initial, feature.kind != "smooth", t0)
         march(stepper, out, speed=speed, dt=dt, steps=steps, scheme=scheme,
               snapshot_every=snapshot_every, accept_stall=accept_stall,
               on_film_collapse=on_film_collapse, callback=callback, t0=t0)

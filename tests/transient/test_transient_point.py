@@ -118,3 +118,15 @@ def test_point_series_round_trip_through_hdf5(problem, tmp_path):
     assert back["snapshots"]["H"].shape == (3, res.Y.size, res.X.size)
     assert np.allclose(back["series"]["Hc"], res.Hc)
     assert back["summary"]["contact"] == "point"
+
+
+def test_a_run_leaves_the_steady_reference_unchanged(problem):
+    # the pressure fluctuation is measured against the steady solution: the time loop must work
+    # on a copy (an alias overwrote it, so dP(0) read 0 with the dent already in the contact)
+    from ehl_multigrid.point import solve_point
+
+    dent = Dent2D(-0.2, 0.6, x0=-0.5)
+    res = solve_transient_point(problem, dent, dt=0.05, steps=2, points=65, snapshot_every=2)
+    steady = solve_point(20, 10, points=65, estimate=False, tol=res.steady.tolerances["residual"])
+    assert np.array_equal(res.steady.P, steady.P)
+    assert res.dP[0] > 0.01
