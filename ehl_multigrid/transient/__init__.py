@@ -9,19 +9,36 @@ Public API: line -- :func:`solve_transient_line`, the features :class:`Waviness`
 semi-axis along the rolling direction), ``u_m = (u1 + u2)/2``.
 """
 
-from .accuracy import solve_with_time_error, time_error
-from .features import Bump, Profile, Smooth, Waviness, feature_from_table, feature_speed
-from .point_features import Dent2D, HeightMap, Smooth2D, Waviness2D, point_feature_from_table
-from .point_solve import (
-    PointTransientResult,
-    max_point_time_step,
-    point_mass_balance,
-    point_transient_options,
-    solve_transient_point,
-)
-from .result import TransientResult, load_series
-from .solve import solve_transient_line, transient_options
-from .stepping import max_time_step
+import importlib
+
+#: public name -> submodule, loaded on first use (the command line registers 'ehl transient' at
+#: every start of 'ehl' and must not import the solvers)
+_LAZY = {
+    "solve_with_time_error": "accuracy", "time_error": "accuracy",
+    "Bump": "features", "Profile": "features", "Smooth": "features", "Waviness": "features",
+    "feature_from_table": "features", "feature_speed": "features",
+    "Dent2D": "point_features", "HeightMap": "point_features", "Smooth2D": "point_features",
+    "Waviness2D": "point_features", "point_feature_from_table": "point_features",
+    "PointTransientResult": "point_solve", "max_point_time_step": "point_solve",
+    "point_mass_balance": "point_solve", "point_transient_options": "point_solve",
+    "solve_transient_point": "point_solve",
+    "TransientResult": "result", "load_series": "result",
+    "solve_transient_line": "solve", "transient_options": "solve",
+    "max_time_step": "stepping",
+}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
 
 __all__ = ["Bump", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth", "Smooth2D",
            "TransientResult", "Waviness", "Waviness2D", "feature_from_table", "feature_speed",

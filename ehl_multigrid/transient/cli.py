@@ -10,12 +10,9 @@ from collections.abc import Callable
 from typing import Any
 
 from ..app.console import add_common_options
-from ..line.problem import LineProblem
 from ..model.errors import InputError
 from ..model.paths import output_file, safe_stem, writable_dir
 from ..model.scene import load_scene
-from .scene_feature import feature_from_scene_table
-from .solve import solve_transient_line
 from .stepping import SCHEMES
 
 #: largest grid of the command line (a pass at 4097 points takes tens of minutes)
@@ -58,6 +55,10 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
     scene = load_scene(args.scene)
     if scene.kind != "line":
         return run_transient_point(args, scene)
+    from ..line.problem import LineProblem
+    from .scene_feature import feature_from_scene_table
+    from .solve import solve_transient_line
+
     args.points = DEFAULT_POINTS["line"] if args.points is None else args.points
     pb = LineProblem.from_scene(scene, xmin=args.xmin)
     feature, body = feature_from_scene_table(scene.feature, pb)
