@@ -115,13 +115,15 @@ class LineLevel:
         ab, rhs, jac = line_relaxation_system(
             self.P, st.H, st.rho, st.drho, st.eps, st.r, self.kernel, self.h, self.order,
             self.elastic, switch, band, self.frozen, switch_h)
-        delta = _solve_band(ab, rhs, band)
+        delta = solve_band(ab, rhs, band)
         damp = np.ones(self.n)
         self.P = distribute_changes(self.P, delta, jac, omega, omega_jd, damp, self.frozen)
         return st
 
 
-def _solve_band(ab: np.ndarray, rhs: np.ndarray, band: int) -> np.ndarray:
+def solve_band(ab: np.ndarray, rhs: np.ndarray, band: int) -> np.ndarray:
+    """Solve a collective line-relaxation system in LAPACK band storage (``band`` sub- and
+    super-diagonals); a singular system (a film collapsed to zero) falls back to point Jacobi."""
     try:
         return scipy.linalg.solve_banded((band, band), ab, rhs, check_finite=False)
     except (np.linalg.LinAlgError, ValueError):

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..line.discrete import fluid_state
-from ..line.level import LineLevel, State, _solve_band
+from ..line.level import LineLevel, State, solve_band
 from .discrete import (
     apply_changes,
     band_jacobian,
@@ -98,7 +98,7 @@ class StarvedLevel(LineLevel):
         for step in range(active_set_steps):
             ab, rhs, jac = line_system(AP, AT, st.r, self.P, self.theta, cav, self.frozen, st.eps,
                                        self.h, switch, switch_h, band)
-            delta = _solve_band(ab, rhs, band)
+            delta = solve_band(ab, rhs, band)
             cav_new, changed = regime_update(self.P, self.theta, delta, cav, self.frozen)
             if changed == 0 or (step == 0 and changed > ACTIVE_SET_MAX_SWITCH):
                 # far from the solution whole zones change regime: the projected sweep

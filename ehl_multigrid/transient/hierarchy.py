@@ -29,7 +29,7 @@ from ..line.discrete import (
     line_relaxation_system,
     reynolds_residual,
 )
-from ..line.level import LineLevel, State, _solve_band
+from ..line.level import LineLevel, State, solve_band
 from ..line.problem import LineProblem
 from ..line.solver import LineHierarchy
 from ..multigrid.driver import MultilevelSolver
@@ -78,7 +78,7 @@ class TransientLineLevel(LineLevel):
         if self.ct != 0.0:
             add_squeeze_band(ab, self.P, st.H, st.rho, st.drho, st.r, self.kernel, self.ct, band,
                              jac, self.frozen, True)
-        delta = _solve_band(ab, rhs, band)
+        delta = solve_band(ab, rhs, band)
         self.P = distribute_changes(self.P, delta, jac, omega, omega_jd, np.ones(self.n), self.frozen)
         return st
 
