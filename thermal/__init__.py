@@ -9,8 +9,9 @@ lubrication layer), :func:`film_frictions` (many such points at once) and
 a thread pool).
 """
 
-import importlib
 import warnings
+
+from ehl_multigrid.lazy import lazy_exports
 
 #: public name -> submodule; loaded on first use so that the command line (which registers the
 #: thermal subcommands at every start of ``ehl``) does not import the kernels
@@ -29,18 +30,13 @@ _RENAMED = {"solve_line": "solve_thermal_line", "LineSolution": "ThermalLineSolu
 __all__ = list(_LAZY)
 
 
+_load, __dir__ = lazy_exports(__name__, _LAZY, globals())
+
+
 def __getattr__(name: str):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
     if name in _RENAMED:
         new = _RENAMED[name]
         warnings.warn(f"thermal.{name} is deprecated: use thermal.{new} (the old name will be "
                       "removed in the next release)", DeprecationWarning, stacklevel=2)
-        return __getattr__(new)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+        return _load(new)
+    return _load(name)

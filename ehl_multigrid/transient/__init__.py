@@ -9,7 +9,7 @@ Public API: line -- :func:`solve_transient_line`, the features :class:`Waviness`
 semi-axis along the rolling direction), ``u_m = (u1 + u2)/2``.
 """
 
-import importlib
+from ..lazy import lazy_exports
 
 #: public name -> submodule, loaded on first use (the command line registers 'ehl transient' at
 #: every start of 'ehl' and must not import the solvers)
@@ -28,17 +28,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
-
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())
 
 __all__ = ["Bump", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth", "Smooth2D",
            "TransientResult", "Waviness", "Waviness2D", "feature_from_table", "feature_speed",

@@ -6,7 +6,7 @@ Main entry points: :func:`solve_tehl_line` (line contacts), :func:`tehl_traction
 :func:`solve_tehl_point` (point contacts).
 """
 
-import importlib
+from ehl_multigrid.lazy import lazy_exports
 
 #: public name -> submodule, loaded on first use (the command line registers 'ehl tehl' at every
 #: start of 'ehl' and must not import the solver)
@@ -21,13 +21,4 @@ _LAZY = {
 __all__ = list(_LAZY)
 
 
-def __getattr__(name: str):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())
