@@ -410,10 +410,20 @@ def part_compression() -> None:
     dump("compression", out)
 
 
+#: outer tolerances of the chapter 5 point solves (see part_chapter5)
+CHAPTER5_TOLERANCES = {"tol_H": 5e-3, "tol_P": 5e-4, "tol_T": 0.1}
+
+
 # -- 8. chapter 5 point condition ------------------------------------------------------------------
 def part_chapter5() -> None:
     """Series D (disc 3, 1.93 GPa, 12 m/s, 80 degC, T9 with tau0 = 8 MPa): TEHL point at 513
-    points against the thermal layer on the isothermal film, at the series' slip 0.05 and 0.5."""
+    points against the thermal layer on the isothermal film, at the series' slip 0.05 and 0.5.
+
+    The outer tolerances are loosened to the noise floor of the point multilevel solve at this
+    M = 1595 (chapter5_settings.py, out/chapter5_settings.log: the core's own isothermal solve
+    stalls at residual 3.6e-5 with Hm jittering by 0.2 % from cycle to cycle; with the default
+    tolerances the outer iteration reaches that floor in ~5 iterations and then cannot stop:
+    dP 0.5-4e-4, dHm up to 3e-3, max dT 0.01-0.1 K between iterations)."""
     from ehl_multigrid.multigrid.options import PointOptions
     from ehl_multigrid.point.problem import problem_from_scene
     from ehl_multigrid.point.solve import solve_fas
@@ -425,9 +435,9 @@ def part_chapter5() -> None:
     for S in (0.05, 0.5):
         t = time.perf_counter()
         try:
-            r = solve_tehl_point(sc, S, points=513)
+            r = solve_tehl_point(sc, S, points=513, **CHAPTER5_TOLERANCES)
             tp = solve_traction(sc, S, input="ehl", ehl=iso.to_result(sc), nx=80, nz=20, slices=10)
-            rec = {**r.summary(), "wall": time.perf_counter() - t, "mu_decoupled_thermal_layer": tp.coefficient,
+            rec = {**r.summary(), **CHAPTER5_TOLERANCES, "compressive_heating": TEHLOptions().compressive_heating, "wall": time.perf_counter() - t, "mu_decoupled_thermal_layer": tp.coefficient,
                    "T_max_decoupled": tp.max_temperature_rise + sc.T_oil, "balance": r.heat["balance"]}
         except Exception as exc:  # recorded, not hidden
             rec = {"slip": S, "error": str(exc).splitlines()[0], "wall": time.perf_counter() - t}
