@@ -80,7 +80,8 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
 
 def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
     """``ehl solve SCENE --thermal``: one TEHL solve (line or point) at ``args.slip`` (default the
-    scene's), ``args.points`` (default 513 line, 257 point) and ``args.nz`` (default 20); returns
+    scene's), ``args.points`` (default 513 line, 257 point), ``args.nz`` (default 20) and
+    ``args.compressive_heating`` (default True; the ``--no-compression`` flag); returns
     the payload of :func:`solve_payload` (printed as JSON by ``--json``)."""
     from .line import TEHLOptions, solve_tehl_line
     from .point import solve_tehl_point
@@ -89,7 +90,7 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
     points = getattr(args, "points", None) or (257 if point else 513)
     nz = getattr(args, "nz", None) or 20
     slip = getattr(args, "slip", None)
-    opts = TEHLOptions(points=points, nz=nz)
+    opts = TEHLOptions(points=points, nz=nz, compressive_heating=getattr(args, "compressive_heating", True))
     r = solve_tehl_point(scene, slip, opts) if point else solve_tehl_line(scene, slip, opts)
     payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),
                "outer": [dict(o) for o in r.outer], "properties": thermal_properties(scene)}
