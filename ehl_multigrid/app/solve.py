@@ -72,6 +72,9 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
                    help="slide-to-roll ratio S for --thermal (default: the scene's)")
     p.add_argument("--nz", type=int, default=None,
                    help="intervals across the film for --thermal (default 20)")
+    p.add_argument("--no-compression", dest="compressive_heating", action="store_false",
+                   help="--thermal: leave the compressive heating out of the film energy equation "
+                        "(the thesis's (3.5))")
     p.add_argument("--csv", action="store_true",
                    help="also write the centre-line profiles (P, H and, with a scene, p [Pa], h [m]) as CSV")
 
@@ -104,6 +107,8 @@ def run_solve(args: argparse.Namespace) -> dict:
     for flag in ("slip", "nz"):
         if getattr(args, flag, None) is not None:
             raise InputError(f"--{flag} applies to --thermal solves only")
+    if not getattr(args, "compressive_heating", True):
+        raise InputError("--no-compression applies to --thermal solves only")
     if contact == "line":
         from .line_cli import run_solve as run_contact
     else:
