@@ -106,6 +106,10 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
         folder.mkdir(parents=True, exist_ok=True)
         res = tehl_point_result(r) if point else tehl_line_result(r)
         payload["hdf5"] = str(res.save(output_file(folder, safe_stem(f"{scene.name}_tehl"), ".h5")))
+        if not getattr(args, "no_plots", False):
+            from .plots import plot_tehl
+
+            payload["png"] = [str(plot_tehl(res, output_file(folder, safe_stem(f"{scene.name}_tehl"), ".png")))]
     if not getattr(args, "json", False):
         print_table({k: v for k, v in payload.items() if k not in ("outer", "properties")})
     return payload
