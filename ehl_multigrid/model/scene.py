@@ -94,7 +94,8 @@ UNIT_KINDS: dict[str, dict[str, str]] = {
         "n": "inverse_area", "beta": "length", "fc": "dimensionless", "hardness": "pressure",
     },
     "supply": {"hoil": "length"},
-    "feature": {"amplitude": "length", "width": "length", "wavelength": "length"},
+    "feature": {"amplitude": "length", "width": "length", "wavelength": "length", "dx": "length",
+                "dy": "length"},
 }
 RANGE_KINDS = {"us": "speed", "slip": "dimensionless", "load": "force", "pmax": "pressure"}
 

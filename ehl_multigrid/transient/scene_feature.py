@@ -16,6 +16,12 @@ vector and the rolling direction; 0 transverse, 90 longitudinal) and ``y0`` (a d
 position in units of a); there ``x0`` is in units of the Hertz semi-axis ``a`` along the rolling
 direction and the film unit is ``a^2/Rx``.
 
+A measured or synthetic surface: ``kind = "map"`` with ``file`` (heights in metres, positive
+up: a ``.npy`` array or a text table; one row for a line contact, rows along Y for a point
+contact), ``dx`` (and ``dy`` for a point contact) the sample spacings [m], and optionally ``x0``
+(position of the first sample, default: the map just upstream of the contact, entering it) and
+``y0`` (point: default centred). A relative ``file`` is read from the working directory.
+
 Venner units: ``A = a R / b^2``, ``Lambda = lambda / b``, ``W = w / b`` with the reduced radius
 ``R`` and the Hertzian half-width ``b`` of the scene's operating point. The slide-to-roll ratio
 is the scene's ``slip`` (``S = (u1 - u2)/u_m``).
@@ -25,17 +31,64 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
+
 from ..line.problem import LineProblem
 from ..model.errors import InputError, reject_unknown_keys, require_choice, require_range
-from .features import Bump, Feature, Waviness
-from .point_features import Dent2D, PointFeature, Waviness2D
+from .features import Bump, Feature, Profile, Waviness
+from .point_features import Dent2D, HeightMap, PointFeature, Waviness2D
 
 KEYS = {"kind", "amplitude", "width", "wavelength", "x0", "shape", "body", "phase"}
 POINT_KEYS = KEYS | {"angle", "y0"}
+MAP_KEYS = {"kind", "file", "dx", "dy", "x0", "y0", "body"}
+
+
+def read_height_file(path: str, ndim: int) -> np.ndarray:
+    """Heights [m] of a ``.npy`` array or a text table (comma or white space separated) with
+    ``ndim`` dimensions (1: one row, a line-contact profile; 2: a map, rows along Y)."""
+    import os
+
+    if not isinstance(path, str) or not os.path.isfile(path):
+        raise InputError(f"feature.file = {path!r} is not a readable file (a .npy array or a text "
+                         f"table of heights in metres)")
+    try:
+        if path.endswith(".npy"):
+            z = np.load(path, allow_pickle=False)
+        else:
+            with open(path, encoding="utf-8") as f:
+                text = f.read().replace(",", " ")
+            z = np.loadtxt(text.splitlines(), ndmin=2)
+    except (OSError, ValueError) as exc:
+        raise InputError(f"feature.file = {path!r} could not be read as heights: "
+                         f"{str(exc).splitlines()[0]}") from None
+    z = np.asarray(z, dtype=float)
+    if ndim == 1:
+        z = np.squeeze(z)
+    if z.ndim != ndim:
+        raise InputError(f"feature.file = {path!r} holds an array of shape {z.shape}: a "
+                         f"{'line' if ndim == 1 else 'point'} contact needs {ndim} dimension(s)")
+    if not np.all(np.isfinite(z)):
+        raise InputError(f"feature.file = {path!r} has missing (NaN) or infinite heights: fill them first")
+    require_range("feature.file (max |height|)", float(np.max(np.abs(z))), 0.0, 1e-3, "m")
+    return z
+
+
+def _map_table(table: dict[str, Any], ndim: int) -> tuple[np.ndarray, float, float | None, int]:
+    reject_unknown_keys("feature", table, MAP_KEYS)
+    z = read_height_file(table.get("file"), ndim)
+    dx = require_range("feature.dx", table.get("dx"), 1e-9, 1e-2, "m")
+    dy = require_range("feature.dy", table.get("dy"), 1e-9, 1e-2, "m") if ndim == 2 else None
+    body = int(require_range("feature.body", table.get("body", 1), 1, 2, "-"))
+    return z, dx, dy, body
 
 
 def feature_from_scene_table(table: dict[str, Any] | None, problem: LineProblem) -> tuple[Feature, int]:
     """``(feature, body)`` from a ``[feature]`` table in metres (see module docstring)."""
+    if table and table.get("kind") == "map" and problem.physical:
+        z, dx, _, body = _map_table(table, 1)
+        X = np.arange(z.size) * (dx / problem.b)
+        x0 = float(table.get("x0", problem.xmin))  # the first sample at the inlet, entering
+        return Profile(x0 + X, z * problem.R / problem.b**2), body
     kind, body, amp, length = _read_table(table, KEYS, problem, "b", "R, b")
     scale = problem.R / problem.b**2
     if kind == "waviness":
@@ -48,6 +101,13 @@ def feature_from_scene_table(table: dict[str, Any] | None, problem: LineProblem)
 def point_feature_from_scene_table(table: dict[str, Any] | None, problem: Any) -> tuple[PointFeature, int]:
     """``(feature, body)`` of a point or elliptic scene from a ``[feature]`` table in metres
     (``problem`` a physical :class:`~ehl_multigrid.point.problem.PointProblem`)."""
+    if table and table.get("kind") == "map" and problem.physical:
+        z, dx, dy, body = _map_table(table, 2)
+        dxa, dya = dx / problem.a, dy / problem.a
+        ny, nx = z.shape
+        x0 = float(table.get("x0", -1.5 - (nx - 1) * dxa))
+        y0 = float(table.get("y0", -0.5 * (ny - 1) * dya))
+        return HeightMap(z * problem.Rx / problem.a**2, dxa, dya, x0, y0), body
     kind, body, amp, length = _read_table(table, POINT_KEYS, problem, "a", "Rx, a")
     scale = problem.Rx / problem.a**2
     if kind == "waviness":
@@ -69,7 +129,9 @@ def _read_table(table: dict[str, Any] | None, keys: set[str], problem: Any, unit
     reject_unknown_keys("feature", table, keys)
     if not problem.physical:
         raise InputError(f"a [feature] in metres needs a scene with known geometry ({geometry})")
-    kind = require_choice("feature.kind", table.get("kind"), ("waviness", "bump", "dent"))
+    kind = require_choice("feature.kind", table.get("kind"), ("waviness", "bump", "dent", "map"))
+    if kind == "map":
+        raise InputError("feature.kind = 'map' needs a scene with known geometry and the keys file, dx (and dy for a point contact)")
     body = int(require_range("feature.body", table.get("body", 1), 1, 2, "-"))
     amp = require_range("feature.amplitude", table.get("amplitude"), 0.0, 1e-3, "m")
     key = "wavelength" if kind == "waviness" else "width"
