@@ -307,7 +307,9 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
         "tehl", need, "thermal EHL advised (ehl solve SCENE --thermal)" if need else "isothermal film",
         red, tol, "-",
         f"thermal film reduction {red:.2g} by Gupta et al. (1992) at thermal loading {L_T:.3g} "
-        f"(us {u_red:.3g} m/s), slip {s_worst:g}; the coupled solver measured 35-70 % of it",
+        f"(us {u_red:.3g} m/s), slip {s_worst:g}; the coupled solver measured 35-70 % of it on "
+        f"the central film but more on the minimum film at high load and slip (Hm 0.75 of "
+        f"isothermal at 1.6 GPa, S = 1)",
     ))
 
     # 4. starvation

@@ -162,7 +162,9 @@ def gupta_thermal_factor(L: ArrayLike, S: ArrayLike, ph_over_E: float) -> ArrayL
     ``(1 - 13.2 (ph/E') L^0.42) / (1 + 0.213 (1 + 2.23 |S|^0.83) L^0.64)`` with the thermal
     loading ``L = beta eta0 um^2/k`` (:meth:`Scene.thermal_properties`), the slide-to-roll ratio
     ``S`` and ``ph/E'``. The package's coupled thermal EHL solver measured 35-70 % of this
-    reduction on line contacts (validation/tehl/REPORT.md), so it is a conservative flag."""
+    reduction of the central film on line contacts, but a larger reduction of the minimum film
+    at high load and slip (0.75 of isothermal at 1.6 GPa, S = 1, where this gives 0.94;
+    validation/tehl/REPORT.md): a flag for the central film, not a bound on the minimum film."""
     L = np.asarray(L, dtype=float)
     S = np.abs(np.asarray(S, dtype=float))
     if np.any(L < 0.0):
