@@ -94,6 +94,27 @@ def projected(r, P):
 
 
 @njit(cache=True)
+def add_wedge_band(A, i, k, c, H, rho, drho, K, h, elastic, wq):
+    """Subtract from row ``i`` of the band Jacobian ``A`` (``A[i, wq + d] = dL_i/dP_{i+d}``,
+    ``|d| <= wq``) the wedge term ``c q_k / h`` of ``q_k = rho_k H_k`` (``c`` its upwind weight,
+    times the film content where there is one): ``dq_k/dP_j = rho_k dH_k/dP_j + drho_k H_k
+    delta_kj`` with ``dH_k/dP_j = -K_|k-j|/pi``."""
+    n = H.shape[0]
+    inv_pi = 1.0 / np.pi
+    for d in range(-wq, wq + 1):
+        j = i + d
+        if j < 1 or j > n - 2:
+            continue
+        val = 0.0
+        if elastic:
+            dist = k - j if k >= j else j - k
+            val = -rho[k] * K[dist] * inv_pi
+        if j == k:
+            val += drho[k] * H[k]
+        A[i, wq + d] -= c * val / h
+
+
+@njit(cache=True)
 def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, threshold, q, frozen,
                            threshold_h=0.0):
     """Banded system of one collective (line) relaxation sweep.
@@ -124,7 +145,6 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
     # A[i, i + d] for |d| <= q + 1 (Jacobian of L with eps frozen)
     A = np.zeros((n, 2 * wq + 1))
     ih2 = 1.0 / (h * h)
-    inv_pi = 1.0 / np.pi
     for i in range(1, n - 1):
         ep = 0.5 * (eps[i] + eps[i + 1])
         em = 0.5 * (eps[i] + eps[i - 1])
@@ -136,19 +156,7 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
             c = c0 if mm == 0 else (c1 if mm == 1 else c2)
             if c == 0.0:
                 continue
-            k = i - mm
-            # d(rho H)_k/dP_j = rho_k dH_k/dP_j + drho_k H_k delta_kj ; dH_k/dP_j = -K_|k-j|/pi
-            for d in range(-wq, wq + 1):
-                j = i + d
-                if j < 1 or j > n - 2:
-                    continue
-                val = 0.0
-                if elastic:
-                    dist = k - j if k >= j else j - k
-                    val = -rho[k] * K[dist] * inv_pi
-                if j == k:
-                    val += drho[k] * H[k]
-                A[i, wq + d] -= c * val / h
+            add_wedge_band(A, i, i - mm, c, H, rho, drho, K, h, elastic, wq)
     jac = np.zeros(n, dtype=np.bool_)
     thr = max(threshold, threshold_h / h) if h < FINE_H else threshold
     for j in range(1, n - 1):

@@ -36,7 +36,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..line.discrete import FINE_H
+from ..line.discrete import FINE_H, add_wedge_band
 
 
 @njit(cache=True)
@@ -156,7 +156,6 @@ def band_jacobian(P, theta, q0_fixed, H, rho, drho, eps, K, h, order, elastic, b
     AP = np.zeros((n, 2 * wq + 1))
     AT = np.zeros((n, 3))
     ih2 = 1.0 / (h * h)
-    inv_pi = 1.0 / np.pi
     for i in range(1, n - 1):
         ep = 0.5 * (eps[i] + eps[i + 1])
         em = 0.5 * (eps[i] + eps[i - 1])
@@ -174,17 +173,7 @@ def band_jacobian(P, theta, q0_fixed, H, rho, drho, eps, K, h, order, elastic, b
             AT[i, mm] = -c * rho[k] * H[k] / h
             if k == 0 and q0_fixed:
                 continue
-            for d in range(-wq, wq + 1):
-                j = i + d
-                if j < 1 or j > n - 2:
-                    continue
-                val = 0.0
-                if elastic:
-                    dist = k - j if k >= j else j - k
-                    val = -rho[k] * K[dist] * inv_pi
-                if j == k:
-                    val += drho[k] * H[k]
-                AP[i, wq + d] -= c * theta[k] * val / h
+            add_wedge_band(AP, i, k, c * theta[k], H, rho, drho, K, h, elastic, wq)
     return AP, AT
 
 
