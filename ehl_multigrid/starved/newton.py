@@ -12,6 +12,7 @@ import numpy as np
 import scipy.linalg
 
 from ..line.discrete import fluid_state
+from ..multigrid.threads import serial_blas
 from .discrete import elrod_adams_residual, wedge_row
 from .level import StarvedLevel
 
@@ -95,7 +96,13 @@ def newton_solve(lv: StarvedLevel, max_iter: int = 80, tol: float = 1e-10) -> in
     backtracking line search on it always has a descent direction. ``theta`` never falls
     below a fifth of its previous value in one step (it stays positive).
 
-    Raises :class:`StarvedNewtonFailure` when the damped iteration stalls or breaks down."""
+    Raises :class:`StarvedNewtonFailure` when the damped iteration stalls or breaks down.
+    The dense factorisations run on one BLAS thread (as the flooded Newton's)."""
+    with serial_blas():
+        return _newton_solve(lv, max_iter, tol)
+
+
+def _newton_solve(lv: StarvedLevel, max_iter: int, tol: float) -> int:
     n = lv.n
     m = n - 2
     Kmat = scipy.linalg.toeplitz(lv.kernel) if lv.elastic else np.zeros((n, n))
