@@ -94,6 +94,8 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
     r = solve_tehl_point(scene, slip, opts) if point else solve_tehl_line(scene, slip, opts)
     payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),
                "outer": [dict(o) for o in r.outer], "properties": thermal_properties(scene)}
+    accuracy = getattr(args, "accuracy", None)
+    why = ""
     if not point:
         # the error budget along and across the film (two more solves, about one more in cost)
         from .line import estimate_error
@@ -102,17 +104,22 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
         payload.update({f"{k}_error": v["total"] for k, v in est.items() if k != "T_max"})
         payload["T_max_error_K"] = est["T_max"]["total"]
         payload["error_budget"] = est
-        accuracy = getattr(args, "accuracy", None)
-        worst = max(payload["Hc_error"], payload["Hm_error"])
-        if accuracy is not None:
-            payload["accuracy"] = accuracy
-            if payload["converged"] and not worst <= accuracy:
-                # as for 'ehl solve': converged means the estimate meets the target
-                payload["converged"] = False
-                payload["status"] = "inaccurate"
-                payload["message"] = (f"iteration converged but the estimated error (Hc {payload['Hc_error']:.2g}, "
-                                      f"Hm {payload['Hm_error']:.2g}) exceeds the requested accuracy "
-                                      f"{accuracy:g}: more points (--points) or --accuracy none")
+        if accuracy is not None and not max(payload["Hc_error"], payload["Hm_error"]) <= accuracy:
+            why = (f"the estimated error (Hc {payload['Hc_error']:.2g}, Hm {payload['Hm_error']:.2g}) "
+                   f"exceeds the requested accuracy {accuracy:g}: more points (--points) or "
+                   f"--accuracy none")
+    elif accuracy is not None:
+        why = (f"its error is not estimated (point thermal solves have no error estimate yet), so "
+               f"the accuracy {accuracy:g} cannot be confirmed: --accuracy none accepts the "
+               f"iteration alone")
+    if accuracy is not None:
+        payload["accuracy"] = accuracy
+    if payload["converged"] and why:
+        # as for 'ehl solve': converged means the iteration converged and the estimate meets
+        # the target
+        payload["converged"] = False
+        payload["status"] = "inaccurate"
+        payload["message"] = "iteration converged but " + why
     out = getattr(args, "out", None)
     if out is not None:
         from pathlib import Path

@@ -116,3 +116,15 @@ def test_traction_coupled_gives_a_curve_from_tehl_solves(capsys):
     out = json.loads(capsys.readouterr().out)
     assert rc == 0 and out["slip"] == [0.1, 0.3]
     assert 0 < out["friction_coefficient"][0] < out["friction_coefficient"][1]
+
+
+def test_a_point_thermal_solve_without_an_error_estimate_is_not_called_converged(tmp_path, capsys):
+    from ehl_multigrid.app.cli import main
+
+    rc = main(["solve", "default", "--thermal", "--slip", "0.5", "--points", "129", "--nz", "10",
+               "--json", "--no-plots", "--out", str(tmp_path)])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 3 and out["status"] == "inaccurate" and "not estimated" in out["message"]
+    rc = main(["solve", "default", "--thermal", "--slip", "0.5", "--points", "129", "--nz", "10",
+               "--accuracy", "none", "--json", "--no-plots", "--out", str(tmp_path)])
+    assert rc == 0 and json.loads(capsys.readouterr().out)["converged"]
