@@ -297,8 +297,9 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     # 3b. thermal EHL: heat in the inlet thins the film (the decoupled method keeps its friction
     # within 0.6 % on the thesis's line conditions, validation/tehl/REPORT.md, but not its film)
     reductions = []
+    L_scene = scene.thermal_properties()["thermal_loading"]  # beta eta0 um^2/k: ~ us^2
     for u in speeds:
-        L_T = scene.with_operating(us=float(u)).thermal_properties()["thermal_loading"]
+        L_T = L_scene * (float(u) / scene.us) ** 2
         reductions.append((1.0 - float(fits.gupta_thermal_factor(L_T, s_worst, scene.hertz.pmax / scene.E_reduced)),
                            L_T, float(u)))
     red, L_T, u_red = max(reductions)
