@@ -26,7 +26,9 @@ be a string with units, "7.94 mm", "1.5 GPa", "68 cSt", "70 degC", "1500 rpm")::
     [roughness]   Rq, Ra, sigma_s, dd [m]; n [1/m^2]; beta [m]; fc [-]; hardness [Pa]
     [supply]      hoil [m] (inf = flooded); hoil_over_sigma (list); delta [-]
     [feature]     a surface feature for 'ehl transient': kind = "waviness" | "bump" | "dent";
-                  amplitude, width or wavelength [m]; x0 [b]; shape; body (1 or 2); validated there
+                  amplitude, width or wavelength [m]; x0 [b]; shape; body (1 or 2); or
+                  kind = "map" with a height file (formats, units, levelling, filter: the
+                  mixed layer's reader); validated there
     [solver.*]    free-form option tables per layer (ehl, thermal, mixed), validated there
 """
 

@@ -16,11 +16,15 @@ vector and the rolling direction; 0 transverse, 90 longitudinal) and ``y0`` (a d
 position in units of a); there ``x0`` is in units of the Hertz semi-axis ``a`` along the rolling
 direction and the film unit is ``a^2/Rx``.
 
-A measured or synthetic surface: ``kind = "map"`` with ``file`` (heights in metres, positive
-up: a ``.npy`` array or a text table; one row for a line contact, rows along Y for a point
-contact), ``dx`` (and ``dy`` for a point contact) the sample spacings [m], and optionally ``x0``
-(position of the first sample, default: the map just upstream of the contact, entering it) and
-``y0`` (point: default centred). A relative ``file`` is read from the working directory.
+A measured or synthetic surface: ``kind = "map"`` with ``file`` (heights, positive up; one
+row for a line contact, rows along Y for a point contact), ``dx`` (and ``dy`` for a point
+contact) the sample spacings [m], and optionally ``x0`` (position of the first sample, default:
+the map just upstream of the contact, entering it) and ``y0`` (point: default centred). A
+relative ``file`` is read from the working directory. The file is read by the height-map reader
+a layer registers (entry-point group ``ehl.height_maps``; the mixed layer's
+:func:`mixed.surface.feature.feature_heights` reads instrument formats, HDF5, text with unit
+headers, levels, fills missing points and filters, with keys of its own); without one, a
+``.npy`` array or a text table in metres.
 
 Venner units: ``A = a R / b^2``, ``Lambda = lambda / b``, ``W = w / b`` with the reduced radius
 ``R`` and the Hertzian half-width ``b`` of the scene's operating point. The slide-to-roll ratio
@@ -43,9 +47,9 @@ POINT_KEYS = KEYS | {"angle", "y0"}
 MAP_KEYS = {"kind", "file", "dx", "dy", "x0", "y0", "body"}
 
 
-def read_height_file(path: str, ndim: int) -> np.ndarray:
-    """Heights [m] of a ``.npy`` array or a text table (comma or white space separated) with
-    ``ndim`` dimensions (1: one row, a line-contact profile; 2: a map, rows along Y)."""
+def load_height_array(path: Any) -> np.ndarray:
+    """The numbers of a ``.npy`` array or a text table (comma or white space separated), as
+    floats, unchecked (``ndmin`` 2 for text)."""
     import os
 
     if not isinstance(path, str) or not os.path.isfile(path):
@@ -53,14 +57,18 @@ def read_height_file(path: str, ndim: int) -> np.ndarray:
                          f"table of heights in metres)")
     try:
         if path.endswith(".npy"):
-            z = np.load(path, allow_pickle=False)
-        else:
-            with open(path, encoding="utf-8") as f:
-                text = f.read().replace(",", " ")
-            z = np.loadtxt(text.splitlines(), ndmin=2)
+            return np.asarray(np.load(path, allow_pickle=False), dtype=float)
+        with open(path, encoding="utf-8") as f:
+            text = f.read().replace(",", " ")
+        return np.asarray(np.loadtxt(text.splitlines(), ndmin=2), dtype=float)
     except (OSError, ValueError) as exc:
         raise InputError(f"feature.file = {path!r} could not be read as heights: "
                          f"{str(exc).splitlines()[0]}") from None
+
+
+def check_heights(z: np.ndarray, ndim: int, path: Any) -> np.ndarray:
+    """``z`` [m] squeezed to ``ndim`` dimensions (1: a line-contact profile; 2: a map, rows
+    along Y), finite and at most 1 mm high, or an :class:`InputError` naming the file."""
     z = np.asarray(z, dtype=float)
     if ndim == 1:
         z = np.squeeze(z)
@@ -73,11 +81,28 @@ def read_height_file(path: str, ndim: int) -> np.ndarray:
     return z
 
 
+def height_map_reader() -> Any:
+    """The height-map reader a layer registers in the entry-point group ``ehl.height_maps``
+    (the mixed layer's surface readers: instrument formats, units, levelling, filters), or
+    None. The core never imports the layers above it; it finds them here."""
+    from importlib.metadata import entry_points
+
+    found = sorted(entry_points(group="ehl.height_maps"), key=lambda e: e.name)
+    return found[0].load() if found else None
+
+
 def _map_table(table: dict[str, Any], ndim: int) -> tuple[np.ndarray, float, float | None, int]:
-    reject_unknown_keys("feature", table, MAP_KEYS)
-    z = read_height_file(table.get("file"), ndim)
-    dx = require_range("feature.dx", table.get("dx"), 1e-9, 1e-2, "m")
-    dy = require_range("feature.dy", table.get("dy"), 1e-9, 1e-2, "m") if ndim == 2 else None
+    """Heights [m], spacings [m] and body of a ``kind = "map"`` table: read by the registered
+    reader when a layer provides one (it checks its own keys), else as a plain array."""
+    reader = height_map_reader()
+    if reader is not None:
+        z, dx, dy = reader(table, ndim, MAP_KEYS)
+    else:
+        reject_unknown_keys("feature", table, MAP_KEYS)
+        z, dx, dy = load_height_array(table.get("file")), table.get("dx"), table.get("dy")
+    z = check_heights(z, ndim, table.get("file"))
+    dx = require_range("feature.dx", dx, 1e-9, 1e-2, "m")
+    dy = require_range("feature.dy", dy, 1e-9, 1e-2, "m") if ndim == 2 else None
     body = int(require_range("feature.body", table.get("body", 1), 1, 2, "-"))
     return z, dx, dy, body
 

@@ -24,7 +24,7 @@ def test_a_text_profile_becomes_a_line_feature_in_venner_units(tmp_path):
     z = 20e-9 * np.sin(np.linspace(0.0, 6.0, 50))
     f = tmp_path / "profile.csv"
     np.savetxt(f, z[None, :], delimiter=",")
-    sc = _scene("page63_line_2000N", {"kind": "map", "file": str(f), "dx": "2 um"})
+    sc = _scene("page63_line_2000N", {"kind": "map", "file": str(f), "dx": "2 um", "level": "none"})
     pb = LineProblem.from_scene(sc)
     feat, body = feature_from_scene_table(sc.feature, pb)
     assert body == 1 and feat.kind == "profile"
@@ -37,7 +37,8 @@ def test_an_npy_map_becomes_a_centred_point_height_map(tmp_path):
     z = np.random.default_rng(0).normal(0.0, 10e-9, (16, 24))
     f = tmp_path / "map.npy"
     np.save(f, z)
-    sc = _scene("default", {"kind": "map", "file": str(f), "dx": "3 um", "dy": "2 um", "body": 2})
+    sc = _scene("default", {"kind": "map", "file": str(f), "dx": "3 um", "dy": "2 um", "body": 2,
+                                  "level": "none"})
     pb = problem_from_scene(sc)
     feat, body = point_feature_from_scene_table(sc.feature, pb)
     assert body == 2 and feat.z.shape == (16, 24)
@@ -49,7 +50,7 @@ def test_an_npy_map_becomes_a_centred_point_height_map(tmp_path):
 @pytest.mark.parametrize("content, match", [
     (None, "not a readable file"),
     ("1e-9, nan, 2e-9, 3e-9, 1e-9", "NaN"),
-    ("1e-8 2e-8\n3e-8 4e-8", "dimension"),
+    ("1e-8 2e-8\n3e-8 4e-8", "one row"),
 ])
 def test_bad_height_files_are_named(tmp_path, content, match):
     f = tmp_path / "h.txt"
