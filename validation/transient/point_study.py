@@ -155,6 +155,64 @@ def part_waviness(quick: bool) -> None:
                             "Transverse waviness on one surface, pure rolling", legend_size=7)
 
 
+def nabla_circular(wavelength: float, M: float, L: float) -> float:
+    """``(lambda/a) (M/L)^(1/2)``: the circular-contact form of the wavelength parameter as
+    recalled from the amplitude-reduction literature (Venner & Lubrecht; Hooke) -- like the
+    curve, not confirmed against a stored copy (REPORT.md 8.3)."""
+    return wavelength * math.sqrt(M / L)
+
+
+def part_collapse(quick: bool) -> None:
+    """Which parameter collapses the circular waviness runs: the line contact's nabla or
+    nabla_c = (lambda/a)(M/L)^(1/2). Reads out/point_waviness.json (no new solves): rows with
+    at least 40 points per wavelength (resolved to 0.003, REPORT.md 8.3); deviation from the
+    recalled curve and the spread between operating conditions at equal parameter."""
+    rows = [r for r in json.loads((OUT / "point_waviness.json").read_text())["rows"]
+            if r["wavelength"] * (r["points"] - 1) / 6.0 >= 40.0]
+    # the finest run of each (M, L, lambda)
+    best: dict[tuple, dict] = {}
+    for r in rows:
+        k = (r["M"], r["L"], r["wavelength"])
+        if k not in best or r["points"] > best[k]["points"]:
+            best[k] = r
+    out = []
+    for (M, L, lam), r in sorted(best.items()):
+        nl, nc = common.nabla(lam, M, L), nabla_circular(lam, M, L)
+        out.append({"M": M, "L": L, "wavelength": lam, "points": r["points"], "Ad_over_Ai": r["Ad_over_Ai"],
+                    "nabla_line": nl, "nabla_circular": nc,
+                    "curve_at_nabla_line": float(common.amplitude_curve(np.array(nl))),
+                    "curve_at_nabla_circular": float(common.amplitude_curve(np.array(nc)))})
+    summary = {}
+    for key in ("line", "circular"):
+        dev = [o["Ad_over_Ai"] - o[f"curve_at_nabla_{key}"] for o in out]
+        summary[key] = {"max_abs_deviation_from_curve": float(np.max(np.abs(dev))),
+                        "rms_deviation_from_curve": float(np.sqrt(np.mean(np.square(dev))))}
+    data = {"rows": out, "summary": summary,
+            "note": "rows with >= 40 points per wavelength; curve 1/(1+0.15n+0.015n^2) recalled"}
+    print(json.dumps(summary, indent=1))
+    save("point_waviness_collapse", data)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
+    nb = np.linspace(0.3, 25, 300)
+    for ax, key, label in zip(axes, ("line", "circular"),
+                              ("nabla = (lambda/a) M^(3/4)/L^(1/2) (line form)",
+                               "nabla_c = (lambda/a) (M/L)^(1/2) (circular form)"), strict=True):
+        ax.plot(nb, common.amplitude_curve(nb), "k-", lw=0.8, label="recalled 1/(1+0.15n+0.015n^2)")
+        for (M, L), mk in zip(WAVINESS_CASES, ("o", "s", "^"), strict=False):
+            sel = [o for o in out if o["M"] == M and o["L"] == L]
+            ax.plot([o[f"nabla_{key}"] for o in sel], [o["Ad_over_Ai"] for o in sel], mk,
+                    label=f"circular M = {M:g}, L = {L:g}")
+        ax.set_xscale("log")
+        ax.set_xlabel(label)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.set_title(f"rms deviation {summary[key]['rms_deviation_from_curve']:.3f}")
+    axes[0].set_ylabel("Ad / Ai at X = Y = 0")
+    axes[1].legend(fontsize=7)
+    fig.suptitle("Transverse waviness through circular contacts: which parameter collapses them")
+    fig.tight_layout()
+    fig.savefig(OUT / "point_waviness_collapse.png", dpi=120)
+    plt.close(fig)
+
+
 # -- dent passing --------------------------------------------------------------------------
 DENT_CASES = (("dent", 0.0), ("dent", 1.0), ("dent", -1.0))
 POSITIONS = (-1.0, -0.5, 0.0, 0.5, 1.0)
@@ -341,7 +399,7 @@ def part_rough(quick: bool) -> None:
 
 
 PARTS = {"steady": part_steady, "time": part_time, "waviness": part_waviness, "dent": part_dent,
-         "cost": part_cost, "rough": part_rough}
+         "cost": part_cost, "rough": part_rough, "collapse": part_collapse}
 
 if __name__ == "__main__":
     common.main(__doc__, PARTS, sys.modules[__name__])
