@@ -3,7 +3,8 @@ together with the generalised Reynolds equation (Yang & Wen 1990) and the Eyring
 thermal layer acting on the flow.
 
 Main entry points: :func:`solve_tehl_line` (line contacts), :func:`tehl_traction_curve`,
-:func:`solve_tehl_point` (point contacts).
+:func:`solve_tehl_point` (point contacts); :func:`estimate_error` (their error budget) and
+:func:`solve_tehl_to_accuracy` (solve, estimate, refine to an accuracy target).
 """
 
 from ehl_multigrid.lazy import lazy_exports
@@ -13,9 +14,10 @@ from ehl_multigrid.lazy import lazy_exports
 _LAZY = {
     "film_factors": "coefficients", "flux_integrals": "coefficients",
     "FactorLevel": "hierarchy", "FactorLineHierarchy": "hierarchy",
-    "TEHLLineResult": "line", "TEHLOptions": "line", "estimate_error": "line",
+    "TEHLLineResult": "line", "TEHLOptions": "line",
     "isothermal_start": "line", "solve_tehl_line": "line", "tehl_traction_curve": "line",
     "TEHLPointResult": "point", "solve_tehl_point": "point",
+    "TEHLErrorEstimate": "accuracy", "estimate_error": "accuracy", "solve_tehl_to_accuracy": "accuracy",
 }
 
 __all__ = list(_LAZY)

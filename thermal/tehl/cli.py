@@ -79,47 +79,44 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
-    """``ehl solve SCENE --thermal``: one TEHL solve (line or point) at ``args.slip`` (default the
-    scene's), ``args.points`` (default 513 line, 257 point), ``args.nz`` (default 20) and
-    ``args.compressive_heating`` (default True; the ``--no-compression`` flag); returns
-    the payload of :func:`solve_payload` (printed as JSON by ``--json``)."""
-    from .line import TEHLOptions, solve_tehl_line
-    from .point import solve_tehl_point
+    """``ehl solve SCENE --thermal``: a TEHL solve (line or point) at ``args.slip`` (default the
+    scene's) with its error budget (:func:`thermal.tehl.accuracy.estimate_error`: grid along X
+    and across the film, box, iteration), and ``args.compressive_heating`` (default True; the
+    ``--no-compression`` flag).
+
+    With an accuracy target (``args.accuracy``, relative error of Hc and Hm; ``ehl solve``'s
+    default 0.005) and neither ``--points`` nor ``--nz`` given, the grid (from 513 points line,
+    257 point, nz 20), nz and box are refined until the estimate meets the target or the budget
+    runs out (``args.max_points``, default 4097 line and 513 point; nz 80; a box 4 times the
+    default; 600 s); explicit ``--points``/``--nz`` are only judged. ``converged`` is true only
+    when the outer iteration converged and the estimate meets the target (status
+    ``inaccurate`` otherwise). Returns the payload of :func:`solve_payload` with the error keys
+    (printed as JSON by ``--json``)."""
+    from .accuracy import solve_tehl_to_accuracy
+    from .line import TEHLOptions
 
     point = scene.kind != "line"
-    points = getattr(args, "points", None) or (257 if point else 513)
-    nz = getattr(args, "nz", None) or 20
-    slip = getattr(args, "slip", None)
-    opts = TEHLOptions(points=points, nz=nz, compressive_heating=getattr(args, "compressive_heating", True))
-    r = solve_tehl_point(scene, slip, opts) if point else solve_tehl_line(scene, slip, opts)
-    payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),
-               "outer": [dict(o) for o in r.outer], "properties": thermal_properties(scene)}
+    given = {k: v for k in ("points", "nz") if (v := getattr(args, k, None)) is not None}
+    opts = TEHLOptions(points=given.get("points", 257 if point else 513), nz=given.get("nz", 20),
+                       compressive_heating=getattr(args, "compressive_heating", True))
     accuracy = getattr(args, "accuracy", None)
-    why = ""
-    if not point:
-        # the error budget along and across the film (two more solves, about one more in cost)
-        from .line import estimate_error
-
-        est = estimate_error(r)
-        payload.update({f"{k}_error": v["total"] for k, v in est.items() if k != "T_max"})
-        payload["T_max_error_K"] = est["T_max"]["total"]
-        payload["error_budget"] = est
-        if accuracy is not None and not max(payload["Hc_error"], payload["Hm_error"]) <= accuracy:
-            why = (f"the estimated error (Hc {payload['Hc_error']:.2g}, Hm {payload['Hm_error']:.2g}) "
-                   f"exceeds the requested accuracy {accuracy:g}: more points (--points) or "
-                   f"--accuracy none")
-    elif accuracy is not None:
-        why = (f"its error is not estimated (point thermal solves have no error estimate yet), so "
-               f"the accuracy {accuracy:g} cannot be confirmed: --accuracy none accepts the "
-               f"iteration alone")
+    done = solve_tehl_to_accuracy(scene, getattr(args, "slip", None), opts, accuracy, refine=not given,
+                                  max_points=getattr(args, "max_points", None))
+    r = done.result
+    payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),
+               "outer": [dict(o) for o in r.outer], "properties": thermal_properties(scene),
+               "points": r.options.points, "nz": r.options.nz, "box": r.options.box,
+               **done.estimate.payload(), "refinements": [vars(s) for s in done.refinements]}
     if accuracy is not None:
         payload["accuracy"] = accuracy
-    if payload["converged"] and why:
+    if payload["converged"] and not done.accurate:
         # as for 'ehl solve': converged means the iteration converged and the estimate meets
         # the target
         payload["converged"] = False
         payload["status"] = "inaccurate"
-        payload["message"] = "iteration converged but " + why
+        payload["message"] = "iteration converged but " + done.message
+    else:
+        payload["message"] = done.message
     out = getattr(args, "out", None)
     if out is not None:
         from pathlib import Path
@@ -137,5 +134,5 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
 
             payload["png"] = [str(plot_tehl(res, output_file(folder, safe_stem(f"{scene.name}_tehl"), ".png")))]
     if not getattr(args, "json", False):
-        print_table({k: v for k, v in payload.items() if k not in ("outer", "properties")})
+        print_table({k: v for k, v in payload.items() if k not in ("outer", "properties", "error_budget", "refinements")})
     return payload

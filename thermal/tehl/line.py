@@ -60,6 +60,8 @@ class TEHLOptions:
     nz : thermal intervals across the film (20: interior heat budget within 0.4 % on the
         appendix C line contacts at S = 0.5; 10 gives up to 1.4 %).
     xmin : inlet X = x/b (None: the core's default box); xmax : outlet X.
+    box : the box scaled by this factor (line: the inlet moved upstream, ``xmax - xmin`` times
+        ``box``; point: X and Y limits times ``box``); the error estimate's probe doubles it.
     relax : starting under-relaxation of the factors' logarithms per outer iteration (0, 1];
         halved (down to ``MIN_RELAX``) when the changes double in one outer iteration or grow
         in two in a row.
@@ -89,6 +91,7 @@ class TEHLOptions:
     nz: int = 20
     xmin: float | None = None
     xmax: float = 1.5
+    box: float = 1.0
     relax: float = 0.5
     max_outer: int = 60
     anderson: int = 4
@@ -111,6 +114,7 @@ class TEHLOptions:
         if self.xmin is not None:
             require_range("xmin", self.xmin, -1000.0, -1.0, "- (x/b)")
         require_range("xmax", self.xmax, 1.0, 100.0, "- (x/b)")
+        require_range("box", self.box, 0.25, 64.0, "- (times the default box)")
         require_range("relax", self.relax, 0.0, 1.0, "-", lo_open=True)
         require_range("max_outer", self.max_outer, 1, 1000, "outer iterations")
         if isinstance(self.anderson, bool) or not isinstance(self.anderson, int) or not 0 <= self.anderson <= 20:
@@ -242,7 +246,10 @@ def _films(problem: LineProblem, X: np.ndarray, P: np.ndarray, H: np.ndarray) ->
 def line_problem(scene: Scene, options: TEHLOptions) -> LineProblem:
     if scene.kind != "line":
         raise InputError(f"contact.kind = {scene.kind!r}: solve_tehl_line needs a line contact")
-    return LineProblem.from_scene(scene, xmin=options.xmin, xmax=options.xmax)
+    pb = LineProblem.from_scene(scene, xmin=options.xmin, xmax=options.xmax)
+    if options.box != 1.0:
+        pb = replace(pb, xmin=pb.xmax - options.box * (pb.xmax - pb.xmin))
+    return pb
 
 
 def isothermal_start(scene: Scene, options: TEHLOptions) -> _State:
@@ -451,45 +458,4 @@ def tehl_traction_curve(scene: Scene, slips: Any = None, options: TEHLOptions | 
     out: list[TEHLLineResult] = []
     for s in S:
         out.append(solve_tehl_line(scene, float(s), opts, start=iso, guess=out[-1] if out else None))
-    return out
-
-
-#: observed orders of the TEHL line discretisation (validation/tehl: appendix C line contacts
-#: at S = 0.5; along X 513 -> 4097 points, across the film nz 5 -> 80): 2 in both directions
-ORDER_X = 2.0
-ORDER_Z = 2.0
-
-
-def estimate_error(result: TEHLLineResult) -> dict[str, dict[str, float]]:
-    """Error budget of a TEHL line solution: Richardson estimates of the grid error along X
-    (a solve on every other node) and across the film (half the Z intervals), each
-    ``|q_h - q_2h| / (2^p - 1)`` with the measured orders :data:`ORDER_X`, :data:`ORDER_Z`, and
-    the iteration part (the last outer change of the films; the friction's and T_max's from the
-    last temperature change). Returns ``{quantity: {grid_x, grid_z, iteration, total}}``,
-    relative for Hc, Hm and the friction coefficient, in kelvin for T_max; ``total`` is the
-    sum of the parts. Costs two more solves (about 0.4 and 0.6 of the original).
-    """
-    opts = result.options
-    if opts.points < 129 or opts.nz < 8:
-        raise InputError(f"estimate_error needs points >= 129 and nz >= 8 (got {opts.points}, {opts.nz}): "
-                         "it solves again on half the grid")
-    coarse_x = solve_tehl_line(result.scene, result.slip, opts.with_changes(points=(opts.points - 1) // 2 + 1))
-    coarse_z = solve_tehl_line(result.scene, result.slip, opts.with_changes(nz=opts.nz // 2))
-
-    def rel(a: float, b: float) -> float:
-        return abs(a - b) / abs(a) if a != 0 else math.inf
-
-    last = result.outer[-1]
-    out: dict[str, dict[str, float]] = {}
-    for key in ("Hc", "Hm", "friction_coefficient", "T_max"):
-        q = getattr(result, key)
-        if key == "T_max":
-            gx = abs(q - coarse_x.T_max) / (2**ORDER_X - 1)
-            gz = abs(q - coarse_z.T_max) / (2**ORDER_Z - 1)
-            itp = last["dT"]
-        else:
-            gx = rel(q, getattr(coarse_x, key)) / (2**ORDER_X - 1)
-            gz = rel(q, getattr(coarse_z, key)) / (2**ORDER_Z - 1)
-            itp = last["dHc"] if key == "Hc" else (last["dHm"] if key == "Hm" else last["dP"])
-        out[key] = {"grid_x": gx, "grid_z": gz, "iteration": itp, "total": gx + gz + itp}
     return out

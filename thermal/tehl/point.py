@@ -32,7 +32,7 @@ from ehl_multigrid.multigrid.policy import RobustnessPolicy
 from ehl_multigrid.multigrid.threads import preserved_threads
 from ehl_multigrid.point.fas import HINT, POINT_POLICY, PointHierarchy, point_settings
 from ehl_multigrid.point.postprocess import film_metrics, full_fields
-from ehl_multigrid.point.problem import PointProblem, problem_from_scene
+from ehl_multigrid.point.problem import PointProblem, problem_from_scene, resolve_domain
 from ehl_multigrid.point.solve import solve_fas
 
 from ..line import Surroundings, ThermalLineSolution
@@ -115,7 +115,8 @@ class TEHLPointResult:
     minimum films, with their isothermal values; T_mid, T_surface1, T_surface2 : mid-film and
     surface temperature maps [degC] (rows without pressure hold the oil temperature);
     friction [N], friction_coefficient, friction_decoupled [N]; T_max [degC]; heat budget [W]
-    summed over the rows (interior budgets), heat_partition, heat_balance_error; outer history.
+    summed over the rows (interior budgets), heat_partition, heat_balance_error; outer history;
+    options : the :class:`TEHLOptions` of the solve.
     """
 
     scene: Scene
@@ -145,6 +146,7 @@ class TEHLPointResult:
     report: Any
     wall_s: float = math.nan
     extra: dict[str, Any] = field(default_factory=dict)
+    options: TEHLOptions | None = None
 
     def summary(self) -> dict[str, Any]:
         return {"Hc": self.Hc, "Hm": self.Hm, "Hc_isothermal": self.Hc_isothermal,
@@ -190,11 +192,14 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
     env = Surroundings(scene.lubricant, scene.body1, scene.body2, u1, u2, scene.T_oil,
                        scene.T_surface1, scene.T_surface2)
     pb = problem_from_scene(scene)
-    popts = PointOptions.build(None, **{"points": opts.points, "half": True, "raise_on_failure": False,
-                                        **opts.multigrid})
+    mg = dict(opts.multigrid)
+    if opts.box != 1.0:
+        box = resolve_domain(pb, mg.get("xmin"), mg.get("xmax"), mg.get("ymax"))
+        mg.update(xmin=opts.box * box[0], xmax=opts.box * box[1], ymax=opts.box * box[2])
+    popts = PointOptions.build(None, **{"points": opts.points, "half": True, "raise_on_failure": False, **mg})
     # the outer iteration's solves stop on the films (see TEHLOptions.multigrid); the
     # isothermal start keeps the core's residual rule
-    popts_outer = PointOptions.build(popts, film_tol=opts.multigrid.get("film_tol", 0.25 * opts.tol_H))
+    popts_outer = PointOptions.build(popts, film_tol=mg.get("film_tol", 0.25 * opts.tol_H))
     notes: list[str] = []
     topt = opts.thermal_options()
     lub = scene.lubricant
@@ -289,5 +294,5 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
         Hm_isothermal=Hm_iso, T_mid=T_mid, T_surface1=th.T[:, :, 0], T_surface2=th.T[:, :, -1], friction=F,
         friction_coefficient=F / scene.load, friction_decoupled=decoupled, T_max=float(np.max(th.T)), heat=heat,
         heat_partition=part, heat_balance_error=float(abs(heat["balance"])), a=done.a, c=done.c, outer=done.outer,
-        report=done.report, wall_s=time.perf_counter() - t0, extra={"thermal_rows": len(th.rows)},
+        report=done.report, wall_s=time.perf_counter() - t0, extra={"thermal_rows": len(th.rows)}, options=opts,
     )

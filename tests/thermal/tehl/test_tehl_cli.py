@@ -118,13 +118,14 @@ def test_traction_coupled_gives_a_curve_from_tehl_solves(capsys):
     assert 0 < out["friction_coefficient"][0] < out["friction_coefficient"][1]
 
 
-def test_a_point_thermal_solve_without_an_error_estimate_is_not_called_converged(tmp_path, capsys):
+def test_a_point_thermal_solve_whose_error_cannot_be_estimated_is_not_called_converged(tmp_path, capsys):
     from ehl_multigrid.app.cli import main
 
-    rc = main(["solve", "default", "--thermal", "--slip", "0.5", "--points", "129", "--nz", "10",
-               "--json", "--no-plots", "--out", str(tmp_path)])
+    # at 1 GPa (M = 216) the solve on every other node (65 points) does not converge: the grid
+    # error along X and the box part are unknown, so no accuracy can be confirmed
+    base = ["solve", "default", "--thermal", "--slip", "0.5", "--points", "129", "--nz", "10",
+            "--json", "--no-plots", "--out", str(tmp_path)]
+    rc = main(base)
     out = json.loads(capsys.readouterr().out)
-    assert rc == 3 and out["status"] == "inaccurate" and "not estimated" in out["message"]
-    rc = main(["solve", "default", "--thermal", "--slip", "0.5", "--points", "129", "--nz", "10",
-               "--accuracy", "none", "--json", "--no-plots", "--out", str(tmp_path)])
-    assert rc == 0 and json.loads(capsys.readouterr().out)["converged"]
+    assert rc == 3 and out["status"] == "inaccurate" and "could not be measured" in out["message"]
+    assert out["Hc_error"] is None  # not known (NaN, written as null)

@@ -1,0 +1,98 @@
+"""Error budget of TEHL solutions (grid along X and across the film, box, iteration) and the
+accuracy-driven TEHL solve: the point estimate covers a finer solve, the refinement raises
+the grid under a tight target and stops within its budget, and ``ehl solve --thermal`` on a
+point contact is converged only when the estimate meets the target."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from ehl_multigrid.model.scene import load_scene
+from thermal.tehl import TEHLOptions, estimate_error, solve_tehl_line
+from thermal.tehl.accuracy import SolveCache, next_step, solve_tehl_to_accuracy
+from thermal.tehl.point import solve_tehl_point
+
+#: appendix D ball on flat (T9, 8 m/s, 60 degC) at 5 N: resolved from 65 points
+POINT_LOAD = 5.0
+#: the same at S = 0.5 on 257 points, nz = 20 (one grid finer along X and across the film
+#: than the case below), computed once with this solver (2026-11-23)
+POINT_FINE = {"Hc": 3.924134836115908, "Hm": 2.5763119913152797}
+
+
+@pytest.fixture(scope="module")
+def point_scene():
+    return load_scene("appendix_d_point").with_operating(load=POINT_LOAD)
+
+
+def test_point_estimate_is_finite_and_covers_the_finer_solve(point_scene):
+    r = solve_tehl_point(point_scene, 0.5, points=129, nz=10)
+    cache = SolveCache.of(r)
+    e = estimate_error(r, cache=cache)
+    for key in ("Hc", "Hm", "friction_coefficient", "T_max"):
+        assert all(math.isfinite(v) and v >= 0 for v in e[key].values()), key
+    # the estimate reused the solves on every other node, on nz/2 and the box probe
+    assert {(65, 10, 1.0), (129, 5, 1.0), (129, 10, 2.0)} <= set(cache.results)
+    for key, fine in POINT_FINE.items():
+        true = abs(getattr(r, key) - fine) / fine
+        assert true <= e[key]["total"], key
+    assert e.Hc < 0.1 and e.Hm < 0.1
+
+
+def test_line_estimate_has_a_box_part_from_a_wider_box():
+    scene = load_scene("appendix_c_line_4240N")
+    r = solve_tehl_line(scene, 0.5, points=257, nz=10)
+    e = estimate_error(r)
+    assert e.domain is not None and e.domain["points"] == 65
+    assert 0 < e["Hc"]["domain"] < e["Hc"]["grid_x"]
+    # without the box part the total is not known
+    assert math.isnan(estimate_error(r, domain=False)["Hc"]["total"])
+
+
+def test_refinement_raises_the_grid_under_a_tight_target_and_stops_within_budget():
+    scene = load_scene("appendix_c_line_4240N")
+    done = solve_tehl_to_accuracy(scene, 0.5, TEHLOptions(points=129, nz=8), 1e-4, max_points=257,
+                                  max_nz=16, time_budget=120.0)
+    steps = done.refinements
+    assert not done.accurate and "not refined further" in done.message
+    assert steps[0].points == 129 and steps[0].next == "points"
+    assert max(s.points for s in steps) == 257 and max(s.nz for s in steps) <= 16
+    assert done.result.options.points == 257
+    # the returned solve is the most accurate one of the sequence
+    assert done.estimate.worst == min(max(s.Hc_error, s.Hm_error) for s in steps)
+    # a spent time budget stops after the first solve
+    quick = solve_tehl_to_accuracy(scene, 0.5, TEHLOptions(points=129, nz=8), 1e-4, time_budget=0.0)
+    assert len(quick.refinements) == 1 and "time budget" in quick.message and not quick.accurate
+
+
+def test_next_step_refines_the_dominant_part():
+    def est(gx, gz, dom, it):
+        from thermal.tehl.accuracy import TEHLErrorEstimate
+
+        b = {"grid_x": gx, "grid_z": gz, "domain": dom, "iteration": it}
+        b["total"] = sum(b.values())
+        return TEHLErrorEstimate({"Hc": b, "Hm": b}, (2.0, 2.0), {}, 0.0)
+
+    assert next_step(est(0.02, 0.001, 0.001, 0.0), 0.01, 257, 20, 1.0, 1.0, 1025)[0] == "points"
+    assert next_step(est(0.001, 0.02, 0.001, 0.0), 0.01, 257, 20, 1.0, 1.0, 1025)[0] == "nz"
+    assert next_step(est(0.001, 0.001, 0.02, 0.0), 0.01, 257, 20, 1.0, 1.0, 1025)[:4] == ("box", 513, 20, 2.0)
+    assert next_step(est(0.001, 0.001, 0.001, 0.02), 0.01, 257, 20, 1.0, 1.0, 1025)[0] == "tolerance"
+    # nothing left within the limits
+    assert next_step(est(0.02, 0.001, 0.001, 0.0), 0.01, 257, 20, 1.0, 1.0, 257) is None
+    # an unknown grid part (the coarser solve failed) asks for more points
+    assert next_step(est(math.nan, 0.001, 0.001, 0.0), 0.01, 257, 20, 1.0, 1.0, 1025)[0] == "points"
+
+
+def test_ehl_solve_thermal_point_is_converged_when_the_estimate_meets_the_target(point_scene, tmp_path, capsys):
+    from ehl_multigrid.app.cli import main
+
+    f = tmp_path / "ball5N.toml"
+    f.write_text(point_scene.to_toml())
+    base = ["solve", str(f), "--thermal", "--slip", "0.5", "--points", "129", "--nz", "10", "--json", "--no-plots"]
+    rc = main(base + ["--accuracy", "0.1"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0 and out["converged"] and out["contact"] == "point"
+    assert max(out["Hc_error"], out["Hm_error"]) <= 0.1
+    assert {"grid_x", "grid_z", "domain", "iteration", "total"} <= set(out["error_budget"]["Hc"])

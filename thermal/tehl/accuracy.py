@@ -1,0 +1,403 @@
+"""Error budget of a TEHL solution (line or point) and the accuracy-driven TEHL solve.
+
+A TEHL result is judged as an isothermal one (:mod:`ehl_multigrid.multigrid.accuracy`): its
+error is estimated in parts, and a result is converged only when its outer iteration
+converged AND the estimate meets the requested accuracy.
+
+Parts of the budget (relative for Hc, Hm and the friction coefficient, kelvin for T_max):
+
+* ``grid_x`` -- Richardson along the rolling direction from a solve on every other node,
+  ``|q_h - q_2h| / (2^p - 1)`` with the measured order ``p`` of :data:`ORDERS`;
+* ``grid_z`` -- the same across the film from a solve on ``nz / 2`` intervals;
+* ``domain`` -- the change of the solution when the box is doubled at equal mesh size,
+  measured by two TEHL solves on a coarser grid (:func:`domain_change`), times the core's
+  :data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_SAFETY`;
+* ``iteration`` -- the last outer change divided by the damping it was made with (the
+  stopping rule's measure of the distance to the fixed point), and at least the films'
+  alternation between the inner multilevel cycles.
+
+``total`` is their sum; it is NaN when a part could not be measured (a coarser solve or
+the box probe did not converge), and such a result cannot be called accurate.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+from ehl_multigrid.model.errors import ConvergenceError, InputError, require_range
+from ehl_multigrid.model.scene import Scene
+from ehl_multigrid.multigrid.accuracy import DOMAIN_DECAY, DOMAIN_SAFETY
+
+from .line import TEHLOptions
+
+#: orders (along X, across the film) of the TEHL discretisation in the estimate. Line contacts:
+#: 2 and 2, observed on appendix C 4240 N and 42400 N at S = 0.5 (X: 257-4097 points, Hc 1.99-2.00,
+#: Hm 2.01-2.37; Z: nz 5-80, 1.93-2.07). Point contacts, appendix D (1 GPa) at S = 0.5, from
+#: 129/257/513 points: Hc 1.96, Hm 1.64, friction 2.5, T_max 1.8 along X; from nz 5/10/20/40:
+#: Hc 2.0 across the film. Along X the point estimate takes 1.5, below the minimum film's
+#: order (as the core caps Hm's order at 1.5), so its irregular convergence is covered
+ORDERS = {"line": (2.0, 2.0), "point": (1.5, 2.0)}
+#: quantities of the budget; the accuracy target applies to the films
+QUANTITIES = ("Hc", "Hm", "friction_coefficient", "T_max")
+#: smallest grid along X a TEHL solve takes (TEHLOptions)
+MIN_POINTS = 65
+#: largest number of intervals across the film the refinement goes to
+MAX_NZ = 80
+#: default largest grid along X of the refinement (line, point)
+MAX_POINTS = {"line": 4097, "point": 513}
+
+
+def _is_point(result: Any) -> bool:
+    return getattr(result.scene, "kind", "line") != "line"
+
+
+class SolveCache:
+    """TEHL solves of one contact and slip keyed by ``(points, nz, box)``; a solve that raises a
+    clear error (no convergence, a grid too coarse) is kept as ``None``. The estimate and the
+    refinement share one cache, so a solve is never repeated."""
+
+    def __init__(self, scene: Scene, slip: float, options: TEHLOptions, point: bool) -> None:
+        self.scene, self.slip, self.options, self.point = scene, float(slip), options, point
+        self.results: dict[tuple[int, int, float], Any] = {}
+        self.errors: dict[tuple[int, int, float], str] = {}
+
+    @classmethod
+    def of(cls, result: Any) -> SolveCache:
+        cache = cls(result.scene, result.slip, result.options, _is_point(result))
+        cache.add(result)
+        return cache
+
+    def add(self, result: Any) -> None:
+        o = result.options
+        self.results[(o.points, o.nz, o.box)] = result
+
+    def __call__(self, points: int, nz: int, box: float) -> Any:
+        key = (int(points), int(nz), float(box))
+        if key not in self.results:
+            from .line import solve_tehl_line
+            from .point import solve_tehl_point
+
+            opts = self.options.with_changes(points=key[0], nz=key[1], box=key[2])
+            solve = solve_tehl_point if self.point else solve_tehl_line
+            try:
+                self.results[key] = solve(self.scene, self.slip, opts)
+            except (ConvergenceError, InputError) as exc:
+                self.results[key] = None
+                self.errors[key] = str(exc).splitlines()[0][:200]
+        return self.results[key]
+
+
+def _value(result: Any, key: str) -> float:
+    return float(getattr(result, key))
+
+
+def _difference(key: str, q: float, other: float) -> float:
+    """Relative difference (kelvin for T_max) of ``other`` from ``q``."""
+    if key == "T_max":
+        return abs(q - other)
+    if q == other:
+        return 0.0
+    return abs(q - other) / abs(q) if q != 0.0 else math.inf
+
+
+def domain_change(result: Any, cache: SolveCache | None = None) -> dict[str, Any] | None:
+    """Change of Hc, Hm, friction coefficient (relative) and T_max (K) when the box of
+    ``result`` is doubled at equal mesh size: a TEHL solve on a quarter of its points (at least
+    :data:`MIN_POINTS`; a half when that does not converge) and one on the doubled box at that
+    mesh. None when neither pair converges.
+
+    Why it bounds the box error of the TEHL solve: the probe is the TEHL solve itself, so it
+    sees both ways the box enters -- the inlet pressure build-up of the Reynolds equation and
+    the thermal inlet station, where the oil is held at the supply temperature and the warm
+    back flow leaves. Both are far-field effects upstream of the contact that vary over the
+    inlet length, not over the mesh, so the change measured on a coarser mesh is that of the
+    fine one to within the coarse grid's error of a small difference; what is left beyond
+    the doubled box the estimate bounds by :data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_SAFETY`
+    times the first doubling's change, the factor measured for the isothermal core (the
+    whole box error 1.06-2.55 times the first doubling's change). Checked against a TEHL solve
+    on a box four times the default in validation/tehl (part ``honesty``).
+    """
+    cache = cache or SolveCache.of(result)
+    o = result.options
+    sizes = sorted({max((o.points - 1) // 4 + 1, MIN_POINTS), max((o.points - 1) // 2 + 1, MIN_POINTS)})
+    for n in sizes:
+        base = cache(n, o.nz, o.box)
+        if base is None:
+            continue
+        wide = cache(2 * (n - 1) + 1, o.nz, 2.0 * o.box)
+        if wide is None:
+            continue
+        out: dict[str, Any] = {k: _difference(k, _value(base, k), _value(wide, k)) for k in QUANTITIES}
+        out["points"] = n
+        return out
+    return None
+
+
+@dataclass
+class TEHLErrorEstimate:
+    """Estimated errors of a TEHL solution: ``budget[quantity][part]`` with the parts
+    ``grid_x``, ``grid_z``, ``domain``, ``iteration`` and their ``total`` (relative for ``Hc``,
+    ``Hm``, ``friction_coefficient``; kelvin for ``T_max``); ``estimate["Hc"]`` reads the budget."""
+
+    budget: dict[str, dict[str, float]]
+    orders: tuple[float, float]
+    domain: dict[str, Any] | None
+    film_noise: float
+    notes: list[str] = field(default_factory=list)
+    wall_s: float = math.nan
+
+    def __getitem__(self, key: str) -> dict[str, float]:
+        return self.budget[key]
+
+    @property
+    def Hc(self) -> float:
+        return self.budget["Hc"]["total"]
+
+    @property
+    def Hm(self) -> float:
+        return self.budget["Hm"]["total"]
+
+    @property
+    def worst(self) -> float:
+        """The larger film error; inf when it is not known."""
+        w = max(self.Hc, self.Hm)
+        return w if math.isfinite(w) else math.inf
+
+    def payload(self) -> dict[str, Any]:
+        """The ``--json`` keys: ``Hc_error``, ``Hm_error``, ``friction_coefficient_error``,
+        ``T_max_error_K``, ``error_budget``, ``error_notes``."""
+        out: dict[str, Any] = {f"{k}_error": self.budget[k]["total"] for k in QUANTITIES if k != "T_max"}
+        out["T_max_error_K"] = self.budget["T_max"]["total"]
+        out["error_budget"] = self.budget
+        out["error_notes"] = list(self.notes)
+        return out
+
+
+def estimate_error(result: Any, *, cache: SolveCache | None = None,
+                   domain: dict[str, Any] | None | bool = True) -> TEHLErrorEstimate:
+    """Error budget of a TEHL line or point solution (see the module docstring for the parts).
+
+    Parameters
+    ----------
+    result : a :class:`~thermal.tehl.line.TEHLLineResult` or
+        :class:`~thermal.tehl.point.TEHLPointResult` on at least 129 points and nz >= 8.
+    cache : the solves of the same contact already made (:class:`SolveCache`).
+    domain : True measures the box part (:func:`domain_change`); a dict is a change measured
+        before at the same box (it does not depend on the grid); False leaves it unknown
+        (the totals are then NaN).
+
+    Costs a solve on every other node, one on nz/2 (together about one more solve for a line,
+    two thirds of one for a point) and the box probe (a quarter and a half of a solve for a
+    line, a sixteenth and a quarter for a point).
+    """
+    t0 = time.perf_counter()
+    o = result.options
+    if o.points < 2 * (MIN_POINTS - 1) + 1 or o.nz < 8:
+        raise InputError(f"estimate_error needs points >= {2 * (MIN_POINTS - 1) + 1} and nz >= 8 (got "
+                         f"{o.points}, {o.nz}): it solves again on half the grid")
+    cache = cache or SolveCache.of(result)
+    cache.add(result)
+    px, pz = ORDERS["point" if _is_point(result) else "line"]
+    notes: list[str] = []
+    coarse_x = cache((o.points - 1) // 2 + 1, o.nz, o.box)
+    coarse_z = cache(o.points, o.nz // 2, o.box)
+    if coarse_x is None:
+        notes.append(f"the solve on {(o.points - 1) // 2 + 1} points did not converge: grid error along X unknown")
+    if coarse_z is None:
+        notes.append(f"the solve on nz = {o.nz // 2} did not converge: grid error across the film unknown")
+    if domain is True:
+        domain = domain_change(result, cache)
+        if domain is None:
+            notes.append("the box probe did not converge: domain error unknown")
+    elif domain is False or domain is None:
+        domain = None
+        notes.append("domain error not measured")
+    last = result.outer[-1]
+    w = float(last.get("relax", 1.0))
+    noise = float(max(o_.get("film_noise", 0.0) for o_ in result.outer[-2:]))
+    iteration = {"Hc": max(last["dHc"] / w, noise), "Hm": max(last["dHm"] / w, noise),
+                 "friction_coefficient": last["dP"] / w, "T_max": last["dT"] / w}
+    budget: dict[str, dict[str, float]] = {}
+    for key in QUANTITIES:
+        q = _value(result, key)
+        gx = _difference(key, q, _value(coarse_x, key)) / (2.0**px - 1.0) if coarse_x is not None else math.nan
+        gz = _difference(key, q, _value(coarse_z, key)) / (2.0**pz - 1.0) if coarse_z is not None else math.nan
+        dom = DOMAIN_SAFETY * domain[key] if domain is not None else math.nan
+        parts = {"grid_x": gx, "grid_z": gz, "domain": dom, "iteration": iteration[key]}
+        budget[key] = {**parts, "total": sum(parts.values())}  # NaN when a part is unknown
+    return TEHLErrorEstimate(budget, (px, pz), domain, noise, notes, time.perf_counter() - t0)
+
+
+@dataclass(frozen=True)
+class TEHLRefinement:
+    """One solve of an accuracy-driven TEHL sequence and its estimated film errors."""
+
+    points: int
+    nz: int
+    box: float
+    Hc_error: float
+    Hm_error: float
+    wall_s: float
+    next: str  # what the next step refined ("" for the last)
+
+
+@dataclass
+class AccurateTEHL:
+    """Outcome of :func:`solve_tehl_to_accuracy`: the returned ``result`` (the most accurate
+    solve of the sequence), its ``estimate``, whether it is ``accurate`` (estimate within
+    ``accuracy``; True without a target), the ``refinements`` made and a ``message``."""
+
+    result: Any
+    estimate: TEHLErrorEstimate
+    accuracy: float | None
+    accurate: bool
+    refinements: list[TEHLRefinement]
+    message: str
+    wall_s: float
+
+
+def _predicted(est: TEHLErrorEstimate, fx: float, fz: float, fd: float, tighter: bool) -> float:
+    """Larger film error after a refinement that scales the grid and box parts by the factors."""
+    worst = 0.0
+    for k in ("Hc", "Hm"):
+        b = est.budget[k]
+        it = max(b["iteration"] * 0.1, est.film_noise) if tighter else b["iteration"]
+        worst = max(worst, fx * b["grid_x"] + fz * b["grid_z"] + fd * b["domain"] + it)
+    return worst
+
+
+def next_step(est: TEHLErrorEstimate, accuracy: float, points: int, nz: int, box: float,
+              tol_scale: float, max_points: int, max_nz: int = MAX_NZ,
+              box_limit: float = 4.0) -> tuple[str, int, int, float, float] | None:
+    """The refinement predicted to meet ``accuracy`` at least cost (else the one predicted to
+    come closest, if it lowers the error by 10 % or more): ``(what, points, nz, box, tol_scale)``.
+
+    Steps and their predicted effect: twice the points along X (grid_x / 2^p), twice nz
+    (grid_z / 2^p), twice the box at equal mesh (domain / 4, the core's
+    :data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_DECAY`), outer tolerances ten times
+    tighter (iteration / 10, not below the inner films' alternation). A part that could not be
+    measured is refined first: a coarser solve that did not converge asks for more points,
+    an unknown box probe too (its probes then run on finer grids).
+    """
+    px, pz = est.orders
+    finer = 2 * (points - 1) + 1
+    parts = {p: max(est.budget[k][p] for k in ("Hc", "Hm")) for p in ("grid_x", "grid_z", "domain")}
+    if not all(math.isfinite(v) for v in parts.values()):
+        if not math.isfinite(parts["grid_z"]) and 2 * nz <= max_nz:
+            return ("nz", points, 2 * nz, box, tol_scale)
+        return ("points", finer, nz, box, tol_scale) if finer <= max_points else None
+    options = []  # (cost rank, predicted, step)
+    if 2 * nz <= max_nz:
+        options.append((0, _predicted(est, 1.0, 2.0**-pz, 1.0, False), ("nz", points, 2 * nz, box, tol_scale)))
+    if tol_scale > 1e-3:
+        options.append((0, _predicted(est, 1.0, 1.0, 1.0, True), ("tolerance", points, nz, box, 0.1 * tol_scale)))
+    if finer <= max_points:
+        options.append((1, _predicted(est, 2.0**-px, 1.0, 1.0, False), ("points", finer, nz, box, tol_scale)))
+        if 2.0 * box <= box_limit:
+            options.append((1, _predicted(est, 1.0, 1.0, 1.0 / DOMAIN_DECAY, False),
+                            ("box", finer, nz, 2.0 * box, tol_scale)))
+    if not options:
+        return None
+    meeting = [o for o in options if o[1] <= accuracy]
+    if meeting:
+        return min(meeting, key=lambda o: (o[0], o[1]))[2]
+    best = min(options, key=lambda o: (o[1], o[0]))
+    return best[2] if best[1] <= 0.9 * est.worst else None
+
+
+def _dominant(est: TEHLErrorEstimate) -> str:
+    parts = ("grid_x", "grid_z", "domain", "iteration")
+    vals = {p: max(est.budget[k][p] for k in ("Hc", "Hm")) for p in parts}
+    unknown = [p for p, v in vals.items() if not math.isfinite(v)]
+    if unknown:
+        return f"the {' and '.join(unknown)} part{'s' if len(unknown) > 1 else ''} could not be measured"
+    p = max(parts, key=lambda n: vals[n])
+    return f"the {p} part dominates ({vals[p]:.2g})"
+
+
+def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None,
+                           accuracy: float | None = 0.005, *, refine: bool = True,
+                           max_points: int | None = None, max_nz: int = MAX_NZ, box_limit: float = 4.0,
+                           time_budget: float = 600.0) -> AccurateTEHL:
+    """Solve a TEHL line or point contact, estimate its error (:func:`estimate_error`) and,
+    with ``refine`` and an ``accuracy`` (relative error of Hc and Hm), refine the part that
+    dominates (:func:`next_step`: points along X, nz, the box, the outer tolerances) until the
+    estimate meets the target or a budget runs out: ``max_points`` along X (default 4097
+    line, 513 point), ``max_nz``, a box ``box_limit`` times the default, ``time_budget``
+    seconds (checked between solves). Solves already made for an estimate are reused.
+
+    Returns the most accurate converged solve of the sequence (smallest estimated film error)
+    with its estimate; ``accurate`` is False when that estimate misses the target (or is
+    unknown), and ``message`` says why the refinement stopped. Raises
+    :class:`ConvergenceError` when the first solve, and every finer one tried, fails.
+    """
+    t0 = time.perf_counter()
+    point = scene.kind != "line"
+    opts = options or TEHLOptions(points=257 if point else 513)
+    if accuracy is not None:
+        require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
+    require_range("time_budget", time_budget, 0.0, 1e6, "s")
+    limit = max_points or MAX_POINTS["point" if point else "line"]
+    slip = scene.slip if slip is None else float(slip)
+    cache = SolveCache(scene, slip, opts, point)
+    points, nz, box, tol_scale = opts.points, opts.nz, opts.box, 1.0
+    domains: dict[float, dict[str, Any]] = {}
+    steps: list[TEHLRefinement] = []
+    best: tuple[Any, TEHLErrorEstimate] | None = None
+    why = ""
+    cache_scale = 1.0
+    while True:
+        if tol_scale != cache_scale:
+            # tighter outer tolerances: a new sequence of solves (the coarse ones too)
+            cache = SolveCache(scene, slip, opts.with_changes(
+                tol_P=opts.tol_P * tol_scale, tol_H=opts.tol_H * tol_scale, tol_T=opts.tol_T * tol_scale), point)
+            cache_scale = tol_scale
+        ts = time.perf_counter()
+        res = cache(points, nz, box)
+        if res is None:
+            err = cache.errors[(points, nz, float(box))]
+            finer = 2 * (points - 1) + 1
+            if best is None and refine and accuracy is not None and finer <= limit:
+                # a grid too coarse for the contact: the finer grid is the remedy
+                steps.append(TEHLRefinement(points, nz, box, math.nan, math.nan, time.perf_counter() - ts, "points"))
+                points = finer
+                continue
+            if best is None:
+                raise ConvergenceError(f"TEHL: the solve on {points} points, nz = {nz} did not converge: {err}",
+                                       None, "more points (the contact may need a finer grid) or check the inputs")
+            why = f"the refinement to {points} points, nz = {nz}, box x{box:g} did not converge ({err})"
+            break
+        est = estimate_error(res, cache=cache, domain=domains.get(box, True))
+        if est.domain is not None:
+            domains[box] = est.domain  # a far-field change: the same at every grid of this box
+        if best is None or est.worst < best[1].worst:
+            best = (res, est)
+        if accuracy is None or est.worst <= accuracy or not refine:
+            steps.append(TEHLRefinement(points, nz, box, est.Hc, est.Hm, time.perf_counter() - ts, ""))
+            break
+        step = next_step(est, accuracy, points, nz, box, tol_scale, limit, max_nz, box_limit)
+        steps.append(TEHLRefinement(points, nz, box, est.Hc, est.Hm, time.perf_counter() - ts,
+                                    step[0] if step else ""))
+        if step is None:
+            why = (f"no refinement within {limit} points, nz = {max_nz} and a box {box_limit:g} times the "
+                   f"default is predicted to help: {_dominant(est)}")
+            break
+        if time.perf_counter() - t0 > time_budget:
+            why = f"the time budget of {time_budget:g} s is spent: {_dominant(est)}"
+            break
+        _, points, nz, box, tol_scale = step
+    res, est = best
+    accurate = accuracy is None or est.worst <= accuracy
+    if accurate:
+        msg = "converged" if accuracy is None else f"converged; estimated error within {accuracy:g}"
+    elif not refine:
+        msg = (f"the estimated error (Hc {est.Hc:.2g}, Hm {est.Hm:.2g}) exceeds the requested accuracy "
+               f"{accuracy:g} ({_dominant(est)}): refine (more points, nz) or --accuracy none")
+    else:
+        o = res.options
+        msg = (f"the estimated error (Hc {est.Hc:.2g}, Hm {est.Hm:.2g}) at {o.points} points, nz = {o.nz}, "
+               f"box x{o.box:g} exceeds the requested accuracy {accuracy:g}; not refined further: {why}")
+    return AccurateTEHL(res, est, accuracy, accurate, steps, msg, time.perf_counter() - t0)
