@@ -35,6 +35,14 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from ..model.errors import require_range
+from ..multigrid.accuracy import (
+    LOAD_SENSITIVITY,
+    ErrorEstimate,
+    attach_estimate,
+    iteration_factor,
+    richardson,
+)
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import PointOptions
 from ..multigrid.policy import RobustnessPolicy, Settings
@@ -64,6 +72,19 @@ STARVED_TOL = 1e-8
 #: at mild starvation. Frozen below the current grid unless the mesh resolves the inlet
 #: converges (20, 10) at Hoil/Hc_ff = 0.1 and 0.03 (129^2), but diverges (100, 10) at 257^2.
 COARSE_THETA_MESH = 0.2
+
+#: Second coarse-grid rule of a solve that the default rule does not converge: theta frozen
+#: (injected) on every grid below the current one (``coarse_theta = 0``). Measured at 257^2
+#: (129^2 for (20, 10)), max_cycles 100: the default rule stops at a residual floor of
+#: 2e-8 ... 7e-8 (slow smooth error in the thin outlet) at Hoil = 0.1 Hc_ff for (179, 4.17),
+#: (100, 5), (20, 10) and at 0.25 for (20, 10) 129^2; this rule converges all of them (30-98
+#: cycles, mass imbalance 7e-10 ... 1.8e-7) but stalls at (179, 4.17), Hoil = 0.25 Hc_ff
+#: (residual 8.9e-6), where the default rule converges: so it is the fallback, not the default.
+FALLBACK_COARSE_THETA = 0
+
+#: extra finest-grid cycles of a starved solve: measured at (179, 4.17) 257^2 the moderate
+#: supplies (Hoil = 1.5 ... 0.4 Hc_ff) converge in 62-94 cycles.
+STARVED_MAX_CYCLES = 100
 
 #: The point core's policy, but a cycle is rejected only when its residual grows 30x over the
 #: best of the last 4 (the core: 3x over the best ever): while the meniscus travels from the
@@ -358,8 +379,19 @@ def solve_starved_point(problem: PointProblem, hoil: float, options: PointOption
     kw.setdefault("tol", STARVED_TOL)
     if options is None:
         kw.setdefault("wedge_order", STARVED_WEDGE_ORDER)
+        kw.setdefault("max_cycles", STARVED_MAX_CYCLES)
     opt = PointOptions.build(options, **kw)
     sol, hz = _solve_once(problem, hoil, opt, coarse_theta)
+    if not sol.success and coarse_theta is None and math.isfinite(hoil):
+        # the other coarse-grid rule converges where this one stops (see FALLBACK_COARSE_THETA)
+        first = (sol.status_name, float(sol.residual_history[-1]) if len(sol.residual_history) else math.inf)
+        sol2, hz2 = _solve_once(problem, hoil, opt, FALLBACK_COARSE_THETA)
+        res2 = float(sol2.residual_history[-1]) if len(sol2.residual_history) else math.inf
+        if sol2.success or res2 < first[1]:
+            sol, hz = sol2, hz2
+        sol.actions.append(f"default coarse-grid theta rule: {first[0]} (residual {first[1]:.3g}); "
+                           f"theta frozen on every coarse grid: {sol2.status_name} (residual "
+                           f"{res2:.3g}); kept the {'second' if hz is hz2 else 'first'}")
     fine = hz.levels[-1]
     sol.contact, sol.solver, sol.problem, sol.options = "point", "starved-fas", problem, opt
     sol.X, sol.Y, sol.P, sol.H = fine.X, fine.Y, fine.P.copy(), fine.H.copy()
@@ -382,31 +414,167 @@ def solve_starved_point(problem: PointProblem, hoil: float, options: PointOption
     return sol
 
 
+#: finest grid of a scene solve without ``points`` (the coarser estimate solve uses half of it)
+SCENE_POINTS = 257
+#: largest grid an accuracy target refines a starved point solve to (513^2 half domain: about
+#: 4x the 257^2 cost, 10-40 s on the shared 2-core machine; ``max_points`` raises it)
+SCENE_MAX_POINTS = 513
+#: side outflow (relative to the inflow) above which the box's side boundary Y = ymax is
+#: taken to shape the solution (domain error unknown)
+SIDE_FLOW_LIMIT = 1e-4
+#: what the result says about the discretisation order
+ORDER_NOTE = ("the starved point solver is first order in the wedge term: its flooded Hc lies "
+              "2-8 % above the core's second-order film on the same grid; Hc_flooded and the "
+              "ratios use its own flooded film")
+
+
+def starved_point_error(fine: EHLResult, coarse: EHLResult | None) -> ErrorEstimate:
+    """Error estimate of a starved point solve (relative, Hc and Hm).
+
+    * grid: Richardson from ``coarse`` (the same supply on the grid with half the intervals)
+      to ``fine``, first order (the wedge is first order), times the core's safety factor;
+      without a converged coarse solve, unknown (NaN);
+    * algebraic: the last finest-grid change of the film times the contraction factor, the
+      load error times the core's film sensitivity, plus the relative mass imbalance (in the
+      starved limit the film carries the supply, so a mass error is a film error);
+    * domain: 0 when the film is unfilled at the inlet boundary in every row (the boundary
+      carries only the supplied layer at zero pressure) and the side outflow is below
+      :data:`SIDE_FLOW_LIMIT`; otherwise unknown (NaN).
+    """
+    Hc, Hm = float(fine.scalars["Hc_venner"]), float(fine.scalars["Hm_venner"])
+    notes = [ORDER_NOTE]
+    if coarse is not None and coarse.success:
+        rc = richardson([coarse.scalars["Hc_venner"], Hc])
+        rm = richardson([coarse.scalars["Hm_venner"], Hm])
+        grid = {"Hc": abs(rc.error / Hc), "Hm": abs(rm.error / Hm)}
+        xc = rc.extrapolated
+    else:
+        grid = {"Hc": math.nan, "Hm": math.nan}
+        xc = math.nan
+        notes.append("no converged solve on the coarser grid: grid error unknown")
+    top = fine.levels - 1
+    fin = [h for h in fine.history if h.level == top]
+    le = abs(float(fine.load_error_history[-1])) if len(fine.load_error_history) else math.inf
+    mb = float(fine.extra["mass_balance_error"])
+    if len(fin) >= 2:
+        fc, fm = iteration_factor([h.Hc for h in fin]), iteration_factor([h.Hm for h in fin])
+        alg = {"Hc": abs(fin[-1].Hc - fin[-2].Hc) / abs(Hc) * fc,
+               "Hm": abs(fin[-1].Hm - fin[-2].Hm) / abs(Hm) * fm}
+    else:
+        alg = dict(grid)
+    alg = {k: v + LOAD_SENSITIVITY * le + mb for k, v in alg.items()}
+    theta = fine.extra["theta"]
+    fl = fine.extra["fluxes"]
+    side = abs(fl["side"]) / max(abs(fl["in"]), 1e-300)
+    j0 = 0 if fine.half else 1
+    inlet_dry = bool(np.all(theta[j0:-1, 1] < 1.0))
+    if inlet_dry and side < SIDE_FLOW_LIMIT:
+        dom = {"Hc": 0.0, "Hm": 0.0}
+        notes.append("meniscus inside the box and no side outflow: no domain error")
+    else:
+        dom = {"Hc": math.nan, "Hm": math.nan}
+        notes.append("the film fills the gap at the inlet boundary (flooded inlet) or oil leaves "
+                     f"through the side boundary ({side:.2g} of the inflow): domain error not measured")
+    budget = {"grid": grid, "domain": dom, "algebraic": alg}
+    tot = {k: grid[k] + alg[k] + dom[k] for k in ("Hc", "Hm")}
+    return ErrorEstimate(tot["Hc"], tot["Hm"], budget, math.nan, math.nan, xc, notes)
+
+
+def starved_point_result(sol: EHLResult, scene: Any = None) -> Any:
+    """Package :class:`~ehl_multigrid.model.results.Result` (kind ``"ehl_point"``) with the
+    film content ``theta`` beside ``P`` and ``H`` and the starved scalars."""
+    from ..point.postprocess import full_fields
+
+    extra = {k: sol.scalars[k] for k in SCENE_KEYS if k in sol.scalars}
+    res = build_result(sol, scene, extra)
+    _, Tf, _ = full_fields(sol.X, sol.Y, sol.extra["theta"], sol.H, sol.half)
+    res.add_field("theta", Tf.T.copy(), "-", ("X", "Y"), "film content (Elrod-Adams)")
+    res.meta["starved_notes"] = ORDER_NOTE
+    return res
+
+
+#: starved scalars of a scene solve, in the payload of ``ehl solve`` and in the saved result
+SCENE_KEYS = ("Hc_flooded", "Hm_flooded", "Hc_flooded_venner", "Hm_flooded_venner", "Hc_ratio",
+              "Hm_ratio", "meniscus_x", "mass_balance_error", "hoil", "hoil_venner",
+              "outlet_layer", "rho_c_Hc_over_hoil", "side_flow", "wedge_order", "flooded_status")
+
+
+def starved_point_payload(sol: EHLResult, res: Any) -> dict[str, Any]:
+    """JSON payload of ``ehl solve`` for a starved point scene: the point payload of ``res``
+    plus :data:`SCENE_KEYS` and the note on the wedge order."""
+    from ..point.postprocess import summary_payload
+
+    out = summary_payload(res)
+    out.update({k: sol.scalars[k] for k in SCENE_KEYS if k in sol.scalars})
+    out["note"] = ORDER_NOTE
+    return out
+
+
+def _scene_solve(pb: PointProblem, Hoil: float, options: PointOptions | None, points: int,
+                 kw: dict[str, Any]) -> EHLResult:
+    return solve_starved_point(pb, Hoil, options, points=points, **kw)
+
+
 def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: PointOptions | None = None,
                               *, flooded: bool = True, viscosity: str = "roelands",
-                              density: str = "dowson-higginson", **kw: Any) -> EHLResult:
+                              density: str = "dowson-higginson", accuracy: float | None = None,
+                              estimate: bool = True, max_points: int = SCENE_MAX_POINTS,
+                              **kw: Any) -> EHLResult:
     """Starved point (circular) contact of a point-contact ``scene`` at its operating point,
     supplied with the scene's ``[supply] hoil`` [m] (or ``hoil`` [m]): ``Hoil = hoil Rx/a^2``.
 
     With ``flooded`` the flooded film of the same discretisation is solved too (scalars
-    ``Hc_flooded``, ``Hm_flooded``, ``Hc_ratio``, ``Hm_ratio``). Films in metres: ``hc``,
-    ``hm``; ``hoil`` [m]. Solved on the half domain Y >= 0 by default (the contact is
-    symmetric); keywords are :class:`PointOptions` fields."""
+    ``Hc_flooded``, ``Hm_flooded`` (Moes, as ``Hc``), ``Hc_ratio``, ``Hm_ratio``). Films in
+    metres: ``hc``, ``hm``; ``hoil`` [m]. Solved on the half domain Y >= 0 by default (the
+    contact is symmetric); keywords are :class:`PointOptions` fields (default grid
+    :data:`SCENE_POINTS`).
+
+    With ``estimate`` the same supply is also solved on the grid with half the intervals and
+    the result carries ``Hc_error``, ``Hm_error`` (:func:`starved_point_error`); ``accuracy``
+    (relative) judges them (status ``"inaccurate"`` when missed) and, without an explicit
+    ``points``, refines the grid up to ``max_points`` until they meet it.
+    """
     from ..point.problem import problem_from_scene
     from .supply import hoil_venner
 
     pb = problem_from_scene(scene, viscosity=viscosity, density=density)
     h_m = scene.supply.hoil if hoil is None else hoil
     Hoil = hoil_venner(h_m, pb.a, pb.Rx)
+    if accuracy is not None:
+        require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
+    require_range("max_points", max_points, 65, 65537, "points")
     kw.setdefault("half", True)
-    res = solve_starved_point(pb, Hoil, options, **kw)
+    explicit = "points" in kw or options is not None
+    n = int(kw.pop("points", options.points if options is not None else SCENE_POINTS))
+    coarse: EHLResult | None = None
+    while True:
+        res = _scene_solve(pb, Hoil, options, n, kw)
+        if not estimate:
+            break
+        if coarse is None:
+            coarse = _scene_solve(pb, Hoil, options, (n - 1) // 2 + 1, kw)
+        attach_estimate(res, starved_point_error(res, coarse), accuracy)
+        if (accuracy is None or res.success or explicit or res.status_name != "inaccurate"
+                or 2 * n - 1 > max_points):
+            break
+        coarse, n = res, 2 * n - 1
     scale = pb.a**2 / pb.Rx
+    fl = res.extra["fluxes"]
     res.scalars.update(hoil=h_m, hoil_venner=Hoil, hc=res.scalars["Hc_venner"] * scale,
-                       hm=res.scalars["Hm_venner"] * scale)
+                       hm=res.scalars["Hm_venner"] * scale,
+                       rho_c_Hc_over_hoil=res.extra["rho_c"] * res.scalars["Hc_venner"] / Hoil,
+                       outlet_layer=res.extra["outlet_layer"],
+                       side_flow=fl["side"] / fl["in"] if fl["in"] else math.nan,
+                       wedge_order=int(res.options.wedge_order))
     if flooded:
         ff = solve_starved_point(pb, math.inf, res.options)
-        res.scalars.update(Hc_flooded=ff.scalars["Hc_venner"], Hm_flooded=ff.scalars["Hm_venner"],
+        fac = pb.moes_factor
+        res.scalars.update(Hc_flooded_venner=ff.scalars["Hc_venner"],
+                           Hm_flooded_venner=ff.scalars["Hm_venner"],
+                           Hc_flooded=ff.scalars["Hc_venner"] * fac, Hm_flooded=ff.scalars["Hm_venner"] * fac,
                            Hc_ratio=res.scalars["Hc_venner"] / ff.scalars["Hc_venner"],
                            Hm_ratio=res.scalars["Hm_venner"] / ff.scalars["Hm_venner"],
                            flooded_status=ff.status_name)
+    res.scalars["converged"] = bool(res.success)
+    res.builder = starved_point_result
     return res
