@@ -77,11 +77,15 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     return _finish(sol, scene)
 
 
-def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult) -> tuple[float, float] | None:
+def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
+                        cache: dict[PointOptions, EHLResult] | None = None) -> tuple[float, float] | None:
     """Relative change of (Hc, Hm) when the box is doubled in X and Y at equal mesh size,
     measured by two converged solves on a coarse grid of the solve (two grids below the
     finest, at least the solver's minimum grid; finer grids up to the solve's own when that does
-    not converge); None when no pair converges."""
+    not converge); None when no pair converges.
+
+    ``cache`` (options -> result) keeps the probe solves of one refinement sequence: the wide
+    solve of a box is the narrow solve of the next box's probe, on the same mesh."""
     top = sol.levels - 1
     n_f = sol.X.shape[0]
     xmin, xmax, ymax = sol.extra["domain"]
@@ -99,10 +103,14 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     while True:
         def solve(n: int, f: float) -> EHLResult:
             # the probes need the film to well below the domain change, not the load to 1e-5
-            return solve_fas(problem, replace(
-                options, points=n, levels=None, n_coarse=None, xmin=f * xmin, xmax=f * xmax,
-                ymax=f * ymax, y_ratio=sol.extra["y_ratio"], raise_on_failure=False,
-                tol_load=max(options.tol_load, 1e-4), film_tol=None))
+            o = replace(options, points=n, levels=None, n_coarse=None, xmin=f * xmin, xmax=f * xmax,
+                        ymax=f * ymax, y_ratio=sol.extra["y_ratio"], raise_on_failure=False,
+                        tol_load=max(options.tol_load, 1e-4), film_tol=None)
+            if cache is None:
+                return solve_fas(problem, o)
+            if o not in cache:
+                cache[o] = solve_fas(problem, o)
+            return cache[o]
 
         change = film_change(lambda n=n_p: solve(n, 1.0), lambda n=n_p: solve(2 * (n - 1) + 1, 2.0))
         if change is not None:
@@ -202,8 +210,10 @@ def solve_point(
                         raise_on_failure=False, film_tol=film_tol(opts, accuracy, tol_factor), **dom)
             return solve_fas(pb, o, callback=callback, scene=scene)
 
+        probes: dict[PointOptions, EHLResult] = {}
+
         def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
-            return point_domain_change(pb, res.options, res)
+            return point_domain_change(pb, res.options, res, probes)
 
         # thick films (low M) spread over many inlet lengths: their box may grow further, on a
         # mesh that coarsens with it (the coarse grid follows the inlet length)
