@@ -321,10 +321,13 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     elif math.isfinite(scene.supply.hoil):
         hs = scene.supply.hoil / (scene.roughness.Rq if scene.roughness else hcs.max())
         ref = HOIL_FLOODED_OVER_SIGMA if scene.roughness else 1.0 / float(density_ratio_dh(scene.hertz.pmax))
-        # line contacts: the mass-conserving solver (ehl_multigrid.starved) replaces the fit
-        method = "Elrod-Adams solver (starved line)" if scene.kind == "line" else "Chevalier (chapter 6)"
-        plan.decisions.append(Decision("starvation", hs < ref, method, hs, ref, "-",
-                                       f"inlet oil film {scene.supply.hoil:.3g} m"))
+        # the mass-conserving solvers (ehl_multigrid.starved) replace the fit for smooth contacts
+        method = f"Elrod-Adams solver (starved {'line' if scene.kind == 'line' else 'point'})"
+        why = (f"inlet oil film {scene.supply.hoil:.3g} m = {hs:.3g} Rq; starved below {ref:g} Rq"
+               if scene.roughness else
+               f"inlet oil film {scene.supply.hoil:.3g} m = {hs:.3g} x the fitted flooded central film; "
+               f"starved below {ref:.3g} (the flooded film's flux at ambient density, 1/rho(pmax))")
+        plan.decisions.append(Decision("starvation", hs < ref, method, hs, ref, "-", why))
     else:
         plan.decisions.append(Decision("starvation", False, "flooded", math.inf, HOIL_FLOODED_OVER_SIGMA, "sigma",
                                        "supply.hoil = inf: fully flooded"))
