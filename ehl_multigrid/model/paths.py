@@ -12,6 +12,7 @@ import hashlib
 import os
 import re
 import tempfile
+import time
 from pathlib import Path
 
 from .errors import InputError
@@ -21,6 +22,15 @@ from .errors import InputError
 MAX_STEM = 120
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9._+=-]+")
+
+#: Files that accompany a result ``<stem>.h5`` in its folder: ``<stem>.<ext>`` and
+#: ``<stem>_<anything>.<ext>`` (figures, animations, profile tables).
+COMPANION_SUFFIXES = (".png", ".gif", ".mp4", ".svg", ".pdf", ".csv")
+#: When this module was imported (before any result of this process was written): a companion
+#: written since then is this run's own.
+_PROCESS_START = time.time()
+#: Margin for file systems that store whole seconds (FAT: two): a companion within it is kept.
+_COARSE_MTIME_MARGIN = 2.0
 
 
 def safe_stem(name: str, default: str = "scene") -> str:
@@ -54,6 +64,52 @@ def output_file(outdir: str | os.PathLike, stem: str, suffix: str = "") -> Path:
     if path.resolve().parent != folder.resolve():
         raise InputError(f"output name {stem!r}{suffix} would leave the output folder {str(folder)!r}")
     return path
+
+
+def remove_stale_companions(result_path: str | os.PathLike) -> list[Path]:
+    """Delete the figures and tables that an earlier run wrote beside ``result_path``
+    (``<stem>.h5``), so that nothing stale stays beside a new result; return what was deleted.
+
+    A companion is ``<stem>.<ext>`` or ``<stem>_<anything>.<ext>`` with ``ext`` in
+    :data:`COMPANION_SUFFIXES`, older than this process, and not claimed by a longer result
+    stem of the same folder (``<stem>_tehl_maps.png`` belongs to ``<stem>_tehl.h5`` when that
+    exists). Call it when the new result is written, before its own figures.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> d = Path(tempfile.mkdtemp())
+    >>> for n in ("a.h5", "a_maps.png", "a_b.h5", "a_b_maps.png"):
+    ...     _ = (d / n).write_text("x"); os.utime(d / n, (0, 0))
+    >>> [p.name for p in remove_stale_companions(d / "a.h5")]
+    ['a_maps.png']
+    """
+    path = Path(result_path)
+    folder, stem = path.parent, path.stem
+    if not folder.is_dir():
+        return []
+    stems = sorted((p.stem for p in folder.glob("*.h5")), key=len, reverse=True)
+    removed = []
+    for p in folder.iterdir():
+        name = p.name
+        if p.suffix.lower() not in COMPANION_SUFFIXES or not p.is_file():
+            continue
+        base = name[: -len(p.suffix)]
+        if not (base == stem or base.startswith(stem + "_")):
+            continue
+        owner = next((s for s in stems if base == s or base.startswith(s + "_")), stem)
+        if owner != stem:
+            continue
+        try:
+            mtime = p.stat().st_mtime
+            margin = _COARSE_MTIME_MARGIN if mtime == int(mtime) else 0.0
+            if mtime >= _PROCESS_START - margin:
+                continue
+            p.unlink()
+        except OSError:
+            continue
+        removed.append(p)
+    return sorted(removed)
 
 
 def writable_dir(path: str | os.PathLike, field: str = "--out") -> Path:

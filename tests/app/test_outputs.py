@@ -198,3 +198,43 @@ def test_every_writing_command_keeps_a_hostile_scene_name_inside_out(command, tm
     capsys.readouterr()
     written = [p for p in tmp_path.rglob("*") if p.is_file() and p != scene_file]
     assert written and all(p.parent == out for p in written), written
+
+
+def test_a_new_result_leaves_no_figure_of_the_previous_run_beside_it(tmp_path):
+    """``ehl solve --out o`` with plots, then again with ``--no-plots``: the earlier figures
+    of that result are gone (two processes, as a user runs them); another result's figures
+    stay, even when its name starts with this one's."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "o"
+    out.mkdir()
+    other = out / "point_M20_L10_th1_tehl.h5"
+    other.write_bytes(b"")
+    keep = [out / "point_M20_L10_th1_tehl_maps.png", out / "notes.png"]
+    for p in keep:
+        p.write_bytes(b"png")
+    cmd = [sys.executable, "-m", "ehl_multigrid", "solve", "--contact", "point", "--M", "20",
+           "--L", "10", "--points", "65", "--accuracy", "none", "--out", str(out)]
+    first = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert first.returncode == 0, first.stderr
+    figures = sorted(p.name for p in out.glob("point_M20_L10_th1_*.png") if "tehl" not in p.name)
+    assert figures  # the first run wrote its figures
+    second = subprocess.run(cmd + ["--no-plots"], capture_output=True, text=True, timeout=300)
+    assert second.returncode == 0, second.stderr
+    assert not [p.name for p in out.glob("point_M20_L10_th1_*.png") if "tehl" not in p.name]
+    assert all(p.exists() for p in keep) and (out / "point_M20_L10_th1.h5").exists()
+
+
+def test_figures_written_by_this_process_before_its_result_are_kept(tmp_path):
+    """A command that draws before it saves keeps its own figures: only files older than the
+    process are stale."""
+    fig = tmp_path / "r_profiles.png"
+    fig.write_bytes(b"png")
+    old = tmp_path / "r_maps.png"
+    old.write_bytes(b"png")
+    os.utime(old, (0, 0))
+    res = Result("test")
+    res.set_scalar("x", 1.0)
+    res.save(tmp_path / "r.h5")
+    assert fig.exists() and not old.exists()
