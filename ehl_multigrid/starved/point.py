@@ -52,7 +52,7 @@ from ..point import numerics as nm
 from ..point.fas import HINT, POINT_POLICY, Level, PointHierarchy, point_settings
 from ..point.postprocess import build_result
 from ..point.problem import PointProblem
-from .supply import check_hoil
+from .supply import check_hoil, check_profile
 
 #: default tolerance of the starved solve on the core's scaled residual (a pressure change
 #: relative to max P). The mass imbalance is far more sensitive in the inlet, where eps/h^2 ~
@@ -100,16 +100,16 @@ STARVED_WEDGE_ORDER = 1
 
 
 @njit(cache=True)
-def march_theta(P, H, rho, eps, theta, f, hx, hy, sym, hoil, order=1):
+def march_theta(P, H, rho, eps, theta, f, hx, hy, sym, hoil_rows, order=1):
     """Solve each unpressurised point's discrete mass balance for ``theta`` (marching along X,
     upwind flux ``q = theta rho H``, first or (``order = 2``, from the third column on) second
     order as the point core's wedge term); ``theta = 1`` where ``P > 0``; clipped to
-    ``[0, 1]``. Column 0 carries the supply ``q = hoil`` (``theta <= 1``)."""
+    ``[0, 1]``. Column 0 of row ``j`` carries the supply ``q = hoil_rows[j]`` (``theta <= 1``)."""
     ny, nx = P.shape
     hx2, hy2 = hx * hx, hy * hy
     j0 = 0 if sym else 1
     for j in range(ny):
-        q0 = hoil
+        q0 = hoil_rows[j]
         t0 = q0 / (rho[j, 0] * H[j, 0]) if H[j, 0] > 0.0 else 1.0
         theta[j, 0] = 1.0 if t0 > 1.0 else t0
         if j < j0 or j > ny - 2:
@@ -165,22 +165,50 @@ def face_fluxes(P: np.ndarray, H: np.ndarray, rho: np.ndarray, eps: np.ndarray, 
             "side": side}
 
 
+def supply_rows(hoil: Any, ny: int) -> np.ndarray:
+    """The supplied layer per row of the finest grid: a number (uniform) or a profile of
+    exactly ``ny`` layers, each in ``(0, inf]`` (:class:`InputError` otherwise)."""
+    if np.ndim(hoil) == 0:
+        return np.full(ny, check_hoil(hoil))
+    return check_profile(hoil, ny)
+
+
+def mean_layer(rows: np.ndarray, half: bool) -> float:
+    """Mean supplied layer over the rows whose inlet flow the mass balance counts (those of
+    :func:`face_fluxes`: a half domain's centre row with weight 1/2); ``inf`` when any of
+    them is flooded."""
+    j0 = 0 if half else 1
+    r = rows[j0:rows.size - 1]
+    if not np.all(np.isfinite(r)):
+        return math.inf
+    w = np.ones(r.size)
+    if half:
+        w[0] = 0.5
+    return float((w * r).sum() / w.sum())
+
+
 class StarvedPointHierarchy(PointHierarchy):
     """Point hierarchy with an Elrod-Adams film content ``theta`` and a supplied layer ``hoil``
-    (Venner units ``h R/a^2``; ``inf``: flooded)."""
+    (Venner units ``h R/a^2``; ``inf``: flooded): a number, or one layer per row of the finest
+    grid across the track (a profile over Y, :func:`~.supply.check_profile`)."""
 
     name = "starved point"
 
-    def __init__(self, problem: PointProblem, options: PointOptions, hoil: float,
+    def __init__(self, problem: PointProblem, options: PointOptions, hoil: Any,
                  coarse_theta: int | None = None) -> None:
         super().__init__(problem, options)
-        self.hoil = check_hoil(hoil)
+        rows = supply_rows(hoil, self.levels[-1].ny)
+        self.hoil_rows = rows
+        self.hoil = mean_layer(rows, options.half)
         self.coarse_theta = coarse_theta
         self.order = int(options.wedge_order)
         #: free film content on a coarse grid whose mesh resolves the starved inlet
-        self.theta_mesh = COARSE_THETA_MESH * math.sqrt(2.0 * min(self.hoil, 1e150))
-        for lev in self.levels:
+        self.theta_mesh = COARSE_THETA_MESH * math.sqrt(2.0 * min(float(rows.min()), 1e150))
+        top = len(self.levels) - 1
+        for k, lev in enumerate(self.levels):
             lev.theta = np.ones(lev.shape)
+            # the rows of grid k are every 2^(top - k)-th row of the finest grid
+            lev.hoil_rows = np.ascontiguousarray(np.minimum(rows[::2 ** (top - k)], 1e300))
         self._top = 0
 
     # -- discrete operators ---------------------------------------------------------------
@@ -190,7 +218,7 @@ class StarvedPointHierarchy(PointHierarchy):
     def _march(self, lev: Level) -> None:
         nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
         march_theta(lev.P, lev.H, lev.rho, lev.eps, lev.theta, lev.f, lev.hx, lev.hy,
-                    self.options.half, min(self.hoil, 1e300), self.order)
+                    self.options.half, lev.hoil_rows, self.order)
 
     def _sweep_free(self, lev: Level, s: Settings, free: bool) -> None:
         """One X-line sweep on P (density ``theta rho``; P stays 0 where ``theta < 1``), then,
@@ -361,11 +389,13 @@ def _solve_once(problem: PointProblem, hoil: float, opt: PointOptions, coarse_th
     return sol, hz
 
 
-def solve_starved_point(problem: PointProblem, hoil: float, options: PointOptions | None = None,
+def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions | None = None,
                         coarse_theta: int | None = None, **kw: Any) -> EHLResult:
-    """One multilevel (FMG + cycles) solve of a point contact with a uniform supplied layer
-    ``hoil`` (Venner units ``h R/a^2``, total on both surfaces at ambient density; ``inf``:
-    flooded inlet) and Elrod-Adams cavitation, the meniscus found inside the iteration.
+    """One multilevel (FMG + cycles) solve of a point contact with a supplied layer ``hoil``
+    (Venner units ``h R/a^2``, total on both surfaces at ambient density; ``inf``: flooded
+    inlet) and Elrod-Adams cavitation, the meniscus found inside the iteration. ``hoil`` is a
+    number (uniform) or a profile across the track: one layer per row of the finest grid
+    (``Y`` of the result; e.g. the side ridges left by the previous over-rolling).
 
     A continuation in the supply (the flooded solution first, the supply halved from twice
     its central film, each solve cycling on the finest grid from the previous one) was
@@ -374,15 +404,17 @@ def solve_starved_point(problem: PointProblem, hoil: float, options: PointOption
 
     The result carries ``theta`` (``sol.extra["theta"]``), ``meniscus_x`` (centre line),
     ``mass_balance_error`` (relative imbalance of the boundary flows), ``outlet_layer`` (mean
-    ``theta rho H`` leaving at the outlet face, per width, relative to the supply)."""
-    hoil = check_hoil(hoil)
+    ``theta rho H`` leaving at the outlet face, per width), ``hoil`` (the mean supplied layer
+    over the rows of the balance), ``hoil_rows`` and ``hoil_centre``."""
+    if np.ndim(hoil) == 0:
+        hoil = check_hoil(hoil)
     kw.setdefault("tol", STARVED_TOL)
     if options is None:
         kw.setdefault("wedge_order", STARVED_WEDGE_ORDER)
         kw.setdefault("max_cycles", STARVED_MAX_CYCLES)
     opt = PointOptions.build(options, **kw)
     sol, hz = _solve_once(problem, hoil, opt, coarse_theta)
-    if not sol.success and coarse_theta is None and math.isfinite(hoil):
+    if not sol.success and coarse_theta is None and math.isfinite(hz.hoil):
         # the other coarse-grid rule converges where this one stops (see FALLBACK_COARSE_THETA)
         first = (sol.status_name, float(sol.residual_history[-1]) if len(sol.residual_history) else math.inf)
         sol2, hz2 = _solve_once(problem, hoil, opt, FALLBACK_COARSE_THETA)
@@ -402,10 +434,11 @@ def solve_starved_point(problem: PointProblem, hoil: float, options: PointOption
     imbalance = (fl["in"] - fl["out"] - fl["side"]) / max(abs(fl["in"]), 1e-300)
     width = (fine.ny - 1 - (0 if opt.half else 1) - (0.5 if opt.half else 0.0)) * fine.hy
     i0 = int(np.argmin(np.abs(fine.X)))
-    sol.extra.update(theta=fine.theta.copy(), rho=fine.rho.copy(), hoil=hoil,
+    sol.extra.update(theta=fine.theta.copy(), rho=fine.rho.copy(), hoil=hz.hoil,
+                     hoil_rows=hz.hoil_rows.copy(), hoil_centre=float(hz.hoil_rows[row]),
                      meniscus_x=meniscus_x(fine.X, fine.theta, row),
                      mass_balance_error=float(abs(imbalance)), fluxes=fl,
-                     outlet_layer=fl["out"] / width if math.isfinite(hoil) else math.nan,
+                     outlet_layer=fl["out"] / width if math.isfinite(hz.hoil) else math.nan,
                      rho_c=float(fine.rho[row, i0]), domain=(hz.xmin, hz.xmax, hz.ymax))
     sol.builder = build_result
     sol.scalars = dict(build_result(sol, None).scalars)

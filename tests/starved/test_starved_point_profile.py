@@ -1,0 +1,67 @@
+"""Starved point contact with a supply profile across the track (one layer per grid row):
+the uniform profile is the scalar supply, bad profiles are clear errors, and side ridges
+outside the over-rolled track feed the contact far less than the same oil spread evenly.
+(M, L) = (20, 10), half domain, 129 points along X."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.multigrid.options import PointOptions
+from ehl_multigrid.point.problem import problem_from_moes
+from ehl_multigrid.starved.point import StarvedPointHierarchy, solve_starved_point
+
+KW = dict(points=129, half=True, raise_on_failure=False)
+HC_FF = 0.4466  # first-order flooded central film at 129^2
+
+
+@pytest.fixture(scope="module")
+def problem():
+    return problem_from_moes(20.0, 10.0)
+
+
+@pytest.fixture(scope="module")
+def rows(problem):
+    return StarvedPointHierarchy(problem, PointOptions.build(None, wedge_order=1, **KW), 1.0).levels[-1].Y
+
+
+def test_a_uniform_profile_is_the_scalar_supply(problem, rows):
+    a = solve_starved_point(problem, 0.4 * HC_FF, **KW)
+    b = solve_starved_point(problem, np.full(rows.size, 0.4 * HC_FF), **KW)
+    assert a.status_name == b.status_name == "converged"
+    assert np.array_equal(a.P, b.P) and np.array_equal(a.extra["theta"], b.extra["theta"])
+    assert b.extra["hoil"] == pytest.approx(0.4 * HC_FF, rel=1e-14)
+
+
+@pytest.mark.parametrize("bad", ["short", "long", "nan", "negative", "2d"])
+def test_bad_supply_profiles_are_clear_errors(problem, rows, bad):
+    prof = np.full(rows.size, 0.1)
+    if bad == "short":
+        prof = prof[:-1]
+    elif bad == "long":
+        prof = np.append(prof, 0.1)
+    elif bad == "nan":
+        prof[3] = math.nan
+    elif bad == "negative":
+        prof[3] = -0.1
+    else:
+        prof = prof[None, :]
+    with pytest.raises(InputError, match="hoil_profile"):
+        solve_starved_point(problem, prof, **KW)
+
+
+def test_side_ridges_outside_the_track_barely_feed_the_contact(problem, rows):
+    h_in = 0.25 * HC_FF
+    prof = np.where(np.abs(rows) >= 1.0, 3.0 * h_in, h_in)
+    track = solve_starved_point(problem, h_in, **KW)
+    ridge = solve_starved_point(problem, prof, **KW)
+    spread = solve_starved_point(problem, ridge.extra["hoil"], **KW)
+    for s in (track, ridge, spread):
+        assert s.status_name == "converged" and s.extra["mass_balance_error"] < 1e-6
+    Hc = [s.scalars["Hc_venner"] for s in (track, ridge, spread)]
+    assert Hc[1] == pytest.approx(Hc[0], rel=0.01)  # the track's own layer sets the central film
+    assert Hc[2] > 1.5 * Hc[1]  # the same oil spread evenly over the box feeds it much more
