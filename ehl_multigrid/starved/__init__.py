@@ -11,9 +11,10 @@
   inlet with ``hoil = inf``; with a finite supply the meniscus inside the multilevel iteration,
   the coupled path, robust only at moderate starvation).
 * :func:`solve_starved_point` -- the point (circular) contact: a
-  :class:`~ehl_multigrid.point.problem.PointProblem` and ``Hoil = hoil Rx/a^2``; the meniscus
-  is found inside the multilevel iteration (point.py); :func:`solve_starved_point_scene` for a
-  point scene and its ``[supply] hoil`` [m].
+  :class:`~ehl_multigrid.point.problem.PointProblem` and ``Hoil = hoil Rx/a^2`` (a number or
+  a profile across the track); the meniscus is found inside the multilevel iteration
+  (point.py); :func:`solve_starved_point_scene` for a point scene and its ``[supply] hoil``
+  [m], with the flooded film of the same discretisation and an error estimate.
 
 Example::
 
