@@ -54,8 +54,8 @@ def run_case(M: float, L: float, points: int, ratios: list[float]) -> dict:
     out = {"M": M, "L": L, "points": points, "Hc_ff": Hff, "Hm_ff": Hmff, "rho_c_ff": rho_c,
            "Hc_ff_order2": ff2.scalars["Hc_venner"], "Hm_ff_order2": ff2.scalars["Hm_venner"],
            "flooded_status": ff1.status_name, "flooded_wall_s": t_ff, "runs": []}
-    # the starved solves with the solver's own max_cycles (STARVED_MAX_CYCLES)
-    skw = {k: v for k, v in kw.items() if k != "max_cycles"}
+    # the starved solves with the solver's own tolerance rules (STARVED_TOL, MASS_TOL, STARVED_MAX_CYCLES)
+    skw = {k: v for k, v in kw.items() if k not in ("max_cycles", "tol")}
     for ratio in [math.inf] + ratios:
         hoil = math.inf if math.isinf(ratio) else ratio * Hff
         t0 = time.perf_counter()

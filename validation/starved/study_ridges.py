@@ -69,7 +69,7 @@ def run(points: int) -> dict:
         for key in ("track_only", "ridges", "uniform_same_mean"):
             c[key]["Hc_over_Hc_ff"] = c[key]["Hc"] / Hff
             c[key]["Hm_over_Hm_ff"] = c[key]["Hm"] / out["Hm_ff"]
-        c["theta_ridges"] = ridge.extra["theta"].tolist() if points <= 129 else None
+        c["theta_ridges"] = np.round(ridge.extra["theta"], 4).tolist() if points <= 129 else None
         out["cases"].append(c)
         print(f"n {points} h_in {frac:g} Hc_ff, ridges {k:g}x at {y0:g}-{y1:g}: Hc/Hc_ff track "
               f"{c['track_only']['Hc_over_Hc_ff']:.4f}, ridges {c['ridges']['Hc_over_Hc_ff']:.4f}, "
