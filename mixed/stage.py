@@ -8,6 +8,7 @@ speed range; the report says which film was used.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from ehl_multigrid.app.stages import RunContext, StageOutput
@@ -29,6 +30,16 @@ def film_calibration(ctx: RunContext) -> tuple[float, str]:
     hc_fit = scene.central_film_fit()[1]
     if film is not None and film.kind in ("ehl_line", "ehl_point"):
         hc = float(film.scalars["hc"])
+        ratio = film.scalars.get("Hc_ratio")
+        if ratio is not None and math.isfinite(float(ratio)) and float(ratio) > 0.0:
+            # a starved solve: the curves apply the starvation of each supply themselves (6.4),
+            # so the calibration takes the flooded film of the same discretisation
+            hc_ff = hc / float(ratio)
+            k = hc_ff / hc_fit
+            return k, (f"fitted film calibrated on the solved flooded film (the starved solve's "
+                       f"flooded companion, hc = {hc * 1e9:.4g} nm starved): hc_flooded/hc_fit = "
+                       f"{hc_ff * 1e9:.4g}/{hc_fit * 1e9:.4g} nm = {k:.4g} at the operating point, applied "
+                       f"over the speed range; the starvation of each supply from (6.4)")
         k = hc / hc_fit
         return k, (f"fitted film calibrated on the solved film: hc_solved/hc_fit = {hc * 1e9:.4g}/{hc_fit * 1e9:.4g} nm "
                    f"= {k:.4g} at the operating point, applied over the speed range")

@@ -141,6 +141,10 @@ def film_stage(ctx: RunContext) -> StageOutput:
             from ..starved import solve_starved_scene
 
             sol = solve_starved_scene(scene, accuracy=plan.tolerance, raise_on_failure=False)
+        elif math.isfinite(scene.supply.hoil):
+            from ..starved import solve_starved_point_scene
+
+            sol = solve_starved_point_scene(scene, accuracy=plan.tolerance, raise_on_failure=False)
         elif contact == "line":
             from ..line import solve_line
 
@@ -193,6 +197,11 @@ def film_stage(ctx: RunContext) -> StageOutput:
                 from .point_plots import plot_result
 
                 figures += [Path(f) for f in plot_result(res, ctx.outdir, f"{scene.name}_film")]
+            if starved:
+                from ..starved.plots import plot_starved, plot_starved_point
+
+                plot = plot_starved if contact == "line" else plot_starved_point
+                figures.append(Path(plot(sol, ctx.outdir / f"{scene.name}_film", scene.name)))
     else:
         return _fit_film_output(ctx)
     return StageOutput("film", res, summary, figures, text)

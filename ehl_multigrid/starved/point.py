@@ -515,7 +515,9 @@ def starved_point_error(fine: EHLResult, coarse: EHLResult | None) -> ErrorEstim
     """
     Hc, Hm = float(fine.scalars["Hc_venner"]), float(fine.scalars["Hm_venner"])
     notes = [ORDER_NOTE]
-    if coarse is not None and coarse.success:
+    # the coarse solve's iteration must have converged; its own accuracy verdict does not
+    # matter (a refinement step passes the previous, 'inaccurate' solve as the coarse one)
+    if coarse is not None and coarse.status_name in ("converged", "inaccurate"):
         rc = richardson([coarse.scalars["Hc_venner"], Hc])
         rm = richardson([coarse.scalars["Hm_venner"], Hm])
         grid = {"Hc": abs(rc.error / Hc), "Hm": abs(rm.error / Hm)}

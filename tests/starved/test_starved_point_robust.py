@@ -101,3 +101,19 @@ def test_the_plan_names_the_starved_point_solver(tmp_path):
 
     dec = make_plan(load_scene(_starved_point_scene(tmp_path))).get("starvation")
     assert dec.include and "Elrod-Adams solver (starved point)" in dec.setting
+
+
+def test_a_refinement_step_estimates_the_grid_error_from_the_previous_inaccurate_solve():
+    """The coarse solve of a refinement step is the previous one, whose own verdict was
+    'inaccurate' (its estimate missed the target): its iteration converged, so it still gives
+    the grid part (it gave NaN, and ``ehl run`` reported 'errors nan' at 513^2)."""
+    from ehl_multigrid.starved.point import starved_point_error
+
+    pb = problem_from_moes(20.0, 10.0)
+    coarse = solve_starved_point(pb, 0.4 * HC_FF_20, points=65, half=True, raise_on_failure=False)
+    fine = solve_starved_point(pb, 0.4 * HC_FF_20, points=129, half=True, raise_on_failure=False)
+    assert coarse.status_name == fine.status_name == "converged"
+    coarse.set_status(6, "short of its target")  # what attach_estimate makes of it
+    assert coarse.status_name == "inaccurate"
+    est = starved_point_error(fine, coarse)
+    assert 0.0 < est.budget["grid"]["Hc"] < 1.0 and est.Hc < 1.0 and est.Hm < 1.0
