@@ -139,7 +139,7 @@ def _plot(rows: dict) -> None:
 
     fig, ax = plt.subplots(figsize=(6.2, 5.2))
     marks = {"Hc": "o", "Hm": "s", "friction_coefficient": "^"}
-    lo, hi = 1e-6, 1e-1
+    lo, hi = math.inf, 0.0
     for k, m in marks.items():
         xs, ys = [], []
         for row in rows.values():
