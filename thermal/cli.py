@@ -45,6 +45,9 @@ def register(subparsers: Any) -> None:
                         "given film")
     p.add_argument("--points", type=int, default=None,
                    help="EHL grid points of --coupled solves (2^k + 1, default 513)")
+    p.add_argument("--no-estimate", dest="estimate", action="store_false",
+                   help="--coupled: skip the curve's error estimate (at its first and last slip and "
+                        "its largest friction)")
     p.add_argument("--slip", default=None,
                    help="slip values S: comma list or min:max:n; write --slip=-1,0,1 when the list starts negative "
                    "(default: scene ranges.slip)")

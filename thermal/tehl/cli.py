@@ -4,6 +4,7 @@ and the thermal properties ``ehl show --json`` can list."""
 from __future__ import annotations
 
 import argparse
+import math
 from typing import Any
 
 import numpy as np
@@ -47,6 +48,40 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--no-compression", dest="compressive_heating", action="store_false",
                    help="leave the compressive heating out of the energy equation (the thesis's (3.5))")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
+    p.add_argument("--no-estimate", dest="estimate", action="store_false",
+                   help="skip the error estimate (a curve estimates it at its first and last slip "
+                        "and at its largest friction: about three more solves each)")
+
+
+def curve_slips_to_estimate(curve: list[Any]) -> list[int]:
+    """Indices of a traction curve whose error is estimated: the first and last slip and the
+    largest |friction coefficient| (the traction peak, where the heating is largest)."""
+    mu = [abs(r.friction_coefficient) for r in curve]
+    return sorted({0, len(curve) - 1, int(np.argmax(mu))})
+
+
+def curve_error(curve: list[Any]) -> dict[str, Any]:
+    """Error estimate of a TEHL traction curve (:func:`thermal.tehl.accuracy.estimate_error`
+    at :func:`curve_slips_to_estimate`): per estimated slip, and the largest of each quantity
+    over them (NaN when one of them could not be measured) as the curve's ``*_error`` keys; the
+    friction's relative error leaves out slips whose friction is below 1 % of the curve's largest."""
+    from .accuracy import estimate_error
+
+    mu_max = max(abs(r.friction_coefficient) for r in curve)
+    per = []
+    for i in curve_slips_to_estimate(curve):
+        est = estimate_error(curve[i]).payload()
+        row = {"slip": curve[i].slip, **{k: v for k, v in est.items() if k.endswith(("_error", "_K"))}}
+        if abs(curve[i].friction_coefficient) < 0.01 * mu_max:
+            # near zero slip the friction is ~0 and its relative error says nothing
+            row["friction_coefficient_error"] = None
+        per.append(row)
+    keys = [k for k in per[0] if k != "slip"]
+    worst = {}
+    for k in keys:
+        vals = [p[k] for p in per if p[k] is not None]
+        worst[k] = math.nan if not vals or any(not math.isfinite(v) for v in vals) else max(vals)
+    return {**worst, "error_at_slips": per}
 
 
 def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
@@ -61,6 +96,10 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
     if len(slips) == 1:
         r = solve_tehl_line(scene, slips[0], opts)
         payload = {"scene": scene.name, **solve_payload(r), **{"properties": thermal_properties(scene)}}
+        if getattr(args, "estimate", True):
+            from .accuracy import estimate_error
+
+            payload.update(estimate_error(r).payload())
         if not args.json:  # with --json the ehl command prints the returned payload
             print_table({k: v for k, v in payload.items() if k not in ("outer", "properties")})
         return payload
@@ -70,11 +109,18 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
                "friction": [r.friction for r in curve], "Hc": [r.Hc for r in curve], "Hm": [r.Hm for r in curve],
                "Hc_isothermal": curve[0].Hc_isothermal, "T_max": [r.T_max for r in curve],
                "heat_balance_error": [r.heat_balance_error for r in curve],
+               "converged": all(bool(r.report.converged) for r in curve),
                "wall_s": sum(r.wall_s for r in curve)}
+    if getattr(args, "estimate", True):
+        payload.update(curve_error(curve))
     if not args.json:
         print(f"  {'slip':>8} {'mu':>9} {'Hc':>8} {'Hm':>8} {'T_max':>8}")
         for r in curve:
             print(f"  {r.slip:8.4g} {r.friction_coefficient:9.4g} {r.Hc:8.4g} {r.Hm:8.4g} {r.T_max:8.4g}")
+        if "Hc_error" in payload:
+            print(f"  estimated errors (largest at slips {[p['slip'] for p in payload['error_at_slips']]}): "
+                  f"mu {payload['friction_coefficient_error']:.2g}, Hc {payload['Hc_error']:.2g}, "
+                  f"Hm {payload['Hm_error']:.2g}, T_max {payload['T_max_error_K']:.2g} K")
     return payload
 
 

@@ -129,3 +129,25 @@ def test_a_point_thermal_solve_whose_error_cannot_be_estimated_is_not_called_con
     out = json.loads(capsys.readouterr().out)
     assert rc == 3 and out["status"] == "inaccurate" and "could not be measured" in out["message"]
     assert out["Hc_error"] is None  # not known (NaN, written as null)
+
+
+def test_a_tehl_traction_curve_states_its_error_at_its_first_last_and_peak_slips(capsys):
+    from ehl_multigrid.app.cli import main
+
+    rc = main(["tehl", "appendix_c_line_4240N", "--slip", "0,0.5,1", "--points", "129", "--nz", "10",
+               "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0 and out["converged"]
+    assert [p["slip"] for p in out["error_at_slips"]] == [0.0, 1.0]  # the peak is at S = 1 here
+    assert 0 < out["Hc_error"] < 0.5 and 0 < out["Hm_error"] < 0.5  # 129 points: coarse
+    # and it covers the true error of the peak slip's film (against 1025 points)
+    assert main(["tehl", "appendix_c_line_4240N", "--slip", "1", "--points", "1025", "--nz", "10",
+                 "--no-estimate", "--json"]) == 0
+    fine = json.loads(capsys.readouterr().out)
+    assert abs(out["Hc"][-1] / fine["Hc"] - 1.0) < out["error_at_slips"][1]["Hc_error"]
+    # the friction's relative error is not taken where the friction is ~0 (S = 0)
+    assert out["error_at_slips"][0]["friction_coefficient_error"] is None
+    assert out["friction_coefficient_error"] == out["error_at_slips"][1]["friction_coefficient_error"]
+    assert main(["traction", "appendix_c_line_4240N", "--coupled", "--slip", "0.1,0.3", "--points", "129",
+                 "--nz", "10", "--no-estimate", "--json"]) == 0
+    assert "Hc_error" not in json.loads(capsys.readouterr().out)
