@@ -432,7 +432,7 @@ def part_chapter5() -> None:
     sc = load_scene("series_D_disc3_1.93GPa")
     iso = solve_fas(problem_from_scene(sc), PointOptions(points=513, half=True), scene=sc)
     rows = []
-    for S in (0.05, 0.5):
+    for S in CHAPTER5_SLIPS:
         t = time.perf_counter()
         try:
             r = solve_tehl_point(sc, S, points=513, **CHAPTER5_TOLERANCES)
@@ -444,6 +444,41 @@ def part_chapter5() -> None:
         rows.append(rec)
         print(rec, flush=True)
     dump("chapter5", {"scene": sc.name, "points": 513, "M": sc.moes()[0], "rows": rows})
+    plot_chapter5(rows)
+
+
+#: slips of the chapter-5 curves (the series' 0.05 and 0.5 and the range around them)
+CHAPTER5_SLIPS = (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0)
+
+
+def plot_chapter5(rows: list[dict]) -> None:
+    """out/chapter5_curves.png: friction coefficient of TEHL and of the decoupled method, and
+    the TEHL films against the isothermal ones, over slip."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    ok = [r for r in rows if "error" not in r]
+    if not ok:
+        return
+    S = [r["slip"] for r in ok]
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    ax[0].plot(S, [r["friction_coefficient"] for r in ok], "o-", label="TEHL (coupled)")
+    ax[0].plot(S, [r["mu_decoupled_thermal_layer"] for r in ok], "s--", label="decoupled (thesis method)")
+    ax[0].set_ylabel("friction coefficient")
+    ax[1].plot(S, [r["Hc"] / r["Hc_isothermal"] for r in ok], "o-", label="Hc / Hc isothermal")
+    ax[1].plot(S, [r["Hm"] / r["Hm_isothermal"] for r in ok], "s-", label="Hm / Hm isothermal")
+    ax[1].set_ylabel("film ratio")
+    for a in ax:
+        a.set_xscale("log")
+        a.set_xlabel("slide-to-roll ratio S")
+        a.grid(True, which="both", alpha=0.3)
+        a.legend(fontsize=8)
+    fig.suptitle("Chapter 5 condition (series D, disc 3, 1.93 GPa, 12 m/s): coupled against decoupled, 513 points")
+    fig.tight_layout()
+    fig.savefig(OUT / "chapter5_curves.png", dpi=120)
+    plt.close(fig)
 
 
 PARTS = {"limit": part_limit, "energy": part_energy, "grid": part_grid, "correlations": part_correlations,
