@@ -384,6 +384,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+    record_payload_outputs(getattr(args, "out", None), payload)
     if getattr(args, "json", False) and payload is not None:
         print_payload(payload)
     if isinstance(payload, dict) and payload.get("internal_error"):
@@ -395,6 +396,46 @@ def main(argv: Sequence[str] | None = None) -> int:
               "is written and says so", file=sys.stderr)
         return EXIT_CONVERGENCE
     return EXIT_OK
+
+
+def payload_files(payload: Any, depth: int = 0) -> list[Path]:
+    """Every existing file a command's payload names (``file``, ``hdf5``, ``plots``, ``png``,
+    ``csv`` ... at any depth up to 4)."""
+    found: list[Path] = []
+    if depth > 4:
+        return found
+    if isinstance(payload, str):
+        if len(payload) < 4096 and "\n" not in payload:
+            try:
+                p = Path(payload)
+                if p.suffix and p.is_file():
+                    found.append(p)
+            except (OSError, ValueError):
+                pass
+    elif isinstance(payload, dict):
+        for v in payload.values():
+            found += payload_files(v, depth + 1)
+    elif isinstance(payload, (list, tuple)):
+        for v in payload:
+            found += payload_files(v, depth + 1)
+    return found
+
+
+def record_payload_outputs(out: Any, payload: Any) -> None:
+    """After a command wrote into ``--out``: for every result ``<stem>.h5`` it names, record
+    the files of that stem it wrote (``<stem>.*``, ``<stem>_*``) and delete what the previous
+    run of the stem recorded and this one did not rewrite
+    (:func:`~ehl_multigrid.model.paths.record_outputs`)."""
+    if out is None or not isinstance(payload, dict):
+        return
+    from ..model.paths import record_outputs
+
+    folder = Path(out).resolve()
+    files = [p for p in payload_files(payload) if p.resolve().parent == folder]
+    for h5 in (p for p in files if p.suffix == ".h5"):
+        stem = h5.stem
+        mine = [p for p in files if p.stem == stem or p.name.startswith(stem + "_")]
+        record_outputs(folder, stem, mine)
 
 
 def _one_line(exc: BaseException) -> str:

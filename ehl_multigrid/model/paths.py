@@ -9,11 +9,12 @@ result land outside ``--out``. :func:`safe_stem` turns any label into one safe f
 from __future__ import annotations
 
 import hashlib
+import json
 import os
 import re
 import tempfile
-import time
 from pathlib import Path
+from typing import Any
 
 from .errors import InputError
 
@@ -22,16 +23,6 @@ from .errors import InputError
 MAX_STEM = 120
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9._+=-]+")
-
-#: Files that accompany a result ``<stem>.h5`` in its folder: ``<stem>.<ext>`` and
-#: ``<stem>_<anything>.<ext>`` (figures, animations, profile tables).
-COMPANION_SUFFIXES = (".png", ".gif", ".mp4", ".svg", ".pdf", ".csv")
-#: When this module was imported (before any result of this process was written): a companion
-#: written since then is this run's own.
-_PROCESS_START = time.time()
-#: Margin for file systems that store whole seconds (FAT: two): a companion within it is kept.
-_COARSE_MTIME_MARGIN = 2.0
-
 
 def safe_stem(name: str, default: str = "scene") -> str:
     """A file-name stem for the label ``name``: letters, digits and ``. _ + = -`` only, no
@@ -66,50 +57,53 @@ def output_file(outdir: str | os.PathLike, stem: str, suffix: str = "") -> Path:
     return path
 
 
-def remove_stale_companions(result_path: str | os.PathLike) -> list[Path]:
-    """Delete the figures and tables that an earlier run wrote beside ``result_path``
-    (``<stem>.h5``), so that nothing stale stays beside a new result; return what was deleted.
+#: Manifest of the files one command wrote for one result stem in an output folder.
+OUTPUTS_MANIFEST = ".ehl-files-{stem}.json"
 
-    A companion is ``<stem>.<ext>`` or ``<stem>_<anything>.<ext>`` with ``ext`` in
-    :data:`COMPANION_SUFFIXES`, older than this process, and not claimed by a longer result
-    stem of the same folder (``<stem>_tehl_maps.png`` belongs to ``<stem>_tehl.h5`` when that
-    exists). Call it when the new result is written, before its own figures.
+
+def record_outputs(folder: str | os.PathLike, stem: str, files: Any) -> list[Path]:
+    """Record the files a command wrote for the result ``<stem>`` in ``folder`` and delete
+    those the previous run of the same stem recorded and this one did not write again
+    (figures of an earlier run with plots, after a run with ``--no-plots``; an old CSV), so
+    nothing stale stays beside a new result. Only recorded files are ever deleted: a file
+    the user put in the folder is not touched. Returns the deleted paths.
 
     Examples
     --------
-    >>> import tempfile, os
+    >>> import tempfile
     >>> d = Path(tempfile.mkdtemp())
-    >>> for n in ("a.h5", "a_maps.png", "a_b.h5", "a_b_maps.png"):
-    ...     _ = (d / n).write_text("x"); os.utime(d / n, (0, 0))
-    >>> [p.name for p in remove_stale_companions(d / "a.h5")]
-    ['a_maps.png']
+    >>> for n in ("r.h5", "r_maps.png", "r_notes.png"):
+    ...     _ = (d / n).write_text("x")
+    >>> record_outputs(d, "r", [d / "r.h5", d / "r_maps.png"])
+    []
+    >>> [p.name for p in record_outputs(d, "r", [d / "r.h5"])]
+    ['r_maps.png']
+    >>> sorted(p.name for p in d.iterdir() if not p.name.startswith("."))
+    ['r.h5', 'r_notes.png']
     """
-    path = Path(result_path)
-    folder, stem = path.parent, path.stem
-    if not folder.is_dir():
-        return []
-    stems = sorted((p.stem for p in folder.glob("*.h5")), key=len, reverse=True)
+    folder = Path(folder)
+    here = folder.resolve()
+    new = sorted({Path(f).name for f in files if Path(f).resolve().parent == here})
+    manifest = folder / OUTPUTS_MANIFEST.format(stem=safe_stem(stem))
+    try:
+        old = set(json.loads(manifest.read_text()).get("files", []))
+    except (OSError, ValueError, AttributeError):
+        old = set()
     removed = []
-    for p in folder.iterdir():
-        name = p.name
-        if p.suffix.lower() not in COMPANION_SUFFIXES or not p.is_file():
-            continue
-        base = name[: -len(p.suffix)]
-        if not (base == stem or base.startswith(stem + "_")):
-            continue
-        owner = next((s for s in stems if base == s or base.startswith(s + "_")), stem)
-        if owner != stem:
-            continue
-        try:
-            mtime = p.stat().st_mtime
-            margin = _COARSE_MTIME_MARGIN if mtime == int(mtime) else 0.0
-            if mtime >= _PROCESS_START - margin:
-                continue
-            p.unlink()
-        except OSError:
-            continue
-        removed.append(p)
-    return sorted(removed)
+    for name in sorted(old - set(new)):
+        target = folder / name
+        if Path(name).name == name and target.is_file():  # plain names inside the folder only
+            try:
+                target.unlink()
+                removed.append(target)
+            except OSError:
+                pass
+    fd, tmp = tempfile.mkstemp(prefix=f".{manifest.name}.", dir=folder)
+    with os.fdopen(fd, "w") as f:
+        json.dump({"stem": stem, "files": new}, f)
+    os.chmod(tmp, default_file_mode())
+    os.replace(tmp, manifest)
+    return removed
 
 
 def writable_dir(path: str | os.PathLike, field: str = "--out") -> Path:

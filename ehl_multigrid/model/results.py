@@ -34,7 +34,7 @@ import h5py
 import numpy as np
 
 from .errors import InputError
-from .paths import default_file_mode, remove_stale_companions
+from .paths import default_file_mode
 
 FORMAT_VERSION = 1
 
@@ -144,11 +144,8 @@ class Result:
 
     # -- I/O --------------------------------------------------------------------------------
     def save(self, path: str | os.PathLike) -> Path:
-        """Write atomically to ``path`` (HDF5) and delete the figures an earlier run left
-        beside it (:func:`~ehl_multigrid.model.paths.remove_stale_companions`). Returns the path."""
-        out = _write_atomic(path, self._write)
-        remove_stale_companions(out)
-        return out
+        """Write atomically to ``path`` (HDF5). Returns the path."""
+        return _write_atomic(path, self._write)
 
     def _write(self, f: h5py.Group) -> None:
         f.attrs["kind"] = self.kind

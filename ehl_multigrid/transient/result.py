@@ -245,8 +245,7 @@ class TransientResult:
         return self.problem.describe()
 
     def to_hdf5(self, path: str | os.PathLike) -> str:
-        """Write the series, snapshots and summary to HDF5 (temporary file, then rename); the
-        figures an earlier run left beside it are deleted."""
+        """Write the series, snapshots and summary to HDF5 (temporary file, then rename)."""
         import json
 
         import h5py
@@ -277,11 +276,10 @@ class TransientResult:
                 st = f.create_group("steady")
                 st.create_dataset("P", data=self.steady.P)
                 st.create_dataset("H", data=self.steady.H)
-            from ..model.paths import default_file_mode, remove_stale_companions
+            from ..model.paths import default_file_mode
 
             os.chmod(tmp, default_file_mode())  # mkstemp makes it owner-only
             os.replace(tmp, path)
-            remove_stale_companions(path)  # e.g. the GIF of an earlier --animate run
         finally:
             if os.path.exists(tmp):
                 os.remove(tmp)

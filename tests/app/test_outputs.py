@@ -202,8 +202,8 @@ def test_every_writing_command_keeps_a_hostile_scene_name_inside_out(command, tm
 
 def test_a_new_result_leaves_no_figure_of_the_previous_run_beside_it(tmp_path):
     """``ehl solve --out o`` with plots, then again with ``--no-plots``: the earlier figures
-    of that result are gone (two processes, as a user runs them); another result's figures
-    stay, even when its name starts with this one's."""
+    of that result are gone (two processes, as a user runs them); files the runs did not
+    write stay, even when their names start with the result's."""
     import subprocess
     import sys
 
@@ -226,15 +226,17 @@ def test_a_new_result_leaves_no_figure_of_the_previous_run_beside_it(tmp_path):
     assert all(p.exists() for p in keep) and (out / "point_M20_L10_th1.h5").exists()
 
 
-def test_figures_written_by_this_process_before_its_result_are_kept(tmp_path):
-    """A command that draws before it saves keeps its own figures: only files older than the
-    process are stale."""
-    fig = tmp_path / "r_profiles.png"
-    fig.write_bytes(b"png")
-    old = tmp_path / "r_maps.png"
-    old.write_bytes(b"png")
-    os.utime(old, (0, 0))
-    res = Result("test")
-    res.set_scalar("x", 1.0)
-    res.save(tmp_path / "r.h5")
-    assert fig.exists() and not old.exists()
+def test_only_files_a_run_recorded_are_ever_deleted(tmp_path):
+    """A user's own file named like a result's figure stays; the previous run's figure that
+    this run did not rewrite goes; the manifest holds this run's set."""
+    from ehl_multigrid.model.paths import record_outputs
+
+    for name in ("r.h5", "r_maps.png", "r_profiles.png", "r_my_annotated.png"):
+        (tmp_path / name).write_bytes(b"x")
+    record_outputs(tmp_path, "r", [tmp_path / "r.h5", tmp_path / "r_maps.png", tmp_path / "r_profiles.png"])
+    removed = record_outputs(tmp_path, "r", [tmp_path / "r.h5", tmp_path / "r_profiles.png"])
+    assert [p.name for p in removed] == ["r_maps.png"]
+    assert sorted(p.name for p in tmp_path.iterdir() if not p.name.startswith(".")) == [
+        "r.h5", "r_my_annotated.png", "r_profiles.png"]
+    manifest = json.loads((tmp_path / ".ehl-files-r.json").read_text())
+    assert manifest["files"] == ["r.h5", "r_profiles.png"]
