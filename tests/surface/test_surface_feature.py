@@ -22,12 +22,6 @@ from mixed.surface.feature import feature_heights
 from mixed.surface.synthetic import gaussian_random_surface
 
 
-def _scene(name, feature):
-    d = load_scene(name).to_dict()
-    d["feature"] = feature
-    return Scene.from_dict(d)
-
-
 def test_the_transient_solver_finds_the_mixed_layer_reader():
     assert height_map_reader() is feature_heights
 
@@ -88,18 +82,18 @@ def test_bad_map_keys_are_named(tmp_path, monkeypatch, table, match):
         feature_heights(table, 1, {"kind"})
 
 
-def test_the_scene_keys_of_the_solver_stay_its_own(tmp_path):
+def test_the_scene_keys_of_the_solver_stay_its_own(tmp_path, scene_with_feature):
     """x0, y0 and body are the solver's; the reader accepts them and the solver places the map."""
     surf = gaussian_random_surface((16, 16), 2e-6, 10e-9, corr_length=8e-6, seed=3)
     f = tmp_path / "s.npy"
     np.save(f, surf.z)
-    sc = _scene("default", {"kind": "map", "file": str(f), "dx": 2e-6, "dy": 2e-6, "x0": -2.0,
+    sc = scene_with_feature("default", {"kind": "map", "file": str(f), "dx": 2e-6, "dy": 2e-6, "x0": -2.0,
                             "body": 2})
     pb = problem_from_scene(sc)
     feat, body = point_feature_from_scene_table(sc.feature, pb)
     assert body == 2 and feat.extent[0] == pytest.approx(-2.0)
     # a line scene reads the middle row of the same map
-    sl = _scene("page63_line_2000N", {"kind": "map", "file": str(f), "dx": 2e-6})
+    sl = scene_with_feature("page63_line_2000N", {"kind": "map", "file": str(f), "dx": 2e-6})
     lf, _ = feature_from_scene_table(sl.feature, LineProblem.from_scene(sl))
     assert lf.z.size == 16
 

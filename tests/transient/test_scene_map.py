@@ -6,7 +6,6 @@ import pytest
 
 from ehl_multigrid.line.problem import LineProblem
 from ehl_multigrid.model.errors import InputError
-from ehl_multigrid.model.scene import Scene, load_scene
 from ehl_multigrid.point.problem import problem_from_scene
 from ehl_multigrid.transient.scene_feature import (
     feature_from_scene_table,
@@ -14,17 +13,11 @@ from ehl_multigrid.transient.scene_feature import (
 )
 
 
-def _scene(name, feature):
-    d = load_scene(name).to_dict()
-    d["feature"] = feature
-    return Scene.from_dict(d)
-
-
-def test_a_text_profile_becomes_a_line_feature_in_venner_units(tmp_path):
+def test_a_text_profile_becomes_a_line_feature_in_venner_units(tmp_path, scene_with_feature):
     z = 20e-9 * np.sin(np.linspace(0.0, 6.0, 50))
     f = tmp_path / "profile.csv"
     np.savetxt(f, z[None, :], delimiter=",")
-    sc = _scene("page63_line_2000N", {"kind": "map", "file": str(f), "dx": "2 um", "level": "none"})
+    sc = scene_with_feature("page63_line_2000N", {"kind": "map", "file": str(f), "dx": "2 um", "level": "none"})
     pb = LineProblem.from_scene(sc)
     feat, body = feature_from_scene_table(sc.feature, pb)
     assert body == 1 and feat.kind == "profile"
@@ -33,11 +26,11 @@ def test_a_text_profile_becomes_a_line_feature_in_venner_units(tmp_path):
     assert feat.x[0] == pytest.approx(pb.xmin)  # entering from the inlet
 
 
-def test_an_npy_map_becomes_a_centred_point_height_map(tmp_path):
+def test_an_npy_map_becomes_a_centred_point_height_map(tmp_path, scene_with_feature):
     z = np.random.default_rng(0).normal(0.0, 10e-9, (16, 24))
     f = tmp_path / "map.npy"
     np.save(f, z)
-    sc = _scene("default", {"kind": "map", "file": str(f), "dx": "3 um", "dy": "2 um", "body": 2,
+    sc = scene_with_feature("default", {"kind": "map", "file": str(f), "dx": "3 um", "dy": "2 um", "body": 2,
                                   "level": "none"})
     pb = problem_from_scene(sc)
     feat, body = point_feature_from_scene_table(sc.feature, pb)
@@ -52,18 +45,18 @@ def test_an_npy_map_becomes_a_centred_point_height_map(tmp_path):
     ("1e-9, nan, 2e-9, 3e-9, 1e-9", "NaN"),
     ("1e-8 2e-8\n3e-8 4e-8", "one row"),
 ])
-def test_bad_height_files_are_named(tmp_path, content, match):
+def test_bad_height_files_are_named(tmp_path, content, match, scene_with_feature):
     f = tmp_path / "h.txt"
     if content is not None:
         f.write_text(content)
-    sc = _scene("page63_line_2000N", {"kind": "map", "file": str(f), "dx": "2 um"})
+    sc = scene_with_feature("page63_line_2000N", {"kind": "map", "file": str(f), "dx": "2 um"})
     with pytest.raises(InputError, match=match):
         feature_from_scene_table(sc.feature, LineProblem.from_scene(sc))
 
 
-def test_a_map_without_its_spacing_is_refused(tmp_path):
+def test_a_map_without_its_spacing_is_refused(tmp_path, scene_with_feature):
     f = tmp_path / "p.csv"
     np.savetxt(f, np.zeros((1, 10)))
-    sc = _scene("page63_line_2000N", {"kind": "map", "file": str(f)})
+    sc = scene_with_feature("page63_line_2000N", {"kind": "map", "file": str(f)})
     with pytest.raises(InputError, match="feature.dx"):
         feature_from_scene_table(sc.feature, LineProblem.from_scene(sc))
