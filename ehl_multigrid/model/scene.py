@@ -24,7 +24,9 @@ be a string with units, "7.94 mm", "1.5 GPa", "68 cSt", "70 degC", "1500 rpm")::
                   [m/s] ((u1 + u2)/2); slip [-] (S = 2(u1-u2)/us); T_oil, T_surface1, T_surface2 [degC]
     [ranges]      us, slip, load: a list, or {min, max, n, log}
     [roughness]   Rq, Ra, sigma_s, dd [m]; n [1/m^2]; beta [m]; fc [-]; hardness [Pa]
-    [supply]      hoil [m] (inf = flooded); hoil_over_sigma (list); delta [-]
+    [supply]      hoil [m] (inf = flooded); hoil_over_sigma (list); delta [-]; or instead of hoil
+                  hoil_profile = {y = [...], hoil = [...]} [m]: a layer across the track
+                  (|y| from its centre; the starved point solver; hoil = its centre value)
     [feature]     a surface feature for 'ehl transient': kind = "waviness" | "bump" | "dent";
                   amplitude, width or wavelength [m]; x0 [b]; shape; body (1 or 2); or
                   kind = "map" with a height file (formats, units, levelling, filter: the
@@ -152,6 +154,18 @@ class Supply:
     hoil: float = math.inf
     hoil_over_sigma: tuple[float, ...] = ()
     delta: float = 3.5
+    #: Layer across the track: ``(y [m], hoil [m])`` points, piecewise linear in ``|y|`` (the
+    #: distance from the track centre), constant beyond the last point; ``hoil`` is then its
+    #: value at the centre. Empty: a uniform layer.
+    hoil_profile: tuple[tuple[float, ...], tuple[float, ...]] = ()
+
+    def layer_at(self, y: Any) -> Any:
+        """The supplied layer [m] at lateral position(s) ``y`` [m] (uniform ``hoil`` without a
+        profile)."""
+        if not self.hoil_profile:
+            return np.full(np.shape(y), self.hoil) if np.ndim(y) else self.hoil
+        ys, hs = self.hoil_profile
+        return np.interp(np.abs(y), ys, hs)
 
 
 @dataclass(frozen=True)
@@ -345,6 +359,10 @@ class Scene:
                 "delta": self.supply.delta,
             },
         }
+        if self.supply.hoil_profile:
+            del d["supply"]["hoil"]
+            d["supply"]["hoil_profile"] = {"y": list(self.supply.hoil_profile[0]),
+                                           "hoil": list(self.supply.hoil_profile[1])}
         if self.kind == "line":
             d["contact"]["length"] = self.length
         if self.ranges:
@@ -567,8 +585,13 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
     rough = _roughness(_with_units(data, "roughness", required=False))
 
     sup = _with_units(data, "supply", required=False)
-    reject_unknown_keys("supply", sup, {"hoil", "hoil_over_sigma", "delta"})
-    hoil = require_range("supply.hoil", sup.get("hoil", math.inf), 0.0, math.inf, "m", lo_open=True)
+    reject_unknown_keys("supply", sup, {"hoil", "hoil_over_sigma", "delta", "hoil_profile"})
+    profile = _hoil_profile(sup.get("hoil_profile"))
+    if profile and "hoil" in sup:
+        raise InputError("give either supply.hoil (a uniform layer) or supply.hoil_profile (a layer "
+                         "across the track, whose centre value is the hoil), not both")
+    hoil = (float(np.interp(0.0, *profile)) if profile else
+            require_range("supply.hoil", sup.get("hoil", math.inf), 0.0, math.inf, "m", lo_open=True))
     hos = sup.get("hoil_over_sigma", [])
     if not isinstance(hos, list):
         raise InputError(f"supply.hoil_over_sigma = {hos!r} must be a list")
@@ -589,7 +612,7 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         name=name, description=description, source=source, kind=kind, length=length,
         Rx=Rx, Ry=Ry, body1=body1, body2=body2, E_reduced=E_red, lubricant=lub,
         load=load, us=us, slip=slip, T_oil=T_oil, T_surface1=T_s1, T_surface2=T_s2,
-        ranges=ranges, roughness=rough, supply=Supply(hoil, hos_t, delta), solver=solver,
+        ranges=ranges, roughness=rough, supply=Supply(hoil, hos_t, delta, profile), solver=solver,
         feature=feature,
         raw=data, element=element, oil=oil,
     )
@@ -751,3 +774,24 @@ def load_scene(name_or_path: str | Path | None = None) -> Scene:
         raise InputError(f"scene {origin} is not valid TOML: {exc}") from None
     data.setdefault("name", Path(str(name_or_path)).stem)
     return Scene.from_dict(data, origin)
+
+
+def _hoil_profile(table: Any) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """``[supply] hoil_profile = {y = [...], hoil = [...]}`` (metres; ``y`` from the track
+    centre, increasing, >= 0; layers finite and > 0) as ``(y, hoil)`` tuples; () when absent."""
+    if table is None:
+        return ()
+    if not isinstance(table, dict) or set(table) != {"y", "hoil"}:
+        raise InputError(f"supply.hoil_profile = {table!r} must be a table with the lists y [m] "
+                         f"(distance from the track centre) and hoil [m]")
+    ys, hs = table["y"], table["hoil"]
+    if not (isinstance(ys, list) and isinstance(hs, list)) or len(ys) != len(hs) or len(ys) < 2:
+        raise InputError(f"supply.hoil_profile: y and hoil must be lists of equal length >= 2 "
+                         f"(got {len(ys) if isinstance(ys, list) else ys!r} and "
+                         f"{len(hs) if isinstance(hs, list) else hs!r})")
+    y = tuple(require_range(f"supply.hoil_profile.y[{i}]", v, 0.0, 1.0, "m") for i, v in enumerate(ys))
+    h = tuple(require_range(f"supply.hoil_profile.hoil[{i}]", v, 0.0, 1e-2, "m", lo_open=True)
+              for i, v in enumerate(hs))
+    if any(b <= a for a, b in zip(y, y[1:], strict=False)):
+        raise InputError(f"supply.hoil_profile.y = {list(y)} must increase")
+    return (y, h)

@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from ..model.errors import require_range
+from ..model.errors import InputError, require_range
 from ..multigrid.accuracy import (
     LOAD_SENSITIVITY,
     ErrorEstimate,
@@ -182,9 +182,15 @@ def face_fluxes(P: np.ndarray, H: np.ndarray, rho: np.ndarray, eps: np.ndarray, 
             "side": side}
 
 
-def supply_rows(hoil: Any, ny: int) -> np.ndarray:
-    """The supplied layer per row of the finest grid: a number (uniform) or a profile of
-    exactly ``ny`` layers, each in ``(0, inf]`` (:class:`InputError` otherwise)."""
+def supply_rows(hoil: Any, ny: int, Y: np.ndarray | None = None) -> np.ndarray:
+    """The supplied layer per row of the finest grid: a number (uniform), a profile of
+    exactly ``ny`` layers, or a function of the rows' ``Y`` (a profile independent of the
+    grid, e.g. a scene's ``[supply] hoil_profile``); each layer in ``(0, inf]``
+    (:class:`InputError` otherwise)."""
+    if callable(hoil):
+        if Y is None:
+            raise InputError("a supply profile given as a function needs the grid's rows Y")
+        return check_profile(np.asarray([hoil(float(y)) for y in Y], dtype=float), ny)
     if np.ndim(hoil) == 0:
         return np.full(ny, check_hoil(hoil))
     return check_profile(hoil, ny)
@@ -214,7 +220,7 @@ class StarvedPointHierarchy(PointHierarchy):
     def __init__(self, problem: PointProblem, options: PointOptions, hoil: Any,
                  coarse_theta: int | None = None) -> None:
         super().__init__(problem, options)
-        rows = supply_rows(hoil, self.levels[-1].ny)
+        rows = supply_rows(hoil, self.levels[-1].ny, self.levels[-1].Y)
         self.hoil_rows = rows
         self.hoil = mean_layer(rows, options.half)
         self.coarse_theta = coarse_theta
@@ -430,7 +436,7 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
     ``mass_balance_error`` (relative imbalance of the boundary flows), ``outlet_layer`` (mean
     ``theta rho H`` leaving at the outlet face, per width), ``hoil`` (the mean supplied layer
     over the rows of the balance), ``hoil_rows`` and ``hoil_centre``."""
-    if np.ndim(hoil) == 0:
+    if not callable(hoil) and np.ndim(hoil) == 0:
         hoil = check_hoil(hoil)
     explicit = set(kw)
     kw.setdefault("tol", STARVED_TOL)
@@ -613,7 +619,11 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
 
     pb = problem_from_scene(scene, viscosity=viscosity, density=density)
     h_m = scene.supply.hoil if hoil is None else hoil
-    Hoil = hoil_venner(h_m, pb.a, pb.Rx)
+    Hoil: Any = hoil_venner(h_m, pb.a, pb.Rx)
+    if hoil is None and scene.supply.hoil_profile:
+        # the layer across the track at each grid row (Y in units of a)
+        def Hoil(Y: float, sup=scene.supply, a=pb.a, Rx=pb.Rx) -> float:
+            return hoil_venner(float(sup.layer_at(Y * a)), a, Rx)
     if accuracy is not None:
         require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
     require_range("max_points", max_points, 65, 65537, "points")
@@ -634,9 +644,10 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
         coarse, n = res, 2 * n - 1
     scale = pb.a**2 / pb.Rx
     fl = res.extra["fluxes"]
-    res.scalars.update(hoil=h_m, hoil_venner=Hoil, hc=res.scalars["Hc_venner"] * scale,
+    Hoil_c = Hoil(0.0) if callable(Hoil) else Hoil  # the centre's layer
+    res.scalars.update(hoil=h_m, hoil_venner=Hoil_c, hc=res.scalars["Hc_venner"] * scale,
                        hm=res.scalars["Hm_venner"] * scale,
-                       rho_c_Hc_over_hoil=res.extra["rho_c"] * res.scalars["Hc_venner"] / Hoil,
+                       rho_c_Hc_over_hoil=res.extra["rho_c"] * res.scalars["Hc_venner"] / Hoil_c,
                        outlet_layer=res.extra["outlet_layer"],
                        side_flow=fl["side"] / fl["in"] if fl["in"] else math.nan,
                        wedge_order=int(res.options.wedge_order))

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.scene import Scene, load_scene
 from ehl_multigrid.multigrid.options import PointOptions
 from ehl_multigrid.point.problem import problem_from_moes
 from ehl_multigrid.starved.point import StarvedPointHierarchy, solve_starved_point
@@ -65,3 +66,50 @@ def test_side_ridges_outside_the_track_barely_feed_the_contact(problem, rows):
     Hc = [s.scalars["Hc_venner"] for s in (track, ridge, spread)]
     assert Hc[1] == pytest.approx(Hc[0], rel=0.01)  # the track's own layer sets the central film
     assert Hc[2] > 1.5 * Hc[1]  # the same oil spread evenly over the box feeds it much more
+
+
+# -- a scene's [supply] hoil_profile ---------------------------------------------------------
+def _profile_scene(supply):
+    import copy
+
+    d = copy.deepcopy(load_scene("chapter6_starved_0.5GPa").to_dict())
+    s = {k: v for k, v in d["supply"].items() if k != "hoil"}
+    s.update(supply)
+    d["supply"] = s
+    return Scene.from_dict(d)
+
+
+def test_a_scene_profile_round_trips_and_gives_the_centre_layer_as_hoil():
+    sc = _profile_scene({"hoil_profile": {"y": [0.0, 60e-6, 90e-6], "hoil": [20e-9, 20e-9, 60e-9]}})
+    assert sc.supply.hoil == 20e-9
+    assert list(sc.supply.layer_at(np.array([0.0, -75e-6, 1e-3]))) == pytest.approx([20e-9, 40e-9, 60e-9])
+    assert Scene.from_dict(sc.to_dict()).supply == sc.supply
+
+
+@pytest.mark.parametrize("supply, match", [
+    ({"hoil": 20e-9, "hoil_profile": {"y": [0.0, 1e-4], "hoil": [2e-8, 2e-8]}}, "not both"),
+    ({"hoil_profile": {"y": [0.0, 1e-4, 5e-5], "hoil": [2e-8, 2e-8, 2e-8]}}, "must increase"),
+    ({"hoil_profile": {"y": [0.0, 1e-4], "hoil": [2e-8, -1e-9]}}, r"hoil_profile.hoil\[1\]"),
+    ({"hoil_profile": {"y": [0.0], "hoil": [2e-8]}}, "length >= 2"),
+    ({"hoil_profile": [1, 2]}, "must be a table"),
+])
+def test_bad_scene_profiles_are_named(supply, match):
+    from ehl_multigrid.model.errors import InputError
+
+    with pytest.raises(InputError, match=match):
+        _profile_scene(supply)
+
+
+def test_a_flat_scene_profile_gives_the_uniform_supply_and_ridges_lift_the_minimum_film():
+    from ehl_multigrid.starved import solve_starved_point_scene
+
+    uniform = solve_starved_point_scene(_profile_scene({"hoil": 20e-9}), points=129, estimate=False)
+    flat = solve_starved_point_scene(
+        _profile_scene({"hoil_profile": {"y": [0.0, 1e-3], "hoil": [20e-9, 20e-9]}}), points=129, estimate=False)
+    assert flat.scalars["hc"] == uniform.scalars["hc"] and flat.scalars["hm"] == uniform.scalars["hm"]
+    a = load_scene("chapter6_starved_0.5GPa").hertz.a
+    ridges = solve_starved_point_scene(_profile_scene(
+        {"hoil_profile": {"y": [0.0, 0.9 * a, 1.1 * a], "hoil": [20e-9, 20e-9, 60e-9]}}), points=129, estimate=False)
+    assert ridges.success and ridges.extra["mass_balance_error"] < 1e-6
+    assert ridges.scalars["hm"] > uniform.scalars["hm"]
+    assert ridges.scalars["hc"] == pytest.approx(uniform.scalars["hc"], rel=0.01)
