@@ -7,7 +7,9 @@ of P and full weighting of residuals, bilinear coarse-grid corrections, cubic FM
 interpolation, the film constant H00 (one for all grids) moved by the FAS load error on the
 coarsest grid. Contacts long in the rolling direction (b/a < 0.5) alternate the X-line sweep
 with a Y-line sweep, the alternating-direction line relaxation Venner & Lubrecht (2000,
-"Multilevel methods in lubrication") recommend for strong coupling across the X lines. The
+"Multilevel methods in lubrication") recommend for strong coupling across the X lines; in
+solves of >= 513 points along X other contacts alternate on their grids of >= 129 points, where
+the resolved pressure spike's ridge runs obliquely to the X lines and couples them strongly. The
 deformation is recomputed after every sweep by the selected O(N log N) path; coarse grids run
 on one thread.
 """
@@ -54,6 +56,18 @@ POINT_POLICY = PolicyParameters(
 #: At theta = 2 (b/a = 0.64) both converge and alternation costs more work (45.7 against
 #: 35.2 WU for (20, 10) at 257), so b/a >= 0.5 keeps the X sweep alone.
 ALTERNATE_BELOW = 0.5
+#: Wider contacts (b/a >= ALTERNATE_BELOW) alternate in solves whose finest grid has at least
+#: ALTERNATE_FINEST points along X, on their grids of at least ALTERNATE_FROM points. On such
+#: grids the pressure spike is resolved, and where its ridge runs obliquely to the X lines (the
+#: horseshoe's sides) the X sweep leaves an error that the coarse-grid correction brings back
+#: every cycle. Measured on (20, 10), half domain, one W cycle per FMG level, adaptation off:
+#: X lines alone stall at a residual of 8.6e-5 at 1025^2 (load error alternating 8e-6 / 1e-5)
+#: and diverge at 2049^2. Alternating on the grids from 513, 257, 129 or 65 points up, the
+#: 1025^2 floor is 8e-5, 4e-5, 1.6e-7 and 6e-7: the 129^2 grid's correction matters. Solves
+#: up to 257^2 converge to 5e-9 with X lines alone and alternation costs them more work
+#: (45 against 35 - 41 WU with the default options), so they keep the X sweep alone.
+ALTERNATE_FROM = 129
+ALTERNATE_FINEST = 513
 #: Y sweep's treatment of the points with ``eps/hx^2 < switch`` (``relax_sweep_y``'s
 #: ``jd_mode``): Gauss-Seidel (0). Measured: leaving them to the X sweep's
 #: Jacobi-distributive changes (1) diverges (20, 25, 10) at 513 and stalls (100, 20, 4) and
@@ -77,6 +91,8 @@ class Level:
         self.nx, self.ny, self.hx, self.hy, self.X, self.Y = nx, ny, hx, hy, X, Y
         self.defo, self.Kc, self.g = defo, Kc, g
         self.Ky = Kc if Ky is None else Ky
+        #: relax X lines and Y lines alternately on this grid
+        self.alternate = False
         shape = (ny, nx)
         self.P = np.zeros(shape)
         self.H = np.zeros(shape)
@@ -156,6 +172,8 @@ class PointHierarchy:
         self.theta = problem.theta
         self.boa = problem.b_over_a
         alt = options.alternating
+        #: every grid alternates (narrow contacts, or ``alternating=True``); with
+        #: ``alternating=None`` wider contacts alternate on grids of >= ALTERNATE_FROM points
         self.alternating = (self.boa < ALTERNATE_BELOW) if alt is None else bool(alt)
         self.sweep_work = 2.0 if self.alternating else 1.0
         self.g_target = problem.load
@@ -212,13 +230,19 @@ class PointHierarchy:
             defo = make_deformation(opt.deformation, nk, nyk, hx, hy, opt.half, self.threads.threads)
             K = cell_kernel(6, 2, hx, hy)
             Ky = cell_kernel(4, 7, hx, hy)  # [Y offset, X offset] of the Y-line film response
-            self.levels.append(Level(nk, nyk, hx, hy, X, Y, defo,
-                                     np.ascontiguousarray(self.cd * K), self.g_target,
-                                     np.ascontiguousarray(self.cd * Ky)))
+            lev = Level(nk, nyk, hx, hy, X, Y, defo, np.ascontiguousarray(self.cd * K),
+                        self.g_target, np.ascontiguousarray(self.cd * Ky))
+            lev.alternate = self.alternating or (opt.alternating is None and n >= ALTERNATE_FINEST
+                                                 and nk >= ALTERNATE_FROM)
+            self.levels.append(lev)
         self.nfine = self.levels[-1].npts
 
     def work(self, k: int) -> float:
         return self.levels[k].npts / self.nfine
+
+    def sweep_cost(self, k: int) -> float:
+        """Work units of one sweep on grid ``k`` (an alternating sweep counts as two)."""
+        return (2.0 if self.levels[k].alternate else 1.0) * self.work(k)
 
     # -- discrete operators ---------------------------------------------------------------
     def update_film(self, lev: Level) -> None:
@@ -236,7 +260,7 @@ class PointHierarchy:
                        self.options.half, s.switch, s.omega, s.omega_jd, self.options.wedge_order,
                        self.ct)
         self.update_film(lev)
-        if self.alternating:
+        if lev.alternate:
             nm.relax_sweep_y(lev.P, lev.H, lev.rho, lev.eps, lev.f, lev.D, lev.Ky, lev.hx,
                              lev.hy, self.options.half, s.switch, s.omega * Y_OMEGA,
                              s.omega_jd * Y_OMEGA_JD, self.options.wedge_order, Y_JD_MODE, self.ct)
@@ -274,7 +298,7 @@ class PointHierarchy:
         lev = self.levels[k]
         for _ in range(sweeps):
             self._sweep(lev, s)
-        return sweeps * self.sweep_work * self.work(k)
+        return sweeps * self.sweep_cost(k)
 
     def coarse_solve(self, k: int, s: Settings, sweeps: int | None = None) -> float:
         """Relax on the coarsest grid, moving H00 against the (FAS) load error after each
@@ -297,7 +321,7 @@ class PointHierarchy:
             self.H00 -= max(-self.h00_step_max, min(self.h00_step_max, step))
             nm.film(lev.W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
             nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
-        return sweeps * self.sweep_work * self.work(k)
+        return sweeps * self.sweep_cost(k)
 
     def restrict(self, k: int, s: Settings) -> tuple[np.ndarray, None]:
         lev, c = self.levels[k], self.levels[k - 1]
