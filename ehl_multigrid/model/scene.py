@@ -587,6 +587,9 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
     sup = _with_units(data, "supply", required=False)
     reject_unknown_keys("supply", sup, {"hoil", "hoil_over_sigma", "delta", "hoil_profile"})
     profile = _hoil_profile(sup.get("hoil_profile"))
+    if profile and kind == "line":
+        raise InputError("supply.hoil_profile is a layer across the track of a point or elliptic "
+                         "contact; a line contact takes a uniform supply.hoil")
     if profile and "hoil" in sup:
         raise InputError("give either supply.hoil (a uniform layer) or supply.hoil_profile (a layer "
                          "across the track, whose centre value is the hoil), not both")

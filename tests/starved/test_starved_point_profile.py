@@ -113,3 +113,12 @@ def test_a_flat_scene_profile_gives_the_uniform_supply_and_ridges_lift_the_minim
     assert ridges.success and ridges.extra["mass_balance_error"] < 1e-6
     assert ridges.scalars["hm"] > uniform.scalars["hm"]
     assert ridges.scalars["hc"] == pytest.approx(uniform.scalars["hc"], rel=0.01)
+
+
+def test_a_line_scene_refuses_a_supply_profile():
+    from ehl_multigrid.model.errors import InputError
+
+    d = load_scene("page63_line_2000N").to_dict()
+    d["supply"] = {"hoil_profile": {"y": [0.0, 1e-4], "hoil": [1e-8, 2e-8]}}
+    with pytest.raises(InputError, match="line contact takes a uniform"):
+        Scene.from_dict(d)
