@@ -28,7 +28,7 @@ for arg in sys.argv[3:] or ["{'alternating': False}", "{}"]:
                residual=[h.residual for h in hs], load_error=[h.load_error for h in hs],
                Hc=[h.Hc for h in hs], Hm=[h.Hm for h in hs])
     print(json.dumps(row))
-    print("options", arg, "M %.0f L %.2f" % (pb.M, pb.L), "wall", row["wall"])
-    print("  res", " ".join("%.1e" % x for x in row["residual"]))
-    print("  le ", " ".join("%.1e" % x for x in row["load_error"]))
-    print("  Hm ", " ".join("%.6f" % x for x in row["Hm"]))
+    print("options", arg, f"M {pb.M:.0f} L {pb.L:.2f}", "wall", row["wall"])
+    print("  res", " ".join(f"{x:.1e}" for x in row["residual"]))
+    print("  le ", " ".join(f"{x:.1e}" for x in row["load_error"]))
+    print("  Hm ", " ".join(f"{x:.6f}" for x in row["Hm"]))
