@@ -195,7 +195,10 @@ class PointOptions(MultigridOptions):
     low M); ``y_ratio`` -- (points along Y - 1)/(points - 1), a power of 2 (None: near-square
     cells, stretched with the ellipse when b > a); ``half`` -- solve Y >= 0 only (symmetric contact); ``coarse_sweeps`` -- relaxations
     per coarsest-grid visit; ``elastic`` -- False for rigid surfaces; ``alternating`` -- relax
-    Y lines after every X-line sweep (None: when b/a < 0.5, contacts long in the rolling direction).
+    Y lines after every X-line sweep (None: on every grid when b/a < 0.5, contacts long in the
+    rolling direction; wider contacts on their grids of at least 129 points in solves of at
+    least 513 points, where the resolved pressure spike's oblique ridge otherwise leaves an
+    error floor; True: every grid; False: never).
     """
 
     points: int = 129

@@ -54,7 +54,7 @@ POINT_POLICY = PolicyParameters(
 #: (1, 10, 10) at 513 points and (10, 25, 4) at 257, and stall at max_cycles for (100, 20, 4),
 #: (200, 20, 4), (50, 5, 6) at 257 and (100, 10, 10) at 513; alternation converges all of them.
 #: At theta = 2 (b/a = 0.64) both converge and alternation costs more work (45.7 against
-#: 35.2 WU for (20, 10) at 257), so b/a >= 0.5 keeps the X sweep alone.
+#: 35.2 WU for (20, 10) at 257), so b/a >= 0.5 keeps the X sweep alone up to 257^2 (below).
 ALTERNATE_BELOW = 0.5
 #: Wider contacts (b/a >= ALTERNATE_BELOW) alternate in solves whose finest grid has at least
 #: ALTERNATE_FINEST points along X, on their grids of at least ALTERNATE_FROM points. On such
