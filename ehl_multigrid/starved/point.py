@@ -39,7 +39,6 @@ from dataclasses import replace
 from typing import Any
 
 import numpy as np
-from numba import njit
 
 from ..model.errors import InputError, require_range
 from ..multigrid.accuracy import (
@@ -58,6 +57,7 @@ from ..point import numerics as nm
 from ..point.fas import HINT, POINT_POLICY, Level, PointHierarchy, point_settings
 from ..point.postprocess import build_result
 from ..point.problem import PointProblem
+from .point_wedge import face_value, flux_operator, march_theta, wedge_correction
 from .supply import check_hoil, check_profile
 
 #: default tolerance of the starved solve on the core's scaled residual (a pressure change
@@ -113,72 +113,40 @@ STARVED_POLICY = replace(POINT_POLICY, growth=30.0, growth_window=4)
 #: (Hc 0.428062 against 0.446571 first order) and the same film ratios Hc/Hc_ff within 0.3 %
 #: (Hoil/Hc_ff = 4 ... 0.25), but diverges at Hoil/Hc_ff = 0.1 and 0.03 and stalls at 1
 #: (mass imbalance 1e-3), where first order converges.
-STARVED_WEDGE_ORDER = 1
+STARVED_WEDGE_ORDER = 2
 
-
-@njit(cache=True)
-def march_theta(P, H, rho, eps, theta, f, hx, hy, sym, hoil_rows, order=1):
-    """Solve each unpressurised point's discrete mass balance for ``theta`` (marching along X,
-    upwind flux ``q = theta rho H``, first or (``order = 2``, from the third column on) second
-    order as the point core's wedge term); ``theta = 1`` where ``P > 0``; clipped to
-    ``[0, 1]``. Column 0 of row ``j`` carries the supply ``q = hoil_rows[j]`` (``theta <= 1``)."""
-    ny, nx = P.shape
-    hx2, hy2 = hx * hx, hy * hy
-    j0 = 0 if sym else 1
-    for j in range(ny):
-        q0 = hoil_rows[j]
-        t0 = q0 / (rho[j, 0] * H[j, 0]) if H[j, 0] > 0.0 else 1.0
-        theta[j, 0] = 1.0 if t0 > 1.0 else t0
-        if j < j0 or j > ny - 2:
-            for i in range(1, nx):  # boundary rows: P = 0, the supply is carried along
-                theta[j, i] = theta[j, 0]
-            continue
-        jm = 1 if (sym and j == 0) else j - 1
-        for i in range(1, nx - 1):
-            if P[j, i] > 0.0:
-                theta[j, i] = 1.0
-                continue
-            q1 = theta[j, i - 1] * rho[j, i - 1] * H[j, i - 1]
-            src = hx * (nm._poiseuille(P, eps, j, jm, j + 1, i, hx2, hy2) - f[j, i])
-            if order == 2 and i >= 2:
-                q2 = theta[j, i - 2] * rho[j, i - 2] * H[j, i - 2]
-                q = (2.0 * q1 - 0.5 * q2 + src) / 1.5
-            else:
-                q = q1 + src
-            d = rho[j, i] * H[j, i]
-            t = q / d if d > 0.0 else 1.0
-            theta[j, i] = 1.0 if t > 1.0 else (0.0 if t < 0.0 else t)
-        theta[j, nx - 1] = theta[j, nx - 2]
+#: upwind order of the film-response Jacobian in the point core's line kernel when the wedge
+#: is the per-face second-order one (the right-hand side carries the defect correction)
+KERNEL_ORDER = 2
 
 
 def face_fluxes(P: np.ndarray, H: np.ndarray, rho: np.ndarray, eps: np.ndarray, theta: np.ndarray,
                 hx: float, hy: float, half: bool, order: int = 1) -> dict[str, float]:
     """Mass flow through the boundaries of the cells whose discrete operator telescopes (flux
-    form): in at the inlet face, out at the outlet face and the side faces (a half domain counts
-    the centre row once, i.e. the full-domain flow halved). With the second-order wedge the
-    first interior column (first order) belongs to the inlet: the balance runs over columns
-    2 .. nx-2 with faces ``F = 1.5 q_i - 0.5 q_(i-1) - eps dP/dX``."""
+    form, columns 1 .. nx-2): in at the inlet face, out at the outlet face and the side faces (a
+    half domain counts the centre row once, i.e. the full-domain flow halved). The x faces carry
+    ``Q_{i+1/2} - eps dP/dX`` with the operator's face values ``Q``
+    (:func:`.point_wedge.face_value`: first order, or second order where the film is full)."""
     ny, nx = P.shape
-    q = theta * rho * H
+    rq = np.ascontiguousarray(theta * rho)
     j0 = 0 if half else 1
     rows = np.arange(j0, ny - 1)
     w = np.ones(rows.size)
     if half:
         w[0] = 0.5
-    a = 1 if order == 1 else 2  # first column of the balance
 
     def xflux(i: int) -> np.ndarray:  # flux through the face between columns i and i + 1
-        conv = q[rows, i] if (order == 1 or i == 0) else 1.5 * q[rows, i] - 0.5 * q[rows, i - 1]
+        conv = np.array([face_value(rq, H, theta, j, i, order) for j in rows])
         ex = 0.5 * (eps[rows, i] + eps[rows, i + 1])
         return conv - ex * (P[rows, i + 1] - P[rows, i]) / hx
 
-    cols = slice(a, nx - 1)
+    cols = slice(1, nx - 1)
     ey = 0.5 * (eps[ny - 2, cols] + eps[ny - 1, cols])
     side = float((-ey * (P[ny - 1, cols] - P[ny - 2, cols]) / hy).sum() * hx)
     if not half:
         ey0 = 0.5 * (eps[0, cols] + eps[1, cols])
         side += float((ey0 * (P[1, cols] - P[0, cols]) / hy).sum() * hx)
-    return {"in": float((w * xflux(a - 1)).sum() * hy), "out": float((w * xflux(nx - 2)).sum() * hy),
+    return {"in": float((w * xflux(0)).sum() * hy), "out": float((w * xflux(nx - 2)).sum() * hy),
             "side": side}
 
 
@@ -238,6 +206,16 @@ class StarvedPointHierarchy(PointHierarchy):
     def _q_density(self, lev: Level) -> np.ndarray:
         return np.ascontiguousarray(lev.theta * lev.rho)
 
+    def _operator(self, lev: Level, out: np.ndarray) -> None:
+        """``L(P, theta)`` into ``out``: the core's first-order operator (``order = 1``) or the
+        conservative per-face second-order wedge (:func:`.point_wedge.flux_operator`)."""
+        rq = self._q_density(lev)
+        if self.order == 1:
+            nm.operator(lev.P, lev.H, rq, lev.eps, lev.hx, lev.hy, self.options.half, 1, out, 0.0)
+        else:
+            flux_operator(lev.P, lev.H, rq, lev.eps, lev.theta, lev.hx, lev.hy, self.options.half,
+                          self.order, out)
+
     def _march(self, lev: Level) -> None:
         nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
         march_theta(lev.P, lev.H, lev.rho, lev.eps, lev.theta, lev.f, lev.hx, lev.hy,
@@ -252,9 +230,18 @@ class StarvedPointHierarchy(PointHierarchy):
         lev.P[dry] = 0.0
         # a right-hand side the kernel reads as "cavitated, stays at zero": the line systems
         # hold the unpressurised points fixed instead of solving for them and resetting them
-        fr = np.where(dry, 1e300, lev.f)
+        if self.order == 1:
+            fr = np.where(dry, 1e300, lev.f)
+        else:
+            # defect correction: the kernel's wedge (core second order) replaced by the
+            # per-face limited one at the sweep's frozen film (see point_wedge)
+            corr = np.empty_like(lev.f)
+            wedge_correction(rq, lev.H, lev.theta, lev.hx, self.options.half, self.order,
+                             KERNEL_ORDER, corr)
+            fr = np.where(dry, 1e300, lev.f + corr)
         nm.relax_sweep(lev.P, lev.H, rq, lev.eps, fr, lev.D, lev.Kc, lev.hx, lev.hy,
-                       self.options.half, s.switch, s.omega, s.omega_jd, self.order, 0.0)
+                       self.options.half, s.switch, s.omega, s.omega_jd,
+                       1 if self.order == 1 else KERNEL_ORDER, 0.0)
         lev.P[dry] = 0.0
         self.update_film(lev)
         if free:
@@ -268,8 +255,7 @@ class StarvedPointHierarchy(PointHierarchy):
         again, where it then counts in the residual and in the mass balance as a full
         pressurised point (measured: one such point at the side of the pressurised zone held
         (179, 4.17) at 257^2, Hoil = 0.25 Hc_ff, at a residual of 2.3e-5)."""
-        nm.operator(lev.P, lev.H, self._q_density(lev), lev.eps, lev.hx, lev.hy, self.options.half,
-                    self.order, lev.r, 0.0)
+        self._operator(lev, lev.r)
         r = lev.f - lev.r
         sr = np.empty_like(r)
         nm.scaled_residual(r, lev.H, lev.rho, lev.eps, float(lev.Kc[0, 0]), lev.hx, lev.hy,
@@ -291,8 +277,7 @@ class StarvedPointHierarchy(PointHierarchy):
         mass balance that the ``theta`` march solves where ``P = 0``; where ``theta = 0`` (a dry
         point: the march clipped a negative content) only a surplus counts."""
         self.threads.for_size(lev.npts)
-        nm.operator(lev.P, lev.H, self._q_density(lev), lev.eps, lev.hx, lev.hy, self.options.half,
-                    self.order, lev.r, 0.0)
+        self._operator(lev, lev.r)
         r = lev.f - lev.r
         ny, nx = r.shape
         j0 = 0 if self.options.half else 1
@@ -343,8 +328,7 @@ class StarvedPointHierarchy(PointHierarchy):
         theta0 = c.theta.copy()
         self.update_film(c)
         Lc = np.empty_like(c.P)
-        nm.operator(c.P, c.H, self._q_density(c), c.eps, c.hx, c.hy, self.options.half, self.order, Lc,
-                    0.0)
+        self._operator(c, Lc)
         Rr = np.empty_like(c.P)
         nm.restrict_full_weighting(r, self.options.half, Rr)
         c.f = Lc + Rr
