@@ -210,6 +210,9 @@ def main() -> None:
     ap.add_argument("--recheck", metavar="FILE",
                     help="re-run every converged case of FILE whose check predates the same-box "
                          "check (rewrites FILE)")
+    ap.add_argument("--tag", default="",
+                    help="suffix of the output file (a run on other code or budgets beside the old one)")
+    ap.add_argument("--contact", choices=("line", "point"), default=None, help="only this contact's cases")
     ap.add_argument("--case", help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.recheck:
@@ -223,7 +226,11 @@ def main() -> None:
     OUT.mkdir(parents=True, exist_ok=True)
     stem = "accuracy_map" if a.map == "extremes" else "fit_map"
     path = OUT / f"{stem}_{a.accuracy:g}{'_quick' if a.quick else ''}.json"
+    if a.tag:
+        path = path.with_name(f"{path.stem}_{a.tag}.json")
     todo = cases(a.quick) if a.map == "extremes" else fit_cases(a.quick)
+    if a.contact:
+        todo = [c for c in todo if c["contact"] == a.contact]
     if a.retry_grid_budget:
         if a.max_points is None:
             ap.error("--retry-grid-budget needs --max-points (the larger grid budget)")
