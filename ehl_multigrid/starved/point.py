@@ -42,11 +42,11 @@ import numpy as np
 
 from ..model.errors import InputError, require_range
 from ..multigrid.accuracy import (
+    GRID_SAFETY,
     LOAD_SENSITIVITY,
     ErrorEstimate,
     attach_estimate,
     iteration_factor,
-    richardson,
 )
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import PointOptions
@@ -540,14 +540,28 @@ SIDE_FLOW_LIMIT = 1e-4
 ORDER_NOTE = ("the starved point solver is first order in the wedge term: its flooded Hc lies "
               "2-8 % above the core's second-order film on the same grid; Hc_flooded and the "
               "ratios use its own flooded film")
+#: the same for the default, second-order wedge
+ORDER_NOTE_2 = ("the starved point solver's wedge term is second order where the film is full (first "
+                "order at the meniscus and in the cavitated outlet): its flooded film is the core's "
+                "second-order film; Hc_flooded and the ratios use it")
+
+#: observed grid order of Hc and Hm per wedge order, for the two-grid Richardson estimate of
+#: :func:`starved_point_error` (measured: validation/starved/REPORT.md, study_order.py grid)
+GRID_ORDER = {1: 1.0, 2: 2.0}
+
+
+def order_note(order: int) -> str:
+    """What a result says about its wedge discretisation."""
+    return ORDER_NOTE if int(order) == 1 else ORDER_NOTE_2
 
 
 def starved_point_error(fine: EHLResult, coarse: EHLResult | None) -> ErrorEstimate:
     """Error estimate of a starved point solve (relative, Hc and Hm).
 
-    * grid: Richardson from ``coarse`` (the same supply on the grid with half the intervals)
-      to ``fine``, first order (the wedge is first order), times the core's safety factor;
-      without a converged coarse solve, unknown (NaN);
+    * grid: two-grid Richardson from ``coarse`` (the same supply on the grid with half the
+      intervals) to ``fine`` with the observed order of the solve's wedge discretisation
+      (:data:`GRID_ORDER`), times the core's safety factor ``GRID_SAFETY`` (1.5); without a
+      converged coarse solve, unknown (NaN);
     * algebraic: the last finest-grid change of the film times the contraction factor, the
       load error times the core's film sensitivity, plus the relative mass imbalance (in the
       starved limit the film carries the supply, so a mass error is a film error);
@@ -556,14 +570,17 @@ def starved_point_error(fine: EHLResult, coarse: EHLResult | None) -> ErrorEstim
       :data:`SIDE_FLOW_LIMIT`; otherwise unknown (NaN).
     """
     Hc, Hm = float(fine.scalars["Hc_venner"]), float(fine.scalars["Hm_venner"])
-    notes = [ORDER_NOTE]
+    order = int(fine.options.wedge_order)
+    notes = [order_note(order)]
     # the coarse solve's iteration must have converged; its own accuracy verdict does not
     # matter (a refinement step passes the previous, 'inaccurate' solve as the coarse one)
     if coarse is not None and coarse.status_name in ("converged", "inaccurate"):
-        rc = richardson([coarse.scalars["Hc_venner"], Hc])
-        rm = richardson([coarse.scalars["Hm_venner"], Hm])
-        grid = {"Hc": abs(rc.error / Hc), "Hm": abs(rm.error / Hm)}
-        xc = rc.extrapolated
+        p = GRID_ORDER[order]
+        dc = Hc - float(coarse.scalars["Hc_venner"])
+        dm = Hm - float(coarse.scalars["Hm_venner"])
+        grid = {"Hc": GRID_SAFETY * abs(dc) / (2.0**p - 1.0) / abs(Hc),
+                "Hm": GRID_SAFETY * abs(dm) / (2.0**p - 1.0) / abs(Hm)}
+        xc = Hc + dc / (2.0**p - 1.0)
     else:
         grid = {"Hc": math.nan, "Hm": math.nan}
         xc = math.nan
@@ -605,7 +622,7 @@ def starved_point_result(sol: EHLResult, scene: Any = None) -> Any:
     res = build_result(sol, scene, extra)
     _, Tf, _ = full_fields(sol.X, sol.Y, sol.extra["theta"], sol.H, sol.half)
     res.add_field("theta", Tf.T.copy(), "-", ("X", "Y"), "film content (Elrod-Adams)")
-    res.meta["starved_notes"] = ORDER_NOTE
+    res.meta["starved_notes"] = order_note(sol.options.wedge_order)
     return res
 
 
@@ -622,7 +639,7 @@ def starved_point_payload(sol: EHLResult, res: Any) -> dict[str, Any]:
 
     out = summary_payload(res)
     out.update({k: sol.scalars[k] for k in SCENE_KEYS if k in sol.scalars})
-    out["note"] = ORDER_NOTE
+    out["note"] = order_note(sol.options.wedge_order)
     return out
 
 

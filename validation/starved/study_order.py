@@ -9,6 +9,8 @@ comes from these files.
   out/starved_point.json) solved with ``wedge_order = 2``; flooded limit against the core's
   default second-order solve on the same grid; status, cycles, mass imbalance, wall time;
   the film ratios against the first-order ones (read from out/starved_point.json).
+* ``map1``: the same map with ``wedge_order = 1`` and the current code (the first-order
+  reference of the comparison; ``first`` in each record is the older out/starved_point.json).
 * ``grid``: Hc and Hm on 129/257/513 for a few supplies, first and second order: observed
   order and Richardson value.
 * ``scene``: the chapter-6 0.5 GPa scene with a 20 nm layer through
@@ -43,7 +45,7 @@ def _first_order_map() -> dict:
     return {(c["M"], c["L"], c["points"]): c for c in d["cases"]}
 
 
-def run_map(plan: list[tuple[float, float, int]]) -> dict:
+def run_map(plan: list[tuple[float, float, int]], order: int = 2) -> dict:
     first = _first_order_map()
     cases = []
     for M, L, n in plan:
@@ -60,7 +62,7 @@ def run_map(plan: list[tuple[float, float, int]]) -> dict:
         for ratio in [math.inf] + RATIOS:
             hoil = math.inf if math.isinf(ratio) else ratio * H1
             t0 = time.perf_counter()
-            s = solve_starved_point(pb, hoil, wedge_order=2, **kw)
+            s = solve_starved_point(pb, hoil, wedge_order=order, **kw)
             wall = time.perf_counter() - t0
             Hc, Hm = s.scalars["Hc_venner"], s.scalars["Hm_venner"]
             if math.isinf(ratio):
@@ -150,7 +152,7 @@ def run_scene(points: list[int]) -> dict:
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("part", choices=["map", "grid", "scene", "all"])
+    ap.add_argument("part", choices=["map", "map1", "grid", "scene", "all"])
     ap.add_argument("--quick", action="store_true")
     args = ap.parse_args()
     OUT.mkdir(exist_ok=True)
@@ -158,8 +160,9 @@ def main() -> None:
     parts = ["map", "grid", "scene"] if args.part == "all" else [args.part]
     for part in parts:
         t0 = time.perf_counter()
-        if part == "map":
-            data = run_map(PLAN[:1] if args.quick else PLAN)
+        if part in ("map", "map1"):
+            # map1: the first-order solver on the same map with the current code (policy)
+            data = run_map(PLAN[:1] if args.quick else PLAN, 1 if part == "map1" else 2)
         elif part == "grid":
             cases = [(20.0, 10.0, 0.4)] if args.quick else [(20.0, 10.0, 0.4), (20.0, 10.0, 1.0),
                                                              (179.0, 4.17, 0.6)]
