@@ -12,6 +12,8 @@ ladder* is applied. The steps are
 * ``"W"``: switch V cycles to W cycles (coarse grids visited more often);
 * ``"switch"``: widen the Jacobi-distributive zone (the contact's own rule,
   ``hierarchy.raise_switch``);
+* ``"alternate"``: relax X and Y lines alternately on every grid (point contacts,
+  ``hierarchy.alternate_all``; nothing elsewhere);
 * ``"fail"``: give up (the driver reports a stall).
 
 The same mechanism serves every contact; the contacts differ only in the
@@ -26,7 +28,7 @@ from dataclasses import dataclass, field
 
 from .options import MultigridOptions
 
-STEPS = ("halve", "W", "switch", "fail")
+STEPS = ("halve", "W", "switch", "alternate", "fail")
 
 
 @dataclass(frozen=True)
@@ -170,6 +172,10 @@ class RobustnessPolicy:
             elif step == "W" and s.cycle == "V":
                 s.cycle = "W"
                 done.append("V -> W cycles")
+            elif step == "alternate":
+                msg = getattr(hierarchy, "alternate_all", lambda _s: "")(s)
+                if msg:
+                    done.append(msg)
             elif step == "switch":
                 msg = hierarchy.raise_switch(s)
                 if msg:

@@ -44,7 +44,8 @@ HINT = "raise max_cycles, use W cycles, a longer inlet, more points or fewer lev
 POINT_POLICY = PolicyParameters(
     growth=3.0, growth_window=None, residual_cap=math.inf, load_cap=0.3, load_factor=0.0,
     first_load_error=0.0, max_retries=8, stall_window=4, stall_factor=0.95**3,
-    reject_ladder=(("switch",), ("halve", "W")), stall_ladder=(("switch",), ("halve", "W")),
+    reject_ladder=(("alternate",), ("switch",), ("halve", "W")),
+    stall_ladder=(("alternate",), ("switch",), ("halve", "W")),
     cyclic_reject=True, cyclic_stall=True, shared_ladder=True, floors=(0.1, 0.05, 1e-3),
     recover=1.0)
 
@@ -380,6 +381,19 @@ class PointHierarchy:
     def finite(self) -> bool:
         lev = self.levels[-1]
         return bool(np.all(np.isfinite(lev.P)) and np.all(np.isfinite(lev.H)))
+
+    def alternate_all(self, s: Settings) -> str:
+        """Policy step ``"alternate"``: relax X and Y lines alternately on every grid from now
+        on (``""`` when they already do, when the options forbid it, or for a subclass whose
+        own sweep relaxes X lines only, as the starved solver's)."""
+        if (self.alternating and all(lev.alternate for lev in self.levels)) \
+                or self.options.alternating is False or type(self)._sweep is not PointHierarchy._sweep:
+            return ""
+        self.alternating = True
+        self.sweep_work = 2.0
+        for lev in self.levels:
+            lev.alternate = True
+        return "X and Y line relaxation alternate on every grid"
 
     def raise_switch(self, s: Settings) -> str:
         if s.switch >= 64.0:

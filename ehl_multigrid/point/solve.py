@@ -12,13 +12,15 @@ from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
 
+import numpy as np
+
 from ..model.errors import ConvergenceError, InputError, require_choice, require_range
 from ..multigrid.accuracy import film_change, film_tol, solve_to_accuracy
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import PointOptions, build_scene_options, scene_solver_table
 from ..multigrid.result import EHLResult
 from ..multigrid.threads import preserved_threads
-from .fas import HINT, point_solver
+from .fas import ALTERNATE_BELOW, HINT, point_solver
 from .postprocess import build_result
 from .problem import (
     PointProblem,
@@ -32,6 +34,14 @@ from .problem import (
 )
 
 SOLVERS = ("fas", "newton")
+#: A solve of a wider contact (b/a >= ALTERNATE_BELOW) that ends so with the default
+#: relaxation is solved again with X and Y lines alternating on every grid. Measured (circular,
+#: Barus + incompressible, L = 20, the fit-check map's row that failed at every M): X lines
+#: alone end at max_cycles for (M, L) = (5, 20) and (100, 20) at 129^2; with the policy's
+#: mid-solve "alternate" step these converge at 129^2 but (5, 20) still diverges and (100, 20)
+#: ends at max_cycles at 257^2; alternating from the start converges both at 257^2 (and
+#: M = 20, 500, 1000 at 129^2 and 257^2).
+RETRY_ALTERNATING = ("max_cycles", "stalled", "diverged")
 #: Largest grid an accuracy target may refine to (about 10 s on two cores)
 MAX_ACCURACY_POINTS = 1025
 
@@ -54,9 +64,30 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
               **kw: Any) -> EHLResult:
     """FAS/FMG solve of one :class:`PointProblem`; keyword arguments override ``options``."""
     opt = PointOptions.build(options, **kw)
+    # adapt=False asks for the iteration exactly as configured: no retry either
+    retry = opt.alternating is None and opt.adapt and problem.b_over_a >= ALTERNATE_BELOW
+    first = replace(opt, raise_on_failure=False) if retry else opt
     with preserved_threads():
-        solver = point_solver(problem, opt)
+        solver = point_solver(problem, first)
         sol = solver.solve(callback=callback)
+        if retry and sol.status_name in RETRY_ALTERNATING:
+            # X lines alone failed: solve again alternating X and Y lines on every grid from
+            # the start (the policy's mid-solve switch comes too late on some grids)
+            again = point_solver(problem, replace(opt, alternating=True))
+            sol2 = again.solve(callback=callback)
+            note = (f"X-line relaxation ended {sol.status_name} ({sol.message}); solved again with "
+                    f"X and Y lines alternating on every grid: {sol2.status_name}")
+            work, wall = sol.work_units + sol2.work_units, sol.wall_s + sol2.wall_s
+            if sol2.success or sol2.residual_history[-1:].min(initial=np.inf) \
+                    < sol.residual_history[-1:].min(initial=np.inf):
+                solver.hierarchy.solver = None
+                solver, sol = again, sol2
+            else:
+                again.hierarchy.solver = None
+            sol.work_units, sol.wall_s = work, wall  # both attempts are the cost of the answer
+            sol.actions.append(note)
+        elif retry and not sol.success and opt.raise_on_failure:
+            raise ConvergenceError(f"point solver: {sol.message}", sol.report, solver.hint)
     hz = solver.hierarchy
     hz.solver = None  # break the solver <-> hierarchy cycle: the grids are freed with the solver
     fine = hz.levels[-1]
