@@ -498,9 +498,21 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
             tight = replace(opt, tol=opt.tol * MASS_TOL_FACTOR,
                             max_cycles=min(2 * len(sol.residual_history) + 10, 200))
             sol3, hz3 = _solve_once(problem, hoil, tight, hz.coarse_theta)
-            mb3 = imbalance_of(hz3) if sol3.success else math.inf
+            # the tighter solve counts when it meets the requested tolerances, even short of
+            # its own (measured, second-order wedge, (179, 4.17) 257^2, Hoil = 1.5 Hc_ff: 142
+            # cycles end at a residual of 2.8e-10 with the imbalance 2.2e-5 -> 6.3e-7)
+            met = (sol3.success or (sol3.status_name == "max_cycles" and len(sol3.residual_history)
+                                    and sol3.residual_history[-1] < opt.tol
+                                    and abs(sol3.load_error_history[-1]) < opt.tol_load))
+            mb3 = imbalance_of(hz3) if met else math.inf
             keep = mb3 < mb
             if keep:
+                if not sol3.success:
+                    sol3.set_status(0, "")
+                    sol3.actions.append(f"the tighter solve ended at a residual of "
+                                        f"{sol3.residual_history[-1]:.2g}, within the requested tol "
+                                        f"{opt.tol:.3g}")
+                    tight = replace(tight, tol=opt.tol)
                 sol, hz, opt = sol3, hz3, tight
             sol.actions.append(f"mass imbalance {mb:.2g} at tol {tight.tol / MASS_TOL_FACTOR:.3g}: re-solved "
                                f"with tol {tight.tol:.3g}: {sol3.status_name}, imbalance {mb3:.2g}; kept "
