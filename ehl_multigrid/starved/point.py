@@ -116,7 +116,7 @@ STARVED_POLICY = replace(POINT_POLICY, growth=30.0, growth_window=4)
 #: (Hc 0.428062 against 0.446571 first order) and the same film ratios Hc/Hc_ff within 0.3 %
 #: (Hoil/Hc_ff = 4 ... 0.25), but diverges at Hoil/Hc_ff = 0.1 and 0.03 and stalls at 1
 #: (mass imbalance 1e-3), where first order converges.
-STARVED_WEDGE_ORDER = 2
+STARVED_WEDGE_ORDER = 1
 
 #: upwind order of the film-response Jacobian in the point core's line kernel when the wedge
 #: is the per-face second-order one (the right-hand side carries the defect correction)
@@ -557,9 +557,13 @@ ORDER_NOTE_2 = ("the starved point solver's wedge term is second order where the
                 "order at the meniscus and in the cavitated outlet): its flooded film is the core's "
                 "second-order film; Hc_flooded and the ratios use it")
 
-#: observed grid order of Hc and Hm per wedge order, for the two-grid Richardson estimate of
-#: :func:`starved_point_error` (measured: validation/starved/REPORT.md, study_order.py grid)
-GRID_ORDER = {1: 1.0, 2: 2.0}
+#: grid order (Hc, Hm) per wedge order assumed by the two-grid Richardson estimate of
+#: :func:`starved_point_error`. Measured on 129/257/513 points (study_order.py grid), second
+#: order: Hc 2.00 ((20, 10), Hoil = Hc_ff) and 3.2 ((20, 10), 0.4 Hc_ff); Hm 1.55 and 2.2 where
+#: it is monotone, but non-monotone at (20, 10), 0.4 Hc_ff (-8.5e-5 then +9.2e-5): a
+#: second-order Hm estimate at 257 (5.5e-4) missed the change to 513 (7.2e-4), the first-order
+#: one (1.0e-3) covers it; so Hm keeps first order.
+GRID_ORDER = {1: (1.0, 1.0), 2: (2.0, 1.0)}
 
 
 def order_note(order: int) -> str:
@@ -587,12 +591,12 @@ def starved_point_error(fine: EHLResult, coarse: EHLResult | None) -> ErrorEstim
     # the coarse solve's iteration must have converged; its own accuracy verdict does not
     # matter (a refinement step passes the previous, 'inaccurate' solve as the coarse one)
     if coarse is not None and coarse.status_name in ("converged", "inaccurate"):
-        p = GRID_ORDER[order]
+        pc, pm = GRID_ORDER[order]
         dc = Hc - float(coarse.scalars["Hc_venner"])
         dm = Hm - float(coarse.scalars["Hm_venner"])
-        grid = {"Hc": GRID_SAFETY * abs(dc) / (2.0**p - 1.0) / abs(Hc),
-                "Hm": GRID_SAFETY * abs(dm) / (2.0**p - 1.0) / abs(Hm)}
-        xc = Hc + dc / (2.0**p - 1.0)
+        grid = {"Hc": GRID_SAFETY * abs(dc) / (2.0**pc - 1.0) / abs(Hc),
+                "Hm": GRID_SAFETY * abs(dm) / (2.0**pm - 1.0) / abs(Hm)}
+        xc = Hc + dc / (2.0**pc - 1.0)
     else:
         grid = {"Hc": math.nan, "Hm": math.nan}
         xc = math.nan
