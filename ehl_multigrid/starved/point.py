@@ -11,9 +11,12 @@ with a uniform supplied layer ``Hoil`` at the inlet boundary (``theta rho H = Ho
 ``X = xmin``, the layer at ambient pressure and density; ``Hoil = inf`` floods the inlet).
 The meniscus, the curve where the film fills the gap, is found inside the iteration.
 
-Discretisation: the point core's five-point Poiseuille terms and a first-order (by default)
-upwind wedge on the mass flux ``q = theta rho H`` (flux form, so the sum of the residuals telescopes into the
-boundary fluxes: discrete mass conservation). Relaxation on the universal variable: the point
+Discretisation: the point core's five-point Poiseuille terms and an upwind wedge on the mass
+flux ``q = theta rho H`` in flux form (so the sum of the residuals telescopes into the
+boundary fluxes: discrete mass conservation): first order (``wedge_order = 1``, the default)
+or second order where the film is full and first order at the meniscus and in the cavitated
+outlet (``wedge_order = 2``; face values in :mod:`.point_wedge`, the line kernel of the core
+with a defect-corrected right-hand side, coarse grids first order). Relaxation on the universal variable: the point
 core's zebra X-line relaxation on P with the density replaced by ``theta rho`` (P held at
 zero where ``theta < 1``), then a march along X in the unpressurised points that solves each
 point's mass balance for ``theta`` (capped at 1: the point joins the pressurised zone at the
@@ -25,9 +28,11 @@ Robustness (validation/starved/REPORT.md): pressurised points that a projected J
 would cavitate are projected to P = 0 after each sweep; a solve the default coarse-grid rule
 does not converge is repeated with theta frozen on every coarse grid; a converged solve whose
 mass imbalance exceeds :data:`MASS_TOL` is repeated at a tighter tolerance. Measured limits:
-low-M contacts ((20, 10)) keep an imbalance of 1e-5 ... 6e-5 where the meniscus lies far
-upstream (supply above the flooded film); the wedge is first order (the flooded Hc 2-8 %
-above the core's second-order film).
+low-M contacts ((20, 10)) keep an imbalance of 1e-5 ... 8e-5 where the meniscus lies far
+upstream (supply above the flooded film). First order: the flooded Hc 2-8 % above the core's
+second-order film; second order: the core's flooded film (within 6e-8), Hc converging at
+second order, on the 55-supply map as robust as first order but with a slightly larger mass
+imbalance (35 against 36 of 55 below 1e-6), hence not the default.
 
 The supply may vary across the track (one layer per finest-grid row, e.g. side ridges).
 """
@@ -111,11 +116,15 @@ STARVED_MAX_CYCLES_2 = 150
 #: flooded FMG state to its starved place the residual rises for several cycles.
 STARVED_POLICY = replace(POINT_POLICY, growth=30.0, growth_window=4)
 
-#: default upwind order of the wedge term ``d(theta rho H)/dX`` (``wedge_order`` option).
-#: Measured at (20, 10), 129^2: second order reproduces the core's second-order flooded film
-#: (Hc 0.428062 against 0.446571 first order) and the same film ratios Hc/Hc_ff within 0.3 %
-#: (Hoil/Hc_ff = 4 ... 0.25), but diverges at Hoil/Hc_ff = 0.1 and 0.03 and stalls at 1
-#: (mass imbalance 1e-3), where first order converges.
+#: default upwind order of the wedge term ``d(theta rho H)/dX`` (``wedge_order`` option; 2:
+#: the per-face second-order flux of :mod:`.point_wedge`). Measured on the 55-supply map
+#: (validation/starved/study_order.py; (20, 10) 129^2 and 257^2, (100, 10), (100, 5),
+#: (179, 4.17) 257^2, Hoil = 4 ... 0.03 Hc_ff): both orders converge 55/55; second order
+#: reproduces the core's second-order flooded film (Hc within 2e-8) and its Hc converges at
+#: order 2.0 ((20, 10), Hoil = Hc_ff: 129 -> 513 error 6.2e-3 -> 3.9e-4; first order 0.65,
+#: 1.9e-2 -> 7.6e-3), but its mass imbalance is a little worse (35 against 36 solves below
+#: 1e-6, largest 8.3e-5 against 5.5e-5) at 1.9x the wall time: first order stays the default
+#: (the rule of the project: only as robust and as conservative).
 STARVED_WEDGE_ORDER = 1
 
 #: upwind order of the film-response Jacobian in the point core's line kernel when the wedge

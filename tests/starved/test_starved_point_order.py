@@ -21,8 +21,12 @@ from ehl_multigrid.starved.point import (
 from ehl_multigrid.starved.point_wedge import face_value, flux_operator
 
 KW = dict(points=129, half=True, raise_on_failure=False)
-#: first-order flooded central film of (20, 10) at 129^2 (the supply unit of the map)
+#: the second-order wedge (an option: the default stays first order, see STARVED_WEDGE_ORDER)
+KW2 = dict(KW, wedge_order=2)
+#: first-order flooded central films of (20, 10) at 129^2 and 257^2 (the supply units of the
+#: map and of the grid study, validation/starved/study_order.py)
 HC_FF1_129 = 0.44657
+HC_FF1_257 = 0.439443
 
 
 @pytest.fixture(scope="module")
@@ -30,14 +34,15 @@ def problem():
     return problem_from_moes(20.0, 10.0)
 
 
-def test_the_default_wedge_is_second_order():
-    assert STARVED_WEDGE_ORDER == 2
+def test_the_default_wedge_stays_first_order():
+    # second order converges on the whole map but conserves mass a little worse (REPORT.md)
+    assert STARVED_WEDGE_ORDER == 1
 
 
 def test_flooded_inlet_reproduces_the_core_second_order_film(problem):
     core = solve_fas(problem, tol=STARVED_TOL, max_cycles=40, **KW)  # core default: second order
     assert core.options.wedge_order == 2 and core.status_name == "converged"
-    s = solve_starved_point(problem, math.inf, **KW)
+    s = solve_starved_point(problem, math.inf, **KW2)
     assert s.status_name == "converged" and s.options.wedge_order == 2
     assert s.scalars["Hc_venner"] == pytest.approx(core.scalars["Hc_venner"], rel=1e-6)
     assert s.scalars["Hm_venner"] == pytest.approx(core.scalars["Hm_venner"], rel=1e-6)
@@ -46,7 +51,7 @@ def test_flooded_inlet_reproduces_the_core_second_order_film(problem):
 
 @pytest.mark.parametrize("ratio", [0.6, 0.03])  # mild, severe
 def test_second_order_starved_solutions_conserve_mass(problem, ratio):
-    s = solve_starved_point(problem, ratio * HC_FF1_129, **KW)
+    s = solve_starved_point(problem, ratio * HC_FF1_129, **KW2)
     assert s.status_name == "converged"
     assert s.extra["mass_balance_error"] <= 1e-6
     fl = s.extra["fluxes"]
@@ -91,9 +96,10 @@ def test_face_order_follows_the_upstream_film_content():
 @pytest.mark.slow
 def test_central_film_converges_at_second_order_with_a_full_film(problem):
     """Hoil = Hc_ff (the meniscus at X ~ -1.6, the film full from there to the outlet): the
-    differences of Hc between 65, 129, 257 points fall by about 4 (first order: 2)."""
-    hoil = 1.0 * HC_FF1_129
-    Hc = [solve_starved_point(problem, hoil, points=n, half=True, raise_on_failure=False).scalars["Hc_venner"]
-          for n in (65, 129, 257)]
+    differences of Hc between 129, 257, 513 points fall by about 4 (measured 3.99; first
+    order 1.57)."""
+    hoil = 1.0 * HC_FF1_257
+    Hc = [solve_starved_point(problem, hoil, points=n, half=True, raise_on_failure=False,
+                              wedge_order=2).scalars["Hc_venner"] for n in (129, 257, 513)]
     ratio = (Hc[1] - Hc[0]) / (Hc[2] - Hc[1])
-    assert 3.0 < ratio < 5.5
+    assert 3.5 < ratio < 4.5
