@@ -1,6 +1,7 @@
 """Second-order (per-face) wedge of the starved point solver against first order.
 
-Run: ``python validation/starved/study_order.py {map,grid,scene,all} [--quick]``; writes
+Run: ``python validation/starved/study_order.py {map,map1,grid,scene,summary,all} [--quick]``
+(about 18 min in all on the shared 2-core box); writes
 ``out/starved_order_<part>.json``. Every number of the "second-order wedge" part of REPORT.md
 comes from these files.
 
@@ -150,14 +151,69 @@ def run_scene(points: list[int]) -> dict:
     return {"runs": out}
 
 
+def summarise() -> dict:
+    """Tables of REPORT.md from the JSON of the other parts: map statistics per case (both
+    orders with the current code), grid orders, and the estimate check (the two-grid estimate
+    of starved_point_error's grid part on the finer grid of a pair against the change to the
+    next grid and against the three-grid Richardson value)."""
+    from ehl_multigrid.multigrid.accuracy import GRID_SAFETY
+    from ehl_multigrid.starved.point import GRID_ORDER
+
+    m2 = json.loads((OUT / "starved_order_map.json").read_text())
+    m1 = json.loads((OUT / "starved_order_map1.json").read_text())
+    rows = []
+    for c2, c1 in zip(m2["cases"], m1["cases"], strict=True):
+        row = {"case": [c2["M"], c2["L"], c2["points"]]}
+        for tag, c in (("order2", c2), ("order1", c1)):
+            runs = [r for r in c["runs"] if math.isfinite(r["hoil_over_Hc_ff"])]
+            mb = [r["mass_balance_error"] for r in runs]
+            row[tag] = {"converged": sum(r["status"] == "converged" for r in runs), "n": len(runs),
+                        "mb_max": max(mb), "mb_below_1e-6": sum(m <= 1e-6 for m in mb),
+                        "mb_max_mild": max(m for r, m in zip(runs, mb, strict=True) if r["hoil_over_Hc_ff"] <= 0.6),
+                        "cycles": [min(r["cycles"] for r in runs), max(r["cycles"] for r in runs)],
+                        "wall_s": sum(r["wall_s"] for r in runs)}
+        flood = next(r for r in c2["runs"] if not math.isfinite(r["hoil_over_Hc_ff"]))
+        row["flooded_vs_core2"] = {"Hc": flood["Hc_vs_core2"], "Hm": flood["Hm_vs_core2"]}
+        row["core2_over_core1"] = c2["Hc_ff2_core"] / c2["Hc_ff1"] - 1.0
+        r1 = {r["hoil_over_Hc_ff"]: r for r in c1["runs"]}
+        row["Hc_ratio"] = {str(r["hoil_over_Hc_ff"]): [r["Hc_ratio"], r1[r["hoil_over_Hc_ff"]]["Hc_ratio"]]
+                           for r in c2["runs"] if math.isfinite(r["hoil_over_Hc_ff"])}
+        # the same supplies against the same (second-order core) flooded film
+        row["Hc_over_core2_ff"] = {str(r["hoil_over_Hc_ff"]): [r["Hc"] / c2["Hc_ff2_core"],
+                                                                 r1[r["hoil_over_Hc_ff"]]["Hc"] / c2["Hc_ff2_core"]]
+                                   for r in c2["runs"] if math.isfinite(r["hoil_over_Hc_ff"])}
+        rows.append(row)
+    checks = []
+    g = json.loads((OUT / "starved_order_grid.json").read_text())
+    for c in g["cases"]:
+        for order in (1, 2):
+            r = c[f"order{order}"]
+            for key, p in zip(("Hc", "Hm"), GRID_ORDER[order], strict=True):
+                v = r[key]["values"]
+                est = GRID_SAFETY * abs(v[1] - v[0]) / (2.0**p - 1.0) / abs(v[1])
+                checks.append({"case": [c["M"], c["L"], c["hoil_over_Hc_ff257"]], "order": order, "film": key,
+                               "grid": 257, "coarse_converged": r["status"][0] == "converged",
+                               "estimate": est, "change_to_513": abs(v[2] / v[1] - 1.0),
+                               "vs_richardson": abs(v[1] / r[key]["richardson"] - 1.0)})
+    sc = json.loads((OUT / "starved_order_scene.json").read_text())["runs"]
+    for order in (1, 2):
+        a, b = [x for x in sc if x["order"] == order]
+        for key in ("Hc", "Hm"):
+            checks.append({"case": "chapter6 20 nm", "order": order, "film": key, "grid": a["points"],
+                           "estimate": a[f"{key}_error"], "change_to_513": abs(b[key] / a[key] - 1.0)})
+    return {"map": rows, "estimate_checks": checks,
+            "scene": [{k: x[k] for k in ("order", "points", "status", "Hc", "Hm", "Hc_ratio", "Hm_ratio",
+                                         "Hc_error", "Hm_error", "mass_balance_error", "wall_s")} for x in sc]}
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("part", choices=["map", "map1", "grid", "scene", "all"])
+    ap.add_argument("part", choices=["map", "map1", "grid", "scene", "summary", "all"])
     ap.add_argument("--quick", action="store_true")
     args = ap.parse_args()
     OUT.mkdir(exist_ok=True)
     tag = "_quick" if args.quick else ""
-    parts = ["map", "grid", "scene"] if args.part == "all" else [args.part]
+    parts = ["map", "map1", "grid", "scene", "summary"] if args.part == "all" else [args.part]
     for part in parts:
         t0 = time.perf_counter()
         if part in ("map", "map1"):
@@ -167,8 +223,10 @@ def main() -> None:
             cases = [(20.0, 10.0, 0.4)] if args.quick else [(20.0, 10.0, 0.4), (20.0, 10.0, 1.0),
                                                              (179.0, 4.17, 0.6)]
             data = run_grid(cases, [65, 129, 257] if args.quick else [129, 257, 513])
-        else:
+        elif part == "scene":
             data = run_scene([129] if args.quick else [257, 513])
+        else:
+            data = summarise()
         data["wall_s"] = time.perf_counter() - t0
         (OUT / f"starved_order_{part}{tag}.json").write_text(json.dumps(data, indent=1, default=float))
         print(part, f"wall {data['wall_s']:.0f} s", flush=True)
