@@ -515,17 +515,17 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
                                     and abs(sol3.load_error_history[-1]) < opt.tol_load))
             mb3 = imbalance_of(hz3) if met else math.inf
             keep = mb3 < mb
+            what = (f"mass imbalance {mb:.2g} at tol {opt.tol:.3g}: re-solved with tol {tight.tol:.3g}: "
+                    f"{sol3.status_name}")
+            if met and not sol3.success:
+                what += f" at a residual of {sol3.residual_history[-1]:.2g} (within tol {opt.tol:.3g})"
+            what += f", imbalance {mb3:.2g}; kept the {'second' if keep else 'first'}"
             if keep:
                 if not sol3.success:
                     sol3.set_status(0, "")
-                    sol3.actions.append(f"the tighter solve ended at a residual of "
-                                        f"{sol3.residual_history[-1]:.2g}, within the requested tol "
-                                        f"{opt.tol:.3g}")
-                    tight = replace(tight, tol=opt.tol)
+                    tight = replace(tight, tol=opt.tol)  # what the kept solve meets
                 sol, hz, opt = sol3, hz3, tight
-            sol.actions.append(f"mass imbalance {mb:.2g} at tol {tight.tol / MASS_TOL_FACTOR:.3g}: re-solved "
-                               f"with tol {tight.tol:.3g}: {sol3.status_name}, imbalance {mb3:.2g}; kept "
-                               f"the {'second' if keep else 'first'}")
+            sol.actions.append(what)
     fine = hz.levels[-1]
     sol.contact, sol.solver, sol.problem, sol.options = "point", "starved-fas", problem, opt
     sol.X, sol.Y, sol.P, sol.H = fine.X, fine.Y, fine.P.copy(), fine.H.copy()
