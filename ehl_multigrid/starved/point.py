@@ -691,6 +691,9 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
     the result carries ``Hc_error``, ``Hm_error`` (:func:`starved_point_error`); ``accuracy``
     (relative) judges them (status ``"inaccurate"`` when missed) and, without an explicit
     ``points``, refines the grid up to ``max_points`` until they meet it.
+
+    The wedge order (:data:`STARVED_WEDGE_ORDER` by default) is the keyword ``wedge_order``
+    or, without it, the scene's ``[solver.ehl]`` ``wedge_order`` (or ``order``).
     """
     from ..point.problem import problem_from_scene
     from .supply import hoil_venner
@@ -706,6 +709,16 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
         require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
     require_range("max_points", max_points, 65, 65537, "points")
     kw.setdefault("half", True)
+    if options is None and "wedge_order" not in kw and "order" not in kw:
+        # the scene's [solver.ehl] wedge order (``wedge_order`` or ``order``) selects the
+        # starved wedge too; the other keys of that table are the flooded solver's
+        from ..multigrid.options import scene_solver_table
+
+        table = scene_solver_table(scene, "point")[1]
+        for key in ("wedge_order", "order"):
+            if key in table:
+                kw["wedge_order"] = table[key]
+                break
     explicit = "points" in kw or options is not None
     n = int(kw.pop("points", options.points if options is not None else SCENE_POINTS))
     coarse: EHLResult | None = None

@@ -103,3 +103,22 @@ def test_central_film_converges_at_second_order_with_a_full_film(problem):
                               wedge_order=2).scalars["Hc_venner"] for n in (129, 257, 513)]
     ratio = (Hc[1] - Hc[0]) / (Hc[2] - Hc[1])
     assert 3.5 < ratio < 4.5
+
+
+def test_a_scene_solver_table_selects_the_second_order_wedge_of_ehl_solve(tmp_path, capsys):
+    import json
+
+    from ehl_multigrid.app.cli import main
+    from ehl_multigrid.model.scene import Scene, load_scene
+
+    d = load_scene("chapter6_starved_0.5GPa").to_dict()
+    d["supply"] = {"hoil": "20 nm"}
+    d["solver"] = {"ehl": {"order": 2}}
+    path = tmp_path / "starved_order2.toml"
+    path.write_text(Scene.from_dict(d).to_toml())
+    rc = main(["solve", str(path), "--points", "129", "--accuracy", "none", "--no-plots", "--json",
+               "--out", str(tmp_path / "o")])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0 and out["converged"] and out["solver"] == "starved-fas"
+    assert out["wedge_order"] == 2 and "second order" in out["note"]
+    assert out["mass_balance_error"] < 1e-6
