@@ -131,11 +131,14 @@ STARVED_WEDGE_ORDER = 1
 #: is the per-face second-order one (the right-hand side carries the defect correction)
 KERNEL_ORDER = 1
 
-#: extra finest-grid sweeps per relaxation once the cycles stall below POLISH_BELOW (their
-#: residual falling less than to POLISH_RATE over two cycles): at the meniscus the FAS
-#: coarse-grid correction undoes what the fine sweeps gain, a fixed point of the cycle at a
-#: residual of 3e-8 ... 9e-8 (measured: (179, 4.17) 257^2, Hoil = 0.25 Hc_ff, the first
-#: pressurised points behind the meniscus), while fine sweeps alone reduce it ~7 % each.
+#: second-order wedge: extra finest-grid sweeps per relaxation once the cycles stall below
+#: POLISH_BELOW (the residual falling less than to POLISH_RATE over two cycles), and every
+#: second cycle without the coarse-grid correction once they are stuck (less than to
+#: POLISH_STUCK). At the meniscus the FAS coarse-grid correction undoes what the fine sweeps
+#: gain: a fixed point of the cycle at a residual of 2e-8 ... 9e-8 (measured: (179, 4.17)
+#: 257^2, Hoil = 0.25 Hc_ff, on the first pressurised points behind the meniscus; the extra
+#: sweeps alone lower it to 2e-8, the skipped corrections converge it in 3 cycles), while fine
+#: sweeps alone reduce it ~7 % each.
 POLISH_SWEEPS = 8
 POLISH_BELOW = 1e-6
 POLISH_RATE = 0.7
@@ -350,10 +353,12 @@ class StarvedPointHierarchy(PointHierarchy):
         return m
 
     def _polishing(self, k: int) -> bool:
-        """Extra finest-grid sweeps of each cycle (:data:`POLISH_SWEEPS`) once the finest
-        grid's residual has fallen below :data:`POLISH_BELOW` and stopped falling (less than
-        :data:`POLISH_RATE` over the last two cycles): the fixed point of the cycle at the
-        meniscus (see :data:`POLISH_SWEEPS`)."""
+        """Second-order wedge only: :data:`POLISH_SWEEPS` extra finest-grid sweeps per
+        relaxation once the finest residual is below :data:`POLISH_BELOW` and falls by less
+        than to :data:`POLISH_RATE` over two cycles; when it falls by less than to
+        :data:`POLISH_STUCK` (a fixed point of the cycle at the meniscus) every second cycle
+        also skips the coarse-grid correction (:meth:`correct`). Both stay on for the rest of
+        the solve."""
         r = self._fine_res
         if k != len(self.levels) - 1 or self.order == 1:
             return False
@@ -561,18 +566,20 @@ SIDE_FLOW_LIMIT = 1e-4
 ORDER_NOTE = ("the starved point solver is first order in the wedge term: its flooded Hc lies "
               "2-8 % above the core's second-order film on the same grid; Hc_flooded and the "
               "ratios use its own flooded film")
-#: the same for the default, second-order wedge
+#: the same for the second-order wedge (``wedge_order = 2``)
 ORDER_NOTE_2 = ("the starved point solver's wedge term is second order where the film is full (first "
                 "order at the meniscus and in the cavitated outlet): its flooded film is the core's "
                 "second-order film; Hc_flooded and the ratios use it")
 
 #: grid order (Hc, Hm) per wedge order assumed by the two-grid Richardson estimate of
-#: :func:`starved_point_error`. Measured on 129/257/513 points (study_order.py grid), second
-#: order: Hc 2.00 ((20, 10), Hoil = Hc_ff) and 3.2 ((20, 10), 0.4 Hc_ff); Hm 1.55 and 2.2 where
-#: it is monotone, but non-monotone at (20, 10), 0.4 Hc_ff (-8.5e-5 then +9.2e-5): a
-#: second-order Hm estimate at 257 (5.5e-4) missed the change to 513 (7.2e-4), the first-order
-#: one (1.0e-3) covers it; so Hm keeps first order.
-GRID_ORDER = {1: (1.0, 1.0), 2: (2.0, 1.0)}
+#: :func:`starved_point_error`: first order for both wedges. Measured (study_order.py, grid
+#: and scene parts), second-order wedge: Hc converges at order 2.00 where the film is full
+#: ((20, 10), Hoil = Hc_ff, 129/257/513), but on the chapter-6 scene (20 nm) its changes
+#: 257 -> 513 -> 1025 -> 2049 are 4.4e-5, 3.6e-5, 9.2e-6 (ratios 1.2 and 3.95): a
+#: second-order estimate at 513 (0.064 %) missed the error (0.14 % against the 2049
+#: Richardson value), the first-order one (0.19 %) covers it. Hm is non-monotone at
+#: (20, 10), 0.4 Hc_ff (-8.5e-5, +9.2e-5): a second-order Hm estimate missed there too.
+GRID_ORDER = {1: (1.0, 1.0), 2: (1.0, 1.0)}
 
 
 def order_note(order: int) -> str:

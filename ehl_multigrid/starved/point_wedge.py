@@ -7,23 +7,26 @@ Elrod-Adams film content of Woloszynski et al. 2015):
 
     W_i = (Q_{i+1/2} - Q_{i-1/2}) / hx,
 
-    Q_{i+1/2} = 1.5 q_i - 0.5 q_{i-1}   where theta_i = theta_{i-1} = 1 (full film upstream),
-    Q_{i+1/2} = q_i                      next to and inside theta < 1 (meniscus, cavitated outlet),
-    Q_{1/2}   = (q_0 + q_1)/2            at a flooded inlet (theta_0 = theta_1 = 1), else q_0.
+    Q_{i+1/2} = 1.5 q_i - 0.5 q_{i-1}   where the upstream point is full (theta_{i-1} = 1),
+    Q_{i+1/2} = q_i                      otherwise (behind an unfilled point: the starved
+                                         inlet, the meniscus, inside the cavitated outlet),
+    Q_{1/2}   = (q_0 + q_1)/2            at a flooded inlet node (theta_0 = 1), else q_0.
 
 Where the film is full the scheme is the point core's second-order upwind difference
 ``(1.5 q_i - 2 q_{i-1} + 0.5 q_{i-2})/hx`` (and its first-order difference at ``i = 1``, which
 is the central first face), so a flooded inlet reproduces the core's default (second-order)
 flooded film. The faces telescope: the sum of the residuals is the imbalance of the boundary
-flows, whatever the face orders (discrete mass conservation). The same rule is the line
-contact's (:func:`ehl_multigrid.starved.discrete.face_weights`), where the second-order
-extrapolation across the jump of ``theta`` at the meniscus was measured to undershoot.
+flows, whatever the face orders (discrete mass conservation). The line contact
+(:func:`ehl_multigrid.starved.discrete.face_weights`) asks for both points full; here the
+order of a face must not depend on the film content of the point whose balance it closes
+(see :func:`face_value`): only the first cavitated point's outgoing face extrapolates across
+the rupture, where ``q`` is continuous.
 
-The relaxation uses the point core's line kernel (its second-order Jacobian) and a *defect
-correction* of the right-hand side, ``f + (W_lim - W_core)``, computed from the sweep's frozen
-film: each line system then solves the limited-flux equation exactly at the sweep's film, only
-its film-response Jacobian (the core's second-order weights) differs from the limited one at
-the faces next to a front.
+The relaxation uses the point core's line kernel unchanged, with a *defect correction* of the
+right-hand side, ``f + (W_lim - W_core)``, computed from the sweep's frozen film
+(:func:`wedge_correction`): each line system then solves the per-face equation at the sweep's
+film, only its film-response Jacobian is the kernel's (first-order weights,
+``starved.point.KERNEL_ORDER``; measured faster than the second-order ones at the meniscus).
 """
 
 from __future__ import annotations

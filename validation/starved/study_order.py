@@ -1,6 +1,7 @@
 """Second-order (per-face) wedge of the starved point solver against first order.
 
-Run: ``python validation/starved/study_order.py {map,map1,grid,scene,summary,all} [--quick]``
+Run: ``python validation/starved/study_order.py {map,map1,grid,scene,scenefine,summary,all}
+[--quick]``
 (about 18 min in all on the shared 2-core box); writes
 ``out/starved_order_<part>.json``. Every number of the "second-order wedge" part of REPORT.md
 comes from these files.
@@ -151,6 +152,26 @@ def run_scene(points: list[int]) -> dict:
     return {"runs": out}
 
 
+def run_scene_fine(plan: list[tuple[int, int]]) -> dict:
+    """The chapter-6 scene (20 nm) on finer grids without estimate or flooded companion:
+    the next grids of the ``scene`` part's sequences (does the 513 estimate cover them?)."""
+    from ehl_multigrid.model.scene import load_scene
+    from ehl_multigrid.starved import solve_starved_point_scene
+
+    scene = load_scene("chapter6_starved_0.5GPa")
+    out = []
+    for order, n in plan:
+        t0 = time.perf_counter()
+        s = solve_starved_point_scene(scene, hoil=20e-9, points=n, estimate=False, flooded=False,
+                                      raise_on_failure=False, wedge_order=order)
+        rec = {"order": order, "points": n, "status": s.status_name, "Hc": s.scalars["Hc_venner"],
+               "Hm": s.scalars["Hm_venner"], "mass_balance_error": s.scalars["mass_balance_error"],
+               "wall_s": time.perf_counter() - t0, "actions": s.actions}
+        print(rec, flush=True)
+        out.append(rec)
+    return {"runs": out}
+
+
 def summarise() -> dict:
     """Tables of REPORT.md from the JSON of the other parts: map statistics per case (both
     orders with the current code), grid orders, and the estimate check (the two-grid estimate
@@ -201,19 +222,40 @@ def summarise() -> dict:
         for key in ("Hc", "Hm"):
             checks.append({"case": "chapter6 20 nm", "order": order, "film": key, "grid": a["points"],
                            "estimate": a[f"{key}_error"], "change_to_513": abs(b[key] / a[key] - 1.0)})
-    return {"map": rows, "estimate_checks": checks,
+    fine_path = OUT / "starved_order_scenefine.json"
+    scene_seq = {}
+    if fine_path.exists():
+        fine = json.loads(fine_path.read_text())["runs"]
+        for order in (1, 2):
+            seq = sorted([(x["points"], x["Hc"], x["Hm"]) for x in sc if x["order"] == order]
+                         + [(x["points"], x["Hc"], x["Hm"]) for x in fine if x["order"] == order])
+            scene_seq[order] = {"points": [q[0] for q in seq], "Hc": [q[1] for q in seq],
+                                "Hm": [q[2] for q in seq]}
+        # reference: Richardson of the last three second-order grids (observed order)
+        ref = {}
+        for key in ("Hc", "Hm"):
+            v = scene_seq[2][key][-3:]
+            ref[key] = _order(v)
+        scene_seq["reference_order2"] = ref
+        for x in sc:
+            for key in ("Hc", "Hm"):
+                checks.append({"case": "chapter6 20 nm", "order": x["order"], "film": key, "grid": x["points"],
+                               "estimate": x[f"{key}_error"],
+                               "vs_2049_richardson": abs(x[key] / ref[key]["richardson"] - 1.0)})
+    return {"map": rows, "estimate_checks": checks, "scene_sequence": scene_seq,
             "scene": [{k: x[k] for k in ("order", "points", "status", "Hc", "Hm", "Hc_ratio", "Hm_ratio",
                                          "Hc_error", "Hm_error", "mass_balance_error", "wall_s")} for x in sc]}
 
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("part", choices=["map", "map1", "grid", "scene", "summary", "all"])
+    ap.add_argument("part", choices=["map", "map1", "grid", "scene", "scenefine", "summary", "all"])
     ap.add_argument("--quick", action="store_true")
     args = ap.parse_args()
     OUT.mkdir(exist_ok=True)
     tag = "_quick" if args.quick else ""
-    parts = ["map", "map1", "grid", "scene", "summary"] if args.part == "all" else [args.part]
+    parts = (["map", "map1", "grid", "scene", "scenefine", "summary"] if args.part == "all"
+             else [args.part])
     for part in parts:
         t0 = time.perf_counter()
         if part in ("map", "map1"):
@@ -225,6 +267,8 @@ def main() -> None:
             data = run_grid(cases, [65, 129, 257] if args.quick else [129, 257, 513])
         elif part == "scene":
             data = run_scene([129] if args.quick else [257, 513])
+        elif part == "scenefine":
+            data = run_scene_fine([(2, 257)] if args.quick else [(2, 1025), (1, 1025), (2, 2049)])
         else:
             data = summarise()
         data["wall_s"] = time.perf_counter() - t0
