@@ -42,8 +42,13 @@ SOLVERS = ("fas", "newton")
 #: ends at max_cycles at 257^2; alternating from the start converges both at 257^2 (and
 #: M = 20, 500, 1000 at 129^2 and 257^2).
 RETRY_ALTERNATING = ("max_cycles", "stalled", "diverged")
-#: Largest grid an accuracy target may refine to (about 10 s on two cores)
-MAX_ACCURACY_POINTS = 1025
+#: Largest grid an accuracy target may refine to. 2049^2 (half domain, as accuracy-driven
+#: solves run) converges since the fine-grid alternation: circular (20, 10) 19 s on two cores,
+#: 720 MB (validation/bench, session4). On the fit-check map at 1 % (validation/extremes,
+#: fit_map_0.01_retry2049) the circular Barus row converges at 2049 points for (M, L) = (100, 0),
+#: (100, 10), (100, 20), (500, 10), (1000, 10), each a grid-budget failure at 1025 (25-50 s each,
+#: one thread, loaded machine).
+MAX_ACCURACY_POINTS = 2049
 
 #: Widest box (times the default) an accuracy target may ask for in the thick-film regime
 THICK_FILM_BOX_LIMIT = 8.0
