@@ -1,0 +1,37 @@
+"""Check converged records of an accuracy map whose own check was skipped (results on 2049
+points, check grid 4097): the same independent check as ``accuracy_map.check_case`` (one grid
+finer on the result's box, judged at a quarter of the target), for the cases selected.
+
+Usage: ``python validation/extremes/check_finer.py MAP.json '[{"M": 20.0, "L": 0.0, "theta": 4.0}]' OUT.json``
+(each selector's keys must match a record's case). Writes the updated records to OUT.json.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+from accuracy_map import check_case, classify  # noqa: E402
+
+
+def main() -> None:
+    path, selectors, out_path = sys.argv[1], json.loads(sys.argv[2]), sys.argv[3]
+    records = json.loads(Path(path).read_text())
+    out = {}
+    for want in selectors:
+        for key, rec in records.items():
+            if not all(rec["case"].get(a) == b for a, b in want.items()):
+                continue
+            res = check_case(rec["case"], rec["accuracy"], rec["result"])
+            new = {**rec, **res}
+            new["class"] = classify(new)
+            out[key] = new
+            print(json.dumps({"case": rec["case"], "check": res.get("check", {}).get("status"),
+                              "difference": res.get("check_difference"), "wrong": res.get("wrong")}), flush=True)
+    Path(out_path).write_text(json.dumps(out, indent=1))
+
+
+if __name__ == "__main__":
+    main()
