@@ -157,6 +157,12 @@ ROW_BLOCK = 64
 #: 1025^2, one thread: 44-47 ms per evaluation with blocks of 16 or 64 columns, 46-52 ms
 #: unblocked; at 33^2 blocks of 16 cost 101 us against 51 us unblocked)
 COL_BLOCK = 16
+#: columns per block when the FFTs run on several threads: pocketfft splits a block's columns
+#: between its workers, and 16 columns are too few to pay for that. Measured per evaluation
+#: (full domain, 2 workers against 16 columns on 1 worker): 513^2 11.1 ms (16 columns, 2
+#: workers: 19.6 ms; 1 worker 11.0), 1025^2 51 ms (68.8; 57), 2049^2 247 ms (301; 253-289);
+#: unblocked is 5-15 % faster still but holds the whole padded spectrum (134 MB at 2049^2)
+PAR_COL_BLOCK = 256
 
 
 class FFTDeformation(Deformation):
@@ -194,7 +200,9 @@ class FFTDeformation(Deformation):
             self._spec = np.zeros((ny, nx), dtype=complex)
             # small grids: one block (each block costs a few Python calls)
             self._cols = nx if nx * ny <= 129 * 129 else min(nx, COL_BLOCK)
-            self._block = np.zeros((2 * (ny - 1), self._cols), dtype=complex)
+            self._cols_par = max(self._cols, min(nx, PAR_COL_BLOCK))
+            width = self._cols_par if self.workers > 1 else self._cols
+            self._block = np.zeros((2 * (ny - 1), width), dtype=complex)
 
     def _workers(self, size: int) -> int:
         # threads do not pay on small grids: measured 129^2 1.23 ms with 2 workers, 0.57 ms
@@ -237,7 +245,7 @@ class FFTDeformation(Deformation):
         self._rfft_rows(P, w)
         # Y transforms on blocks of X-spectrum columns: the padded block is small (cache)
         # and the spectrum of the whole field is held at ny rows, not 2(ny-1)
-        B, cb = self._block, self._cols
+        B, cb = self._block, (self._cols_par if w > 1 else self._cols)
         for c0 in range(0, nx, cb):
             c1 = min(c0 + cb, nx)
             blk = B[:, : c1 - c0]
