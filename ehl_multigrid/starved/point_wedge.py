@@ -57,6 +57,18 @@ def face_value(rq, H, theta, j, i, order):
     return qi
 
 
+@njit(cache=True)
+def _limited_wedge_row(rq, H, theta, j, hx, order, out):
+    """``out[j, i] = (Q_{i+1/2} - Q_{i-1/2})/hx`` at the interior points of row ``j``, with the
+    face values of :func:`face_value` (shared by the operator and the defect correction)."""
+    nx = H.shape[1]
+    qm = face_value(rq, H, theta, j, 0, order)
+    for i in range(1, nx - 1):
+        qp = face_value(rq, H, theta, j, i, order)
+        out[j, i] = (qp - qm) / hx
+        qm = qp
+
+
 @njit(cache=True, parallel=True)
 def flux_operator(P, H, rq, eps, theta, hx, hy, sym, order, out):
     """Discrete Elrod-Adams operator ``L = Poiseuille - (Q_{i+1/2} - Q_{i-1/2})/hx`` at the
@@ -70,11 +82,9 @@ def flux_operator(P, H, rq, eps, theta, hx, hy, sym, order, out):
         if j < j0 or j > ny - 2:
             continue
         jm = 1 if (sym and j == 0) else j - 1
-        qm = face_value(rq, H, theta, j, 0, order)
+        _limited_wedge_row(rq, H, theta, j, hx, order, out)
         for i in range(1, nx - 1):
-            qp = face_value(rq, H, theta, j, i, order)
-            out[j, i] = nm._poiseuille(P, eps, j, jm, j + 1, i, hx2, hy2) - (qp - qm) / hx
-            qm = qp
+            out[j, i] = nm._poiseuille(P, eps, j, jm, j + 1, i, hx2, hy2) - out[j, i]
 
 
 @njit(cache=True, parallel=True)
@@ -89,11 +99,9 @@ def wedge_correction(rq, H, theta, hx, sym, order, core_order, out):
             out[j, i] = 0.0
         if j < j0 or j > ny - 2:
             continue
-        qm = face_value(rq, H, theta, j, 0, order)
+        _limited_wedge_row(rq, H, theta, j, hx, order, out)
         for i in range(1, nx - 1):
-            qp = face_value(rq, H, theta, j, i, order)
-            out[j, i] = (qp - qm) / hx - nm._wedge(rq, H, j, i, hx, core_order, 0.0)
-            qm = qp
+            out[j, i] -= nm._wedge(rq, H, j, i, hx, core_order, 0.0)
 
 
 @njit(cache=True)
