@@ -9,7 +9,7 @@ less than a factor ``stall_factor`` over ``stall_window`` cycles the next step o
 ladder* is applied. The steps are
 
 * ``"halve"``: halve both under-relaxations and the film-constant gain (down to floors);
-* ``"W"``: switch V cycles to W cycles (coarse grids visited more often);
+* ``"W"``: switch V or F cycles to W cycles (coarse grids visited more often);
 * ``"switch"``: widen the Jacobi-distributive zone (the contact's own rule,
   ``hierarchy.raise_switch``);
 * ``"alternate"``: relax X and Y lines alternately on every grid (point contacts,
@@ -169,9 +169,9 @@ class RobustnessPolicy:
                 s.h00_gain = max(0.5 * s.h00_gain, f2)
                 done.append(f"omega = {s.omega:.3g}, omega_jd = {s.omega_jd:.3g}, "
                             f"h00_gain = {s.h00_gain:.3g}")
-            elif step == "W" and s.cycle == "V":
+            elif step == "W" and s.cycle in ("V", "F"):
+                done.append(f"{s.cycle} -> W cycles")
                 s.cycle = "W"
-                done.append("V -> W cycles")
             elif step == "alternate":
                 msg = getattr(hierarchy, "alternate_all", lambda _s: "")(s)
                 if msg:

@@ -29,15 +29,24 @@ def fluid_properties(P, H, par, lam, rho, eps):
     Negative pressure counts as zero; a negative film (never at convergence) gives eps = 0.
     """
     ny, nx = P.shape
+    # unloaded points (P <= 0: the cavitated outlet and the far field, most of the domain)
+    # share one value of the rheology, computed once: the same numbers, without the
+    # exponentials and powers
+    r0 = density(0.0, par)[0]
+    e0 = math.exp(-log_viscosity(0.0, par)[0])
     for j in prange(ny):
         for i in range(nx):
             p = P[j, i]
-            r = density(p, par)[0]
-            lne = log_viscosity(p, par)[0]
-            rho[j, i] = r
             h = H[j, i]
             if h < 0.0:
                 h = 0.0
+            if p <= 0.0:
+                rho[j, i] = r0
+                eps[j, i] = r0 * h * h * h * e0 / lam
+                continue
+            r = density(p, par)[0]
+            lne = log_viscosity(p, par)[0]
+            rho[j, i] = r
             eps[j, i] = r * h * h * h * math.exp(-lne) / lam
 
 
