@@ -27,6 +27,8 @@ residual sees it.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import scipy.sparse as sps
 import scipy.sparse.linalg as spla
@@ -50,7 +52,7 @@ def _coefficient_of_theta(rho: np.ndarray, H: np.ndarray, theta: np.ndarray, ord
 
 def inlet_solve(P: np.ndarray, H: np.ndarray, rho: np.ndarray, eps: np.ndarray, theta: np.ndarray,
                 f: np.ndarray, hx: float, hy: float, half: bool, order: int, region: np.ndarray,
-                residual: callable) -> tuple[bool, int, str]:
+                residual: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> tuple[bool, int, str]:
     """Solve the discrete Elrod-Adams balance exactly on the interior points of ``region``
     (P and theta outside held), in place in ``P`` and ``theta``.
 
