@@ -107,7 +107,8 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
         else:
             print(f"# scene {scene.name}: M = {pb.M:.5g}, L = {pb.L:.5g}, theta = {pb.theta:.4g}, "
                   f"pmax = {pb.pmax:.4g} Pa, a = {pb.a:.4g} m")
-        how = (f"{opt.cycle} cycles" if solver == "fas" else "Newton/pyamg")
+        how = (f"{opt.cycle or 'F (W where every grid alternates)'} cycles" if solver == "fas"
+               else "Newton/pyamg")
         print(f"# {pb.viscosity} viscosity, {pb.density} density; {opt.points} points along X, "
               f"{how}, deformation {opt.deformation}{', half domain' if opt.half else ''}"
               f"{', rigid surfaces' if rigid else ''}")

@@ -75,6 +75,8 @@ class MultigridOptions:
     film_tol: float | None = None
 
     #: deprecated name -> current name
+    #: the contact chooses the cycle type when ``cycle`` is None
+    CYCLE_OPTIONAL: ClassVar[bool] = False
     ALIASES: ClassVar[dict[str, str]] = {
         "omega_gs": "omega", "w_gs": "omega", "omega_jac": "omega_jd", "w_jd": "omega_jd",
         "threshold": "switch", "thr": "switch", "h0_factor": "h00_gain", "c_h00": "h00_gain",
@@ -89,7 +91,8 @@ class MultigridOptions:
             require_range("levels", self.levels, 1, 20, "-")
             if int(self.levels) != self.levels:
                 raise InputError(f"levels = {self.levels} must be an integer")
-        require_choice("cycle", self.cycle, CYCLES)
+        if self.cycle is not None or not self.CYCLE_OPTIONAL:
+            require_choice("cycle", self.cycle, CYCLES)
         require_range("cycles", self.cycles, 1, 50, "cycles per FMG level")
         require_range("max_cycles", self.max_cycles, 0, 10000, "cycles")
         require_range("nu1", self.nu1, 0, 50)
@@ -198,11 +201,14 @@ class PointOptions(MultigridOptions):
     Y lines after every X-line sweep (None: on every grid when b/a < 0.5, contacts long in the
     rolling direction; wider contacts on their grids of at least 129 points in solves of at
     least 513 points, where the resolved pressure spike's oblique ridge otherwise leaves an
-    error floor; True: every grid; False: never).
+    error floor; True: every grid; False: never); ``cycle`` -- None: F cycles for the steady
+    solve of contacts that start with X lines, W cycles where every grid alternates from the
+    start and for the starved, transient and thermal solvers (see ``point.fas.point_cycle``).
     """
 
+    CYCLE_OPTIONAL: ClassVar[bool] = True
     points: int = 129
-    cycle: str = "W"
+    cycle: str | None = None
     max_cycles: int = 30
     deformation: str = "fft"
     omega: float = 0.6

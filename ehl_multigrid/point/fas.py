@@ -17,6 +17,7 @@ on one thread.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -440,7 +441,34 @@ class PointHierarchy:
         return 0
 
 
-def point_settings(problem: PointProblem, options: PointOptions) -> Settings:
+#: Cycle type of a steady point solve that starts with X-line relaxation (``cycle=None``).
+#: Measured on every point case of the extremes matrix and the fit-check map at 257 or 513
+#: points, half domain (validation/bench/cycle_screen.py, 108 cases): W and F both converge 98
+#: (F also (1000, 25, 0.1), W also Barus (20, 20, 4), which alternates from the start); where
+#: both converge F takes 0.95 of the work units and 0.89 of the wall time. Circular (20, 10):
+#: FMG with one F(2,1) cycle per level leaves Hc within 0.42 (513^2) and 0.52 (1025^2) of its
+#: discretisation error from the converged solution in 13.7-14.1 WU; to the residual
+#: tolerance 27 against 41 WU at 513^2.
+STEADY_CYCLE = "F"
+#: Cycle type where every grid alternates from the start (narrow contacts, ``alternating=True``,
+#: the retry of a failed X-line solve) and of the solvers built on the point hierarchy whose
+#: iterations were tuned with W cycles (starved, transient, thermal).
+ALTERNATING_CYCLE = "W"
+
+
+def point_cycle(options: PointOptions, alternating: bool, steady: bool = False) -> str:
+    """The cycle type of a point solve: the options' own, else :data:`STEADY_CYCLE` for a
+    steady solve that starts with X lines, else :data:`ALTERNATING_CYCLE`."""
+    if options.cycle is not None:
+        return options.cycle
+    return STEADY_CYCLE if steady and not alternating else ALTERNATING_CYCLE
+
+
+def point_settings(problem: PointProblem, options: PointOptions, cycle: str | None = None) -> Settings:
+    """Start settings of a point solve (``cycle``: the cycle type when the options leave it
+    open; W by default)."""
+    if options.cycle is None:
+        options = replace(options, cycle=cycle or ALTERNATING_CYCLE)
     if options.h00_gain is None:
         c = options.default_h00_gain(problem.M, problem.L)
         if domain_scale(problem) > 1.0:  # thick film: the rigid sensitivity sets the gain
@@ -457,7 +485,8 @@ def point_settings(problem: PointProblem, options: PointOptions) -> Settings:
 def point_solver(problem: PointProblem, options: PointOptions) -> MultilevelSolver:
     """The multilevel solver of one point-contact problem (not yet run)."""
     hz = PointHierarchy(problem, options)
-    solver = MultilevelSolver(hz, options, point_settings(problem, options),
+    cycle = point_cycle(options, hz.alternating, steady=True)
+    solver = MultilevelSolver(hz, options, point_settings(problem, options, cycle),
                               RobustnessPolicy(POINT_POLICY, options.adapt), HINT)
     hz.solver = solver
     return solver

@@ -78,6 +78,7 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
         if retry and sol.status_name in RETRY_ALTERNATING:
             # X lines alone failed: solve again alternating X and Y lines on every grid from
             # the start (the policy's mid-solve switch comes too late on some grids)
+            # (with W cycles unless the options name one: point_cycle)
             again = point_solver(problem, replace(opt, alternating=True))
             sol2 = again.solve(callback=callback)
             note = (f"X-line relaxation ended {sol.status_name} ({sol.message}); solved again with "
