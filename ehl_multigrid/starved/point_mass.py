@@ -1,28 +1,29 @@
-"""Exact inlet solve of the starved point contact: the discrete Elrod-Adams mass balance of
-the finest grid's inlet solved by a primal-dual active-set (semismooth) Newton method.
+"""Exact zone solve of the starved point contact: the discrete Elrod-Adams mass balance of the
+finest grid, where the Poiseuille terms dominate, solved by a primal-dual active-set
+(semismooth Newton) method with a sparse direct solve.
 
 Why: in a thick-film contact at mild starvation the meniscus lies far upstream, where
 ``eps/h^2 ~ 2e4 ... 2e6``. The multigrid cycle stops (its scaled residual, a pressure change,
 is at the tolerance) with an unscaled residual of one sign spread over the pressurised inlet
-(measured at (M, L) = (20, 10), 129^2, Hoil = 2 Hc_ff: 46 % of it on the first pressurised node
+(measured at (M, L) = (20, 10), 129^2, Hoil = 2 Hc_ff: 46 % of it on the first pressurised point
 of each row, the rest decaying over the next ~6 columns), and the sum of the residuals is the
 imbalance of the boundary flows (3.6e-5 of the inflow there). Further cycles do not remove it
-(a fixed point of the cycle at the free boundary) and line relaxation reduces it by ~0.2 % per
-sweep.
+(a fixed point of the cycle: its coarse-grid film content is not consistent with the fine
+grid's inlet balance) and line relaxation reduces it by ~0.2 % per sweep.
 
-What: on the inlet ``X <= x_cut`` (every interior row) the unknowns are ``P`` where the film is
-full and ``theta`` where it is not (Elrod 1981; the complementarity form of Woloszynski et al.
-2015: ``P >= 0``, ``0 <= theta <= 1``, ``P (1 - theta) = 0``). For a fixed active set the
-discrete balance (thesis (2.1) in the starved operator's flux form: the point core's
-five-point Poiseuille terms, the upwind face values of :func:`.point_wedge.face_value`) is
-linear in these unknowns at the frozen film ``H``, density and ``eps``; it is solved by a
-sparse direct solve, the active set updated (``P < 0``: unpressurised; ``theta > 1``:
-pressurised) and solved again until it no longer changes (Hintermueller, Ito & Kunisch 2002,
-primal-dual active set = semismooth Newton). The inlet pressure is small (``P <= 1e-2 pmax``
-there): its change moves the film by far less than the residual tolerance, so the frozen
-film is the converged film. The inlet's residuals then vanish, and by the flux form the
-inlet's share of the imbalance moves to the faces at ``x_cut``, where the cycle's scaled
-residual sees it.
+What: on a zone of the finest grid (``region``; the starved hierarchy passes the points with
+``eps/hx^2 >= 10`` and the unpressurised inlet) the unknowns are ``P`` where the film is full
+and ``theta`` where it is not (Elrod 1981; the complementarity form of Woloszynski et al. 2015:
+``P >= 0``, ``0 <= theta <= 1``, ``P (1 - theta) = 0``); the points outside hold their values.
+For a fixed active set the discrete balance (thesis (2.1) in the starved operator's flux form:
+the point core's five-point Poiseuille terms, the upwind face values of
+:func:`.point_wedge.face_value`) is linear in these unknowns at the frozen film ``H``, density
+and ``eps``; it is solved by a sparse direct solve, the active set updated (``P < 0``:
+unpressurised; ``theta > 1``: pressurised) and solved again until it no longer changes
+(Hintermueller, Ito & Kunisch 2002: primal-dual active set = semismooth Newton). Where the
+Poiseuille terms dominate, the film's response to the change is small; the caller repeats the
+solve with the updated film. The zone's residuals then vanish, and by the flux form its share
+of the imbalance moves to the faces of its rim, where the cycle's scaled residual sees it.
 """
 
 from __future__ import annotations
@@ -54,7 +55,8 @@ def inlet_solve(P: np.ndarray, H: np.ndarray, rho: np.ndarray, eps: np.ndarray, 
                 f: np.ndarray, hx: float, hy: float, half: bool, order: int, region: np.ndarray,
                 residual: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> tuple[bool, int, str]:
     """Solve the discrete Elrod-Adams balance exactly on the interior points of ``region``
-    (P and theta outside held), in place in ``P`` and ``theta``.
+    (P and theta outside held), in place in ``P`` and ``theta``; ``order`` is the wedge's
+    (1, or 2: the per-face order of :func:`.point_wedge.face_value`).
 
     ``residual(P, theta) -> r`` is the operator's residual ``f - L(P, theta)`` at the frozen
     film (0 on the boundary). Returns (done, active-set iterations, note)."""
