@@ -51,6 +51,33 @@ def fluid_properties(P, H, par, lam, rho, eps):
 
 
 @njit(cache=True, parallel=True)
+def local_film_update(H, P, P_old, K, sym):
+    """``H += sum K[|dj|, |di|] (P - P_old)[j + dj, i + di]`` over ``|dj| < K.shape[0]``,
+    ``|di| < K.shape[1]``: the near part of the deformation's change (K = cd times the cell
+    kernel's nearest offsets; rows mirrored at Y = 0 when ``sym``)."""
+    ny, nx = H.shape
+    ky, kx = K.shape
+    for j in prange(ny):
+        for i in range(nx):
+            s = 0.0
+            for dj in range(-ky + 1, ky):
+                jj = j + dj
+                if sym and jj < 0:
+                    jj = -jj
+                if jj < 0 or jj >= ny:
+                    continue
+                kr = dj if dj >= 0 else -dj
+                for di in range(-kx + 1, kx):
+                    ii = i + di
+                    if ii < 0 or ii >= nx:
+                        continue
+                    d = P[jj, ii] - P_old[jj, ii]
+                    if d != 0.0:
+                        s += K[kr, di if di >= 0 else -di] * d
+            H[j, i] += s
+
+
+@njit(cache=True, parallel=True)
 def film(W, X, Y, H00, theta, cd, H):
     """``H = H00 + X^2/2 + theta Y^2/2 + cd W``."""
     ny, nx = W.shape

@@ -1,10 +1,10 @@
 """Robustness screen of the point solver's cycle type: every point case of the extremes matrix
 and of the fit-check map (validation/extremes/accuracy_map.py) solved on one fixed grid (257
 points, or the solver's smallest grid for the load, at most 513; half domain, default box and
-tolerances) with W cycles and with F cycles. Writes ``out/cycle_screen.json`` with status, work
-units, wall time and films per case and cycle type.
+tolerances) with W cycles and with F cycles. Writes ``out/<label>.json`` (default
+``cycle_screen``) with status, work units, wall time and films per case and cycle type.
 
-    python validation/bench/cycle_screen.py [--quick]
+    python validation/bench/cycle_screen.py [--quick] [--label NAME]
 """
 
 from __future__ import annotations
@@ -43,6 +43,7 @@ def main() -> None:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--label", default="cycle_screen", help="output file stem under out/")
     a = ap.parse_args()
     todo = [c for c in cases(a.quick) if c["contact"] == "point"]
     todo += [c for c in fit_cases(a.quick) if c["contact"] == "point"]
@@ -52,7 +53,7 @@ def main() -> None:
         pb = problem_from_moes(c["M"], c["L"], c["theta"])
         n = min(max(257, min_points(c["M"], pb.b_over_a)), 513)
         rows.append({**c, "points": n, "W": run(c, "W", n), "F": run(c, "F", n)})
-        (OUT / "cycle_screen.json").write_text(json.dumps(rows, indent=1))
+        (OUT / f"{a.label}.json").write_text(json.dumps(rows, indent=1))
     ok = {k: sum(r[k]["status"] == "converged" for r in rows) for k in ("W", "F")}
     both = [r for r in rows if r["W"]["status"] == r["F"]["status"] == "converged"]
     wu = sum(r["F"]["WU"] for r in both) / max(sum(r["W"]["WU"] for r in both), 1e-300)

@@ -1,0 +1,49 @@
+"""The local film refresh between the X and Y halves of an alternating sweep
+(``point.fas.LOCAL_UPDATE_FROM``): it adds exactly the near cell-kernel weights of a pressure
+change, and the solve converges to the same discrete solution as with the full deformation."""
+
+import numpy as np
+
+from ehl_multigrid.point import fas, solve_point
+from ehl_multigrid.point import numerics as nm
+from ehl_multigrid.point.deformation import cell_kernel, make_deformation
+
+
+def test_the_local_update_adds_the_near_kernel_weights_of_the_full_deformation():
+    nx, ny, h = 33, 17, 0.1
+    K = cell_kernel(2, 2, h, h)
+    P_old = np.zeros((ny, nx))
+    P = P_old.copy()
+    P[5, 10] = 0.3  # one changed point
+    H = np.zeros_like(P)
+    nm.local_film_update(H, P, P_old, K, False)
+    W = make_deformation("fft", nx, ny, h, h, False, 1)(P)
+    # the 3 x 3 neighbourhood carries the full deformation's values there, nothing beyond
+    assert np.allclose(H[4:7, 9:12], W[4:7, 9:12], rtol=1e-12, atol=1e-14)
+    H[4:7, 9:12] = 0.0
+    assert not H.any()
+
+
+def test_the_local_update_mirrors_rows_at_the_symmetry_line():
+    nx, ny, h = 17, 9, 0.1
+    K = cell_kernel(2, 2, h, h)
+    P_old = np.zeros((ny, nx))
+    P = P_old.copy()
+    P[1, 8] = 1.0  # its mirror image at row -1 acts on row 0 as well
+    H = np.zeros_like(P)
+    nm.local_film_update(H, P, P_old, K, True)
+    row = np.concatenate([K[:, :0:-1], K], axis=1)  # weights at X offsets -1, 0, 1
+    expect = np.zeros_like(H)
+    expect[0, 7:10] = 2.0 * row[1]  # the point and its mirror image, one row away each
+    expect[1, 7:10] = row[0]
+    expect[2, 7:10] = row[1]
+    assert np.allclose(H, expect, rtol=1e-12, atol=1e-15)
+
+
+def test_a_solve_with_the_local_refresh_reaches_the_same_films(monkeypatch):
+    kw = dict(points=513, half=True, estimate=False, tol=1e-7, max_cycles=40)
+    local = solve_point(20.0, 10.0, **kw)
+    monkeypatch.setattr(fas.PointHierarchy, "local_update", False)
+    full = solve_point(20.0, 10.0, **kw)
+    assert local.success and full.success
+    assert abs(local.Hc / full.Hc - 1.0) < 1e-6 and abs(local.Hm / full.Hm - 1.0) < 1e-6
