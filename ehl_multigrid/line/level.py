@@ -114,7 +114,7 @@ class LineLevel:
         st = self.state() if st is None else st
         ab, rhs, jac = line_relaxation_system(
             self.P, st.H, st.rho, st.drho, st.eps, st.r, self.kernel, self.h, self.order,
-            self.elastic, switch, band, self.frozen, switch_h)
+            self.elastic, switch, band, self.frozen, switch_h, True)
         delta = solve_band(ab, rhs, band)
         damp = np.ones(self.n)
         self.P = distribute_changes(self.P, delta, jac, omega, omega_jd, damp, self.frozen)

@@ -111,6 +111,9 @@ class LineHierarchy:
         ]
         self.newton_iterations = 0
         self.solver: MultilevelSolver | None = None
+        #: coarsest grid the cycles visit: the grids below it cannot hold a positive film (or
+        #: their Newton failed) at the FMG start, so the cycles stop here and solve it by Newton
+        self.floor = 0
         #: optional start ``(X, P, H0)`` from a solution of the same contact (another grid or
         #: box): the start grid's Newton begins from it instead of the Hertzian guess
         self.guess: tuple[np.ndarray, np.ndarray, float] | None = None
@@ -153,6 +156,8 @@ class LineHierarchy:
 
     # -- cycle pieces ---------------------------------------------------------------------
     def relax(self, k: int, sweeps: int, s: Settings, coarse: bool) -> float:
+        if k < self.floor:
+            return 0.0
         lv = self.levels[k]
         for _ in range(sweeps):
             lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=s.switch_h)
@@ -161,13 +166,20 @@ class LineHierarchy:
         return sweeps * self.work(k)
 
     def restrict(self, k: int, s: Settings) -> tuple[Any, float]:
+        if k <= self.floor:
+            return None, None  # the grids below the floor are not visited
         lv, cv = self.levels[k], self.levels[k - 1]
         st = lv.state()
         lres = self.relative_residual(lv, st)
         P_start, H0_start = fas_coarse_problem(lv, cv, projected(st.r, lv.P))
         return (P_start, H0_start, st), lres
 
-    def correct(self, k: int, token: Any, s: Settings) -> None:
+    def correct(self, k: int, token: Any, s: Settings) -> float | None:
+        if k < self.floor:
+            return None
+        if k == self.floor:
+            # the floor grid is the cycles' coarsest grid: solved for (P, H0) like level 0
+            return self._floor_solve(k, s)
         lv, cv = self.levels[k], self.levels[k - 1]
         P_start, H0_start, st = token
         corr = interpolate_linear(np.where(cv.frozen, 0.0, cv.P - P_start))
@@ -183,7 +195,12 @@ class LineHierarchy:
         lv.P[0] = lv.P[-1] = 0.0
         lv.H0 += cv.H0 - H0_start
 
+    def _floor_solve(self, k: int, s: Settings) -> None:
+        self.solver.work_units += self.coarse_solve(k, s)
+
     def coarse_solve(self, k: int, s: Settings) -> float:
+        if k < self.floor:
+            return 0.0
         lv = self.levels[k]
         saved = (lv.P.copy(), lv.H0)
         try:
@@ -254,7 +271,7 @@ class LineHierarchy:
         is not positive (too coarse for this load). Returns the start level."""
         self.solver = solver
         top = len(self.levels) - 1
-        k = self._start_level()
+        k = k_want = self._start_level()
         while True:
             lv = self.levels[k]
             self._initial_guess(lv)
@@ -294,7 +311,13 @@ class LineHierarchy:
             raise ConvergenceError(
                 f"the discrete film is not positive on the {lv.n}-point start grid "
                 f"(M = {self.problem.M:.4g}, L = {self.problem.L:.4g} needs finer grids)", None, hint)
-        if k > 0:
+        if k > k_want:
+            # the grids below the start cannot carry a positive film (or their Newton failed):
+            # their corrections would be those of a wrong problem (measured: (M, L) = (100, 0),
+            # 4097 points, a limit cycle through the 129-point grid), so the cycles stop here
+            self.floor = k
+            solver.note(f"FMG started on the {lv.n}-point grid; the cycles coarsen to it, not below")
+        elif k > 0:
             solver.note(f"FMG started on the {lv.n}-point grid (cycles still coarsen to {self.levels[0].n})")
         return k
 

@@ -126,8 +126,11 @@ def test_robustness_steps_fire_on_the_rigid_isoviscous_contact_and_it_still_conv
 def test_a_dense_newton_finish_counts_as_converged_under_the_film_stopping_rule():
     # the film jumps from the stalled cycles to the discrete solution; that jump is no
     # iteration error, so the film-change rule must not turn the finish into "stalled", and
-    # the estimate's algebraic part is the load error alone
-    sol = solve_line(100.0, 0.0, points=513, raise_on_failure=False, film_tol=5e-4)
+    # the estimate's algebraic part is the load error alone. (Was (M, L) = (100, 0) at 513
+    # points, whose cycles no longer stall since the JD-next-to-cavitation rule and the cycle
+    # floor of validation/line_fine: they converge in 9 cycles; the rigid isoviscous contact
+    # still stalls and is finished by dense Newton.)
+    sol = solve_line(10.0, 0.0, points=513, elastic=False, raise_on_failure=False, film_tol=5e-4)
     assert any("dense Newton" in a for a in sol.actions)
     assert sol.status_name == "converged", sol.message
     alg = sol.error.budget["algebraic"]
