@@ -21,8 +21,8 @@ the point core's five-point Poiseuille terms, the upwind face values of
 and ``eps``; it is solved by a sparse direct solve, the active set updated (``P < 0``:
 unpressurised; ``theta > 1``: pressurised) and solved again until it no longer changes
 (Hintermueller, Ito & Kunisch 2002: primal-dual active set = semismooth Newton). Where the
-Poiseuille terms dominate, the film's response to the change is small; the caller repeats the
-solve with the updated film. The zone's residuals then vanish, and by the flux form its share
+Poiseuille terms dominate, the film's response to the change is small; the caller updates the
+film after the solve (the next cycle's solve starts from it). The zone's residuals then vanish, and by the flux form its share
 of the imbalance moves to the faces of its rim, where the cycle's scaled residual sees it.
 """
 
