@@ -127,9 +127,9 @@ def test_a_dense_newton_finish_counts_as_converged_under_the_film_stopping_rule(
     # the film jumps from the stalled cycles to the discrete solution; that jump is no
     # iteration error, so the film-change rule must not turn the finish into "stalled", and
     # the estimate's algebraic part is the load error alone. (Was (M, L) = (100, 0) at 513
-    # points, whose cycles no longer stall since the JD-next-to-cavitation rule and the cycle
-    # floor of validation/line_fine: they converge in 9 cycles; the rigid isoviscous contact
-    # still stalls and is finished by dense Newton.)
+    # points, whose cycles no longer stall since the Gauss-Seidel-next-to-cavitation rule and
+    # the stall step that leaves the film-less coarse grids out (validation/line_fine); the
+    # rigid isoviscous contact still stalls and is finished by dense Newton.)
     sol = solve_line(10.0, 0.0, points=513, elastic=False, raise_on_failure=False, film_tol=5e-4)
     assert any("dense Newton" in a for a in sol.actions)
     assert sol.status_name == "converged", sol.message
