@@ -28,8 +28,8 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
     for opt in ("ymax", "ellipticity"):
         if getattr(args, opt, None) is not None:
             raise InputError(f"--{opt} applies to point contacts, not to a line contact")
-    if getattr(args, "half", False):
-        raise InputError("--half applies to point contacts, not to a line contact")
+    if getattr(args, "half", False) or getattr(args, "full_domain", False):
+        raise InputError("--half and --full-domain apply to point contacts, not to a line contact")
     if getattr(args, "solver", None) == "newton":
         raise InputError("--solver newton is the point-contact cross-check path; line contacts use "
                          "the FAS solver (whose coarsest grid is already solved by Newton)")

@@ -30,8 +30,12 @@ def options_from_args(args: argparse.Namespace, scene=None) -> dict:
         "tol_load": args.tol_load,
     }
     kw.update({k: v for k, v in cli.items() if v is not None})
+    if args.half and getattr(args, "full_domain", False):
+        raise InputError("--half and --full-domain exclude each other")
     if args.half:
         kw["half"] = True
+    if getattr(args, "full_domain", False):
+        kw["half"] = False
     return kw
 
 

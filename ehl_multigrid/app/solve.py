@@ -58,7 +58,10 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--xmin", type=float, default=None, help="inlet boundary X")
     p.add_argument("--xmax", type=float, default=None, help="outlet boundary X")
     p.add_argument("--ymax", type=float, default=None, help="half-width of the domain in Y (point contacts)")
-    p.add_argument("--half", action="store_true", help="solve half the domain using symmetry in Y (point contacts)")
+    p.add_argument("--half", action="store_true",
+                   help="solve half the domain using symmetry in Y (point contacts; the default of the FAS solver)")
+    p.add_argument("--full-domain", action="store_true",
+                   help="solve the whole domain instead of the symmetric half (point contacts)")
     p.add_argument("--threads", type=int, default=None, help="numba threads (default: all cores)")
     p.add_argument("--tol", type=float, default=None, help="residual tolerance")
     p.add_argument("--tol-load", type=float, default=None, help="relative load-error tolerance")

@@ -117,7 +117,7 @@ def test_highly_piezoviscous_case_converges_with_the_default_switch():
 
 def test_half_domain_equals_full_domain_for_an_elliptic_contact_with_square_cells():
     # y_ratio 2: twice the intervals along Y (the default stretches the cells with the ellipse)
-    full = solve_point(20, 10, theta=0.25, points=65, y_ratio=2)
+    full = solve_point(20, 10, theta=0.25, points=65, half=False, y_ratio=2)
     half = solve_point(20, 10, theta=0.25, points=65, half=True, y_ratio=2)
     assert full.P.shape == (129, 65) and half.P.shape == (65, 65)
     assert full.converged and half.converged
@@ -148,3 +148,15 @@ def test_a_finished_solve_frees_its_grids_without_the_cycle_collector(monkeypatc
         assert made and all(r() is None for r in made)
     finally:
         gc.enable()
+
+
+def test_the_fas_solver_takes_the_symmetric_half_domain_unless_told_otherwise():
+    half = solve_point(20, 10, points=65, estimate=False)
+    full = solve_point(20, 10, points=65, estimate=False, half=False)
+    assert half.half and half.P.shape == (33, 65)
+    assert not full.half and full.P.shape == (65, 65)
+    assert half.Hc == pytest.approx(full.Hc, rel=1e-5) and half.Hm == pytest.approx(full.Hm, rel=1e-5)
+    # explicit options are taken as given (their default is the full domain)
+    from ehl_multigrid.multigrid.options import PointOptions
+
+    assert not solve_point(20, 10, options=PointOptions(points=65), estimate=False).half
