@@ -181,6 +181,9 @@ class PointHierarchy:
     #: grids (:data:`LOCAL_UPDATE_FROM`); False in subclasses whose film or lubricant
     #: properties carry more than the core's (flow factors, moving geometry)
     local_update = True
+    #: the policy's "alternate" step may switch this hierarchy's grids to X/Y alternation
+    #: (False in subclasses whose own sweep relaxes X lines only)
+    can_alternate = True
 
     def __init__(self, problem: PointProblem, options: PointOptions) -> None:
         self.pb = self.problem = problem
@@ -415,9 +418,9 @@ class PointHierarchy:
     def alternate_all(self, s: Settings) -> str:
         """Policy step ``"alternate"``: relax X and Y lines alternately on every grid from now
         on (``""`` when they already do, when the options forbid it, or for a subclass whose
-        own sweep relaxes X lines only, as the starved solver's)."""
+        own sweep relaxes X lines only, ``can_alternate = False``, as the starved solver's)."""
         if (self.alternating and all(lev.alternate for lev in self.levels)) \
-                or self.options.alternating is False or type(self)._sweep is not PointHierarchy._sweep:
+                or self.options.alternating is False or not self.can_alternate:
             return ""
         self.alternating = True
         self.sweep_work = 2.0

@@ -256,6 +256,8 @@ class StarvedPointHierarchy(PointHierarchy):
     grid across the track (a profile over Y, :func:`~.supply.check_profile`)."""
 
     name = "starved point"
+    can_alternate = False  # its own sweep relaxes X lines only
+    local_update = False
 
     def __init__(self, problem: PointProblem, options: PointOptions, hoil: Any,
                  coarse_theta: int | None = None) -> None:
