@@ -57,11 +57,12 @@ HINT = ("more levels or points (finer coarsest grid), W cycles (--cycle W), a sm
 #: under-relaxation; after 7 cycles without a 10 % fall switch V -> W, then widen the
 #: Jacobi-distributive zone, then give up (dense Newton finishes grids up to 2049 points).
 LINE_POLICY = PolicyParameters()
-#: The steady line solver's ladder (validation/line_fine): the second "switch" step is the
-#: other of the two hierarchy actions of :meth:`LineHierarchy.raise_switch` -- leave the grids
-#: below a moved FMG start out of the cycles, widen the Jacobi-distributive zone. (The
-#: starved and transient solvers keep :data:`LINE_POLICY`.)
-STEADY_LINE_POLICY = PolicyParameters(stall_ladder=(("W",), ("switch",), ("switch",), ("fail",)))
+#: The steady line solver's stall ladder (validation/line_fine): V -> W, then up to three
+#: hierarchy steps of :meth:`LineHierarchy.raise_switch` in turn (the film-less coarse grids
+#: out of the cycles; the h-scaled switch on the finest grid only; the wider JD zone), then
+#: give up. (The starved and transient solvers keep :data:`LINE_POLICY`.)
+STEADY_LINE_POLICY = PolicyParameters(
+    stall_ladder=(("W",), ("switch",), ("switch",), ("switch",), ("fail",)))
 
 
 def coarse_points(M: float) -> int:
@@ -121,6 +122,11 @@ class LineHierarchy:
         #: cannot hold a positive film (or their Newton failed)
         self.floor = 0
         self.film_floor = 0
+        #: the h-scaled switch on the current FMG grid only (a stall step, raise_switch)
+        self.classic_coarse_switch = False
+        #: the steady solver's extra stall steps (line_solver sets it; the starved and
+        #: transient hierarchies keep the plain switch step)
+        self.stall_steps = False
         #: optional start ``(X, P, H0)`` from a solution of the same contact (another grid or
         #: box): the start grid's Newton begins from it instead of the Hertzian guess
         self.guess: tuple[np.ndarray, np.ndarray, float] | None = None
@@ -166,8 +172,10 @@ class LineHierarchy:
         if k < self.floor:
             return 0.0
         lv = self.levels[k]
+        # after the stall step of raise_switch: the classic switch on the cycle's coarse grids
+        sh = 0.0 if coarse and self.classic_coarse_switch and s.switch_h < 1.0 else s.switch_h
         for _ in range(sweeps):
-            lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=s.switch_h)
+            lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=sh)
             if coarse:
                 lv.H0 += s.h00_gain * (lv.load() - lv.g)
         return sweeps * self.work(k)
@@ -234,22 +242,33 @@ class LineHierarchy:
         return 0.0
 
     def raise_switch(self, s: Settings) -> str:
-        """The stall ladder's hierarchy step: first leave the grids that could not hold a
-        positive film at the FMG start out of the cycles, else widen the Jacobi-distributive
-        zone.
+        """The stall ladder's hierarchy step, the first that applies of: (1) leave the grids
+        that could not hold a positive film at the FMG start out of the cycles; (2) keep the
+        h-scaled switch (``switch_h`` in (0, 1)) on the current FMG grid only, the classic
+        switch on the cycle's coarse grids; (3) widen the Jacobi-distributive zone
+        (``switch_h = 1``). Steps (1) and (2) only in the steady solver (``stall_steps``).
 
         Measured (validation/line_fine): with the grids below the moved start in the cycles,
         isoviscous M = 100 at 4097 points, M = 500 at 8193 and M = 1000 at 16385 stall in a
         limit cycle (Hc +-5 % from cycle to cycle); leaving them out converges them in 8-9
         cycles. Leaving them out from the first cycle loses Barus (500, 10) at 8193 (its
-        257-point grid helps the cycles), so it is a stall step, not the default."""
-        if self.floor < self.film_floor:
+        257-point grid helps the cycles), so it is a stall step, not the default.
+        (2): Roelands (100, 20) and Barus (20, 10) at 4097 points stall with the residual at
+        the outlet end of the Jacobi-distributive zone (X = 0.975, next to the spike); fine-grid
+        relaxation alone converges there, two-grid cycles converge, three-grid cycles stall; with
+        the classic switch on the coarse grids both converge. As the default from the first
+        cycle it lost Barus (500, 10) at 8193 and (100, 20) at 2049, so it is a stall step."""
+        if self.stall_steps and self.floor < self.film_floor:
             self.floor = self.film_floor
             s.omega, s.omega_jd = s.defaults[0], s.defaults[1]
             return (f"grids below the {self.levels[self.floor].n}-point FMG start (no positive film "
                     f"there) left out of the cycles")
         if s.switch_h >= 1.0:
             return ""
+        if self.stall_steps and s.switch_h > 0.0 and not self.classic_coarse_switch:
+            self.classic_coarse_switch = True
+            s.omega, s.omega_jd = s.defaults[0], s.defaults[1]
+            return "h-scaled switch kept on the finest grid only (classic switch on the coarse grids)"
         # more Jacobi-distributive points on the fine grids (discrete.py, switch_h)
         s.switch_h = 1.0
         s.omega, s.omega_jd = s.defaults[0], s.defaults[1]
@@ -423,6 +442,7 @@ def line_settings(problem: LineProblem, options: LineOptions) -> Settings:
 def line_solver(problem: LineProblem, options: LineOptions) -> MultilevelSolver:
     """The multilevel solver of one line-contact problem (not yet run)."""
     hz = LineHierarchy(problem, options)
+    hz.stall_steps = True
     solver = MultilevelSolver(hz, options, line_settings(problem, options),
                               RobustnessPolicy(STEADY_LINE_POLICY, options.adapt), HINT)
     hz.solver = solver
