@@ -57,6 +57,16 @@ def test_refinement_goes_where_the_error_is():
     assert next_refinement(budget(0.02, 0.001), 0.01, 1025, 4.0, 1e-5, 1025, 4.0) is None
 
 
+def test_a_rough_grid_estimate_refines_one_grid_at_a_time():
+    # point (1000, 10) at 513 points, target 5 %: grid Hc 55 %, Hm 67 %, a domain part
+    b = {"grid": {"Hc": 0.55, "Hm": 0.67}, "domain": {"Hc": 0.02, "Hm": 0.03},
+         "algebraic": {"Hc": 1e-4, "Hm": 1e-4}}
+    assert next_refinement(b, 0.05, 513, 1.0, 1.0, 2049, 4.0) == (1025, 1.0, 1.0)
+    # in the asymptotic range the same budget scaled down may jump two grids and the box
+    small = {k: {f: v / 10.0 for f, v in part.items()} for k, part in b.items()}
+    assert next_refinement(small, 0.005, 513, 1.0, 1.0, 2049, 4.0) == (2049, 2.0, 1.0)
+
+
 def _budget(g, d, a=1e-6):
     return {"grid": {"Hc": g, "Hm": g}, "domain": {"Hc": d, "Hm": d}, "algebraic": {"Hc": a, "Hm": a}}
 
