@@ -166,6 +166,15 @@ class LineHierarchy:
     def restore(self, k: int, saved: list[tuple[np.ndarray, float]]) -> None:
         for v, (P, H0) in zip(self.levels, saved, strict=False):
             v.P, v.H0 = P.copy(), H0
+        if self.stall_steps and self.floor < self.film_floor and self.solver is not None:
+            # a rejected cycle (the driver restores the iterate) also leaves the grids below a
+            # moved FMG start out (raise_switch, step 1). Measured: the domain probe of
+            # isoviscous M = 1000 (box twice as long, 8193 and 16385 points, start moved to
+            # 2049) diverged in its first cycles through the film-less 257-1025-point grids
+            # and converges in 4 and 7 cycles; no solve of validation/line_fine lost
+            self.floor = self.film_floor
+            self.solver.note(f"cycle rejected: grids below the {self.levels[self.floor].n}-point "
+                             f"FMG start (no positive film there) left out of the cycles")
 
     # -- cycle pieces ---------------------------------------------------------------------
     def relax(self, k: int, sweeps: int, s: Settings, coarse: bool) -> float:
