@@ -78,8 +78,15 @@ ALTERNATE_FINEST = 513
 #: after the Y sweep; the discrete solution is the same (at convergence the X sweep changes
 #: nothing). Measured ((20, 10) 513 and 1025, (100, 10), (1000, 10) 513, (20, 10, 4) 257,
 #: (20, 25, 10) 513, half domain): the same statuses and work units within one cycle; with
-#: no refresh at all (20, 10) stalls and (20, 25, 10) diverges.
+#: no refresh at all (20, 10) stalls and (20, 25, 10) diverges. Up to LOCAL_UPDATE_TO points:
+#: on the 2049-point grid the far part left out is too large (the grid's own cells are a
+#: quarter of the 513 grid's): (20, 10) at 2049^2 half stalled at a residual of 1.3e-4 and took
+#: 124 WU and 23 cycles where the full refresh there takes 50 WU and 16 cycles (the coarser
+#: grids of that solve keep the local refresh: the same 50 WU). At 1025 points nine cases
+#: ((20, 10), (100, 10), (1000, 10), (20, 10, 0.25), (200, 20), (100, 0), (20, 0), Barus
+#: (100, 20) and (500, 10)) end with the same status and work units with or without it.
 LOCAL_UPDATE_FROM = 257
+LOCAL_UPDATE_TO = 1025
 #: ``Y_OMEGA_JD`` of those fine-grid alternations (narrow contacts keep their tuned value).
 #: Measured at 2049^2 (as above, 16 cycles): 0.75 leaves the residual at 1.3e-5, 0.5 reaches
 #: 1.4e-6; raising the Y sweep's Gauss-Seidel factor instead (Y_OMEGA 1) diverges.
@@ -286,14 +293,14 @@ class PointHierarchy:
         lubricant properties recomputed after each; between the two locally on fine grids,
         :data:`LOCAL_UPDATE_FROM`)."""
         self.threads.for_size(lev.npts)
-        if lev.alternate and self.local_update and lev.nx >= LOCAL_UPDATE_FROM:
+        if lev.alternate and self.local_update and LOCAL_UPDATE_FROM <= lev.nx <= LOCAL_UPDATE_TO:
             if lev.P_old is None or lev.P_old.shape != lev.P.shape:
                 lev.P_old = np.empty_like(lev.P)
             np.copyto(lev.P_old, lev.P)
         nm.relax_sweep(lev.P, lev.H, lev.rho, lev.eps, lev.f, lev.D, lev.Kc, lev.hx, lev.hy,
                        self.options.half, s.switch, s.omega, s.omega_jd, self.options.wedge_order,
                        self.ct)
-        if lev.alternate and self.local_update and lev.nx >= LOCAL_UPDATE_FROM:
+        if lev.alternate and self.local_update and LOCAL_UPDATE_FROM <= lev.nx <= LOCAL_UPDATE_TO:
             nm.local_film_update(lev.H, lev.P, lev.P_old, lev.Kc[:2, :2], self.options.half)
             self.update_properties(lev)
         else:
