@@ -136,8 +136,11 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
     ``frozen[i]`` keeps point ``i`` unchanged (coarse-grid points next to the fine grid's
     cavitation boundary, see solver.py).
 
-    ``jd_free``: a point next to a fixed one (cavitated, frozen or the boundary) is always
-    Gauss-Seidel. A distributive change moves its neighbours by ``-delta/2``; at a fixed
+    ``jd_free``: a point next to a cavitated one or the boundary is always Gauss-Seidel
+    (not next to a frozen coarse-grid point: with those too, the wide-box reference of
+    tests/multigrid/test_accuracy.py, (20, 10) at 16385 points with an inlet twice as long,
+    needed more than 74 cycles instead of 52; without them validation/line_fine's study keeps
+    all 46 of 56 solves at 0.93 of the work units). A distributive change moves its neighbours by ``-delta/2``; at a fixed
     neighbour that move is either not applied (frozen, boundary) or projected away (``P = 0``),
     so the system solved is not the one applied and the free boundary oscillates from sweep to
     sweep (measured: isoviscous (M, L) = (100, 0) at 4097 points, where the Jacobi-distributive
@@ -169,7 +172,7 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
     fix = np.zeros(n, dtype=np.bool_)
     fix[0] = fix[n - 1] = True
     for i in range(1, n - 1):
-        fix[i] = (P[i] <= 0.0 and r[i] >= 0.0) or frozen[i]
+        fix[i] = P[i] <= 0.0 and r[i] >= 0.0
     thr = max(threshold, threshold_h / h) if h < FINE_H else threshold
     for j in range(1, n - 1):
         # the largest eps of the stencil decides, so a point next to a steep rise of eps
