@@ -281,26 +281,33 @@ class PointHierarchy:
         """Density and ``eps`` from the level's P and H."""
         nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
 
+    def refreshes_locally(self, lev: Level) -> bool:
+        """Whether an alternating sweep on ``lev`` refreshes the film locally between its X
+        and Y halves (:data:`LOCAL_UPDATE_FROM`, :data:`LOCAL_UPDATE_TO`)."""
+        return bool(lev.alternate and self.local_update
+                    and LOCAL_UPDATE_FROM <= lev.nx <= LOCAL_UPDATE_TO)
+
     def update_film(self, lev: Level) -> None:
         self.threads.for_size(lev.npts)
         # written into the level's W: no large temporary per evaluation
         lev.W = lev.defo(lev.P, out=lev.W) if self.cd != 0.0 else np.zeros_like(lev.P)
         nm.film(lev.W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
-        nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
+        self.update_properties(lev)
 
     def _sweep(self, lev: Level, s: Settings) -> None:
         """One X-line sweep; with alternating relaxation followed by one Y-line sweep (film and
         lubricant properties recomputed after each; between the two locally on fine grids,
         :data:`LOCAL_UPDATE_FROM`)."""
         self.threads.for_size(lev.npts)
-        if lev.alternate and self.local_update and LOCAL_UPDATE_FROM <= lev.nx <= LOCAL_UPDATE_TO:
+        local = self.refreshes_locally(lev)
+        if local:
             if lev.P_old is None or lev.P_old.shape != lev.P.shape:
                 lev.P_old = np.empty_like(lev.P)
             np.copyto(lev.P_old, lev.P)
         nm.relax_sweep(lev.P, lev.H, lev.rho, lev.eps, lev.f, lev.D, lev.Kc, lev.hx, lev.hy,
                        self.options.half, s.switch, s.omega, s.omega_jd, self.options.wedge_order,
                        self.ct)
-        if lev.alternate and self.local_update and LOCAL_UPDATE_FROM <= lev.nx <= LOCAL_UPDATE_TO:
+        if local:
             nm.local_film_update(lev.H, lev.P, lev.P_old, lev.Kc[:2, :2], self.options.half)
             self.update_properties(lev)
         else:
@@ -366,7 +373,7 @@ class PointHierarchy:
             step = self.gain * err
             self.H00 -= max(-self.h00_step_max, min(self.h00_step_max, step))
             nm.film(lev.W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
-            nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
+            self.update_properties(lev)
         return sweeps * self.sweep_cost(k)
 
     def restrict(self, k: int, s: Settings) -> tuple[np.ndarray, None]:
@@ -495,12 +502,12 @@ STEADY_CYCLE = "F"
 ALTERNATING_CYCLE = "W"
 
 
-def point_cycle(options: PointOptions, alternating: bool, steady: bool = False) -> str:
-    """The cycle type of a point solve: the options' own, else :data:`STEADY_CYCLE` for a
-    steady solve that starts with X lines, else :data:`ALTERNATING_CYCLE`."""
+def point_cycle(options: PointOptions, alternating: bool) -> str:
+    """The cycle type of a steady point solve: the options' own, else :data:`STEADY_CYCLE`
+    when it starts with X lines, :data:`ALTERNATING_CYCLE` when every grid alternates."""
     if options.cycle is not None:
         return options.cycle
-    return STEADY_CYCLE if steady and not alternating else ALTERNATING_CYCLE
+    return ALTERNATING_CYCLE if alternating else STEADY_CYCLE
 
 
 def point_settings(problem: PointProblem, options: PointOptions, cycle: str | None = None) -> Settings:
@@ -524,7 +531,7 @@ def point_settings(problem: PointProblem, options: PointOptions, cycle: str | No
 def point_solver(problem: PointProblem, options: PointOptions) -> MultilevelSolver:
     """The multilevel solver of one point-contact problem (not yet run)."""
     hz = PointHierarchy(problem, options)
-    cycle = point_cycle(options, hz.alternating, steady=True)
+    cycle = point_cycle(options, hz.alternating)
     solver = MultilevelSolver(hz, options, point_settings(problem, options, cycle),
                               RobustnessPolicy(POINT_POLICY, options.adapt), HINT)
     hz.solver = solver
