@@ -102,6 +102,9 @@ class LineHierarchy:
     """Grids of one line-contact solve, coarsest first (protocol of the multilevel driver)."""
 
     name = "line"
+    #: the driver may stop on the grid rule (``options.grid_stop``); False in subclasses
+    #: whose convergence carries more than the films
+    grid_stop = True
 
     def __init__(self, problem: LineProblem, options: LineOptions) -> None:
         self.problem = problem

@@ -52,6 +52,16 @@ class MultigridOptions:
     film_tol : stop instead when the last finest-grid cycle changed Hc and Hm by less than this
         (relative) and the relative load error is below it: the films' algebraic error, which
         is what the error estimate counts, rather than a residual (None: residual rule).
+    grid_stop : also stop (before the residual tolerance is met) when both films' iteration
+        error -- the last finest-grid change times ``rho/(1 - rho)`` plus the load error's
+        share -- is below this fraction of the larger of their grid errors, estimated by Richardson from the
+        FMG's coarser grids (and below ``GRID_STOP_CAP``, 1e-4), the load error is below
+        ``tol_load`` and the residual within
+        ``GRID_STOP_RESIDUAL`` times ``tol``:
+        further cycles would move the films by less than this fraction of what the grid
+        already costs (Brandt's rule: iterate to the discretisation error, not to a fixed
+        residual). Needs three finest-grid cycles and a coarser FMG grid; only the steady
+        solvers use it (None: residual rule only).
     """
 
     points: int = 129
@@ -73,6 +83,7 @@ class MultigridOptions:
     adapt: bool = True
     raise_on_failure: bool = False
     film_tol: float | None = None
+    grid_stop: float | None = 0.25
 
     #: deprecated name -> current name
     #: the contact chooses the cycle type when ``cycle`` is None
@@ -113,6 +124,9 @@ class MultigridOptions:
             require_range("threads", self.threads, 1, 1024, "threads")
         if self.film_tol is not None:
             require_range("film_tol", self.film_tol, 1e-12, 0.1, "- (relative film change)")
+        if self.grid_stop is not None:
+            require_range("grid_stop", self.grid_stop, 0.0, 1.0, "- (fraction of the grid error)",
+                          lo_open=True)
 
     @classmethod
     def build(cls, options: MultigridOptions | None = None, **kw: Any):

@@ -191,6 +191,10 @@ class PointHierarchy:
     #: the policy's "alternate" step may switch this hierarchy's grids to X/Y alternation
     #: (False in subclasses whose own sweep relaxes X lines only)
     can_alternate = True
+    #: the driver may stop on the grid rule (``options.grid_stop``): steady films only; False
+    #: in subclasses whose convergence carries more than the films (mass balance, time step,
+    #: flow factors)
+    grid_stop = True
 
     def __init__(self, problem: PointProblem, options: PointOptions) -> None:
         self.pb = self.problem = problem

@@ -90,6 +90,7 @@ class StarvedLineHierarchy(LineHierarchy):
     """Grids of one mass-conserving line-contact solve (protocol of the multilevel driver)."""
 
     name = "starved line"
+    grid_stop = False  # the mass balance needs the residual, not only the films
 
     def __init__(self, problem: LineProblem, options: LineOptions, hoil: float,
                  flooded: EHLResult) -> None:

@@ -258,6 +258,7 @@ class StarvedPointHierarchy(PointHierarchy):
     name = "starved point"
     can_alternate = False  # its own sweep relaxes X lines only
     local_update = False
+    grid_stop = False  # the mass balance needs the residual, not only the films
 
     def __init__(self, problem: PointProblem, options: PointOptions, hoil: Any,
                  coarse_theta: int | None = None) -> None:

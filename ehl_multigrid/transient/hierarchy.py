@@ -88,6 +88,7 @@ class TransientLineHierarchy(LineHierarchy):
     start iterate when the driver starts (:meth:`start` returns the finest level: no FMG)."""
 
     name = "transient line"
+    grid_stop = False  # a time step converges on its residual (no FMG grids to estimate from)
 
     def __init__(self, problem: LineProblem, options: LineOptions,
                  geometry: Callable[[np.ndarray], np.ndarray]) -> None:

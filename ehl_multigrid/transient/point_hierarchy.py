@@ -33,6 +33,7 @@ class TransientPointHierarchy(PointHierarchy):
     start iterate when the driver starts (:meth:`start` returns the finest level: no FMG)."""
 
     name = "transient point"
+    grid_stop = False  # a time step converges on its residual (no FMG grids to estimate from)
     local_update = False  # its time steps were measured with the full refresh after every sweep
 
     def __init__(self, problem: PointProblem, options: PointOptions,

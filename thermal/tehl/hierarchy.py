@@ -59,6 +59,7 @@ class FactorLineHierarchy(LineHierarchy):
     started on the finest grid from a given iterate."""
 
     name = "line (generalised Reynolds)"
+    grid_stop = False  # started on the finest grid: no FMG grids to estimate from
 
     def __init__(self, problem: LineProblem, options: LineOptions) -> None:
         super().__init__(problem, options)

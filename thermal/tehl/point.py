@@ -49,6 +49,7 @@ class FactorPointHierarchy(PointHierarchy):
     on the finest grid from a given iterate."""
 
     name = "point (generalised Reynolds)"
+    grid_stop = False  # started on the finest grid: no FMG grids to estimate from
     local_update = False  # eps carries the flow factors: every refresh goes through update_film
 
     def __init__(self, problem: PointProblem, options: PointOptions) -> None:
