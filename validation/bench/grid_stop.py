@@ -89,10 +89,10 @@ def table(rows: list[dict]) -> str:
             lines.append(f"| {name} | {row['points']} | {d['status']} | | | | | | |")
             continue
         tr = d.get("true")
-        cell = (lambda f: f"{tr[f]:.1e} / {d['algebraic'][f]:.1e}") if tr else (lambda f: "n/a")
+        cells = {f: f"{tr[f]:.1e} / {d['algebraic'][f]:.1e}" if tr else "n/a" for f in ("Hc", "Hm")}
         lines.append(f"| {name} | {row['points']} | {'grid' if d['grid_rule'] else 'residual'} | "
                      f"{d['WU']:.1f} ({b.get('WU', math.nan):.1f}) | {d['wall_s']:.2f} ({b.get('wall_s', math.nan):.2f}) | "
-                     f"{d['cycles']} ({b.get('cycles', '-')}) | {cell('Hc')} | {cell('Hm')} | "
+                     f"{d['cycles']} ({b.get('cycles', '-')}) | {cells['Hc']} | {cells['Hm']} | "
                      f"{d.get('honest', 'n/a')} |")
     return "\n".join(lines)
 
