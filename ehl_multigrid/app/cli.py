@@ -103,9 +103,11 @@ def _cmd_fits(args: argparse.Namespace) -> dict:
     out.update({k: float(v) for k, v in terms.items()})
     note = fits.extrapolation_note(args.contact, args.M, args.L, args.ellipticity)
     out["extrapolated"] = note is not None
-    if note is not None:
-        out["warning"] = note
-        print(f"ehl fits: warning: {note}", file=sys.stderr)
+    notes = [n for n in (note, fits.deviation_note(args.contact, args.ellipticity)) if n is not None]
+    if notes:
+        out["warning"] = "; ".join(notes)
+        for n in notes:
+            print(f"ehl fits: warning: {n}", file=sys.stderr)
     if not args.json:
         print_table(out)
     return out

@@ -147,6 +147,24 @@ def extrapolation_note(contact: str, M: float, L: float, theta: float = 1.0) -> 
             "against the solver); treat Hc as an estimate")
 
 
+#: measured range of (solver Hc)/(Nijenbanning Hc) - 1 at theta = 4, converged to 1 % (Barus,
+#: incompressible, M 5-100, L 0-10; validation/extremes/REPORT.md): the fit under-predicts
+#: contacts long in the rolling direction. Nijenbanning et al. (1994) demonstrate its accuracy
+#: for theta < 1; the ellipticity factor of Chittenden et al. (1985) agrees with the fit.
+THETA_ABOVE_ONE_DEVIATION = (0.10, 0.54)
+
+
+def deviation_note(contact: str, theta: float = 1.0) -> str | None:
+    """A sentence when the fit is used where the package's solver measured it far off even
+    inside the checked range (point contacts with ``theta > 1``), else ``None``."""
+    if contact == "line" or not theta > 1.0:
+        return None
+    lo, hi = THETA_ABOVE_ONE_DEVIATION
+    return (f"theta = {theta:.4g} > 1 (contact long in the rolling direction): at theta = 4 the point "
+            f"solver's central film is {lo:.0%}-{hi:.0%} above the Nijenbanning fit, which Nijenbanning "
+            f"et al. (1994) demonstrate for theta < 1; solve the contact (ehl solve) instead of trusting the fit")
+
+
 def central_film_fit(contact: str, M: ArrayLike, L: ArrayLike, theta: ArrayLike = 1.0, gamma1: ArrayLike = 1.0) -> ArrayLike:
     """Moes fit for ``contact == 'line'``, Nijenbanning otherwise."""
     if contact == "line":

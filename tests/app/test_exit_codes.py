@@ -91,6 +91,15 @@ def test_fits_warns_when_extrapolating_and_not_inside_the_checked_range(capsys):
     assert "warning" not in captured.err and json.loads(captured.out)["extrapolated"] is False
 
 
+def test_fits_warns_that_the_fit_under_predicts_contacts_long_in_the_rolling_direction(capsys):
+    assert main(["fits", "--contact", "point", "--M", "20", "--L", "10", "--ellipticity", "4", "--json"]) == 0
+    captured = capsys.readouterr()
+    out = json.loads(captured.out)
+    assert out["extrapolated"] is False and "theta = 4 > 1" in out["warning"]
+    assert "above the Nijenbanning fit" in captured.err
+    assert fits.deviation_note("point", 0.25) is None and fits.deviation_note("line", 4.0) is None
+
+
 def test_checked_range_is_the_fit_check_tables():
     line = fits.checked_range("line")
     assert line["M"] == (2.0, 2000.0) and line["L"] == (0.0, 20.0)
