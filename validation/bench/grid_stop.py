@@ -60,7 +60,11 @@ def solve(case: dict, **kw) -> dict:
     out = {"status": r.status_name, "WU": r.work_units, "wall_s": time.perf_counter() - t0,
            "cycles": r.cycles, "Hc": r.scalars.get("Hc_venner"), "Hm": r.scalars.get("Hm_venner"),
            "residual": float(r.residual_history[-1]) if len(r.residual_history) else math.nan,
-           "grid_rule": any(a.startswith("stopped on the grid rule") for a in r.actions)}
+           "grid_rule": any(a.startswith("stopped on the grid rule") for a in r.actions),
+           # the finest-grid films and load errors per cycle: estimator variants are evaluated
+           # from these without re-solving (validation/accuracy/iteration_estimate.py)
+           "finest": [{"Hc": h.Hc, "Hm": h.Hm, "load_error": h.load_error, "residual": h.residual}
+                      for h in r.history if h.level == r.levels - 1 and h.cycle >= 0]}
     if r.success:
         est = estimate_error(r)
         out["algebraic"] = est.budget["algebraic"]
