@@ -14,8 +14,9 @@ solution of the model, as relative errors, with the budget split into three part
   (what is left beyond the doubled box: up to 1.5 times the change again at low M).
 * **algebraic** -- the change of the film over the last finest-grid cycle (iteration error
   of a contracting iteration with factor <= 1/2; scaled by ``rho/(1 - rho)`` when the last
-  changes contract more slowly, :func:`iteration_factor`; zero after a direct finest-grid
-  solve, whose residual is at round-off), plus the relative load error times the
+  changes contract more slowly, :func:`iteration_factor`), at least half the change before it
+  (:func:`iteration_error`; zero after a direct finest-grid solve, whose residual is at
+  round-off), plus the relative load error times the
   film's load sensitivity (|d ln H / d ln W| < 0.5 over the whole map).
 
 The total is the sum of the three. Every estimate is checked against finer grids, wider
@@ -110,20 +111,38 @@ MAX_ITERATION_FACTOR = 19.0
 
 
 def iteration_factor(films: list[float]) -> float:
-    """Bound on (iteration error)/(last change) of a film from its last three finest-grid values:
-    ``rho/(1 - rho)`` with the observed contraction ``rho = |d_k|/|d_(k-1)|`` of the changes,
-    1 while ``rho <= 1/2`` (the factor the estimate assumes), :data:`MAX_ITERATION_FACTOR` when
-    the changes do not fall. A stalled line iteration measured 3 % from its discrete solution
-    with changes of 0.3 % per cycle (line (100, 0) Barus, 2049 points)."""
-    if len(films) < 3:
+    """Bound on (iteration error)/(last change) of a film from its last finest-grid values:
+    ``rho/(1 - rho)`` with the observed contraction ``rho``, the larger of the last two ratios
+    ``|d_k|/|d_(k-1)|`` of successive changes, 1 while ``rho <= 1/2`` (the factor the estimate
+    assumes), :data:`MAX_ITERATION_FACTOR` when the changes do not fall. A stalled line
+    iteration measured 3 % from its discrete solution with changes of 0.3 % per cycle (line
+    (100, 0) Barus, 2049 points); a slowly drifting point film whose last ratio fell to 0.49
+    after 0.9 was 1.1e-5 from its discrete solution with a last change of 3.4e-6 ((100, 20,
+    theta 0.25), 513 points, validation/accuracy/iteration_estimate.py)."""
+    d = [abs(b - a) for a, b in zip(films[:-1], films[1:], strict=True)][-3:]
+    if len(d) < 2 or d[-1] == 0.0:
         return 1.0
-    d1, d2 = abs(films[-2] - films[-3]), abs(films[-1] - films[-2])
-    if d2 == 0.0:
-        return 1.0
-    rho = d2 / d1 if d1 > 0.0 else math.inf
+    rho = max((b / a if a > 0.0 else math.inf) for a, b in zip(d[:-1], d[1:], strict=True))
     if rho <= 0.5:
         return 1.0
     return MAX_ITERATION_FACTOR if rho >= 0.95 else rho / (1.0 - rho)
+
+
+def iteration_error(films: list[float]) -> float:
+    """Estimated (absolute) iteration error of ``films[-1]``, the films of the finest-grid
+    cycles in order: the last change times :func:`iteration_factor`, and at least half the
+    change before it (a last change small by accident, in a sequence that does not contract
+    geometrically, says little). Measured on 97 solves of 123 map cases
+    (validation/accuracy/iteration_estimate.py, true error against solves with ten times
+    tighter tolerances): the last change times the factor of the last ratio alone covered
+    90.7 % of the films (up to 10.9x short); this rule covers 97.4 % (median true/estimate
+    0.10)."""
+    if len(films) < 2:
+        return math.inf
+    err = abs(films[-1] - films[-2]) * iteration_factor(films)
+    if len(films) >= 3:
+        err = max(err, 0.5 * abs(films[-2] - films[-3]))
+    return err
 
 
 def estimate_error(result: Any, domain: tuple[float, float] | None = None) -> ErrorEstimate:
@@ -154,8 +173,8 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None) -> Er
         notes.append("finished by a direct solve: iteration error from the load error only")
     elif len(fin) >= 2:
         fc, fm = iteration_factor([h.Hc for h in fin]), iteration_factor([h.Hm for h in fin])
-        alg_c = abs(fin[-1].Hc - fin[-2].Hc) / abs(Hc) * fc
-        alg_m = abs(fin[-1].Hm - fin[-2].Hm) / abs(Hm) * fm
+        alg_c = iteration_error([h.Hc for h in fin]) / abs(Hc)
+        alg_m = iteration_error([h.Hm for h in fin]) / abs(Hm)
         if max(fc, fm) > 1.0:
             notes.append("the last cycles contract slowly: iteration error scaled by rho/(1 - rho)")
     else:

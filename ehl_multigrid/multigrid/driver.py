@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import ConvergenceError
-from .accuracy import HM_MAX_ORDER, LOAD_SENSITIVITY, iteration_factor, richardson
+from .accuracy import HM_MAX_ORDER, LOAD_SENSITIVITY, iteration_error, richardson
 from .options import MultigridOptions
 from .policy import RobustnessPolicy, Settings
 from .result import EHLResult
@@ -267,7 +267,7 @@ class MultilevelSolver:
             if not (math.isfinite(last) and last > 0.0):
                 return False
             grid.append(richardson([d[key] for d in coarse] + [last], max_order=cap).error / last)
-            algebraic.append(abs(films[-1] - films[-2]) / last * iteration_factor(films) + load)
+            algebraic.append(iteration_error(films) / last + load)
         # the scale is the larger grid error: Hm's can be tiny by a lucky sequence (circular
         # (20, 10) at 2049 points: 2.8e-5 against Hc's 4.4e-5) while the discrete minimum
         # jitters by 1e-5 from cycle to cycle

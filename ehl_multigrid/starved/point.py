@@ -55,7 +55,7 @@ from ..multigrid.accuracy import (
     LOAD_SENSITIVITY,
     ErrorEstimate,
     attach_estimate,
-    iteration_factor,
+    iteration_error,
 )
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import PointOptions
@@ -750,9 +750,8 @@ def starved_point_error(fine: EHLResult, coarse: EHLResult | None) -> ErrorEstim
     le = abs(float(fine.load_error_history[-1])) if len(fine.load_error_history) else math.inf
     mb = float(fine.extra["mass_balance_error"])
     if len(fin) >= 2:
-        fc, fm = iteration_factor([h.Hc for h in fin]), iteration_factor([h.Hm for h in fin])
-        alg = {"Hc": abs(fin[-1].Hc - fin[-2].Hc) / abs(Hc) * fc,
-               "Hm": abs(fin[-1].Hm - fin[-2].Hm) / abs(Hm) * fm}
+        alg = {"Hc": iteration_error([h.Hc for h in fin]) / abs(Hc),
+               "Hm": iteration_error([h.Hm for h in fin]) / abs(Hm)}
     else:
         alg = dict(grid)
     alg = {k: v + LOAD_SENSITIVITY * le + mb for k, v in alg.items()}

@@ -184,6 +184,19 @@ def test_slow_contraction_scales_the_iteration_error_by_rho_over_one_minus_rho()
     assert iteration_factor([1.0, 1.1]) == 1.0
 
 
+def test_iteration_error_is_not_fooled_by_one_small_last_change():
+    from ehl_multigrid.multigrid.accuracy import iteration_error, iteration_factor
+
+    # a clean contraction by 1/2: the last change bounds the error
+    assert iteration_error([1.0, 1.1, 1.15, 1.175]) == pytest.approx(0.025)
+    # a drifting film whose last ratio (0.49) follows 0.9: the larger ratio sets the factor
+    films = [0.5018337, 0.5018414, 0.5018483, 0.5018517]
+    assert iteration_factor(films) == pytest.approx(0.9 / 0.1, rel=0.05)
+    # a last change small by accident: at least half the change before it
+    assert iteration_error([1.0, 1.1, 1.1001]) == pytest.approx(0.05)
+    assert iteration_error([1.0]) == float("inf")
+
+
 def test_a_film_that_is_not_positive_makes_the_accuracy_loop_refine_the_grid(monkeypatch):
     import ehl_multigrid.multigrid.accuracy as acc
 
