@@ -218,8 +218,6 @@ class PointOptions(MultigridOptions):
     error floor; True: every grid; False: never); ``cycle`` -- None: F cycles for the steady
     solve of contacts that start with X lines, W cycles where every grid alternates from the
     start and for the starved, transient and thermal solvers (see ``point.fas.point_cycle``).
-    With ``switch`` None the GS/JD switch is the rule from ``alpha_bar``, times 4 on solves of
-    4097 points and more (``point.fas.FINE_SWITCH_POINTS``).
     """
 
     CYCLE_OPTIONAL: ClassVar[bool] = True

@@ -141,16 +141,6 @@ class Level:
         return (self.hy, self.hx)
 
 
-#: solves of this many points and more start with the switch raised by FINE_SWITCH_FACTOR: the
-#: Jacobi-distributive zone (``eps/hx^2 < switch``) shrinks fourfold per finer grid. Measured,
-#: (20, 10) at 4097^2, half domain, one thread: with the default 1 the residual grew from 9.7e-4
-#: to 2.3e-3 over eight finest-grid cycles until the policy raised the switch to 4 (114 WU,
-#: 254 s); with 4 from the start FMG alone converged (residual 1.4e-5, 28.4 WU, 65 s), Hc equal to
-#: 4e-8. At 1025 and 2049 points 4 and 1 take the same work (28.1 and 39.0 WU)
-FINE_SWITCH_POINTS = 4097
-FINE_SWITCH_FACTOR = 4.0
-
-
 def default_switch(visc: int, alpha_bar: float, elastic: bool = True) -> float:
     """GS/Jacobi-distributive switch ``eps/hx^2``: 1 by default, 10 for strong pressure spikes
     (Barus alpha_bar >= 8, Roelands >= 20), 40 for Roelands alpha_bar >= 30.
@@ -537,11 +527,8 @@ def point_settings(problem: PointProblem, options: PointOptions, cycle: str | No
     else:
         c = options.h00_gain
     visc = 0 if problem.viscosity == "roelands" else 1
-    switch = options.switch
-    if switch is None:
-        switch = default_switch(visc, problem.alpha_bar, options.elastic)
-        if options.points >= FINE_SWITCH_POINTS:
-            switch *= FINE_SWITCH_FACTOR
+    switch = options.switch if options.switch is not None else \
+        default_switch(visc, problem.alpha_bar, options.elastic)
     return Settings.start(options, c, switch)
 
 
