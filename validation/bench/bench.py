@@ -164,7 +164,8 @@ def child(spec: dict) -> dict:
                                 "deformation_wu", "deformations_by_size")},
         "wall_median_s": statistics.median(walls), "wall_all_s": walls,
         "cpu_median_s": statistics.median(r["cpu_s"] for r in runs),
-        "threads": numba.get_num_threads(), "threading_layer": _layer(),
+        # the solve restores numba's thread count afterwards: record the one it ran with
+        "threads": spec.get("threads") or numba.get_num_threads(), "threading_layer": _layer(),
         "import_s": t_import, "warmup_s": t_warm,
         "rss_baseline_mb": rss_base,
         "rss_peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
