@@ -147,8 +147,10 @@ class Level:
 #: 43 s, where the switch 1 let the residual grow from 9.7e-4 to 2.3e-3 over eight cycles until
 #: the policy raised it on every grid (114 WU, 142 s); (20, 10, theta 0.25) and (100, 10) take the
 #: same work as without (39.1 and 85.9 WU). Raised on every grid instead, it stalled the load
-#: balance of (20, 10, theta 0.25) (380 WU): the coarse grids keep their switch.
-FINE_SWITCH_POINTS = 4097
+#: balance of (20, 10, theta 0.25) (380 WU): the coarse grids keep their switch. At 2049^2:
+#: (20, 10) 28.4 WU, 9.0 s instead of 49.7 WU, 14.3 s; (100, 10), (1000, 10), theta 0.25 and 4
+#: and (1000, 10, theta 10) (film not positive either way) take the same work as without.
+FINE_SWITCH_POINTS = 2049
 FINE_SWITCH_FACTOR = 4.0
 
 
