@@ -218,7 +218,7 @@ class PointOptions(MultigridOptions):
     error floor; True: every grid; False: never); ``cycle`` -- None: F cycles for the steady
     solve of contacts that start with X lines, W cycles where every grid alternates from the
     start and for the starved, transient and thermal solvers (see ``point.fas.point_cycle``).
-    The GS/JD ``switch`` is raised x4 on grids of 2049 points and more
+    The GS/JD ``switch`` is raised x4 on meshes as fine as 2049 points on the classic box
     (``point.fas.sweep_switch``).
     """
 
