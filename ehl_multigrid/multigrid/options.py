@@ -53,15 +53,14 @@ class MultigridOptions:
         (relative) and the relative load error is below it: the films' algebraic error, which
         is what the error estimate counts, rather than a residual (None: residual rule).
     grid_stop : also stop (before the residual tolerance is met) when both films' iteration
-        error -- the last finest-grid change times ``rho/(1 - rho)`` plus the load error's
-        share -- is below this fraction of the larger of their grid errors, estimated by Richardson from the
-        FMG's coarser grids (and below ``GRID_STOP_CAP``, 1e-4), the load error is below
-        ``tol_load`` and the residual within
-        ``GRID_STOP_RESIDUAL`` times ``tol``:
-        further cycles would move the films by less than this fraction of what the grid
-        already costs (Brandt's rule: iterate to the discretisation error, not to a fixed
-        residual). Needs three finest-grid cycles and a coarser FMG grid; only the steady
-        solvers use it (None: residual rule only).
+        error (:func:`~ehl_multigrid.multigrid.accuracy.iteration_error` plus the load error's
+        share) is below this fraction of the larger of their grid errors (Richardson from the
+        FMG's coarser grids) and below ``GRID_STOP_CAP`` (1e-4), the load error is below
+        ``tol_load`` and the residual within ``GRID_STOP_RESIDUAL`` times ``tol``: further
+        cycles would move the films by less than this fraction of what the grid already costs
+        (Brandt's rule: iterate to the discretisation error, not to a fixed residual). Needs
+        three finest-grid cycles and a coarser FMG grid; only the steady solvers use it
+        (None: residual rule only).
     """
 
     points: int = 129
@@ -85,9 +84,9 @@ class MultigridOptions:
     film_tol: float | None = None
     grid_stop: float | None = 0.25
 
-    #: deprecated name -> current name
     #: the contact chooses the cycle type when ``cycle`` is None
     CYCLE_OPTIONAL: ClassVar[bool] = False
+    #: deprecated name -> current name
     ALIASES: ClassVar[dict[str, str]] = {
         "omega_gs": "omega", "w_gs": "omega", "omega_jac": "omega_jd", "w_jd": "omega_jd",
         "threshold": "switch", "thr": "switch", "h0_factor": "h00_gain", "c_h00": "h00_gain",

@@ -7,6 +7,7 @@ import pytest
 from ehl_multigrid.line import solve_line
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.multigrid.accuracy import estimate_error
+from ehl_multigrid.multigrid.driver import GRID_STOP_CAP, GRID_STOP_RESIDUAL
 from ehl_multigrid.multigrid.options import LineOptions, PointOptions
 
 GRID_RULE = "stopped on the grid rule"
@@ -28,7 +29,7 @@ def test_grid_rule_stops_before_the_residual_rule(line_pair):
     assert grid.cycles < residual.cycles
     assert grid.work_units < residual.work_units
     # it stopped above the residual tolerance but within the allowed factor, load balanced
-    assert grid.tolerances["residual"] <= grid.residual_history[-1] < 10 * grid.tolerances["residual"]
+    assert grid.tolerances["residual"] <= grid.residual_history[-1] < GRID_STOP_RESIDUAL * grid.tolerances["residual"]
     assert abs(grid.load_error_history[-1]) < grid.tolerances["load"]
 
 
@@ -41,7 +42,7 @@ def test_grid_rule_films_lie_within_their_stated_iteration_error(line_pair):
         # the stated iteration error covers the distance to the residual-converged film, and
         # is at most the rule's fraction of the grid error (or its 1e-4 cap)
         assert change <= stated
-        assert stated <= min(0.25 * max(est.budget["grid"].values()), 1e-4) + 1e-15
+        assert stated <= min(grid.options.grid_stop * max(est.budget["grid"].values()), GRID_STOP_CAP) + 1e-15
 
 
 def test_grid_rule_off_keeps_the_residual_tolerance(line_pair):

@@ -13,7 +13,8 @@ an iteration-error estimate against the true distance to the deep solve:
   accident in a sequence that does not contract geometrically);
 * ``floor2_prev``: both;
 * ``..._rho2``: the contraction taken as the larger of the last two ratios of changes (a last
-  ratio small by accident in a slowly drifting sequence).
+  ratio small by accident in a slowly drifting sequence); ``prev_rho2`` is the package's
+  :func:`~ehl_multigrid.multigrid.accuracy.iteration_error`, called as such.
 
 Each adds the load error times :data:`LOAD_SENSITIVITY`. A film is *covered* when its true
 distance to the deep solve is within its estimate plus the deep solve's own estimate (same
@@ -30,7 +31,7 @@ import statistics
 import sys
 from pathlib import Path
 
-from ehl_multigrid.multigrid.accuracy import LOAD_SENSITIVITY, MAX_ITERATION_FACTOR
+from ehl_multigrid.multigrid.accuracy import LOAD_SENSITIVITY, MAX_ITERATION_FACTOR, iteration_error
 
 HERE = Path(__file__).parent
 SOURCE = HERE.parents[0] / "bench" / "out" / "grid_stop.json"
@@ -56,6 +57,8 @@ def estimate(films: list[float], load_error: float, rule: str) -> float:
     if len(films) < 2:
         return math.nan
     last = films[-1]
+    if rule == "prev_rho2":  # the rule the package adopted: evaluate the package's own code
+        return iteration_error(films) / abs(last) + LOAD_SENSITIVITY * abs(load_error)
     floor_rho = 2.0 / 3.0 if rule.startswith("floor2") else 0.5
     est = abs(films[-1] - films[-2]) * factor(films, floor_rho, 2 if rule.endswith("rho2") else 1)
     if "prev" in rule and len(films) >= 3:

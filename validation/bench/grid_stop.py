@@ -139,6 +139,8 @@ def main() -> None:
     if a.set in ("fine", "all"):
         todo += FINE[:3] if a.quick else FINE
     OUT.mkdir(exist_ok=True)
+    # no table of an earlier run beside this run's rows
+    (OUT / f"{a.label}.md").unlink(missing_ok=True)
     rows = []
     for c in tqdm(todo, desc="cases"):
         row = {**c, "default": solve(c), "residual": solve(c, grid_stop=None)}
