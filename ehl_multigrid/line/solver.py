@@ -180,7 +180,7 @@ class LineHierarchy:
                              f"FMG start (no positive film there) left out of the cycles")
 
     # -- cycle pieces ---------------------------------------------------------------------
-    def relax(self, k: int, sweeps: int, s: Settings, coarse: bool) -> float:
+    def relax(self, k: int, sweeps: int, s: Settings, coarse: bool, post: bool = False) -> float:
         if k < self.floor:
             return 0.0
         lv = self.levels[k]

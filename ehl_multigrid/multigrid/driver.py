@@ -11,8 +11,9 @@ first):
                                 ``spacing`` (mesh sizes) and ``npts``
 ``name``                        ``"line"``, ``"point"`` ... (for messages)
 ``start(solver) -> k0``         initial guess and solution on the FMG start grid ``k0``
-``relax(k, sweeps, settings, coarse)``   relaxation sweeps (``coarse``: ``k`` is below the
-                                current FMG grid, where the film constant may move)
+``relax(k, sweeps, settings, coarse[, post])``   relaxation sweeps (``coarse``: ``k`` is
+                                below the current FMG grid, where the film constant may move;
+                                ``post``: after the coarse-grid correction)
 ``restrict(k, settings) -> token``       FAS coarse problem on ``k - 1`` from grid ``k``
 ``correct(k, token, settings)`` add the interpolated coarse-grid correction to grid ``k``
 ``coarse_solve(k, settings)``   solve on the coarsest grid
@@ -32,6 +33,7 @@ history and a callback, and ``repr`` lists the grids.
 
 from __future__ import annotations
 
+import inspect
 import math
 import time
 from collections.abc import Callable
@@ -111,6 +113,8 @@ class MultilevelSolver:
     def __init__(self, hierarchy: Any, options: MultigridOptions, settings: Settings,
                  policy: RobustnessPolicy, hint: str = "") -> None:
         self.hierarchy = hierarchy
+        # hierarchies written before the ``post`` keyword keep working
+        self._relax_post = "post" in inspect.signature(hierarchy.relax).parameters
         self.options = options
         self.settings = settings
         self.policy = policy
@@ -172,7 +176,8 @@ class MultilevelSolver:
             self._cycle(k - 1, top, "F")
             self._cycle(k - 1, top, "V")
         hz.correct(k, token, s)
-        self._add(hz.relax(k, o.nu2, s, k != top))
+        self._add(hz.relax(k, o.nu2, s, k != top, post=True) if self._relax_post
+                  else hz.relax(k, o.nu2, s, k != top))
 
     def run_cycle(self, k: int, c: int) -> Measurement:
         """One accepted cycle on grid ``k``: rejected attempts are undone and repeated with

@@ -218,7 +218,9 @@ class PointOptions(MultigridOptions):
     solve of contacts that start with X lines, W cycles where every grid alternates from the
     start and for the starved, transient and thermal solvers (see ``point.fas.point_cycle``).
     The GS/JD ``switch`` is raised x4 on meshes as fine as 2049 points on the classic box
-    (``point.fas.sweep_switch``).
+    (``point.fas.sweep_switch``). ``y_pre`` -- False: the fine grids of wider contacts relax
+    Y lines in the post-relaxation only (14 % fewer work units, no faster in wall time, and
+    less robust over the extremes map: validation/bench/y_post.py).
     """
 
     CYCLE_OPTIONAL: ClassVar[bool] = True
@@ -238,6 +240,7 @@ class PointOptions(MultigridOptions):
     half: bool = False
     coarse_sweeps: int = 10
     elastic: bool = True
+    y_pre: bool = True
     alternating: bool | None = None
 
     def __post_init__(self) -> None:

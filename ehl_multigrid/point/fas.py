@@ -373,11 +373,17 @@ class PointHierarchy:
         return float(lev.H[j, i])
 
     # -- protocol of the driver -----------------------------------------------------------
-    def relax(self, k: int, sweeps: int, s: Settings, coarse: bool) -> float:
+    def relax(self, k: int, sweeps: int, s: Settings, coarse: bool, post: bool = False) -> float:
         lev = self.levels[k]
-        for _ in range(sweeps):
-            self._sweep(lev, s)
-        return sweeps * self.sweep_cost(k)
+        alt = lev.alternate
+        # options.y_pre False: fine grids of wider contacts relax Y lines after the correction only
+        lev.alternate = alt and (post or self.options.y_pre or self.alternating)
+        try:
+            for _ in range(sweeps):
+                self._sweep(lev, s)
+            return sweeps * self.sweep_cost(k)
+        finally:
+            lev.alternate = alt
 
     def coarse_solve(self, k: int, s: Settings, sweeps: int | None = None) -> float:
         """Relax on the coarsest grid, moving H00 against the (FAS) load error after each

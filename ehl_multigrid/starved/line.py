@@ -146,7 +146,7 @@ class StarvedLineHierarchy(LineHierarchy):
             v.P, v.theta, v.H0 = P.copy(), T.copy(), H0
 
     # -- cycle pieces ---------------------------------------------------------------------
-    def relax(self, k: int, sweeps: int, s: Settings, coarse: bool) -> float:
+    def relax(self, k: int, sweeps: int, s: Settings, coarse: bool, post: bool = False) -> float:
         lv = self.levels[k]
         # the film content follows the pressure's under-relaxation when the policy halves it
         omega_theta = min(1.0, 2.0 * s.omega)

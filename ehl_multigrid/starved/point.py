@@ -423,7 +423,7 @@ class StarvedPointHierarchy(PointHierarchy):
                 self._polish = max(self._polish, 1)
         return self._polish > 0
 
-    def relax(self, k: int, sweeps: int, s: Settings, coarse: bool) -> float:
+    def relax(self, k: int, sweeps: int, s: Settings, coarse: bool, post: bool = False) -> float:
         lev = self.levels[k]
         if not coarse:
             self._top = k

@@ -81,3 +81,18 @@ def test_alternating_sweep_counts_two_sweeps_of_work(alternating, sweeps_of_work
     hz = solver.hierarchy
     hz._initial_guess()
     assert hz.relax(0, 3, solver.settings, True) == pytest.approx(3.0 * sweeps_of_work * hz.work(0))
+
+
+def test_y_pre_false_relaxes_y_lines_after_the_correction_only():
+    """``y_pre=False``: the fine grids of a wider contact alternate in the post-relaxation only,
+    so one F cycle per FMG level on 513^2 costs 2 + 2 instead of 4 + 2 sweeps of work per
+    fine-grid visit (nu1 = 2, nu2 = 1); the default keeps both alternating
+    (validation/bench/y_post.py: fewer work units, no faster, less robust)."""
+    kw = dict(points=513, half=True, cycles=1, max_cycles=0, adapt=False, threads=1, accuracy=None)
+    both = solve_point(20.0, 10.0, **kw)
+    post = solve_point(20.0, 10.0, y_pre=False, **kw)
+    assert post.work_units < 0.72 * both.work_units
+    # the same discrete problem: the films agree to the algebraic error of one FMG cycle
+    assert abs(post.scalars["Hc_venner"] / both.scalars["Hc_venner"] - 1.0) < 5e-4
+    coarse = dict(kw, points=257)
+    assert solve_point(20.0, 10.0, y_pre=False, **coarse).work_units == solve_point(20.0, 10.0, **coarse).work_units

@@ -1,0 +1,126 @@
+"""Fine-grid Y lines in the post-relaxation only (``PointOptions.y_pre=False``, "new") against
+both relaxations alternating (the default, "old"), over the point cases of the grid-rule study.
+
+Every point case of ``out/grid_stop.json`` (the extremes matrix and the fit-check map on 513
+points or the case's minimum grid, and the fine grids up to 2049^2) is solved twice with the
+default options otherwise, paired (new rule, then old rule): status, work units, wall time, cycles, the
+films and the algebraic error each result states. The true iteration error is taken against
+the study's deep reference (tolerances ten times tighter, same grid and box: the discrete
+solution does not depend on the smoother). A result is *honest* when its true error lies within
+its stated algebraic error plus the reference's.
+
+    python validation/bench/y_post.py [--quick] [--label NAME]
+
+Writes ``out/<label>.json`` and ``out/<label>.md`` (default label ``y_post``); an interrupted run
+resumes from its JSON (cases of the same list only).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+
+from tqdm import tqdm
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from grid_stop import solve  # noqa: E402
+
+OUT = Path(__file__).parent / "out"
+KEYS = ("contact", "M", "L", "theta", "points", "viscosity", "density")
+
+
+def case_key(c: dict) -> str:
+    return json.dumps({k: c[k] for k in KEYS if k in c}, sort_keys=True)
+
+
+def honest(r: dict, ref: dict) -> bool | None:
+    if r["status"] != "converged" or ref.get("status") != "converged":
+        return None
+    true = {f: abs(r[f] / ref[f] - 1.0) for f in ("Hc", "Hm")}
+    r["true"] = true
+    return all(true[f] <= r["algebraic"][f] + ref["algebraic"][f] for f in ("Hc", "Hm"))
+
+
+def summary(rows: list[dict]) -> dict:
+    both = [r for r in rows if r["new"]["status"] == "converged" and r["old"]["status"] == "converged"]
+    fine = [r for r in both if r["points"] >= 1025]
+    checked = [r for r in rows if r["new"].get("honest") is not None]
+    return {
+        "cases": len(rows),
+        "converged_new": sum(r["new"]["status"] == "converged" for r in rows),
+        "converged_old": sum(r["old"]["status"] == "converged" for r in rows),
+        "lost": [case_key(r) for r in rows if r["old"]["status"] == "converged" and r["new"]["status"] != "converged"],
+        "gained": [case_key(r) for r in rows if r["new"]["status"] == "converged" and r["old"]["status"] != "converged"],
+        "WU_ratio_both_converged": (sum(r["new"]["WU"] for r in both) / sum(r["old"]["WU"] for r in both)
+                                    if both else math.nan),
+        "wall_ratio_both_converged": (sum(r["new"]["wall_s"] for r in both) / sum(r["old"]["wall_s"] for r in both)
+                                      if both else math.nan),
+        "WU_ratio_fine": (sum(r["new"]["WU"] for r in fine) / sum(r["old"]["WU"] for r in fine)
+                          if fine else math.nan),
+        "cases_more_work": sum(r["new"]["WU"] > 1.05 * r["old"]["WU"] for r in both),
+        "cases_less_work": sum(r["new"]["WU"] < 0.95 * r["old"]["WU"] for r in both),
+        "checked_new": len(checked),
+        "honest_new": sum(bool(r["new"]["honest"]) for r in checked),
+        "honest_old": sum(bool(r["old"].get("honest")) for r in checked),
+    }
+
+
+def table(rows: list[dict]) -> str:
+    lines = ["| case | points | status new (old) | WU new (old) | wall s new (old) | cycles new (old) | "
+             "Hc true / stated (new) | Hm true / stated (new) | honest new (old) |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        n, o = r["new"], r["old"]
+        name = f"({r['M']:g}, {r['L']:g}, {r['theta']:g})" + (f" {r['viscosity']}" if "viscosity" in r else "")
+        tr = n.get("true")
+        cells = {f: f"{tr[f]:.1e} / {n['algebraic'][f]:.1e}" if tr else "n/a" for f in ("Hc", "Hm")}
+        lines.append(f"| {name} | {r['points']} | {n['status']} ({o['status']}) | {n.get('WU', math.nan):.1f} "
+                     f"({o.get('WU', math.nan):.1f}) | {n.get('wall_s', math.nan):.2f} ({o.get('wall_s', math.nan):.2f}) | "
+                     f"{n.get('cycles', '-')} ({o.get('cycles', '-')}) | {cells['Hc']} | {cells['Hm']} | "
+                     f"{n.get('honest', 'n/a')} ({o.get('honest', 'n/a')}) |")
+    return "\n".join(lines)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="every sixth case only")
+    ap.add_argument("--label", default="y_post")
+    a = ap.parse_args()
+    src = json.loads((OUT / "grid_stop.json").read_text())["rows"]
+    todo = [r for r in src if r["contact"] == "point"]
+    if a.quick:
+        todo = todo[::6]
+    path = OUT / f"{a.label}.json"
+    (OUT / f"{a.label}.md").unlink(missing_ok=True)
+    done: dict[str, dict] = {}
+    if path.exists():
+        prev = json.loads(path.read_text())
+        if prev.get("cases") == [case_key(c) for c in todo]:
+            done = {case_key(r): r for r in prev["rows"]}
+    rows = []
+    for c in tqdm(todo, desc="cases"):
+        key = case_key(c)
+        if key in done:
+            rows.append(done[key])
+            continue
+        case = {k: c[k] for k in KEYS if k in c}
+        row = {**case, "new": solve(case, y_pre=False), "old": solve(case)}
+        for k in ("new", "old"):
+            row[k].pop("finest", None)
+            row[k]["honest"] = honest(row[k], c["deep"])
+        rows.append(row)
+        tmp = path.with_suffix(".json.tmp")
+        tmp.write_text(json.dumps({"cases": [case_key(c) for c in todo], "rows": rows,
+                                   "summary": summary(rows)}, indent=1))
+        tmp.replace(path)
+    s = summary(rows)
+    text = table(rows) + "\n\n" + "\n".join(f"- {k}: {v}" for k, v in s.items()) + "\n"
+    (OUT / f"{a.label}.md").write_text(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()
