@@ -64,7 +64,7 @@ def run_case(M: float, L: float, points: int, ratios: list[float]) -> dict:
         e = s.extra
         Hc, Hm = s.scalars["Hc_venner"], s.scalars["Hm_venner"]
         rec = {"hoil_over_Hc_ff": ratio, "hoil": hoil, "status": s.status_name,
-               "cycles": len(s.residual_history), "final_residual": float(s.residual_history[-1]),
+               "cycles": len(s.residual_history), "final_residual": float(s.residual_history[-1]) if len(s.residual_history) else math.nan,
                "Hc": Hc, "Hm": Hm, "Hc_ratio": Hc / Hff, "Hm_ratio": Hm / Hmff,
                "meniscus_x": e["meniscus_x"], "mass_balance_error": e["mass_balance_error"],
                "fluxes": e["fluxes"], "rho_c": e["rho_c"], "wall_s": wall,
@@ -72,7 +72,8 @@ def run_case(M: float, L: float, points: int, ratios: list[float]) -> dict:
         if math.isfinite(hoil):
             rec["r"] = hoil / (Hff * rho_c)
             rec["rho_c_Hc_over_hoil"] = e["rho_c"] * Hc / hoil
-            rec["outlet_over_supply"] = e["fluxes"]["out"] / e["fluxes"]["in"]
+            rec["outlet_over_supply"] = (e["fluxes"]["out"] / e["fluxes"]["in"] if e["fluxes"]["in"]
+                                         else math.nan)  # a failed solve carries no flux
             rec["chevalier_3p5"] = float(chevalier_reduction(rec["r"], DELTA_MIXED))
         out["runs"].append(rec)
         print(f"M {M:g} L {L:g} n {points} Hoil/Hcff {ratio:g}: {s.status_name} Hc/Hcff "
