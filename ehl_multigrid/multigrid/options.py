@@ -220,7 +220,7 @@ class PointOptions(MultigridOptions):
     The GS/JD ``switch`` is raised x4 on meshes as fine as 2049 points on the classic box
     (``point.fas.sweep_switch``). ``y_pre`` -- False: the fine grids of wider contacts relax
     Y lines in the post-relaxation only (14 % fewer work units, no faster in wall time, and
-    less robust over the extremes map: validation/bench/y_post.py).
+    less robust over the extremes map: validation/bench/point_variants.py).
     """
 
     CYCLE_OPTIONAL: ClassVar[bool] = True

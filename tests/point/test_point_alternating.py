@@ -87,7 +87,7 @@ def test_y_pre_false_relaxes_y_lines_after_the_correction_only():
     """``y_pre=False``: the fine grids of a wider contact alternate in the post-relaxation only,
     so one F cycle per FMG level on 513^2 costs 2 + 2 instead of 4 + 2 sweeps of work per
     fine-grid visit (nu1 = 2, nu2 = 1); the default keeps both alternating
-    (validation/bench/y_post.py: fewer work units, no faster, less robust)."""
+    (validation/bench/point_variants.py: fewer work units, no faster, less robust)."""
     kw = dict(points=513, half=True, cycles=1, max_cycles=0, adapt=False, threads=1, accuracy=None)
     both = solve_point(20.0, 10.0, **kw)
     post = solve_point(20.0, 10.0, y_pre=False, **kw)

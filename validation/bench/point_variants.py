@@ -1,5 +1,9 @@
-"""Fine-grid Y lines in the post-relaxation only (``PointOptions.y_pre=False``, "new") against
-both relaxations alternating (the default, "old"), over the point cases of the grid-rule study.
+"""A point-solver variant against the default over the point cases of the grid-rule study.
+
+Variants (``--variant``): ``y_post`` -- fine-grid Y lines in the post-relaxation only
+(``PointOptions.y_pre=False``) against both relaxations alternating (the default); ``hw_first``
+-- the robustness policy's ladder starting with "halve the under-relaxation, W cycles" instead
+of "alternate on every grid" (then "alternate", "switch"), for rejected and stalled cycles.
 
 Every point case of ``out/grid_stop.json`` (the extremes matrix and the fit-check map on 513
 points or the case's minimum grid, and the fine grids up to 2049^2) is solved twice with the
@@ -9,15 +13,16 @@ the study's deep reference (tolerances ten times tighter, same grid and box: the
 solution does not depend on the smoother). A result is *honest* when its true error lies within
 its stated algebraic error plus the reference's.
 
-    python validation/bench/y_post.py [--quick] [--label NAME]
+    python validation/bench/point_variants.py [--variant y_post|hw_first] [--quick] [--label NAME]
 
-Writes ``out/<label>.json`` and ``out/<label>.md`` (default label ``y_post``); an interrupted run
-resumes from its JSON (cases of the same list only).
+Writes ``out/<label>.json`` and ``out/<label>.md`` (default label: the variant's name); an
+interrupted run resumes from its JSON (cases of the same list only).
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 import sys
@@ -29,6 +34,22 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from grid_stop import solve  # noqa: E402
 
 OUT = Path(__file__).parent / "out"
+
+
+def solve_hw_first(case: dict) -> dict:
+    """The default solve with the policy's ladder reordered: halve + W, alternate, switch."""
+    from ehl_multigrid.point import fas
+
+    saved = fas.POINT_POLICY
+    ladder = (("halve", "W"), ("alternate",), ("switch",))
+    fas.POINT_POLICY = dataclasses.replace(saved, reject_ladder=ladder, stall_ladder=ladder)
+    try:
+        return solve(case)
+    finally:
+        fas.POINT_POLICY = saved
+
+
+VARIANTS = {"y_post": lambda case: solve(case, y_pre=False), "hw_first": solve_hw_first}
 KEYS = ("contact", "M", "L", "theta", "points", "viscosity", "density")
 
 
@@ -87,18 +108,20 @@ def table(rows: list[dict]) -> str:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="every sixth case only")
-    ap.add_argument("--label", default="y_post")
+    ap.add_argument("--variant", choices=sorted(VARIANTS), default="y_post")
+    ap.add_argument("--label", default=None, help="output stem (default: the variant)")
     a = ap.parse_args()
     src = json.loads((OUT / "grid_stop.json").read_text())["rows"]
     todo = [r for r in src if r["contact"] == "point"]
     if a.quick:
         todo = todo[::6]
-    path = OUT / f"{a.label}.json"
-    (OUT / f"{a.label}.md").unlink(missing_ok=True)
+    label = a.label or a.variant
+    path = OUT / f"{label}.json"
+    (OUT / f"{label}.md").unlink(missing_ok=True)
     done: dict[str, dict] = {}
     if path.exists():
         prev = json.loads(path.read_text())
-        if prev.get("cases") == [case_key(c) for c in todo]:
+        if prev.get("cases") == [case_key(c) for c in todo] and prev.get("variant", "y_post") == a.variant:
             done = {case_key(r): r for r in prev["rows"]}
     rows = []
     for c in tqdm(todo, desc="cases"):
@@ -107,18 +130,18 @@ def main() -> None:
             rows.append(done[key])
             continue
         case = {k: c[k] for k in KEYS if k in c}
-        row = {**case, "new": solve(case, y_pre=False), "old": solve(case)}
+        row = {**case, "new": VARIANTS[a.variant](case), "old": solve(case)}
         for k in ("new", "old"):
             row[k].pop("finest", None)
             row[k]["honest"] = honest(row[k], c["deep"])
         rows.append(row)
         tmp = path.with_suffix(".json.tmp")
-        tmp.write_text(json.dumps({"cases": [case_key(c) for c in todo], "rows": rows,
+        tmp.write_text(json.dumps({"variant": a.variant, "cases": [case_key(c) for c in todo], "rows": rows,
                                    "summary": summary(rows)}, indent=1))
         tmp.replace(path)
     s = summary(rows)
     text = table(rows) + "\n\n" + "\n".join(f"- {k}: {v}" for k, v in s.items()) + "\n"
-    (OUT / f"{a.label}.md").write_text(text)
+    (OUT / f"{label}.md").write_text(text)
     print(text)
 
 
