@@ -123,6 +123,20 @@ def summary(rows: list[dict]) -> dict:
     }
 
 
+def save_json(path: Path, payload: dict) -> None:
+    """Write ``payload`` beside ``path`` and rename: an interrupted run leaves no half file."""
+    tmp = path.with_suffix(".json.tmp")
+    tmp.write_text(json.dumps(payload, indent=1))
+    tmp.replace(path)
+
+
+def write_report(path: Path, table_text: str, summary_: dict) -> None:
+    """The markdown table and the summary lines (also printed)."""
+    text = table_text + "\n\n" + "\n".join(f"- {k}: {v}" for k, v in summary_.items()) + "\n"
+    path.write_text(text)
+    print(text)
+
+
 def main() -> None:
     from ehl_multigrid.point.problem import min_points, problem_from_moes
 
@@ -153,13 +167,8 @@ def main() -> None:
         else:
             row["deep"] = {"status": "skipped"}
         rows.append(row)
-        tmp = OUT / f"{a.label}.json.tmp"
-        tmp.write_text(json.dumps({"rows": rows, "summary": summary(rows)}, indent=1))
-        tmp.replace(OUT / f"{a.label}.json")
-    s = summary(rows)
-    text = table(rows) + "\n\n" + "\n".join(f"- {k}: {v}" for k, v in s.items()) + "\n"
-    (OUT / f"{a.label}.md").write_text(text)
-    print(text)
+        save_json(OUT / f"{a.label}.json", {"rows": rows, "summary": summary(rows)})
+    write_report(OUT / f"{a.label}.md", table(rows), summary(rows))
 
 
 if __name__ == "__main__":

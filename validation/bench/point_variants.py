@@ -31,7 +31,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from grid_stop import solve  # noqa: E402
+from grid_stop import save_json, solve, write_report  # noqa: E402
 
 OUT = Path(__file__).parent / "out"
 
@@ -135,14 +135,9 @@ def main() -> None:
             row[k].pop("finest", None)
             row[k]["honest"] = honest(row[k], c["deep"])
         rows.append(row)
-        tmp = path.with_suffix(".json.tmp")
-        tmp.write_text(json.dumps({"variant": a.variant, "cases": [case_key(c) for c in todo], "rows": rows,
-                                   "summary": summary(rows)}, indent=1))
-        tmp.replace(path)
-    s = summary(rows)
-    text = table(rows) + "\n\n" + "\n".join(f"- {k}: {v}" for k, v in s.items()) + "\n"
-    (OUT / f"{label}.md").write_text(text)
-    print(text)
+        save_json(path, {"variant": a.variant, "cases": [case_key(c) for c in todo], "rows": rows,
+                         "summary": summary(rows)})
+    write_report(OUT / f"{label}.md", table(rows), summary(rows))
 
 
 if __name__ == "__main__":
