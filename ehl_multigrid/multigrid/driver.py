@@ -308,6 +308,9 @@ class MultilevelSolver:
                                      "Hm": m.Hm, "dHc": m.Hc - Hc_prev})
                     Hc_prev = m.Hc
                 if top == k0 and top > 0:
+                    # started on the finest grid: a failure of this first cycle may also be
+                    # finished by the hierarchy's last resort
+                    self._finest_phase = True
                     self.run_cycle(top, 0)
                 extra = 0
                 self._finest_phase = True

@@ -64,8 +64,12 @@ from .discrete import face_fluxes
 from .level import StarvedLevel
 from .newton import StarvedNewtonFailure, newton_solve
 
-#: largest grid the dense Newton may finish after a multigrid stall or on the start grid
+#: largest grid the dense Newton may finish on the start grid
 MAX_DENSE_POINTS = 513
+#: largest grid the dense Newton may finish after a multigrid stall or a failed first cycle
+#: (the box solves of a meniscus within 0.006 a of the Hertzian edge on the default 1025
+#: points: a 2047-unknown system, about 0.3 s per iteration)
+LAST_RESORT_POINTS = 1025
 #: relaxation sweeps per visit of the coarsest grid
 COARSE_SWEEPS = 30
 #: most relaxation sweeps on the FMG start grid, and the fraction of the cycles' film-constant
@@ -291,7 +295,7 @@ class StarvedLineHierarchy(LineHierarchy):
     def last_resort(self, k: int, solver: MultilevelSolver) -> bool:
         """A stalled solve on a grid small enough: dense Newton on the finest grid."""
         fin = self.levels[k]
-        if fin.n > MAX_DENSE_POINTS:
+        if fin.n > LAST_RESORT_POINTS:
             return False
         saved = (fin.P.copy(), fin.theta.copy(), fin.H0)
         fin.frozen[:] = False

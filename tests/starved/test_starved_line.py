@@ -134,3 +134,44 @@ def test_an_accuracy_the_estimate_does_not_meet_is_reported(half_starved):
     with pytest.raises(ConvergenceError, match="exceeds the requested accuracy 0.0001") as exc:
         solve_starved_line(PB, 0.05, accuracy=1e-4, points=513)
     assert exc.value.report.extra["status"] == "inaccurate"
+
+
+def test_box_solve_next_to_the_hertzian_edge_is_finished_by_dense_newton():
+    """A flooded-inlet box with its inlet 0.004 a ahead of the Hertzian edge: the coarse grids
+    cannot carry the short inlet and the first finest-grid cycle is rejected; the dense Newton
+    last resort now also finishes a failed first cycle of a solve started on the finest grid
+    (before: ``diverged``)."""
+    import dataclasses
+
+    pb = dataclasses.replace(LineProblem.from_moes(100.0, 10.0), xmin=-1.004)
+    r = solve_starved_problem(pb, math.inf, starved_options(points=513, raise_on_failure=False))
+    assert r.success
+    assert any("dense Newton" in a for a in r.actions)
+    assert r.scalars["mass_balance_error"] < 1e-6
+
+
+def test_severe_starvation_at_three_percent_of_the_flooded_flux_carries_the_supply():
+    """The meniscus 0.003-0.004 a ahead of the Hertzian edge (searched closer than the scan's
+    first position, ``meniscus.EDGE_SCAN``): the central film carries the supply."""
+    from ehl_multigrid.starved.line import flooded_flux_estimate
+
+    hoil = 0.03 * flooded_flux_estimate(solve_line(20.0, 10.0))
+    r = solve_starved_line(PB, hoil, points=513)
+    assert r.success
+    assert -1.006 < r.scalars["meniscus_x"] < -1.0
+    assert r.scalars["rho_c_Hc_over_hoil"] == pytest.approx(1.0, abs=1e-6)
+    assert r.scalars["mass_balance_error"] < 1e-6
+
+
+def test_a_failed_box_solve_in_the_meniscus_search_is_a_result_unless_raising(monkeypatch):
+    from ehl_multigrid.starved import meniscus
+
+    real = meniscus._FluxMap.flux
+    # the boxes strictly inside the bracket [-1.02, -1.01] of Hoil = 0.01 fail (NaN flux)
+    monkeypatch.setattr(meniscus._FluxMap, "flux",
+                        lambda fm, xm: math.nan if -1.02 < xm < -1.01 else real(fm, xm))
+    r = solve_starved_line(PB, 0.01, points=257, estimate=False, raise_on_failure=False)
+    assert not r.success and r.status_name == "diverged"
+    assert r.message.startswith("meniscus search: the flooded-inlet box solve at X_m = -1.01")
+    with pytest.raises(ConvergenceError, match="the flooded-inlet box solve at X_m"):
+        solve_starved_line(PB, 0.01, points=257, estimate=False)
