@@ -33,7 +33,7 @@ import numpy as np
 import scipy.optimize
 
 from ..line.problem import LineProblem
-from ..line.solver import HINT, MAX_ACCURACY_POINTS, line_domain_change
+from ..line.solver import HINT, MAX_ACCURACY_POINTS, line_domain_change, solve_line_problem
 from ..model.errors import ConvergenceError, require_range
 from ..multigrid.accuracy import (
     HM_MAX_ORDER,
@@ -96,8 +96,29 @@ class _FluxMap:
             pb = dataclasses.replace(self.problem, xmin=float(xm))
             res = solve_starved_problem(pb, math.inf, self.options)
             self.work += res.work_units if math.isfinite(res.work_units) else 0.0
+            if not res.success and res.message.startswith("the flooded start solve failed"):
+                res = self._continued(pb, xm) or res
             self.cache[xm] = res
         return self.cache[xm]
+
+    def _continued(self, pb: LineProblem, xm: float) -> EHLResult | None:
+        """The box solve again, its flooded start begun from the converged box whose meniscus
+        is nearest (continuation in the meniscus position: near the Hertzian edge the flooded
+        solve from the Hertzian guess diverges where the neighbour's solution converges)."""
+        done = [(abs(x - xm), r) for x, r in self.cache.items() if r.success and r.extra.get("flooded")]
+        if not done:
+            return None
+        near = min(done, key=lambda d: d[0])[1].extra["flooded"]
+        # started on the finest grid itself: the FMG's coarse grids are what fail here
+        opts = dataclasses.replace(self.options, raise_on_failure=False, film_tol=None,
+                                   fmg_start_points=self.points)
+        flooded = solve_line_problem(pb, opts, guess=(near.X, near.P, near.H0))
+        self.work += flooded.work_units if math.isfinite(flooded.work_units) else 0.0
+        if not flooded.success:
+            return None
+        res = solve_starved_problem(pb, math.inf, self.options, flooded=flooded)
+        self.work += res.work_units if math.isfinite(res.work_units) else 0.0
+        return res if res.success else None
 
     def flux(self, xm: float) -> float:
         res = self.solve(xm)

@@ -136,6 +136,7 @@ def _newton_solve(lv: StarvedLevel, max_iter: int, tol: float) -> int:
             raise StarvedNewtonFailure("non-finite residual in the dense Newton iteration")
         if np.max(np.abs(phi)) < tol:
             lv.P, lv.theta, lv.H0 = np.maximum(P, 0.0), np.minimum(theta, 1.0), H0
+            exact_cavitation(lv)
             return it - 1
         J = np.zeros((2 * m + 1, 2 * m + 1))
         J[:m, :m] = -s[:, None] * dL[np.ix_(inner, inner)]
@@ -171,7 +172,39 @@ def _newton_solve(lv: StarvedLevel, max_iter: int, tol: float) -> int:
             if t < 1e-8:
                 if np.max(np.abs(phi)) < 1e3 * tol:
                     lv.P, lv.theta, lv.H0 = np.maximum(P, 0.0), np.minimum(theta, 1.0), H0
+                    exact_cavitation(lv)
                     return it - 1
                 raise StarvedNewtonFailure(f"line search failed at iteration {it} (|phi| = {norm0:.3g})")
         P, theta, H0 = Pt, Tt, H0t
     raise StarvedNewtonFailure(f"dense Newton did not converge in {max_iter} iterations")
+
+
+def exact_cavitation(lv: StarvedLevel) -> None:
+    """Set the pressure of the cavitated points (``theta < 1``) to exactly zero and march their
+    film content from the upwind mass balance with that pressure (in place).
+
+    The converged Newton iterate keeps round-off pressures of order 1e-17 there; where
+    ``eps/h^2`` is large (the low-pressure outlet, ~1e7 on 1025 points) clipping them leaves a
+    Reynolds residual of ~1e-9 per point, a relative residual of 1.6e-7 at (100, 10) on a box
+    0.004 a ahead of the Hertzian edge, above the starved tolerance (measured; after this step
+    6e-10). ``theta_i`` solves row ``i`` exactly given its upwind neighbours."""
+    st = lv.state()
+    cav = np.flatnonzero(st.theta[1:-1] < 1.0) + 1
+    if cav.size == 0:
+        return
+    P = lv.P
+    P[cav] = 0.0
+    st = lv.state()
+    q = st.rho * st.H
+    th = st.theta.copy()
+    starved = bool(th[0] < 1.0)
+    h, eps = lv.h, st.eps
+    for i in cav:
+        em = 0.0 if (i == 1 and starved) else 0.5 * (eps[i] + eps[i - 1])
+        pois = (0.5 * (eps[i] + eps[i + 1]) * (P[i + 1] - P[i]) - em * (P[i] - P[i - 1])) / (h * h)
+        c0, c1, c2 = wedge_row(i, th, lv.order, starved)
+        rest = c1 * th[i - 1] * q[i - 1] + (c2 * th[i - 2] * q[i - 2] if c2 != 0.0 else 0.0)
+        t = (h * (pois - lv.f[i]) - rest) / (c0 * q[i])
+        th[i] = min(max(t, 0.0), 1.0)
+    lv.theta = th
+
