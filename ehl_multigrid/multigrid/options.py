@@ -221,6 +221,9 @@ class PointOptions(MultigridOptions):
     (``point.fas.sweep_switch``). ``y_pre`` -- False: the fine grids of wider contacts relax
     Y lines in the post-relaxation only (14 % fewer work units, no faster in wall time, and
     less robust over the extremes map: validation/bench/point_variants.py).
+    ``local_film_update`` -- False: the film between the X and Y halves of an alternating sweep
+    is refreshed by a whole deformation evaluation instead of locally (the steady solve's
+    retry when the local refresh fails, ``point.solve.RETRY_FULL_REFRESH``).
     """
 
     CYCLE_OPTIONAL: ClassVar[bool] = True
@@ -241,6 +244,7 @@ class PointOptions(MultigridOptions):
     coarse_sweeps: int = 10
     elastic: bool = True
     y_pre: bool = True
+    local_film_update: bool = True
     alternating: bool | None = None
 
     def __post_init__(self) -> None:

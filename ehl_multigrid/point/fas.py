@@ -309,7 +309,7 @@ class PointHierarchy:
     def refreshes_locally(self, lev: Level) -> bool:
         """Whether an alternating sweep on ``lev`` refreshes the film locally between its X
         and Y halves (:data:`LOCAL_UPDATE_FROM`, :data:`LOCAL_UPDATE_TO`)."""
-        return bool(lev.alternate and self.local_update
+        return bool(lev.alternate and self.local_update and self.options.local_film_update
                     and LOCAL_UPDATE_FROM <= lev.nx <= LOCAL_UPDATE_TO)
 
     def update_film(self, lev: Level) -> None:

@@ -64,6 +64,34 @@ def _finish(sol: EHLResult, scene: Any) -> EHLResult:
     return sol
 
 
+#: After the alternating retry, a solve that still fails (RETRY_ALTERNATING) is solved again
+#: with the film refreshed by whole deformation evaluations between the X and Y halves of the
+#: alternating sweeps instead of locally: the local refresh (commit c64ae80) made circular
+#: Barus (500, 20, theta 0.25) at 1025 points diverge in its FMG (bisected); with the whole
+#: refresh its iteration converges (12 s; with the residual rule, accuracy=None, every attempt
+#: still diverges).
+RETRY_FULL_REFRESH = True
+
+
+def _again(problem: PointProblem, opt: PointOptions, solver: Any, sol: EHLResult,
+           callback: Callable[[dict[str, Any]], None] | None, how: str) -> tuple[Any, EHLResult]:
+    """Solve again with ``opt``; keep the better of the two attempts (converged, else the lower
+    final residual); both attempts count in the work and wall time."""
+    again = point_solver(problem, opt)
+    sol2 = again.solve(callback=callback)
+    note = f"ended {sol.status_name} ({sol.message}); solved again with {how}: {sol2.status_name}"
+    work, wall = sol.work_units + sol2.work_units, sol.wall_s + sol2.wall_s
+    if sol2.success or sol2.residual_history[-1:].min(initial=np.inf) \
+            < sol.residual_history[-1:].min(initial=np.inf):
+        solver.hierarchy.solver = None
+        solver, sol = again, sol2
+    else:
+        again.hierarchy.solver = None
+    sol.work_units, sol.wall_s = work, wall  # every attempt is the cost of the answer
+    sol.actions.append(note)
+    return solver, sol
+
+
 def solve_fas(problem: PointProblem, options: PointOptions | None = None,
               callback: Callable[[dict[str, Any]], None] | None = None, scene: Any = None,
               **kw: Any) -> EHLResult:
@@ -79,20 +107,13 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
             # X lines alone failed: solve again alternating X and Y lines on every grid from
             # the start (the policy's mid-solve switch comes too late on some grids)
             # (with W cycles unless the options name one: point_cycle)
-            again = point_solver(problem, replace(opt, alternating=True))
-            sol2 = again.solve(callback=callback)
-            note = (f"X-line relaxation ended {sol.status_name} ({sol.message}); solved again with "
-                    f"X and Y lines alternating on every grid: {sol2.status_name}")
-            work, wall = sol.work_units + sol2.work_units, sol.wall_s + sol2.wall_s
-            if sol2.success or sol2.residual_history[-1:].min(initial=np.inf) \
-                    < sol.residual_history[-1:].min(initial=np.inf):
-                solver.hierarchy.solver = None
-                solver, sol = again, sol2
-            else:
-                again.hierarchy.solver = None
-            sol.work_units, sol.wall_s = work, wall  # both attempts are the cost of the answer
-            sol.actions.append(note)
-        elif retry and not sol.success and opt.raise_on_failure:
+            solver, sol = _again(problem, replace(opt, alternating=True, raise_on_failure=False), solver,
+                                 sol, callback, "X and Y lines alternating on every grid")
+        if retry and RETRY_FULL_REFRESH and sol.status_name in RETRY_ALTERNATING and opt.local_film_update:
+            solver, sol = _again(problem, replace(opt, local_film_update=False, raise_on_failure=False),
+                                 solver, sol, callback, "the film refreshed by whole deformations "
+                                 "between the X and Y halves (RETRY_FULL_REFRESH)")
+        if retry and not sol.success and opt.raise_on_failure:
             raise ConvergenceError(f"point solver: {sol.message}", sol.report, solver.hint)
     hz = solver.hierarchy
     hz.solver = None  # break the solver <-> hierarchy cycle: the grids are freed with the solver
