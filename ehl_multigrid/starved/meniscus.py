@@ -102,23 +102,27 @@ class _FluxMap:
         return self.cache[xm]
 
     def _continued(self, pb: LineProblem, xm: float) -> EHLResult | None:
-        """The box solve again, its flooded start begun from the converged box whose meniscus
-        is nearest (continuation in the meniscus position: near the Hertzian edge the flooded
-        solve from the Hertzian guess diverges where the neighbour's solution converges)."""
-        done = [(abs(x - xm), r) for x, r in self.cache.items() if r.success and r.extra.get("flooded")]
-        if not done:
-            return None
-        near = min(done, key=lambda d: d[0])[1].extra["flooded"]
-        # started on the finest grid itself: the FMG's coarse grids are what fail here
-        opts = dataclasses.replace(self.options, raise_on_failure=False, film_tol=None,
-                                   fmg_start_points=self.points)
-        flooded = solve_line_problem(pb, opts, guess=(near.X, near.P, near.H0))
-        self.work += flooded.work_units if math.isfinite(flooded.work_units) else 0.0
-        if not flooded.success:
-            return None
-        res = solve_starved_problem(pb, math.inf, self.options, flooded=flooded)
-        self.work += res.work_units if math.isfinite(res.work_units) else 0.0
-        return res if res.success else None
+        """The box solve again, its flooded start begun from a converged box with a nearby
+        meniscus (continuation in the meniscus position: near the Hertzian edge the flooded
+        solve from the Hertzian guess diverges where the neighbour's solution converges); the
+        nearest converged neighbour on each side is tried, nearest first."""
+        done = sorted(((abs(x - xm), x, r) for x, r in self.cache.items()
+                       if r.success and r.extra.get("flooded")), key=lambda d: d[0])
+        sides = [d for d in done if d[1] < xm][:1] + [d for d in done if d[1] > xm][:1]
+        for _, _, near_res in sorted(sides, key=lambda d: d[0]):
+            near = near_res.extra["flooded"]
+            # started on the finest grid itself: the FMG's coarse grids are what fail here
+            opts = dataclasses.replace(self.options, raise_on_failure=False, film_tol=None,
+                                       fmg_start_points=self.points)
+            flooded = solve_line_problem(pb, opts, guess=(near.X, near.P, near.H0))
+            self.work += flooded.work_units if math.isfinite(flooded.work_units) else 0.0
+            if not flooded.success:
+                continue
+            res = solve_starved_problem(pb, math.inf, self.options, flooded=flooded)
+            self.work += res.work_units if math.isfinite(res.work_units) else 0.0
+            if res.success:
+                return res
+        return None
 
     def flux(self, xm: float) -> float:
         res = self.solve(xm)
