@@ -99,6 +99,8 @@ class ErrorEstimate:
     order_Hm: float = math.nan
     Hc_extrapolated: float = math.nan
     notes: list[str] = field(default_factory=list)
+    #: the grid part of Hc or Hm is the first-order bound of an irregular sequence
+    irregular: bool = False
 
     def as_dict(self) -> dict[str, Any]:
         return {"Hc_error": self.Hc, "Hm_error": self.Hm, "error_budget": self.budget,
@@ -203,7 +205,8 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
     tot = {k: grid[k] + algebraic[k] + (dom[k] if math.isfinite(dom[k]) else 0.0) for k in ("Hc", "Hm")}
     if domain is None:
         tot = {k: math.nan for k in tot}
-    return ErrorEstimate(tot["Hc"], tot["Hm"], budget, rc.order, rm.order, rc.extrapolated, notes)
+    return ErrorEstimate(tot["Hc"], tot["Hm"], budget, rc.order, rm.order, rc.extrapolated, notes,
+                         not (rc.regular and rm.regular))
 
 
 #: with an accuracy target the cycles stop when the films change by less than this fraction of it
@@ -381,10 +384,6 @@ REPAIR_LEVELS = 2
 REPAIR_MIN_POINTS = 65
 
 
-def _irregular(est: ErrorEstimate) -> bool:
-    return any("converges irregularly" in n for n in est.notes)
-
-
 def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: int, max_points: int,
                       box_limit: float = 4.0, refine: bool = True, time_budget: float = math.inf) -> Any:
     """Solve, estimate, and refine until the estimated errors of Hc and Hm meet ``accuracy``.
@@ -435,7 +434,7 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
             res.extra["domain_note"] = "domain error bounded by the change measured at a smaller box"
         last_domain = dom if dom is not None else last_domain
         est = estimate_error(res, dom, finals.get(box))
-        if (refine and accuracy is not None and _irregular(est) and max(est.Hc, est.Hm) > accuracy):
+        if refine and accuracy is not None and est.irregular and max(est.Hc, est.Hm) > accuracy:
             # the FMG films may be what is irregular: the coarser grids solved to convergence
             known = finals.setdefault(box, {})
             n = points

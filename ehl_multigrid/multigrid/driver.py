@@ -11,7 +11,7 @@ first):
                                 ``spacing`` (mesh sizes) and ``npts``
 ``name``                        ``"line"``, ``"point"`` ... (for messages)
 ``start(solver) -> k0``         initial guess and solution on the FMG start grid ``k0``
-``relax(k, sweeps, settings, coarse[, post])``   relaxation sweeps (``coarse``: ``k`` is
+``relax(k, sweeps, settings, coarse, post=False)``   relaxation sweeps (``coarse``: ``k`` is
                                 below the current FMG grid, where the film constant may move;
                                 ``post``: after the coarse-grid correction)
 ``restrict(k, settings) -> token``       FAS coarse problem on ``k - 1`` from grid ``k``
@@ -33,7 +33,6 @@ history and a callback, and ``repr`` lists the grids.
 
 from __future__ import annotations
 
-import inspect
 import math
 import time
 from collections.abc import Callable
@@ -113,8 +112,6 @@ class MultilevelSolver:
     def __init__(self, hierarchy: Any, options: MultigridOptions, settings: Settings,
                  policy: RobustnessPolicy, hint: str = "") -> None:
         self.hierarchy = hierarchy
-        # hierarchies written before the ``post`` keyword keep working
-        self._relax_post = "post" in inspect.signature(hierarchy.relax).parameters
         self.options = options
         self.settings = settings
         self.policy = policy
@@ -176,8 +173,7 @@ class MultilevelSolver:
             self._cycle(k - 1, top, "F")
             self._cycle(k - 1, top, "V")
         hz.correct(k, token, s)
-        self._add(hz.relax(k, o.nu2, s, k != top, post=True) if self._relax_post
-                  else hz.relax(k, o.nu2, s, k != top))
+        self._add(hz.relax(k, o.nu2, s, k != top, post=True))
 
     def run_cycle(self, k: int, c: int) -> Measurement:
         """One accepted cycle on grid ``k``: rejected attempts are undone and repeated with

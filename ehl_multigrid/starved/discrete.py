@@ -105,6 +105,25 @@ def elrod_adams_residual(P, H, rho, theta, eps, h, f, order, starved):
 
 
 @njit(cache=True)
+def march_cavitated_content(P, theta, q, eps, f, h, order, starved, cav):
+    """Film content ``theta_i`` of the cavitated points ``cav`` (ascending) that makes row ``i``
+    of :func:`elrod_adams_residual` zero given its upwind neighbours and ``P`` (in place,
+    clipped to [0, 1]); ``q = rho H``."""
+    ih2 = 1.0 / (h * h)
+    for k in range(cav.shape[0]):
+        i = cav[k]
+        ep = 0.5 * (eps[i] + eps[i + 1])
+        em = 0.0 if (i == 1 and starved) else 0.5 * (eps[i] + eps[i - 1])
+        pois = (ep * (P[i + 1] - P[i]) - em * (P[i] - P[i - 1])) * ih2
+        c0, c1, c2 = wedge_row(i, theta, order, starved)
+        rest = c1 * theta[i - 1] * q[i - 1]
+        if c2 != 0.0:
+            rest += c2 * theta[i - 2] * q[i - 2]
+        t = (h * (pois - f[i]) - rest) / (c0 * q[i])
+        theta[i] = min(max(t, 0.0), 1.0)
+
+
+@njit(cache=True)
 def face_fluxes(P, theta, q, eps, h, order, starved):
     """Mass flux ``Q_{i+1/2} - eps_{i+1/2} (P_{i+1} - P_i)/h`` through every face
     ``i + 1/2``, ``i = 0 .. n-2`` (the fluxes whose differences are the discrete operator)."""

@@ -13,7 +13,7 @@ import scipy.linalg
 
 from ..line.discrete import fluid_state
 from ..multigrid.threads import serial_blas
-from .discrete import elrod_adams_residual, wedge_row
+from .discrete import elrod_adams_residual, march_cavitated_content, wedge_row
 from .level import StarvedLevel
 
 
@@ -192,19 +192,8 @@ def exact_cavitation(lv: StarvedLevel) -> None:
     cav = np.flatnonzero(st.theta[1:-1] < 1.0) + 1
     if cav.size == 0:
         return
-    P = lv.P
-    P[cav] = 0.0
+    lv.P[cav] = 0.0
     st = lv.state()
-    q = st.rho * st.H
     th = st.theta.copy()
-    starved = bool(th[0] < 1.0)
-    h, eps = lv.h, st.eps
-    for i in cav:
-        em = 0.0 if (i == 1 and starved) else 0.5 * (eps[i] + eps[i - 1])
-        pois = (0.5 * (eps[i] + eps[i + 1]) * (P[i + 1] - P[i]) - em * (P[i] - P[i - 1])) / (h * h)
-        c0, c1, c2 = wedge_row(i, th, lv.order, starved)
-        rest = c1 * th[i - 1] * q[i - 1] + (c2 * th[i - 2] * q[i - 2] if c2 != 0.0 else 0.0)
-        t = (h * (pois - lv.f[i]) - rest) / (c0 * q[i])
-        th[i] = min(max(t, 0.0), 1.0)
+    march_cavitated_content(lv.P, th, st.rho * st.H, st.eps, lv.f, lv.h, lv.order, bool(th[0] < 1.0), cav)
     lv.theta = th
-

@@ -71,7 +71,7 @@ class PoissonHierarchy:
         self.coarse_solve(0, solver.settings)
         return 0
 
-    def relax(self, k, sweeps, s: Settings, coarse: bool) -> float:
+    def relax(self, k, sweeps, s: Settings, coarse: bool, post: bool = False) -> float:
         lv = self.levels[k]
         w = 1.5 if s.omega > self.unstable_above else 2.0 / 3.0
         for _ in range(sweeps):
