@@ -46,6 +46,9 @@ def register(subparsers: Any) -> None:
     p.add_argument("--thermal", action="store_true", help="film friction from the thermal Roelands-Eyring solver (ch. 5.4)")
     p.add_argument("--hoil", type=_float_list, default=None, metavar="LIST",
                    help="inlet oil films hoil/Rq for starved curves, e.g. 0.5,1,2 (default: the scene's supply.hoil_over_sigma)")
+    p.add_argument("--delta", default=None, metavar="DELTA",
+                   help="Chevalier's exponent of the starved film (6.1): a number in [0.5, 20], or 'inlet' for the "
+                        "exponent from the flooded inlet at each speed (default: the scene's supply.delta, 3.5)")
     p.add_argument("--n", type=int, default=None, help="number of sum velocities (default: scene range or 60)")
     p.add_argument("--us-min", type=float, default=None, help="smallest sum velocity [m/s]")
     p.add_argument("--us-max", type=float, default=None, help="largest sum velocity [m/s]")
@@ -72,6 +75,12 @@ def run_stribeck(args: argparse.Namespace) -> dict:
     if args.load is not None or args.slip is not None:
         changes = {k: v for k, v in (("load", args.load), ("slip", args.slip)) if v is not None}
         scene = scene.with_operating(**changes)
+    if args.delta is not None:
+        try:
+            delta: float | str = float(args.delta)
+        except ValueError:
+            delta = args.delta
+        scene = scene.with_supply(delta=delta)
     opts = stribeck_options(scene, bl_fraction=args.bl_fraction, ehl_fraction=args.ehl_fraction)
     us = default_us(scene, args.n, args.us_min, args.us_max)
     hoil = list(scene.supply.hoil_over_sigma) if args.hoil is None else args.hoil
@@ -143,6 +152,7 @@ def _curve_dict(c, thermal: bool) -> dict[str, Any]:
     d: dict[str, Any] = {
         "hoil": c.hoil,
         "hoil_over_sigma": c.hoil / c.sharing.roughness.Rq,
+        "delta_used": c.sharing.delta_used,
         "friction_coefficient": c.friction.coefficient,
         "friction_asperity": c.friction.asperity,
         "friction_film": c.friction.film,
@@ -181,6 +191,7 @@ def _payload(scene, curves, thermal: bool, wall: float, files: list[str]) -> dic
         "thermal": thermal,
         "bl_fraction": c0.options["bl_fraction"],
         "ehl_fraction": c0.options["ehl_fraction"],
+        "delta": c0.sharing.delta,
         "converged": all(c.converged for c in curves),
         "wall_s": wall,
         "us": c0.us,

@@ -37,7 +37,7 @@ from ehl_multigrid.model.scene import Roughness, Scene
 from .film import johnson_film, separation_from_log_film
 from .gw import asperity_pressure_coefficient, gw_log_f
 from .roots import bracketed_root
-from .starvation import density_ratio_at, hss_min, log_starved_film
+from .starvation import INLET, density_ratio_at, hss_min, inlet_delta, log_starved_film, require_delta
 
 X_LO = -60.0  # gamma1 - 1 = 1e-26: the film carries everything to double precision
 X_HI = 80.0   # gamma1 = 5.5e34: the film carries nothing to double precision
@@ -71,10 +71,12 @@ class LoadSharing:
     area: float
     hs_min: float
     hoil: float
-    delta: float
+    delta: float | str
     roughness: Roughness
     report: ConvergenceReport = field(repr=False, default=None)  # type: ignore[assignment]
     film_factor: float = 1.0
+    #: Chevalier's exponent at each point (NaN where the asperities carry all the load)
+    delta_used: np.ndarray = field(repr=False, default=None)  # type: ignore[assignment]
 
     @property
     def asperity_fraction(self) -> np.ndarray:
@@ -133,6 +135,8 @@ class _Problem:
         self.hoil = hoil
         self.delta = delta
         self.contact = contact_at_load(scene, load)
+        # ln(hc) [m] -> ln(Hc_ff) in Venner units (h Rx/a^2) for delta = "inlet"
+        self.log_venner = math.log(scene.Rx / self.contact.a**2)
         self.theta = 1.0 if scene.kind == "line" else scene.theta
         ML = np.array([scene.moes(float(u), load) for u in us])
         self.M, self.L = ML[:, 0], ML[:, 1]
@@ -146,7 +150,7 @@ class _Problem:
         g1 = 1.0 + np.exp(x)
         Hc = np.asarray(fits.central_film_fit(self.kind, self.M[idx], self.L[idx], self.theta, g1), dtype=float)
         log_hc = np.log(Hc) + self.log_scale[idx]
-        log_h = log_starved_film(log_hc, self.hoil, self.rho_bar, self.delta)
+        log_h = log_starved_film(log_hc, self.hoil, self.rho_bar, self.delta_at(log_hc))
         r = self.rough
         hs = np.asarray(separation_from_log_film(log_h - math.log(r.Rq), r.Rq), dtype=float)
         hss = hs - r.dd
@@ -157,6 +161,18 @@ class _Problem:
 
     def residual(self, x: np.ndarray, idx: np.ndarray) -> np.ndarray:
         return self.state(x, idx)["resid"]
+
+    def delta_at(self, log_hc: np.ndarray) -> float | np.ndarray:
+        """Chevalier's exponent at flooded films ``exp(log_hc)`` [m] (a number, or per point)."""
+        return exponent_at(self.kind, self.delta, log_hc, self.log_venner)
+
+
+def exponent_at(kind: str, delta: float | str, log_hc: np.ndarray, log_venner: float) -> float | np.ndarray:
+    """``delta`` itself, or for ``"inlet"`` :func:`~mixed.starvation.inlet_delta` of the flooded
+    film ``exp(log_hc)`` [m] in Venner units (``log_venner = ln(Rx/a^2)``)."""
+    if delta == INLET:
+        return inlet_delta(kind, np.exp(np.asarray(log_hc, dtype=float) + log_venner))
+    return delta
 
 
 def fitted_film(
@@ -173,13 +189,15 @@ def fitted_film(
     ``film_factor``, starved by (6.4) when ``hoil`` is finite (defaults from the scene's supply)."""
     P = scene.load if load is None else load
     hoil = scene.supply.hoil if hoil is None else hoil
-    delta = scene.supply.delta if delta is None else delta
+    delta = scene.supply.delta if delta is None else require_delta("delta", delta)
     M, L = scene.moes(us, P)
     theta = 1.0 if scene.kind == "line" else scene.theta
     Hc = float(fits.central_film_fit(scene.kind, M, L, theta, gamma1))
-    log_hc = math.log(Hc * scene.film_scale(us) * require_film_factor(film_factor))
-    rho_bar = density_ratio_at(contact_at_load(scene, P).pmax)
-    return float(np.exp(log_starved_film(np.array([log_hc]), hoil, rho_bar, delta))[0])
+    log_hc = np.array([math.log(Hc * scene.film_scale(us) * require_film_factor(film_factor))])
+    contact = contact_at_load(scene, P)
+    d = exponent_at(scene.kind, delta, log_hc, math.log(scene.Rx / contact.a**2))
+    rho_bar = density_ratio_at(contact.pmax)
+    return float(np.exp(log_starved_film(log_hc, hoil, rho_bar, d))[0])
 
 
 def load_sharing(
@@ -203,7 +221,9 @@ def load_sharing(
     roughness : overrides ``scene.roughness`` (needs Rq, sigma_s, dd, n, beta).
     hoil : inlet oil film [m] for Chevalier's starvation (6.4); ``inf`` is flooded
         (default ``scene.supply.hoil``).
-    delta : Chevalier exponent (default ``scene.supply.delta``, 3.5).
+    delta : Chevalier exponent (default ``scene.supply.delta``, 3.5), or ``"inlet"``: at each speed
+        from the flooded inlet (:func:`~mixed.starvation.inlet_delta`); ``LoadSharing.delta_used``
+        holds the exponent of every point.
     xtol : absolute tolerance on ``ln(gamma1 - 1)``.
     film_factor : multiplies the fitted film at every speed: ``hc_solved/hc_fit`` of an EHL
         solution of the smooth contact at the operating point calibrates the fit on it
@@ -222,7 +242,7 @@ def load_sharing(
     us_arr = _us_array(us, scene)
     P = require_positive("load", scene.load if load is None else load, "N")
     hoil = scene.supply.hoil if hoil is None else require_range("hoil", hoil, 0.0, math.inf, "m", lo_open=True)
-    delta = scene.supply.delta if delta is None else require_range("delta", delta, 0.5, 20.0, "-")
+    delta = scene.supply.delta if delta is None else require_delta("delta", delta)
     require_range("xtol", xtol, 1e-15, 1e-3, "-")
     prob = _Problem(scene, us_arr, P, rough, hoil, delta, require_film_factor(film_factor))
     n = us_arr.size
@@ -273,6 +293,7 @@ def load_sharing(
     hs = np.empty(n)
     hc_fit = np.full(n, np.nan)
     hfr = np.empty(n)
+    delta_used = np.full(n, np.nan)
     hs_lim = hss_min(P, prob.contact.area, rough.n, rough.beta, rough.sigma_s, scene.E_reduced) + rough.dd
     if solve.size:
         st = prob.state(x[solve], solve)
@@ -286,6 +307,7 @@ def load_sharing(
         hs[solve] = st["hs"]
         hfr[solve] = np.exp(st["log_h"])
         hc_fit[solve] = np.exp(st["log_hc"])
+        delta_used[solve] = prob.delta_at(st["log_hc"])
         final_resid = float(np.max(np.abs(st["resid"])))
     else:
         final_resid = 0.0
@@ -310,5 +332,5 @@ def load_sharing(
         kind=scene.kind, load=P, us=us_arr, Pa=Pa, Ph=Ph, gamma1=g1, gamma2=g2, hfr=hfr, hs=hs,
         hss=hss, Lambda=hfr / rough.Rq, hc_fit=hc_fit, boundary=boundary, pmax=prob.contact.pmax,
         area=prob.contact.area, hs_min=hs_lim, hoil=hoil, delta=delta, roughness=rough, report=report,
-        film_factor=float(film_factor),
+        film_factor=float(film_factor), delta_used=delta_used,
     )

@@ -4,6 +4,14 @@
   ``r = Hoil/(Hc rho_bar(pmax))``; delta between 2 and 5, 3.5 by default. As the speed grows
   ``Hc -> inf`` and ``Hcs -> Hoil/rho_bar(pmax)``: the inlet oil, compressed to the density at
   pmax (isothermal Dowson-Higginson (2.7)), bounds the film.
+* ``delta = "inlet"``: the exponent from the flooded inlet instead of a constant (the thesis's
+  range 2-5, section 6.2.1). Circular contacts: ``delta = 2.37 - 0.95 log10(Hc_ff)`` with
+  ``Hc_ff = hc Rx/a^2`` the flooded central film in Venner units (inlet length ~ Hc_ff^(2/3)),
+  fitted to the package's mass-conserving starved point solver (validation/starved,
+  study_collapse.py: nine contacts, L = 2-20, within 0.1 at equal Hc_ff); in the spirit of
+  Damiens et al. (2004), whose one inlet parameter collapses circular contacts. Line contacts
+  (no side flow): the starved line solver gives ``Hc/Hc_ff = min(r, 1)`` within 0.4 %, which
+  (6.1) approaches at its largest admitted ``delta`` (20).
 * ``hs_min``: the separation at which the asperities alone carry the load (gamma2 = 1). When the
   starved film cannot keep ``hs`` above it the contact is in boundary lubrication (Fig. 6.1).
 * The limiting inlet film ``hoil = varsigma sigma`` below which all load is on the asperities
@@ -25,6 +33,44 @@ from .film import johnson_film
 from .gw import asperity_pressure_coefficient, gw_f_inverse
 
 ArrayLike = float | np.ndarray
+
+#: ``delta = a + b log10(Hc_ff)`` (Venner units) of circular contacts, fitted to the starved point
+#: solver (validation/starved/study_collapse.py, rms 0.066, largest misfit 0.13)
+INLET_DELTA_FIT = (2.37, -0.95)
+#: Hc_ff (Venner) over which that fit was measured; outside it ``delta`` is held at the end values
+INLET_HC_RANGE = (0.063, 1.31)
+#: line contacts: (6.1) at its largest admitted exponent stands for the solver's min(r, 1)
+LINE_INLET_DELTA = 20.0
+#: the admitted constant exponents
+DELTA_RANGE = (0.5, 20.0)
+#: the one named exponent rule besides a number
+INLET = "inlet"
+
+
+def require_delta(name: str, delta: float | str) -> float | str:
+    """A Chevalier exponent: a number in :data:`DELTA_RANGE` or ``"inlet"`` (from the flooded inlet)."""
+    if isinstance(delta, str):
+        if delta != INLET:
+            raise InputError(f"{name} = {delta!r} must be a number in [{DELTA_RANGE[0]}, {DELTA_RANGE[1]}] "
+                             f"or {INLET!r} (the exponent from the flooded inlet length)")
+        return delta
+    return require_range(name, delta, DELTA_RANGE[0], DELTA_RANGE[1], "-")
+
+
+def inlet_delta(kind: str, hc_venner: ArrayLike) -> ArrayLike:
+    """Chevalier's exponent from the flooded inlet: ``kind`` ``"line"`` gives
+    :data:`LINE_INLET_DELTA`; a point contact ``2.37 - 0.95 log10(Hc_ff)``, ``Hc_ff = hc Rx/a^2``
+    (flooded central film in Venner units, ``a`` the Hertzian semi-axis in the rolling
+    direction), with ``Hc_ff`` held inside :data:`INLET_HC_RANGE`, where it was measured."""
+    h = np.asarray(hc_venner, dtype=float)
+    if np.any(~(h > 0)):
+        raise InputError(f"hc_venner = {h[~(h > 0)].ravel()[:3]} must be > 0 (flooded film, h Rx/a^2)")
+    if kind == "line":
+        out = np.full(h.shape, LINE_INLET_DELTA)
+    else:
+        a, b = INLET_DELTA_FIT
+        out = a + b * np.log10(np.clip(h, *INLET_HC_RANGE))
+    return float(out) if out.ndim == 0 else out
 
 
 def chevalier_reduction(r: ArrayLike, delta: float = 3.5) -> ArrayLike:

@@ -205,6 +205,7 @@ _FIELDS: tuple[tuple[str, str, str, str], ...] = (
     ("hss", "sharing.hss", "m", "separation of the mean summit plane (4.28)"),
     ("Lambda", "sharing.Lambda", "-", "hf,r / Rq"),
     ("hc_fit", "sharing.hc_fit", "m", "flooded fitted film at gamma1 times film_factor (before starvation)"),
+    ("delta_used", "sharing.delta_used", "-", "Chevalier's exponent of (6.1) at each point (NaN: boundary)"),
     ("AH", "friction.AH", "m^2", "film area (4.36)/(4.37)"),
     ("pavehl", "friction.pavehl", "Pa", "mean film pressure Ph/AH (4.35)"),
     ("tau_film", "friction.tau_film", "Pa", "mean film shear stress"),

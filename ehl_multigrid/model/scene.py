@@ -24,7 +24,7 @@ be a string with units, "7.94 mm", "1.5 GPa", "68 cSt", "70 degC", "1500 rpm")::
                   [m/s] ((u1 + u2)/2); slip [-] (S = 2(u1-u2)/us); T_oil, T_surface1, T_surface2 [degC]
     [ranges]      us, slip, load: a list, or {min, max, n, log}
     [roughness]   Rq, Ra, sigma_s, dd [m]; n [1/m^2]; beta [m]; fc [-]; hardness [Pa]
-    [supply]      hoil [m] (inf = flooded); hoil_over_sigma (list); delta [-]; or instead of hoil
+    [supply]      hoil [m] (inf = flooded); hoil_over_sigma (list); delta [-] or "inlet"; or instead of hoil
                   hoil_profile = {y = [...], hoil = [...]} [m]: a layer across the track
                   (|y| from its centre; the starved point solver; hoil = its centre value)
     [feature]     a surface feature for 'ehl transient': kind = "waviness" | "bump" | "dent";
@@ -153,7 +153,8 @@ class Supply:
 
     hoil: float = math.inf
     hoil_over_sigma: tuple[float, ...] = ()
-    delta: float = 3.5
+    #: Chevalier's exponent of (6.1), or "inlet": from the flooded inlet at each speed
+    delta: float | str = 3.5
     #: Layer across the track: ``(y [m], hoil [m])`` points, piecewise linear in ``|y|`` (the
     #: distance from the track centre), constant beyond the last point; ``hoil`` is then its
     #: value at the centre. Empty: a uniform layer.
@@ -389,6 +390,13 @@ class Scene:
         d["operating"].update(changes)
         return Scene.from_dict(d, origin=f"{self.name} (modified)")
 
+    def with_supply(self, **changes: Any) -> Scene:
+        """A copy with another oil supply (``hoil``, ``hoil_over_sigma``, ``delta``); re-validated."""
+        d = self.to_dict()
+        reject_unknown_keys("supply", changes, {"hoil", "hoil_over_sigma", "delta"})
+        d.setdefault("supply", {}).update(changes)
+        return Scene.from_dict(d, origin=f"{self.name} (modified)")
+
 
 def _isnan(v: Any) -> bool:
     return isinstance(v, float) and math.isnan(v)
@@ -599,7 +607,13 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
     if not isinstance(hos, list):
         raise InputError(f"supply.hoil_over_sigma = {hos!r} must be a list")
     hos_t = tuple(require_range(f"supply.hoil_over_sigma[{i}]", v, 0.0, math.inf, "-", lo_open=True) for i, v in enumerate(hos))
-    delta = require_range("supply.delta", sup.get("delta", 3.5), 0.5, 20.0, "-")
+    delta = sup.get("delta", 3.5)
+    if isinstance(delta, str):  # the exponent from the flooded inlet (the mixed layer computes it)
+        if delta != "inlet":
+            raise InputError(f"supply.delta = {delta!r} must be a number in [0.5, 20] or 'inlet' "
+                             "(Chevalier's exponent from the flooded inlet length)")
+    else:
+        delta = require_range("supply.delta", delta, 0.5, 20.0, "-")
     if hos_t and rough is None:
         raise InputError("supply.hoil_over_sigma needs a [roughness] table (sigma = Rq)")
 

@@ -39,8 +39,8 @@ RATIOS = [4.0, 2.0, 1.5, 1.2, 1.0, 0.8, 0.6, 0.4, 0.25, 0.1, 0.03]
 DELTA_MIXED = 3.5
 
 
-def run_case(M: float, L: float, points: int, ratios: list[float]) -> dict:
-    pb = problem_from_moes(M, L)
+def run_case(M: float, L: float, points: int, ratios: list[float], theta: float = 1.0) -> dict:
+    pb = problem_from_moes(M, L, theta)
     kw = dict(points=points, half=True, raise_on_failure=False, tol=STARVED_TOL, max_cycles=40)
     t0 = time.perf_counter()
     ff1 = solve_fas(pb, wedge_order=1, **kw)
@@ -51,7 +51,7 @@ def run_case(M: float, L: float, points: int, ratios: list[float]) -> dict:
     i0 = int(np.argmin(np.abs(ff1.X)))
     from ehl_multigrid.multigrid.rheology import density  # noqa: PLC0415 (study only)
     rho_c = float(density(float(ff1.P[0, i0]), ff1.problem.rheology())[0])
-    out = {"M": M, "L": L, "points": points, "Hc_ff": Hff, "Hm_ff": Hmff, "rho_c_ff": rho_c,
+    out = {"M": M, "L": L, "theta": theta, "points": points, "Hc_ff": Hff, "Hm_ff": Hmff, "rho_c_ff": rho_c,
            "Hc_ff_order2": ff2.scalars["Hc_venner"], "Hm_ff_order2": ff2.scalars["Hm_venner"],
            "flooded_status": ff1.status_name, "flooded_wall_s": t_ff, "runs": []}
     # the starved solves with the solver's own tolerance rules (STARVED_TOL, MASS_TOL, STARVED_MAX_CYCLES)
@@ -76,7 +76,7 @@ def run_case(M: float, L: float, points: int, ratios: list[float]) -> dict:
                                          else math.nan)  # a failed solve carries no flux
             rec["chevalier_3p5"] = float(chevalier_reduction(rec["r"], DELTA_MIXED))
         out["runs"].append(rec)
-        print(f"M {M:g} L {L:g} n {points} Hoil/Hcff {ratio:g}: {s.status_name} Hc/Hcff "
+        print(f"M {M:g} L {L:g} theta {theta:g} n {points} Hoil/Hcff {ratio:g}: {s.status_name} Hc/Hcff "
               f"{Hc / Hff:.5f} mb {e['mass_balance_error']:.2e} cycles {rec['cycles']} "
               f"{wall:.1f} s", flush=True)
     return out
