@@ -37,7 +37,14 @@ from ehl_multigrid.model.scene import Roughness, Scene
 from .film import johnson_film, separation_from_log_film
 from .gw import asperity_pressure_coefficient, gw_log_f
 from .roots import bracketed_root
-from .starvation import INLET, density_ratio_at, hss_min, inlet_delta, log_starved_film, require_delta
+from .starvation import (
+    INLET,
+    density_ratio_at,
+    hss_min,
+    inlet_delta,
+    log_starved_film,
+    require_delta,
+)
 
 X_LO = -60.0  # gamma1 - 1 = 1e-26: the film carries everything to double precision
 X_HI = 80.0   # gamma1 = 5.5e34: the film carries nothing to double precision
