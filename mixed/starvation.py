@@ -8,8 +8,10 @@
   range 2-5, section 6.2.1). Circular contacts: ``delta = 2.37 - 0.95 log10(Hc_ff)`` with
   ``Hc_ff = hc Rx/a^2`` the flooded central film in Venner units (inlet length ~ Hc_ff^(2/3)),
   fitted to the package's mass-conserving starved point solver (validation/starved,
-  study_collapse.py: nine contacts, L = 2-20, within 0.1 at equal Hc_ff); in the spirit of
-  Damiens et al. (2004), whose one inlet parameter collapses circular contacts. Line contacts
+  study_collapse.py: nine contacts, L = 2-20, within 0.1 at equal Hc_ff), held at its ends
+  outside Hc_ff = 0.063-0.447; in the spirit of Damiens et al. (2004), whose one inlet
+  parameter collapses circular contacts. Elliptic contacts are refused: their exponent depends
+  on the ellipticity too (study_collapse_range.py). Line contacts
   (no side flow): the starved line solver gives ``Hc/Hc_ff = min(r, 1)`` within 0.4 %, which
   (6.1) approaches at its largest admitted ``delta`` (20).
 * ``hs_min``: the separation at which the asperities alone carry the load (gamma2 = 1). When the
@@ -38,7 +40,9 @@ ArrayLike = float | np.ndarray
 #: solver (validation/starved/study_collapse.py, rms 0.066, largest misfit 0.13)
 INLET_DELTA_FIT = (2.37, -0.95)
 #: Hc_ff (Venner) over which that fit was measured; outside it ``delta`` is held at the end values
-INLET_HC_RANGE = (0.063, 1.31)
+#: (a thicker film, (M, L) = (5, 10) with Hc_ff = 1.09, gave 2.82 where the line says 2.34:
+#: validation/starved/study_collapse_range.py)
+INLET_HC_RANGE = (0.063, 0.447)
 #: line contacts: (6.1) at its largest admitted exponent stands for the solver's min(r, 1)
 LINE_INLET_DELTA = 20.0
 #: the admitted constant exponents
@@ -59,9 +63,15 @@ def require_delta(name: str, delta: float | str) -> float | str:
 
 def inlet_delta(kind: str, hc_venner: ArrayLike) -> ArrayLike:
     """Chevalier's exponent from the flooded inlet: ``kind`` ``"line"`` gives
-    :data:`LINE_INLET_DELTA`; a point contact ``2.37 - 0.95 log10(Hc_ff)``, ``Hc_ff = hc Rx/a^2``
+    :data:`LINE_INLET_DELTA`; ``"elliptic"`` is refused (not measured); a circular contact ``2.37 - 0.95 log10(Hc_ff)``, ``Hc_ff = hc Rx/a^2``
     (flooded central film in Venner units, ``a`` the Hertzian semi-axis in the rolling
     direction), with ``Hc_ff`` held inside :data:`INLET_HC_RANGE`, where it was measured."""
+    if kind == "elliptic":
+        raise InputError(
+            "supply.delta = 'inlet' is measured for line and circular contacts only: at theta = 0.5 and 2 "
+            "the starved point solver's exponent lies 0.4-0.8 from the circular rule (the side flow depends "
+            "on the ellipticity; validation/starved/study_collapse_range.py); give supply.delta a number "
+            "(0.5-20) for this elliptic contact")
     h = np.asarray(hc_venner, dtype=float)
     if np.any(~(h > 0)):
         raise InputError(f"hc_venner = {h[~(h > 0)].ravel()[:3]} must be > 0 (flooded film, h Rx/a^2)")

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from ehl_multigrid.model.errors import InputError
-from ehl_multigrid.model.scene import load_scene
+from ehl_multigrid.model.scene import Scene, load_scene
 from ehl_multigrid.multigrid.rheology import density
 from ehl_multigrid.point.problem import problem_from_moes
 from ehl_multigrid.point.solve import solve_fas
@@ -82,3 +82,11 @@ def test_delta_input_is_checked():
         load_sharing(sc, [1.0], hoil=sc.roughness.Rq, delta="auto")
     assert sc.with_supply(delta="inlet").supply.delta == "inlet"
     assert math.isinf(sc.with_supply(delta="inlet").supply.hoil)
+
+
+def test_inlet_exponent_is_refused_for_elliptic_contacts():
+    sc = load_scene("bearing_6205_inner_race").to_dict()
+    sc["roughness"] = load_scene("series_C_disc3_1.93GPa").to_dict()["roughness"]
+    ell = Scene.from_dict(sc).with_supply(delta="inlet")
+    with pytest.raises(InputError, match="elliptic"):
+        load_sharing(ell, [1.0], hoil=ell.roughness.Rq)
