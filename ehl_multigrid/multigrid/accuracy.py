@@ -394,7 +394,10 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     that box is doubled. The part of the budget that dominates is refined: one more FMG grid
     (``points`` doubled, up to ``max_points``), a box twice as wide at the same mesh size
     (twice the points; up to ``box_limit``) or tolerances ten times tighter. With ``refine=False`` (explicit grid or box) the first
-    result is only judged. Every solve is recorded in ``result.extra['refinements']``.
+    result is only judged. Every solve is recorded in ``result.extra['refinements']``; the wall
+    time of the whole sequence (solves, repair solves and domain probes) in
+    ``result.extra['wall_total_s']`` and the scalar ``wall_total_s`` (``wall_s`` stays the
+    returned solve's own).
 
     When the target is not met the returned result is the most accurate one of the sequence
     (smallest estimated error among the solves whose iteration converged), so a finer solve
@@ -423,7 +426,7 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
             steps.append(Refinement(points, box, tol_factor, math.nan, math.nan, res.wall_s))
             res.extra["refinements"] = [vars(s) for s in steps]
             if best is None:
-                return res
+                return _stamp(res, t0)
             why = (f"the refinement to {points} points (box x{box:g}) did not converge "
                    f"({res.status_name}: {res.message.split(';')[0]})")
             break
@@ -454,7 +457,7 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
         steps.append(Refinement(points, box, tol_factor, est.Hc, est.Hm, res.wall_s))
         res.extra["refinements"] = [vars(s) for s in steps]
         if res.success or not refine or accuracy is None:
-            return res
+            return _stamp(res, t0)
         worst = max(est.Hc, est.Hm)
         if best is None or not (max(best.error.Hc, best.error.Hm) <= worst):  # NaN counts as worst
             best = res
@@ -474,4 +477,15 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
         n_b = best.X.shape[0] if getattr(best, "X", None) is not None else "?"
         best.message += f"; returned the most accurate solve of the sequence ({n_b} points)"
     best.message += f"; not refined further: {why}"
-    return best
+    return _stamp(best, t0)
+
+
+def _stamp(res: Any, t0: float) -> Any:
+    """Record the wall time of the whole accuracy sequence on the returned result."""
+    import time
+
+    total = time.perf_counter() - t0
+    res.extra["wall_total_s"] = total
+    if isinstance(getattr(res, "scalars", None), dict):
+        res.scalars["wall_total_s"] = total
+    return res

@@ -114,6 +114,8 @@ def build_result(sol, scene=None, extra_scalars: dict | None = None) -> Result:
     res.set_scalar("points", int(len(sol.X)))
     res.set_scalar("cycles", int(sol.report.iterations))
     res.set_scalar("wall_s", float(sol.report.wall_s), "s")
+    if "wall_total_s" in sol.extra:  # the whole accuracy sequence (solves and probes)
+        res.set_scalar("wall_total_s", float(sol.extra["wall_total_s"]), "s")
     res.set_scalar("converged", bool(sol.report.converged))
     res.set_scalar("H00", float(sol.H00))
     res.set_scalar("M", pb.M)
@@ -142,7 +144,7 @@ def summary_payload(res: Result) -> dict:
     keys = ["Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error", "levels",
             "points", "cycles", "wall_s", "converged", "Hc_dpdx0", "X_dpdx0", "X_Hm", "Y_Hm",
             "Hm_centerline", "X_spike", "P_max", "H00", "M", "L", "theta", "final_residual",
-            "work_units", "message", "status", "Hc_error", "Hm_error"]
+            "work_units", "message", "status", "Hc_error", "Hm_error", "wall_total_s"]
     out = {k: res.scalars.get(k) for k in keys}
     out["actions"] = res.meta.get("actions", [])
     if "error_budget" in res.meta:

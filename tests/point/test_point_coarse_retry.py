@@ -1,0 +1,35 @@
+"""A point solve whose FMG start diverges on the automatic coarse grid is solved again from a
+coarser one (``RETRY_COARSER_START``): the 6205 inner-race contact (M 3620, b/a 9.4)
+converges from 64 coarse intervals and diverges from 128, the count the coarse-grid rule gives
+on a box twice as long (the domain probe's wide solve)."""
+
+import pytest
+
+import ehl_multigrid.point.fas as fas
+from ehl_multigrid.model.scene import load_scene
+from ehl_multigrid.point.problem import problem_from_scene
+from ehl_multigrid.point.solve import solve_fas
+
+
+@pytest.fixture(scope="module")
+def bearing():
+    return problem_from_scene(load_scene("bearing_6205_inner_race"), "roelands", "dowson-higginson")
+
+
+def test_diverged_fmg_start_is_solved_again_from_a_coarser_grid(bearing, monkeypatch):
+    rule = fas.coarse_intervals
+    # the rule as it falls on a box twice as long: twice the coarse intervals
+    monkeypatch.setattr(fas, "coarse_intervals", lambda *a, **k: min(2 * rule(*a, **k), a[2] - 1))
+    sol = solve_fas(bearing, points=513, half=True, tol_load=1e-4, raise_on_failure=False)
+    assert sol.status_name == "converged"
+    assert any("64 coarse intervals instead of 128 (RETRY_COARSER_START)" in a for a in sol.actions)
+    assert sol.levels == 4
+    # the same discrete problem as a solve started from 64 intervals directly
+    ref = solve_fas(bearing, points=513, half=True, tol_load=1e-4, n_coarse=64)
+    assert sol.scalars["Hc_venner"] == pytest.approx(ref.scalars["Hc_venner"], rel=2e-4)
+
+
+def test_explicit_coarse_grid_is_not_changed(bearing):
+    sol = solve_fas(bearing, points=513, half=True, tol_load=1e-4, n_coarse=128, raise_on_failure=False)
+    assert sol.status_name == "diverged"
+    assert not any("RETRY_COARSER_START" in a for a in sol.actions)
