@@ -90,3 +90,11 @@ def test_inlet_exponent_is_refused_for_elliptic_contacts():
     ell = Scene.from_dict(sc).with_supply(delta="inlet")
     with pytest.raises(InputError, match="elliptic"):
         load_sharing(ell, [1.0], hoil=ell.roughness.Rq)
+
+
+def test_flooded_elliptic_contact_needs_no_exponent():
+    d = load_scene("bearing_6205_inner_race").to_dict()
+    d["roughness"] = load_scene("series_C_disc3_1.93GPa").to_dict()["roughness"]
+    ell = Scene.from_dict(d).with_supply(delta="inlet")
+    ls = load_sharing(ell, [1.0, 10.0])  # flooded: the exponent is never used
+    assert np.all(np.isnan(ls.delta_used))

@@ -1,0 +1,75 @@
+"""Run a map of accuracy_map.py with several case processes at once (resumable).
+
+    python validation/extremes/map_parallel.py --map extremes --contact point --accuracy 0.02 \
+        --max-points 2049 --check-max 2049 --tag session8 --workers 2
+
+Each case runs in its own process with one numba thread (as accuracy_map.py's serial loop);
+records are written as they finish, keyed like accuracy_map.py's, so either script resumes
+the other's file.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import threading
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from accuracy_map import OUT, cases, classify, fit_cases  # noqa: E402
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--map", choices=("extremes", "fits"), default="extremes")
+    ap.add_argument("--contact", choices=("line", "point"))
+    ap.add_argument("--accuracy", type=float, default=0.02)
+    ap.add_argument("--max-points", type=int, default=2049)
+    ap.add_argument("--check-max", type=int, default=2049)
+    ap.add_argument("--timeout", type=float, default=900.0)
+    ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--tag", required=True)
+    a = ap.parse_args()
+    stem = "accuracy_map" if a.map == "extremes" else "fit_map"
+    path = OUT / f"{stem}_{a.accuracy:g}_{a.tag}.json"
+    todo = cases(False) if a.map == "extremes" else fit_cases(False)
+    if a.contact:
+        todo = [c for c in todo if c["contact"] == a.contact]
+    done = json.loads(path.read_text()) if path.is_file() else {}
+    lock = threading.Lock()
+    env = dict(os.environ, NUMBA_NUM_THREADS="1")
+
+    def run(case: dict) -> None:
+        key = json.dumps(case, sort_keys=True)
+        cmd = [sys.executable, str(Path(__file__).with_name("accuracy_map.py")), "--accuracy", str(a.accuracy),
+               "--check-max", str(a.check_max), "--max-points", str(a.max_points), "--case", key]
+        try:
+            p = subprocess.run(cmd, capture_output=True, text=True, timeout=a.timeout, env=env)
+            rec = json.loads(p.stdout.strip().splitlines()[-1]) if p.returncode == 0 else {
+                "case": case, "accuracy": a.accuracy,
+                "result": {"status": "crash", "message": p.stderr.strip().splitlines()[-1:]}}
+        except subprocess.TimeoutExpired:
+            rec = {"case": case, "accuracy": a.accuracy, "result": {"status": "timeout", "message": f"over {a.timeout:g} s"}}
+        rec["class"] = classify(rec)
+        with lock:
+            done[key] = rec
+            tmp = path.with_suffix(".tmp")
+            tmp.write_text(json.dumps(done, indent=1))
+            tmp.replace(path)
+            print(f"{len(done)}/{len(todo)} {case} {rec['result'].get('status')} -> {rec['class']}", flush=True)
+
+    rest = [c for c in todo if json.dumps(c, sort_keys=True) not in done]
+    with ThreadPoolExecutor(a.workers) as ex:
+        list(ex.map(run, rest))
+    counts: dict[str, int] = {}
+    for rec in done.values():
+        counts[rec["class"]] = counts.get(rec["class"], 0) + 1
+    print(json.dumps(counts))
+
+
+if __name__ == "__main__":
+    main()
