@@ -247,27 +247,43 @@ def main() -> None:
         key = json.dumps(case, sort_keys=True)
         if key in done:
             continue
-        try:
-            extra = [] if a.max_points is None else ["--max-points", str(a.max_points)]
-            p = subprocess.run([sys.executable, __file__, "--accuracy", str(a.accuracy),
-                                "--check-max", str(a.check_max), *extra, "--case", key],
-                               capture_output=True, text=True, timeout=a.timeout)
-            rec = json.loads(p.stdout.strip().splitlines()[-1]) if p.returncode == 0 else {
-                "case": case, "accuracy": a.accuracy,
-                "result": {"status": "crash", "message": p.stderr.strip().splitlines()[-1:]}}
-        except subprocess.TimeoutExpired:
-            rec = {"case": case, "accuracy": a.accuracy,
-                   "result": {"status": "timeout", "message": f"over {a.timeout:g} s"}}
-        rec["class"] = classify(rec)
-        done[key] = rec
-        tmp = path.with_suffix(".tmp")
-        tmp.write_text(json.dumps(done, indent=1))
-        tmp.replace(path)
+        done[key] = case_in_process(case, a.accuracy, a.check_max, a.max_points, a.timeout)
+        save_records(path, done)
+    print(json.dumps(count_classes(done)))
+
+
+def case_in_process(case: dict, accuracy: float, check_max: int, max_points: int | None, timeout: float,
+                    env: dict | None = None) -> dict:
+    """One case solved and checked in its own process (``--case``), classified; a crash or a
+    timeout is a record too."""
+    key = json.dumps(case, sort_keys=True)
+    extra = [] if max_points is None else ["--max-points", str(max_points)]
+    try:
+        p = subprocess.run([sys.executable, __file__, "--accuracy", str(accuracy),
+                            "--check-max", str(check_max), *extra, "--case", key],
+                           capture_output=True, text=True, timeout=timeout, env=env)
+        rec = json.loads(p.stdout.strip().splitlines()[-1]) if p.returncode == 0 else {
+            "case": case, "accuracy": accuracy,
+            "result": {"status": "crash", "message": p.stderr.strip().splitlines()[-1:]}}
+    except subprocess.TimeoutExpired:
+        rec = {"case": case, "accuracy": accuracy,
+               "result": {"status": "timeout", "message": f"over {timeout:g} s"}}
+    rec["class"] = classify(rec)
+    return rec
+
+
+def save_records(path: Path, done: dict) -> None:
+    """Write the map's records whole (temporary file, then rename)."""
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text(json.dumps(done, indent=1))
+    tmp.replace(path)
+
+
+def count_classes(done: dict) -> dict[str, int]:
     counts: dict[str, int] = {}
     for rec in done.values():
         counts[rec["class"]] = counts.get(rec["class"], 0) + 1
-    print(json.dumps(counts))
-
+    return counts
 
 if __name__ == "__main__":
     main()

@@ -13,14 +13,13 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import subprocess
 import sys
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from accuracy_map import OUT, cases, classify, fit_cases  # noqa: E402
+from accuracy_map import OUT, case_in_process, cases, count_classes, fit_cases, save_records  # noqa: E402
 
 
 def main() -> None:
@@ -44,31 +43,16 @@ def main() -> None:
     env = dict(os.environ, NUMBA_NUM_THREADS="1")
 
     def run(case: dict) -> None:
-        key = json.dumps(case, sort_keys=True)
-        cmd = [sys.executable, str(Path(__file__).with_name("accuracy_map.py")), "--accuracy", str(a.accuracy),
-               "--check-max", str(a.check_max), "--max-points", str(a.max_points), "--case", key]
-        try:
-            p = subprocess.run(cmd, capture_output=True, text=True, timeout=a.timeout, env=env)
-            rec = json.loads(p.stdout.strip().splitlines()[-1]) if p.returncode == 0 else {
-                "case": case, "accuracy": a.accuracy,
-                "result": {"status": "crash", "message": p.stderr.strip().splitlines()[-1:]}}
-        except subprocess.TimeoutExpired:
-            rec = {"case": case, "accuracy": a.accuracy, "result": {"status": "timeout", "message": f"over {a.timeout:g} s"}}
-        rec["class"] = classify(rec)
+        rec = case_in_process(case, a.accuracy, a.check_max, a.max_points, a.timeout, env)
         with lock:
-            done[key] = rec
-            tmp = path.with_suffix(".tmp")
-            tmp.write_text(json.dumps(done, indent=1))
-            tmp.replace(path)
+            done[json.dumps(case, sort_keys=True)] = rec
+            save_records(path, done)
             print(f"{len(done)}/{len(todo)} {case} {rec['result'].get('status')} -> {rec['class']}", flush=True)
 
     rest = [c for c in todo if json.dumps(c, sort_keys=True) not in done]
     with ThreadPoolExecutor(a.workers) as ex:
         list(ex.map(run, rest))
-    counts: dict[str, int] = {}
-    for rec in done.values():
-        counts[rec["class"]] = counts.get(rec["class"], 0) + 1
-    print(json.dumps(counts))
+    print(json.dumps(count_classes(done)))
 
 
 if __name__ == "__main__":
