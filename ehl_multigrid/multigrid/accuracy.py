@@ -26,6 +26,7 @@ boxes and tighter tolerances by validation/accuracy.
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -404,8 +405,6 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     that fails to converge never replaces a converged coarser one; its message says why the
     refinement stopped.
     """
-    import time
-
     t0 = time.perf_counter()
     box, tol_factor = 1.0, 1.0
     steps: list[Refinement] = []
@@ -482,8 +481,6 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
 
 def _stamp(res: Any, t0: float) -> Any:
     """Record the wall time of the whole accuracy sequence on the returned result."""
-    import time
-
     total = time.perf_counter() - t0
     res.extra["wall_total_s"] = total
     if isinstance(getattr(res, "scalars", None), dict):
