@@ -247,15 +247,29 @@ def coarse_intervals(M: float, length: float, points: int, scale: float = 1.0,
     return min(n, points - 1)
 
 
-def min_points(M: float, b_over_a: float = 1.0) -> int:
+#: Contacts narrower than this (b/a; theta >~ 6) at M >= 1000 need more cells across b than
+#: min_points' b/a scaling gives: their side constriction at |Y| = b is thinner relative to b
+#: than a circular contact's outlet constriction is to a. Measured at theta = 10 (b/a = 0.22),
+#: coarse grid 256 intervals: (1000, 10) Hc 1.830 / 1.848, Hm 0.0037 / 0.073 at 2049 / 4097
+#: points (Hm 20x apart); (1000, 0) film not positive at 2049, converged at 4097; (5000, 10)
+#: film not positive and (5000, 0) diverged at 4097 points.
+NARROW_BELOW = 0.3
+
+
+def min_points(M: float, b_over_a: float = 1.0, cap: int | None = 2049) -> int:
     """Smallest finest grid (points along X) at which the FAS solver is expected to converge
     with the default domain: 129 below M = 200, 257 below M = 1000, 513 from M = 1000 on, times
     ``2^ceil(log2(0.75 a/b))`` for contacts narrower than long (b/a < 0.75, theta > ~2), so the
-    semi-axis b keeps about as many cells as a circular contact has across a (capped at 2049).
+    semi-axis b keeps about as many cells as a circular contact has across a; contacts with
+    b/a < :data:`NARROW_BELOW` need twice that from M = 1000 and four times from M = 3000 (a
+    lower bound there: 4097 points fail at (5000, theta 10), 8193 were not tried). Capped at
+    ``cap`` (None: uncapped, the grid a failure message asks for).
     Measured (validation/point/REPORT.md, extremes): (1000, 10) converges at 257 but (1000, 0)
     and (1000, 25) need 513; (5000, 10) converges at 513 (2.3 s) and 1025 (6.6 s); theta = 10
     (b/a = 0.22) at M = 10 stalls at 257 and converges at 513."""
     n = 129 if M < 200 else (257 if M < 1000 else 513)
     if b_over_a < 0.75:
         n = (n - 1) * 2 ** math.ceil(math.log2(0.75 / b_over_a)) + 1
-    return min(n, 2049)
+    if b_over_a < NARROW_BELOW and M >= 1000:
+        n = (n - 1) * (2 if M < 3000 else 4) + 1
+    return n if cap is None else min(n, cap)

@@ -23,6 +23,7 @@ from ..multigrid.threads import preserved_threads
 from .fas import ALTERNATE_BELOW, HINT, point_solver
 from .postprocess import build_result
 from .problem import (
+    NARROW_BELOW,
     PointProblem,
     default_domain,
     domain_scale,
@@ -82,6 +83,15 @@ RETRY_FULL_REFRESH = True
 #: start on the finer coarsest grid that fails.
 RETRY_COARSER_START = True
 
+#: A contact narrower than long (b/a < ALTERNATE_BELOW) whose solve ends ``diverged`` is first
+#: solved again from four times as many coarse intervals (two levels fewer), when the coarse
+#: grid was the automatic one: its coarse mesh follows a, which leaves the narrow axis b two
+#: or three cells on the coarsest grid, where the film goes negative and FMG starts from
+#: nonsense. Measured at theta = 10 (b/a = 0.22), 2049 points: (1000, 25) diverges from 64
+#: and 128 coarse intervals and converges from 256 (25 s); (1000, 0) diverges from 64 and
+#: ends "film not positive" (the grid is too coarse, said so) from 128 and 256.
+RETRY_FINER_START = True
+
 
 def _again(problem: PointProblem, opt: PointOptions, solver: Any, sol: EHLResult,
            callback: Callable[[dict[str, Any]], None] | None, how: str) -> tuple[Any, EHLResult]:
@@ -109,8 +119,10 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     opt = PointOptions.build(options, **kw)
     # adapt=False asks for the iteration exactly as configured: no retry either
     retry = opt.alternating is None and opt.adapt and problem.b_over_a >= ALTERNATE_BELOW
-    coarser = RETRY_COARSER_START and opt.adapt and opt.n_coarse is None and opt.levels is None
-    first = replace(opt, raise_on_failure=False) if (retry or coarser) else opt
+    auto_coarse = opt.adapt and opt.n_coarse is None and opt.levels is None
+    coarser = RETRY_COARSER_START and auto_coarse
+    finer = RETRY_FINER_START and auto_coarse and problem.b_over_a < ALTERNATE_BELOW
+    first = replace(opt, raise_on_failure=False) if (retry or coarser or finer) else opt
     with preserved_threads():
         solver = point_solver(problem, first)
         n_coarse = solver.hierarchy.levels[0].nx - 1
@@ -125,11 +137,15 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
             solver, sol = _again(problem, replace(opt, local_film_update=False, raise_on_failure=False),
                                  solver, sol, callback, "the film refreshed by whole deformations "
                                  "between the X and Y halves (RETRY_FULL_REFRESH)")
+        if finer and sol.status_name == "diverged" and 4 * n_coarse <= (opt.points - 1) // 4:
+            solver, sol = _again(problem, replace(opt, n_coarse=4 * n_coarse, raise_on_failure=False), solver,
+                                 sol, callback, f"{4 * n_coarse} coarse intervals instead of {n_coarse} "
+                                 "(RETRY_FINER_START)")
         if coarser and sol.status_name == "diverged" and n_coarse >= 32:
             solver, sol = _again(problem, replace(opt, n_coarse=n_coarse // 2, raise_on_failure=False), solver,
                                  sol, callback, f"{n_coarse // 2} coarse intervals instead of {n_coarse} "
                                  "(RETRY_COARSER_START)")
-        if (retry or coarser) and not sol.success and opt.raise_on_failure:
+        if (retry or coarser or finer) and not sol.success and opt.raise_on_failure:
             raise ConvergenceError(f"point solver: {sol.message}", sol.report, solver.hint)
     hz = solver.hierarchy
     hz.solver = None  # break the solver <-> hierarchy cycle: the grids are freed with the solver
@@ -142,9 +158,13 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
                      final_h00_gain=sol.settings.h00_gain, final_cycle=sol.settings.cycle,
                      final_switch=sol.settings.switch)
     if not sol.success:
-        if opt.points < min_points(problem.M, problem.b_over_a):
+        need = min_points(problem.M, problem.b_over_a, cap=None)
+        if opt.points < need:
             sol.message += (f"; at M = {problem.M:.4g} a grid of {opt.points} points is too coarse "
-                            f"for this solver: use points >= {min_points(problem.M, problem.b_over_a)}")
+                            f"for this solver: use points >= {need}")
+            if problem.b_over_a < NARROW_BELOW and problem.M >= 1000:
+                sol.message += (f" (a contact this narrow, b/a = {problem.b_over_a:.3g}, thins its film "
+                                "at the sides |Y| = b into a constriction that needs many cells across b)")
         if sol.load_error_history.size and sol.load_error_history[-1] > 1e-2:
             sol.message += ("; the load cannot be balanced: at low M the inlet of this domain is too "
                             "short (extend xmin/ymax), at high M the grid is too coarse (more points)")
@@ -306,6 +326,12 @@ def solve_point(
                                 refine=accuracy is not None and not (explicit or fixed_box))
         if res.status_name == "inaccurate" and domain_scale(pb) > 1.0:
             res.message += "; " + thick_film_reason(pb, res, accuracy)
+        need = min_points(pb.M, pb.b_over_a, cap=None)
+        if res.status_name == "inaccurate" and need > max(max_points, int(res.options.points)):
+            res.message += (f"; at M = {pb.M:.4g} and b/a = {pb.b_over_a:.3g} this solver needs at least "
+                            f"{need} points (max_points {max_points})")
+            if pb.b_over_a < NARROW_BELOW and pb.M >= 1000:
+                res.message += ": the film's side constriction at |Y| = b is not resolved below that"
         if not res.success and opts.raise_on_failure:
             raise ConvergenceError(f"point solver: {res.message}", res.report, HINT)
         return res
