@@ -33,6 +33,7 @@ def main() -> None:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--tag", required=True)
     ap.add_argument("--m-min", type=float, default=None, help="only the cases with M >= this")
+    ap.add_argument("--theta", type=float, default=None, help="only the cases of this ellipticity")
     a = ap.parse_args()
     stem = "accuracy_map" if a.map == "extremes" else "fit_map"
     path = OUT / f"{stem}_{a.accuracy:g}_{a.tag}.json"
@@ -41,6 +42,8 @@ def main() -> None:
         todo = [c for c in todo if c["contact"] == a.contact]
     if a.m_min is not None:
         todo = [c for c in todo if c["M"] >= a.m_min]
+    if a.theta is not None:
+        todo = [c for c in todo if c["theta"] == a.theta]
     done = json.loads(path.read_text()) if path.is_file() else {}
     lock = threading.Lock()
     env = dict(os.environ, NUMBA_NUM_THREADS="1")
