@@ -114,7 +114,8 @@ def solve(case: dict, accuracy: float, points: int | None = None, max_points: in
             "Hm": s.scalars.get("Hm"), "Hc_error": s.scalars.get("Hc_error"),
             "Hm_error": s.scalars.get("Hm_error"), "points": int(s.X.shape[0]),
             "error_budget": s.extra.get("error_budget"),
-            "refinements": s.extra.get("refinements"), "wall_s": time.perf_counter() - t0}
+            "refinements": s.extra.get("refinements"), "actions": [str(a) for a in s.actions][-10:],
+            "wall_s": time.perf_counter() - t0}
 
 
 def grid_and_iteration(r: dict, film: str) -> float:
