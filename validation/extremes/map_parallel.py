@@ -27,7 +27,7 @@ def main() -> None:
     ap.add_argument("--map", choices=("extremes", "fits"), default="extremes")
     ap.add_argument("--contact", choices=("line", "point"))
     ap.add_argument("--accuracy", type=float, default=0.02)
-    ap.add_argument("--max-points", type=int, default=2049)
+    ap.add_argument("--max-points", type=int, default=None, help="grid budget (default: the solver's own, 2049 point / 32769 line)")
     ap.add_argument("--check-max", type=int, default=2049)
     ap.add_argument("--timeout", type=float, default=900.0)
     ap.add_argument("--workers", type=int, default=2)
