@@ -3,7 +3,8 @@ points, check grid 4097): the same independent check as ``accuracy_map.check_cas
 finer on the result's box, judged at a quarter of the target), for the cases selected.
 
 Usage: ``python validation/extremes/check_finer.py MAP.json '[{"M": 20.0, "L": 0.0, "theta": 4.0}]' OUT.json``
-(each selector's keys must match a record's case). Writes the updated records to OUT.json.
+(each selector's keys must match a record's case). Writes the updated records to OUT.json after
+every check; a record already in OUT.json is not checked again (resumable).
 """
 
 from __future__ import annotations
@@ -19,10 +20,10 @@ from accuracy_map import check_case, classify  # noqa: E402
 def main() -> None:
     path, selectors, out_path = sys.argv[1], json.loads(sys.argv[2]), sys.argv[3]
     records = json.loads(Path(path).read_text())
-    out = {}
+    out = json.loads(Path(out_path).read_text()) if Path(out_path).is_file() else {}
     for want in selectors:
         for key, rec in records.items():
-            if not all(rec["case"].get(a) == b for a, b in want.items()):
+            if key in out or not all(rec["case"].get(a) == b for a, b in want.items()):
                 continue
             res = check_case(rec["case"], rec["accuracy"], rec["result"])
             new = {**rec, **res}
@@ -30,7 +31,9 @@ def main() -> None:
             out[key] = new
             print(json.dumps({"case": rec["case"], "check": res.get("check", {}).get("status"),
                               "difference": res.get("check_difference"), "wrong": res.get("wrong")}), flush=True)
-    Path(out_path).write_text(json.dumps(out, indent=1))
+            tmp = Path(out_path).with_suffix(".tmp")
+            tmp.write_text(json.dumps(out, indent=1))
+            tmp.replace(out_path)
 
 
 if __name__ == "__main__":
