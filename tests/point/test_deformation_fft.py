@@ -79,3 +79,28 @@ def test_fft_with_two_workers_equals_one_worker(half):
     two = FFTDeformation(nx, ny, 0.05, 0.05, half, workers=2)
     assert two._workers(P.size) == 2
     assert _rel(two(P), one) < 1e-14
+
+
+@pytest.mark.parametrize("parts", [1, 2, 3])
+@pytest.mark.parametrize("n", [1, 5, 64, 513])
+def test_thread_ranges_cover_every_index_once(parts, n):
+    from ehl_multigrid.point.deformation import _split
+
+    hits = np.zeros(n, dtype=int)
+
+    def mark(lo, hi):
+        hits[lo:hi] += 1
+
+    _split(mark, n, parts)
+    assert (hits == 1).all()
+
+
+def test_an_error_in_a_thread_range_reaches_the_caller():
+    from ehl_multigrid.point.deformation import _split
+
+    def fail_first(lo, hi):
+        if lo == 0:
+            raise RuntimeError("range 0 failed")
+
+    with pytest.raises(RuntimeError, match="range 0 failed"):
+        _split(fail_first, 100, 2)
