@@ -21,6 +21,7 @@ Arrays are indexed ``[j, i]`` (Y row, X column). Half-domain (symmetric in Y) gr
 from __future__ import annotations
 
 import math
+import os
 from concurrent.futures import ThreadPoolExecutor
 from functools import lru_cache
 
@@ -167,6 +168,8 @@ PAR_COL_BLOCK = 256
 
 
 _POOLS: dict[int, ThreadPoolExecutor] = {}
+# a forked child has the pools but not their threads: it builds its own
+os.register_at_fork(after_in_child=_POOLS.clear)
 
 
 def _split(fn, n: int, parts: int) -> None:

@@ -104,3 +104,29 @@ def test_an_error_in_a_thread_range_reaches_the_caller():
 
     with pytest.raises(RuntimeError, match="range 0 failed"):
         _split(fail_first, 100, 2)
+
+
+def test_a_forked_process_builds_its_own_thread_pool():
+    import multiprocessing as mp
+
+    from ehl_multigrid.point.deformation import _split
+
+    _split(lambda lo, hi: None, 100, 2)  # the parent's pool exists now
+    ctx = mp.get_context("fork")
+    with ctx.Pool(1) as pool:
+        res = pool.apply_async(_forked_split_total)
+        assert res.get(timeout=60) == 4950
+
+
+def _forked_split_total() -> int:
+    from ehl_multigrid.point.deformation import _split
+
+    total = np.zeros(1, dtype=np.int64)
+    parts = []
+
+    def add(lo, hi):
+        parts.append(int(np.arange(lo, hi).sum()))
+
+    _split(add, 100, 2)
+    total[0] = sum(parts)
+    return int(total[0])
