@@ -1,22 +1,43 @@
-"""Known defect, pinned (strict xfail): an accuracy-driven solve stops on its films' change per
-cycle (``film_tol``) without a residual condition, and a V-cycle stall can hold the films still
-far from the discrete solution. Line Roelands + Dowson-Higginson (M, L) = (500, 20) at 16385
-points, ``accuracy=0.0025`` (the fit map's check solve): it stops after 4 finest cycles with the
-residual at 2.6e-5 (tol 1e-5) falling ever more slowly (ratios 0.53, 0.66, 0.76, 0.87) and Hm
-1 % above the discrete solution, while its algebraic estimate says 8e-5. The residual-stopped
-solve stalls at the same place until its stall rule switches to W cycles, then converges to
-that Hm (Hc agrees to 1e-4). When the film stop is fixed, this test passes and the xfail
-goes."""
+"""An accuracy-driven solve stops on its films' change per cycle (``film_tol``); a V-cycle
+stall can hold the films still far from the discrete solution. Line Roelands +
+Dowson-Higginson (M, L) = (500, 20) at 16385 points, ``accuracy=0.0025`` (the fit map's check
+solve): V cycles alone stop after 4 cycles, residual 2.6e-5 (tol 1e-5), with Hm 1 % above the
+discrete solution and a stated algebraic error of 8e-5. An early stop (residual above its
+tolerance) of a V- or F-cycle solve is therefore confirmed by one W cycle
+(``driver.CONFIRM_EARLY_STOP``)."""
 
 import pytest
 
+import ehl_multigrid.multigrid.driver as driver
 from ehl_multigrid.line import solve_line
 
+CASE = dict(M=500.0, L=20.0, points=16385)
 
-@pytest.mark.xfail(strict=True, reason="film stop in a V-cycle stall (see module docstring)")
-def test_film_stopped_solve_has_hm_within_its_algebraic_estimate():
-    acc = solve_line(500, 20, points=16385, accuracy=0.0025, raise_on_failure=False)
-    deep = solve_line(500, 20, points=16385, estimate=False, tol=1e-6)
-    stated = acc.extra["error_budget"]["algebraic"]["Hm"]
-    true = abs(acc.scalars["Hm"] / deep.scalars["Hm"] - 1.0)
-    assert true <= stated
+
+@pytest.fixture(scope="module")
+def deep():
+    return solve_line(**CASE, estimate=False, tol=1e-8, tol_load=1e-9, max_cycles=200)
+
+
+def _film_stopped():
+    return solve_line(**CASE, accuracy=0.0025, raise_on_failure=False)
+
+
+def test_v_cycle_film_stop_without_confirmation_is_one_percent_off(deep, monkeypatch):
+    monkeypatch.setattr(driver, "CONFIRM_EARLY_STOP", False)
+    r = _film_stopped()
+    assert abs(r.scalars["Hm"] / deep.scalars["Hm"] - 1.0) > 5e-3
+
+
+def test_confirmed_film_stop_is_close_to_the_discrete_solution(deep):
+    r = _film_stopped()
+    assert abs(r.scalars["Hm"] / deep.scalars["Hm"] - 1.0) < 5e-4
+    assert abs(r.scalars["Hm"] / deep.scalars["Hm"] - 1.0) < r.scalars["Hm_error"]
+
+
+@pytest.mark.xfail(strict=True, reason="Hm still drifts by 2e-4 after the confirmed stop: 2.6x "
+                   "its stated algebraic part (the total estimate, 0.45 %, covers it)")
+def test_confirmed_film_stop_hm_within_its_algebraic_estimate(deep):
+    r = _film_stopped()
+    true = abs(r.scalars["Hm"] / deep.scalars["Hm"] - 1.0)
+    assert true <= r.extra["error_budget"]["algebraic"]["Hm"]

@@ -4,6 +4,7 @@ once further cycles would change the films by less than a fraction of their grid
 
 import pytest
 
+import ehl_multigrid.multigrid.driver as driver
 from ehl_multigrid.line import solve_line
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.multigrid.accuracy import estimate_error
@@ -16,9 +17,23 @@ GRID_RULE = "stopped on the grid rule"
 @pytest.fixture(scope="module")
 def line_pair():
     # isoviscous line (500, 0) at 4097 points: the residual rule needs one cycle more (measured
-    # 10 cycles, 53.9 WU against 9 cycles, 48.2 WU)
+    # 10 cycles, 53.9 WU against 9 cycles, 48.2 WU); the rule on its own, without the
+    # confirming W cycle of an early stop (tested with it below)
     kw = dict(points=4097, estimate=False)
-    return solve_line(500.0, 0.0, **kw), solve_line(500.0, 0.0, grid_stop=None, **kw)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(driver, "CONFIRM_EARLY_STOP", False)
+        return solve_line(500.0, 0.0, **kw), solve_line(500.0, 0.0, grid_stop=None, **kw)
+
+
+def test_early_stop_of_a_v_cycle_solve_is_confirmed_by_a_w_cycle(line_pair):
+    seen = []
+    sol = solve_line(500.0, 0.0, points=4097, estimate=False, callback=seen.append)
+    top = max(i["level"] for i in seen)
+    kinds = [i["cycle_type"] for i in seen if i["level"] == top]
+    assert sol.success
+    # V cycles until the grid rule's stop, then the one confirming W cycle ends the solve
+    assert kinds[-1] == "W" and set(kinds[:-1]) == {"V"}
+    assert sol.cycles == line_pair[0].cycles + 1
 
 
 def test_grid_rule_stops_before_the_residual_rule(line_pair):
