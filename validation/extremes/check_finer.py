@@ -4,7 +4,8 @@ finer on the result's box, judged at a quarter of the target), for the cases sel
 
 Usage: ``python validation/extremes/check_finer.py MAP.json '[{"M": 20.0, "L": 0.0, "theta": 4.0}]' OUT.json``
 (each selector's keys must match a record's case). Writes the updated records to OUT.json after
-every check; a record already in OUT.json is not checked again (resumable).
+every check; a record already in OUT.json for the same result is not checked again (resumable; a
+result solved again since is checked again).
 """
 
 from __future__ import annotations
@@ -23,7 +24,9 @@ def main() -> None:
     out = json.loads(Path(out_path).read_text()) if Path(out_path).is_file() else {}
     for want in selectors:
         for key, rec in records.items():
-            if key in out or not all(rec["case"].get(a) == b for a, b in want.items()):
+            if not all(rec["case"].get(a) == b for a, b in want.items()):
+                continue
+            if key in out and out[key].get("result") == rec["result"]:
                 continue
             res = check_case(rec["case"], rec["accuracy"], rec["result"])
             new = {**rec, **res}
