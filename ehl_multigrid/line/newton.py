@@ -25,9 +25,8 @@ class NewtonFailure(RuntimeError):
     """The coarse Newton iteration did not converge (the caller tries something else)."""
 
 
-def _system(level: LineLevel, P: np.ndarray, H0: float, jacobian: bool):
-    """Residual ``r`` and, with ``jacobian``, the rows ``dr/d(P_1..P_{n-2}, H0)`` of the inner
-    points (negated: ``dL``)."""
+def _fluid(level: LineLevel, P: np.ndarray, H0: float):
+    """Residual ``r`` and the film state ``(H, rho, drho, dlne, eps)`` the Jacobian needs."""
     # overflow/NaN in a trial step is detected by the caller (non-finite merit -> step halved)
     with np.errstate(all="ignore"):
         W = level.deform(P)
@@ -39,13 +38,19 @@ def _system(level: LineLevel, P: np.ndarray, H0: float, jacobian: bool):
             # Jacobian follows from eps, rho and drho
             eps, rho, drho = eps * a, rho * level.c, drho * level.c
         r, _ = reynolds_residual(P, H, rho, eps, level.h, level.f, level.order)
-        if not jacobian:
-            return r, None
-        return r, reynolds_jacobian(P, H, rho, drho, dlne, eps, level.kernel, level.h,
-                                    level.order, level.elastic)
+    return r, (H, rho, drho, dlne, eps)
 
 
-@njit(cache=True)
+def _system(level: LineLevel, P: np.ndarray, H0: float, jacobian: bool):
+    """Residual ``r`` and, with ``jacobian``, the rows ``dr/d(P_1..P_{n-2}, H0)`` of the inner
+    points (negated: ``dL``)."""
+    r, (H, rho, drho, dlne, eps) = _fluid(level, P, H0)
+    if not jacobian:
+        return r, None
+    return r, reynolds_jacobian(P, H, rho, drho, dlne, eps, level.kernel, level.h,
+                                level.order, level.elastic)
+
+
 def reynolds_jacobian(P, H, rho, drho, dlne, eps, kernel, h, order, elastic):
     """``dL_i/dx_j`` of the discrete Reynolds operator (discrete.py) for the inner points
     ``i = 1 .. n-2`` and the unknowns ``x = (P_1 .. P_{n-2}, H0)``: an ``(n-2, n-1)`` array.
@@ -53,31 +58,40 @@ def reynolds_jacobian(P, H, rho, drho, dlne, eps, kernel, h, order, elastic):
     ``eps`` depends on ``P_j`` through the film (``dH_m/dP_j = -K_|m-j|/pi``), the density and
     the viscosity; ``rho H`` through the film and the density; ``H0`` shifts every film.
     Points with ``H <= 0`` carry ``eps = 0`` and no ``eps`` derivative."""
+    return reynolds_jacobian_block(P, H, rho, drho, dlne, eps, kernel, h, order, elastic,
+                                   1, P.shape[0] - 1, True)
+
+
+@njit(cache=True)
+def reynolds_jacobian_block(P, H, rho, drho, dlne, eps, kernel, h, order, elastic, lo, hi, h0):
+    """Rows ``i = lo .. hi-1`` and pressure columns ``j = lo .. hi-1`` of
+    :func:`reynolds_jacobian` (``1 <= lo < hi <= n-1``), plus the ``H0`` column when ``h0``:
+    the block a windowed Newton step needs (:func:`local_newton`)."""
     n = P.shape[0]
-    m = n - 2
-    out = np.zeros((m, m + 1))
+    m = hi - lo
+    out = np.zeros((m, m + 1 if h0 else m))
     ih2 = 1.0 / (h * h)
     inv_pi = 1.0 / np.pi
     # per-point factors: d eps_k = a_k dH_k + b_k dP_k, d(rho H)_k = rho_k dH_k + c_k dP_k
     a = np.zeros(n)
     b = np.zeros(n)
-    c = np.empty(n)
-    for k in range(n):
+    c = np.zeros(n)
+    for k in range(max(lo - 2, 0), min(hi + 1, n)):
         if H[k] > 0.0:
             a[k] = 3.0 * eps[k] / H[k]
             b[k] = eps[k] * (drho[k] / rho[k] - dlne[k])
         c[k] = drho[k] * H[k]
-    for i in range(1, n - 1):
-        row = i - 1
+    for i in range(lo, hi):
+        row = i - lo
         ep = 0.5 * (eps[i] + eps[i + 1])
         em = 0.5 * (eps[i] + eps[i - 1])
         gp = 0.5 * ih2 * (P[i + 1] - P[i])
         gm = 0.5 * ih2 * (P[i] - P[i - 1])
         c0, c1, c2 = wedge_coefficients(i, order)
         w0, w1, w2 = c0 / h, c1 / h, c2 / h
-        # film response: columns j = 1 .. n-2 (unknown pressures)
+        # film response: pressure columns
         if elastic:
-            for j in range(1, n - 1):
+            for j in range(lo, hi):
                 dHi = -kernel[abs(i - j)] * inv_pi
                 dHp = -kernel[abs(i + 1 - j)] * inv_pi
                 dHm = -kernel[abs(i - 1 - j)] * inv_pi
@@ -85,10 +99,10 @@ def reynolds_jacobian(P, H, rho, drho, dlne, eps, kernel, h, order, elastic):
                 v -= w0 * rho[i] * dHi + w1 * rho[i - 1] * dHm
                 if c2 != 0.0:
                     v -= w2 * rho[i - 2] * (-kernel[abs(i - 2 - j)] * inv_pi)
-                out[row, j - 1] = v
+                out[row, j - lo] = v
         # local (diagonal) parts: eps and rho through P_k itself, and the Poiseuille stencil
         for k in range(i - 2, i + 2):
-            if k < 1 or k > n - 2:
+            if k < lo or k >= hi:
                 continue
             v = 0.0
             if k == i:
@@ -99,10 +113,11 @@ def reynolds_jacobian(P, H, rho, drho, dlne, eps, kernel, h, order, elastic):
                 v += -gm * b[i - 1] + ih2 * em - w1 * c[i - 1]
             elif k == i - 2:
                 v += -w2 * c[i - 2]
-            out[row, k - 1] += v
-        # H0: every film moves by dH0
-        out[row, m] = gp * (a[i] + a[i + 1]) - gm * (a[i] + a[i - 1]) \
-            - (w0 * rho[i] + w1 * rho[i - 1] + (w2 * rho[i - 2] if c2 != 0.0 else 0.0))
+            out[row, k - lo] += v
+        if h0:
+            # H0: every film moves by dH0
+            out[row, m] = gp * (a[i] + a[i + 1]) - gm * (a[i] + a[i - 1]) \
+                - (w0 * rho[i] + w1 * rho[i - 1] + (w2 * rho[i - 2] if c2 != 0.0 else 0.0))
     return out
 
 
@@ -179,3 +194,83 @@ def _newton_solve(level: LineLevel, max_iter: int, tol: float) -> int:
                                     f"(|phi| = {norm0:.3g})")
         P, H0 = Pt, H0t
     raise NewtonFailure(f"coarse Newton did not converge in {max_iter} iterations")
+
+
+def local_newton(level: LineLevel, center: int, half: int = 48, max_iter: int = 20,
+                 reduce: float = 1e-3) -> None:
+    """Solve the level's equations in the window ``center +- half`` for the window's pressures,
+    the rest of ``P`` and ``H0`` fixed: damped semismooth Newton on the windowed complementarity
+    system with the exact (dense) Jacobian block, including ``d eps/dP`` through the viscosity.
+    Stops when the window's merit fell by ``reduce``, the line search fails or after
+    ``max_iter`` steps; updates ``level.P`` in place.
+
+    One deformation of the whole grid; after it the window's films follow from the kernel
+    block (``W_i += K_|i-j| dP_j``), so a step costs ``O(half^2)`` whatever the grid.
+
+    This is local relaxation at a singularity (Brandt 1977, section 9): the collective line
+    relaxation freezes ``eps`` (Picard), and where the viscosity changes by orders of magnitude
+    between neighbours -- the outlet pressure drop of Barus oils at high ``alpha_bar``, where
+    ``eps/h^2`` jumps from 1e-8 to 1e4 in one cell -- that update cannot settle, and the
+    residual concentrates on a few points that the cycles never reduce.
+    """
+    n = level.n
+    lo, hi = max(1, center - half), min(n - 1, center + half + 1)
+    s0, s1 = max(lo - 2, 0), min(hi + 1, n)  # the stencils of rows lo .. hi-1
+    rows = slice(lo - s0, hi - s0)
+    fixed = level.frozen[lo:hi]
+    W0 = level.deform(level.P)[s0:s1]
+    P0 = level.P[s0:s1].copy()
+    dist = np.abs(np.arange(s0, s1)[:, None] - np.arange(lo, hi)[None, :])
+    Kw = level.kernel[dist]  # film response of the stencil points to the window's pressures
+
+    def window_state(Ps: np.ndarray):
+        with np.errstate(all="ignore"):
+            W = W0 + Kw @ (Ps[rows] - P0[rows]) if level.elastic else W0
+            H, rho, drho, _, dlne, eps = fluid_state(Ps, W, level.X[s0:s1], level.H0,
+                                                     level.par, level.lam, level.elastic)
+            a = getattr(level, "a", None)
+            if a is not None:
+                eps, rho, drho = eps * a[s0:s1], rho * level.c[s0:s1], drho * level.c[s0:s1]
+            r, _ = reynolds_residual(Ps, H, rho, eps, level.h, level.f[s0:s1], level.order)
+        return r[rows], (H, rho, drho, dlne, eps)
+
+    P = P0.copy()
+    r, st = window_state(P)
+    merit0 = None
+    for _ in range(max_iter):
+        J = reynolds_jacobian_block(P, *st, level.kernel, level.h, level.order, level.elastic,
+                                    lo - s0, hi - s0, False)
+        s = 1.0 / np.maximum(np.abs(np.diagonal(J)), 1e-300)
+        with np.errstate(all="ignore"):
+            phi = np.minimum(P[rows], s * r)
+        phi[fixed] = 0.0
+        merit = float(np.linalg.norm(phi))
+        if merit0 is None:
+            merit0 = merit
+        if not np.isfinite(merit) or merit <= reduce * merit0 or merit == 0.0:
+            break
+        active = (P[rows] <= s * r) | fixed
+        Jm = J * -s[:, None]  # d(s r)/dP = -s dL/dP
+        Jm[active] = 0.0
+        idx = np.flatnonzero(active)
+        Jm[idx, idx] = 1.0
+        try:
+            step = np.linalg.solve(Jm, -phi)
+        except np.linalg.LinAlgError:
+            break
+        t = 1.0
+        while t >= 1e-4:
+            Pt = P.copy()
+            Pt[rows] += t * step
+            rt, stt = window_state(Pt)
+            with np.errstate(all="ignore"):
+                pt = np.minimum(Pt[rows], s * rt)
+            pt[fixed] = 0.0
+            m = float(np.linalg.norm(pt))
+            if np.isfinite(m) and m <= (1.0 - 1e-4 * t) * merit:
+                break
+            t *= 0.5
+        else:
+            break
+        P, r, st = Pt, rt, stt
+    level.P[lo:hi] = np.maximum(P[rows], 0.0)

@@ -167,7 +167,10 @@ class LineOptions(MultigridOptions):
     collective line systems; ``mlmi_order``, ``mlmi_radius`` -- MLMI interpolation order and
     correction radius; ``correction_mask`` -- no coarse-grid correction where ``eps/h^2``
     exceeds it; ``fmg_start_points`` -- grid on which FMG starts (None: from M);
-    ``fmg_match_film`` -- carry the central film (not H0) to each finer FMG grid.
+    ``fmg_match_film`` -- carry the central film (not H0) to each finer FMG grid;
+    ``local_newton`` -- grids of at least this many points finish each post-relaxation with a
+    windowed Newton solve where the residual concentrates on a few points (None: never; the
+    steady solver only, see ``line.solver.LineHierarchy.relax``).
     """
 
     points: int = 1025
@@ -187,6 +190,7 @@ class LineOptions(MultigridOptions):
     correction_mask: float | None = None
     fmg_start_points: int | None = None
     fmg_match_film: bool = True
+    local_newton: int | None = 1025
 
     ALIASES: ClassVar[dict[str, str]] = {**MultigridOptions.ALIASES, "threshold_h": "switch_h"}
 
@@ -200,6 +204,8 @@ class LineOptions(MultigridOptions):
         require_range("band", self.band, 1, 8)
         require_range("mlmi_order", self.mlmi_order, 2, 32)
         require_range("mlmi_radius", self.mlmi_radius, 1, 4096)
+        if self.local_newton is not None:
+            require_range("local_newton", self.local_newton, 33, 1 << 20)
 
 
 @dataclass(frozen=True)
