@@ -224,6 +224,20 @@ def test_a_non_monotone_grid_sequence_is_bounded_by_the_difference_before_the_la
     assert reg.regular and reg.error == pytest.approx(1.5 * 0.0075 / 3.0)
 
 
+def test_a_sequence_converging_far_faster_than_second_order_is_bounded_like_an_irregular_one():
+    # isoviscous line (100, 0), converged Hm on 513, 1025, 2049 points: the differences fall
+    # 71-fold (order 6.2) because Hm crosses its limit; the 2049-point value is 0.16 % from the
+    # limit (4097-16385 points: 0.79643, 0.79622, 0.79611), which Richardson at the capped order
+    # put at 0.011 %
+    films = [0.7926105, 0.7971838, 0.7972480]
+    r = richardson(films, max_order=1.5)
+    assert not r.regular and r.order > 4.0
+    assert r.error / films[-1] > 0.0016
+    # order 4 (16-fold) is still regular: capped at the formal order
+    four = richardson([1.0 - 0.16, 1.0 - 0.01, 1.0 - 0.000625])
+    assert four.regular and four.error == pytest.approx(1.5 * 0.009375 / 3.0)
+
+
 def test_converged_coarser_solves_replace_the_fmg_films_in_richardson():
     """FMG films carry the algebraic error of a level's few cycles; the films of converged
     solves of the same discrete problem on coarser grids replace them (the accuracy loop's
