@@ -42,7 +42,7 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import ConvergenceError
-from .accuracy import HM_MAX_ORDER, LOAD_SENSITIVITY, iteration_error, richardson
+from .accuracy import LOAD_SENSITIVITY, hm_max_order, iteration_error, richardson
 from .options import MultigridOptions
 from .policy import RobustnessPolicy, Settings
 from .result import EHLResult
@@ -294,7 +294,7 @@ class MultilevelSolver:
             return False
         load = LOAD_SENSITIVITY * abs(self.load_errors[-1])
         grid, algebraic = [], []
-        for key, cap in (("Hc", 2.0), ("Hm", HM_MAX_ORDER)):
+        for key, cap in (("Hc", 2.0), ("Hm", hm_max_order(hz.name))):
             films = [getattr(h, key) for h in fin]
             last = films[-1]
             if not (math.isfinite(last) and last > 0.0):

@@ -36,11 +36,11 @@ from ..line.problem import LineProblem
 from ..line.solver import HINT, MAX_ACCURACY_POINTS, line_domain_change, solve_line_problem
 from ..model.errors import ConvergenceError, require_range
 from ..multigrid.accuracy import (
-    HM_MAX_ORDER,
     LOAD_SENSITIVITY,
     ErrorEstimate,
     attach_estimate,
     estimate_error,
+    hm_max_order,
     richardson,
 )
 from ..multigrid.options import LineOptions
@@ -197,7 +197,7 @@ def supply_estimate(res: EHLResult, ladder: list[tuple[int, float, EHLResult]]) 
     algebraic part from the supply mismatch and the load error."""
     Hc, Hm = float(res.scalars["Hc_venner"]), float(res.scalars["Hm_venner"])
     rc = richardson([r.scalars["Hc_venner"] for _, _, r in ladder])
-    rm = richardson([r.scalars["Hm_venner"] for _, _, r in ladder], max_order=HM_MAX_ORDER)
+    rm = richardson([r.scalars["Hm_venner"] for _, _, r in ladder], max_order=hm_max_order("line"))
     grid = {"Hc": abs(rc.error / Hc), "Hm": abs(rm.error / Hm)}
     le = abs(float(res.load_error_history[-1])) if len(res.load_error_history) else math.inf
     alg = res.scalars.get("supply_mismatch", 0.0) + LOAD_SENSITIVITY * le
