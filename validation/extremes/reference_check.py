@@ -1,20 +1,21 @@
-"""A stronger check of the line results of an accuracy map: the true error of each converged
-result against a reference from converged solves two and four times finer.
+"""A stronger check of the results of an accuracy map: the true error of each converged result
+against a reference from converged solves two and four times finer (line contacts up to 65537
+points, point contacts up to 2049 along X: results on at most 513 points).
 
 The map's own check (accuracy_map.check_case: one grid finer, wrong when the two differ by more
 than the sum of their estimates) misses an optimistic result next to a pessimistic check
 (isoviscous (100, 0): a stated Hm error of 0.011 % with a true 0.16 %, check estimate 1.2 %).
 Here the same discrete problem (the result's grid and box) is solved deep (tolerances 1e-8 /
-1e-9) on ``n``, ``2n - 1`` and ``4n - 3`` points; Richardson over the three converged films gives
+1e-9 line, 1e-7 / 1e-8 point) on ``n``, ``2n - 1`` and ``4n - 3`` points; Richardson over the three converged films gives
 the grid limit on that box, and the result's film (with its own iteration error) is compared
 with it. A result is *wrong* when its distance to the limit exceeds its stated grid plus
 algebraic error (the box part is common to both) by more than the reference's own uncertainty
 (the finest reference's distance to the limit).
 
-    python validation/extremes/line_reference_check.py out/fit_map_0.01_session10.json \
-        out/accuracy_map_0.02_session10.json
+    python validation/extremes/reference_check.py [--contact line|point] \
+        out/fit_map_0.01_session10.json out/accuracy_map_0.02_session10.json
 
-Writes ``out/line_reference_check_<tag>.json`` (resumable: a record already there for the same
+Writes ``out/<contact>_reference_check_<tag>.json`` (resumable: a record already there for the same
 result is not solved again).
 """
 
@@ -31,16 +32,22 @@ from tqdm import tqdm
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from accuracy_map import OUT, box_of  # noqa: E402
 
-MAX_POINTS = 65537
+MAX_POINTS = {"line": 65537, "point": 2049}
 
 
 def deep(case: dict, points: int, box: float) -> dict:
     from ehl_multigrid.line import solve_line
+    from ehl_multigrid.point import solve_point
 
     model = {k: case[k] for k in ("viscosity", "density") if k in case}
     t = time.perf_counter()
-    s = solve_line(case["M"], case["L"], points=points, estimate=False, tol=1e-8, tol_load=1e-9,
-                   max_cycles=200, raise_on_failure=False, **model, **box_of(case, box))
+    if case["contact"] == "line":
+        s = solve_line(case["M"], case["L"], points=points, estimate=False, tol=1e-8, tol_load=1e-9,
+                       max_cycles=200, raise_on_failure=False, **model, **box_of(case, box))
+    else:
+        s = solve_point(case["M"], case["L"], theta=case["theta"], points=points, estimate=False,
+                        tol=1e-7, tol_load=1e-8, max_cycles=100, raise_on_failure=False, **model,
+                        **box_of(case, box))
     return {"points": points, "status": s.status_name, "Hc": s.scalars.get("Hc"),
             "Hm": s.scalars.get("Hm"), "wall_s": time.perf_counter() - t}
 
@@ -58,15 +65,19 @@ def limit(films: list[float]) -> tuple[float, float]:
 
 
 def main() -> None:
-    files = [Path(f) for f in sys.argv[1:]]
+    args = sys.argv[1:]
+    contact = "line"
+    if args[:1] == ["--contact"]:
+        contact, args = args[1], args[2:]
+    files = [Path(f) for f in args]
     tag = "_".join(f.stem for f in files)
-    path = OUT / f"line_reference_check_{tag}.json"
+    path = OUT / f"{contact}_reference_check_{tag}.json"
     out = json.loads(path.read_text()) if path.is_file() else {}
     todo = []
     for f in files:
         for key, rec in json.loads(f.read_text()).items():
             r = rec["result"]
-            if rec["case"]["contact"] == "line" and r.get("status") == "converged" and r.get("error_budget"):
+            if rec["case"]["contact"] == contact and r.get("status") == "converged" and r.get("error_budget"):
                 todo.append((f"{f.stem}|{key}", rec))
     for key, rec in tqdm(todo):
         r = rec["result"]
@@ -74,9 +85,9 @@ def main() -> None:
             continue
         n = r["points"]
         box = (r.get("refinements") or [{}])[-1].get("box", 1.0)
-        if 4 * (n - 1) + 1 > MAX_POINTS:
+        if 4 * (n - 1) + 1 > MAX_POINTS[contact]:
             out[key] = {"case": rec["case"], "result": r, "status": "skipped",
-                        "message": f"reference grid above {MAX_POINTS} points"}
+                        "message": f"reference grid above {MAX_POINTS[contact]} points"}
             continue
         solves = [deep(rec["case"], m, box) for m in (n, 2 * (n - 1) + 1, 4 * (n - 1) + 1)]
         entry = {"case": rec["case"], "result": r, "box": box, "solves": solves}
