@@ -207,7 +207,7 @@ def local_newton(level: LineLevel, center: int, half: int = 48, max_iter: int = 
     One deformation of the whole grid; after it the window's films follow from the kernel
     block (``W_i += K_|i-j| dP_j``), so a step costs ``O(half^2)`` whatever the grid.
 
-    This is local relaxation at a singularity (Brandt 1977, section 9): the collective line
+    This is local relaxation at a singularity (Brandt, Math. Comp. 31, 1977): the collective line
     relaxation freezes ``eps`` (Picard), and where the viscosity changes by orders of magnitude
     between neighbours -- the outlet pressure drop of Barus oils at high ``alpha_bar``, where
     ``eps/h^2`` jumps from 1e-8 to 1e4 in one cell -- that update cannot settle, and the

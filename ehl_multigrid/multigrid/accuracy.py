@@ -39,7 +39,7 @@ GRID_SAFETY = 1.5
 #: 4097 points while the three-grid order says 2.3)
 HM_MAX_ORDER = 1.5
 #: the same cap for line contacts. Measured on the 35 converged line results of the fit map at
-#: 1 % (validation/extremes/line_reference_check.py: converged solves on n, 2n, 4n points): Hm's
+#: 1 % (validation/extremes/reference_check.py: converged solves on n, 2n, 4n points): Hm's
 #: own order is 0.7-3.3, below 1.5 in 14 of 33, and Roelands (500, 10) at 8193 points stated a
 #: grid plus algebraic Hm error of 0.35 % for a true 0.53 % (order 1.34) with the cap at 1.5
 LINE_HM_MAX_ORDER = 1.0
