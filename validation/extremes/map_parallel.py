@@ -53,7 +53,8 @@ def main() -> None:
         with lock:
             done[json.dumps(case, sort_keys=True)] = rec
             save_records(path, done)
-            print(f"{len(done)}/{len(todo)} {case} {rec['result'].get('status')} -> {rec['class']}", flush=True)
+            finished = sum(json.dumps(c, sort_keys=True) in done for c in todo)
+            print(f"{finished}/{len(todo)} {case} {rec['result'].get('status')} -> {rec['class']}", flush=True)
 
     rest = [c for c in todo if json.dumps(c, sort_keys=True) not in done]
     with ThreadPoolExecutor(a.workers) as ex:
