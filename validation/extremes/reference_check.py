@@ -6,8 +6,9 @@ The map's own check (accuracy_map.check_case: one grid finer, wrong when the two
 than the sum of their estimates) misses an optimistic result next to a pessimistic check
 (isoviscous (100, 0): a stated Hm error of 0.011 % with a true 0.16 %, check estimate 1.2 %).
 Here the same discrete problem (the result's grid and box) is solved deep (tolerances 1e-8 /
-1e-9 line; point 1e-7 / 1e-6: the point load error stalls near 5e-8 at 513 points, and moves the films by less than half of it) on ``n``, ``2n - 1`` and ``4n - 3`` points; Richardson over the three converged films gives
-the grid limit on that box, and the result's film (with its own iteration error) is compared
+1e-9 line; point 1e-7 / 1e-6: the point load error stalls near 5e-8 at 513 points, and it
+moves the films by less than half of itself) on ``n``, ``2n - 1`` and ``4n - 3`` points;
+Richardson over the three converged films gives the grid limit on that box, and the result's film (with its own iteration error) is compared
 with it. A result is *wrong* when its distance to the limit exceeds its stated grid plus
 algebraic error (the box part is common to both) by more than the reference's own uncertainty
 (the finest reference's distance to the limit).
