@@ -55,7 +55,9 @@ def deep(case: dict, points: int, box: float) -> dict:
 
 def limit(films: list[float]) -> tuple[float, float]:
     """Richardson limit of three converged films (refinement 2) and its uncertainty (the
-    finest film's distance to it; the first-order bound when the sequence is irregular)."""
+    finest film's distance to it; the first-order bound when the sequence is irregular).
+    Written here rather than taken from ``multigrid.accuracy.richardson``: the reference must
+    not share the order caps and safety factor of the estimator it checks."""
     a, b, c = films
     d1, d2 = b - a, c - b
     if d1 != 0.0 and d2 != 0.0 and (d1 > 0) == (d2 > 0) and abs(d2) < abs(d1):
@@ -73,22 +75,32 @@ def main() -> None:
     files = [Path(f) for f in args]
     tag = "_".join(f.stem for f in files)
     path = OUT / f"{contact}_reference_check_{tag}.json"
-    out = json.loads(path.read_text()) if path.is_file() else {}
     todo = []
     for f in files:
         for key, rec in json.loads(f.read_text()).items():
             r = rec["result"]
             if rec["case"]["contact"] == contact and r.get("status") == "converged" and r.get("error_budget"):
                 todo.append((f"{f.stem}|{key}", rec))
+    # resume: keep only the records of results still in the inputs (no stale entry)
+    before = json.loads(path.read_text()) if path.is_file() else {}
+    out = {k: before[k] for k, rec in todo if k in before and before[k]["result"] == rec["result"]}
+
+    def save() -> None:
+        tmp = path.with_suffix(".tmp")
+        tmp.write_text(json.dumps(out, indent=1))
+        tmp.replace(path)
+
+    save()
     for key, rec in tqdm(todo):
         r = rec["result"]
-        if key in out and out[key]["result"] == r:
+        if key in out:
             continue
         n = r["points"]
         box = (r.get("refinements") or [{}])[-1].get("box", 1.0)
         if 4 * (n - 1) + 1 > MAX_POINTS[contact]:
             out[key] = {"case": rec["case"], "result": r, "status": "skipped",
                         "message": f"reference grid above {MAX_POINTS[contact]} points"}
+            save()
             continue
         solves = [deep(rec["case"], m, box) for m in (n, 2 * (n - 1) + 1, 4 * (n - 1) + 1)]
         entry = {"case": rec["case"], "result": r, "box": box, "solves": solves}
@@ -107,9 +119,7 @@ def main() -> None:
         else:
             entry["status"] = "reference failed"
         out[key] = entry
-        tmp = path.with_suffix(".tmp")
-        tmp.write_text(json.dumps(out, indent=1))
-        tmp.replace(path)
+        save()
     checked = [v for v in out.values() if v["status"] == "checked"]
     ratios = {f: sorted(v[f]["ratio"] for v in checked) for f in ("Hc", "Hm")}
     summary = {"results": len(out), "checked": len(checked),
