@@ -244,11 +244,13 @@ def main() -> None:
         todo = [c for c in todo if c["contact"] == "point" and c["theta"] >= a.theta_min]
         path = path.with_name(f"{path.stem}_theta{a.theta_min:g}.json")
     done = json.loads(path.read_text()) if path.is_file() else {}
+    inputs = run_inputs(a.accuracy, a.check_max, a.max_points)
     for case in tqdm(todo):
         key = json.dumps(case, sort_keys=True)
-        if key in done:
+        if reusable(done, key, inputs):
             continue
-        done[key] = case_in_process(case, a.accuracy, a.check_max, a.max_points, a.timeout)
+        done[key] = {**case_in_process(case, a.accuracy, a.check_max, a.max_points, a.timeout),
+                     "inputs": inputs}
         save_records(path, done)
     print(json.dumps(count_classes(done)))
 
@@ -271,6 +273,36 @@ def case_in_process(case: dict, accuracy: float, check_max: int, max_points: int
                "result": {"status": "timeout", "message": f"over {timeout:g} s"}}
     rec["class"] = classify(rec)
     return rec
+
+
+def code_version() -> str:
+    """The commit of the checkout this script runs from (``+dirty`` with uncommitted changes to
+    the package): a record computed by other code is not reused."""
+    root = Path(__file__).resolve().parents[2]
+    try:
+        head = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True,
+                              text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--",
+                                "ehl_multigrid", "thermal", "mixed"],
+                               capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+    return head + ("+dirty" if dirty else "")
+
+
+def run_inputs(accuracy: float, check_max: int, max_points: int | None) -> dict:
+    """What a map record depends on besides its case: a resumed map reuses only the records
+    computed for the same inputs (and recomputes the rest)."""
+    return {"accuracy": accuracy, "check_max": check_max, "max_points": max_points,
+            "code": code_version()}
+
+
+def reusable(done: dict, key: str, inputs: dict) -> bool:
+    """True when ``done`` holds the case ``key`` computed for ``inputs`` (not for other inputs,
+    and not by another or an uncommitted version of the code)."""
+    rec = done.get(key)
+    return (rec is not None and rec.get("inputs") == inputs
+            and not str(inputs["code"]).endswith(("+dirty", "unknown")))
 
 
 def save_records(path: Path, done: dict) -> None:

@@ -5,7 +5,8 @@
 
 Each case runs in its own process with one numba thread (as accuracy_map.py's serial loop);
 records are written as they finish, keyed like accuracy_map.py's, so either script resumes
-the other's file.
+the other's file; a record is reused only when it was computed for the same accuracy, budgets
+and (committed) code, so a resumed map never mixes inputs.
 """
 
 from __future__ import annotations
@@ -19,7 +20,16 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from accuracy_map import OUT, case_in_process, cases, count_classes, fit_cases, save_records  # noqa: E402
+from accuracy_map import (  # noqa: E402
+    OUT,
+    case_in_process,
+    cases,
+    count_classes,
+    fit_cases,
+    reusable,
+    run_inputs,
+    save_records,
+)
 
 
 def main() -> None:
@@ -45,18 +55,20 @@ def main() -> None:
     if a.theta is not None:
         todo = [c for c in todo if c["theta"] == a.theta]
     done = json.loads(path.read_text()) if path.is_file() else {}
+    inputs = run_inputs(a.accuracy, a.check_max, a.max_points)
     lock = threading.Lock()
     env = dict(os.environ, NUMBA_NUM_THREADS="1")
 
     def run(case: dict) -> None:
-        rec = case_in_process(case, a.accuracy, a.check_max, a.max_points, a.timeout, env)
+        rec = {**case_in_process(case, a.accuracy, a.check_max, a.max_points, a.timeout, env),
+               "inputs": inputs}
         with lock:
             done[json.dumps(case, sort_keys=True)] = rec
             save_records(path, done)
-            finished = sum(json.dumps(c, sort_keys=True) in done for c in todo)
+            finished = sum(reusable(done, json.dumps(c, sort_keys=True), inputs) for c in todo)
             print(f"{finished}/{len(todo)} {case} {rec['result'].get('status')} -> {rec['class']}", flush=True)
 
-    rest = [c for c in todo if json.dumps(c, sort_keys=True) not in done]
+    rest = [c for c in todo if not reusable(done, json.dumps(c, sort_keys=True), inputs)]
     with ThreadPoolExecutor(a.workers) as ex:
         list(ex.map(run, rest))
     print(json.dumps(count_classes(done)))
