@@ -180,16 +180,23 @@ def default_switch(visc: int, alpha_bar: float, elastic: bool = True) -> float:
 
 def y_ratio(length_x: float, length_y: float, coarse_x: int, b_over_a: float = 1.0) -> float:
     """(points along Y - 1)/(points along X - 1): the power of 2 closest (in log) to
-    ``length_y/length_x`` (square cells), in [1/8, 8], leaving at least 4 intervals along Y on
-    the coarsest grid (``coarse_x`` intervals along X).
+    ``length_y/length_x / (b/a)``, in [1/8, 8], leaving at least 4 intervals along Y on the
+    coarsest grid (``coarse_x`` intervals along X): cells stretched with the ellipse,
+    ``hy/hx ~ b/a``, since the film varies over ``a`` along X but over ``b`` along Y (on the
+    default box, as many points along Y as along X).
 
     Contacts longer across than along the rolling direction (``b/a > 1``: the ball-bearing
-    ellipses) get cells stretched with the ellipse, ``hy/hx ~ b/a``: the film varies over ``a``
-    along X but over ``b`` along Y. Measured on a 6205 inner-race contact (theta = 0.031,
-    b/a = 9.4, M = 3620): Hc 4.5816 with ``hy/hx = 1.2`` and 4.5811 with square cells' 8x
-    more points at 257, 4.6745 for both 1x and 2x at 513 (Y points do not move Hc in the
-    fourth digit), at an eighth of the cost."""
-    r = 2.0 ** round(math.log2(length_y / length_x / max(b_over_a, 1.0)))
+    ellipses): measured on a 6205 inner-race contact (theta = 0.031, b/a = 9.4, M = 3620): Hc
+    4.5816 with ``hy/hx = 1.2`` and 4.5811 with square cells' 8x more points at 257, 4.6745
+    for both 1x and 2x at 513 (Y points do not move Hc in the fourth digit), at an eighth of
+    the cost. Contacts long in the rolling direction (``b/a < 1``, theta > 1), whose minimum
+    film sits in the side lobes near ``|Y| = b``: with square cells Hm converges with the
+    cells across b, so these cells give Hm of the next finer square grid at half its cost
+    (validation/point/y_cells.py, Barus theta = 4: (500, 10) Hm 0.2800, 0.3769, 0.3977 square
+    against 0.3732, 0.3971, 0.4022 stretched on 513-2049 points, Hc within 0.1 %; Roelands
+    (1000, 10, theta 10): film not positive on square cells up to 2049 points, converged on
+    stretched ones from 1025)."""
+    r = 2.0 ** round(math.log2(length_y / length_x / b_over_a))
     r = min(max(r, 0.125, 4.0 / coarse_x), 8.0)
     return 2.0 ** math.ceil(math.log2(r) - 1e-12)
 

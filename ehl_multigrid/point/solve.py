@@ -89,7 +89,9 @@ RETRY_COARSER_START = True
 #: or three cells on the coarsest grid, where the film goes negative and FMG starts from
 #: nonsense. Measured at theta = 10 (b/a = 0.22), 2049 points: (1000, 25) diverges from 64
 #: and 128 coarse intervals and converges from 256 (25 s); (1000, 0) diverges from 64 and
-#: ends "film not positive" (the grid is too coarse, said so) from 128 and 256.
+#: ends "film not positive" (the grid is too coarse, said so) from 128 and 256. (Measured on
+#: square cells; the default cells, stretched with the ellipse, give b as many cells as a and
+#: converge (1000, 0) at 1025 points from the automatic coarse grid.)
 RETRY_FINER_START = True
 
 

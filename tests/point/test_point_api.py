@@ -10,7 +10,7 @@ from ehl_multigrid.app.cli import main
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.scene import load_scene
 from ehl_multigrid.point import default_domain, problem_from_moes, solve_point
-from ehl_multigrid.point.problem import coarse_intervals, domain_scale, min_points
+from ehl_multigrid.point.problem import coarse_intervals, domain_scale, hertz_shape, min_points
 
 
 def test_solve_point_from_moes_returns_result_with_line_solver_shape():
@@ -59,12 +59,15 @@ def test_low_M_thick_film_converges_with_the_default_domain():
     assert sol.Hc > 0
 
 
-def test_elliptic_grid_keeps_cells_nearly_square():
-    sol = solve_point(20, 10, theta=4.0, points=129)
-    hx = sol.X[1] - sol.X[0]
-    hy = sol.Y[1] - sol.Y[0]
-    assert 0.7 < hy / hx < 1.42
-    assert sol.converged
+def test_elliptic_grid_stretches_cells_with_the_ellipse():
+    # hy/hx follows b/a (within the power-of-2 rounding) on both sides of the circle
+    for theta in (4.0, 0.25):
+        sol = solve_point(20, 10, theta=theta, points=129)
+        hx = sol.X[1] - sol.X[0]
+        hy = sol.Y[1] - sol.Y[0]
+        boa = hertz_shape(theta)[2]
+        assert 0.7 < (hy / hx) / boa < 1.42
+        assert sol.converged
 
 
 def test_coarse_grid_and_minimum_grid_rules():

@@ -1,7 +1,9 @@
 """A contact narrower than long whose FMG start diverges on the automatic coarse grid is
 solved again from four times as many coarse intervals (``RETRY_FINER_START``), and a narrow
 contact at high M that the grid cannot resolve says how many points it needs
-(``min_points(..., cap=None)``, thesis-independent measurements in point/problem.py)."""
+(``min_points(..., cap=None)``, thesis-independent measurements in point/problem.py). Both
+on square cells (``y_ratio`` given); the default cells, stretched with the ellipse, converge
+the same contact on the same X points."""
 
 import pytest
 
@@ -26,15 +28,28 @@ def test_narrow_contact_rule_asks_for_more_points_than_the_cap(narrow):
     assert min_points(500.0, narrow.b_over_a, cap=None) == 1025
 
 
+#: square cells for b/a = 0.22 on the default box: (ny - 1)/(nx - 1) = 2^round(log2(0.22))
+SQUARE = 0.25
+
+
 def test_diverged_narrow_contact_is_solved_again_from_a_finer_coarse_grid(narrow, monkeypatch):
     monkeypatch.setattr(solve_mod, "RETRY_COARSER_START", False)
     monkeypatch.setattr(solve_mod, "RETRY_FINER_START", False)
-    before = solve_fas(narrow, points=1025, half=True, raise_on_failure=False)
+    before = solve_fas(narrow, points=1025, half=True, y_ratio=SQUARE, raise_on_failure=False)
     assert before.status_name == "diverged"
     monkeypatch.setattr(solve_mod, "RETRY_FINER_START", True)
-    sol = solve_fas(narrow, points=1025, half=True, raise_on_failure=False)
+    sol = solve_fas(narrow, points=1025, half=True, y_ratio=SQUARE, raise_on_failure=False)
     assert any("256 coarse intervals instead of 64 (RETRY_FINER_START)" in a for a in sol.actions)
     # the iteration now converges, to a film the grid cannot make positive: said, with the grid
     assert sol.status_name == "film_not_positive"
     assert "use points >= 4097" in sol.message
     assert "b/a = 0.222" in sol.message
+
+
+def test_narrow_contact_converges_on_cells_stretched_with_the_ellipse(narrow):
+    # the default grid: as many points across b as along a (y_ratio 1 here), where square
+    # cells leave b ~56 cells at 1025 points and the film cannot be made positive
+    sol = solve_fas(narrow, points=1025, half=True, raise_on_failure=False)
+    assert sol.extra["y_ratio"] == 1.0
+    assert sol.status_name == "converged"
+    assert sol.scalars["Hm"] > 0.0
