@@ -116,7 +116,7 @@ def add_wedge_band(A, i, k, c, H, rho, drho, K, h, elastic, wq):
 
 @njit(cache=True)
 def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, threshold, q, frozen,
-                           threshold_h=0.0, jd_free=False):
+                           threshold_h=0.0, jd_free=False, threshold_eps=0.0):
     """Banded system of one collective (line) relaxation sweep.
 
     The changes of all points are solved at once (Venner's line relaxation; in 1-D the line
@@ -132,6 +132,12 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
     term (``eps k^2``) up to ``eps k ~ 1`` i.e. ``eps/h ~ O(1)``, so the classic fixed threshold
     (0.3, tuned on coarse grids) leaves points Gauss-Seidel whose elastic coupling the band
     cannot represent (measured: relaxation diverges at L = 0, 2049 points).
+
+    ``threshold_eps``: also Jacobi-distributive wherever ``eps < threshold_eps`` on every
+    grid, whatever ``h`` (the steady solver's film-scale switch, ``solver.default_switch_eps``):
+    the collective system solves the Poiseuille part of a Gauss-Seidel zone exactly but only the
+    band of its elastic coupling, so where ``eps k^2 << 1`` for the contact's own smooth modes
+    (``k = O(1)`` in units of the Hertzian half-width) those modes are amplified, on any grid.
 
     ``frozen[i]`` keeps point ``i`` unchanged (coarse-grid points next to the fine grid's
     cavitation boundary, see solver.py).
@@ -178,7 +184,7 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
         # the largest eps of the stencil decides, so a point next to a steep rise of eps
         # (the flank of the pressure spike) is not treated as integral-equation dominated
         e = max(eps[j - 1], eps[j], eps[j + 1])
-        jac[j] = e * ih2 < thr
+        jac[j] = e * ih2 < thr or e < threshold_eps
         if jd_free and (fix[j - 1] or fix[j + 1]):
             jac[j] = False
     ab = np.zeros((2 * q + 1, m))

@@ -108,13 +108,14 @@ class LineLevel:
 
     # -- relaxation -----------------------------------------------------------------------
     def relax(self, switch: float, omega: float, omega_jd: float, band: int = 4,
-              st: State | None = None, switch_h: float = 0.0) -> State:
-        """One collective line-relaxation sweep (discrete.line_relaxation_system) at fixed H0.
+              st: State | None = None, switch_h: float = 0.0, switch_eps: float = 0.0) -> State:
+        """One collective line-relaxation sweep (discrete.line_relaxation_system) at fixed H0;
+        Jacobi-distributive also where ``eps < switch_eps``.
         Returns the state *before* the sweep (its residual is the one the sweep reduced)."""
         st = self.state() if st is None else st
         ab, rhs, jac = line_relaxation_system(
             self.P, st.H, st.rho, st.drho, st.eps, st.r, self.kernel, self.h, self.order,
-            self.elastic, switch, band, self.frozen, switch_h, True)
+            self.elastic, switch, band, self.frozen, switch_h, True, switch_eps)
         delta = solve_band(ab, rhs, band)
         damp = np.ones(self.n)
         self.P = distribute_changes(self.P, delta, jac, omega, omega_jd, damp, self.frozen)

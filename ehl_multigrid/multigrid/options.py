@@ -163,7 +163,10 @@ class LineOptions(MultigridOptions):
     """Line-contact options (defaults measured on the line solver's test set).
 
     Adds: ``switch_h`` -- h-scaled switch on fine grids, Jacobi-distributive where
-    ``eps/h^2 < switch_h/h`` (None: from ``alpha_bar``); ``band`` -- half band width of the
+    ``eps/h^2 < switch_h/h`` (None: from ``alpha_bar``); ``switch_eps`` -- film-scale switch
+    on every grid, Jacobi-distributive also where ``eps < switch_eps`` (None: twice the
+    contact's central ``eps`` from the Moes fit, ``line.solver.default_switch_eps``; 0: off; the
+    steady solver only); ``band`` -- half band width of the
     collective line systems; ``mlmi_order``, ``mlmi_radius`` -- MLMI interpolation order and
     correction radius; ``correction_mask`` -- no coarse-grid correction where ``eps/h^2``
     exceeds it; ``fmg_start_points`` -- grid on which FMG starts (None: from M);
@@ -184,6 +187,7 @@ class LineOptions(MultigridOptions):
     tol_load: float = 1e-6
     raise_on_failure: bool = True
     switch_h: float | None = None
+    switch_eps: float | None = None
     band: int = 4
     mlmi_order: int = 12
     mlmi_radius: int = 48
@@ -201,6 +205,8 @@ class LineOptions(MultigridOptions):
             raise InputError(f"points = {self.points} must be 2^k + 1 >= 33 (e.g. 257, 1025, 4097)")
         if self.switch_h is not None:
             require_range("switch_h", self.switch_h, 0.0, 1e3)
+        if self.switch_eps is not None:
+            require_range("switch_eps", self.switch_eps, 0.0, 1e6)
         require_range("band", self.band, 1, 8)
         require_range("mlmi_order", self.mlmi_order, 2, 32)
         require_range("mlmi_radius", self.mlmi_radius, 1, 4096)
