@@ -251,10 +251,11 @@ class LineHierarchy:
         lv = self.levels[k]
         # after the stall step of raise_switch: the classic switch on the cycle's coarse grids
         sh = 0.0 if coarse and self.classic_coarse_switch and s.switch_h < 1.0 else s.switch_h
+        # the film-scale switch only where set (the transient levels' relax does not take it)
+        extra = {"switch_eps": self.switch_eps} if self.switch_eps > 0.0 else {}
         st = None
         for _ in range(sweeps):
-            st = lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=sh,
-                          switch_eps=self.switch_eps)
+            st = lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=sh, **extra)
             if coarse:
                 lv.H0 += s.h00_gain * (lv.load() - lv.g)
         work = sweeps * self.work(k)
