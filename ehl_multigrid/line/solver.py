@@ -100,9 +100,10 @@ def default_switch_h(problem: LineProblem) -> float:
 
 #: Film-scale switch: Jacobi-distributive wherever ``eps`` is below this multiple of the
 #: contact's film-scale ``eps`` (:func:`default_switch_eps`). Measured by finest-grid relaxation
-#: alone from the interpolated solution of the grid below (isoviscous, 2049-8193 points): it
-#: diverges when the absolute switch is below 0.4-1.1 (M = 5), 0.85-1.3 (M = 20) and 0.6-1.8
-#: (M = 100) times the central ``eps``, and converges above, on 4097 and 8193 points alike.
+#: alone from the interpolated solution of the grid below (isoviscous; M = 5 at 2049 points,
+#: M = 20 at 4097 and 8193, M = 100 at 4097): it diverges when the absolute switch is below
+#: 0.4-1.1 (M = 5), 0.85-1.3 (M = 20, both grids) and 0.6-1.8 (M = 100) times the central
+#: ``eps`` of the solution, and converges above (the Moes-fit ``eps_c`` is 0.9-1.1 times it).
 JD_FILM_FACTOR = 2.0
 #: ... and at most this: where the flat film's ``eps`` exceeds it the Poiseuille term holds the
 #: contact's smooth modes and Gauss-Seidel is stable. Measured the same way: M = 1 and 2 (``eps``
@@ -128,11 +129,13 @@ def default_switch_eps(problem: LineProblem) -> float:
     film, so the band holds their coupling. Measured: isoviscous (20, 0) at 4097 points,
     ``eps/h`` is 0.6-12 in the contact, so ``switch_h = 1`` leaves its centre Gauss-Seidel and
     finest-grid relaxation alone from the 2049-point solution takes the residual from 3e-5 to
-    6e-2 in 10 sweeps (Hc negative); the 129-513-point grids (classic switch, ``eps/h^2`` 0.7-11
-    in the contact) fail the same way, so the coarse Newton failed and the cycles stalled at
-    4097 points and more. With this switch (20, 0) converges within FMG (2 V cycles per grid)
-    at 4097, 8193 and 16385 points. At high ``alpha_bar`` ``eps_c`` is tiny and the switch
-    changes nothing.
+    6e-2 in 10 sweeps (Hc negative); on the 257- and 513-point grids the classic switch
+    (``eps/h^2`` about 3 and 11 at the centre) fails the same way (4e-3 -> 2e-2 and
+    1e-3 -> 0.13), which corrupted the cycles' coarse problems (coarse Newton failures, cycles
+    rejected with load errors up to -0.94) and the cycles stalled at 4097 points and more. With
+    this switch (20, 0) converges within FMG (2 V cycles per grid, 28-31 WU) at 4097, 8193 and
+    16385 points, as do (20, 0.5) and (20, 1) (stalled or diverged at 8193 and 16385 before).
+    At high ``alpha_bar`` ``eps_c`` is tiny and the switch changes nothing.
     """
     if not problem.elastic:
         return 0.0
