@@ -426,8 +426,13 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     t0 = time.perf_counter()
     box, tol_factor = 1.0, 1.0
     steps: list[Refinement] = []
-    # per box: films of the converged solves (the same discrete problem on each grid)
-    finals: dict[float, dict[int, tuple[float, float]]] = {}
+    # per box (and cell aspect): films of the converged solves (the same discrete problem on
+    # each grid; a point solve that fell back to square cells is another problem)
+    finals: dict[tuple[float, Any], dict[int, tuple[float, float]]] = {}
+
+    def disc(r: Any) -> tuple[float, Any]:
+        return (box, getattr(r, "extra", {}).get("y_ratio"))
+
     last_domain: tuple[float, float] | None = None
     best: Any = None  # most accurate converged-iteration result so far
     why = ""
@@ -453,10 +458,10 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
             dom = last_domain
             res.extra["domain_note"] = "domain error bounded by the change measured at a smaller box"
         last_domain = dom if dom is not None else last_domain
-        est = estimate_error(res, dom, finals.get(box))
+        est = estimate_error(res, dom, finals.get(disc(res)))
         if refine and accuracy is not None and est.irregular and max(est.Hc, est.Hm) > accuracy:
             # the FMG films may be what is irregular: the coarser grids solved to convergence
-            known = finals.setdefault(box, {})
+            known = finals.setdefault(disc(res), {})
             n = points
             for _ in range(REPAIR_LEVELS):
                 n = (n - 1) // 2 + 1
@@ -465,11 +470,12 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
                 rc = solve(n, box, 0.1 * tol_factor)
                 steps.append(Refinement(n, box, 0.1 * tol_factor, math.nan, math.nan, rc.wall_s, "levels"))
                 if rc.success:
-                    known[n] = (float(rc.scalars["Hc_venner"]), float(rc.scalars["Hm_venner"]))
+                    finals.setdefault(disc(rc), {})[n] = (float(rc.scalars["Hc_venner"]),
+                                                          float(rc.scalars["Hm_venner"]))
             est = estimate_error(res, dom, known)
         films = (res.scalars.get("Hc_venner"), res.scalars.get("Hm_venner"))
         if None not in films:
-            finals.setdefault(box, {})[points] = (float(films[0]), float(films[1]))
+            finals.setdefault(disc(res), {})[points] = (float(films[0]), float(films[1]))
         attach_estimate(res, est, accuracy)
         steps.append(Refinement(points, box, tol_factor, est.Hc, est.Hm, res.wall_s))
         res.extra["refinements"] = [vars(s) for s in steps]

@@ -20,7 +20,7 @@ from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import PointOptions, build_scene_options, scene_solver_table
 from ..multigrid.result import EHLResult
 from ..multigrid.threads import preserved_threads
-from .fas import ALTERNATE_BELOW, HINT, point_solver
+from .fas import ALTERNATE_BELOW, HINT, point_solver, y_ratio
 from .postprocess import build_result
 from .problem import (
     NARROW_BELOW,
@@ -94,6 +94,14 @@ RETRY_COARSER_START = True
 #: converge (1000, 0) at 1025 points from the automatic coarse grid.)
 RETRY_FINER_START = True
 
+#: A contact long in the rolling direction (b/a < 1) whose solve on the default cells,
+#: stretched with the ellipse (``hy/hx ~ b/a``), ends ``diverged`` is solved again on square
+#: cells (half the points along Y) before any other retry. Measured (Barus + incompressible,
+#: theta = 4, b/a = 0.40): (20, 20) and (5, 20) diverge on stretched cells at 257 and 513
+#: points (NaN from the first coarse cycles) and converge on square ones; at L <= 10 the
+#: stretched cells converge (validation/point/y_cells.py).
+RETRY_SQUARE_CELLS = True
+
 
 def _again(problem: PointProblem, opt: PointOptions, solver: Any, sol: EHLResult,
            callback: Callable[[dict[str, Any]], None] | None, how: str) -> tuple[Any, EHLResult]:
@@ -124,30 +132,39 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     auto_coarse = opt.adapt and opt.n_coarse is None and opt.levels is None
     coarser = RETRY_COARSER_START and auto_coarse
     finer = RETRY_FINER_START and auto_coarse and problem.b_over_a < ALTERNATE_BELOW
-    first = replace(opt, raise_on_failure=False) if (retry or coarser or finer) else opt
+    square = RETRY_SQUARE_CELLS and opt.adapt and opt.y_ratio is None and problem.b_over_a < 1.0
+    first = replace(opt, raise_on_failure=False) if (retry or coarser or finer or square) else opt
     with preserved_threads():
         solver = point_solver(problem, first)
-        n_coarse = solver.hierarchy.levels[0].nx - 1
+        hz0 = solver.hierarchy
+        n_coarse = hz0.levels[0].nx - 1
         sol = solver.solve(callback=callback)
+        square_ratio = y_ratio(hz0.xmax - hz0.xmin, 2.0 * hz0.ymax, n_coarse, 1.0)
+        base = opt  # the options of the later retries: on the cells of the attempt kept
+        if square and sol.status_name == "diverged" and square_ratio < hz0.y_ratio:
+            solver, sol = _again(problem, replace(opt, y_ratio=square_ratio, raise_on_failure=False),
+                                 solver, sol, callback, f"square cells (y_ratio {square_ratio:g} "
+                                 f"instead of {hz0.y_ratio:g}; RETRY_SQUARE_CELLS)")
+            base = replace(opt, y_ratio=solver.hierarchy.y_ratio)
         if retry and sol.status_name in RETRY_ALTERNATING:
             # X lines alone failed: solve again alternating X and Y lines on every grid from
             # the start (the policy's mid-solve switch comes too late on some grids)
             # (with W cycles unless the options name one: point_cycle)
-            solver, sol = _again(problem, replace(opt, alternating=True, raise_on_failure=False), solver,
+            solver, sol = _again(problem, replace(base, alternating=True, raise_on_failure=False), solver,
                                  sol, callback, "X and Y lines alternating on every grid")
         if retry and RETRY_FULL_REFRESH and sol.status_name in RETRY_ALTERNATING and opt.local_film_update:
-            solver, sol = _again(problem, replace(opt, local_film_update=False, raise_on_failure=False),
+            solver, sol = _again(problem, replace(base, local_film_update=False, raise_on_failure=False),
                                  solver, sol, callback, "the film refreshed by whole deformations "
                                  "between the X and Y halves (RETRY_FULL_REFRESH)")
         if finer and sol.status_name == "diverged" and 4 * n_coarse <= (opt.points - 1) // 4:
-            solver, sol = _again(problem, replace(opt, n_coarse=4 * n_coarse, raise_on_failure=False), solver,
+            solver, sol = _again(problem, replace(base, n_coarse=4 * n_coarse, raise_on_failure=False), solver,
                                  sol, callback, f"{4 * n_coarse} coarse intervals instead of {n_coarse} "
                                  "(RETRY_FINER_START)")
         if coarser and sol.status_name == "diverged" and n_coarse >= 32:
-            solver, sol = _again(problem, replace(opt, n_coarse=n_coarse // 2, raise_on_failure=False), solver,
+            solver, sol = _again(problem, replace(base, n_coarse=n_coarse // 2, raise_on_failure=False), solver,
                                  sol, callback, f"{n_coarse // 2} coarse intervals instead of {n_coarse} "
                                  "(RETRY_COARSER_START)")
-        if (retry or coarser or finer) and not sol.success and opt.raise_on_failure:
+        if (retry or coarser or finer or square) and not sol.success and opt.raise_on_failure:
             raise ConvergenceError(f"point solver: {sol.message}", sol.report, solver.hint)
     hz = solver.hierarchy
     hz.solver = None  # break the solver <-> hierarchy cycle: the grids are freed with the solver

@@ -53,3 +53,21 @@ def test_narrow_contact_converges_on_cells_stretched_with_the_ellipse(narrow):
     assert sol.extra["y_ratio"] == 1.0
     assert sol.status_name == "converged"
     assert sol.scalars["Hm"] > 0.0
+
+
+def test_diverged_solve_on_stretched_cells_is_solved_again_on_square_cells(monkeypatch):
+    # Barus (20, 20, theta 4): NaN from the first coarse cycles on stretched cells
+    pb = problem_from_moes(20.0, 20.0, 4.0, viscosity="barus", density="incompressible")
+    monkeypatch.setattr(solve_mod, "RETRY_SQUARE_CELLS", False)
+    monkeypatch.setattr(solve_mod, "RETRY_FINER_START", False)
+    monkeypatch.setattr(solve_mod, "RETRY_COARSER_START", False)
+    before = solve_fas(pb, points=257, raise_on_failure=False)
+    assert before.status_name == "diverged"
+    monkeypatch.setattr(solve_mod, "RETRY_SQUARE_CELLS", True)
+    sol = solve_fas(pb, points=257, raise_on_failure=False)
+    assert any("RETRY_SQUARE_CELLS" in a for a in sol.actions)
+    assert sol.status_name == "converged"
+    assert sol.extra["y_ratio"] == 0.5  # square cells for b/a = 0.40
+    # the same discrete problem as asked for square cells directly
+    direct = solve_fas(pb, points=257, y_ratio=0.5, raise_on_failure=False)
+    assert sol.scalars["Hc"] == pytest.approx(direct.scalars["Hc"], rel=1e-12)
