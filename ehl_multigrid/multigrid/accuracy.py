@@ -435,6 +435,8 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
 
     last_domain: tuple[float, float] | None = None
     best: Any = None  # most accurate converged-iteration result so far
+    failed: set[tuple[int, float, float]] = set()  # (points, box, tol_factor) that did not converge
+    done = (points, box, tol_factor)  # the last solve whose iteration converged
     why = ""
     while True:
         res = solve(points, box, tol_factor)
@@ -449,9 +451,18 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
             res.extra["refinements"] = [vars(s) for s in steps]
             if best is None:
                 return _stamp(res, t0)
+            failed.add((points, box, tol_factor))
+            safe = (2 * (done[0] - 1) + 1, done[1], done[2])  # one grid finer, as before
+            if safe not in failed and safe[0] <= max_points and (points, box) != safe[:2]:
+                # a larger step failed: the smallest one, from the last converged solve
+                # (point Barus (20, 20, theta 4): 513 points -> 2049 on a box twice as wide
+                # diverged, 1025 on the same box converged)
+                points, box, tol_factor = safe
+                continue
             why = (f"the refinement to {points} points (box x{box:g}) did not converge "
                    f"({res.status_name}: {res.message.split(';')[0]})")
             break
+        done = (points, box, tol_factor)
         dom = probe(res, box)
         if dom is None and last_domain is not None:
             # the change measured around a smaller box bounds the one around a wider box
@@ -488,6 +499,9 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
             why = f"the time budget of {time_budget:g} s is spent"
             break
         step = next_refinement(est.budget, accuracy, points, box, tol_factor, max_points, box_limit)
+        if step in failed:
+            why = f"the refinement to {step[0]} points (box x{step[1]:g}) did not converge before"
+            break
         if step is None:
             why = (f"no refinement within {max_points} points and a box of {box_limit:g} times "
                    f"the default is predicted to help")

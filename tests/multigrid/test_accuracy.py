@@ -107,6 +107,31 @@ def test_a_refinement_that_fails_never_replaces_a_converged_coarser_solve(monkey
     assert [s["points"] for s in out.extra["refinements"]] == [257, 513]
 
 
+def test_a_two_grid_refinement_that_fails_falls_back_to_one_grid_finer(monkeypatch):
+    import ehl_multigrid.multigrid.accuracy as acc
+
+    monkeypatch.setattr(acc, "estimate_error", lambda res, dom, converged=None: ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4)))
+
+    def fake_attach(res, est, accuracy):
+        res.error = est
+        if max(est.Hc, est.Hm) > accuracy:
+            res.success, res.status_name, res.message = False, "inaccurate", "inaccurate"
+
+    monkeypatch.setattr(acc, "attach_estimate", fake_attach)
+    # the planner asks for two grids finer on a box twice as wide, once
+    monkeypatch.setattr(acc, "next_refinement", lambda b, a, n, box, t, mx, lim: (2049, 2.0, 1.0) if n == 513 else None)
+    runs = {(513, 1.0): _Fake(513, True, 0.03), (2049, 2.0): _Fake(2049, False, math.nan),
+            (1025, 1.0): _Fake(1025, True, 0.005)}
+    out = solve_to_accuracy(lambda n, b, t: runs[(n, b)], lambda r, b: (0.0, 0.0), 0.01, 513, 2049)
+    assert out is runs[(1025, 1.0)] and out.success
+    assert [(s["points"], s["box"]) for s in out.extra["refinements"]] == [(513, 1.0), (2049, 2.0), (1025, 1.0)]
+    # a failed one-grid step has nothing smaller to fall back to
+    runs = {(513, 1.0): _Fake(513, True, 0.03), (1025, 1.0): _Fake(1025, False, math.nan)}
+    monkeypatch.setattr(acc, "next_refinement", lambda b, a, n, box, t, mx, lim: (1025, 1.0, 1.0) if n == 513 else None)
+    out = solve_to_accuracy(lambda n, b, t: runs[(n, b)], lambda r, b: (0.0, 0.0), 0.01, 513, 2049)
+    assert out is runs[(513, 1.0)] and "refinement to 1025 points" in out.message
+
+
 def test_running_out_of_points_says_how_many_would_meet_the_target(monkeypatch):
     import ehl_multigrid.multigrid.accuracy as acc
 
