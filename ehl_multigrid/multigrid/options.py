@@ -220,8 +220,8 @@ class PointOptions(MultigridOptions):
 
     Adds: ``n_coarse`` -- intervals of the coarsest grid along X (None: from M and the
     domain); ``xmin, xmax, ymax`` -- domain in units of a (None: the default box, widened at
-    low M); ``y_ratio`` -- (points along Y - 1)/(points - 1), a power of 2 (None: near-square
-    cells, stretched with the ellipse when b > a); ``half`` -- solve Y >= 0 only (symmetric contact); ``coarse_sweeps`` -- relaxations
+    low M); ``y_ratio`` -- (points along Y - 1)/(points - 1), a power of 2 (None: cells
+    stretched with the ellipse, hy/hx ~ b/a, square cells as the retry of a diverged solve); ``half`` -- solve Y >= 0 only (symmetric contact); ``coarse_sweeps`` -- relaxations
     per coarsest-grid visit; ``elastic`` -- False for rigid surfaces; ``alternating`` -- relax
     Y lines after every X-line sweep (None: on every grid when b/a < 0.5, contacts long in the
     rolling direction; wider contacts on their grids of at least 129 points in solves of at
