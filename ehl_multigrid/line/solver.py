@@ -75,6 +75,20 @@ GUESS_PROBE_FILM_TOL = 1e-6
 #: exceeds this multiple of the mean, in a window of this half width
 LOCAL_NEWTON_FACTOR = 20.0
 LOCAL_NEWTON_HALF = 48
+#: ... after the pre-relaxations too (before the FAS restriction) where ``alpha_bar`` exceeds this,
+#: so the coarse problems are built from a settled outlet drop. Measured (validation/line_fine,
+#: REPORT "Barus fine grids"): Barus + incompressible (100, 20) on 16385 points, FMG iterate
+#: (residual 1.6e-3): one pre-relaxation sweep takes the residual to 0.91, half of it on each of
+#: the two points of the drop (X = 0.9502, 0.9507; local residual 20 -> 1e5); full weighting
+#: carries it into the coarse right-hand sides, the 2049- and 1025-point relaxations then diverge
+#: (residual 2e-3 -> 0.8, load error 0.66, negative film) and the cycle is rejected whatever
+#: omega. Even from a window solved to 1e-13 two sweeps take the residual from 7.8e-4 to 0.77.
+#: With the window solve before the restriction (100, 20) at 16385 and (500, 20) at 65537
+#: converge; it helps from alpha_bar = 27 ((20, 15) Barus at 16385: 134 -> 68 WU) up. Below 20 it
+#: only costs a window solve per visit (L <= 5 of iso_sweep.py, alpha_bar 8-20: same cycles,
+#: +3-7 WU), and where the film collapses at alpha_bar 4-5 it lost Roelands (100, 1) at 16385
+#: (converged in 37 cycles without) and doubled (20, 3) at 8193 (171 -> 406 WU).
+LOCAL_NEWTON_PRE_ALPHA = 20.0
 
 
 def coarse_points(M: float) -> int:
@@ -192,6 +206,9 @@ class LineHierarchy:
         #: grids of at least this many points end a post-relaxation by local Newton where the
         #: residual concentrates (line_solver sets it from the options; None: never)
         self.local_newton: int | None = None
+        #: ... and after each pre-relaxation too, before the FAS restriction (line_solver sets it
+        #: where alpha_bar > LOCAL_NEWTON_PRE_ALPHA)
+        self.local_newton_pre = False
         self.local_newton_solves = 0
         #: film-scale switch: Jacobi-distributive where ``eps`` is below it on every grid
         #: (line_solver sets it, :func:`default_switch_eps`; 0: the ``eps/h^2`` rules only)
@@ -262,7 +279,8 @@ class LineHierarchy:
             if coarse:
                 lv.H0 += s.h00_gain * (lv.load() - lv.g)
         work = sweeps * self.work(k)
-        if post and st is not None and self.local_newton is not None and lv.n >= self.local_newton:
+        if (post or self.local_newton_pre) and st is not None and self.local_newton is not None \
+                and lv.n >= self.local_newton:
             work += self._local_newton(k, st)
         return work
 
@@ -556,6 +574,7 @@ def line_solver(problem: LineProblem, options: LineOptions) -> MultilevelSolver:
     hz = LineHierarchy(problem, options)
     hz.stall_steps = True
     hz.local_newton = options.local_newton
+    hz.local_newton_pre = problem.alpha_bar > LOCAL_NEWTON_PRE_ALPHA
     hz.switch_eps = options.switch_eps if options.switch_eps is not None else \
         default_switch_eps(problem)
     solver = MultilevelSolver(hz, options, line_settings(problem, options),
