@@ -14,6 +14,9 @@
 * transfers: injection of ``P``, full weighting of residuals, linear interpolation of
   corrections, cubic FMG interpolation; coarse points next to the fine free boundary are
   frozen (Brandt & Cryer);
+* local Newton: on fine grids a windowed Newton solve settles the outlet pressure drop where the
+  residual concentrates, after each post-relaxation (and each pre-relaxation at high
+  ``alpha_bar``, before the restriction);
 * deformation on each grid by MLMI, FFT or the direct sum (deformation.py).
 
 At high load the FMG starts on a finer grid so the first coarse solution has a positive film,
@@ -294,6 +297,8 @@ class LineHierarchy:
         diverge or stall at (100, 10) and (100, 20) on 4097 points, (500, 20) on 8193 and
         (1000, 20) on 16385. With the window solve after every post-relaxation on grids of at
         least 1025 points all converge; on the finest grid only, (500, 20) still diverged.
+        Where ``alpha_bar > LOCAL_NEWTON_PRE_ALPHA`` it also ends each pre-relaxation, so the
+        restricted residual does not carry the drop the sweeps unsettled.
         """
         lv = self.levels[k]
         rp = np.abs(projected(st.r, lv.P))

@@ -171,7 +171,8 @@ class LineOptions(MultigridOptions):
     correction radius; ``correction_mask`` -- no coarse-grid correction where ``eps/h^2``
     exceeds it; ``fmg_start_points`` -- grid on which FMG starts (None: from M);
     ``fmg_match_film`` -- carry the central film (not H0) to each finer FMG grid;
-    ``local_newton`` -- grids of at least this many points finish each post-relaxation with a
+    ``local_newton`` -- grids of at least this many points finish each post-relaxation (and,
+    where ``alpha_bar > line.solver.LOCAL_NEWTON_PRE_ALPHA``, each pre-relaxation) with a
     windowed Newton solve where the residual concentrates on a few points (None: never; the
     steady solver only, see ``line.solver.LineHierarchy.relax``).
     """
