@@ -1,0 +1,59 @@
+"""Barus + incompressible fine grids with and without the local Newton solve after the
+pre-relaxations (line/solver.py ``LOCAL_NEWTON_PRE_ALPHA``; REPORT.md "Barus fine grids").
+
+``off`` sets ``LOCAL_NEWTON_PRE_ALPHA`` to infinity (the solver as before), ``on`` keeps the
+default. Plain solves ``solve_line(M, L, points=N, estimate=False)`` of the three listed cases
+at tol 1e-8 / tol_load 1e-9 and at the default tolerance, and of a scan of M = 50-1000,
+L = 10-30 on 4097 and 8193 points plus some 16385/32769-point cases (all alpha_bar > 20) at the
+default tolerance. Writes ``out/barus_fine.json`` and prints one line per solve.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from pathlib import Path
+
+import ehl_multigrid.line.solver as line_solver_module
+from ehl_multigrid.line import solve_line
+
+BARUS = {"viscosity": "barus", "density": "incompressible"}
+DEEP = {"tol": 1e-8, "tol_load": 1e-9, "max_cycles": 200}
+LISTED = [(100, 20, 16385), (500, 20, 65537), (5, 5, 4097)]
+SCAN = [(M, L, n) for M in (50, 100, 200, 500, 1000) for L in (10, 15, 20, 25, 30)
+        for n in (4097, 8193)] + [
+    (20, 20, 8193), (20, 20, 16385), (20, 30, 8193), (20, 30, 16385), (20, 15, 16385),
+    (50, 10, 16385), (50, 15, 16385), (50, 20, 16385), (100, 10, 16385), (100, 15, 16385),
+    (200, 10, 16385), (100, 20, 32769)]
+
+
+def run(M: float, L: float, n: int, **kw) -> dict:
+    t = time.perf_counter()
+    r = solve_line(M, L, points=n, estimate=False, raise_on_failure=False, **BARUS, **kw)
+    return {"status": r.status_name, "cycles": r.cycles, "work_units": r.work_units, "Hc": r.Hc,
+            "Hm": r.Hm, "wall_s": time.perf_counter() - t}
+
+
+def main() -> None:
+    default = line_solver_module.LOCAL_NEWTON_PRE_ALPHA
+    out: dict[str, dict] = {}
+    jobs = [(c, "tol 1e-8", DEEP) for c in LISTED] + [(c, "default", {}) for c in LISTED] + \
+        [(c, "default", {}) for c in SCAN]
+    for (M, L, n), tag, kw in jobs:
+        row = {}
+        for mode, alpha in (("off", math.inf), ("on", default)):
+            line_solver_module.LOCAL_NEWTON_PRE_ALPHA = alpha
+            row[mode] = run(M, L, n, **kw)
+        line_solver_module.LOCAL_NEWTON_PRE_ALPHA = default
+        out[f"M={M} L={L} N={n} {tag}"] = row
+        o, w = row["off"], row["on"]
+        print(f"({M}, {L}) {n:6d} {tag:8s} off {o['status']:10s} {o['cycles']:3d} {o['work_units']:6.1f} "
+              f"{o['wall_s']:5.1f}s  on {w['status']:10s} {w['cycles']:3d} {w['work_units']:6.1f} "
+              f"{w['wall_s']:5.1f}s  Hc {o['Hc']:.6f} -> {w['Hc']:.6f}  Hm {o['Hm']:.6f} -> {w['Hm']:.6f}",
+              flush=True)
+    (Path(__file__).parent / "out" / "barus_fine.json").write_text(json.dumps(out, indent=1))
+
+
+if __name__ == "__main__":
+    main()
