@@ -241,10 +241,11 @@ class MultilevelSolver:
             # (after a direct last-resort solve, c = -1, the film's jump to the discrete
             # solution is no iteration error: its residual decides)
             top = len(self.hierarchy.levels) - 1
-            fin = [h for h in self.history[-2:] if h.level == top]
-            if len(fin) < 2 or abs(self.load_errors[-1]) >= o.film_tol:
+            need = getattr(self.hierarchy, "film_stop_films", 2)
+            fin = [h for h in self.history[-need:] if h.level == top]
+            if len(fin) < need or abs(self.load_errors[-1]) >= o.film_tol:
                 return False
-            a, b = fin
+            a, b = fin[-2:]
             return (abs(b.Hc - a.Hc) < o.film_tol * abs(b.Hc)
                     and abs(b.Hm - a.Hm) < o.film_tol * abs(b.Hm))
         if self.residuals[-1] < o.tol and abs(self.load_errors[-1]) < o.tol_load:
