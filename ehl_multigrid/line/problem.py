@@ -153,6 +153,13 @@ class LineProblem:
         return d
 
 
+def fit_central_film(M: float, L: float) -> float:
+    """Central film of the Moes line fit in Venner units, ``H = H_Moes pi / (8 M)``."""
+    from ..model.fits import moes_line_central
+
+    return float(groups.venner_from_moes_line(moes_line_central(M, L), M))
+
+
 def default_xmin(M: float, L: float) -> float:
     """Default inlet ``X = x/b``: -4.5 (Venner & Lubrecht's classic box), moved upstream at low load.
 
@@ -161,9 +168,7 @@ def default_xmin(M: float, L: float) -> float:
     Measured at equal mesh size (REPORT.md): with X >= -4.5 fixed, Hc is 0.19 % (M = 20,
     L = 10), 0.9 % (M = 5, L = 5) and 1.7 % (M = 2, L = 2) below its long-inlet value.
     """
-    from ..model.fits import moes_line_central
-
-    H = float(moes_line_central(M, L)) * math.pi / (8.0 * M)
+    H = fit_central_film(M, L)
     return float(min(-4.5, math.floor(2.0 * (-1.0 - 20.0 * math.sqrt(2.0 * H))) / 2.0))
 
 

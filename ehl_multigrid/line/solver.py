@@ -35,7 +35,6 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import ConvergenceError, InputError, require_range
-from ..model.fits import moes_line_central
 from ..multigrid.accuracy import PROBE_FILM_TOL, film_change, film_tol, solve_to_accuracy
 from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.gridchoice import solver_grid
@@ -47,7 +46,7 @@ from ..multigrid.transfer import full_weighting, inject, interpolate_cubic, inte
 from .discrete import projected
 from .level import LineLevel, State
 from .newton import NewtonFailure, local_newton, newton_solve
-from .problem import LineProblem, check_grid
+from .problem import LineProblem, check_grid, fit_central_film
 
 #: Largest grid solved directly by Newton at the start of FMG (dense Jacobian).
 MAX_START_POINTS = 2049
@@ -157,7 +156,7 @@ def default_switch_eps(problem: LineProblem) -> float:
     if not problem.elastic:
         return 0.0
     par = problem.rheology()
-    H = moes_line_central(problem.M, problem.L) * math.pi / (8.0 * problem.M)
+    H = fit_central_film(problem.M, problem.L)
     eps_c = density(1.0, par)[0] * H ** 3 * math.exp(-log_viscosity(1.0, par)[0]) / problem.lam
     return min(JD_FILM_FACTOR * float(eps_c), JD_FILM_MAX)
 
@@ -280,11 +279,10 @@ class LineHierarchy:
         lv = self.levels[k]
         # after the stall step of raise_switch: the classic switch on the cycle's coarse grids
         sh = 0.0 if coarse and self.classic_coarse_switch and s.switch_h < 1.0 else s.switch_h
-        # the film-scale switch only where set (the transient levels' relax does not take it)
-        extra = {"switch_eps": self.switch_eps} if self.switch_eps > 0.0 else {}
         st = None
         for _ in range(sweeps):
-            st = lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=sh, **extra)
+            st = lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=sh,
+                          switch_eps=self.switch_eps)
             if coarse:
                 lv.H0 += s.h00_gain * (lv.load() - lv.g)
         work = sweeps * self.work(k)
@@ -415,7 +413,7 @@ class LineHierarchy:
     def _initial_guess(self, lv: LineLevel) -> None:
         """Hertzian pressure and the H0 that gives the Moes-fit central film."""
         pb = self.problem
-        Hc_fit = moes_line_central(pb.M, pb.L) * math.pi / (8.0 * pb.M)
+        Hc_fit = fit_central_film(pb.M, pb.L)
         # Hertzian shape; rigid surfaces: the same shape over the width 2 sqrt(2 Hc)
         a = 1.0 if pb.elastic else min(1.0, 2.0 * math.sqrt(2.0 * Hc_fit))
         lv.P = np.where(np.abs(lv.X) < a, np.sqrt(np.clip(1.0 - (lv.X / a) ** 2, 0.0, None)) / a, 0.0)

@@ -68,13 +68,14 @@ class TransientLineLevel(LineLevel):
         return self.ct * st.rho * st.H - self.hist
 
     def relax(self, switch: float, omega: float, omega_jd: float, band: int = 4,
-              st: State | None = None, switch_h: float = 0.0) -> State:
+              st: State | None = None, switch_h: float = 0.0, switch_eps: float = 0.0) -> State:
         """One collective line-relaxation sweep (the steady system plus the squeeze term's
-        Jacobian) at fixed H0; returns the state before the sweep."""
+        Jacobian) at fixed H0; returns the state before the sweep. (``switch_eps``: the
+        steady solver's film-scale switch; a time step's hierarchy keeps it 0.)"""
         st = self.state() if st is None else st
         ab, rhs, jac = line_relaxation_system(
             self.P, st.H, st.rho, st.drho, st.eps, st.r, self.kernel, self.h, self.order,
-            True, switch, band, self.frozen, switch_h)
+            True, switch, band, self.frozen, switch_h, False, switch_eps)
         if self.ct != 0.0:
             add_squeeze_band(ab, self.P, st.H, st.rho, st.drho, st.r, self.kernel, self.ct, band,
                              jac, self.frozen, True)

@@ -10,13 +10,16 @@ default tolerance. Writes ``out/barus_fine.json`` and prints one line per solve.
 
 from __future__ import annotations
 
-import json
 import math
-import time
+import sys
 from pathlib import Path
 
+from tqdm import tqdm
+
 import ehl_multigrid.line.solver as line_solver_module
-from ehl_multigrid.line import solve_line
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from study import plain_solve, save  # noqa: E402
 
 BARUS = {"viscosity": "barus", "density": "incompressible"}
 DEEP = {"tol": 1e-8, "tol_load": 1e-9, "max_cycles": 200}
@@ -28,31 +31,29 @@ SCAN = [(M, L, n) for M in (50, 100, 200, 500, 1000) for L in (10, 15, 20, 25, 3
     (200, 10, 16385), (100, 20, 32769)]
 
 
-def run(M: float, L: float, n: int, **kw) -> dict:
-    t = time.perf_counter()
-    r = solve_line(M, L, points=n, estimate=False, raise_on_failure=False, **BARUS, **kw)
-    return {"status": r.status_name, "cycles": r.cycles, "work_units": r.work_units, "Hc": r.Hc,
-            "Hm": r.Hm, "wall_s": time.perf_counter() - t}
-
-
 def main() -> None:
     default = line_solver_module.LOCAL_NEWTON_PRE_ALPHA
     out: dict[str, dict] = {}
+    path = Path(__file__).parent / "out" / "barus_fine.json"
     jobs = [(c, "tol 1e-8", DEEP) for c in LISTED] + [(c, "default", {}) for c in LISTED] + \
         [(c, "default", {}) for c in SCAN]
-    for (M, L, n), tag, kw in jobs:
+    for (M, L, n), tag, kw in tqdm(jobs):
         row = {}
-        for mode, alpha in (("off", math.inf), ("on", default)):
-            line_solver_module.LOCAL_NEWTON_PRE_ALPHA = alpha
-            row[mode] = run(M, L, n, **kw)
-        line_solver_module.LOCAL_NEWTON_PRE_ALPHA = default
+        try:
+            for mode, alpha in (("off", math.inf), ("on", default)):
+                line_solver_module.LOCAL_NEWTON_PRE_ALPHA = alpha
+                row[mode] = plain_solve(M, L, n, **BARUS, **kw)
+        finally:
+            line_solver_module.LOCAL_NEWTON_PRE_ALPHA = default
         out[f"M={M} L={L} N={n} {tag}"] = row
+        save(path, out)
         o, w = row["off"], row["on"]
-        print(f"({M}, {L}) {n:6d} {tag:8s} off {o['status']:10s} {o['cycles']:3d} {o['work_units']:6.1f} "
-              f"{o['wall_s']:5.1f}s  on {w['status']:10s} {w['cycles']:3d} {w['work_units']:6.1f} "
-              f"{w['wall_s']:5.1f}s  Hc {o['Hc']:.6f} -> {w['Hc']:.6f}  Hm {o['Hm']:.6f} -> {w['Hm']:.6f}",
-              flush=True)
-    (Path(__file__).parent / "out" / "barus_fine.json").write_text(json.dumps(out, indent=1))
+        nan = float("nan")
+        tqdm.write(f"({M}, {L}) {n:6d} {tag:8s} off {o['status']:10s} {o.get('cycles', 0):3d} "
+                   f"{o.get('work_units', 0):6.1f} {o.get('wall_s', 0):5.1f}s  on {w['status']:10s} "
+                   f"{w.get('cycles', 0):3d} {w.get('work_units', 0):6.1f} {w.get('wall_s', 0):5.1f}s  "
+                   f"Hc {o.get('Hc', nan):.6f} -> {w.get('Hc', nan):.6f}  "
+                   f"Hm {o.get('Hm', nan):.6f} -> {w.get('Hm', nan):.6f}")
 
 
 if __name__ == "__main__":

@@ -39,19 +39,34 @@ REGRESSION = [(R, 20, 10, n) for n in (1025, 2049, 4097, 8193, 16385)] + \
     (R, 1000, 10, 32769), (B, 1000, 10, 16385)]
 
 
-def run(case: tuple) -> dict:
-    visc, M, L, n = case
-    kw = {} if visc == R else {"viscosity": "barus", "density": "incompressible"}
+def plain_solve(M: float, L: float, n: int, **kw) -> dict:
+    """One plain solve ``solve_line(M, L, points=n, estimate=False, **kw)`` as a record (an
+    exception is a result of the study too)."""
     t = time.perf_counter()
     try:
         r = solve_line(M, L, points=n, estimate=False, raise_on_failure=False, **kw)
-    except Exception as exc:  # an exception is a result of the study too
+    except Exception as exc:  # noqa: BLE001
         return {"status": "error", "message": str(exc)[:200]}
     return {"status": r.status_name, "message": r.message, "cycles": r.cycles,
             "work_units": r.work_units, "Hc": r.Hc, "Hm": r.Hm,
             "residual": float(r.residual_history[-1]) if len(r.residual_history) else None,
             "load_error": float(r.load_error_history[-1]) if len(r.load_error_history) else None,
             "wall_s": time.perf_counter() - t, "actions": r.actions}
+
+
+def save(path: Path, data: dict) -> None:
+    """Write ``data`` whole (temporary file, then rename): an interrupted study keeps the
+    cases it finished."""
+    path.parent.mkdir(exist_ok=True)
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text(json.dumps(data, indent=1))
+    tmp.replace(path)
+
+
+def run(case: tuple) -> dict:
+    visc, M, L, n = case
+    kw = {} if visc == R else {"viscosity": "barus", "density": "incompressible"}
+    return plain_solve(M, L, n, **kw)
 
 
 def main() -> None:
@@ -66,7 +81,7 @@ def main() -> None:
             continue
         seen.add(c)
         res["cases"][f"{c[0]} M={c[1]} L={c[2]} N={c[3]}"] = {"group": group, **run(c)}
-        (out / f"{tag}.json").write_text(json.dumps(res, indent=1))
+        save(out / f"{tag}.json", res)
 
 
 if __name__ == "__main__":
