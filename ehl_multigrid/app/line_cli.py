@@ -10,7 +10,7 @@ from typing import Any
 
 from ..line import solve_line
 from ..model.constants import MOES_ONLY_DEFAULTS
-from ..model.errors import ConvergenceError, InputError
+from ..model.errors import ConvergenceError, InputError, require_solution
 from ..model.paths import output_file, safe_stem
 
 #: command-line flag (argparse name) -> line solver option
@@ -49,7 +49,8 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
             pb = sol.problem
             print(f"Moes-only line contact M = {args.M:g}, L = {args.L:g}; oil data used: "
                   f"p0 = {used['p0']:.4g} Pa, alpha = {used['alpha']:.4g} 1/Pa, "
-                  f"eta0 = {used['eta0']:.4g} Pa s ({pb.viscosity}, {pb.density}); pmax = {pb.pmax:.4g} Pa")
+                  f"eta0 = {used['eta0']:.4g} Pa s ({pb.viscosity}, {pb.density}); pmax = {pb.pmax:.4g} Pa"
+                  f"{' (L = 0: isoviscous and incompressible)' if args.L == 0 else ''}")
     else:
         for k in ("alpha", "eta0", "p0"):
             if getattr(args, k, None) is not None:
@@ -67,6 +68,7 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
         else:
             sol = solve_line(scene=scene, **model, elastic=elastic, **opts)
         name = scene.name
+    require_solution(sol, "line solver")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     stem = safe_stem(name)  # a scene name is a label: never a path out of --out

@@ -7,7 +7,7 @@ import math
 from dataclasses import fields
 from pathlib import Path
 
-from ..model.errors import InputError
+from ..model.errors import InputError, require_solution
 from ..model.paths import output_file, safe_stem
 from ..multigrid.options import PointOptions
 from ..point.newton import NewtonOptions
@@ -107,7 +107,8 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
         if scene is None:
             print(f"# Moes-only point contact: M = {pb.M:g}, L = {pb.L:g}, theta = {pb.theta:g}; "
                   f"oil alpha = {pb.alpha:g} 1/Pa, eta0 = {pb.eta0:g} Pa s, p0 = {pb.p_r:g} Pa "
-                  f"(pmax = alpha_bar/alpha = {pb.pmax:.4g} Pa)")
+                  f"(pmax = alpha_bar/alpha = {pb.pmax:.4g} Pa"
+                  f"{'; L = 0: isoviscous and incompressible' if pb.L == 0 else ''})")
         else:
             print(f"# scene {scene.name}: M = {pb.M:.5g}, L = {pb.L:.5g}, theta = {pb.theta:.4g}, "
                   f"pmax = {pb.pmax:.4g} Pa, a = {pb.a:.4g} m")
@@ -123,6 +124,7 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
     else:
         sol = solve_point(scene=scene, viscosity=pb.viscosity, density=pb.density, solver=solver,
                           rigid=rigid, **(vars(opt) if solver == "newton" else fas_kw))
+    require_solution(sol, "point solver")
     res = sol.to_result(scene)
     name = scene.name if scene is not None else f"point_M{pb.M:g}_L{pb.L:g}_th{pb.theta:g}"
     out = Path(getattr(args, "out", "ehl_out"))

@@ -92,3 +92,12 @@ def reject_unknown_keys(section: str, given: dict, allowed: set[str] | list[str]
         raise InputError(
             f"unknown key(s) {unknown} in [{section}]; allowed keys are {sorted(allowed)}"
         )
+
+
+def require_solution(result: Any, what: str) -> None:
+    """Raise :class:`ConvergenceError` when ``result`` (a solver result with ``status_name``
+    and ``message``) holds no solution at all (its start failed): its fields are the initial
+    guess, and writing or plotting them would present zeros as a film."""
+    if getattr(result, "status_name", "") == "start_failed":
+        raise ConvergenceError(f"{what}: {result.message}", getattr(result, "report", None),
+                               "see the message; no solution was written")

@@ -37,6 +37,15 @@ def test_solve_exits_3_when_the_result_is_not_a_success_and_still_writes_it(tmp_
     assert (tmp_path / "line_M20_L10.h5").exists()
 
 
+def test_solve_with_a_failed_start_exits_3_without_a_traceback_or_a_file(tmp_path, capsys):
+    # line (5000, 0): no positive film on the 2049-point dense start grid; the fields are the
+    # initial guess, so nothing is written or plotted (plotting them divided by Hc = 0 before)
+    rc = main(["solve", "--contact", "line", "--M", "5000", "--L", "0", "--out", str(tmp_path)])
+    err = _err(capsys)
+    assert rc == 3 and "not positive on the 2049-point start grid" in err
+    assert not list(tmp_path.iterdir())
+
+
 @pytest.mark.parametrize("flags, field", [
     (["--threads", "0"], "--threads"),
     (["--threads", "1000"], "--threads"),

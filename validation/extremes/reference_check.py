@@ -101,6 +101,8 @@ def main() -> None:
         tmp.replace(path)
 
     save()
+    # cheapest first (grid, then load): an interrupted run has checked as many as it could
+    todo.sort(key=lambda kr: (kr[1]["result"]["points"], kr[1]["case"]["M"], kr[1]["case"]["L"]))
     for key, rec in tqdm(todo):
         r = rec["result"]
         if key in out:
