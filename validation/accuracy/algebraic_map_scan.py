@@ -28,6 +28,7 @@ from ehl_multigrid.point import solve_point
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[0] / "extremes"))
 from accuracy_map import box_of  # noqa: E402
+from reference_check import reference_films  # noqa: E402
 
 
 def deep_solve(c: dict, r: dict, box: float):
@@ -40,33 +41,6 @@ def deep_solve(c: dict, r: dict, box: float):
     return solve_point(c["M"], c["L"], theta=c["theta"], points=r["points"], estimate=False, tol=1e-7,
                        tol_load=1e-6, max_cycles=100, raise_on_failure=False, **model, **cells,
                        **box_of(c, box))
-
-
-#: a deep solve that ran out of cycles still serves as the reference when the films of its
-#: last STALL_FILMS finest cycles lie within a band this narrow (relative): the mean, with the
-#: band's half width as its uncertainty (point solves whose residual stalls near 1e-6-1e-5 while
-#: the films settle: theta 10 isoviscous, Barus L = 20 at theta 0.25, L = 25 at theta 0.1)
-STALL_BAND = 1e-3
-STALL_FILMS = 10
-
-
-def reference_films(deep) -> tuple[dict, dict] | None:
-    """Films (Moes units) of the deep solve and their relative uncertainty, or None."""
-    if deep.success:
-        return {h: float(deep.scalars[h]) for h in ("Hc", "Hm")}, {"Hc": 0.0, "Hm": 0.0}
-    if deep.status_name != "max_cycles":
-        return None
-    top = max(h.level for h in deep.history)
-    fin = [h for h in deep.history if h.level == top][-STALL_FILMS:]
-    films, unc = {}, {}
-    for h in ("Hc", "Hm"):
-        moes = float(deep.scalars[h]) / float(deep.scalars[h + "_venner"])
-        vals = [getattr(f, h) * moes for f in fin]
-        mean = sum(vals) / len(vals)
-        films[h], unc[h] = mean, 0.5 * (max(vals) - min(vals)) / mean
-    if len(fin) < STALL_FILMS or max(unc.values()) > STALL_BAND:
-        return None
-    return films, unc
 
 
 def main() -> None:
