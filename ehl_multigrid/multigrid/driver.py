@@ -33,6 +33,7 @@ history and a callback, and ``repr`` lists the grids.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Callable
@@ -44,7 +45,7 @@ import numpy as np
 from ..model.errors import ConvergenceError
 from .accuracy import LOAD_SENSITIVITY, hm_max_order, iteration_error, richardson
 from .options import MultigridOptions
-from .policy import RobustnessPolicy, Settings
+from .policy import NOTHING_CHANGED, RobustnessPolicy, Settings
 from .result import EHLResult
 
 
@@ -192,6 +193,7 @@ class MultilevelSolver:
         recent = [h.residual for h in self.history if h.level == k]
         last = self.history[-1] if self.history else None
         prev_le = last.load_error if last is not None and last.level == k else None
+        last_change = None
         for attempt in range(pol.params.max_retries):
             self._level_res = []
             try:
@@ -207,9 +209,18 @@ class MultilevelSolver:
                 pol.recover(s)
                 break
             hz.restore(k, saved)
+            before = dataclasses.astuple(s)
             what = pol.on_reject(s, hz)
             self.note(f"cycle {c} on grid {k} rejected (residual {m.residual:.3g}, load error "
                       f"{m.load_error:.3g}, attempt {attempt + 1}): {what}")
+            change = (what, dataclasses.astuple(s))
+            if change[1] == before and (change == last_change or what in ("fail", NOTHING_CHANGED)):
+                # the attempt is deterministic: from the restored state with the same settings
+                # the next one would fail the same way (point Barus (1000, 20) at 2049 points
+                # repeated its NaN six times, same load error to the digit)
+                raise _Stop(3, f"diverged on grid {k}: cycle {c} rejected {attempt + 1} times and the "
+                               f"remedies are exhausted (last residual {m.residual:.3g})")
+            last_change = change
         else:
             raise _Stop(3, f"diverged on grid {k}: {pol.params.max_retries} attempts of cycle {c} "
                            f"rejected (last residual {m.residual:.3g})")

@@ -85,6 +85,10 @@ class Settings:
                    (options.omega, options.omega_jd, h00_gain))
 
 
+#: what :meth:`RobustnessPolicy.on_reject` says when adaptation is off
+NOTHING_CHANGED = "adaptation disabled, nothing changed"
+
+
 class RobustnessPolicy:
     """Decides whether a cycle is accepted and what to change when it is not (see module)."""
 
@@ -139,7 +143,7 @@ class RobustnessPolicy:
     def _next(self, s: Settings, hierarchy, which: str) -> str:
         p = self.params
         if not self.adapt:
-            return "adaptation disabled, nothing changed"
+            return NOTHING_CHANGED
         ladder = p.reject_ladder if which == "reject" else p.stall_ladder
         cyclic = p.cyclic_reject if which == "reject" else p.cyclic_stall
         for _ in range(len(ladder)):

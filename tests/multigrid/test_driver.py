@@ -66,6 +66,23 @@ def test_every_rejection_exhausts_the_retries_and_reports_divergence():
     assert len([a for a in sol.actions if "rejected" in a]) == PolicyParameters().max_retries
 
 
+def test_retries_stop_once_the_remedies_can_change_nothing():
+    # the under-relaxation at its floor: the next attempt would repeat the last one exactly
+    hz = PoissonHierarchy(129, 5, unstable_above=0.0)
+    params = PolicyParameters(floors=(0.25, 0.075, 0.0))
+    sol = toy_solver(hierarchy=hz, params=params, omega=1.0, max_cycles=5, tol=1e-10, tol_load=0.1).solve()
+    assert sol.status_name == "diverged" and "remedies are exhausted" in sol.message
+    omegas = [a.split("omega = ")[1].split(",")[0] for a in sol.actions if "rejected" in a]
+    assert omegas == ["0.5", "0.25", "0.25"]  # 1.0 -> 0.5 -> 0.25, then one identical attempt
+
+
+def test_retries_without_adaptation_stop_at_the_first_rejection():
+    hz = PoissonHierarchy(129, 5, unstable_above=0.0)
+    sol = toy_solver(hierarchy=hz, omega=1.0, max_cycles=5, tol=1e-10, tol_load=0.1, adapt=False).solve()
+    assert sol.status_name == "diverged"
+    assert len([a for a in sol.actions if "rejected" in a]) == 1
+
+
 def test_stall_switches_to_w_then_raises_the_switch_then_gives_up():
     hz = PoissonHierarchy(129, 5, no_correction=True)  # smoothing only: the residual stalls
     sol = toy_solver(hierarchy=hz, cycle="V", cycles=1, max_cycles=200, tol=1e-10, tol_load=0.1).solve()
