@@ -144,8 +144,8 @@ class LineProblem:
                     self.alpha_bar, self.pmax)
 
     def moes_from_venner(self, H: float) -> float:
-        """``H_Moes = H_Venner 8 M / pi``."""
-        return float(H) * 8.0 * self.M / math.pi
+        """``H_Moes = H_Venner 8 M / pi`` (:func:`~ehl_multigrid.model.groups.moes_from_venner_line`)."""
+        return float(groups.moes_from_venner_line(H, self.M))
 
     def describe(self) -> dict[str, Any]:
         d = asdict(self)
