@@ -47,12 +47,15 @@ def line_scalars(sol: EHLResult, solver: Any) -> dict[str, Any]:
     idx = np.flatnonzero(zone)
     im = idx[np.argmin(H[idx])]
     isp = spike_index(X, P)
+    Hm = float(H[im])
+    if sol.status_name == "start_failed":  # the fields are the initial guess: no film to report
+        Hc = Hm = math.nan
     s: dict[str, Any] = {}
     s["Hc_venner"] = Hc
-    s["Hm_venner"] = float(H[im])
+    s["Hm_venner"] = Hm
     s["X_Hm"] = float(X[im])
     s["Hc"] = pb.moes_from_venner(Hc)
-    s["Hm"] = pb.moes_from_venner(H[im])
+    s["Hm"] = pb.moes_from_venner(Hm)
     s["p_spike"] = float(P[isp]) if isp is not None else math.nan
     s["X_spike"] = float(X[isp]) if isp is not None else math.nan
     s["H0"] = sol.H0

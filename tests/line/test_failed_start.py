@@ -1,0 +1,13 @@
+"""A line solve whose dense Newton start cannot hold a film returns no film."""
+
+import math
+
+from ehl_multigrid.line import solve_line
+
+
+def test_a_failed_start_reports_nan_films_not_zero():
+    # (5000, 0): no positive film on the 2049-point start grid (the start's cap)
+    res = solve_line(5000, 0, raise_on_failure=False)
+    assert res.status_name == "start_failed" and not res.success
+    assert "not positive" in res.message
+    assert all(math.isnan(res.scalars[k]) for k in ("Hc", "Hm", "Hc_venner", "Hm_venner"))
