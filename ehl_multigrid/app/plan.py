@@ -336,8 +336,9 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     G = scene.lubricant.G
     eta_mean = float(scene.lubricant.viscosity(scene.hertz.mean_pressure, scene.T_oil))
     De = eta_mean * (u_worst / 2.0) / (G * scene.hertz.a)
-    plan.decisions.append(Decision("maxwell", De > 1.0, "visco-elastic" if De > 1.0 else "off", De, 1.0, "-",
-                                   f"Deborah number eta um/(G a) = {De:.3g} with G = {G:.3g} Pa"))
+    why = (f"Deborah number eta um/(G a) = {De:.3g} with G = {G:.3g} Pa" if G < 1e29 else
+           "the lubricant gives no shear modulus (G = 1e30 Pa: elasticity off)")
+    plan.decisions.append(Decision("maxwell", De > 1.0, "visco-elastic" if De > 1.0 else "off", De, 1.0, "-", why))
     return plan
 
 
