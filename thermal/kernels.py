@@ -33,6 +33,8 @@ import math
 import numpy as np
 from numba import njit
 
+from ehl_multigrid.model.lubricant import G_ELASTICITY_OFF
+
 from .properties import (
     I_G,
     I_TAU0,
@@ -593,7 +595,7 @@ def sweep_line(
     dZ = 1.0 / nz
     tau0 = oil[I_TAU0]
     G = oil[I_G]
-    inv_G = 0.0 if G >= 1e29 else 1.0 / G
+    inv_G = 0.0 if G >= G_ELASTICITY_OFF else 1.0 / G
     wz = np.full(nzp, dZ)
     wz[0] = 0.5 * dZ
     wz[nzp - 1] = 0.5 * dZ

@@ -25,7 +25,7 @@ import numpy as np
 from ..model import fits
 from ..model.constants import ETA_INF, P_R
 from ..model.errors import InputError, require_range
-from ..model.lubricant import density_ratio_dh
+from ..model.lubricant import G_ELASTICITY_OFF, density_ratio_dh
 from ..model.scene import Scene
 from ..multigrid.gridchoice import GridChoice, solver_grid
 
@@ -336,7 +336,7 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     G = scene.lubricant.G
     eta_mean = float(scene.lubricant.viscosity(scene.hertz.mean_pressure, scene.T_oil))
     De = eta_mean * (u_worst / 2.0) / (G * scene.hertz.a)
-    why = (f"Deborah number eta um/(G a) = {De:.3g} with G = {G:.3g} Pa" if G < 1e29 else
+    why = (f"Deborah number eta um/(G a) = {De:.3g} with G = {G:.3g} Pa" if G < G_ELASTICITY_OFF else
            "the lubricant gives no shear modulus (G = 1e30 Pa: elasticity off)")
     plan.decisions.append(Decision("maxwell", De > 1.0, "visco-elastic" if De > 1.0 else "off", De, 1.0, "-", why))
     return plan

@@ -47,13 +47,13 @@ def line_scalars(sol: EHLResult, solver: Any) -> dict[str, Any]:
     idx = np.flatnonzero(zone)
     im = idx[np.argmin(H[idx])]
     isp = spike_index(X, P)
-    Hm = float(H[im])
+    Hm, X_Hm = float(H[im]), float(X[im])
     if sol.status_name == "start_failed":  # the fields are the initial guess: no film to report
-        Hc = Hm = math.nan
+        Hc = Hm = X_Hm = math.nan
     s: dict[str, Any] = {}
     s["Hc_venner"] = Hc
     s["Hm_venner"] = Hm
-    s["X_Hm"] = float(X[im])
+    s["X_Hm"] = X_Hm
     s["Hc"] = pb.moes_from_venner(Hc)
     s["Hm"] = pb.moes_from_venner(Hm)
     s["p_spike"] = float(P[isp]) if isp is not None else math.nan

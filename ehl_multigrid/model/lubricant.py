@@ -22,6 +22,11 @@ T_MIN_C = -50.0
 T_MAX_C = 400.0
 
 
+#: shear modulus [Pa] from which the Maxwell term is off (the default G = 1e30 means no
+#: elasticity)
+G_ELASTICITY_OFF = 1e29
+
+
 @dataclass(frozen=True)
 class Lubricant:
     """A lubricant as the thesis describes it (appendices A and B).
@@ -54,7 +59,8 @@ class Lubricant:
     tau0 : float
         Eyring stress [Pa].
     G : float
-        Shear modulus of the Maxwell term (3.3) [Pa]; 1e30 switches elasticity off.
+        Shear modulus of the Maxwell term (3.3) [Pa]; 1e30 (any value from
+        :data:`G_ELASTICITY_OFF` on) switches elasticity off.
     """
 
     name: str

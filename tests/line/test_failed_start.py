@@ -10,4 +10,4 @@ def test_a_failed_start_reports_nan_films_not_zero():
     res = solve_line(5000, 0, raise_on_failure=False)
     assert res.status_name == "start_failed" and not res.success
     assert "not positive" in res.message
-    assert all(math.isnan(res.scalars[k]) for k in ("Hc", "Hm", "Hc_venner", "Hm_venner"))
+    assert all(math.isnan(res.scalars[k]) for k in ("Hc", "Hm", "Hc_venner", "Hm_venner", "X_Hm"))

@@ -43,9 +43,10 @@ def main() -> None:
         rows.append({"theta": theta, "M": M, "L": L, "points": n, "min_points": floor,
                      "status": s.status_name, "Hc": s.scalars.get("Hc"), "Hm": s.scalars.get("Hm"),
                      "work_units": s.work_units, "wall_s": time.perf_counter() - t})
-    tmp = OUT.with_suffix(".tmp")
-    tmp.write_text(json.dumps(rows, indent=1, default=float))
-    tmp.replace(OUT)
+        # after every solve: an interrupted run keeps what it finished
+        tmp = OUT.with_suffix(".tmp")
+        tmp.write_text(json.dumps(rows, indent=1, default=float))
+        tmp.replace(OUT)
     below = [r for r in rows if r["points"] < r["min_points"]]
     print(f"{len(below)} solves below the floor: "
           f"{sum(r['status'] == 'converged' for r in below)} converged; at the floor: "
