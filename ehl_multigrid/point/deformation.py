@@ -43,13 +43,39 @@ def _F(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return t1 + t2
 
 
+@njit(cache=True)
+def _f1(x: float, y: float) -> float:
+    """:func:`_F` at one point."""
+    t1 = x * math.asinh(y / abs(x)) if x != 0.0 else 0.0
+    t2 = y * math.asinh(x / abs(y)) if y != 0.0 else 0.0
+    return t1 + t2
+
+
+@njit(cache=True, parallel=True)
+def _fill_cell_kernel(hx: float, hy: float, out: np.ndarray) -> None:
+    ny, nx = out.shape
+    # F at the cell corners ((i - 1/2) hx, (j - 1/2) hy), shared by four cells: 2 asinh per
+    # point instead of 8
+    G = np.empty((ny + 1, nx + 1))
+    for j in prange(ny + 1):
+        y = (j - 0.5) * hy
+        for i in range(nx + 1):
+            G[j, i] = _f1((i - 0.5) * hx, y)
+    for j in prange(ny):
+        for i in range(nx):
+            out[j, i] = G[j + 1, i + 1] - G[j + 1, i] - G[j, i + 1] + G[j, i]
+
+
 def cell_kernel(nx: int, ny: int, hx: float, hy: float) -> np.ndarray:
-    """Exact cell kernel ``K[dj, di]`` for offsets ``0 <= di < nx``, ``0 <= dj < ny``."""
-    x = np.arange(nx, dtype=float)[None, :] * hx
-    y = np.arange(ny, dtype=float)[:, None] * hy
-    xp, xm = x + 0.5 * hx, x - 0.5 * hx
-    yp, ym = y + 0.5 * hy, y - 0.5 * hy
-    return _F(xp, yp) - _F(xm, yp) - _F(xp, ym) + _F(xm, ym)
+    """Exact cell kernel ``K[dj, di]`` for offsets ``0 <= di < nx``, ``0 <= dj < ny``: the
+    integral of ``1/r`` over the cell at that offset, from the antiderivative :func:`_F` at the
+    cell corners (the sum :func:`kernel_at` evaluates per cell).
+
+    Compiled, from the corner values that neighbouring cells share: the per-cell numpy sum
+    took 4 % of a 1025^2 solve (the grid's kernel spectrum) and did not use the threads."""
+    out = np.empty((int(ny), int(nx)))
+    _fill_cell_kernel(float(hx), float(hy), out)
+    return out
 
 
 def mirror_full(P_half: np.ndarray) -> np.ndarray:
