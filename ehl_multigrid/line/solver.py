@@ -613,11 +613,15 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     return out
 
 
-def line_domain_change(problem: LineProblem, options: LineOptions, sol: EHLResult) -> tuple[float, float] | None:
+def line_domain_change(problem: LineProblem, options: LineOptions, sol: EHLResult,
+                       boxes: tuple[float, ...] = (1.0, 2.0)
+                       ) -> tuple[float, float] | list[tuple[float, float]] | None:
     """Relative change of (Hc, Hm) when the inlet is moved upstream by the box length at equal
     mesh size, measured by two converged solves on a coarse grid of the solve (two grids below
     the finest, not below the FMG start grid; one grid finer when that does not converge);
-    None when no pair converges.
+    None when no pair converges. ``boxes`` (box lengths in units of the solve's, each twice the
+    one before) with more than two entries returns the list of the successive changes, each
+    relative to the shorter box (:func:`line_domain_decay`).
 
     Each probe solve starts its cycles on its finest grid from the solution, with a film
     tolerance of :data:`GUESS_PROBE_FILM_TOL` (FMG at ``PROBE_FILM_TOL`` when that fails).
@@ -628,23 +632,51 @@ def line_domain_change(problem: LineProblem, options: LineOptions, sol: EHLResul
     (100, 20) at 8193 within 1 % at 1e-6."""
     top = sol.levels - 1
     k0 = max(top - 2, min(d["level"] for d in sol.fmg))
-    wide = dataclasses.replace(problem, xmin=problem.xmin - (problem.xmax - problem.xmin))
+    length = problem.xmax - problem.xmin
+    solved: dict[tuple[float, int], EHLResult] = {}
     for kp in range(k0, top + 1):
         n_p = (sol.X.shape[0] - 1) // 2 ** (top - kp) + 1
 
-        def solve(pb: LineProblem, n: int) -> EHLResult:
-            opts = dataclasses.replace(options, points=n, levels=None, fmg_start_points=None,
-                                       raise_on_failure=False, film_tol=GUESS_PROBE_FILM_TOL)
+        def solve(f: float, n: int) -> EHLResult:
+            pb = problem if f == 1.0 else dataclasses.replace(problem, xmin=problem.xmax - f * length)
+            opts = dataclasses.replace(options, points=int(round((n - 1) * f)) + 1, levels=None,
+                                       fmg_start_points=None, raise_on_failure=False,
+                                       film_tol=GUESS_PROBE_FILM_TOL)
             guess = (sol.X, sol.P, sol.H0)
             res = solve_line_problem(pb, opts, guess=guess, from_guess=True)
             if res.success:
                 return res
-            return solve_line_problem(pb, dataclasses.replace(opts, film_tol=PROBE_FILM_TOL), guess=guess)
+            # several boxes: their changes shrink with each doubling, so the FMG fallback is as
+            # tight as the start from the solution
+            ftol = PROBE_FILM_TOL if len(boxes) == 2 else GUESS_PROBE_FILM_TOL
+            return solve_line_problem(pb, dataclasses.replace(opts, film_tol=ftol), guess=guess)
 
-        change = film_change(lambda n=n_p: solve(problem, n), lambda n=n_p: solve(wide, 2 * (n - 1) + 1))
-        if change is not None:
-            return change
+        def solved_at(f: float, n: int = n_p) -> EHLResult:
+            # one solve per box and grid: the wide solve of one doubling is the short one of the next
+            if (f, n) not in solved:
+                solved[(f, n)] = solve(f, n)
+            return solved[(f, n)]
+
+        changes = []
+        for f in boxes[:-1]:
+            change = film_change(lambda f=f: solved_at(f), lambda f=f: solved_at(2.0 * f))
+            if change is None:
+                break
+            changes.append(change)
+        if len(changes) == len(boxes) - 1:
+            return changes[0] if len(boxes) == 2 else changes
     return None
+
+
+def line_domain_decay(problem: LineProblem, options: LineOptions, sol: EHLResult
+                      ) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """The changes of (Hc, Hm) over two successive doublings of the box length (inlet moved
+    upstream; 1x -> 2x -> 4x of the solve's box, equal mesh): the input of
+    :func:`~ehl_multigrid.multigrid.accuracy.domain_from_decay`. None when a solve fails."""
+    changes = line_domain_change(problem, options, sol, boxes=(1.0, 2.0, 4.0))
+    if changes is None:
+        return None
+    return changes[0], changes[1]
 
 
 def solve_line(
@@ -722,8 +754,12 @@ def solve_line(
     def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
         return line_domain_change(res.problem, res.options, res)
 
+    def decay_probe(res: EHLResult, box: float) -> tuple[tuple[float, float], tuple[float, float]] | None:
+        return line_domain_decay(res.problem, res.options, res)
+
     res = solve_to_accuracy(solve, probe, accuracy, points, max_points,
-                            refine=accuracy is not None and not (explicit or fixed_box))
+                            refine=accuracy is not None and not (explicit or fixed_box),
+                            decay_probe=decay_probe)
     if not res.success and opts.raise_on_failure:
         raise ConvergenceError(f"line solver: {res.message}", res.report, HINT)
     return res

@@ -190,12 +190,24 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     return _finish(sol, scene)
 
 
+#: film and load tolerances of the probe solves that measure the decay of the box change
+#: (:func:`point_domain_decay`): the second doubling's change is a few times smaller than the
+#: first (0.03 % for the 6205 inner race), well above these, unlike PROBE_FILM_TOL
+DECAY_PROBE_TOL = 1e-6
+
+
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
-                        cache: dict[PointOptions, EHLResult] | None = None) -> tuple[float, float] | None:
+                        cache: dict[PointOptions, EHLResult] | None = None,
+                        boxes: tuple[float, ...] = (1.0, 2.0), tight: bool = False
+                        ) -> tuple[float, float] | list[tuple[float, float]] | None:
     """Relative change of (Hc, Hm) when the box is doubled in X and Y at equal mesh size,
     measured by two converged solves on a coarse grid of the solve (two grids below the
     finest, at least the solver's minimum grid; finer grids up to the solve's own when that does
     not converge); None when no pair converges.
+
+    ``boxes`` (scales of the solve's box, each twice the one before) with more than two entries
+    returns the list of the successive changes, each relative to the smaller box; ``tight``
+    solves to :data:`DECAY_PROBE_TOL` instead of the probes' film tolerance.
 
     ``cache`` (options -> result) keeps the probe solves of one refinement sequence: the wide
     solve of a box is the narrow solve of the next box's probe, on the same mesh."""
@@ -223,22 +235,41 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
             # Hm -1.2 % (film-stopped: +1.3e-4, +7.5e-5). No tighter than the solve's own film
             # stop (a twentieth of its target): thick films converge slowly on the wide boxes,
             # (1, 0) at 2 %: 1025 points on a 400 a box reached max_cycles at 1e-4 (93 s)
-            ftol = max(PROBE_FILM_TOL, options.film_tol or 0.0)
-            o = replace(options, points=n, levels=None, n_coarse=None, xmin=f * xmin, xmax=f * xmax,
-                        ymax=f * ymax, y_ratio=sol.extra["y_ratio"], raise_on_failure=False,
-                        tol_load=max(options.tol_load, 1e-4), film_tol=ftol)
+            if tight:
+                ftol, ltol = DECAY_PROBE_TOL, DECAY_PROBE_TOL
+            else:
+                ftol, ltol = max(PROBE_FILM_TOL, options.film_tol or 0.0), max(options.tol_load, 1e-4)
+            o = replace(options, points=int(round((n - 1) * f)) + 1, levels=None, n_coarse=None,
+                        xmin=f * xmin, xmax=f * xmax, ymax=f * ymax, y_ratio=sol.extra["y_ratio"],
+                        raise_on_failure=False, tol_load=ltol, film_tol=ftol)
             if cache is None:
                 return solve_fas(problem, o)
             if o not in cache:
                 cache[o] = solve_fas(problem, o)
             return cache[o]
 
-        change = film_change(lambda n=n_p: solve(n, 1.0), lambda n=n_p: solve(2 * (n - 1) + 1, 2.0))
-        if change is not None:
-            return change
+        changes = [film_change(lambda n=n_p, f=f: solve(n, f), lambda n=n_p, f=f: solve(n, 2.0 * f))
+                   for f in boxes[:-1]]
+        if None not in changes:
+            return changes[0] if len(boxes) == 2 else changes
         if n_p >= n_f:
             return None
         n_p = 2 * (n_p - 1) + 1  # one grid finer when the coarse probe does not converge
+
+
+def point_domain_decay(problem: PointProblem, options: PointOptions, sol: EHLResult,
+                       cache: dict[PointOptions, EHLResult] | None = None
+                       ) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """The changes of (Hc, Hm) over two successive doublings of the box (1x -> 2x -> 4x of the
+    solve's box, equal mesh), from tight probe solves (:data:`DECAY_PROBE_TOL`): the input of
+    :func:`~ehl_multigrid.multigrid.accuracy.domain_from_decay`. None when a solve fails.
+
+    Measured on the 6205 inner-race contact (M 3620, L 13.1, b/a 9.4) at the mesh of 257
+    points: Hc +0.124 % from 1x to 2x (see validation/point/REPORT.md)."""
+    changes = point_domain_change(problem, options, sol, cache, boxes=(1.0, 2.0, 4.0), tight=True)
+    if changes is None:
+        return None
+    return changes[0], changes[1]
 
 
 def thick_film_reason(problem: PointProblem, res: EHLResult, accuracy: float) -> str:
@@ -338,11 +369,15 @@ def solve_point(
         def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
             return point_domain_change(pb, res.options, res, probes)
 
+        def decay_probe(res: EHLResult, box: float) -> tuple[tuple[float, float], tuple[float, float]] | None:
+            return point_domain_decay(pb, res.options, res, probes)
+
         # thick films (low M) spread over many inlet lengths: their box may grow further, on a
         # mesh that coarsens with it (the coarse grid follows the inlet length)
         box_limit = THICK_FILM_BOX_LIMIT if domain_scale(pb) > 1.0 else 4.0
         res = solve_to_accuracy(solve, probe, accuracy, points, max_points, box_limit=box_limit,
-                                refine=accuracy is not None and not (explicit or fixed_box))
+                                refine=accuracy is not None and not (explicit or fixed_box),
+                                decay_probe=decay_probe)
         if res.status_name == "inaccurate" and domain_scale(pb) > 1.0:
             res.message += "; " + thick_film_reason(pb, res, accuracy)
         need = min_points(pb.M, pb.b_over_a, cap=None)

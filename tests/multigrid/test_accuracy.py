@@ -312,3 +312,92 @@ def test_irregular_fmg_films_are_repaired_by_converged_coarser_solves():
     limit = deep[4097] + (deep[4097] - deep[2049]) / 3.0
     true = abs(r.scalars["Hc_venner"] / limit - 1.0)
     assert true < r.error.Hc < 0.005
+
+
+def test_domain_from_decay_continues_the_box_change_geometrically():
+    from ehl_multigrid.multigrid.accuracy import DECAY_SAFETY, DOMAIN_SAFETY, domain_from_decay
+
+    # changes 1e-3 then 2.5e-4: what is left beyond the box is 1e-3 (1 + 1/4 + 1/16 + ...)
+    assert domain_from_decay(1e-3, 2.5e-4) == pytest.approx(DECAY_SAFETY * 1e-3 * 4.0 / 3.0)
+    assert domain_from_decay(-1e-3, -2.5e-4) == pytest.approx(DECAY_SAFETY * 1e-3 * 4.0 / 3.0)
+    # a change that stops after the first doubling, one that does not shrink, one that turns
+    assert domain_from_decay(1e-3, 0.0) == pytest.approx(DECAY_SAFETY * 1e-3)
+    assert domain_from_decay(1e-3, 1e-3) == math.inf
+    assert domain_from_decay(1e-3, -2e-4) == math.inf
+    # changes at the probes' noise level are no decay: the fixed factor
+    assert domain_from_decay(4e-6, 6e-6) == pytest.approx(DOMAIN_SAFETY * 4e-6)
+
+
+def test_the_decay_probe_runs_only_where_the_fixed_domain_factor_decides_a_miss(monkeypatch):
+    import ehl_multigrid.multigrid.accuracy as acc
+
+    def fake_estimate(res, dom, converged=None, decay=None):
+        # grid part res.err, domain part 3 x 1e-3 (fixed factor) or from the decay
+        d = 3e-3 if decay is None else acc.domain_from_decay(decay[0][0], decay[1][0])
+        b = {"grid": {"Hc": res.err, "Hm": res.err}, "domain": {"Hc": d, "Hm": d},
+             "algebraic": {"Hc": 1e-4, "Hm": 1e-4}}
+        return ErrorEstimate(res.err + d + 1e-4, res.err + d + 1e-4, b)
+
+    def fake_attach(res, est, accuracy):
+        res.error = est
+        ok = max(est.Hc, est.Hm) <= accuracy
+        res.success, res.status_name = ok, ("converged" if ok else "inaccurate")
+
+    monkeypatch.setattr(acc, "estimate_error", fake_estimate)
+    monkeypatch.setattr(acc, "attach_estimate", fake_attach)
+    calls = []
+
+    def decay_probe(res, box):
+        calls.append(res.X.shape[0])
+        return (1e-3, 1e-3), (2.5e-4, 2.5e-4)
+
+    # grid 1e-3: the fixed factor gives 4.1e-3 > 3e-3; the smallest decay-based part would
+    # give 2.35e-3, so the third box is measured (1.67e-3: 2.77e-3 in all, met)
+    runs = {513: _Fake(513, True, 1e-3)}
+    out = solve_to_accuracy(lambda n, b, t: runs[n], lambda r, b: (1e-3, 1e-3), 3e-3, 513, 513,
+                            decay_probe=decay_probe)
+    assert calls == [513] and out.success
+    assert out.extra["domain_changes"] == [[1e-3, 1e-3], [2.5e-4, 2.5e-4]]
+    # grid 2e-3: even a domain error that stops at the first doubling misses, no probe
+    calls.clear()
+    runs = {513: _Fake(513, True, 2e-3)}
+    out = solve_to_accuracy(lambda n, b, t: runs[n], lambda r, b: (1e-3, 1e-3), 3e-3, 513, 513,
+                            decay_probe=decay_probe)
+    assert calls == [] and not out.success
+
+
+def test_a_measured_decay_of_the_box_change_is_honest_and_sharper_than_the_fixed_factor():
+    """Circular (20, 10) on 129 points: the fixed factor (3 x the first doubling's change)
+    misses a 6 % target, the box change measured over a third box (it falls about 6x per
+    doubling) meets it; against a reference on boxes twice and four times as wide the estimate
+    still bounds the true error."""
+    fixed = solve_point(20.0, 10.0, points=129)
+    sol = solve_point(20.0, 10.0, points=129, accuracy=0.06)
+    assert max(fixed.Hc_error, fixed.Hm_error) > 0.06
+    assert sol.success and sol.status_name == "converged" and sol.X.shape[0] == 129
+    (d2c, d2m), (d4c, d4m) = sol.extra["domain_changes"]
+    assert 3.0 < d2c / d4c < 12.0 and 3.0 < d2m / d4m < 12.0
+    assert sol.Hc_error < fixed.Hc_error and sol.Hm_error < fixed.Hm_error
+    d = sol.extra["domain"]
+    box = [dict(xmin=f * d[0], xmax=f * d[1], ymax=f * d[2], half=True, estimate=False, tol=1e-6,
+                tol_load=1e-7) for f in (2, 4)]
+    a = solve_point(20.0, 10.0, points=257, **box[0])
+    b = solve_point(20.0, 10.0, points=513, **box[0])
+    c = solve_point(20.0, 10.0, points=513, **box[1])  # the mesh of a, box 4x
+    for k, est in (("Hc_venner", sol.Hc_error), ("Hm_venner", sol.Hm_error)):
+        ref = (b.scalars[k] + (b.scalars[k] - a.scalars[k]) / 3.0) * c.scalars[k] / a.scalars[k]
+        true = abs(sol.scalars[k] / ref - 1.0)
+        assert true <= est <= 5.0 * true
+
+
+def test_line_target_missed_only_by_the_fixed_domain_factor_is_met_by_the_measured_decay(line_reference):
+    fixed = solve_line(20.0, 10.0, points=2049)
+    b = fixed.error.budget
+    # a target between the fixed-factor estimate and the smallest the decay could give
+    target = max(b["grid"][k] + b["algebraic"][k] + 0.7 * b["domain"][k] for k in ("Hc", "Hm"))
+    assert max(fixed.Hc_error, fixed.Hm_error) > target
+    sol = solve_line(20.0, 10.0, points=2049, accuracy=target)
+    assert sol.success and "domain_changes" in sol.extra
+    assert sol.error.budget["domain"]["Hc"] < b["domain"]["Hc"]
+    for k, est, ref in (("Hc_venner", sol.Hc_error, line_reference[0]), ("Hm_venner", sol.Hm_error, line_reference[1])):
+        assert abs(sol.scalars[k] / ref - 1.0) <= est
