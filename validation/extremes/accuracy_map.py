@@ -118,6 +118,18 @@ def solve(case: dict, accuracy: float, points: int | None = None, max_points: in
             "wall_s": time.perf_counter() - t0}
 
 
+def domain_decided(r: dict, accuracy: float) -> bool:
+    """Whether a stored result missed ``accuracy`` only by its fixed domain factor: the
+    accuracy loop's test for measuring the decay of the box change (decay_could_meet)."""
+    from ehl_multigrid.multigrid.accuracy import ErrorEstimate, decay_could_meet
+
+    b = r.get("error_budget")
+    if r.get("status") != "inaccurate" or not b:
+        return False
+    est = ErrorEstimate(r["Hc_error"], r["Hm_error"], b)
+    return decay_could_meet(est, accuracy)
+
+
 def grid_and_iteration(r: dict, film: str) -> float:
     """The grid plus algebraic part of a solve's estimate (what a check on the same box tests)."""
     b = r.get("error_budget") or {}
@@ -206,6 +218,10 @@ def main() -> None:
     ap.add_argument("--retry-grid-budget", metavar="FILE",
                     help="re-run only the cases of FILE (a map of this script) that stopped at the grid "
                          "budget, with --max-points; writes <FILE stem>_max<N>.json")
+    ap.add_argument("--domain-decided", metavar="FILE",
+                    help="re-run only the cases of FILE that ended inaccurate where the fixed domain "
+                         "factor alone decided the miss (the accuracy loop now measures the box "
+                         "change's decay there); writes <FILE stem>_decay.json")
     ap.add_argument("--theta-min", type=float, default=None,
                     help="only the point cases with theta >= this (written to <map>_theta<T>.json)")
     ap.add_argument("--recheck", metavar="FILE",
@@ -240,6 +256,11 @@ def main() -> None:
         todo = [rec["case"] for rec in old.values()
                 if "grid error dominates" in str(rec["result"].get("message", ""))]
         path = src.with_name(f"{src.stem}_max{a.max_points}.json")
+    if a.domain_decided:
+        src = Path(a.domain_decided)
+        old = json.loads(src.read_text())
+        todo = [rec["case"] for rec in old.values() if domain_decided(rec["result"], a.accuracy)]
+        path = src.with_name(f"{src.stem}_decay.json")
     if a.theta_min is not None:
         todo = [c for c in todo if c["contact"] == "point" and c["theta"] >= a.theta_min]
         path = path.with_name(f"{path.stem}_theta{a.theta_min:g}.json")
