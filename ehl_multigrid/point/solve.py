@@ -191,9 +191,11 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
 
 
 #: film and load tolerances of the probe solves that measure the decay of the box change
-#: (:func:`point_domain_decay`): the second doubling's change is a few times smaller than the
-#: first (0.03 % for the 6205 inner race), well above these, unlike PROBE_FILM_TOL
-DECAY_PROBE_TOL = 1e-6
+#: (:func:`point_domain_decay`; its resolution is accuracy.DECAY_FLOOR). Measured on the 6205
+#: inner race at 2049 points (probes on 513-2049 points, one thread, loaded machine): at 1e-5
+#: the changes (Hc 1.214e-3 then 1.498e-4, Hm 9.37e-4 then 1.041e-4) are those at 1e-6 within
+#: 2e-6 and 5e-6, in 245 s instead of 392 s; PROBE_FILM_TOL (1e-4) cannot resolve the second
+DECAY_PROBE_TOL = 1e-5
 
 
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
@@ -264,8 +266,10 @@ def point_domain_decay(problem: PointProblem, options: PointOptions, sol: EHLRes
     solve's box, equal mesh), from tight probe solves (:data:`DECAY_PROBE_TOL`): the input of
     :func:`~ehl_multigrid.multigrid.accuracy.domain_from_decay`. None when a solve fails.
 
-    Measured on the 6205 inner-race contact (M 3620, L 13.1, b/a 9.4) at the mesh of 257
-    points: Hc +0.124 % from 1x to 2x (see validation/point/REPORT.md)."""
+    Measured on the 6205 inner-race contact (M 3620, L 13.1, b/a 9.4) at the mesh of 513
+    points on the default box: Hc +0.121 % from 1x to 2x and +0.015 % from 2x to 4x (decay 8.1
+    per doubling; Hm 9.0), so the domain part of its estimate is 0.17 % instead of the fixed
+    factor's 0.38 % (validation/accuracy/REPORT.md, session 13)."""
     changes = point_domain_change(problem, options, sol, cache, boxes=(1.0, 2.0, 4.0), tight=True)
     if changes is None:
         return None
@@ -375,9 +379,12 @@ def solve_point(
         # thick films (low M) spread over many inlet lengths: their box may grow further, on a
         # mesh that coarsens with it (the coarse grid follows the inlet length)
         box_limit = THICK_FILM_BOX_LIMIT if domain_scale(pb) > 1.0 else 4.0
+        # thick films: the box change falls 1.3-2.2x per doubling (validation/accuracy), where a
+        # measured decay bounds the error no better than the fixed factor, and their probes on
+        # 4-32x boxes cost minutes (fit map, Roelands (5, 20): 715 s against 31 s)
         res = solve_to_accuracy(solve, probe, accuracy, points, max_points, box_limit=box_limit,
                                 refine=accuracy is not None and not (explicit or fixed_box),
-                                decay_probe=decay_probe)
+                                decay_probe=decay_probe if domain_scale(pb) <= 1.0 else None)
         if res.status_name == "inaccurate" and domain_scale(pb) > 1.0:
             res.message += "; " + thick_film_reason(pb, res, accuracy)
         need = min_points(pb.M, pb.b_over_a, cap=None)

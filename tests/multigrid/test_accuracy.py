@@ -315,13 +315,21 @@ def test_irregular_fmg_films_are_repaired_by_converged_coarser_solves():
 
 
 def test_domain_from_decay_continues_the_box_change_geometrically():
-    from ehl_multigrid.multigrid.accuracy import DECAY_SAFETY, DOMAIN_SAFETY, domain_from_decay
+    from ehl_multigrid.multigrid.accuracy import (
+        DECAY_FLOOR,
+        DECAY_SAFETY,
+        DOMAIN_SAFETY,
+        domain_from_decay,
+    )
 
     # changes 1e-3 then 2.5e-4: what is left beyond the box is 1e-3 (1 + 1/4 + 1/16 + ...)
     assert domain_from_decay(1e-3, 2.5e-4) == pytest.approx(DECAY_SAFETY * 1e-3 * 4.0 / 3.0)
     assert domain_from_decay(-1e-3, -2.5e-4) == pytest.approx(DECAY_SAFETY * 1e-3 * 4.0 / 3.0)
-    # a change that stops after the first doubling, one that does not shrink, one that turns
-    assert domain_from_decay(1e-3, 0.0) == pytest.approx(DECAY_SAFETY * 1e-3)
+    # a change that stops after the first doubling (or turns below the probes' resolution)
+    # counts as the resolution; one that does not shrink or turns above it has no bound
+    r = 1e-3 / DECAY_FLOOR
+    for d4 in (0.0, -0.5 * DECAY_FLOOR):
+        assert domain_from_decay(1e-3, d4) == pytest.approx(DECAY_SAFETY * 1e-3 * r / (r - 1.0))
     assert domain_from_decay(1e-3, 1e-3) == math.inf
     assert domain_from_decay(1e-3, -2e-4) == math.inf
     # changes at the probes' noise level are no decay: the fixed factor
