@@ -15,8 +15,8 @@ solution of the model, as relative errors, with the budget split into three part
   solves on a coarse grid, done by the contact's solve function), times :data:`DOMAIN_SAFETY`
   (what is left beyond the doubled box: up to 1.5 times the change again at low M). Where
   that factor alone decides a miss of the target, the accuracy loop measures the decay of the
-  change with a third box (4x, tight probe solves) and continues it geometrically
-  (:func:`domain_from_decay`); the smaller of the two bounds is kept.
+  change with a third box (4x, tight probe solves) and continues it geometrically instead
+  (:func:`domain_from_decay`).
 * **algebraic** -- the change of the film over the last finest-grid cycle (iteration error
   of a contracting iteration with factor <= 1/2; scaled by ``rho/(1 - rho)`` when the last
   changes contract more slowly, :func:`iteration_factor`), at least half the change before it
@@ -213,8 +213,8 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
     (21.9, 3.25) Roelands: 0.4 % at 1025 and 2049 points against grid differences of 0.2 %,
     so the FMG sequence looked irregular and took the first-order bound, 1.1 % for a true
     0.07 %). ``decay`` = ``((d2_Hc, d2_Hm), (d4_Hc, d4_Hm))``, the changes of two successive
-    doublings of the box measured by tight probes, replaces ``domain``; the domain part is then
-    the smaller of :func:`domain_from_decay` and the fixed factor's.
+    doublings of the box measured by tight probes, replaces ``domain`` and the fixed factor by
+    :func:`domain_from_decay`.
     """
     Hc, Hm = float(result.scalars["Hc_venner"]), float(result.scalars["Hm_venner"])
     top = result.levels - 1
@@ -253,15 +253,12 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
     if decay is not None:
         (d2c, d2m), (d4c, d4m) = decay
         domain = (d2c, d2m)
-        # the smaller of the two bounds: each covers every point film of the honesty study
-        # (validation/accuracy), so their minimum does; the fixed factor bounds the slow decays
-        # of thick films ((5, 0): 2.6 |d2| true, 4.9 |d2| from the decay, which speeds up
-        # beyond the third box) and changes at the probes' resolution, where the ratio is noise
-        dom = {"Hc": min(DOMAIN_SAFETY * abs(d2c), domain_from_decay(d2c, d4c)),
-               "Hm": min(DOMAIN_SAFETY * abs(d2m), domain_from_decay(d2m, d4m))}
+        # the measurement replaces the assumption both ways: a slow decay gives more than the
+        # fixed factor ((5, 0): 4.9 |d2| against a true 2.6 |d2|; the decay speeds up beyond
+        # the third box), a change that does not shrink gives no bound
+        dom = {"Hc": domain_from_decay(d2c, d4c), "Hm": domain_from_decay(d2m, d4m)}
         notes.append(f"domain error from the box changes of two doublings (Hc {d2c:.3g}, {d4c:.3g}; "
-                     f"Hm {d2m:.3g}, {d4m:.3g}) continued geometrically, at most {DOMAIN_SAFETY:g} "
-                     f"times the first")
+                     f"Hm {d2m:.3g}, {d4m:.3g}) continued geometrically")
     elif domain is None:
         dom = {"Hc": math.nan, "Hm": math.nan}
         notes.append("domain error not measured")
