@@ -420,6 +420,9 @@ def _why_short(est: ErrorEstimate, accuracy: float, points: int, max_points: int
                box_limit: float) -> str:
     """What the budget says is missing, in the user's terms."""
     b = est.budget
+    if any(v == math.inf for v in b["domain"].values()):
+        return ("the domain (box truncation) error has no bound: the film changed as much or more "
+                "when the box was doubled a second time")
     part = max(("grid", "domain", "algebraic"),
                key=lambda n: max(v if math.isfinite(v) else 0.0 for v in b[n].values()))
     if part == "grid":

@@ -409,3 +409,13 @@ def test_line_target_missed_only_by_the_fixed_domain_factor_is_met_by_the_measur
     assert sol.error.budget["domain"]["Hc"] < b["domain"]["Hc"]
     for k, est, ref in (("Hc_venner", sol.Hc_error, line_reference[0]), ("Hm_venner", sol.Hm_error, line_reference[1])):
         assert abs(sol.scalars[k] / ref - 1.0) <= est
+
+
+def test_a_box_change_that_does_not_shrink_is_reported_as_an_unbounded_domain_error():
+    from ehl_multigrid.multigrid.accuracy import _why_short
+
+    b = {"grid": {"Hc": 1e-3, "Hm": 1e-3}, "domain": {"Hc": math.inf, "Hm": 2e-3},
+         "algebraic": {"Hc": 1e-4, "Hm": 1e-4}}
+    why = _why_short(ErrorEstimate(math.inf, 3.1e-3, b), 5e-3, 1025, 2049, 1.0, 4.0)
+    assert "no bound" in why and "doubled a second time" in why
+    assert next_refinement(b, 5e-3, 1025, 1.0, 1.0, 2049, 4.0) is None
