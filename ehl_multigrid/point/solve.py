@@ -196,6 +196,12 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
 #: the changes (Hc 1.214e-3 then 1.498e-4, Hm 9.37e-4 then 1.041e-4) are those at 1e-6 within
 #: 2e-6 and 5e-6, in 245 s instead of 392 s; PROBE_FILM_TOL (1e-4) cannot resolve the second
 DECAY_PROBE_TOL = 1e-5
+#: the decay is measured only where the widest probe (4x box) needs no more points than the solve
+#: (or this many): its cost is then about that of the solve (the 6205 inner race: 513-2049 point
+#: probes for a 2049-point solve). Where the probe mesh must be finer than two grids below the
+#: solve (thick films, narrow contacts: min_points) it is not: (1, 0, theta 10) at 1025 points
+#: on a 2x box would need a 4097-point probe (more than 13 min instead of 2 for the whole solve)
+DECAY_PROBE_MAX_POINTS = 513
 
 
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
@@ -228,6 +234,9 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
             n_min = 2 * (n_min - 1) + 1
     n_p = min(max((n_f - 1) // 4 + 1, n_min), n_f) if top >= 2 else n_f
     while True:
+        if len(boxes) > 2 and (n_p - 1) * boxes[-1] / boxes[0] + 1 > max(n_f, DECAY_PROBE_MAX_POINTS):
+            return None  # the widest box would need more points than the solve itself
+
         def solve(n: int, f: float) -> EHLResult:
             # the probes need the film to well below the domain change, not the load to 1e-5:
             # they stop on the film (PROBE_FILM_TOL), as the line's. Stopped on the residual
