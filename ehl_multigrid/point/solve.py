@@ -198,8 +198,8 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
 DECAY_PROBE_TOL = 1e-5
 #: the decay is measured only where the widest probe (4x box) needs no more points than the solve
 #: (or this many), so no probe is larger than the solve (the 6205 inner race: 513-2049 point
-#: probes for a 2049-point solve; at their tight tolerance they still took 245 s against the
-#: film-stopped solve's 19 s, validation/accuracy/REPORT.md session 13). Where the probe mesh must be finer than two grids below the
+#: probes for a 2049-point solve; at their tight tolerance they dominate its default solve:
+#: 192 s on two threads, of which the 2049-point solve 19 s; validation/accuracy/REPORT.md). Where the probe mesh must be finer than two grids below the
 #: solve (thick films, narrow contacts: min_points) it is not: (1, 0, theta 10) at 1025 points
 #: on a 2x box would need a 4097-point probe (more than 13 min instead of 2 for the whole solve)
 DECAY_PROBE_MAX_POINTS = 513
