@@ -419,3 +419,19 @@ def test_a_box_change_that_does_not_shrink_is_reported_as_an_unbounded_domain_er
     why = _why_short(ErrorEstimate(math.inf, 3.1e-3, b), 5e-3, 1025, 2049, 1.0, 4.0)
     assert "no bound" in why and "doubled a second time" in why
     assert next_refinement(b, 5e-3, 1025, 1.0, 1.0, 2049, 4.0) is None
+
+
+def test_the_decay_probe_is_not_run_where_its_widest_box_would_need_more_points_than_the_solve():
+    """A narrow contact at high load needs a fine probe mesh (min_points), so the 4x box would
+    need four times the solve's points: no decay is measured (and nothing is solved)."""
+    from types import SimpleNamespace
+
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.problem import default_domain, problem_from_moes
+    from ehl_multigrid.point.solve import point_domain_change
+
+    pb = problem_from_moes(1000.0, 10.0, 10.0)
+    sol = SimpleNamespace(levels=5, X=np.zeros(1025), extra={"domain": default_domain(pb), "y_ratio": 1.0})
+    cache = {}
+    assert point_domain_change(pb, PointOptions(points=1025), sol, cache, boxes=(1.0, 2.0, 4.0), tight=True) is None
+    assert cache == {}  # no probe was solved
