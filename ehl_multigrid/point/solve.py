@@ -196,12 +196,13 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
 #: the changes (Hc 1.214e-3 then 1.498e-4, Hm 9.37e-4 then 1.041e-4) are those at 1e-6 within
 #: 2e-6 and 5e-6, in 245 s instead of 392 s; PROBE_FILM_TOL (1e-4) cannot resolve the second
 DECAY_PROBE_TOL = 1e-5
-#: the decay is measured only where the widest probe (4x box) needs no more points than the solve
-#: (or this many), so no probe is larger than the solve (the 6205 inner race: 513-2049 point
-#: probes for a 2049-point solve; at their tight tolerance they dominate its default solve:
-#: 192 s on two threads, of which the 2049-point solve 19 s; validation/accuracy/REPORT.md). Where the probe mesh must be finer than two grids below the
-#: solve (thick films, narrow contacts: min_points) it is not: (1, 0, theta 10) at 1025 points
-#: on a 2x box would need a 4097-point probe (more than 13 min instead of 2 for the whole solve)
+#: the decay is measured only where the widest probe (4x box) needs no more points than the
+#: solve (or this many), so no probe is larger than the solve (the 6205 inner race: 513-2049
+#: point probes for a 2049-point solve; at their tight tolerance they still dominate its default
+#: solve: 192 s on two threads, of which the 2049-point solve 19 s; validation/accuracy/REPORT.md).
+#: Where the probe mesh must be finer than two grids below the solve (thick films, narrow
+#: contacts: min_points) it is not: (1, 0, theta 10) at 1025 points on a 2x box would need a
+#: 4097-point probe (more than 13 min instead of 2 for the whole solve)
 DECAY_PROBE_MAX_POINTS = 513
 
 
@@ -260,9 +261,13 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
                 cache[o] = solve_fas(problem, o)
             return cache[o]
 
-        changes = [film_change(lambda n=n_p, f=f: solve(n, f), lambda n=n_p, f=f: solve(n, 2.0 * f))
-                   for f in boxes[:-1]]
-        if None not in changes:
+        changes = []
+        for f in boxes[:-1]:  # a pair that fails ends the series: no wider box is solved for it
+            change = film_change(lambda n=n_p, f=f: solve(n, f), lambda n=n_p, f=f: solve(n, 2.0 * f))
+            if change is None:
+                break
+            changes.append(change)
+        if len(changes) == len(boxes) - 1:
             return changes[0] if len(boxes) == 2 else changes
         if n_p >= n_f:
             return None
