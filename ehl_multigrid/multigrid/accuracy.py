@@ -198,6 +198,11 @@ def domain_from_decay(d2: float, d4: float) -> float:
     return DECAY_SAFETY * abs(d2) * r / (r - 1.0)
 
 
+def _finest_points(result: Any) -> int | None:
+    X = getattr(result, "X", None)
+    return None if X is None else len(X)
+
+
 def estimate_error(result: Any, domain: tuple[float, float] | None = None,
                    converged: dict[int, tuple[float, float]] | None = None,
                    decay: tuple[tuple[float, float], tuple[float, float]] | None = None) -> ErrorEstimate:
@@ -224,6 +229,21 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
         used = [d["points"] for d in fmg if d.get("points") in converged]
         fmg = [{**d, "Hc": converged[d["points"]][0], "Hm": converged[d["points"]][1]}
                if d.get("points") in converged else d for d in fmg]
+        n_top = _finest_points(result)
+        # grids the FMG did not visit (a solve started on its finest grid from a given
+        # solution, as the line's continuation in M does): their converged films, down from
+        # the finest grid while the chain of grids is unbroken
+        have = {d.get("points") for d in fmg}
+        extra, n = [], n_top or 0
+        while n > 3:
+            n = (n - 1) // 2 + 1
+            if n in have or n not in converged:
+                break
+            extra.append({"points": n, "Hc": converged[n][0], "Hm": converged[n][1]})
+        if extra:
+            below = [d for d in fmg if d.get("points", 0) <= n] if n in have else []
+            fmg = sorted(below + extra, key=lambda d: d["points"])
+            used += [d["points"] for d in extra]
         if used:
             notes.append(f"Richardson with the converged films of the solves on {used} points")
     rc = richardson([d["Hc"] for d in fmg] + [Hc])

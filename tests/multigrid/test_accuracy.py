@@ -288,6 +288,31 @@ def test_converged_coarser_solves_replace_the_fmg_films_in_richardson():
     assert any("converged films" in n for n in both.notes)
 
 
+def test_converged_coarser_solves_stand_in_for_grids_the_fmg_did_not_visit():
+    """A solve started on its finest grid from a given solution (the line's continuation in M)
+    has no FMG films below it: the converged coarser solves of the accuracy loop give the
+    Richardson sequence, as long as the grids form an unbroken chain down from the finest."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from ehl_multigrid.multigrid.accuracy import estimate_error
+
+    exact = {513: 1.0 - 4e-4, 1025: 1.0 - 1e-4, 2049: 1.0 - 2.5e-5}
+    res = SimpleNamespace(
+        scalars={"Hc_venner": exact[2049], "Hm_venner": exact[2049]}, levels=3, X=np.zeros(2049),
+        fmg=[{"level": 2, "points": 2049, "Hc": 0.9, "Hm": 0.9}],  # the start, on the finest grid
+        history=[SimpleNamespace(level=2, cycle=c, Hc=exact[2049], Hm=exact[2049]) for c in range(3)],
+        load_error_history=[0.0])
+    assert not np.isfinite(estimate_error(res, (0.0, 0.0)).Hc)
+    est = estimate_error(res, (0.0, 0.0), {n: (exact[n], exact[n]) for n in (513, 1025)})
+    assert est.order_Hc == pytest.approx(2.0)
+    assert est.budget["grid"]["Hc"] == pytest.approx(GRID_SAFETY * 2.5e-5 / exact[2049], rel=1e-9)
+    # a gap (no converged 1025-point solve) breaks the chain: 513 alone is not used
+    gap = estimate_error(res, (0.0, 0.0), {513: (exact[513], exact[513])})
+    assert not np.isfinite(gap.Hc)
+
+
 def test_irregular_fmg_films_are_repaired_by_converged_coarser_solves():
     """The page-63 line scene at 500 N (M = 21.9, L = 3.25, Roelands): its FMG films on 513-2049
     points are 0.2-0.4 % off their grids' discrete solutions, so Richardson over them looked
