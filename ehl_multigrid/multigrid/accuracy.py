@@ -555,8 +555,12 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
             res.extra["domain_note"] = "domain error bounded by the change measured at a smaller box"
         last_domain = dom if dom is not None else last_domain
         est = estimate_error(res, dom, finals.get(disc(res)))
-        if refine and accuracy is not None and est.irregular and max(est.Hc, est.Hm) > accuracy:
-            # the FMG films may be what is irregular: the coarser grids solved to convergence
+        grid_unknown = not all(math.isfinite(v) for v in est.budget["grid"].values())
+        if est.irregular and (grid_unknown or (refine and accuracy is not None
+                                               and max(est.Hc, est.Hm) > accuracy)):
+            # the FMG films may be what is irregular: the coarser grids solved to convergence;
+            # also where the FMG left no films below the finest grid (a start from a given
+            # solution), so that every result states its grid error, explicit grids too
             known = finals.setdefault(disc(res), {})
             n = points
             for _ in range(REPAIR_LEVELS):

@@ -38,11 +38,14 @@ def test_solve_exits_3_when_the_result_is_not_a_success_and_still_writes_it(tmp_
 
 
 def test_solve_with_a_failed_start_exits_3_without_a_traceback_or_a_file(tmp_path, capsys):
-    # line (5000, 0): no positive film on the 2049-point dense start grid; the fields are the
-    # initial guess, so nothing is written or plotted (plotting them divided by Hc = 0 before)
-    rc = main(["solve", "--contact", "line", "--M", "5000", "--L", "0", "--out", str(tmp_path)])
+    # line (5000, 0) on 129 points: no positive film on the start grid, nor at M = 2500, 1250
+    # and 625 (the continuation in M); the fields are the initial guess, so nothing is written
+    # or plotted (plotting them divided by Hc = 0 before). On its default grid (5000, 0) now
+    # converges by continuation (tests/line/test_line_continuation.py).
+    rc = main(["solve", "--contact", "line", "--M", "5000", "--L", "0", "--points", "129",
+               "--out", str(tmp_path)])
     err = _err(capsys)
-    assert rc == 3 and "not positive on the 2049-point start grid" in err
+    assert rc == 3 and "not positive on the 129-point start grid" in err
     assert not list(tmp_path.iterdir())
 
 

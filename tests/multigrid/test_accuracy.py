@@ -313,6 +313,32 @@ def test_converged_coarser_solves_stand_in_for_grids_the_fmg_did_not_visit():
     assert not np.isfinite(gap.Hc)
 
 
+def test_an_explicit_grid_without_fmg_films_gets_its_coarser_grids_solved(monkeypatch):
+    """A result with no FMG films below its finest grid (started there from a given solution)
+    has an unknown grid error; even on an explicit grid (no refinement) the loop solves the two
+    coarser grids to convergence so that the result states its error."""
+    import ehl_multigrid.multigrid.accuracy as acc
+
+    def fake_estimate(res, dom, converged=None, decay=None):
+        g = 0.002 if converged and len(converged) >= 2 else math.inf
+        return ErrorEstimate(g, g, _budget(g, 1e-4), irregular=not math.isfinite(g))
+
+    monkeypatch.setattr(acc, "estimate_error", fake_estimate)
+    monkeypatch.setattr(acc, "attach_estimate", lambda res, est, accuracy: setattr(res, "error", est))
+    asked = []
+
+    def solve(n, box, tol):
+        asked.append((n, tol))
+        r = _Fake(n, True, 0.0)
+        r.scalars = {"Hc_venner": 1.0, "Hm_venner": 1.0}
+        return r
+
+    out = solve_to_accuracy(solve, lambda r, b: (0.0, 0.0), None, 4097, 4097, refine=False)
+    assert [n for n, _ in asked] == [4097, 2049, 1025]
+    assert all(t == pytest.approx(0.1) for _, t in asked[1:])
+    assert out.error.Hc == 0.002
+
+
 def test_irregular_fmg_films_are_repaired_by_converged_coarser_solves():
     """The page-63 line scene at 500 N (M = 21.9, L = 3.25, Roelands): its FMG films on 513-2049
     points are 0.2-0.4 % off their grids' discrete solutions, so Richardson over them looked
