@@ -339,6 +339,32 @@ def test_an_explicit_grid_without_fmg_films_gets_its_coarser_grids_solved(monkey
     assert out.error.Hc == 0.002
 
 
+def test_a_solve_started_from_a_given_solution_states_its_largest_recent_film_change():
+    """No FMG below the finest grid (a start from a given solution): a small last change must
+    not hide a creeping film, so the iteration part is at least the largest change of the last
+    three cycles. With the FMG films there, the usual contraction estimate stands."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from ehl_multigrid.multigrid.accuracy import estimate_error
+
+    films = [1.0, 1.0 + 1e-4, 1.0 + 1.5e-4, 1.0 + 1.51e-4]  # changes 1e-4, 5e-5, 1e-6
+
+    def result(fmg):
+        return SimpleNamespace(
+            scalars={"Hc_venner": films[-1], "Hm_venner": films[-1]}, levels=3, X=np.zeros(2049),
+            fmg=fmg, history=[SimpleNamespace(level=2, cycle=c, Hc=f, Hm=f) for c, f in enumerate(films)],
+            load_error_history=[0.0])
+
+    conv = {513: (1.0 - 4e-4, 1.0 - 4e-4), 1025: (1.0 - 1e-4, 1.0 - 1e-4)}
+    started = estimate_error(result([{"level": 2, "points": 2049, "Hc": 0.9, "Hm": 0.9}]), (0.0, 0.0), conv)
+    assert started.budget["algebraic"]["Hc"] == pytest.approx(1e-4 / films[-1], rel=1e-6)
+    assert any("largest film change" in n for n in started.notes)
+    fmg = [{"level": k, "points": n, "Hc": conv[n][0], "Hm": conv[n][1]} for k, n in enumerate((513, 1025))]
+    assert estimate_error(result(fmg), (0.0, 0.0)).budget["algebraic"]["Hc"] < 1e-4 / films[-1]
+
+
 def test_irregular_fmg_films_are_repaired_by_converged_coarser_solves():
     """The page-63 line scene at 500 N (M = 21.9, L = 3.25, Roelands): its FMG films on 513-2049
     points are 0.2-0.4 % off their grids' discrete solutions, so Richardson over them looked
