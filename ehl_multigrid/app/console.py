@@ -9,6 +9,8 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -19,6 +21,18 @@ def add_common_options(p: argparse.ArgumentParser, out_default: str = "ehl_out")
     p.add_argument("--json", action="store_true", help="print the main scalars as one JSON object")
     p.add_argument("--out", default=out_default, help="output folder for HDF5 and PNG (default: %(default)s)")
     p.add_argument("--no-plots", action="store_true", help="skip PNG output")
+
+
+def progress_printer(args: argparse.Namespace) -> Callable[[str], None] | None:
+    """A printer of an accuracy sequence's progress lines (to stderr, on a terminal only and
+    not with ``--json``): a solve that refines for minutes shows what it is doing."""
+    if getattr(args, "json", False) or not sys.stderr.isatty():
+        return None
+
+    def show(text: str) -> None:
+        print(f"  ... {text}", file=sys.stderr, flush=True)
+
+    return show
 
 
 def jsonable(obj: Any) -> Any:

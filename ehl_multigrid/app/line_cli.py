@@ -12,6 +12,7 @@ from ..line import solve_line
 from ..model.constants import MOES_ONLY_DEFAULTS
 from ..model.errors import ConvergenceError, InputError, require_solution
 from ..model.paths import output_file, safe_stem
+from .console import progress_printer
 
 #: command-line flag (argparse name) -> line solver option
 _ARG_OPTIONS = {"points": "points", "levels": "levels", "cycle": "cycle", "cycles": "cycles",
@@ -42,7 +43,8 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
     elastic = not getattr(args, "rigid", False)
     if scene is None:
         oil = {k: getattr(args, k, None) for k in ("alpha", "eta0", "p0")}
-        sol = solve_line(args.M, args.L, **oil, **model, elastic=elastic, **opts)
+        sol = solve_line(args.M, args.L, **oil, **model, elastic=elastic, progress=progress_printer(args),
+                         **opts)
         used = {k: (v if v is not None else MOES_ONLY_DEFAULTS[k]) for k, v in oil.items()}
         name = f"line_M{args.M:g}_L{args.L:g}"
         if not args.json:
@@ -66,7 +68,7 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
             if sol.X is None:  # nothing to write: e.g. a supply below the solver's reach
                 raise ConvergenceError(f"starved line solver: {sol.message}")
         else:
-            sol = solve_line(scene=scene, **model, elastic=elastic, **opts)
+            sol = solve_line(scene=scene, **model, elastic=elastic, progress=progress_printer(args), **opts)
         name = scene.name
     require_solution(sol, "line solver")
     out = Path(args.out)

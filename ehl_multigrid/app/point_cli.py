@@ -14,6 +14,7 @@ from ..point.newton import NewtonOptions
 from ..point.postprocess import summary_payload
 from ..point.problem import problem_from_moes, problem_from_scene
 from ..point.solve import solve_point
+from .console import progress_printer
 
 DEFAULT_POINTS = 257
 
@@ -117,13 +118,13 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
         print(f"# {pb.viscosity} viscosity, {pb.density} density; {opt.points} points along X, "
               f"{how}, deformation {opt.deformation}{', half domain' if opt.half else ''}"
               f"{', rigid surfaces' if rigid else ''}")
+    kw = vars(opt) if solver == "newton" else {**fas_kw, "progress": progress_printer(args)}
     if scene is None:
         sol = solve_point(pb.M, pb.L, theta=pb.theta, viscosity=pb.viscosity, density=pb.density,
-                          alpha=pb.alpha, eta0=pb.eta0, p0=pb.p_r, solver=solver, rigid=rigid,
-                          **(vars(opt) if solver == "newton" else fas_kw))
+                          alpha=pb.alpha, eta0=pb.eta0, p0=pb.p_r, solver=solver, rigid=rigid, **kw)
     else:
         sol = solve_point(scene=scene, viscosity=pb.viscosity, density=pb.density, solver=solver,
-                          rigid=rigid, **(vars(opt) if solver == "newton" else fas_kw))
+                          rigid=rigid, **kw)
     require_solution(sol, "point solver")
     res = sol.to_result(scene)
     name = scene.name if scene is not None else f"point_M{pb.M:g}_L{pb.L:g}_th{pb.theta:g}"

@@ -733,7 +733,7 @@ def solve_line(
     xmin: float | None = None, xmax: float | None = None, elastic: bool = True,
     callback: Callable[[dict[str, Any]], None] | None = None,
     options: LineOptions | None = None, accuracy: float | None = None, estimate: bool = True,
-    max_points: int = MAX_ACCURACY_POINTS, **kw: Any,
+    max_points: int = MAX_ACCURACY_POINTS, progress: Callable[[str], None] | None = None, **kw: Any,
 ) -> EHLResult:
     """Solve the steady isothermal EHL line contact (Venner's dimensionless Reynolds, film
     and load equations; Roelands (2.6) and Dowson-Higginson (2.7) by default).
@@ -751,7 +751,8 @@ def solve_line(
     an explicit ``points`` or ``xmin`` is kept and only judged. Every result carries its
     estimated errors (``Hc_error``, ``Hm_error``, ``error.budget``: grid, domain, algebraic)
     unless ``estimate=False``; with an accuracy, ``success`` also requires the estimate to
-    meet it (status ``"inaccurate"`` otherwise).
+    meet it (status ``"inaccurate"`` otherwise). ``progress(text)`` receives one line per
+    solve of that sequence.
 
     Returns an :class:`~ehl_multigrid.multigrid.result.EHLResult`; ``.to_result()`` gives the
     package :class:`~ehl_multigrid.model.results.Result` (kind ``"ehl_line"``).
@@ -808,7 +809,7 @@ def solve_line(
 
     res = solve_to_accuracy(solve, probe, accuracy, points, max_points,
                             refine=accuracy is not None and not (explicit or fixed_box),
-                            decay_probe=decay_probe)
+                            decay_probe=decay_probe, progress=progress)
     if not res.success and opts.raise_on_failure:
         raise ConvergenceError(f"line solver: {res.message}", res.report, HINT)
     return res

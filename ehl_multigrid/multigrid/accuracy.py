@@ -508,7 +508,7 @@ def decay_could_meet(est: ErrorEstimate, accuracy: float) -> bool:
 
 def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: int, max_points: int,
                       box_limit: float = 4.0, refine: bool = True, time_budget: float = math.inf,
-                      decay_probe: Any = None) -> Any:
+                      decay_probe: Any = None, progress: Any = None) -> Any:
     """Solve, estimate, and refine until the estimated errors of Hc and Hm meet ``accuracy``.
 
     ``solve(points, box, tol_factor) -> result`` runs the contact's solver on a grid of
@@ -528,9 +528,15 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     When the target is not met the returned result is the most accurate one of the sequence
     (smallest estimated error among the solves whose iteration converged), so a finer solve
     that fails to converge never replaces a converged coarser one; its message says why the
-    refinement stopped.
+    refinement stopped. ``progress(text)``, when given, receives one line per solve of the
+    sequence (grid, box, outcome, estimate, seconds so far): the command line shows it.
     """
     t0 = time.perf_counter()
+
+    def say(what: str, n: int, b: float) -> None:
+        if progress is not None:
+            progress(f"{n} points, box x{b:g}: {what} ({time.perf_counter() - t0:.1f} s)")
+
     box, tol_factor = 1.0, 1.0
     steps: list[Refinement] = []
     # per box (and cell aspect): films of the converged solves (the same discrete problem on
@@ -547,6 +553,8 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     why = ""
     while True:
         res = solve(points, box, tol_factor)
+        if not res.success:
+            say(res.status_name, points, box)
         if (res.status_name == "film_not_positive" and refine and accuracy is not None
                 and 2 * points - 1 <= max_points):
             # a grid too coarse for the load: the finer grid is the only remedy
@@ -590,6 +598,7 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
                 if n < REPAIR_MIN_POINTS or n in known:
                     continue
                 rc = solve(n, box, 0.1 * tol_factor)
+                say(f"{rc.status_name}, for the grid estimate", n, box)
                 steps.append(Refinement(n, box, 0.1 * tol_factor, math.nan, math.nan, rc.wall_s, "levels"))
                 if rc.success:
                     finals.setdefault(disc(rc), {})[n] = (float(rc.scalars["Hc_venner"]),
@@ -604,6 +613,7 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
         if None not in films:
             finals.setdefault(disc(res), {})[points] = (float(films[0]), float(films[1]))
         attach_estimate(res, est, accuracy)
+        say(f"estimated error Hc {est.Hc:.2%}, Hm {est.Hm:.2%}", points, box)
         steps.append(Refinement(points, box, tol_factor, est.Hc, est.Hm, res.wall_s))
         res.extra["refinements"] = [vars(s) for s in steps]
         if res.success or not refine or accuracy is None:

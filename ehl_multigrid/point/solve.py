@@ -319,7 +319,7 @@ def solve_point(
     solver: str = "fas", rigid: bool = False,
     callback: Callable[[dict[str, Any]], None] | None = None,
     options: PointOptions | None = None, accuracy: float | None = None, estimate: bool = True,
-    max_points: int = MAX_ACCURACY_POINTS, **kw: Any,
+    max_points: int = MAX_ACCURACY_POINTS, progress: Callable[[str], None] | None = None, **kw: Any,
 ) -> EHLResult:
     """Solve the steady isothermal EHL point or elliptic contact (Venner's dimensionless
     Reynolds, film and load equations; Roelands (2.6) and Dowson-Higginson (2.7) by default).
@@ -342,6 +342,7 @@ def solve_point(
     judged. Every FAS result carries its estimated errors (``Hc_error``, ``Hm_error``,
     ``error.budget``: grid, domain, algebraic) unless ``estimate=False``; with an accuracy,
     ``success`` also requires the estimate to meet it (status ``"inaccurate"`` otherwise).
+    ``progress(text)`` receives one line per solve of that sequence.
 
     Returns an :class:`~ehl_multigrid.multigrid.result.EHLResult`.
     """
@@ -401,7 +402,8 @@ def solve_point(
         # 4-32x boxes cost minutes (fit map, Roelands (5, 20): 715 s against 31 s)
         res = solve_to_accuracy(solve, probe, accuracy, points, max_points, box_limit=box_limit,
                                 refine=accuracy is not None and not (explicit or fixed_box),
-                                decay_probe=decay_probe if domain_scale(pb) <= 1.0 else None)
+                                decay_probe=decay_probe if domain_scale(pb) <= 1.0 else None,
+                                progress=progress)
         if res.status_name == "inaccurate" and domain_scale(pb) > 1.0:
             res.message += "; " + thick_film_reason(pb, res, accuracy)
         need = min_points(pb.M, pb.b_over_a, cap=None)

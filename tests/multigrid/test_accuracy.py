@@ -365,6 +365,36 @@ def test_a_solve_started_from_a_given_solution_states_its_largest_recent_film_ch
     assert estimate_error(result(fmg), (0.0, 0.0)).budget["algebraic"]["Hc"] < 1e-4 / films[-1]
 
 
+def test_the_accuracy_sequence_reports_each_solve_to_a_progress_printer(monkeypatch):
+    import argparse
+    import io
+    import sys
+
+    import ehl_multigrid.multigrid.accuracy as acc
+    from ehl_multigrid.app.console import progress_printer
+
+    monkeypatch.setattr(acc, "estimate_error", lambda res, dom, converged=None, decay=None:
+                        ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4)))
+
+    def fake_attach(res, est, accuracy):
+        res.error = est
+        if max(est.Hc, est.Hm) > accuracy:
+            res.success, res.status_name, res.message = False, "inaccurate", "inaccurate"
+
+    monkeypatch.setattr(acc, "attach_estimate", fake_attach)
+    runs = {257: _Fake(257, True, 0.03), 513: _Fake(513, True, 0.005)}
+    lines = []
+    solve_to_accuracy(lambda n, b, t: runs[n], lambda r, b: (0.0, 0.0), 0.01, 257, 1025,
+                      progress=lines.append)
+    assert len(lines) == 2
+    assert lines[0].startswith("257 points, box x1: estimated error Hc 3.00%, Hm 3.00%")
+    assert lines[1].startswith("513 points, box x1: estimated error Hc 0.50%")
+    # the command line prints them only on a terminal and never with --json
+    assert progress_printer(argparse.Namespace(json=True)) is None
+    monkeypatch.setattr(sys, "stderr", io.StringIO())  # not a terminal
+    assert progress_printer(argparse.Namespace(json=False)) is None
+
+
 def test_irregular_fmg_films_are_repaired_by_converged_coarser_solves():
     """The page-63 line scene at 500 N (M = 21.9, L = 3.25, Roelands): its FMG films on 513-2049
     points are 0.2-0.4 % off their grids' discrete solutions, so Richardson over them looked
