@@ -342,16 +342,14 @@ class PointHierarchy:
 
     def update_film(self, lev: Level) -> None:
         self.threads.for_size(lev.npts)
-        # written into the level's W, or into H where no W is kept: no large temporary
-        if lev.W is None:
-            if self.cd != 0.0:
-                lev.defo(lev.P, out=lev.H)
-            else:
-                lev.H.fill(0.0)
-            nm.film(lev.H, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
+        # the deformation goes into the level's W, or into H where no W is kept (the film is
+        # then built in place): no large temporary per evaluation
+        W = lev.H if lev.W is None else lev.W
+        if self.cd != 0.0:
+            lev.defo(lev.P, out=W)
         else:
-            lev.W = lev.defo(lev.P, out=lev.W) if self.cd != 0.0 else np.zeros_like(lev.P)
-            nm.film(lev.W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
+            W.fill(0.0)
+        nm.film(W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
         self.update_properties(lev)
 
     def _sweep(self, lev: Level, s: Settings) -> None:

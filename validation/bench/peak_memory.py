@@ -8,8 +8,9 @@ after a 129^2 warm-up.
 
     NUMBA_NUM_THREADS=1 python validation/bench/peak_memory.py 2049 full [--label session14]
 
-appends one record (points, domain, baseline and peak MB, the stack at the peak, work units) to
-``out/peak_memory_<label>.json``. Session 14 (commit 365a12c): 2049^2 full 833 -> 727 MB, half
+appends one record (commit, points, domain, baseline and peak MB, the stack at the peak, work
+units) to ``out/peak_memory_<label>.json``; a record of another commit under the same label is
+dropped (a label holds the runs of one code version). Session 14 (commit 365a12c): 2049^2 full 833 -> 727 MB, half
 636 -> 484 MB, 4097^2 half 1308 MB (validation/bench/REPORT.md).
 """
 
@@ -18,6 +19,7 @@ from __future__ import annotations
 import argparse
 import json
 import resource
+import subprocess
 import sys
 import threading
 import time
@@ -63,12 +65,14 @@ def main() -> None:
     wall = time.perf_counter() - t
     stop.set()
     th.join()
-    rec = {"points": a.points, "domain": a.domain, "baseline_mb": base, "peak_mb": peak[0],
+    commit = subprocess.run(["git", "-C", str(HERE), "rev-parse", "--short", "HEAD"],
+                            capture_output=True, text=True).stdout.strip() or "unknown"
+    rec = {"commit": commit, "points": a.points, "domain": a.domain, "baseline_mb": base, "peak_mb": peak[0],
            "ru_maxrss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
            "stack_at_peak": peak[1], "work_units": sol.work_units, "status": sol.status_name,
            "wall_s": wall}
     out = HERE / "out" / f"peak_memory_{a.label}.json"
-    rows = json.loads(out.read_text()) if out.is_file() else []
+    rows = [r for r in (json.loads(out.read_text()) if out.is_file() else []) if r.get("commit") == commit]
     rows.append(rec)
     tmp = out.with_suffix(".tmp")
     tmp.write_text(json.dumps(rows, indent=1))
