@@ -205,7 +205,7 @@ class MultilevelSolver:
             except (np.linalg.LinAlgError, FloatingPointError, ValueError) as exc:
                 m = Measurement(math.inf, math.inf, math.nan, False)
                 self.note(f"cycle {c} on grid {k} failed: {exc}")
-            if pol.accept(m.ok, m.residual, m.load_error, recent, prev_le, self.options.tol):
+            if pol.accept(m.ok, m.residual, m.load_error, recent, prev_le, self._accept_tol()):
                 pol.recover(s)
                 break
             hz.restore(k, saved)
@@ -286,6 +286,27 @@ class MultilevelSolver:
                 s.cycle = kind
         self._confirmed_at = len(self.history)
 
+    def _accept_tol(self) -> float:
+        """Residual below which a cycle is accepted whatever its growth: the tolerance, or the
+        policy's ``quiet_below`` under the residual rule (a film-stopped solve keeps the growth
+        test: its films, not its residual, end it)."""
+        o = self.options
+        return max(o.tol, self.policy.params.quiet_below) if o.film_tol is None else o.tol
+
+    def _floor_message(self, tol: float) -> str:
+        """Why a solve stalled below the policy's ``quiet_below``, with the films' last
+        changes."""
+        fin = [h for h in self.history if h.level == self.history[-1].level][-2:]
+        moved = ""
+        if len(fin) == 2:
+            dc = abs(fin[1].Hc / fin[0].Hc - 1.0)
+            dm = abs(fin[1].Hm / fin[0].Hm - 1.0) if fin[0].Hm else math.nan
+            moved = f"; the last cycle changed Hc by {dc:.2g} and Hm by {dm:.2g} (relative)"
+        return (f"the residual stopped falling at {self.residuals[-1]:.3g} (tol {tol:.3g}) over "
+                f"{self.policy.params.stall_window} cycles, below {self.policy.params.quiet_below:g}: "
+                f"the floor of this grid's relaxation, not a divergence; ask for a tolerance above "
+                f"it or stop on the films (film_tol){moved}")
+
     def grid_stop(self) -> bool:
         """True when further cycles would move both films by less than ``options.grid_stop``
         of the larger of their grid errors (see :class:`MultigridOptions`); the estimates are those of
@@ -364,8 +385,11 @@ class MultilevelSolver:
                     self.run_cycle(top, o.cycles + extra)
                     extra += 1
                     if not self.converged() and self.policy.stalled(self.residuals, o.tol):
-                        what = self.policy.on_stall(self.settings, hz, len(self.residuals))
                         r = self.residuals
+                        if o.film_tol is None and r[-1] < self.policy.params.quiet_below:
+                            # at the round-off floor a stall step only stirs the iterate
+                            raise _Stop(8, self._floor_message(o.tol))
+                        what = self.policy.on_stall(self.settings, hz, len(self.residuals))
                         if what is None:
                             raise _Stop(2, f"stalled: the residual fell only from "
                                            f"{r[-self.policy.params.stall_window]:.3g} to {r[-1]:.3g} "

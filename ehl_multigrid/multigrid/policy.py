@@ -38,6 +38,11 @@ class PolicyParameters:
     growth, growth_window : reject a cycle whose residual exceeds ``growth`` times the smallest
         of the last ``growth_window`` accepted residuals on that grid (None: all of them).
     residual_cap : reject a cycle whose relative residual is above this (and above tol).
+    quiet_below : under the residual rule (no ``film_tol``), a cycle whose residual is below
+        this is accepted whatever its growth, and a stall below it ends the solve
+        (``residual_floor``) instead of stepping down the stall ladder: there the residual
+        wanders by factors of 3-5 from cycle to cycle while the films barely move, which is
+        no divergence, and a stall step only stirs the iterate (0: off).
     load_cap, load_factor : reject when ``|load error| > max(load_cap, load_factor |previous|)``.
     first_load_error : the "previous" load error of a grid's first cycle.
     max_retries : repeated attempts of one cycle before the solve is declared diverged.
@@ -51,6 +56,7 @@ class PolicyParameters:
     growth: float = 20.0
     growth_window: int | None = 4
     residual_cap: float = 0.5
+    quiet_below: float = 0.0
     load_cap: float = 0.1
     load_factor: float = 3.0
     first_load_error: float = 0.05

@@ -29,6 +29,7 @@ STATUS = {
     5: "start_failed",  # no usable solution on the start grid
     6: "inaccurate",    # the iteration converged, but the estimated error exceeds the target
     7: "film_not_positive",  # the iteration converged to a discrete film <= 0 (grid too coarse)
+    8: "residual_floor",  # the residual stopped falling below the policy's quiet level: tol too tight
 }
 
 

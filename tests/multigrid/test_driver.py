@@ -93,6 +93,26 @@ def test_stall_switches_to_w_then_raises_the_switch_then_gives_up():
     assert sol.cycles < 40  # gave up after three stall windows, not at max_cycles
 
 
+def test_a_stall_below_the_quiet_level_ends_at_the_residual_floor_without_stall_steps():
+    hz = PoissonHierarchy(129, 5, no_correction=True)  # smoothing only: the residual stalls
+    params = PolicyParameters(quiet_below=1.0)  # every residual of this solve counts as the floor
+    sol = toy_solver(hierarchy=hz, params=params, cycle="V", cycles=1, max_cycles=200, tol=1e-10,
+                     tol_load=0.1).solve()
+    assert sol.status_name == "residual_floor" and sol.status == 8 and not sol.success
+    assert not [a for a in sol.actions if "stalled" in a]  # no W switch, no raised switch
+    assert "not a divergence" in sol.message and "changed Hc by" in sol.message
+    assert sol.settings.cycle == "V"
+
+
+def test_a_film_stopped_solve_keeps_the_stall_ladder_below_the_quiet_level():
+    hz = PoissonHierarchy(129, 5, no_correction=True)
+    params = PolicyParameters(quiet_below=1.0)
+    sol = toy_solver(hierarchy=hz, params=params, cycle="V", cycles=1, max_cycles=200, tol=1e-10,
+                     tol_load=0.1, film_tol=1e-12).solve()
+    assert sol.status_name != "residual_floor"
+    assert [a for a in sol.actions if "stalled" in a]
+
+
 def test_stall_raises_with_a_hint_when_asked_to():
     hz = PoissonHierarchy(129, 5, no_correction=True)
     with pytest.raises(ConvergenceError, match="stalled"):
@@ -121,7 +141,7 @@ def test_repr_lists_levels_points_and_mesh_sizes():
 
 
 def test_status_table_is_complete():
-    assert set(STATUS) == {0, 1, 2, 3, 4, 5, 6, 7}
+    assert set(STATUS) == {0, 1, 2, 3, 4, 5, 6, 7, 8}
 
 
 def test_a_converged_iterate_with_a_non_positive_film_is_not_a_success():

@@ -3,8 +3,10 @@ discretisation error, per grid from 129^2 to 4097^2 (issue "Speed", first target
 
 For circular (M, L) = (20, 10), Roelands + Dowson-Higginson, half domain, one thread:
 
-- a *deep* solve per grid (residual 1e-7, load error 1e-8, up to 200 cycles): the discrete
-  solution of that grid, whose iteration error is far below its grid error;
+- a *deep* solve per grid (residual 1e-7, load error 1e-6, up to 200 cycles, or until the
+  residual stops falling at the relaxation's floor, status ``residual_floor``; the last film
+  change is recorded): the discrete solution of that grid, whose iteration error is far below
+  its grid error;
 - the grid limit of Hc and Hm by Richardson from the two finest deep solves, with the order
   observed over the three finest (kept in [1, 3]); the discretisation error of grid n is
   ``|H_deep(n) - H_limit|``;
@@ -42,7 +44,7 @@ VARIANTS = {
     "V(2,1)": {"cycle": "V"},
     "V(2,1) Y lines post only": {"cycle": "V", "y_pre": False},
 }
-DEEP = {"tol": 1e-7, "tol_load": 1e-8, "max_cycles": 200, "grid_stop": None}
+DEEP = {"tol": 1e-7, "tol_load": 1e-6, "max_cycles": 200, "grid_stop": None}
 
 
 def commit() -> str:
@@ -59,7 +61,10 @@ def solve(points: int, opts: dict) -> dict:
     t0 = time.perf_counter()
     s = solve_point(CASE["M"], CASE["L"], theta=CASE["theta"], points=points, half=True,
                     estimate=False, raise_on_failure=False, threads=1, **opts)
-    return {"status": s.status_name, "WU": s.work_units, "cycles": s.cycles, "wall_s": time.perf_counter() - t0,
+    fin = [h for h in s.history if h.level == s.levels - 1][-2:]
+    last = {f"d{k}_last": abs(getattr(fin[1], k) / getattr(fin[0], k) - 1.0) if len(fin) == 2 else None
+            for k in ("Hc", "Hm")}
+    return {"status": s.status_name, **last, "WU": s.work_units, "cycles": s.cycles, "wall_s": time.perf_counter() - t0,
             "Hc": s.scalars["Hc"], "Hm": s.scalars["Hm"], "levels": s.levels,
             "residual": float(s.residual_history[-1]) if s.residual_history.size else None,
             "load_error": float(s.load_error_history[-1]) if s.load_error_history.size else None}
@@ -76,7 +81,8 @@ def limit(rows: dict[int, dict], key: str) -> tuple[float, float]:
 
 
 def report(data: dict) -> str:
-    deep = {int(k): v for k, v in data["deep"].items() if v["status"] == "converged"}
+    # a deep solve that stops at its relaxation's residual floor is as deep as this grid goes
+    deep = {int(k): v for k, v in data["deep"].items() if v["status"] in ("converged", "residual_floor")}
     if len(deep) < 3:
         return "fewer than three converged deep solves: no limit\n"
     lim = {k: limit(deep, k) for k in ("Hc", "Hm")}
@@ -84,6 +90,9 @@ def report(data: dict) -> str:
     lines = [f"(M, L) = ({CASE['M']:g}, {CASE['L']:g}), circular, Roelands + Dowson-Higginson, half domain, "
              f"one thread; commit {data['commit']}",
              f"limit Hc {lim['Hc'][0]:.7f} (order {lim['Hc'][1]:.2f}), Hm {lim['Hm'][0]:.7f} (order {lim['Hm'][1]:.2f})",
+             "", "deep solves (status, last film change Hc / Hm): " +
+             ", ".join(f"{n}: {deep[n]['status']} {deep[n].get('dHc_last') or 0:.1e} / {deep[n].get('dHm_last') or 0:.1e}"
+                       for n in grids),
              "", "discretisation error of the deep solve, relative: " +
              ", ".join(f"{n}: Hc {abs(deep[n]['Hc'] / lim['Hc'][0] - 1):.2e} Hm {abs(deep[n]['Hm'] / lim['Hm'][0] - 1):.2e}"
                        for n in grids), "",
@@ -112,8 +121,9 @@ def main() -> None:
     OUT.mkdir(exist_ok=True)
     path = OUT / f"{a.label}.json"
     data = json.loads(path.read_text()) if path.is_file() else {}
-    if data.get("case") != CASE or data.get("commit") != commit():
-        data = {"case": CASE, "commit": commit(), "deep": {}, "fmg": {}}  # other inputs: start again
+    inputs = {"case": CASE, "commit": commit(), "deep_options": DEEP, "variants": VARIANTS}
+    if any(data.get(k) != v for k, v in inputs.items()):
+        data = {**inputs, "deep": {}, "fmg": {}}  # other inputs or code: start again
     grids = [n for n in (129, 257, 513, 1025, 2049, 4097) if n <= a.max_points]
     todo = [("deep", None, n) for n in grids] + [("fmg", v, n) for v in VARIANTS for n in grids]
 
