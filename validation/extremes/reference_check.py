@@ -138,11 +138,12 @@ def main() -> None:
     # resume: keep only the records of results still in the inputs (no stale entry)
     before = json.loads(path.read_text()) if path.is_file() else {}
     # (a record skipped for its grid is tried again: the grid limit may have been raised; so is
-    # a failed reference that ran out of cycles: its films may have settled)
+    # a failed reference that ran out of cycles, its films may have settled, or diverged: before
+    # POINT_POLICY.quiet_below a deep point solve at its residual floor could end "diverged")
     out = {k: before[k] for k, rec in todo if k in before and before[k]["result"] == rec["result"]
            and before[k]["status"] != "skipped"
            and not (before[k]["status"] == "reference failed"
-                    and any(s["status"] == "max_cycles" for s in before[k]["solves"]))}
+                    and any(s["status"] in ("max_cycles", "diverged") for s in before[k]["solves"]))}
 
     def save() -> None:
         tmp = path.with_suffix(".tmp")
