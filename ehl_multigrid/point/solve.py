@@ -51,6 +51,17 @@ RETRY_ALTERNATING = ("max_cycles", "stalled", "diverged")
 #: one thread, loaded machine).
 MAX_ACCURACY_POINTS = 2049
 
+#: Barus solves that diverge at alpha_bar >= this get the reason in their message. Measured
+#: (half domain, fit-check map at 1 %, validation/extremes): the refinements of Barus
+#: (1000, 20, theta 1) (alpha_bar 72.9) to 2049 points and (20, 20, theta 4) (33.0) to 1025
+#: diverged, their Roelands twins converged; traced at (20, 20, 4) on 513 points, the first
+#: blow-up is an X-line change at the outlet (X = 0.56) of a cavitated point whose Y
+#: neighbours carry P = 1.9 and 1.1 (rows alternating between 0 and the film pressure),
+#: 0.0003 -> 13.5 in one sweep. Capping each change (ln viscosity rise <= 3 or 10 per sweep)
+#: stops the NaN but not the oscillation: the iteration then settles on wrong films
+#: (Hc 1.7 or 20 instead of 4.86). Barus up to alpha_bar 57.8 converges on that map.
+BARUS_STEEP = 30.0
+
 #: Widest box (times the default) an accuracy target may ask for in the thick-film regime
 THICK_FILM_BOX_LIMIT = 8.0
 
@@ -186,6 +197,12 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
             if problem.b_over_a < NARROW_BELOW and problem.M >= 1000:
                 sol.message += (f" (a contact this narrow, b/a = {problem.b_over_a:.3g}, thins its film "
                                 "at the sides |Y| = b into a constriction that needs many cells across b)")
+        if sol.status_name == "diverged" and problem.viscosity == "barus" and problem.alpha_bar >= BARUS_STEEP:
+            sol.message += (f"; Barus viscosity exp(alpha_bar P) at alpha_bar = {problem.alpha_bar:.3g} varies "
+                            f"by e^{problem.alpha_bar:.0f} per unit of P: at the outlet neighbouring rows of "
+                            "the grid end up at viscosities many decades apart and the line relaxation "
+                            "oscillates from row to row until it blows up. Roelands (2.6), far less steep "
+                            "at high pressure, converged on every fit-map case where Barus diverged")
         if sol.load_error_history.size and sol.load_error_history[-1] > 1e-2:
             sol.message += ("; the load cannot be balanced: at low M the inlet of this domain is too "
                             "short (extend xmin/ymax), at high M the grid is too coarse (more points)")

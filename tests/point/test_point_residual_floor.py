@@ -1,5 +1,6 @@
-"""A point solve asked for a residual below its relaxation's floor ends ``residual_floor`` with
-its films settled, not ``diverged`` (``POINT_POLICY.quiet_below``)."""
+"""Point solves that cannot reach their tolerance say why: a residual asked below the
+relaxation's floor ends ``residual_floor`` with settled films, not ``diverged``
+(``POINT_POLICY.quiet_below``); a steep Barus solve that diverges names the cause."""
 
 from ehl_multigrid.point import solve_point
 
@@ -17,3 +18,11 @@ def test_a_tolerance_below_the_floor_ends_at_the_floor_with_settled_films():
     assert ref.success
     for h in ("Hc", "Hm"):
         assert abs(deep.scalars[h] / ref.scalars[h] - 1.0) < 1e-6
+
+
+def test_a_diverged_steep_barus_solve_says_why_and_names_roelands():
+    # circular-ish theta 4, alpha_bar 33: the refinement of the fit-check map that diverges
+    sol = solve_point(20, 20, theta=4, viscosity="barus", density="incompressible", points=1025,
+                      estimate=False, raise_on_failure=False)
+    assert sol.status_name == "diverged"
+    assert "alpha_bar = 33" in sol.message and "Roelands" in sol.message
