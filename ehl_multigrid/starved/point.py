@@ -343,7 +343,7 @@ class StarvedPointHierarchy(PointHierarchy):
         pressurised point (measured: one such point at the side of the pressurised zone held
         (179, 4.17) at 257^2, Hoil = 0.25 Hc_ff, at a residual of 2.3e-5)."""
         self._operator(lev, lev.r)
-        r = lev.f - lev.r
+        r = np.subtract(lev.f, lev.r, out=lev.r)  # in place: lev.r is the grids' shared buffer
         sr = np.empty_like(r)
         nm.scaled_residual(r, lev.H, lev.rho, lev.eps, float(lev.Kc[0, 0]), lev.hx, lev.hy,
                            self.options.half, sr, 0.0)
@@ -365,15 +365,16 @@ class StarvedPointHierarchy(PointHierarchy):
         point: the march clipped a negative content) only a surplus counts."""
         self.threads.for_size(lev.npts)
         self._operator(lev, lev.r)
-        r = lev.f - lev.r
+        # in place: lev.r is a view of the buffer all grids share (PointHierarchy)
+        r = np.subtract(lev.f, lev.r, out=lev.r)
         ny, nx = r.shape
         j0 = 0 if self.options.half else 1
-        mask = np.zeros(r.shape, dtype=bool)
-        mask[j0:ny - 1, 1:nx - 1] = True
-        r[~mask] = 0.0
+        r[:j0, :] = 0.0
+        r[ny - 1, :] = 0.0
+        r[:, 0] = 0.0
+        r[:, nx - 1] = 0.0
         r[(lev.theta <= 0.0) & (r > 0.0)] = 0.0
-        lev.r = np.ascontiguousarray(r)
-        return lev.r
+        return r
 
     def _free(self, k: int) -> bool:
         """Does ``theta`` move on grid ``k``? On the current fine grid and the grid below it

@@ -57,3 +57,15 @@ def test_half_domain_scalars_equal_those_of_the_mirrored_domain():
     with_fields = build_result(sol).scalars
     assert _same(build_result(sol, fields=False).scalars, with_fields)
     assert with_fields["Y_Hm"] < 0.0  # the mirrored domain's first minimum: the lower lobe
+
+
+def test_the_starved_residual_stays_in_the_shared_buffer():
+    # the starved hierarchy's residual used to rebind lev.r to a fresh array per grid
+    from ehl_multigrid.starved.point import StarvedPointHierarchy
+
+    hz = StarvedPointHierarchy(problem_from_moes(20.0, 10.0), PointOptions(points=129, half=True), 0.3)
+    fine = hz.levels[-1]
+    for lev in hz.levels:
+        lev.theta = np.ones(lev.shape)
+        r = hz.residual(lev)
+        assert r is lev.r and np.shares_memory(lev.r, fine.r)
