@@ -48,7 +48,7 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
                         "iteration alone)")
     p.add_argument("--max-points", type=int, default=None,
                    help="largest grid (points along X) the accuracy target may refine to (default: "
-                        "2049 for point, 131073 for line contacts; --thermal: 513 point, 4097 line)")
+                        "4097 for point, 131073 for line contacts; --thermal: 513 point, 4097 line)")
     p.add_argument("--levels", type=int, default=None, help="number of multigrid levels")
     p.add_argument("--points", type=int, default=None, help="finest-grid points per direction (2^k + 1)")
     p.add_argument("--cycle", choices=["V", "W", "F"], default=None, help="multigrid cycle type")
