@@ -49,11 +49,12 @@ RETRY_ALTERNATING = ("max_cycles", "stalled", "diverged")
 #: fit_map_0.01_retry2049) the circular Barus row converges at 2049 points for (M, L) = (100, 0),
 #: (100, 10), (100, 20), (500, 10), (1000, 10), each a grid-budget failure at 1025 (25-50 s each,
 #: one thread, loaded machine).
-#: Raised to 4097 (session 15): the tribometer scene series A disc 1 at 1 GPa (M 850, L 4.95)
-#: missed the default 0.5 % at 2049 points (Hm 0.75 %, grid error; 36 s) and converges at 4097
-#: (Hc 0.11 %, Hm 0.18 %) in 141 s with 1.41 GB peak, one thread (the 4097-point solve 61 s,
-#: 28.4 WU). The loop refines only where the estimate predicts the target within the budget, so
-#: contacts that need 16385 points (series C, 1.93 GPa) still answer at once.
+#: Raised to 4097 (session 15; validation/accuracy/builtin_scenes.py, one thread, the other
+#: core busy): the tribometer scenes series A at 1 GPa (M 850, L 4.95) and series D at 1.93 GPa
+#: missed the default 0.5 % at 2049 points (Hm 0.75 % and 1.4 %, grid error; 36-44 s) and
+#: converge at 4097 (Hc 0.11 % / 0.19 %, Hm 0.18 % / 0.35 %) in 161-182 s, peak 1.41 GB (the
+#: 4097-point solve 61 s, 28.4 WU). Series C at 1.93 GPa, which needs about 16385 points, now
+#: ends on 4097 with Hc 0.50 %, Hm 2.0 % (2049: 4.7 %, 11 %) in 214 s instead of 51 s.
 MAX_ACCURACY_POINTS = 4097
 
 #: Barus solves that diverge at alpha_bar >= this get the reason in their message. Measured
