@@ -387,7 +387,7 @@ class MultilevelSolver:
                     if not self.converged() and self.policy.stalled(self.residuals, o.tol):
                         r = self.residuals
                         if o.film_tol is None and r[-1] < self.policy.params.quiet_below:
-                            # at the round-off floor a stall step only stirs the iterate
+                            # at the relaxation's residual floor a stall step only stirs the iterate
                             raise _Stop(8, self._floor_message(o.tol))
                         what = self.policy.on_stall(self.settings, hz, len(self.residuals))
                         if what is None:
