@@ -163,6 +163,19 @@ def iteration_factor(films: list[float]) -> float:
     return MAX_ITERATION_FACTOR if rho >= 0.95 else rho / (1.0 - rho)
 
 
+def last_film_change(history: list[Any]) -> dict[str, float] | None:
+    """Relative change of Hc and Hm over the last cycle of the finest grid in ``history`` (the
+    driver's cycle records); None with fewer than two cycles there."""
+    if not history:
+        return None
+    top = max(h.level for h in history)
+    fin = [h for h in history if h.level == top][-2:]
+    if len(fin) < 2:
+        return None
+    return {k: abs(getattr(fin[1], k) / getattr(fin[0], k) - 1.0) if getattr(fin[0], k) else math.nan
+            for k in ("Hc", "Hm")}
+
+
 def iteration_error(films: list[float]) -> float:
     """Estimated (absolute) iteration error of ``films[-1]``, the films of the finest-grid
     cycles in order: the last change times :func:`iteration_factor`, and at least half the

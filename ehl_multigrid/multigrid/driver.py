@@ -43,7 +43,7 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import ConvergenceError
-from .accuracy import LOAD_SENSITIVITY, hm_max_order, iteration_error, richardson
+from .accuracy import LOAD_SENSITIVITY, hm_max_order, iteration_error, last_film_change, richardson
 from .options import MultigridOptions
 from .policy import NOTHING_CHANGED, RobustnessPolicy, Settings
 from .result import EHLResult
@@ -296,12 +296,9 @@ class MultilevelSolver:
     def _floor_message(self, tol: float) -> str:
         """Why a solve stalled below the policy's ``quiet_below``, with the films' last
         changes."""
-        fin = [h for h in self.history if h.level == self.history[-1].level][-2:]
-        moved = ""
-        if len(fin) == 2:
-            dc = abs(fin[1].Hc / fin[0].Hc - 1.0)
-            dm = abs(fin[1].Hm / fin[0].Hm - 1.0) if fin[0].Hm else math.nan
-            moved = f"; the last cycle changed Hc by {dc:.2g} and Hm by {dm:.2g} (relative)"
+        d = last_film_change(self.history)
+        moved = "" if d is None else \
+            f"; the last cycle changed Hc by {d['Hc']:.2g} and Hm by {d['Hm']:.2g} (relative)"
         return (f"the residual stopped falling at {self.residuals[-1]:.3g} (tol {tol:.3g}) over "
                 f"{self.policy.params.stall_window} cycles, below {self.policy.params.quiet_below:g}: "
                 f"the floor of this grid's relaxation, not a divergence; ask for a tolerance above "

@@ -59,14 +59,14 @@ def commit() -> str:
 
 
 def solve(points: int, opts: dict) -> dict:
+    from ehl_multigrid.multigrid.accuracy import last_film_change
     from ehl_multigrid.point import solve_point
 
     t0 = time.perf_counter()
     s = solve_point(CASE["M"], CASE["L"], theta=CASE["theta"], points=points, half=True,
                     estimate=False, raise_on_failure=False, threads=1, **opts)
-    fin = [h for h in s.history if h.level == s.levels - 1][-2:]
-    last = {f"d{k}_last": abs(getattr(fin[1], k) / getattr(fin[0], k) - 1.0) if len(fin) == 2 else None
-            for k in ("Hc", "Hm")}
+    d = last_film_change(s.history) or {"Hc": None, "Hm": None}
+    last = {f"d{k}_last": d[k] for k in ("Hc", "Hm")}
     return {"status": s.status_name, **last, "WU": s.work_units, "cycles": s.cycles, "wall_s": time.perf_counter() - t0,
             "Hc": s.scalars["Hc"], "Hm": s.scalars["Hm"], "levels": s.levels,
             "residual": float(s.residual_history[-1]) if s.residual_history.size else None,

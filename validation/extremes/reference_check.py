@@ -54,12 +54,10 @@ def reference_films(deep) -> tuple[dict, dict] | None:
     if deep.status_name == "residual_floor":
         # stopped where the residual stops falling (tolerance below the relaxation's floor):
         # the last finest-grid film change is the reference's uncertainty
-        top = max(h.level for h in deep.history)
-        fin = [h for h in deep.history if h.level == top][-2:]
-        if len(fin) < 2:
-            return None
-        unc = {h: abs(getattr(fin[1], h) / getattr(fin[0], h) - 1.0) for h in ("Hc", "Hm")}
-        if max(unc.values()) > STALL_BAND:
+        from ehl_multigrid.multigrid.accuracy import last_film_change
+
+        unc = last_film_change(deep.history)
+        if unc is None or not max(unc.values()) <= STALL_BAND:
             return None
         return {h: float(deep.scalars[h]) for h in ("Hc", "Hm")}, unc
     if deep.status_name != "max_cycles":
