@@ -38,6 +38,8 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
     opts["accuracy"] = getattr(args, "accuracy", None)
     if getattr(args, "max_points", None) is not None:
         opts["max_points"] = args.max_points
+    if getattr(args, "time_budget", None) is not None:
+        opts["time_budget"] = args.time_budget
     opts["raise_on_failure"] = False  # an unconverged or inaccurate result is written and says so
     model = {k: getattr(args, k, None) for k in ("viscosity", "density", "xmin", "xmax")}
     elastic = not getattr(args, "rigid", False)
@@ -62,6 +64,9 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
             # a finite [supply] hoil: the mass-conserving (Elrod-Adams) solver finds the meniscus
             from ..starved import solve_starved_scene
 
+            if "time_budget" in opts:
+                raise InputError("--time-budget applies to flooded contacts: the starved line "
+                                 "solver refines its grid only (use --max-points to bound it)")
             sopts = {k: v for k, v in opts.items() if k != "accuracy"}
             sol = solve_starved_scene(scene, accuracy=opts["accuracy"], elastic=elastic,
                                       **{k: v for k, v in model.items() if v is not None}, **sopts)

@@ -96,7 +96,10 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
         fas_kw["accuracy"] = getattr(args, "accuracy", None)
         if getattr(args, "max_points", None) is not None:
             fas_kw["max_points"] = args.max_points
-        opt = PointOptions.build(**{k: v for k, v in fas_kw.items() if k not in ("accuracy", "max_points")})
+        if getattr(args, "time_budget", None) is not None:
+            fas_kw["time_budget"] = args.time_budget
+        opt = PointOptions.build(**{k: v for k, v in fas_kw.items()
+                                    if k not in ("accuracy", "max_points", "time_budget")})
     quiet = bool(getattr(args, "json", False))
     if scene is not None and math.isfinite(scene.supply.hoil):
         # a finite [supply] hoil: the mass-conserving (Elrod-Adams) solver finds the meniscus
@@ -157,6 +160,9 @@ def run_starved(args: argparse.Namespace, scene, pb, fas_kw: dict, rigid: bool, 
     discretisation; writes ``<out>/<name>.h5`` (with ``theta``) and PNGs."""
     from ..starved.point import solve_starved_point_scene, starved_point_payload
 
+    if fas_kw.get("time_budget") is not None:
+        raise InputError("--time-budget applies to flooded contacts: the starved point solver "
+                         "refines its grid only (use --max-points to bound it)")
     kw = {k: v for k, v in fas_kw.items() if k not in ("accuracy", "max_points")}
     if rigid:
         kw["elastic"] = False

@@ -28,6 +28,17 @@ def _accuracy(text: str) -> float | None:
     return v
 
 
+def _seconds(text: str) -> float:
+    """``--time-budget``: seconds, a number >= 0."""
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"time-budget = {text!r} is not a number of seconds") from None
+    if not v >= 0.0:
+        raise argparse.ArgumentTypeError(f"time-budget = {v:g} s is outside the allowed range [0, inf) s")
+    return v
+
+
 def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("scene", nargs="?", default=None, help="built-in scene name or TOML file (or use --M/--L)")
     p.add_argument("--contact", choices=["line", "point", "elliptic"], help="contact type in Moes-only mode")
@@ -49,6 +60,11 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--max-points", type=int, default=None,
                    help="largest grid (points along X) the accuracy target may refine to (default: "
                         "4097 for point, 131073 for line contacts; --thermal: 513 point, 4097 line)")
+    p.add_argument("--time-budget", type=_seconds, default=None,
+                   help="seconds the accuracy target may spend (flooded contacts): no refinement "
+                        "predicted to overrun it is started, and the most accurate answer so far "
+                        "comes back, marked inaccurate when it misses the target (default: none; "
+                        "--thermal: 600)")
     p.add_argument("--levels", type=int, default=None, help="number of multigrid levels")
     p.add_argument("--points", type=int, default=None, help="finest-grid points per direction (2^k + 1)")
     p.add_argument("--cycle", choices=["V", "W", "F"], default=None, help="multigrid cycle type")

@@ -733,7 +733,8 @@ def solve_line(
     xmin: float | None = None, xmax: float | None = None, elastic: bool = True,
     callback: Callable[[dict[str, Any]], None] | None = None,
     options: LineOptions | None = None, accuracy: float | None = None, estimate: bool = True,
-    max_points: int = MAX_ACCURACY_POINTS, progress: Callable[[str], None] | None = None, **kw: Any,
+    max_points: int = MAX_ACCURACY_POINTS, progress: Callable[[str], None] | None = None,
+    time_budget: float | None = None, **kw: Any,
 ) -> EHLResult:
     """Solve the steady isothermal EHL line contact (Venner's dimensionless Reynolds, film
     and load equations; Roelands (2.6) and Dowson-Higginson (2.7) by default).
@@ -752,7 +753,9 @@ def solve_line(
     estimated errors (``Hc_error``, ``Hm_error``, ``error.budget``: grid, domain, algebraic)
     unless ``estimate=False``; with an accuracy, ``success`` also requires the estimate to
     meet it (status ``"inaccurate"`` otherwise). ``progress(text)`` receives one line per
-    solve of that sequence.
+    solve of that sequence. ``time_budget`` (seconds) bounds that sequence: no refinement is
+    started that is predicted to overrun it, and the most accurate answer so far comes back
+    (``"inaccurate"`` when it misses the target).
 
     Returns an :class:`~ehl_multigrid.multigrid.result.EHLResult`; ``.to_result()`` gives the
     package :class:`~ehl_multigrid.model.results.Result` (kind ``"ehl_line"``).
@@ -782,6 +785,8 @@ def solve_line(
     if accuracy is not None:
         require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
     require_range("max_points", max_points, 65, 262145, "points")
+    if time_budget is not None:
+        require_range("time_budget", time_budget, 0.0, math.inf, "s")
     points = opts.points
     if accuracy is not None and not explicit:
         points = min(max(solver_grid("line", pb.M, accuracy).points, 33), max_points)
@@ -809,7 +814,8 @@ def solve_line(
 
     res = solve_to_accuracy(solve, probe, accuracy, points, max_points,
                             refine=accuracy is not None and not (explicit or fixed_box),
-                            decay_probe=decay_probe, progress=progress)
+                            decay_probe=decay_probe, progress=progress, dimensions=1,
+                            time_budget=math.inf if time_budget is None else time_budget)
     if not res.success and opts.raise_on_failure:
         raise ConvergenceError(f"line solver: {res.message}", res.report, HINT)
     return res

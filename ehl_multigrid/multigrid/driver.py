@@ -304,6 +304,33 @@ class MultilevelSolver:
                 f"the floor of this grid's relaxation, not a divergence; ask for a tolerance above "
                 f"it or stop on the films (film_tol){moved}")
 
+    def films_at_floor(self) -> bool:
+        """True when a film-stopped solve sits at its relaxation's residual floor: the residual
+        is below the policy's ``quiet_below`` and has not fallen by ``stall_factor`` over
+        ``stall_window`` finest-grid cycles, and the films' changes over the second half of that
+        window are no smaller than over the first (jitter, not a contraction). Measured: the
+        (5000, 0) decay probe on 2049 points (box x2, film_tol 1e-5) held its residual at
+        7e-7 to 1e-6 while Hc jumped by 4e-6 to 5.6e-5 per cycle, and ran out its 60 cycles
+        (5 min) without meeting the film rule."""
+        p = self.policy.params
+        w = p.stall_window
+        top = len(self.hierarchy.levels) - 1
+        r = self.residuals[-w:]
+        fin = [h for h in self.history[-(w + 1):] if h.level == top]
+        if len(r) < w or len(fin) < w + 1 or not (p.stall_factor * r[0] < r[-1] < p.quiet_below):
+            return False
+        d = [max(abs(b.Hc / a.Hc - 1.0), abs(b.Hm / a.Hm - 1.0)) for a, b in zip(fin[:-1], fin[1:], strict=True)]
+        half = w // 2
+        return max(d[half:]) >= max(d[:half])
+
+    def _film_floor_message(self) -> str:
+        d = last_film_change(self.history)
+        moved = "" if d is None else f" (last cycle: Hc {d['Hc']:.2g}, Hm {d['Hm']:.2g}, relative)"
+        return (f"the films still jump by more than film_tol = {self.options.film_tol:g} per cycle"
+                f"{moved} while the residual stays at {self.residuals[-1]:.3g}, the floor of this "
+                f"grid's relaxation, over {self.policy.params.stall_window} cycles: the films are "
+                f"not resolved below that jitter; ask for a film tolerance above it")
+
     def grid_stop(self) -> bool:
         """True when further cycles would move both films by less than ``options.grid_stop``
         of the larger of their grid errors (see :class:`MultigridOptions`); the estimates are those of
@@ -381,6 +408,8 @@ class MultilevelSolver:
                         continue
                     self.run_cycle(top, o.cycles + extra)
                     extra += 1
+                    if o.film_tol is not None and not self.converged() and self.films_at_floor():
+                        raise _Stop(8, self._film_floor_message())
                     if not self.converged() and self.policy.stalled(self.residuals, o.tol):
                         r = self.residuals
                         if o.film_tol is None and r[-1] < self.policy.params.quiet_below:

@@ -42,7 +42,9 @@ class PolicyParameters:
         this is accepted whatever its growth, and a stall below it ends the solve
         (``residual_floor``) instead of stepping down the stall ladder: there the residual
         wanders by factors of 3-5 from cycle to cycle while the films barely move, which is
-        no divergence, and a stall step only stirs the iterate (0: off).
+        no divergence, and a stall step only stirs the iterate (0: off). A film-stopped solve
+        whose residual sits below it while its films jitter above ``film_tol`` ends there too
+        (``Multigrid.films_at_floor``).
     load_cap, load_factor : reject when ``|load error| > max(load_cap, load_factor |previous|)``.
     first_load_error : the "previous" load error of a grid's first cycle.
     max_retries : repeated attempts of one cycle before the solve is declared diverged.

@@ -72,6 +72,24 @@ def test_max_points_caps_the_refinement_and_the_message_names_the_grid_needed(tm
     assert "max_points = 513" in out["message"] and "points along X are predicted" in out["message"]
 
 
+def test_a_time_budget_stops_the_refinement_and_the_message_says_so(tmp_path, capsys):
+    # the same (20, 10) line at 0.1 %, with no time to refine: the first solve comes back,
+    # marked inaccurate, and says which refinement the budget left out
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--accuracy", "0.001",
+               "--time-budget", "0", "--no-plots", "--out", str(tmp_path), "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 3 and out["status"] == "inaccurate"
+    assert "not refined further: the time budget of 0 s" in out["message"]
+
+
+def test_a_negative_time_budget_is_refused_by_the_parser(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exit_:
+        main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--time-budget", "-1",
+              "--out", str(tmp_path)])
+    assert exit_.value.code == 2
+    assert "time-budget = -1 s is outside the allowed range [0, inf) s" in _err(capsys)
+
+
 def test_solve_into_a_file_is_refused_before_solving(tmp_path, capsys):
     (tmp_path / "afile").write_text("x")
     assert main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--out", str(tmp_path / "afile")]) == 2

@@ -386,13 +386,56 @@ def test_the_accuracy_sequence_reports_each_solve_to_a_progress_printer(monkeypa
     lines = []
     solve_to_accuracy(lambda n, b, t: runs[n], lambda r, b: (0.0, 0.0), 0.01, 257, 1025,
                       progress=lines.append)
-    assert len(lines) == 2
+    assert len(lines) == 3
     assert lines[0].startswith("257 points, box x1: estimated error Hc 3.00%, Hm 3.00%")
-    assert lines[1].startswith("513 points, box x1: estimated error Hc 0.50%")
+    assert lines[1].startswith("513 points, box x1: refining, predicted about")
+    assert lines[2].startswith("513 points, box x1: estimated error Hc 0.50%")
     # the command line prints them only on a terminal and never with --json
     assert progress_printer(argparse.Namespace(json=True)) is None
     monkeypatch.setattr(sys, "stderr", io.StringIO())  # not a terminal
     assert progress_printer(argparse.Namespace(json=False)) is None
+
+
+def test_a_refinement_predicted_to_overrun_the_time_budget_is_not_started(monkeypatch):
+    """A point solve of 10 s on 257 points predicts 4 x 10 s on 513: with 30 s of budget the
+    refinement is not started and the coarser answer comes back as inaccurate, saying why;
+    with 60 s it runs. A line contact (``dimensions=1``) predicts 2 x 10 s and fits in 30 s."""
+    import types
+
+    import ehl_multigrid.multigrid.accuracy as acc
+
+    clock = [0.0]
+    monkeypatch.setattr(acc, "time", types.SimpleNamespace(perf_counter=lambda: clock[0]))
+    monkeypatch.setattr(acc, "estimate_error", lambda res, dom, converged=None, decay=None:
+                        ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4)))
+
+    def fake_attach(res, est, accuracy):
+        res.error = est
+        if max(est.Hc, est.Hm) > accuracy:
+            res.success, res.status_name, res.message = False, "inaccurate", "inaccurate"
+
+    monkeypatch.setattr(acc, "attach_estimate", fake_attach)
+
+    def run(budget, dimensions=2):
+        runs = {257: _Fake(257, True, 0.03), 513: _Fake(513, True, 0.005)}
+        asked = []
+
+        def solve(n, b, t):
+            asked.append(n)
+            clock[0] += 10.0 * ((n - 1) / 256) ** dimensions
+            return runs[n]
+
+        clock[0] = 0.0
+        return solve_to_accuracy(solve, lambda r, b: (0.0, 0.0), 0.01, 257, 1025,
+                                 time_budget=budget, dimensions=dimensions), asked
+
+    out, asked = run(30.0)
+    assert asked == [257] and out.status_name == "inaccurate"
+    assert "predicted to take about 40 s" in out.message and "time budget of 30 s" in out.message
+    out, asked = run(60.0)
+    assert asked == [257, 513] and out.success
+    out, asked = run(30.0, dimensions=1)
+    assert asked == [257, 513] and out.success
 
 
 def test_irregular_fmg_films_are_repaired_by_converged_coarser_solves():
@@ -542,3 +585,22 @@ def test_the_decay_probe_is_not_run_where_its_widest_box_would_need_more_points_
     cache = {}
     assert point_domain_change(pb, PointOptions(points=1025), sol, cache, boxes=(1.0, 2.0, 4.0), tight=True) is None
     assert cache == {}  # no probe was solved
+
+
+def test_a_probe_at_its_residual_floor_counts_with_its_jitter_added_to_the_box_change():
+    from types import SimpleNamespace
+
+    from ehl_multigrid.multigrid.accuracy import film_change
+
+    def result(hc, hm, floor=False, last=(0.0, 0.0)):
+        hist = [SimpleNamespace(level=3, Hc=hc / (1.0 + last[0]), Hm=hm / (1.0 + last[1])),
+                SimpleNamespace(level=3, Hc=hc, Hm=hm)]
+        return SimpleNamespace(success=not floor, status_name="residual_floor" if floor else "converged",
+                               scalars={"Hc_venner": hc, "Hm_venner": hm}, history=hist)
+
+    narrow, wide = result(1.0, 0.5), result(1.001, 0.4995, floor=True, last=(2e-4, 4e-4))
+    assert film_change(lambda: narrow, lambda: wide) is None  # the default: a floor is a failure
+    dc, dm = film_change(lambda: narrow, lambda: wide, floor_ok=True)
+    assert dc == pytest.approx(1e-3 + 2e-4, rel=1e-3) and dm == pytest.approx(-(1e-3 + 4e-4), rel=1e-3)
+    diverged = SimpleNamespace(success=False, status_name="diverged", scalars={}, history=[])
+    assert film_change(lambda: narrow, lambda: diverged, floor_ok=True) is None

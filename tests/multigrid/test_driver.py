@@ -113,6 +113,41 @@ def test_a_film_stopped_solve_keeps_the_stall_ladder_below_the_quiet_level():
     assert [a for a in sol.actions if "stalled" in a]
 
 
+class _FloorHierarchy(PoissonHierarchy):
+    """The toy with a relaxation floor: the residual never falls below 1e-6 and, with
+    ``jitter``, the films jump by that relative amount from cycle to cycle around their
+    converged values (as the point solver's films do at M = 5000)."""
+
+    def __init__(self, jitter: float) -> None:
+        super().__init__(129, 5)
+        self.jitter, self.calls = jitter, 0
+
+    def measure(self, k):
+        m = super().measure(k)
+        self.calls += 1
+        m.residual = max(m.residual, 1e-6 * (1.0 + 0.3 * (self.calls % 3)))
+        m.Hc = m.Hc * (1.0 + self.jitter * (-1) ** self.calls)
+        m.Hm = m.Hc
+        return m
+
+
+def test_a_film_stopped_solve_with_jittering_films_ends_at_the_floor_not_at_max_cycles():
+    params = PolicyParameters(quiet_below=1e-5)
+    sol = toy_solver(hierarchy=_FloorHierarchy(1e-4), params=params, cycle="V", cycles=1,
+                     max_cycles=200, tol=1e-10, tol_load=0.1, film_tol=1e-5).solve()
+    assert sol.status_name == "residual_floor" and not sol.success
+    assert "films still jump" in sol.message and "film_tol = 1e-05" in sol.message
+    assert sol.cycles < 30
+    # films that settle meet the film rule at the same residual floor
+    calm = toy_solver(hierarchy=_FloorHierarchy(0.0), params=params, cycle="V", cycles=1,
+                      max_cycles=200, tol=1e-10, tol_load=0.1, film_tol=1e-5).solve()
+    assert calm.success
+    # without a quiet level (line contacts) the floor rule is off: the cycles run out
+    off = toy_solver(hierarchy=_FloorHierarchy(1e-4), params=PolicyParameters(), cycle="V", cycles=1,
+                     max_cycles=40, tol=1e-10, tol_load=0.1, film_tol=1e-5).solve()
+    assert off.status_name != "residual_floor" and not off.success
+
+
 def test_stall_raises_with_a_hint_when_asked_to():
     hz = PoissonHierarchy(129, 5, no_correction=True)
     with pytest.raises(ConvergenceError, match="stalled"):

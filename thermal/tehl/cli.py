@@ -134,7 +134,7 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
     default 0.005) and neither ``--points`` nor ``--nz`` given, the grid (from 513 points line,
     257 point, nz 20), nz and box are refined until the estimate meets the target or the budget
     runs out (``args.max_points``, default 4097 line and 513 point; nz 80; a box 4 times the
-    default; 600 s); explicit ``--points``/``--nz`` are only judged. ``converged`` is true only
+    default; ``args.time_budget``, default 600 s); explicit ``--points``/``--nz`` are only judged. ``converged`` is true only
     when the outer iteration converged and the estimate meets the target (status
     ``inaccurate`` otherwise). Returns the payload of :func:`solve_payload` with the error keys
     (printed as JSON by ``--json``)."""
@@ -146,8 +146,9 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
     opts = TEHLOptions(points=given.get("points", 257 if point else 513), nz=given.get("nz", 20),
                        compressive_heating=getattr(args, "compressive_heating", True))
     accuracy = getattr(args, "accuracy", None)
+    budget = {} if getattr(args, "time_budget", None) is None else {"time_budget": args.time_budget}
     done = solve_tehl_to_accuracy(scene, getattr(args, "slip", None), opts, accuracy, refine=not given,
-                                  max_points=getattr(args, "max_points", None))
+                                  max_points=getattr(args, "max_points", None), **budget)
     r = done.result
     payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),
                "outer": [dict(o) for o in r.outer], "properties": thermal_properties(scene),
