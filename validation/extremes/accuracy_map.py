@@ -230,6 +230,9 @@ def main() -> None:
     ap.add_argument("--tag", default="",
                     help="suffix of the output file (a run on other code or budgets beside the old one)")
     ap.add_argument("--contact", choices=("line", "point"), default=None, help="only this contact's cases")
+    ap.add_argument("--select", action="append", metavar="CONTACT:M:L:THETA",
+                    help="only these cases (repeatable; e.g. point:5000:0:1), written to "
+                         "<map>_<tag or 'select'>.json")
     ap.add_argument("--case", help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.recheck:
@@ -248,6 +251,20 @@ def main() -> None:
     todo = cases(a.quick) if a.map == "extremes" else fit_cases(a.quick)
     if a.contact:
         todo = [c for c in todo if c["contact"] == a.contact]
+    if a.select:
+        want = set()
+        for text in a.select:
+            try:
+                contact, M, L, theta = text.split(":")
+                want.add((contact, float(M), float(L), float(theta)))
+            except ValueError:
+                ap.error(f"--select {text!r}: expected CONTACT:M:L:THETA, e.g. point:5000:0:1")
+        todo = [c for c in todo if (c["contact"], c["M"], c["L"], c.get("theta", 1.0)) in want]
+        missing = want - {(c["contact"], c["M"], c["L"], c.get("theta", 1.0)) for c in todo}
+        if missing:
+            ap.error(f"--select: {sorted(missing)} not in the {a.map} map")
+        if not a.tag:
+            path = path.with_name(f"{path.stem}_select.json")
     if a.retry_grid_budget:
         if a.max_points is None:
             ap.error("--retry-grid-budget needs --max-points (the larger grid budget)")
