@@ -19,6 +19,7 @@ from ..multigrid.accuracy import PROBE_FILM_TOL, film_change, film_tol, solve_to
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import PointOptions, build_scene_options, scene_solver_table
 from ..multigrid.result import EHLResult
+from ..multigrid.rheology import log_viscosity
 from ..multigrid.threads import preserved_threads
 from .fas import ALTERNATE_BELOW, HINT, point_solver, y_ratio
 from .postprocess import build_result
@@ -67,6 +68,33 @@ MAX_ACCURACY_POINTS = 4097
 #: stops the NaN but not the oscillation: the iteration then settles on wrong films
 #: (Hc 1.7 or 20 instead of 4.86). Barus up to alpha_bar 57.8 converges on that map.
 BARUS_STEEP = 30.0
+
+#: A failed solve whose iterate's pressure peaks above this many times the Hertzian maximum
+#: says why: a piezoviscous rise that the elastic deformation hardly limits. Measured on
+#: Roelands (1, theta 10): the converged peak grows from P = 0.77 at L = 0 to 6.4 at L = 10
+#: (2.6 GPa); at L = 25 the iterate stalls and diverges with its peak at P = 13-14 (14 GPa,
+#: viscosity 10^47 times the inlet's) on 257 and 513 points.
+PIEZOVISCOUS_PEAK = 3.0
+
+
+def piezoviscous_peak_reason(problem: PointProblem, P: np.ndarray | None) -> str:
+    """Why a point solve whose pressure peaks above :data:`PIEZOVISCOUS_PEAK` times the
+    Hertzian maximum has no meaningful answer (empty when it does not): the peak, in Pa, and the
+    viscosity the law gives there."""
+    if P is None or not np.isfinite(P).all():
+        return ""
+    peak = float(P.max())
+    if not peak > PIEZOVISCOUS_PEAK:
+        return ""
+    decades = log_viscosity(peak, problem.rheology())[0] / math.log(10.0)
+    law = "Roelands (2.6)" if problem.viscosity == "roelands" else "Barus (2.4)"
+    return (f"the iterate's pressure peaks at P = {peak:.3g} ({peak * problem.pmax / 1e9:.3g} GPa), "
+            f"{peak:.2g} times the Hertzian maximum, where {law} gives a viscosity 10^{decades:.0f} times "
+            f"the inlet's: at M = {problem.M:.3g} and alpha_bar = {problem.alpha_bar:.3g} the load is "
+            f"carried by a piezoviscous pressure rise that the elastic deformation hardly limits (the "
+            f"piezoviscous-rigid regime), at pressures far beyond those any viscosity law is fitted "
+            f"to; this isothermal Newtonian model has no meaningful answer there")
+
 
 #: Widest box (times the default) an accuracy target may ask for in the thick-film regime
 THICK_FILM_BOX_LIMIT = 8.0
@@ -209,6 +237,9 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
                             "the grid end up at viscosities many decades apart and the line relaxation "
                             "oscillates from row to row until it blows up. Roelands (2.6), far less steep "
                             "at high pressure, converged on every fit-map case where Barus diverged")
+        why = piezoviscous_peak_reason(problem, sol.P)
+        if why and sol.status_name in ("diverged", "max_cycles", "stalled"):
+            sol.message += "; " + why
         if sol.load_error_history.size and sol.load_error_history[-1] > 1e-2:
             sol.message += ("; the load cannot be balanced: at low M the inlet of this domain is too "
                             "short (extend xmin/ymax), at high M the grid is too coarse (more points)")

@@ -26,3 +26,25 @@ def test_a_diverged_steep_barus_solve_says_why_and_names_roelands():
                       estimate=False, raise_on_failure=False)
     assert sol.status_name == "diverged"
     assert "alpha_bar = 33" in sol.message and "Roelands" in sol.message
+
+
+def test_a_failed_solve_with_a_piezoviscous_peak_far_above_hertz_says_why():
+    # Roelands (1, 25, theta 10): the iterate stalls and diverges with P = 13-14 at its peak
+    # (14 GPa) on 257 and 513 points; the converged (1, 10, theta 10) peaks at 6.4
+    sol = solve_point(1, 25, theta=10, points=257, estimate=False, raise_on_failure=False)
+    assert not sol.success
+    assert "piezoviscous-rigid regime" in sol.message and "no meaningful answer" in sol.message
+    assert sol.P.max() > 10.0
+
+
+def test_the_piezoviscous_peak_reason_needs_a_peak_above_its_threshold():
+    import numpy as np
+
+    from ehl_multigrid.point.problem import problem_from_moes
+    from ehl_multigrid.point.solve import PIEZOVISCOUS_PEAK, piezoviscous_peak_reason
+
+    pb = problem_from_moes(1, 25, 10.0)
+    assert piezoviscous_peak_reason(pb, np.array([0.0, 0.9 * PIEZOVISCOUS_PEAK])) == ""
+    assert piezoviscous_peak_reason(pb, np.array([0.0, np.nan, 20.0])) == ""  # a NaN field says nothing
+    why = piezoviscous_peak_reason(pb, np.array([0.0, 14.0]))
+    assert "P = 14 (14.2 GPa)" in why and "10^47 times" in why

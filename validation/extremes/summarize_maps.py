@@ -39,6 +39,8 @@ def reason(rec: dict) -> str:
         if "did not converge" in msg:
             return "inaccurate: finer solve failed"
         return "inaccurate: other"
+    if "piezoviscous-rigid regime" in msg:
+        return f"{st}: piezoviscous peak far above Hertz (physical)"
     return st
 
 
