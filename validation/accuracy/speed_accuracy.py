@@ -151,6 +151,7 @@ def plot(rows: list[dict[str, Any]], path) -> None:
 
 
 def main() -> None:
+    global LIMIT_CPU_S, LIMIT_WALL_S
     import argparse
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -162,7 +163,6 @@ def main() -> None:
     ap.add_argument("--limit-wall", type=float, default=LIMIT_WALL_S,
                     help=f"wall seconds a timed solve may use (default {LIMIT_WALL_S:g})")
     args = ap.parse_args()
-    global LIMIT_CPU_S, LIMIT_WALL_S
     LIMIT_CPU_S, LIMIT_WALL_S = args.limit_cpu, args.limit_wall
     contacts = ("line", "point") if args.contact == "all" else (args.contact,)
     data = read_json(PATH) or {}
