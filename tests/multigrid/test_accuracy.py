@@ -78,6 +78,22 @@ def test_points_needed_follows_second_order_grid_error():
     assert points_needed(_budget(0.005, 0.011), 0.01, 257) is None  # domain alone exceeds it
 
 
+def _preset_estimates(monkeypatch):
+    """Each fake solve states its preset error (``_Fake.err``); above the target it is
+    judged inaccurate, as attach_estimate does."""
+    import ehl_multigrid.multigrid.accuracy as acc
+
+    monkeypatch.setattr(acc, "estimate_error", lambda res, dom, converged=None, decay=None:
+                        ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4)))
+
+    def fake_attach(res, est, accuracy):
+        res.error = est
+        if max(est.Hc, est.Hm) > accuracy:
+            res.success, res.status_name, res.message = False, "inaccurate", "inaccurate"
+
+    monkeypatch.setattr(acc, "attach_estimate", fake_attach)
+
+
 class _Fake:
     """Stand-in for a solve: success flag, films and a preset error estimate."""
 
@@ -370,18 +386,9 @@ def test_the_accuracy_sequence_reports_each_solve_to_a_progress_printer(monkeypa
     import io
     import sys
 
-    import ehl_multigrid.multigrid.accuracy as acc
     from ehl_multigrid.app.console import progress_printer
 
-    monkeypatch.setattr(acc, "estimate_error", lambda res, dom, converged=None, decay=None:
-                        ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4)))
-
-    def fake_attach(res, est, accuracy):
-        res.error = est
-        if max(est.Hc, est.Hm) > accuracy:
-            res.success, res.status_name, res.message = False, "inaccurate", "inaccurate"
-
-    monkeypatch.setattr(acc, "attach_estimate", fake_attach)
+    _preset_estimates(monkeypatch)
     runs = {257: _Fake(257, True, 0.03), 513: _Fake(513, True, 0.005)}
     lines = []
     solve_to_accuracy(lambda n, b, t: runs[n], lambda r, b: (0.0, 0.0), 0.01, 257, 1025,
@@ -406,15 +413,7 @@ def test_a_refinement_predicted_to_overrun_the_time_budget_is_not_started(monkey
 
     clock = [0.0]
     monkeypatch.setattr(acc, "time", types.SimpleNamespace(perf_counter=lambda: clock[0]))
-    monkeypatch.setattr(acc, "estimate_error", lambda res, dom, converged=None, decay=None:
-                        ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4)))
-
-    def fake_attach(res, est, accuracy):
-        res.error = est
-        if max(est.Hc, est.Hm) > accuracy:
-            res.success, res.status_name, res.message = False, "inaccurate", "inaccurate"
-
-    monkeypatch.setattr(acc, "attach_estimate", fake_attach)
+    _preset_estimates(monkeypatch)
 
     def run(budget, dimensions=2):
         runs = {257: _Fake(257, True, 0.03), 513: _Fake(513, True, 0.005)}
