@@ -75,13 +75,17 @@ BARUS_STEEP = 30.0
 #: (2.6 GPa); at L = 25 the iterate stalls and diverges with its peak at P = 13-14 (14 GPa,
 #: viscosity 10^47 times the inlet's) on 257 and 513 points.
 PIEZOVISCOUS_PEAK = 3.0
+#: ... and only at loads this light (Moes M), where the deformation is small against the film:
+#: at high M a peak of that size in a failed iterate is the divergence itself (EHL pressure
+#: spikes stay near the Hertzian maximum), not the regime
+PIEZOVISCOUS_RIGID_M = 10.0
 
 
 def piezoviscous_peak_reason(problem: PointProblem, P: np.ndarray | None) -> str:
-    """Why a point solve whose pressure peaks above :data:`PIEZOVISCOUS_PEAK` times the
-    Hertzian maximum has no meaningful answer (empty when it does not): the peak, in Pa, and the
-    viscosity the law gives there."""
-    if P is None or not np.isfinite(P).all():
+    """Why a point solve at M <= :data:`PIEZOVISCOUS_RIGID_M` whose pressure peaks above
+    :data:`PIEZOVISCOUS_PEAK` times the Hertzian maximum has no meaningful answer (empty when it
+    does not): the peak, in Pa, and the viscosity the law gives there."""
+    if P is None or problem.M > PIEZOVISCOUS_RIGID_M or not np.isfinite(P).all():
         return ""
     peak = float(P.max())
     if not peak > PIEZOVISCOUS_PEAK:

@@ -48,3 +48,5 @@ def test_the_piezoviscous_peak_reason_needs_a_peak_above_its_threshold():
     assert piezoviscous_peak_reason(pb, np.array([0.0, np.nan, 20.0])) == ""  # a NaN field says nothing
     why = piezoviscous_peak_reason(pb, np.array([0.0, 14.0]))
     assert "P = 14 (14.2 GPa)" in why and "10^47 times" in why
+    # at high M such a peak in a failed iterate is the divergence, not the regime
+    assert piezoviscous_peak_reason(problem_from_moes(5000, 25, 10.0), np.array([0.0, 14.0])) == ""
