@@ -319,7 +319,10 @@ class MultilevelSolver:
         fin = [h for h in self.history[-(w + 1):] if h.level == top]
         if len(r) < w or len(fin) < w + 1 or not (p.stall_factor * r[0] < r[-1] < p.quiet_below):
             return False
-        d = [max(abs(b.Hc / a.Hc - 1.0), abs(b.Hm / a.Hm - 1.0)) for a, b in zip(fin[:-1], fin[1:], strict=True)]
+        def rel(new: float, old: float) -> float:
+            return abs(new / old - 1.0) if old != 0.0 else math.inf
+
+        d = [max(rel(b.Hc, a.Hc), rel(b.Hm, a.Hm)) for a, b in zip(fin[:-1], fin[1:], strict=True)]
         half = w // 2
         return max(d[half:]) >= max(d[:half])
 
