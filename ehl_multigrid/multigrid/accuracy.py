@@ -538,8 +538,9 @@ def predicted_seconds(last_round: float, points: int, step: tuple[int, float, fl
     the multilevel solve grows as the number of unknowns, ``(n' - 1)/(n - 1)`` to the power of
     ``dimensions`` (a box twice as wide at the same mesh doubles the points too); a tolerance
     step on the same grid costs about as much again. Measured on circular (5000, 0) at 2 %
-    (one thread): 1025 -> 2049 -> 4097 points took 46 (with probes), 27 and 132 s (with
-    probes); the tolerance step on 4097 points 106 s plus its probes."""
+    (one thread, the other core busy): the 1025-point round (with probes) 20 s; then predicted
+    against taken, 2049 points 82 against 24 s (its probes were cached), 4097 points 95
+    against 133 s (with probes), the tolerance step 133 against 106 s (without its probes)."""
     return last_round * max(1.0, (step[0] - 1) / max(points - 1, 1)) ** dimensions
 
 
@@ -666,9 +667,6 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
         worst = max(est.Hc, est.Hm)
         if best is None or not (max(best.error.Hc, best.error.Hm) <= worst):  # NaN counts as worst
             best = res
-        if time.perf_counter() - t0 > time_budget:
-            why = f"the time budget of {time_budget:g} s is spent"
-            break
         step = next_refinement(est.budget, accuracy, points, box, tol_factor, max_points, box_limit)
         if step in failed:
             why = f"the refinement to {step[0]} points (box x{step[1]:g}) did not converge before"
@@ -682,9 +680,12 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
         now = time.perf_counter()
         cost = predicted_seconds(now - round_t0, points, step, dimensions)
         left = time_budget - (now - t0)
+        if left <= 0.0:
+            why = f"the time budget of {time_budget:g} s is spent"
+            break
         if cost > left:
             why = (f"the refinement to {step[0]} points (box x{step[1]:g}, tolerance x{step[2]:g}) "
-                   f"is predicted to take about {cost:.0f} s, more than the {max(left, 0.0):.0f} s "
+                   f"is predicted to take about {cost:.0f} s, more than the {left:.0f} s "
                    f"left of the time budget of {time_budget:g} s")
             break
         say(f"refining, predicted about {cost:.0f} s", step[0], step[1])
