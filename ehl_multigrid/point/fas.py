@@ -260,6 +260,11 @@ class PointHierarchy:
         self.gain = math.nan
         self._last_err: float | None = None
         self.solver: MultilevelSolver | None = None
+        #: a converged solution of the same contact on another grid, box or cell aspect,
+        #: ``(X, Y, P, H00)`` (``Y >= 0`` when it is a half domain): with ``start_on_guess`` the
+        #: cycles start on the finest grid from it instead of the FMG
+        self.guess: tuple[np.ndarray, np.ndarray, np.ndarray, float] | None = None
+        self.start_on_guess = False
         self._build_levels()
 
     # -- grids ----------------------------------------------------------------------------
@@ -538,12 +543,46 @@ class PointHierarchy:
         self.h00_step_max = 0.1 * float(Hc_fit)
         self.update_film(lev)
 
+    def _start_from_guess(self) -> None:
+        """The finest grid's P from :attr:`guess` (bilinear in X and Y, zero outside its box,
+        mirrored into Y < 0 from a half domain) and its H00."""
+        from scipy.interpolate import RegularGridInterpolator
+
+        Xg, Yg, Pg, H00 = self.guess
+        if Yg[0] == 0.0:
+            # a half domain (Y from 0 up): mirrored, so every target row finds its values
+            Yg = np.concatenate([-Yg[:0:-1], Yg])
+            Pg = np.concatenate([Pg[:0:-1], Pg])
+        lev = self.levels[-1]
+        interp = RegularGridInterpolator((Yg, Xg), Pg, method="linear", bounds_error=False,
+                                         fill_value=0.0)
+        YY, XX = np.meshgrid(lev.Y, lev.X, indexing="ij")
+        P = interp(np.stack([YY.ravel(), XX.ravel()], axis=1)).reshape(lev.shape)
+        P = np.maximum(P, 0.0)
+        P[:, 0] = P[:, -1] = 0.0
+        P[-1] = 0.0
+        if not self.options.half:
+            P[0] = 0.0
+        lev.P = np.ascontiguousarray(P)
+        lev.f = np.zeros_like(lev.P)
+        lev.g = self.g_target
+        self.H00 = float(H00)
+        self.update_film(lev)
+        Hc = self.central_film(lev)
+        self.h00_step_max = 0.1 * abs(Hc) if Hc != 0.0 else math.inf
+
     def start(self, solver: MultilevelSolver) -> int:
         """Hertzian start on the coarsest grid, solved by long relaxation with H00 moving;
-        retried with the policy's next step while it diverges (NaN)."""
+        retried with the policy's next step while it diverges (NaN). With
+        :attr:`start_on_guess` the finest grid starts from :attr:`guess` instead (no FMG)."""
         self.solver = solver
         s = solver.settings
         self.gain = s.h00_gain
+        if self.start_on_guess and self.guess is not None:
+            self._start_from_guess()
+            top = len(self.levels) - 1
+            solver.note(f"started on the {self.levels[top].nx}-point grid from the given solution (no FMG)")
+            return top
         self._initial_guess()
         lev0 = self.levels[0]
         for attempt in range(4):
@@ -599,9 +638,13 @@ def point_settings(problem: PointProblem, options: PointOptions, cycle: str | No
     return Settings.start(options, c, switch)
 
 
-def point_solver(problem: PointProblem, options: PointOptions) -> MultilevelSolver:
-    """The multilevel solver of one point-contact problem (not yet run)."""
+def point_solver(problem: PointProblem, options: PointOptions,
+                 guess: tuple[np.ndarray, np.ndarray, np.ndarray, float] | None = None) -> MultilevelSolver:
+    """The multilevel solver of one point-contact problem (not yet run); with ``guess``
+    ``(X, Y, P, H00)``, a solution of the same contact, its cycles start on the finest grid
+    from that solution (:meth:`PointHierarchy.start`)."""
     hz = PointHierarchy(problem, options)
+    hz.guess, hz.start_on_guess = guess, guess is not None
     cycle = point_cycle(options, hz.alternating)
     solver = MultilevelSolver(hz, options, point_settings(problem, options, cycle),
                               RobustnessPolicy(POINT_POLICY, options.adapt), HINT)
