@@ -119,7 +119,7 @@ def _cmd_run(args: argparse.Namespace) -> dict:
 
     scene = load_scene(args.scene)
     options = MainJobOptions(out_dir=Path(args.out), fidelity=args.fidelity, tolerance=args.tolerance,
-                             plots=not args.no_plots, quiet=args.json)
+                             plots=not args.no_plots, quiet=args.json, time_budget=args.time_budget)
     return run_main_job(scene, options)
 
 
@@ -250,10 +250,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true")
     p.set_defaults(func=_cmd_fits)
 
+    from .solve import seconds_argument
+
     p = sub.add_parser("run", help="the main job on a scene (default: the built-in default scene)")
     p.add_argument("scene", nargs="?", default=None, help="built-in scene name or TOML file")
     p.add_argument("--fidelity", choices=["fast", "standard", "reference"], default=None)
     p.add_argument("--tolerance", type=_number, default=None, help="target relative accuracy (overrides --fidelity)")
+    p.add_argument("--time-budget", type=seconds_argument, default=None,
+                   help="seconds for the film solve's accuracy sequence: no refinement predicted to "
+                        "overrun it is started; the most accurate film so far is used, its error stated")
     add_common_options(p)
     p.set_defaults(func=_cmd_run)
 

@@ -67,6 +67,11 @@ class MainJobOptions:
         Write PNG figures.
     quiet : bool
         No progress bar and no printed summary (``ehl run --json``).
+    time_budget : float or None
+        Seconds for the film stage's multigrid accuracy sequence (flooded contacts): no
+        refinement is started that is predicted to overrun it, and the most accurate film so
+        far is used, its estimated error stated. ``None``: no bound. The starved solvers refine
+        their grid only and do not take it (the report says so).
     """
 
     out_dir: Path = Path("ehl_out")
@@ -74,6 +79,7 @@ class MainJobOptions:
     tolerance: float | None = None
     plots: bool = True
     quiet: bool = False
+    time_budget: float | None = None
 
 
 # -- the core film stage -------------------------------------------------------------------------
@@ -136,6 +142,12 @@ def film_stage(ctx: RunContext) -> StageOutput:
     if dec.setting == "multigrid solver":
         # the fidelity's tolerance is the solver's accuracy target: it picks and refines grid and
         # box until its error estimate meets it (a [solver.ehl] grid in the scene is kept and judged)
+        budget = {} if ctx.time_budget is None else {"time_budget": ctx.time_budget}
+        budget_note = ""
+        if budget and math.isfinite(scene.supply.hoil):
+            budget_note = (f"The time budget ({ctx.time_budget:g} s) is not applied: the starved solver "
+                           "refines its grid only.")
+            plan.notes.append(budget_note)
         if contact == "line" and math.isfinite(scene.supply.hoil):
             # a finite inlet oil layer: the mass-conserving starved solver finds the meniscus
             from ..starved import solve_starved_scene
@@ -148,13 +160,13 @@ def film_stage(ctx: RunContext) -> StageOutput:
         elif contact == "line":
             from ..line import solve_line
 
-            sol = solve_line(scene=scene, accuracy=plan.tolerance, raise_on_failure=False)
+            sol = solve_line(scene=scene, accuracy=plan.tolerance, raise_on_failure=False, **budget)
         else:
             from ..point import solve_point
 
             # smooth point and elliptic contacts are symmetric in Y: the half domain gives the same
             # films (tested to 1e-5, measured 4e-8) in about half the time
-            sol = solve_point(scene=scene, accuracy=plan.tolerance, half=True)
+            sol = solve_point(scene=scene, accuracy=plan.tolerance, half=True, **budget)
         res = sol.to_result(scene)
         points = res.scalars.get("points")
         if sol.status_name not in ("converged", "inaccurate") or not (res.scalars.get("hm") or 0.0) > 0.0:
@@ -184,6 +196,12 @@ def film_stage(ctx: RunContext) -> StageOutput:
                 f"hm = {res.scalars['hm'] * 1e9:.4g} nm (fit: hc = {summary['hc_fit'] * 1e9:.4g} nm); "
                 f"estimated errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g} (target {plan.tolerance:g}); "
                 f"load error {res.scalars['load_error']:.2g}, status: {sol.status_name}.")
+        if budget_note:
+            text += " " + budget_note
+        if sol.status_name == "inaccurate" and "not refined further: " in sol.message:
+            why = sol.message.split("not refined further: ", 1)[1]
+            text += f" Not refined further: {why}."
+            summary["not_refined_because"] = why
         if starved:
             text += (f" Starved inlet (oil layer {scene.supply.hoil * 1e9:.4g} nm, mass-conserving "
                      f"Elrod-Adams solver): meniscus at X = {sol.scalars['meniscus_x']:.3g}, "
@@ -297,7 +315,8 @@ def run_main_job(scene: Scene, options: MainJobOptions | None = None) -> dict[st
         scene = dataclasses.replace(scene, name=stem)
     stages: list[tuple[str, Any]] = [("film", film_stage)] + registered_stages()
     staging = Path(tempfile.mkdtemp(prefix=f".ehl-run-{stem}-", dir=out))
-    ctx = RunContext(scene, plan, staging, plots=options.plots, progress=not options.quiet)
+    ctx = RunContext(scene, plan, staging, plots=options.plots, progress=not options.quiet,
+                     time_budget=options.time_budget)
     h5_name, report_name = f"{stem}.h5", f"{stem}_report.md"
     h5, report = out / h5_name, out / report_name
     planned = [name for name, _ in stages]

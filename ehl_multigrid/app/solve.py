@@ -11,7 +11,7 @@ import argparse
 from ..model.constants import MOES_ONLY_DEFAULTS
 from ..model.errors import InputError
 
-__all__ = ["MOES_ONLY_DEFAULTS", "add_solve_arguments", "resolve_contact", "run_solve"]
+__all__ = ["MOES_ONLY_DEFAULTS", "add_solve_arguments", "resolve_contact", "run_solve", "seconds_argument"]
 
 
 def _accuracy(text: str) -> float | None:
@@ -28,7 +28,7 @@ def _accuracy(text: str) -> float | None:
     return v
 
 
-def _seconds(text: str) -> float:
+def seconds_argument(text: str) -> float:
     """``--time-budget``: seconds, a number >= 0."""
     try:
         v = float(text)
@@ -60,7 +60,7 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--max-points", type=int, default=None,
                    help="largest grid (points along X) the accuracy target may refine to (default: "
                         "4097 for point, 131073 for line contacts; --thermal: 513 point, 4097 line)")
-    p.add_argument("--time-budget", type=_seconds, default=None,
+    p.add_argument("--time-budget", type=seconds_argument, default=None,
                    help="seconds the accuracy target may spend (flooded contacts): no refinement "
                         "predicted to overrun it is started, and the most accurate answer so far "
                         "comes back, marked inaccurate when it misses the target (default: none; "

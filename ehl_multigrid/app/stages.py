@@ -58,6 +58,8 @@ class RunContext:
     plots: bool = True
     progress: bool = True
     outputs: dict[str, StageOutput] = field(default_factory=dict)
+    #: seconds for the film stage's accuracy sequence (``ehl run --time-budget``); None: no bound
+    time_budget: float | None = None
 
     def result(self, name: str) -> Result | None:
         """The result of the earlier stage ``name``, or ``None`` if it did not run."""

@@ -153,3 +153,15 @@ def test_bad_numbers_exit_2_naming_the_flag(argv, field, capsys):
         rc = exc.code
     assert rc == 2
     assert field in _err(capsys)
+
+
+def test_run_takes_a_time_budget_for_its_film_solve_and_reports_why_it_stopped(tmp_path, capsys):
+    # the Appendix C line contact at 0.1 %: the first solve misses the target, and with no time
+    # to refine the film stage says so in its summary and the report
+    rc = main(["run", "appendix_c_line_4240N", "--tolerance", "0.001", "--time-budget", "0", "--no-plots",
+               "--out", str(tmp_path), "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 3 and out["film"]["converged"] is False
+    assert out["film"]["not_refined_because"] == "the time budget of 0 s is spent"
+    report = (tmp_path / "appendix_c_line_4240N_report.md").read_text()
+    assert "Not refined further: the time budget of 0 s is spent." in report

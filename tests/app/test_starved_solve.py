@@ -38,3 +38,12 @@ def test_the_plan_names_the_starved_solver_for_a_starved_line_scene(tmp_path):
     assert dec.include and "Elrod-Adams" in dec.setting
     flooded = make_plan(load_scene("roller_bearing_inner_race")).get("starvation")
     assert not flooded.include
+
+
+def test_run_on_a_starved_scene_says_the_time_budget_is_not_applied(tmp_path, capsys):
+    scene = _starved_scene_file(tmp_path)
+    rc = main(["run", str(scene), "--time-budget", "5", "--no-plots", "--json", "--out", str(tmp_path / "o")])
+    out = json.loads(capsys.readouterr().out)
+    assert rc in (0, 3) and "meniscus_x" in out["film"]
+    report = (tmp_path / "o" / "roller_bearing_inner_race_report.md").read_text()
+    assert "The time budget (5 s) is not applied: the starved solver refines its grid only." in report
