@@ -534,8 +534,10 @@ def solve_point(
                                 decay_probe=decay_probe if domain_scale(pb) <= 1.0 else None,
                                 progress=progress,
                                 time_budget=math.inf if time_budget is None else time_budget)
-        if res.status_name == "inaccurate" and domain_scale(pb) > 1.0:
-            res.message += "; " + thick_film_reason(pb, res, accuracy)
+        why = thick_film_reason(pb, res, accuracy) if res.status_name == "inaccurate" \
+            and domain_scale(pb) > 1.0 else ""
+        if why:
+            res.message += "; " + why
         need = min_points(pb.M, pb.b_over_a, cap=None)
         if res.status_name == "inaccurate" and need > max(max_points, int(res.options.points)):
             res.message += (f"; at M = {pb.M:.4g} and b/a = {pb.b_over_a:.3g} this solver needs at least "

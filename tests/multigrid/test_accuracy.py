@@ -57,6 +57,21 @@ def test_refinement_goes_where_the_error_is():
     assert next_refinement(budget(0.02, 0.001), 0.01, 1025, 4.0, 1e-5, 1025, 4.0) is None
 
 
+def test_unknown_domain_part_refines_the_grid_when_the_grid_part_alone_misses():
+    nan = math.nan
+
+    def budget(g, a=1e-4):
+        return {"grid": {"Hc": g, "Hm": g}, "domain": {"Hc": nan, "Hm": nan}, "algebraic": {"Hc": a, "Hm": a}}
+
+    # Barus (5, 20, theta 4) at 1 % on 257 points: probes failed, grid Hc 7.7 %: one grid finer
+    assert next_refinement(budget(0.077), 0.01, 257, 1.0, 1.0, 4097, 8.0) == (513, 1.0, 1.0)
+    # the known parts already meet the target: nothing is predicted (no box step is guessed)
+    assert next_refinement(budget(0.002), 0.01, 257, 1.0, 1.0, 4097, 8.0) is None
+    # no finer grid within the budget, or the grid part unknown too
+    assert next_refinement(budget(0.077), 0.01, 4097, 1.0, 1.0, 4097, 8.0) is None
+    assert next_refinement(budget(nan), 0.01, 257, 1.0, 1.0, 4097, 8.0) is None
+
+
 def test_a_rough_grid_estimate_refines_one_grid_at_a_time():
     # point (1000, 10) at 513 points, target 5 %: grid Hc 55 %, Hm 67 %, a domain part
     b = {"grid": {"Hc": 0.55, "Hm": 0.67}, "domain": {"Hc": 0.02, "Hm": 0.03},
