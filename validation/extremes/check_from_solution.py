@@ -36,6 +36,8 @@ def main() -> None:
     ap.add_argument("--case", required=True, help="point:M:L:THETA")
     ap.add_argument("--accuracy", type=float, default=0.02)
     ap.add_argument("--max-points", type=int, default=4097)
+    ap.add_argument("--viscosity", default="roelands")
+    ap.add_argument("--density", default="dowson-higginson")
     ap.add_argument("--judge-only", action="store_true",
                     help="recompute the verdict of the existing output from its recorded solves")
     a = ap.parse_args()
@@ -46,8 +48,10 @@ def main() -> None:
 
     from ehl_multigrid.point.solve import solve_fas, solve_point
 
-    path = OUT / f"check_from_solution_{M:g}_{L:g}_{theta:g}_{a.accuracy:g}.json"
-    out: dict = {"case": {"contact": "point", "M": M, "L": L, "theta": theta}, "accuracy": a.accuracy}
+    model = {"viscosity": a.viscosity, "density": a.density}
+    tag = "" if a.viscosity == "roelands" and a.density == "dowson-higginson" else f"_{a.viscosity}_{a.density}"
+    path = OUT / f"check_from_solution_{M:g}_{L:g}_{theta:g}_{a.accuracy:g}{tag}.json"
+    out: dict = {"case": {"contact": "point", "M": M, "L": L, "theta": theta, **model}, "accuracy": a.accuracy}
 
     def save() -> None:
         tmp = path.with_suffix(".tmp")
@@ -63,7 +67,7 @@ def main() -> None:
 
     t = time.perf_counter()
     res = solve_point(M, L, theta=theta, accuracy=a.accuracy, max_points=a.max_points,
-                      raise_on_failure=False, threads=1)
+                      raise_on_failure=False, threads=1, **model)
     b = res.error.budget
     out["result"] = {"status": res.status_name, "message": res.message, "points": int(res.X.shape[0]),
                      "Hc": float(res.scalars["Hc"]), "Hm": float(res.scalars["Hm"]),
