@@ -24,6 +24,9 @@ already converged and fixed). Influences that point upstream (reverse flow in a 
 where a first-order forward difference with lagged downstream values is used, and the upstream
 reach of the moving-strip surface kernel) are lagged: :func:`sweep_line` does one sweep, and
 ``thermal.line.solve_thermal_line`` repeats sweeps (Anderson-accelerated) until the field stops changing.
+Within a sweep, a reverse-flow zone is relaxed as soon as the march has passed it
+(:func:`_zone_relax`: symmetric passes of its energy equation with the coefficients of the last
+station iteration), so the heat the recirculation carries upstream does not wait for the next sweep.
 """
 
 from __future__ import annotations
@@ -176,28 +179,43 @@ def _slope_newton(G, tm, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b):
     ``(G, tau_m, ok)``; ``ok`` is False when it did not converge in a few damped steps."""
     n = Zc.shape[0]
     tolx = 1e-11 * tau0
+    # the Maxwell terms are linear in (tau_m, G): their sums are fixed during the solve, and
+    # only the Eyring terms need a pass over the nodes per evaluation (the per-node sums of
+    # (3.3), regrouped: the root moves by rounding only, forces by < 1e-15)
+    sw = 0.0
+    swz = 0.0
+    swz2 = 0.0
+    swr = 0.0
+    swzi = 0.0
+    for j in range(n):
+        sw += w[j]
+        swz += w[j] * Zc[j]
+        swz2 += w[j] * Zc[j] * Zc[j]
+        swr += w[j] * mx_r[j]
+        swzi += w[j] * Zc[j] * inv_eta[j]
 
     def resid(tm_, G_):
         s0 = min(max(tm_ / tau0, -700.0), 700.0)
         sh0, ch0 = _sinh_cosh(s0)
-        fa = 0.0
-        fr = 0.0
-        a11 = 0.0
-        a12 = 0.0
-        a21 = 0.0
-        a22 = 0.0
+        e1 = 0.0
+        e2 = 0.0
+        e3 = 0.0
+        e4 = 0.0
+        e5 = 0.0
         for j in range(n):
-            dj = G_ * Zc[j]
-            s = min(max((tm_ + dj) / tau0, -700.0), 700.0)
+            s = min(max((tm_ + G_ * Zc[j]) / tau0, -700.0), 700.0)
             sh, ch = _sinh_cosh(s)
-            gp = inv_eta[j] * ch + mx_a
-            fa += w[j] * (tau0 * inv_eta[j] * sh + mx_a * (tm_ + dj) + mx_r[j])
-            fr += w[j] * Zc[j] * (tau0 * inv_eta[j] * (sh - sh0) + mx_a * dj)
-            a11 += w[j] * gp
-            a12 += w[j] * Zc[j] * gp
-            a21 += w[j] * Zc[j] * (gp - inv_eta[j] * ch0 - mx_a)
-            a22 += w[j] * Zc[j] * Zc[j] * gp
-        return fa - target, fr - b, a11, a12, a21, a22
+            wi = w[j] * inv_eta[j]
+            esh = wi * sh
+            ech = wi * ch
+            e1 += esh
+            e2 += Zc[j] * esh
+            e3 += ech
+            e4 += Zc[j] * ech
+            e5 += Zc[j] * Zc[j] * ech
+        fa = tau0 * e1 + mx_a * (tm_ * sw + G_ * swz) + swr
+        fr = tau0 * (e2 - sh0 * swzi) + mx_a * G_ * swz2
+        return fa - target, fr - b, e3 + mx_a * sw, e4 + mx_a * swz, e4 - ch0 * swzi, e5 + mx_a * swz2
 
     fa, fr, a11, a12, a21, a22 = resid(tm, G)
     for _ in range(30):
@@ -233,6 +251,19 @@ def _slope_newton(G, tm, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b):
 
 
 @njit(cache=True)
+def _newtonian_slope(b, Zc, w, inv_eta, tau0, mx_a):
+    """``|b| / sum w Z^2 (1/eta + Maxwell)``: the slope of a Newtonian film with this flow
+    (``tau0`` when that is not a positive number)."""
+    s2 = 0.0
+    for j in range(Zc.shape[0]):
+        s2 += w[j] * Zc[j] * Zc[j] * (inv_eta[j] + mx_a)
+    g = abs(b) / s2 if s2 > 0.0 else tau0
+    if not (g > 0.0 and math.isfinite(g)):
+        g = tau0
+    return g
+
+
+@njit(cache=True)
 def solve_stress_slope(G_guess, tm_guess, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target, b):
     """Stress slope ``G = dtau/dZ`` [Pa] whose pressure-driven flow is ``b`` [1/s].
 
@@ -254,20 +285,18 @@ def solve_stress_slope(G_guess, tm_guess, Zc, d, w, inv_eta, tau0, mx_a, mx_r, t
         B, tm, ok = _pressure_flow(0.0, tm_guess, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target)
         return 0.0, tm, ok
     sgn = 1.0 if b > 0.0 else -1.0
-    s2 = 0.0
-    for j in range(Zc.shape[0]):
-        s2 += w[j] * Zc[j] * Zc[j] * (inv_eta[j] + mx_a)
-    g_newton = abs(b) / s2 if s2 > 0.0 else tau0
-    if not (g_newton > 0.0 and math.isfinite(g_newton)):
-        g_newton = tau0
     g = G_guess * sgn
+    g_newton = math.nan  # the Newtonian slope, needed only without a warm guess
     if not (g > 0.0 and math.isfinite(g)):
+        g_newton = _newtonian_slope(b, Zc, w, inv_eta, tau0, mx_a)
         g = g_newton
     Gn, tm, ok = _slope_newton(sgn * g, tm_guess, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b)
     if ok and Gn * sgn > 0.0:
         for j in range(d.shape[0]):
             d[j] = Gn * Zc[j]
         return Gn, tm, True
+    if not math.isfinite(g_newton):
+        g_newton = _newtonian_slope(b, Zc, w, inv_eta, tau0, mx_a)
     tm = tm_guess
     f, tm, ok = _slope_residual(g, sgn, b, tm, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target)
     if f == 0.0:
@@ -354,12 +383,16 @@ def _station(
     WL1, WR1, WL2, WR2, thermal, first, q1_down, q2_down, T_down, T_start,
     tol_T, tol_tau, max_inner, relax, wz, Zc, flux_scale,
     d, inv_eta, mx_r, Ti, Tn, tau_old, aa, bb, cc, rr, gtot,
-    T, tau, u, gv, q1, q2, heat, slope, inner_its,
+    T, tau, u, gv, q1, q2, heat, slope, inner_its, eq_rc, eq_src, eq_s,
 ):
     """Solve station ``i`` (see :func:`sweep_line`) with the values of the other stations in
     ``T``, ``tau``, ``q1``, ``q2`` (upstream) and ``T_down``, ``q1_down``, ``q2_down``
-    (downstream; the lagged arrays in a forward sweep, the current ones in a backward pass);
-    the iteration starts from ``T_start[i]`` unless ``first``.
+    (downstream, the lagged arrays); the iteration starts from ``T_start[i]`` unless ``first``.
+
+    The energy rows of the last iteration are left in ``eq_rc[i]`` (rho Cp u per node),
+    ``eq_src[i]`` (heat source per node) and ``eq_s[i, :6]`` (``A = k/(h dZ)^2``, the wall
+    coefficients c1, c2, the wall influence C1, C2 of the other stations, ``k/(2 h dZ)``) for
+    :func:`_zone_relax`.
 
     Returns ``(converged, failed shear-stress solves, reverse-flow nodes)``.
     """
@@ -489,6 +522,8 @@ def _station(
                 # compression work T alpha* u dp/dx (T absolute; alpha* the expansivity of (3.10)),
                 # at the station iterate like the shear heat: heats where the oil is compressed
                 rr[j] += (Ti[j] + T_KELVIN) * expansivity(Ti[j], oil) * u[i, j] * dpdx_c[i]
+            eq_rc[i, j] = rc
+            eq_src[i, j] = rr[j]
             if i == 0:
                 pass  # inlet column fixed below
             elif u[i, j] >= -u_eps:
@@ -506,6 +541,12 @@ def _station(
         c2 = w2s * k_i / (2.0 * hi_ * dZ)
         jt = nzp - 1
         jm = nzp - 2
+        eq_s[i, 0] = A
+        eq_s[i, 1] = c1
+        eq_s[i, 2] = c2
+        eq_s[i, 3] = C1
+        eq_s[i, 4] = C2
+        eq_s[i, 5] = k_i / (hi_ * 2.0 * dZ)
         if i == 0:
             # inlet: oil at T_oil, walls respond to their own flux
             for j in range(1, nzp - 1):
@@ -550,11 +591,122 @@ def _station(
 
 
 @njit(cache=True, nogil=True)
+def _zone_factor(i, n, nzp, dx, u_eps, u, eq_rc, eq_s, aa, bb, cc, fa, fcp, fim, f1, f2, fb):
+    """Thomas factors of station ``i``'s energy rows with the coefficients of its last
+    iteration, and the weights of its neighbours' temperatures in the right-hand side: the
+    rows of :func:`_station` ((3.18)-(3.19), the wall rows with T2 eliminated). ``fim`` is
+    the inverse pivot, ``fa`` and ``fcp`` the sub- and super-diagonal times it."""
+    A = eq_s[i, 0]
+    c1 = eq_s[i, 1]
+    c2 = eq_s[i, 2]
+    inv_dx = 1.0 / dx
+    for j in range(1, nzp - 1):
+        rc = eq_rc[i, j] * inv_dx
+        aa[j] = -A
+        cc[j] = -A
+        bb[j] = 2.0 * A
+        f1[i, j] = 0.0
+        f2[i, j] = 0.0
+        fb[i, j] = 0.0
+        if u[i, j] >= -u_eps:
+            if i >= 2:
+                bb[j] += 1.5 * rc
+                f1[i, j] = 2.0 * rc
+                f2[i, j] = -0.5 * rc
+            else:
+                bb[j] += rc
+                f1[i, j] = rc
+        elif i < n - 1:
+            bb[j] += -rc
+            fb[i, j] = -rc
+    jt = nzp - 1
+    jm = nzp - 2
+    aa[0] = 0.0
+    bb[0] = 1.0 + 3.0 * c1 - c1 * aa[1] / cc[1]
+    cc[0] = -4.0 * c1 - c1 * bb[1] / cc[1]
+    aa[jt] = -4.0 * c2 - c2 * bb[jm] / aa[jm]
+    bb[jt] = 1.0 + 3.0 * c2 - c2 * cc[jm] / aa[jm]
+    cc[jt] = 0.0
+    eq_s[i, 6] = c1 / A
+    eq_s[i, 7] = c2 / A
+    for j in range(nzp):
+        im = 1.0 / (bb[j] - (aa[j] * fcp[i, j - 1] if j > 0 else 0.0))
+        # the forward substitution's multiplier, premultiplied: one FMA per node on its chain
+        fa[i, j] = aa[j] * im
+        fcp[i, j] = cc[j] * im
+        fim[i, j] = im
+
+
+@njit(cache=True, nogil=True)
+def _zone_solve(i, n, nzp, Ts1, Ts2, T, eq_src, eq_s, fa, fcp, fim, f1, f2, fb, rr, Tn, q1, q2):
+    """Station ``i``'s energy rows (factored by :func:`_zone_factor`) with the current
+    temperatures of its neighbours; updates ``T[i]``, ``q1[i]``, ``q2[i]`` and returns the
+    largest relative change of the absolute temperature."""
+    im2 = i - 2 if i >= 2 else 0
+    ip1 = i + 1 if i < n - 1 else i
+    for j in range(1, nzp - 1):
+        rr[j] = eq_src[i, j] + f1[i, j] * T[i - 1, j] + f2[i, j] * T[im2, j] + fb[i, j] * T[ip1, j]
+    jt = nzp - 1
+    # wall rows with T2 eliminated (cc[1] = aa[jm] = -A): eq_s[i, 6:8] = c1/A, c2/A
+    rr[0] = Ts1 + eq_s[i, 3] + eq_s[i, 6] * rr[1]
+    rr[jt] = Ts2 + eq_s[i, 4] + eq_s[i, 7] * rr[jt - 1]
+    Tn[0] = rr[0] * fim[i, 0]
+    for j in range(1, nzp):
+        Tn[j] = rr[j] * fim[i, j] - fa[i, j] * Tn[j - 1]
+    for j in range(nzp - 2, -1, -1):
+        Tn[j] = Tn[j] - fcp[i, j] * Tn[j + 1]
+    # largest change over the smallest absolute temperature: a bound of the relative change
+    # without a division per node
+    dmax = 0.0
+    tmin = math.inf
+    for j in range(nzp):
+        dmax = max(dmax, abs(Tn[j] - T[i, j]))
+        tmin = min(tmin, abs(T[i, j] + T_KELVIN))
+        T[i, j] = Tn[j]
+    kq = eq_s[i, 5]
+    q1[i] = kq * (-3.0 * Tn[0] + 4.0 * Tn[1] - Tn[2])
+    q2[i] = -kq * (3.0 * Tn[nzp - 1] - 4.0 * Tn[nzp - 2] + Tn[nzp - 3])
+    return dmax / tmin
+
+
+@njit(cache=True, nogil=True)
+def _zone_relax(lo, hi, last, n, nzp, dx, u_eps, Ts1, Ts2, T, u, eq_rc, eq_src, eq_s, aa, bb, cc, rr, Tn,
+                fa, fcp, fim, f1, f2, fb, q1, q2, passes, tol):
+    """Symmetric Gauss-Seidel passes of the energy equation (3.5) over a reverse-flow zone.
+
+    Stations ``lo..hi`` carry reverse flow and ``last`` (hi + 1, or hi at the outlet) is the
+    first one past it. Each pass solves the stations from ``hi`` back to ``lo`` and then from
+    ``lo`` to ``last`` again, with the coefficients of their last nonlinear iteration frozen
+    (rho Cp u, the heat sources and the wall influence of the other stations): the linear
+    part of the recirculation, heat carried downstream near the walls and back upstream in
+    the core, which the march would otherwise pass on by one station per sweep. Passes stop
+    when the largest relative temperature change falls below ``tol``, stops shrinking, or
+    after ``passes``. A converged field is left unchanged (to its station tolerance), so the
+    fixed point of the sweeps is the same. Returns the number of passes.
+    """
+    for i in range(lo, last + 1):
+        _zone_factor(i, n, nzp, dx, u_eps, u, eq_rc, eq_s, aa, bb, cc, fa, fcp, fim, f1, f2, fb)
+    prev = math.inf
+    k = 0
+    while k < passes:
+        k += 1
+        ch = 0.0
+        for i in range(hi, lo - 1, -1):
+            ch = max(ch, _zone_solve(i, n, nzp, Ts1, Ts2, T, eq_src, eq_s, fa, fcp, fim, f1, f2, fb, rr, Tn, q1, q2))
+        for i in range(lo, last + 1):
+            ch = max(ch, _zone_solve(i, n, nzp, Ts1, Ts2, T, eq_src, eq_s, fa, fcp, fim, f1, f2, fb, rr, Tn, q1, q2))
+        if not (ch >= tol and ch < prev):
+            break
+        prev = ch
+    return k
+
+
+@njit(cache=True, nogil=True)
 def sweep_line(
     dx, p, h, dpdx, qp, flux, compress, dpdx_c, oil, u1, u2, um, T_oil, Ts1, Ts2,
     WL1, WR1, WL2, WR2, nz, thermal, first, q1_lag, q2_lag, T_lag,
     tol_T, tol_tau, max_inner, relax,
-    T, tau, u, gv, q1, q2, heat, slope, inner_its, backward=False,
+    T, tau, u, gv, q1, q2, heat, slope, inner_its, zone_passes=0, zone_tol=0.0,
 ):
     """One inlet-to-outlet sweep of the line-contact thermal model; fills the output arrays.
 
@@ -582,13 +734,14 @@ def sweep_line(
     q1, q2 (heat flux into solid 1 and 2) [W/m^2], slope (stress slope G = h dp/dx across the
     film) [Pa], inner_its per station; ``slope`` also carries the previous sweep's values in.
 
-    backward : after the forward sweep, solve the stations from the last one with reverse
-        flow back to the first one again, each with the current values of its downstream
-        neighbours (a symmetric Gauss-Seidel sweep). Heat carried upstream by reverse flow
-        then crosses the whole recirculation zone in one sweep instead of one station per
-        sweep; the converged field is the same.
+    zone_passes, zone_tol : when the march has just passed a reverse-flow zone (a thick EHL
+        inlet), relax the zone's energy equation by up to ``zone_passes`` symmetric passes
+        (:func:`_zone_relax`, until the relative change is below ``zone_tol``) before going
+        on downstream. Heat carried upstream by reverse flow then crosses the zone in one
+        sweep instead of one station per sweep; the converged field is the same.
 
-    Returns ``(n_station_fail, n_tau_fail, n_reverse)`` of the final state of each station.
+    Returns ``(n_station_fail, n_tau_fail, n_reverse, zone passes)``; the first three count
+    the final state of each station.
     """
     n = p.shape[0]
     nzp = nz + 1
@@ -624,38 +777,43 @@ def sweep_line(
     st_fail = np.zeros(n, dtype=np.int64)
     st_tau = np.zeros(n, dtype=np.int64)
     st_rev = np.zeros(n, dtype=np.int64)
+    # last energy rows of each station, and their factors for the zone passes
+    eq_rc = np.empty((n, nzp))
+    eq_src = np.empty((n, nzp))
+    eq_s = np.empty((n, 8))
+    fa = np.empty((n, nzp))
+    fcp = np.empty((n, nzp))
+    fim = np.empty((n, nzp))
+    f1 = np.empty((n, nzp))
+    f2 = np.empty((n, nzp))
+    fb = np.empty((n, nzp))
+    u_eps = 1e-9 * (abs(u1) + abs(u2))
+    relax_zones = zone_passes > 0 and thermal
+    n_pass = 0
+    zlo = -1
     for i in range(n):
         ok, nt, nr = _station(
             i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, compress, dpdx_c, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil, Ts1, Ts2,
             WL1, WR1, WL2, WR2, thermal, first, q1_lag, q2_lag, T_lag, T_lag,
             tol_T, tol_tau, max_inner, relax, wz, Zc, flux_scale,
             d, inv_eta, mx_r, Ti, Tn, tau_old, aa, bb, cc, rr, gtot,
-            T, tau, u, gv, q1, q2, heat, slope, inner_its,
+            T, tau, u, gv, q1, q2, heat, slope, inner_its, eq_rc, eq_src, eq_s,
         )
         st_fail[i] = 0 if ok else 1
         st_tau[i] = nt
         st_rev[i] = nr
-    if backward and thermal:
-        lo = -1
-        hi = -1
-        for i in range(n):
-            if st_rev[i] > 0:
-                if lo < 0:
-                    lo = i
-                hi = i
-        if lo >= 0:
-            for i in range(hi, lo - 1, -1):
-                ok, nt, nr = _station(
-                    i, n, nzp, dx, dZ, p, h, dpdx, qp, flux, compress, dpdx_c, oil, log_ratio, tau0, inv_G, u1, u2, um, T_oil,
-                    Ts1, Ts2, WL1, WR1, WL2, WR2, thermal, False, q1, q2, T, T,
-                    tol_T, tol_tau, max_inner, relax, wz, Zc, flux_scale,
-                    d, inv_eta, mx_r, Ti, Tn, tau_old, aa, bb, cc, rr, gtot,
-                    T, tau, u, gv, q1, q2, heat, slope, inner_its,
-                )
-                st_fail[i] = 0 if ok else 1
-                st_tau[i] = nt
-                st_rev[i] = nr
-    return np.sum(st_fail), np.sum(st_tau), np.sum(st_rev)
+        if not relax_zones:
+            continue
+        # the inlet station is fixed: a zone starts at station 1 at the earliest
+        if nr > 0 and zlo < 0:
+            zlo = max(i, 1)
+        if zlo >= 0 and (nr == 0 or i == n - 1):
+            hi_z = i - 1 if nr == 0 else i
+            if hi_z >= zlo:
+                n_pass += _zone_relax(zlo, hi_z, i, n, nzp, dx, u_eps, Ts1, Ts2, T, u, eq_rc, eq_src, eq_s,
+                                      aa, bb, cc, rr, Tn, fa, fcp, fim, f1, f2, fb, q1, q2, zone_passes, zone_tol)
+            zlo = -1
+    return np.sum(st_fail), np.sum(st_tau), np.sum(st_rev), n_pass
 
 
 @njit(cache=True, nogil=True)
@@ -712,8 +870,8 @@ def _anderson_step(X, F, count, x, g, depth):
 def march_line(
     dx, p, h, dpdx, qp, flux, compress, dpdx_c, oil, u1, u2, um, T_oil, Ts1, Ts2,
     WL1, WR1, WL2, WR2, nz, thermal, tol_T, tol_tau, max_inner, relax,
-    max_sweeps, lagged, symmetric, s1, s2, depth,
-    T, tau, u, gv, q1, q2, heat, slope, inner_its, history,
+    max_sweeps, lagged, zone_passes, zone_tol, s1, s2, depth,
+    T, tau, u, gv, q1, q2, heat, slope, inner_its, history, first_zone_passes=-1,
 ):
     """Repeat :func:`sweep_line` until the field stops changing (thesis 3.2.2.2 with the
     upstream influences lagged; see ``thermal.line.solve_thermal_line``).
@@ -723,8 +881,12 @@ def march_line(
     first when nothing is lagged (isothermal, or no upstream reach and no reverse flow), when
     the largest relative temperature change falls below ``tol_T``, on non-finite temperatures
     or after ``max_sweeps``. ``history[k]`` receives the change of sweep k (1 for the first).
+    ``zone_passes``, ``zone_tol``: relaxation of reverse-flow zones within each sweep
+    (:func:`sweep_line`; 0 passes: none); ``first_zone_passes`` (>= 0) caps the passes of the
+    first sweep, whose zone coefficients come from a field still far from its fixed point.
 
-    Returns ``(sweeps, settled, n_station_fail, n_tau_fail, n_reverse)`` of the last sweep.
+    Returns ``(sweeps, settled, n_station_fail, n_tau_fail, n_reverse)`` of the last sweep and
+    the number of zone passes of all sweeps.
     """
     n = p.shape[0]
     nzp = nz + 1
@@ -739,14 +901,17 @@ def march_line(
     n_fail = 0
     n_tau_fail = 0
     n_rev = 0
+    zone_total = 0
     sweeps = 0
     for k in range(max_sweeps):
         sweeps = k + 1
-        n_fail, n_tau_fail, n_rev = sweep_line(
+        passes_k = min(zone_passes, first_zone_passes) if k == 0 and first_zone_passes >= 0 else zone_passes
+        n_fail, n_tau_fail, n_rev, n_pass = sweep_line(
             dx, p, h, dpdx, qp, flux, compress, dpdx_c, oil, u1, u2, um, T_oil, Ts1, Ts2,
             WL1, WR1, WL2, WR2, nz, thermal, k == 0, q1_lag, q2_lag, T_lag,
-            tol_T, tol_tau, max_inner, relax, T, tau, u, gv, q1, q2, heat, slope, inner_its, symmetric,
+            tol_T, tol_tau, max_inner, relax, T, tau, u, gv, q1, q2, heat, slope, inner_its, passes_k, zone_tol,
         )
+        zone_total += n_pass
         change = 1.0
         finite = True
         if k > 0:
@@ -790,4 +955,4 @@ def march_line(
             q2_lag[i] = x_new[n + i] / s2
             for j in range(nzp):
                 T_lag[i, j] = x_new[2 * n + i * nzp + j]
-    return sweeps, settled, n_fail, n_tau_fail, n_rev
+    return sweeps, settled, n_fail, n_tau_fail, n_rev, zone_total

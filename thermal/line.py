@@ -30,6 +30,17 @@ from .surface import wall_weights
 #: surface the plain sweep iteration is barely contractive; mixing makes it converge in a few sweeps
 ANDERSON_DEPTH = 6
 
+#: at most this many symmetric passes over a reverse-flow zone per sweep (kernels._zone_relax),
+#: and at most FIRST_ZONE_PASSES in the first sweep: its zone coefficients come from a field
+#: the second sweep still changes by ~1e-3, and relaxing them further would be redone there
+#: (appendix C's EHL inlet, 21 slips: 135 passes against 219 without the cap and with
+#: ZONE_TOL = 0.1, same sweeps, friction within 3e-9 of max |f|)
+ZONE_PASSES = 30
+FIRST_ZONE_PASSES = 2
+#: the zone passes stop when they change the temperature by less than ZONE_TOL * tol_T
+#: (the sweep tolerance: the zone is an inner solve of the sweep)
+ZONE_TOL = 1.0
+
 
 @dataclass(frozen=True)
 class Surroundings:
@@ -141,10 +152,12 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
 
     Each sweep marches from inlet to outlet (thesis 3.2.2.2); influences pointing upstream
     (reverse flow, the upstream reach of the surface kernel) are lagged and the sweeps repeat
-    until the field stops changing. With ``symmetric`` (default) a sweep that met reverse flow
-    ends with a backward pass over the recirculation zone (:func:`thermal.kernels.sweep_line`),
-    which carries its upstream convection across the zone at once: the thick inlet of an EHL
-    field then settles in a few sweeps instead of 20-30, to the same field within the sweep
+    until the field stops changing. With ``symmetric`` (default), once the march has passed a
+    recirculation zone it relaxes the zone's energy equation by symmetric (backward, then
+    forward) passes with the coefficients of the last station iteration
+    (:func:`thermal.kernels.sweep_line`), which carries the upstream convection across the zone
+    at once: the thick inlet of an EHL field then settles in as few sweeps as the rest of the
+    contact (3-4 on appendix C, against 20-30 without), to the same field within the sweep
     tolerance ``tol_T``.
 
     Raises :class:`ConvergenceError` on non-finite values or temperatures outside the property
@@ -187,12 +200,12 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     s1 = max(abs(WL1[nx - 1] + WR1[nx - 1]), 1e-300)
     s2 = max(abs(WL2[nx - 1] + WR2[nx - 1]), 1e-300)
     history = np.zeros(options.max_sweeps)
-    sweeps, sweeps_ok, n_fail, n_tau_fail, n_rev = kernels.march_line(
+    sweeps, sweeps_ok, n_fail, n_tau_fail, n_rev, n_zone = kernels.march_line(
         dx, p, h, dpdx, qp, mode == "flux", compress, dpdx_c, oil, float(env.u1), float(env.u2), um, float(env.T_oil),
         float(env.T_surface1), float(env.T_surface2), WL1, WR1, WL2, WR2, nz, bool(options.thermal),
         float(options.tol_T), float(options.tol_tau), int(options.max_inner), float(options.relax),
-        int(options.max_sweeps), bool(lagged), bool(symmetric), float(s1), float(s2), ANDERSON_DEPTH,
-        T, tau, u, gv, q1, q2, heat, slope, inner, history,
+        int(options.max_sweeps), bool(lagged), ZONE_PASSES if symmetric else 0, ZONE_TOL * float(options.tol_T),
+        float(s1), float(s2), ANDERSON_DEPTH, T, tau, u, gv, q1, q2, heat, slope, inner, history, FIRST_ZONE_PASSES,
     )
     sweep_change = history[:sweeps].copy()
     wall = time.perf_counter() - t0
@@ -215,6 +228,7 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
         extra={
             "inner_iterations": inner.copy(),
             "reverse_flow_nodes": int(n_rev),
+            "zone_passes": int(n_zone),
             "lagged_kernel": bool(lagged),
             "momentum": mode,
         },

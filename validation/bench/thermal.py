@@ -107,8 +107,14 @@ def field_hash(res) -> str:
     return h.hexdigest()[:16]
 
 
-def cases(quick: bool) -> list[dict]:
-    """The case list: name, group, a callable returning (coefficients, converged, extra)."""
+def selected(name: str, only: str | None) -> bool:
+    """Whether case ``name`` is run under ``--only`` (comma-separated parts, any of them)."""
+    return only is None or any(part in name for part in only.split(","))
+
+
+def cases(quick: bool, only: str | None = None) -> list[dict]:
+    """The case list: name, group, a callable returning (coefficients, converged, extra); with
+    ``only``, the selected cases (an EHL input is read or solved only for those)."""
     from ehl_multigrid.model.scene import load_scene
     from mixed.stribeck import stribeck_curve
     from thermal import traction_curve
@@ -118,6 +124,8 @@ def cases(quick: bool) -> list[dict]:
     for name, _ in scenes:
         sc = load_scene(name)
         for inp in ("hertz", "ehl"):
+            if not selected(f"traction {inp} {name}", only):
+                continue
             ehl = ehl_result(name) if inp == "ehl" else None
 
             def run(sc=sc, inp=inp, ehl=ehl):
@@ -133,6 +141,9 @@ def cases(quick: bool) -> list[dict]:
         sc = load_scene(name)
         contact = "line" if sc.kind == "line" else "point"
         for thermal in (False, True):
+            if not selected(f"stribeck {'thermal' if thermal else 'isothermal'} {name}", only):
+                continue
+
             def run(sc=sc, thermal=thermal):
                 c = stribeck_curve(sc, US, thermal=thermal)
                 extra = {"transitions": c.transitions}
@@ -313,7 +324,8 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--quick", action="store_true", help="two traction scenes, the line Stribeck curves only")
     ap.add_argument("--reference", default=None, help="JSON of an earlier run (default out/thermal_before.json)")
-    ap.add_argument("--only", default=None, help="run only the cases whose name contains this text")
+    ap.add_argument("--only", default=None,
+                    help="run only the cases whose name contains this text (several: comma-separated, any of them)")
     ap.add_argument("--grid-study", action="store_true",
                     help="instead: the thermal Stribeck curve (series C) on four grids, out/thermal_grid_<label>.json")
     args = ap.parse_args()
@@ -338,9 +350,7 @@ def main() -> None:
         "repeat": args.repeat,
         "cases": {},
     }
-    for case in cases(args.quick):
-        if args.only and args.only not in case["name"]:
-            continue
+    for case in cases(args.quick, args.only):
         rec = measure(case, args.repeat)
         compare(rec, ref)
         data["cases"][rec["name"]] = rec
