@@ -260,9 +260,11 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
 #: A refinement of the accuracy sequence whose own start fails (FMG from the Hertzian guess)
 #: is solved again from the last converged solution of the sequence (continuation from a
 #: converged neighbour: the same contact on a coarser grid or a smaller box), on its cells.
-#: Measured: (20, 25, theta 10) at 2 %: the 4097-point grid on a box twice as wide diverged from
-#: the FMG on stretched and on square cells; started from the converged 2049-point solution
-#: it converged in 3 cycles (143 s, one of them the failed attempt on stretched cells).
+#: Measured: (20, 25, theta 10): the 4097-point grid on a box twice as wide diverged from the FMG
+#: on stretched and on square cells; started from the converged 2049-point solution on the
+#: default box it converged in 3 cycles (143 s with the failed stretched attempt). In the
+#: sequence at 2 % it starts from the 1025-point solution: converged, Hc 0.42 %, Hm 1.23 %
+#: stated, 195 s in all (validation/extremes/REPORT.md, session 17).
 RETRY_FROM_NEIGHBOUR = True
 #: statuses of a failed start that the retry from a converged neighbour answers
 NEIGHBOUR_RETRY = ("diverged", "max_cycles", "stalled")
