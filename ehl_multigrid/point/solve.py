@@ -407,9 +407,17 @@ def thick_film_reason(problem: PointProblem, res: EHLResult, accuracy: float) ->
     the physics, the inlet predicted to meet the target and what to do instead."""
     b = res.error.budget
     dom = max(b["domain"].values())
-    if not (math.isfinite(dom) and dom > 0.5 * accuracy):
-        return ""
     s = rigid_length(problem)
+    if math.isnan(dom):
+        # the box probes did not converge: the physics without the inlet it would take
+        return (f"at M = {problem.M:.3g} the film is thick against the elastic deformation (rigid-"
+                f"isoviscous side): the pressure spreads over the inlet length s = (2H)^0.5 = {s:.3g} a "
+                f"and the fully flooded film still grows with the inlet, so the box error matters "
+                f"here, and the solves on boxes twice and four times as wide that measure it did not "
+                f"converge. A contact this lightly loaded is usually limited by its oil supply: give "
+                f"the meniscus position as xmin and read the result as the film for that supply")
+    if not dom > 0.5 * accuracy:
+        return ""
     inlet = -res.extra["domain"][0]
     # half of the target left to the box, the rest to the grid
     need = f"about {inlet * dom / (0.5 * accuracy):.0f} a"
