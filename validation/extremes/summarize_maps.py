@@ -28,6 +28,8 @@ def reason(rec: dict) -> str:
     r = rec["result"]
     st, msg = r.get("status", "?"), str(r.get("message", ""))
     if st == "inaccurate":
+        if "not known" in msg and "thick against the elastic" in msg:
+            return "inaccurate: thick-film inlet (box error not measurable)"
         if "not known" in msg:
             return "inaccurate: error not estimable (no converged probe)"
         if "thick against the elastic" in msg:
