@@ -28,7 +28,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from accuracy_map import OUT  # noqa: E402
-from reference_check import limit, reference_films  # noqa: E402
+from reference_check import judge_against_limit, reference_films  # noqa: E402
 
 
 def main() -> None:
@@ -118,16 +118,7 @@ def judge(out: dict) -> None:
     b = r["error_budget"]
     ok = [s["status"] in ("converged", "settled") for s in solves]
     if all(ok):
-        out["status"], out["wrong"] = "checked", False
-        for film in ("Hc", "Hm"):
-            ext, unc = limit([s[film] for s in solves])
-            unc += 3.0 * abs(ext) * max(s.get("band", {}).get(film, 0.0) for s in solves)
-            true = abs(r[film] / ext - 1.0)
-            stated = b["grid"][film] + b["algebraic"][film]
-            out[film] = {"limit": ext, "uncertainty": unc / abs(ext), "true": true, "stated": stated,
-                         "ratio": true / stated if stated > 0 else math.inf}
-            if true > stated + unc / abs(ext):
-                out["wrong"] = True
+        judge_against_limit(out, r, solves)
         return
     if ok[:2] == [True, True]:
         out["status"], out["confirmed"] = "pair bound", True

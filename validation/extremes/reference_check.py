@@ -111,6 +111,27 @@ def limit(films: list[float]) -> tuple[float, float]:
     return c, max(abs(d2), 0.5 * abs(d1))
 
 
+def judge_against_limit(entry: dict, r: dict, solves: list[dict]) -> None:
+    """Status ``"checked"``, per film the Richardson limit of the three converged reference
+    films, its uncertainty and the result's true error against its stated grid plus algebraic
+    error, and ``wrong`` when the true error exceeds that statement by more than the
+    reference's uncertainty; written into ``entry``."""
+    entry["status"] = "checked"
+    entry["wrong"] = False
+    b = r["error_budget"]
+    for film in ("Hc", "Hm"):
+        ext, unc = limit([s[film] for s in solves])
+        # a settled (stalled) reference film's band enters the limit amplified by at most 3
+        # (Richardson at order >= 1)
+        unc += 3.0 * abs(ext) * max(s.get("band", {}).get(film, 0.0) for s in solves)
+        true = abs(r[film] / ext - 1.0)
+        stated = b["grid"][film] + b["algebraic"][film]
+        entry[film] = {"limit": ext, "uncertainty": unc / abs(ext), "true": true,
+                       "stated": stated, "ratio": true / stated if stated > 0 else math.inf}
+        if true > stated + unc / abs(ext):
+            entry["wrong"] = True
+
+
 def main() -> None:
     import argparse
 
@@ -168,20 +189,7 @@ def main() -> None:
         solves = [deep(rec["case"], m, box) for m in grids]
         entry = {"case": rec["case"], "result": r, "box": box, "grids": list(grids), "solves": solves}
         if all(s["status"] in ("converged", "settled") for s in solves):
-            entry["status"] = "checked"
-            entry["wrong"] = False
-            for film in ("Hc", "Hm"):
-                ext, unc = limit([s[film] for s in solves])
-                # a settled (stalled) reference film's band enters the limit amplified by at
-                # most 3 (Richardson at order >= 1)
-                unc += 3.0 * abs(ext) * max(s.get("band", {}).get(film, 0.0) for s in solves)
-                true = abs(r[film] / ext - 1.0)
-                b = r["error_budget"]
-                stated = b["grid"][film] + b["algebraic"][film]
-                entry[film] = {"limit": ext, "uncertainty": unc / abs(ext), "true": true,
-                               "stated": stated, "ratio": true / stated if stated > 0 else math.inf}
-                if true > stated + unc / abs(ext):
-                    entry["wrong"] = True
+            judge_against_limit(entry, r, solves)
         else:
             entry["status"] = "reference failed"
         out[key] = entry
