@@ -198,8 +198,8 @@ def film_stage(ctx: RunContext) -> StageOutput:
                 f"load error {res.scalars['load_error']:.2g}, status: {sol.status_name}.")
         if budget_note:
             text += " " + budget_note
-        if sol.status_name == "inaccurate" and "not refined further: " in sol.message:
-            why = sol.message.split("not refined further: ", 1)[1]
+        why = sol.extra.get("not_refined_because") if sol.status_name == "inaccurate" else None
+        if why:
             text += f" Not refined further: {why}."
             summary["not_refined_because"] = why
         if starved:

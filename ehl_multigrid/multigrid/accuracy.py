@@ -577,9 +577,10 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     When the target is not met the returned result is the most accurate one of the sequence
     (smallest estimated error among the solves whose iteration converged), so a finer solve
     that fails to converge never replaces a converged coarser one; its message says why the
-    refinement stopped. ``progress(text)``, when given, receives one line per solve of the
-    sequence (grid, box, outcome, estimate, seconds so far) and, before each refinement, its
-    predicted time: the command line shows them.
+    refinement stopped (also in ``result.extra['not_refined_because']``, for callers).
+    ``progress(text)``, when given, receives one line per solve of the sequence (grid, box,
+    outcome, estimate, seconds so far) and, before each refinement, its predicted time: the
+    command line shows them.
 
     ``time_budget`` (seconds) bounds the sequence: a refinement is not started when its
     predicted time (:func:`predicted_seconds`, ``dimensions`` 2 for point, 1 for line
@@ -707,6 +708,7 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
         n_b = best.X.shape[0] if getattr(best, "X", None) is not None else "?"
         best.message += f"; returned the most accurate solve of the sequence ({n_b} points)"
     best.message += f"; not refined further: {why}"
+    best.extra["not_refined_because"] = why
     return _stamp(best, t0)
 
 
