@@ -230,7 +230,8 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     # (two fine-grid arrays off the peak, 67 MB at 2049^2 full domain)
     sol.X, sol.Y, sol.P, sol.H = fine.X, fine.Y, fine.P, fine.H
     sol.H0, sol.half, sol.levels = hz.H00, opt.half, len(hz.levels)
-    sol.extra.update(domain=(hz.xmin, hz.xmax, hz.ymax), y_ratio=hz.y_ratio)
+    sol.extra.update(domain=(hz.xmin, hz.xmax, hz.ymax), y_ratio=hz.y_ratio,
+                     square_cells_fallback=bool(square and hz.y_ratio < hz0.y_ratio))
     sol.extra.update(final_omega=sol.settings.omega, final_omega_jd=sol.settings.omega_jd,
                      final_h00_gain=sol.settings.h00_gain, final_cycle=sol.settings.cycle,
                      final_switch=sol.settings.switch)
@@ -521,7 +522,7 @@ def solve_point(
                 r = solve_from_neighbour(pb, o, r, seq["ok"], callback, scene)
             if r.success:
                 seq["ok"] = r
-                if opts.y_ratio is None and any("RETRY_SQUARE_CELLS" in a for a in r.actions):
+                if opts.y_ratio is None and r.extra.get("square_cells_fallback"):
                     seq["y_ratio"] = r.extra["y_ratio"]
             return r
 

@@ -68,6 +68,8 @@ def test_diverged_solve_on_stretched_cells_is_solved_again_on_square_cells(monke
     assert any("RETRY_SQUARE_CELLS" in a for a in sol.actions)
     assert sol.status_name == "converged"
     assert sol.extra["y_ratio"] == 0.5  # square cells for b/a = 0.40
+    assert sol.extra["square_cells_fallback"] and not before.extra["square_cells_fallback"]
     # the same discrete problem as asked for square cells directly
     direct = solve_fas(pb, points=257, y_ratio=0.5, raise_on_failure=False)
     assert sol.scalars["Hc"] == pytest.approx(direct.scalars["Hc"], rel=1e-12)
+    assert not direct.extra["square_cells_fallback"]  # asked for, not fallen back to
