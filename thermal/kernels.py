@@ -352,19 +352,19 @@ def solve_stress_slope(G_guess, tm_guess, Zc, d, w, inv_eta, tau0, mx_a, mx_r, t
 
 @njit(cache=True)
 def _tridiag_solve(a, b, c, r, x):
-    """Thomas algorithm: a_j x_{j-1} + b_j x_j + c_j x_{j+1} = r_j."""
+    """Thomas algorithm: a_j x_{j-1} + b_j x_j + c_j x_{j+1} = r_j. Overwrites ``c`` and ``r``
+    with the eliminated rows: the caller rebuilds them every iteration, and a station iteration
+    is short enough (about 2 us) that two work arrays allocated per call showed in its cost."""
     n = b.shape[0]
-    cp = np.empty(n)
-    rp = np.empty(n)
-    cp[0] = c[0] / b[0]
-    rp[0] = r[0] / b[0]
+    c[0] = c[0] / b[0]
+    r[0] = r[0] / b[0]
     for j in range(1, n):
-        m = b[j] - a[j] * cp[j - 1]
-        cp[j] = c[j] / m
-        rp[j] = (r[j] - a[j] * rp[j - 1]) / m
-    x[n - 1] = rp[n - 1]
+        m = b[j] - a[j] * c[j - 1]
+        c[j] = c[j] / m
+        r[j] = (r[j] - a[j] * r[j - 1]) / m
+    x[n - 1] = r[n - 1]
     for j in range(n - 2, -1, -1):
-        x[j] = rp[j] - cp[j] * x[j + 1]
+        x[j] = r[j] - c[j] * x[j + 1]
 
 
 @njit(cache=True)
