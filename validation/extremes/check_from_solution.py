@@ -76,10 +76,11 @@ def main() -> None:
     t = time.perf_counter()
     res = solve_point(M, L, theta=theta, accuracy=a.accuracy, max_points=a.max_points,
                       raise_on_failure=False, threads=1, **model)
-    b = res.error.budget
+    b = res.error.budget if res.error is not None else None
     out["result"] = {"status": res.status_name, "message": res.message, "points": int(res.X.shape[0]),
                      "Hc": float(res.scalars["Hc"]), "Hm": float(res.scalars["Hm"]),
-                     "Hc_error": float(res.Hc_error), "Hm_error": float(res.Hm_error),
+                     "Hc_error": None if res.Hc_error is None else float(res.Hc_error),
+                     "Hm_error": None if res.Hm_error is None else float(res.Hm_error),
                      "error_budget": b, "actions": list(res.actions),
                      "y_ratio": res.extra["y_ratio"], "domain": list(res.extra["domain"]),
                      "wall_total_s": time.perf_counter() - t}
