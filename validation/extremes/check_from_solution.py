@@ -79,8 +79,7 @@ def main() -> None:
     b = res.error.budget if res.error is not None else None
     out["result"] = {"status": res.status_name, "message": res.message, "points": int(res.X.shape[0]),
                      "Hc": float(res.scalars["Hc"]), "Hm": float(res.scalars["Hm"]),
-                     "Hc_error": None if res.Hc_error is None else float(res.Hc_error),
-                     "Hm_error": None if res.Hm_error is None else float(res.Hm_error),
+                     "Hc_error": res.scalars.get("Hc_error"), "Hm_error": res.scalars.get("Hm_error"),
                      "error_budget": b, "actions": list(res.actions),
                      "y_ratio": res.extra["y_ratio"], "domain": list(res.extra["domain"]),
                      "wall_total_s": time.perf_counter() - t}
