@@ -1,5 +1,6 @@
-"""Check converged records of an accuracy map whose own check was skipped (results on 2049
-points, check grid 4097): the same independent check as ``accuracy_map.check_case`` (one grid
+"""Check converged records of an accuracy map whose own check was skipped (check grid above the
+map run's limit: 2049-point results checked on 4097 points, 4097-point ones on 8193): the same
+independent check as ``accuracy_map.check_case`` (one grid
 finer on the result's box, judged at a quarter of the target), for the cases selected.
 
 Usage: ``python validation/extremes/check_finer.py MAP.json '[{"M": 20.0, "L": 0.0, "theta": 4.0}]' OUT.json``
