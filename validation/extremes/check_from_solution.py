@@ -88,7 +88,6 @@ def main() -> None:
     if not res.success:
         return
     n = res.X.shape[0]
-    xmin, xmax, ymax = res.extra["domain"]
     guess = (res.X, res.Y, res.P, float(res.H0))
     if a.finer_film_stop:
         finer_check(out, res, guess, a.accuracy, save)
@@ -96,8 +95,7 @@ def main() -> None:
     solves = []
     for m in ((n - 1) // 2 + 1, n, 2 * (n - 1) + 1):
         t = time.perf_counter()
-        opts = replace(res.options, points=m, xmin=xmin, xmax=xmax, ymax=ymax, y_ratio=res.extra["y_ratio"],
-                       tol=1e-7, tol_load=1e-6, film_tol=None, max_cycles=100, raise_on_failure=False)
+        opts = same_problem(res, m, tol=1e-7, tol_load=1e-6, film_tol=None, max_cycles=100)
         s = solve_fas(res.problem, opts, guess=guess)
         ref = reference_films(s)
         row = {"points": m, "status": s.status_name, "message": s.message, "cycles": s.cycles,
@@ -115,6 +113,14 @@ def main() -> None:
     print(json.dumps({k: out.get(k) for k in ("status", "wrong", "Hc", "Hm")}), flush=True)
 
 
+def same_problem(res, points: int, **kw):
+    """The options of ``res`` on ``points`` points with its box and cells (the same discrete
+    problem on another grid), never raising on failure; ``kw`` overrides the rest."""
+    xmin, xmax, ymax = res.extra["domain"]
+    return replace(res.options, points=points, xmin=xmin, xmax=xmax, ymax=ymax,
+                   y_ratio=res.extra["y_ratio"], raise_on_failure=False, **kw)
+
+
 def finer_check(out: dict, res, guess: tuple, accuracy: float, save) -> None:
     """The map's check (``accuracy_map.check_case``: one grid finer on the result's box and
     cells, stopped on the films at a quarter of the target) for a result whose check diverges
@@ -125,12 +131,9 @@ def finer_check(out: dict, res, guess: tuple, accuracy: float, save) -> None:
     from ehl_multigrid.multigrid.accuracy import film_tol
     from ehl_multigrid.point.solve import solve_fas
 
-    n = res.X.shape[0]
-    xmin, xmax, ymax = res.extra["domain"]
     t = time.perf_counter()
-    opts = replace(res.options, points=2 * (n - 1) + 1, xmin=xmin, xmax=xmax, ymax=ymax,
-                   y_ratio=res.extra["y_ratio"], film_tol=None, raise_on_failure=False)
-    opts = replace(opts, film_tol=film_tol(opts, accuracy / 4))
+    opts = same_problem(res, 2 * (res.X.shape[0] - 1) + 1, film_tol=None)
+    opts = replace(opts, film_tol=film_tol(opts, accuracy / 4))  # the package's film-stop rule
     s = solve_fas(res.problem, opts, guess=guess)
     row = {"points": opts.points, "status": s.status_name, "message": s.message, "cycles": s.cycles,
            "film_tol": opts.film_tol, "wall_s": time.perf_counter() - t}
