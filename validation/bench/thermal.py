@@ -23,6 +23,10 @@ reported (absolute and relative to the largest |f| of the curve).
     python validation/bench/thermal.py --label before
     python validation/bench/thermal.py --label after
     python validation/bench/thermal.py --label after --grid-study
+    python validation/bench/thermal.py --label ratio --only roller --repeat 31 --interleave
+
+(``--interleave``: the cases round-robin, one run each per round, and the median of the
+per-round EHL/Hertz-input ratios: a drift of the machine's speed falls on both inputs alike.)
 
 writes ``validation/bench/out/thermal_<label>.json``, ``thermal_<label>.md`` (table) and
 ``thermal_<label>.png`` (median wall time per case, with the reference's when given).
@@ -168,22 +172,52 @@ def warm_up() -> None:
     stribeck_curve(load_scene("series_C_disc3_1.93GPa"), US[::30], thermal=True)
 
 
-def measure(case: dict, repeat: int) -> dict:
-    times, cpus, loads = [], [], []
-    coeff = conv = extra = None
-    for _ in range(repeat):
-        la0 = os.getloadavg()[0]
-        c = time.process_time()
-        t = time.perf_counter()
-        coeff, conv, extra = case["run"]()
-        times.append(time.perf_counter() - t)
-        cpus.append(time.process_time() - c)
-        loads.append([la0, os.getloadavg()[0]])
+def run_once(case: dict) -> tuple[float, float, list[float], tuple]:
+    """One run of ``case``: wall and CPU time, the load average before and after, its output."""
+    la0 = os.getloadavg()[0]
+    c = time.process_time()
+    t = time.perf_counter()
+    result = case["run"]()
+    return time.perf_counter() - t, time.process_time() - c, [la0, os.getloadavg()[0]], result
+
+
+def record(case: dict, runs: list[tuple]) -> dict:
+    """The case's record from its runs (:func:`run_once`), the output of the last one."""
+    times, cpus, loads = [r[0] for r in runs], [r[1] for r in runs], [r[2] for r in runs]
+    coeff, conv, extra = runs[-1][3]
     rec = {k: v for k, v in case.items() if k != "run"}
     rec.update(wall_s=times, median_s=statistics.median(times), cpu_s=cpus, median_cpu_s=statistics.median(cpus),
                loadavg=loads,
                coefficient=[float(c) for c in coeff], converged=bool(conv), extra=extra)
     return rec
+
+
+def measure(case: dict, repeat: int) -> dict:
+    return record(case, [run_once(case) for _ in range(repeat)])
+
+
+def measure_interleaved(cases: list[dict], repeat: int) -> list[dict]:
+    """Every case once per round, ``repeat`` rounds: a drift of the machine's speed falls on
+    all cases alike, so per-round ratios (EHL against Hertz input) compare like with like."""
+    runs: list[list[tuple]] = [[] for _ in cases]
+    for _ in range(repeat):
+        for k, case in enumerate(cases):
+            runs[k].append(run_once(case))
+    return [record(case, r) for case, r in zip(cases, runs, strict=True)]
+
+
+def paired_ratios(data: dict) -> dict:
+    """Median over rounds of the EHL-input curve's time over the Hertz-input curve's, wall and
+    CPU, per traction scene (meaningful for interleaved runs: the same round, the same load)."""
+    out = {}
+    for name, rec in data["cases"].items():
+        if name.startswith("traction ehl"):
+            hz = data["cases"].get(name.replace("traction ehl", "traction hertz"))
+            if hz is not None and len(hz["wall_s"]) == len(rec["wall_s"]):
+                out[rec["scene"]] = {
+                    q: statistics.median(e / h for e, h in zip(rec[f"{q}_s"], hz[f"{q}_s"], strict=True))
+                    for q in ("wall", "cpu")}
+    return out
 
 
 def compare(rec: dict, ref: dict | None) -> None:
@@ -326,6 +360,9 @@ def main() -> None:
     ap.add_argument("--reference", default=None, help="JSON of an earlier run (default out/thermal_before.json)")
     ap.add_argument("--only", default=None,
                     help="run only the cases whose name contains this text (several: comma-separated, any of them)")
+    ap.add_argument("--interleave", action="store_true",
+                    help="run the cases round-robin, one run each per round (--repeat rounds), and "
+                         "report per-round EHL/Hertz ratios")
     ap.add_argument("--grid-study", action="store_true",
                     help="instead: the thermal Stribeck curve (series C) on four grids, out/thermal_grid_<label>.json")
     args = ap.parse_args()
@@ -350,19 +387,28 @@ def main() -> None:
         "repeat": args.repeat,
         "cases": {},
     }
-    for case in cases(args.quick, args.only):
-        rec = measure(case, args.repeat)
+    selected_cases = cases(args.quick, args.only)
+    if args.interleave:
+        recs = measure_interleaved(selected_cases, args.repeat)
+    else:
+        recs = (measure(case, args.repeat) for case in selected_cases)
+    for rec in recs:
         compare(rec, ref)
         data["cases"][rec["name"]] = rec
         extra = f"  x{rec['speedup']:.2f}, max|df| {rec['max_abs_df']:.2e}" if "speedup" in rec else ""
         print(f"{rec['name']:55s} {rec['median_s']:8.3f} s  load {rec['loadavg'][0][0]:.2f}->{rec['loadavg'][-1][1]:.2f}"
               f"{'' if rec['converged'] else '  NOT CONVERGED'}{extra}", flush=True)
+    data["interleaved"] = bool(args.interleave)
+    if args.interleave:
+        data["ehl_over_hertz"] = paired_ratios(data)
     data["targets"] = targets(data)
     data["machine"]["loadavg_end"] = os.getloadavg()
     data["total_s"] = time.perf_counter() - t_start
     stem = OUT / f"thermal_{args.label}"
     stem.with_suffix(".json").write_text(json.dumps(data, indent=1))
     md = table(data) + "\nTargets:\n\n" + "".join(f"- {k}: {'met' if v else 'not met'}\n" for k, v in data["targets"].items())
+    for scene, r in data.get("ehl_over_hertz", {}).items():
+        md += f"- {scene}: EHL / Hertz input, median of per-round ratios: wall {r['wall']:.3f}, CPU {r['cpu']:.3f}\n"
     stem.with_suffix(".md").write_text(md)
     plot(data, ref, stem.with_suffix(".png"))
     print(md)
