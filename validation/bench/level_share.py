@@ -76,7 +76,10 @@ def child(points: int, threads: int) -> dict:
 
 def run(points: int, threads: int) -> dict:
     proc = subprocess.run([sys.executable, __file__, "--child", json.dumps([points, threads])],
-                          capture_output=True, text=True, cwd="/", check=True)
+                          capture_output=True, text=True, cwd="/")
+    if proc.returncode != 0:
+        raise RuntimeError(f"the {points}-point solve on {threads} thread(s) failed:\n"
+                           f"{proc.stderr[-2000:]}")
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
