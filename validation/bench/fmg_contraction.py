@@ -27,10 +27,12 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-OUT = HERE / "out"
+sys.path.insert(0, str(HERE))
+from outputs import OUT, write_study  # noqa: E402
 
 
 def errors_after_cycles(points: int, hc_deep: float, extra: int) -> list[dict]:
@@ -87,10 +89,7 @@ def main() -> None:
             f"{errs[0]:.2e} ({errs[0] / grid_err:.2f}) | {', '.join(f'{e:.1e}' for e in errs[1:])} | "
             f"{', '.join(f'{r:.2f}' for r in rho)} | {'-' if needed is None else f'{needed:.2f}'} |")
         print(lines[-1], flush=True)
-    OUT.mkdir(exist_ok=True)
-    (OUT / f"{a.label}.json").write_text(json.dumps(out, indent=1))
-    (OUT / f"{a.label}.md").write_text("\n".join(lines) + "\n")
-    print(f"wrote {OUT / a.label}.json/.md")
+    write_study(a.label, out, lines)
 
 
 if __name__ == "__main__":

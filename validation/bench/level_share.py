@@ -32,7 +32,9 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-OUT = HERE / "out"
+sys.path.insert(0, str(HERE))
+from outputs import write_study  # noqa: E402
+
 OPS = ("relax", "coarse_solve", "restrict", "correct", "fmg_interpolate", "measure", "snapshot",
        "restore")
 
@@ -141,10 +143,7 @@ def main() -> None:
         print("\n".join(lines[-(len(summ['grids']) + 8):]), flush=True)
     out["load_after"] = os.getloadavg()
     lines.append(f"Load average before {out['load_before'][0]:.2f}, after {out['load_after'][0]:.2f}.")
-    OUT.mkdir(exist_ok=True)
-    (OUT / f"level_share_{a.label}.json").write_text(json.dumps(out, indent=1))
-    (OUT / f"level_share_{a.label}.md").write_text("\n".join(lines) + "\n")
-    print(f"wrote {OUT / f'level_share_{a.label}'}.json/.md")
+    write_study(f"level_share_{a.label}", out, lines)
 
 
 if __name__ == "__main__":
