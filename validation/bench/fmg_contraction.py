@@ -35,14 +35,15 @@ sys.path.insert(0, str(HERE))
 from outputs import OUT, write_study  # noqa: E402
 
 
-def errors_after_cycles(points: int, hc_deep: float, extra: int) -> list[dict]:
-    """Hc and WU after FMG (one cycle per level) and after 1..extra more finest-grid cycles."""
+def errors_after_cycles(case: dict, points: int, hc_deep: float, extra: int) -> list[dict]:
+    """Hc and WU after FMG (one cycle per level) and after 1..extra more finest-grid cycles, for
+    the reference's ``case`` (M, L, theta)."""
     from ehl_multigrid.point import solve_point
 
     rows = []
     for k in range(extra + 1):
-        s = solve_point(20.0, 10.0, points=points, half=True, threads=1, estimate=False,
-                        raise_on_failure=False, cycles=1, max_cycles=k, adapt=False, tol=1e-14,
+        s = solve_point(case["M"], case["L"], theta=case["theta"], points=points, half=True,
+                        threads=1, estimate=False, raise_on_failure=False, cycles=1, max_cycles=k, adapt=False, tol=1e-14,
                         tol_load=1e-14, grid_stop=None)
         rows.append({"extra_cycles": k, "WU": s.work_units, "Hc": s.scalars["Hc"],
                      "error": abs(s.scalars["Hc"] - hc_deep)})
@@ -64,7 +65,8 @@ def main() -> None:
     deep = {int(n): r for n, r in ref["deep"].items()
             if r["status"] in ("converged", "residual_floor")}
     limit, order = fmg_textbook.limit(deep, "Hc")
-    out = {"reference": a.reference, "reference_commit": ref["commit"], "limit_Hc": limit,
+    out = {"reference": a.reference, "reference_commit": ref["commit"], "case": ref["case"],
+           "limit_Hc": limit,
            "order_Hc": order, "grids": {}}
     lines = [f"Hc limit {limit:.7f} (order {order:.2f}) from the deep solves of {a.reference} "
              f"(commit {ref['commit']}); errors absolute (Hc about 4.16)", "",
@@ -74,7 +76,7 @@ def main() -> None:
     previous = None
     for n in sorted(a.points):
         grid_err = abs(deep[n]["Hc"] - limit)
-        rows = errors_after_cycles(n, deep[n]["Hc"], a.extra)
+        rows = errors_after_cycles(ref["case"], n, deep[n]["Hc"], a.extra)
         errs = [r["error"] for r in rows]
         rho = [errs[i + 1] / errs[i] for i in range(len(errs) - 1) if errs[i] > 0]
         coarse = abs(deep[n // 2 + 1]["Hc"] - limit) if n // 2 + 1 in deep else None

@@ -12,7 +12,7 @@ One and two threads alternate for ``--rounds`` rounds; medians are reported.
 The bound: if every grid at or above ``SERIAL_BELOW`` ran ``--ceiling`` times faster on two
 threads (1.9: what a kernel with nothing serial gains on this machine, ``thread_ceiling.py``)
 and the rest as on one thread, the solve would gain ``1 / (s + (1 - s) / ceiling)``, where s
-is the serial share of the one-thread time.
+is the serial share of the one-thread time (those grids plus the driver).
 
     python validation/bench/level_share.py --points 513 1025 --rounds 3 --label session19
 
