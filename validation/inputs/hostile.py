@@ -45,7 +45,7 @@ HERE = Path(__file__).resolve().parent
 OUT = HERE / "out"
 REPORT = HERE / "REPORT.md"
 
-CLASSES = ("clear error", "unclear error", "traceback", "silent", "ok")
+CLASSES = ("clear error", "unclear error", "traceback", "silent", "exit-0 failure", "warned", "ok")
 
 
 @dataclass
@@ -490,7 +490,153 @@ def cases() -> list[Case]:
                   files={"map.csv": "rough"}))
     C.append(Case("surface", "surface_huge_map", ["surface", "{dir}/huge.npy", "--dx", "1um"] + su, "refuse_or_ok", ["huge"],
                   files={"huge.npy": "huge"}, timeout=120))
+    C += wrong_answer_cases()
     return C
+
+
+# -- wrong answers with exit 0: starved, thermal and traction combinations --------------------------
+LINE_STARVED = {
+    # the line contact of the report: R 10 mm on a flat, 10 mm long, T9, 5000 N, 60 degC
+    "name": "line_starved",
+    "contact": {"kind": "line", "length": 0.01},
+    "geometry": {"R1x": 0.01, "R2x": math.inf},
+    "solids": {"body1": "steel", "body2": "steel"},
+    "lubricant": {"preset": "T9"},
+    "operating": {"load": 5000.0, "us": 2.0, "slip": 0.05, "T_oil": 60.0},
+    "supply": {"hoil": 2e-8},
+}
+POINT_STARVED = {
+    # the point contact of the report: a 10 mm ball on a flat, T9, 50 N
+    "name": "point_starved",
+    "contact": {"kind": "point"},
+    "geometry": {"R1x": 0.01, "R1y": 0.01, "R2x": math.inf, "R2y": math.inf},
+    "solids": {"body1": "steel", "body2": "steel"},
+    "lubricant": {"preset": "T9"},
+    "operating": {"load": 50.0, "us": 2.0, "slip": 0.05, "T_oil": 60.0},
+    "roughness": {"Rq": 2.8e-8, "n": 5.816e10, "beta": 6.12e-5},
+    "supply": {"hoil": 2e-8},
+}
+
+
+def wrong_answer_cases() -> list[Case]:
+    """Every physics x every supply: a starved scene must give a film that carries no more oil
+    than supplied, a clear refusal, or exit 3 -- never a flooded film with exit 0 (expect
+    ``"starved"``); plausibility warnings for the unit mistakes of the report; options a path
+    does not honour refused."""
+    C: list[Case] = []
+    o = ["--out", "{dir}/o"]
+    for base, tag in ((LINE_STARVED, "line"), (POINT_STARVED, "point")):
+        for hoil, htag in ((2e-8, "20nm"), (5e-9, "5nm"), (1e-9, "1nm")):
+            d = scene(base, "supply.hoil", hoil)
+            f = {"s.toml": d}
+            sc = "{dir}/s.toml"
+            names = ["hoil", "supply"]
+            pts = ["--max-points", "513" if tag == "point" else "4097"]
+            C.append(Case("starved", f"starved_{tag}_{htag}_solve", ["solve", sc, "--no-plots", "--json", *pts, *o],
+                          "starved", names, 600, files=f))
+            C.append(Case("starved", f"starved_{tag}_{htag}_solve_thermal",
+                          ["solve", sc, "--thermal", "--no-plots", "--json", "--time-budget", "120", *o],
+                          "starved", names, 900, files=f))
+            C.append(Case("starved", f"starved_{tag}_{htag}_run", ["run", sc, "--no-plots", "--json", "--fidelity", "fast", *o],
+                          "starved", names, 900, files=f))
+            C.append(Case("starved", f"starved_{tag}_{htag}_traction_ehl",
+                          ["traction", sc, "--input", "ehl", "--slip", "0.05", "--no-plots", "--json", *o],
+                          "starved", names, 900, files=f))
+        d = scene(scene(base, "supply.hoil", 2e-8), "feature", {"kind": "dent", "amplitude": "-50 nm", "width": "20 um"})
+        C.append(Case("starved", f"starved_{tag}_transient", ["transient", "{dir}/s.toml", "--no-plots", *o],
+                      "error", ["hoil"], 300, files={"s.toml": d}))
+    d = scene(scene(LINE_STARVED, "supply", delete=True), "feature", {"kind": "dent", "amplitude": "-50 nm", "width": "20 um",
+                                                                     "x0": math.nan})
+    C.append(Case("options", "transient_x0_nan_refused", ["transient", "{dir}/s.toml", "--no-plots", *o], "error", ["x0"],
+                  files={"s.toml": d}))
+    C.append(Case("starved", "starved_line_tehl", ["tehl", "{dir}/s.toml", "--points", "257", "--json"],
+                  "starved", ["hoil"], 600, files={"s.toml": LINE_STARVED}))
+    # options a path does not honour
+    th = ["solve", "appendix_c_line_4240N", "--thermal", "--no-plots", *o]
+    C.append(Case("options", "thermal_rigid_refused", th + ["--rigid"], "error", ["--rigid"]))
+    C.append(Case("options", "thermal_slip_5_refused", th + ["--slip", "5"], "error", ["slip"]))
+    C.append(Case("options", "thermal_solver_newton_refused", th + ["--solver", "newton"], "error", ["--solver"]))
+    C.append(Case("options", "thermal_deformation_refused", th + ["--deformation", "fft"], "error", ["--deformation"]))
+    C.append(Case("options", "traction_foreign_film_refused", ["solve", "appendix_d_point", "--no-plots", "--accuracy", "0.05", *o],
+                  "ok", check="traction_foreign_film", timeout=600))
+    # the unit mistakes of the report: warned (exit 0 with the field named), refused with --strict
+    plaus = {
+        "load_1e12": ("operating.load", 1e12, ["load"]),
+        "radius_10m": ("geometry.R1x", 10.32, ["R1x"]),
+        "eta0_1e6": ("lubricant.eta0", 1e6, ["eta0"]),
+        "T_oil_343": ("operating.T_oil", 343.0, ["T_oil"]),
+    }
+    for k, (path, value, names) in plaus.items():
+        d = scene(POINT_STARVED, path, value)
+        d = scene(d, "supply", delete=True)
+        C.append(Case("plausibility", f"plausible_{k}_warns", ["show", "{dir}/s.toml"], "warn", names, files={"s.toml": d}))
+        C.append(Case("plausibility", f"plausible_{k}_strict", ["--strict", "show", "{dir}/s.toml"], "error", names,
+                      files={"s.toml": d}))
+    d = scene(LINE_STARVED, "contact.length", 10.0)
+    C.append(Case("plausibility", "plausible_line_10m_warns", ["show", "{dir}/s.toml"], "warn", ["length"],
+                  files={"s.toml": scene(d, "supply", delete=True)}))
+    el = {"name": "el", "lubricant": {"preset": "T9"}, "operating": {"T_oil": 70.0},
+          "element": {"kind": "ball_bearing", "ball_diameter": "7.938 mm", "pitch_diameter": "38.5 mm", "n_balls": 9,
+                      "f_inner": 0.52, "f_outer": 0.525, "race": "inner", "shaft_speed": 3000.0, "radial_load": "350 N"}}
+    C.append(Case("plausibility", "plausible_shaft_3000_rad_s_warns", ["show", "{dir}/s.toml"], "warn", ["shaft_speed"],
+                  files={"s.toml": el}))
+    C.append(Case("plausibility", "fit_outside_range_6205_warns", ["show", "bearing_6205_inner_race"], "warn", ["range"]))
+    C.append(Case("faults", "show_into_closed_pipe", ["show", "default"], "ok", check="broken_pipe"))
+    C.append(Case("faults", "two_runs_one_folder", ["run", "appendix_c_line_4240N", "--tolerance", "0.5", "--no-plots", *o],
+                  "ok", check="concurrent_run", timeout=300))
+    return C
+
+
+def _json_payload(out: str) -> dict | None:
+    try:
+        v = json.loads(out)
+    except ValueError:
+        return None
+    return v if isinstance(v, dict) else None
+
+
+def _payload_failed(p: Any) -> bool:
+    """A payload (or a stage or sub-payload) that says it did not converge or fell back."""
+    if not isinstance(p, dict):
+        return False
+    st = p.get("status")
+    if p.get("converged") is False or p.get("solver_fallback") or (isinstance(st, str) and st not in ("converged", "ok")):
+        return True
+    return any(_payload_failed(v) for v in p.values() if isinstance(v, dict))
+
+
+def _films(p: Any) -> list[float]:
+    """Every central film ``hc`` [m] a payload reports (at any depth, lists included)."""
+    found: list[float] = []
+    if isinstance(p, dict):
+        for k, v in p.items():
+            if k == "hc" and isinstance(v, (int, float)):
+                found.append(float(v))
+            elif k == "hc" and isinstance(v, list):
+                found += [float(x) for x in v if isinstance(x, (int, float))]
+            else:
+                found += _films(v)
+    elif isinstance(p, list):
+        for v in p:
+            found += _films(v)
+    return found
+
+
+def starved_verdict(c: Case, rc: int | None, out: str, hoil: float) -> tuple[str, str]:
+    """A starved scene: exit 0 must come with films that carry no more oil than supplied
+    (rho_c hc <= hoil, rho_c >= 1, so hc <= hoil; 5 % for the film's own error)."""
+    p = _json_payload(out)
+    if p is None:
+        return "silent", "exit 0 without a JSON payload to judge the film by"
+    if _payload_failed(p):
+        return "exit-0 failure", "exit 0 while the payload says it did not converge or fell back"
+    films = _films(p)
+    if not films:
+        return "silent", "exit 0 and no film reported for a starved scene"
+    worst = max(films)
+    if worst > 1.05 * hoil:
+        return "silent", f"film hc {worst * 1e9:.4g} nm carries more oil than the {hoil * 1e9:.4g} nm supplied"
+    return "ok", f"starved film hc {worst * 1e9:.4g} nm <= supply"
 
 
 # -- files ----------------------------------------------------------------------------------------
@@ -595,6 +741,37 @@ def check(c: Case, d: Path, rc: int, before: set[str]) -> str:
         if lost or len(reports) < 2:
             return f"second scene replaced the first's outputs: before {before}, after {after}"
         return ""
+    if c.check == "traction_foreign_film":
+        # a film of another contact fed to the traction of this scene must be refused
+        h5 = next((d / "o").glob("*.h5"), None)
+        if h5 is None:
+            return "the film solve wrote no HDF5"
+        r = subprocess.run([sys.executable, "-m", "ehl_multigrid.app.cli", "traction", "ball_on_disc_tribometer", "--input", "ehl",
+                            "--ehl-file", str(h5), "--slip", "0.05", "--no-plots", "--out", str(d / "t")],
+                           capture_output=True, text=True, timeout=600, cwd=d)
+        if r.returncode == 2 and "Traceback" not in r.stderr:
+            return ""
+        return f"traction on another contact's film: exit {r.returncode}, {r.stderr.strip().splitlines()[-1:]}"
+    if c.check == "broken_pipe":
+        r = subprocess.run(f"{sys.executable} -m ehl_multigrid.app.cli show default | head -2", shell=True,
+                           capture_output=True, text=True, timeout=120, cwd=d)
+        r2 = subprocess.run(f"{sys.executable} -m ehl_multigrid.app.cli scenes --json | head -c 600", shell=True,
+                            capture_output=True, text=True, timeout=120, cwd=d)
+        bad = [x.stderr.strip().splitlines()[-1] for x in (r, r2) if "Traceback" in x.stderr or "Error" in x.stderr]
+        return f"closed pipe: {bad}" if bad else ""
+    if c.check == "concurrent_run":
+        # two runs into one folder at the same time: the second must be refused (or wait), never
+        # both exit 0 with one silently overwriting the other
+        argv = [sys.executable, "-m", "ehl_multigrid.app.cli", "run", "appendix_c_line_42400N", "--tolerance", "0.5",
+                "--no-plots", "--out", str(d / "c")]
+        a = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=d)
+        time.sleep(1.0)
+        b = subprocess.run(argv, capture_output=True, text=True, timeout=300, cwd=d)
+        a_out, a_err = a.communicate(timeout=300)
+        codes = sorted((a.returncode, b.returncode))
+        if codes == [0, 2] and "Traceback" not in b.stderr + a_err:
+            return ""
+        return f"two concurrent runs into one folder: exits {codes}"
     if c.check == "sweep_rerun":
         # rerun into the same folder with other values: must compute, not return the old rows
         r = subprocess.run([sys.executable, "-m", "ehl_multigrid.app.cli", "sweep", "page63_line_500N", "--workers", "1",
@@ -650,9 +827,20 @@ def classify(c: Case, rc: int | None, out: str, err: str, timed_out: bool, names
         return "silent", problem
     if c.expect == "ok":
         return ("ok", "") if rc == 0 else ("unclear error", f"valid input refused with exit {rc}")
+    if c.expect == "starved":
+        if rc == 3:
+            return "ok", "exit 3 (did not converge)"
+        if rc == 2:
+            return ("clear error", "refused") if named else ("unclear error", "refused without naming the supply")
+        if rc == 0:
+            return starved_verdict(c, rc, out, _hoil_of(c))
+        return "unclear error", f"exit {rc}"
+    if rc == 0 and (p := _json_payload(out)) is not None and _payload_failed(p):
+        return "exit-0 failure", "exit 0 while the payload says it did not converge or fell back"
     if c.expect == "warn":
         if rc == 0:
-            return ("ok", "warned") if named else ("silent", "no warning")
+            warned = any(n.lower() in (err + out).lower() for n in names) and "warn" in (err + out).lower()
+            return ("warned", "") if warned else ("silent", "no warning")
         return "unclear error", f"exit {rc} where a warning was expected"
     if c.expect == "noconv":
         if rc == 3:
@@ -672,6 +860,11 @@ def classify(c: Case, rc: int | None, out: str, err: str, timed_out: bool, names
     return "unclear error", f"exit {rc} for a bad input"
 
 
+def _hoil_of(c: Case) -> float:
+    d = c.files.get("s.toml")
+    return float(d["supply"]["hoil"]) if isinstance(d, dict) and "supply" in d else math.inf
+
+
 def write_report(results: list[dict[str, Any]], label: str) -> str:
     counts = {k: 0 for k in CLASSES}
     for r in results:
@@ -687,7 +880,7 @@ def write_report(results: list[dict[str, Any]], label: str) -> str:
     for g, cnt in groups.items():
         lines.append(f"| {g} | " + " | ".join(str(cnt[k]) for k in CLASSES) + " |")
     lines.append("| **all** | " + " | ".join(f"**{counts[k]}**" for k in CLASSES) + " |")
-    bad = [r for r in results if r["class"] in ("traceback", "silent", "unclear error")]
+    bad = [r for r in results if r["class"] in ("traceback", "silent", "exit-0 failure", "unclear error")]
     if bad:
         lines += ["", "Cases not yet right:", ""]
         for r in bad:
