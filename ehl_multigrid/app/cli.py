@@ -15,7 +15,14 @@ Exit codes, the same for every subcommand (the layers' included):
   :class:`~ehl_multigrid.model.errors.ConvergenceError`, or a payload whose ``converged`` (or
   a stage's ``converged``) is false; a result may still have been written, and it says so;
 * 1 -- an unexpected internal error (a bug: the traceback is printed to report it);
-* 130 / 143 -- interrupted by Ctrl-C / terminated by SIGTERM; finished work is kept.
+* 130 / 143 -- interrupted by Ctrl-C / terminated by SIGTERM; finished work is kept;
+* 141 -- the reader of the output went away (``ehl show default | head -2``): output stops
+  quietly, as for a process ended by SIGPIPE.
+
+Implausible inputs and results (a ball radius of 10 m, a 343 degC oil: usually a unit mistake)
+are warned about once each on stderr, one line naming field, value, plausible range and the
+probable mistake (:class:`~ehl_multigrid.model.errors.PlausibilityWarning`); ``ehl --strict``
+or ``EHL_STRICT=1`` refuses them instead (exit 2).
 """
 
 from __future__ import annotations
@@ -26,12 +33,20 @@ import math
 import os
 import signal
 import sys
+import warnings
 from collections.abc import Callable, Sequence
 from importlib.metadata import entry_points
 from pathlib import Path
 from typing import Any
 
-from ..model.errors import ConvergenceError, InputError, require_range
+from ..model.errors import (
+    ConvergenceError,
+    InputError,
+    PlausibilityWarning,
+    require_range,
+    require_slip,
+    strict_from_environment,
+)
 from .console import add_common_options, jsonable, print_payload, print_table
 
 __all__ = ["add_common_options", "build_parser", "jsonable", "main", "print_payload", "print_table"]
@@ -42,6 +57,7 @@ EXIT_INPUT = 2
 EXIT_CONVERGENCE = 3
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143
+EXIT_BROKEN_PIPE = 141
 
 
 # -- core subcommands ------------------------------------------------------------------------
@@ -64,13 +80,17 @@ def _cmd_show(args: argparse.Namespace) -> dict:
 
     sc = load_scene(args.scene)
     summary = sc.summary()
+    if not summary["hc_fit_in_range"] or math.isnan(summary["hc_fit_deviation"]):
+        # the fitted film where the fit was not checked (or is known to be off): as 'ehl fits'
+        print(f"ehl show: warning: hc_fit: {summary['hc_fit_note']}", file=sys.stderr)
     if not args.json:
         print(f"# scene {sc.name}: {sc.description}")
         if sc.source:
             print(f"# source: {sc.source}")
         print(sc.to_toml())
         print("# derived")
-        print_table(summary)
+        print_table({k: v for k, v in summary.items()
+                     if not (k.startswith("hc_fit_deviation") and math.isnan(v))})
     return summary
 
 
@@ -101,9 +121,11 @@ def _cmd_fits(args: argparse.Namespace) -> dict:
         "lambda_venner": lam, "alpha_bar": abar,
     }
     out.update({k: float(v) for k, v in terms.items()})
-    note = fits.extrapolation_note(args.contact, args.M, args.L, args.ellipticity)
-    out["extrapolated"] = note is not None
-    notes = [n for n in (note, fits.deviation_note(args.contact, args.ellipticity)) if n is not None]
+    validity = fits.fit_validity(args.contact, args.M, args.L, args.ellipticity)
+    out["extrapolated"] = not validity["in_range"]
+    out.update({k: validity[k] for k in ("range", "deviation", "deviation_min", "deviation_max")})
+    out["fit_note"] = validity["note"]
+    notes = [n for n in (validity["extrapolation"], validity["theta_note"]) if n is not None]
     if notes:
         out["warning"] = "; ".join(notes)
         for n in notes:
@@ -129,6 +151,9 @@ def _cmd_solve(args: argparse.Namespace) -> dict:
 
     if args.threads is not None:
         require_range("--threads", args.threads, 1, max_threads(), "threads (numba's NUMBA_NUM_THREADS)")
+    if getattr(args, "slip", None) is not None:
+        # refused here, before a solve that would report it as a failure to converge
+        require_slip("--slip", args.slip)
     writable_dir(args.out)
     return run_solve(args)
 
@@ -230,6 +255,9 @@ def build_parser() -> argparse.ArgumentParser:
         description="Film thickness, pressure, temperature and friction in lubricated concentrated contacts.",
     )
     parser.add_argument("--version", action="store_true", help="print the package version")
+    parser.add_argument("--strict", action="store_true",
+                        help="refuse implausible inputs (likely unit mistakes) instead of warning "
+                             "(exit 2); also EHL_STRICT=1")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     p = sub.add_parser("scenes", help="list the built-in scenes")
@@ -352,7 +380,49 @@ def not_converged(payload: Any) -> str | None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run ``ehl`` with ``argv``; returns the exit code (see the module docstring)."""
+    """Run ``ehl`` with ``argv``; returns the exit code (see the module docstring).
+
+    Output into a pipe whose reader has gone (``ehl scenes --json | head -c 600``) stops
+    quietly: stdout is pointed at the null device, so that nothing is written (nor complained
+    about) at exit, and the exit code is 141, as for a process ended by SIGPIPE.
+    """
+    try:
+        code = _main(argv)
+        sys.stdout.flush()
+        return code
+    except BrokenPipeError:
+        _stdout_to_devnull()
+        return EXIT_BROKEN_PIPE
+
+
+def _stdout_to_devnull() -> None:
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):  # a stdout without a file descriptor (captured)
+        pass
+
+
+def _plausibility_printer(command: str, fallback: Callable[..., None]) -> Callable[..., None]:
+    """A ``warnings.showwarning`` printing each distinct plausibility warning once, as one line
+    of stderr; other warnings go to ``fallback``."""
+    seen: set[str] = set()
+
+    def show(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+             file: Any = None, line: str | None = None) -> None:
+        if not issubclass(category, PlausibilityWarning):
+            fallback(message, category, filename, lineno, file, line)
+            return
+        text = _one_line(message)
+        if text not in seen:
+            seen.add(text)
+            print(f"ehl {command}: warning: {text}", file=sys.stderr)
+
+    return show
+
+
+def _main(argv: Sequence[str] | None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.version:
@@ -363,6 +433,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return EXIT_OK
+    with warnings.catch_warnings():
+        # strict: warn_implausible turns the warning into an InputError (exit 2)
+        warnings.simplefilter("error" if args.strict or strict_from_environment() else "always",
+                              PlausibilityWarning)
+        warnings.showwarning = _plausibility_printer(args.command, warnings.showwarning)
+        return _run_command(args)
+
+
+def _run_command(args: argparse.Namespace) -> int:
     previous = None
     try:
         previous = signal.signal(signal.SIGTERM, _raise_terminated)

@@ -7,7 +7,11 @@ contacts), plus the intermediate numbers a designer checks (cage speed, contact 
 ``us = u1 + u2`` is the sum velocity, ``(u1 + u2)/2`` the entrainment (mean) speed and
 ``S = 2 (u1 - u2)/(u1 + u2)`` the slip, as everywhere in the package.
 
-Inputs are SI, angles in degrees; the scene reader accepts strings with units.
+Inputs are SI, angles in degrees; the scene reader accepts strings with units, where a speed
+of rotation may be given as ``"1500 rpm"``, ``"25 Hz"`` (revolutions per second) or ``"157 rad/s"``;
+a plain number is rad/s. A scene's ``[element]`` values are also checked for plausibility
+(:func:`~ehl_multigrid.model.units.check_plausible`: a shaft speed of 3000 rad/s, 28648 rpm,
+warns and asks whether rpm were meant).
 
 Sources
 -------
@@ -36,7 +40,7 @@ from ehl_multigrid.model.errors import (
     require_positive,
     require_range,
 )
-from ehl_multigrid.model.units import convert_table
+from ehl_multigrid.model.units import check_plausible, convert_table
 
 #: Stribeck's factor for the most heavily loaded ball, ``Q_max = 5 Fr/(Z cos a)`` (ball bearing
 #: with nominal diametral clearance; 4.37 with zero clearance), Harris & Kotzalas ch. 7.
@@ -454,11 +458,26 @@ ELEMENT_KINDS: dict[str, tuple[Callable[..., ElementContact], dict[str, str]]] =
 }
 
 
-def element_contact(table: dict[str, Any], section: str = "element") -> ElementContact:
+#: Quantity of :data:`~ehl_multigrid.model.units.PLAUSIBLE` of each ``[element]`` value.
+ELEMENT_PLAUSIBLE: dict[str, str] = {
+    "ball_diameter": "rolling_element_diameter", "roller_diameter": "rolling_element_diameter",
+    "pitch_diameter": "pitch_diameter", "n_balls": "rolling_elements", "n_rollers": "rolling_elements",
+    "roller_length": "roller_length", "shaft_speed": "angular_speed", "pinion_speed": "angular_speed",
+    "disc_speed": "angular_speed", "ball_load": "load", "radial_load": "load", "axial_load": "load",
+    "roller_load": "load", "load": "load", "module": "module", "z1": "teeth", "z2": "teeth",
+    "face_width": "face_width", "torque": "torque", "power": "power", "ball_radius": "ball_radius",
+    "track_radius": "track_radius", "ball_speed": "surface_speed", "stroke": "stroke",
+    "frequency": "frequency",
+}
+
+
+def element_contact(table: dict[str, Any], section: str = "element", check: bool = True) -> ElementContact:
     """Build the contact of a scene's ``[element]`` table: ``kind`` plus the helper's arguments.
 
     Values may carry units (``ball_diameter = "7.938 mm"``, ``shaft_speed = "1500 rpm"``);
-    plain numbers are SI, angles in degrees.
+    plain numbers are SI, angles in degrees, speeds of rotation rad/s. With ``check``, every
+    value outside the plausible range of real machine elements (:data:`ELEMENT_PLAUSIBLE`)
+    warns (:func:`~ehl_multigrid.model.units.check_plausible`), after the hard checks passed.
     """
     if not isinstance(table, dict):
         raise InputError(f"[{section}] must be a table with a 'kind' key")
@@ -475,6 +494,11 @@ def element_contact(table: dict[str, Any], section: str = "element") -> ElementC
                 raise InputError(f"{section}.{key} = {v!r} must be a whole number")
             values[key] = int(v)
     try:
-        return helper(**values)
+        contact = helper(**values)
     except TypeError as exc:  # a required argument is missing
         raise InputError(f"[{section}] kind = {kind!r}: {exc}") from None
+    if check:
+        for key, value in values.items():
+            if key in ELEMENT_PLAUSIBLE and value is not None:
+                check_plausible(f"{section}.{key}", value, ELEMENT_PLAUSIBLE[key])
+    return contact

@@ -2,16 +2,65 @@
 
 Bad input raises :class:`InputError` naming the field, the value, the units and the allowed
 range; a numerical failure raises :class:`ConvergenceError` carrying the solver's report.
+
+A value that is possible but implausible for a real contact (a ball radius of 10 m: millimetres
+typed as metres) is warned about with a :class:`PlausibilityWarning` (:func:`warn_implausible`).
+Strict mode turns these warnings into :class:`InputError`: the ``EHL_STRICT=1`` environment
+variable, ``ehl --strict``, :func:`strict_plausibility`, or any ``warnings`` filter that makes
+:class:`PlausibilityWarning` an error (``warnings.simplefilter("error", PlausibilityWarning)``).
 """
 
 from __future__ import annotations
 
 import math
+import os
+import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
+
+#: Environment variable that turns plausibility warnings into input errors ("1", "true", "yes").
+STRICT_ENV = "EHL_STRICT"
 
 
 class InputError(ValueError):
     """A value outside its allowed range, an unknown key, or an unknown preset."""
+
+
+class PlausibilityWarning(UserWarning):
+    """A value inside its allowed range but outside what real contacts (ball and roller
+    bearings, gears, cams, tribometers) have, usually a unit mistake; the message names the
+    field, the value, the plausible range and the probable mistake."""
+
+
+def strict_from_environment() -> bool:
+    """Whether ``EHL_STRICT`` asks for strict plausibility (any value but "", 0, false, no, off)."""
+    return os.environ.get(STRICT_ENV, "").strip().lower() not in ("", "0", "false", "no", "off")
+
+
+def warn_implausible(message: str, stacklevel: int = 2) -> None:
+    """Warn with a :class:`PlausibilityWarning`, or raise :class:`InputError` in strict mode.
+
+    Strict mode: ``EHL_STRICT`` set (:func:`strict_from_environment`) or a ``warnings`` filter
+    turning :class:`PlausibilityWarning` into an error (:func:`strict_plausibility`).
+    """
+    refused = f"{message} [refused: strict plausibility checks (ehl --strict or {STRICT_ENV}=1)]"
+    if strict_from_environment():
+        raise InputError(refused)
+    try:
+        warnings.warn(message, PlausibilityWarning, stacklevel=stacklevel + 1)
+    except PlausibilityWarning:
+        raise InputError(refused) from None
+
+
+@contextmanager
+def strict_plausibility(enabled: bool = True) -> Iterator[None]:
+    """Within the block, implausible values raise :class:`InputError` (``enabled``) instead of
+    warning; the previous warning filters are restored on exit."""
+    with warnings.catch_warnings():
+        if enabled:
+            warnings.simplefilter("error", PlausibilityWarning)
+        yield
 
 
 class ConvergenceError(RuntimeError):
@@ -78,6 +127,20 @@ def require_positive(field: str, value: Any, units: str = "-", allow_inf: bool =
     """Strictly positive, finite unless ``allow_inf``."""
     hi = math.inf
     return require_range(field, value, 0.0, hi, units, lo_open=True, hi_open=not allow_inf)
+
+
+#: The slide-to-roll ratio's definition, for messages.
+SLIP_DEFINITION = "S = 2(u1-u2)/(u1+u2): 0 pure rolling, 2 pure sliding (thesis 100 % = 1)"
+
+
+def require_slip(field: str, value: Any) -> float:
+    """A slide-to-roll ratio in [-2, 2] (|S| = 2: one surface at rest; beyond, the surfaces
+    move in opposite directions, which the package's solvers do not take), or
+    :class:`InputError` naming field, value, range and the definition of S."""
+    try:
+        return require_range(field, value, -2.0, 2.0, "-")
+    except InputError as exc:
+        raise InputError(f"{exc} ({SLIP_DEFINITION})") from None
 
 
 def require_choice(field: str, value: Any, choices: list[str] | tuple[str, ...]) -> str:

@@ -15,6 +15,12 @@ and Dowson-Higginson compressibility gives markedly thinner central films (of th
 
 from __future__ import annotations
 
+import json
+import math
+from functools import lru_cache
+from importlib import resources
+from typing import Any
+
 import numpy as np
 
 from .errors import InputError
@@ -118,19 +124,107 @@ def nijenbanning_central(
 CHECKED_THETA = (0.25, 4.0)
 
 
+@lru_cache(maxsize=2)
+def deviation_table(contact: str) -> dict[str, Any]:
+    """The package's fit-check table of ``contact`` (``ehl_multigrid/data/fit_deviation_*.json``):
+    ``M`` and ``L`` grids, ``deviation[i, j]`` = (Hc_fit - Hc_solver)/Hc_solver at (M_i, L_j)
+    against converged Roelands + Dowson-Higginson solutions (nan where no solve converged; point
+    contacts at theta = 1), ``definition`` and ``source``. Read once."""
+    kind = "line" if contact == "line" else "point"
+    tab = json.loads((resources.files("ehl_multigrid") / "data" / f"fit_deviation_{kind}.json").read_text())
+    dev = np.array([[np.nan if v is None else v for v in row] for row in tab["deviation"]], dtype=float)
+    dev.setflags(write=False)
+    return {"M": tuple(float(m) for m in tab["M"]), "L": tuple(float(x) for x in tab["L"]), "deviation": dev,
+            "definition": tab.get("definition", ""), "source": tab.get("source", "")}
+
+
 def checked_range(contact: str) -> dict[str, tuple[float, float]]:
     """The (M, L) box (and theta for point contacts) over which the package's fit-check studies
     compared the fit with converged solver solutions (``ehl_multigrid/data/fit_deviation_*.json``).
     Outside it a fitted film is an extrapolation of the fit's asymptotes, unchecked here."""
-    import json
-    from importlib import resources
-
-    kind = "line" if contact == "line" else "point"
-    tab = json.loads((resources.files("ehl_multigrid") / "data" / f"fit_deviation_{kind}.json").read_text())
-    out = {"M": (float(min(tab["M"])), float(max(tab["M"]))), "L": (float(min(tab["L"])), float(max(tab["L"])))}
-    if kind == "point":
+    tab = deviation_table(contact)
+    out = {"M": (min(tab["M"]), max(tab["M"])), "L": (min(tab["L"]), max(tab["L"]))}
+    if contact != "line":
         out["theta"] = CHECKED_THETA
     return out
+
+
+def fit_deviation(contact: str, M: float, L: float) -> tuple[float, float, float] | None:
+    """The measured bias of the fit at (M, L): ``(dev, lo, hi)`` with ``dev`` the deviation
+    (Hc_fit - Hc_solver)/Hc_solver of :func:`deviation_table` interpolated bilinearly in
+    (log M, L), and ``lo``, ``hi`` the smallest and largest of the table cell's corners; corners
+    without a converged solve are left out. ``None`` outside the table or without any corner."""
+    tab = deviation_table(contact)
+    Ms, Ls, dev = np.log(tab["M"]), np.asarray(tab["L"]), tab["deviation"]
+    if not (M > 0 and math.isfinite(M) and math.isfinite(L)):
+        return None
+    x, y = math.log(M), float(L)
+    if not (Ms[0] <= x <= Ms[-1] and Ls[0] <= y <= Ls[-1]):
+        return None
+    i = min(int(np.searchsorted(Ms, x, side="right")) - 1, len(Ms) - 2)
+    j = min(int(np.searchsorted(Ls, y, side="right")) - 1, len(Ls) - 2)
+    tx = (x - Ms[i]) / (Ms[i + 1] - Ms[i])
+    ty = (y - Ls[j]) / (Ls[j + 1] - Ls[j])
+    corners = dev[i:i + 2, j:j + 2]
+    weights = np.outer([1.0 - tx, tx], [1.0 - ty, ty])
+    have = np.isfinite(corners)
+    if not have.any():
+        return None
+    w = np.where(have, weights, 0.0)
+    # on a grid line the far corners have no weight: then their mean stands in
+    value = float(np.sum(w * np.nan_to_num(corners)) / np.sum(w)) if np.sum(w) > 0 else float(np.mean(corners[have]))
+    return value, float(np.min(corners[have])), float(np.max(corners[have]))
+
+
+def _bias_words(lo: float, hi: float) -> str:
+    """``lo``-``hi`` (relative deviations of the fit from the solver) in words."""
+    if round(100 * lo) == round(100 * hi):
+        return f"about {abs(100 * lo):.0f} % {'above' if lo >= 0.0 else 'below'}"
+    if lo >= 0.0:
+        return f"{100 * lo:.0f}-{100 * hi:.0f} % above"
+    if hi <= 0.0:
+        return f"{-100 * hi:.0f}-{-100 * lo:.0f} % below"
+    return f"{-100 * lo:.0f} % below to {100 * hi:.0f} % above"
+
+
+def fit_validity(contact: str, M: float, L: float, theta: float = 1.0) -> dict[str, Any]:
+    """Where the central-film fit stands at (M, L, theta): inside the range where the package
+    checked it against its solver (:func:`checked_range`, :func:`extrapolation_note`) and, inside
+    it, its measured bias (:func:`fit_deviation`; point contacts measured at theta = 1, so given
+    for theta <= 1 only); for theta > 1 :func:`deviation_note` instead.
+
+    Returns
+    -------
+    dict
+        ``in_range`` (bool); ``range`` (the checked box as text); ``deviation``, ``deviation_min``,
+        ``deviation_max`` ((Hc_fit - Hc_solver)/Hc_solver interpolated and over the table cell;
+        nan outside the range); ``extrapolation`` and ``theta_note`` (sentences or None);
+        ``note`` (one sentence for the reader: the extrapolation, or the bias).
+    """
+    box = checked_range(contact)
+    extrapolation = extrapolation_note(contact, M, L, theta)
+    theta_note = deviation_note(contact, theta)
+    found = fit_deviation(contact, M, L) if extrapolation is None and theta_note is None else None
+    dev, lo, hi = found if found is not None else (math.nan, math.nan, math.nan)
+    name = "Moes line" if contact == "line" else "Nijenbanning"
+    if extrapolation is not None:
+        note = extrapolation
+    elif theta_note is not None:
+        note = theta_note
+    elif found is None:
+        note = f"inside the checked range, but no converged solve of the {name} fit check lies near here"
+    else:
+        at_one = "" if contact == "line" or theta == 1.0 else ", measured at theta = 1"
+        note = (f"the {name} fit is typically {_bias_words(lo, hi)} the converged Roelands + "
+                f"Dowson-Higginson solver here ({100 * dev:+.0f} % interpolated{at_one}; the package's fit check)")
+    if theta_note is not None and note != theta_note:
+        note = f"{note}; {theta_note}"
+    return {
+        "in_range": extrapolation is None,
+        "range": ", ".join(f"{k} in [{a:g}, {b:g}]" for k, (a, b) in box.items()),
+        "deviation": dev, "deviation_min": lo, "deviation_max": hi,
+        "extrapolation": extrapolation, "theta_note": theta_note, "note": note,
+    }
 
 
 def extrapolation_note(contact: str, M: float, L: float, theta: float = 1.0) -> str | None:

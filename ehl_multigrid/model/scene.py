@@ -2,10 +2,16 @@
 
 Every layer reads the same :class:`Scene`. Loading validates every value and raises
 :class:`~ehl_multigrid.model.errors.InputError` naming the field, value, units and allowed range;
-nothing is half-loaded. Built-in scenes live in ``ehl_multigrid/scenes/*.toml``.
+nothing is half-loaded. A value that is allowed but implausible for a real contact (a 10 m ball
+radius: millimetres typed as metres), and a derived Hertz pressure, fitted film or Moes group far
+beyond real contacts, warn with a :class:`~ehl_multigrid.model.errors.PlausibilityWarning` naming
+the field, the value, the plausible range and the probable unit mistake
+(:data:`~ehl_multigrid.model.units.PLAUSIBLE`); strict mode refuses them. Built-in scenes live in
+``ehl_multigrid/scenes/*.toml``.
 
 TOML layout (plain numbers SI, temperatures in degC, angles in degrees; any value may instead
-be a string with units, "7.94 mm", "1.5 GPa", "68 cSt", "70 degC", "1500 rpm")::
+be a string with units, "7.94 mm", "1.5 GPa", "68 cSt", "70 degC", "1500 rpm"; a speed of rotation
+in Hz or 1/s is revolutions per second, 2 pi rad each)::
 
     name = "my_contact"
     description = "..."
@@ -51,17 +57,19 @@ from . import fits, groups, hertz
 from .constants import THETA_MAX, THETA_MIN
 from .elements import ElementContact, element_contact
 from .errors import (
+    SLIP_DEFINITION,
     InputError,
     reject_unknown_keys,
     require_choice,
     require_positive,
     require_range,
+    require_slip,
 )
 from .lubricant import T_MAX_C, T_MIN_C, Lubricant, lubricant_preset
 from .materials import Material, material, materials_from_tables
 from .oils import Oil, is_oil_table, oil_from_table
 from .solids import Solid, reduced_modulus_of
-from .units import convert_table, to_canonical
+from .units import check_plausible, convert_table, to_canonical, unit_hint
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -102,6 +110,9 @@ UNIT_KINDS: dict[str, dict[str, str]] = {
                 "dy": "length"},
 }
 RANGE_KINDS = {"us": "speed", "slip": "dimensionless", "load": "force", "pmax": "pressure"}
+#: Quantity of :data:`~ehl_multigrid.model.units.PLAUSIBLE` of each [operating] value.
+OPERATING_PLAUSIBLE = {"load": "load", "pmax": "pmax", "us": "us", "entrainment_speed": "entrainment_speed",
+                       "T_oil": "temperature", "T_surface1": "temperature", "T_surface2": "temperature"}
 
 
 @dataclass(frozen=True)
@@ -273,10 +284,18 @@ class Scene:
                 "thermal_loading": beta * self.eta0 * (0.5 * self.us) ** 2 / k_oil}
 
     def summary(self) -> dict[str, Any]:
-        """Main scalars as a flat dict (what ``ehl show --json`` prints)."""
+        """Main scalars as a flat dict (what ``ehl show --json`` prints).
+
+        Next to the fitted film: whether (M, L, theta) lie inside the range where the package
+        checked the fit against its solver (``hc_fit_in_range``, ``hc_fit_range``), the fit's
+        measured bias there (``hc_fit_deviation`` = (Hc_fit - Hc_solver)/Hc_solver interpolated,
+        ``hc_fit_deviation_min``/``_max`` around it; nan outside) and a sentence saying so
+        (``hc_fit_note``), from :func:`~ehl_multigrid.model.fits.fit_validity`.
+        """
         hz = self.hertz
         M, L = self.moes()
         Hc, hc = self.central_film_fit()
+        fit = fits.fit_validity(self.kind, M, L, 1.0 if self.kind == "line" else self.theta)
         out: dict[str, Any] = {
             "name": self.name,
             "contact": self.kind,
@@ -299,6 +318,12 @@ class Scene:
             "L": L,
             "Hc_fit": Hc,
             "hc_fit": hc,
+            "hc_fit_in_range": fit["in_range"],
+            "hc_fit_range": fit["range"],
+            "hc_fit_deviation": fit["deviation"],
+            "hc_fit_deviation_min": fit["deviation_min"],
+            "hc_fit_deviation_max": fit["deviation_max"],
+            "hc_fit_note": fit["note"],
         }
         if self.kind == "line":
             out["b"] = hz.b
@@ -333,7 +358,13 @@ class Scene:
     # -- (de)serialisation -----------------------------------------------------------------
     @classmethod
     def from_dict(cls, data: dict[str, Any], origin: str = "<dict>") -> Scene:
-        """Validate and resolve a scene dictionary (the parsed TOML)."""
+        """Validate and resolve a scene dictionary (the parsed TOML).
+
+        Every physical value is also checked for plausibility (:func:`check_plausible`: a
+        :class:`~ehl_multigrid.model.errors.PlausibilityWarning` naming field, value, plausible
+        range and the probable unit mistake, an :class:`InputError` in strict mode), and so are
+        the derived Hertz pressure, fitted film and Moes groups.
+        """
         return _build_scene(copy.deepcopy(data), origin)
 
     def to_dict(self) -> dict[str, Any]:
@@ -388,14 +419,27 @@ class Scene:
         if "pmax" in changes:
             d["operating"].pop("load", None)
         d["operating"].update(changes)
-        return Scene.from_dict(d, origin=f"{self.name} (modified)")
+        # the scene itself was checked when it was loaded: check only what changes (a Stribeck
+        # curve's speeds must not repeat the scene's warnings at every point)
+        scene = _build_scene(d, f"{self.name} (modified)", check=False)
+        resolved = {"load": scene.load, "us": scene.us, "T_oil": scene.T_oil,
+                    "T_surface1": scene.T_surface1, "T_surface2": scene.T_surface2}
+        for key in changes:
+            if key in resolved:
+                check_plausible(f"operating.{key}", resolved[key], OPERATING_PLAUSIBLE[key])
+            elif key == "pmax":
+                check_plausible("operating.pmax", scene.hertz.pmax, "pmax")
+        return scene
 
     def with_supply(self, **changes: Any) -> Scene:
         """A copy with another oil supply (``hoil``, ``hoil_over_sigma``, ``delta``); re-validated."""
         d = self.to_dict()
         reject_unknown_keys("supply", changes, {"hoil", "hoil_over_sigma", "delta"})
         d.setdefault("supply", {}).update(changes)
-        return Scene.from_dict(d, origin=f"{self.name} (modified)")
+        scene = _build_scene(d, f"{self.name} (modified)", check=False)
+        if "hoil" in changes:
+            check_plausible("supply.hoil", scene.supply.hoil, "hoil")
+        return scene
 
 
 def _isnan(v: Any) -> bool:
@@ -421,7 +465,17 @@ def _text(field_name: str, value: Any) -> str:
 
 
 def _temperature(field_name: str, value: Any) -> float:
-    return require_range(field_name, value, T_MIN_C, T_MAX_C, "degC")
+    return _require(field_name, value, T_MIN_C, T_MAX_C, "degC", "temperature")
+
+
+def _require(field_name: str, value: Any, lo: float, hi: float, units: str, key: str, **kw: bool) -> float:
+    """:func:`require_range`; a refusal also names the probable unit mistake (``key`` of
+    :data:`~ehl_multigrid.model.units.PLAUSIBLE`), e.g. a roughness of 0.2 m given in um."""
+    try:
+        return require_range(field_name, value, lo, hi, units, **kw)
+    except InputError as exc:
+        hint = unit_hint(key, value) if isinstance(value, (int, float)) and not isinstance(value, bool) else ""
+        raise InputError(f"{exc}: {hint}" if hint else str(exc)) from None
 
 
 def _solid(field_name: str, spec: Any, extra: dict[str, Material] | None = None) -> Solid:
@@ -447,6 +501,23 @@ def _with_units(data: dict, key: str, required: bool = True) -> dict:
 
 
 def _range(field_name: str, spec: Any, lo: float, hi: float, units: str, lo_open: bool) -> Range:
+    try:
+        return _range_unchecked(field_name, spec, lo, hi, units, lo_open)
+    except InputError as exc:
+        if field_name == "slip" and "outside the allowed range" in str(exc):
+            raise InputError(f"{exc} ({SLIP_DEFINITION})") from None
+        raise
+
+
+def _range_ends(rng: Range) -> list[tuple[str, float]]:
+    """``(label, value)`` of a range's given values: its list, or its min and max."""
+    name = f"ranges.{rng.field}"
+    if rng.explicit is not None:
+        return [(f"{name}[{i}]", v) for i, v in enumerate(rng.explicit)]
+    return [(f"{name}.min", rng.min), (f"{name}.max", rng.max)]
+
+
+def _range_unchecked(field_name: str, spec: Any, lo: float, hi: float, units: str, lo_open: bool) -> Range:
     name = f"ranges.{field_name}"
     kind = RANGE_KINDS[field_name]
     if isinstance(spec, list):
@@ -480,16 +551,20 @@ def _range(field_name: str, spec: Any, lo: float, hi: float, units: str, lo_open
     raise InputError(f"{name} = {spec!r} must be a list or a table {{min, max, n, log}}")
 
 
-def _build_scene(data: dict[str, Any], origin: str) -> Scene:
+def _build_scene(data: dict[str, Any], origin: str, check: bool = True) -> Scene:
+    """The validated scene of ``data``; with ``check``, then the plausibility of its inputs and
+    derived results (:func:`_check_plausibility`)."""
     if not isinstance(data, dict):
         raise InputError(f"scene {origin} must be a table")
     reject_unknown_keys("scene top level", data, TOP_KEYS)
+    # (field, value, quantity of units.PLAUSIBLE) of every input to check for plausibility
+    plaus: list[tuple[str, float, str]] = []
     name = _text("name", data.get("name", Path(origin).stem))
     description = _text("description", data.get("description", ""))
     source = _text("source", data.get("source", ""))
 
     extra_materials = materials_from_tables(data["materials"]) if "materials" in data else {}
-    element = element_contact(data["element"]) if "element" in data else None
+    element = element_contact(data["element"], check=check) if "element" in data else None
 
     contact = _with_units(data, "contact", required=element is None)
     reject_unknown_keys("contact", contact, {"kind", "length"})
@@ -509,6 +584,7 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         if "length" not in contact:
             raise InputError("contact.length (B, m) is required for a line contact")
         length = require_positive("contact.length", contact["length"], "m")
+        plaus.append(("contact.length", length, "line_length"))
     else:
         if "length" in contact:
             raise InputError(f"contact.length is only meaningful for a line contact, not {kind!r}")
@@ -522,13 +598,19 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         geo = _with_units(data, "geometry")
         reject_unknown_keys("geometry", geo, {"Rx", "Ry", "R1x", "R2x", "R1y", "R2y"})
         Rx, Ry = _reduced_radii(geo, kind)
+        # the radii as given (body radii or the reduced ones); the [element] checks its own
+        plaus += [(f"geometry.{k}", geo[k], "body_radius" if k[1] in "12" else k)
+                  for k in ("Rx", "Ry", "R1x", "R2x", "R1y", "R2y") if k in geo]
 
     solids = _with_units(data, "solids", required=False)
     reject_unknown_keys("solids", solids, {"body1", "body2", "E_reduced"})
     body1 = _solid("body1", solids.get("body1", "steel"), extra_materials)
     body2 = _solid("body2", solids.get("body2", "steel"), extra_materials)
+    for label, body in (("body1", body1), ("body2", body2)):
+        plaus += [(f"solids.{label} ({body.name}).{k}", getattr(body, k), q) for k, q in SOLID_PLAUSIBLE.items()]
     if "E_reduced" in solids:
-        E_red = require_range("solids.E_reduced", solids["E_reduced"], 1e6, 4e12, "Pa")
+        E_red = _require("solids.E_reduced", solids["E_reduced"], 1e6, 4e12, "Pa", "E_reduced")
+        plaus.append(("solids.E_reduced", E_red, "E_reduced"))
     else:
         E_red = reduced_modulus_of(body1, body2)
 
@@ -556,8 +638,10 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         load = require_positive("element load", element.load, "N")
     elif "load" in op:
         load = require_positive("operating.load", op["load"], "N")
+        plaus.append(("operating.load", load, "load"))
     else:
-        pmax = require_range("operating.pmax", op["pmax"], 1e5, 2e10, "Pa")
+        pmax = _require("operating.pmax", op["pmax"], 1e5, 2e10, "Pa", "pmax")
+        plaus.append(("operating.pmax", pmax, "pmax"))
         if kind == "line":
             load = hertz.load_for_pmax_line(pmax, length, Rx, E_red)
         else:
@@ -565,18 +649,27 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
     if "us" in op and "entrainment_speed" in op:
         raise InputError("[operating] give us (sum velocity u1 + u2) or entrainment_speed ((u1 + u2)/2), not both")
     if "us" in op:
-        us = require_range("operating.us", op["us"], 0.0, US_MAX, "m/s", lo_open=True)
+        us = _require("operating.us", op["us"], 0.0, US_MAX, "m/s", "us", lo_open=True)
+        plaus.append(("operating.us", us, "us"))
     elif "entrainment_speed" in op:
-        us = 2.0 * require_range("operating.entrainment_speed", op["entrainment_speed"], 0.0, US_MAX / 2.0, "m/s",
-                                 lo_open=True)
+        us = 2.0 * _require("operating.entrainment_speed", op["entrainment_speed"], 0.0, US_MAX / 2.0, "m/s",
+                            "entrainment_speed", lo_open=True)
+        plaus.append(("operating.entrainment_speed", us / 2.0, "entrainment_speed"))
     elif element is not None:
         us = require_range("element sum velocity u1 + u2", element.us, 0.0, US_MAX, "m/s", lo_open=True)
+        plaus.append(("element sum velocity u1 + u2", us, "us"))
     else:
         raise InputError("operating.us (sum velocity u1 + u2, m/s) or operating.entrainment_speed is required")
-    slip = require_range("operating.slip", op.get("slip", element.slip if element else 0.0), -2.0, 2.0, "-")
+    if "slip" in op:
+        slip = require_slip("operating.slip", op["slip"])
+    else:
+        slip = require_slip("element slip", element.slip) if element else 0.0
     T_oil = _temperature("operating.T_oil", op.get("T_oil", lub.T0))
     T_s1 = _temperature("operating.T_surface1", op.get("T_surface1", T_oil))
     T_s2 = _temperature("operating.T_surface2", op.get("T_surface2", T_oil))
+    # the surfaces default to the oil temperature: one warning for one mistake
+    plaus += [(f, T, "temperature") for f, T in (("operating.T_oil", T_oil), ("operating.T_surface1", T_s1),
+                                                  ("operating.T_surface2", T_s2)) if f.endswith("oil") or T != T_oil]
 
     rng = _section(data, "ranges", required=False)
     reject_unknown_keys("ranges", rng, {"us", "slip", "load", "pmax"})
@@ -589,8 +682,16 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         ranges["load"] = _range("load", rng["load"], 0.0, 1e9, "N", lo_open=True)
     if "pmax" in rng:
         ranges["pmax"] = _range("pmax", rng["pmax"], 1e5, 2e10, "Pa", lo_open=False)
+    for key in ("us", "load", "pmax"):
+        if key in ranges:
+            plaus += [(label, v, key) for label, v in _range_ends(ranges[key])]
 
     rough = _roughness(_with_units(data, "roughness", required=False))
+    if rough is not None:
+        plaus += [(f"roughness.{k}", getattr(rough, k), q) for k, q in ROUGHNESS_PLAUSIBLE.items()
+                  # sigma_s and dd default to fractions of Rq: one warning for one mistake
+                  if not (k == "sigma_s" and rough.sigma_s == 0.7 * rough.Rq)
+                  and not (k == "dd" and rough.dd == 0.82 * rough.Rq)]
 
     sup = _with_units(data, "supply", required=False)
     reject_unknown_keys("supply", sup, {"hoil", "hoil_over_sigma", "delta", "hoil_profile"})
@@ -602,7 +703,8 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         raise InputError("give either supply.hoil (a uniform layer) or supply.hoil_profile (a layer "
                          "across the track, whose centre value is the hoil), not both")
     hoil = (float(np.interp(0.0, *profile)) if profile else
-            require_range("supply.hoil", sup.get("hoil", math.inf), 0.0, math.inf, "m", lo_open=True))
+            _require("supply.hoil", sup.get("hoil", math.inf), 0.0, math.inf, "m", "hoil", lo_open=True))
+    plaus.append(("supply.hoil", hoil, "hoil"))
     hos = sup.get("hoil_over_sigma", [])
     if not isinstance(hos, list):
         raise InputError(f"supply.hoil_over_sigma = {hos!r} must be a list")
@@ -618,6 +720,11 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         raise InputError("supply.hoil_over_sigma needs a [roughness] table (sigma = Rq)")
 
     feature = _with_units(data, "feature", required=False)
+    for key, value in feature.items():
+        # positions and sizes: the transient layer validates the table, but a NaN must not
+        # travel that far (it would end as a solve that does not converge)
+        if isinstance(value, float) and not math.isfinite(value):
+            raise InputError(f"feature.{key} = {value} is not a finite number")
 
     solver = _section(data, "solver", required=False)
     reject_unknown_keys("solver", solver, {"ehl", "thermal", "mixed"})
@@ -625,7 +732,7 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         if not isinstance(v, dict):
             raise InputError(f"[solver.{k}] must be a table of options")
 
-    return Scene(
+    scene = Scene(
         name=name, description=description, source=source, kind=kind, length=length,
         Rx=Rx, Ry=Ry, body1=body1, body2=body2, E_reduced=E_red, lubricant=lub,
         load=load, us=us, slip=slip, T_oil=T_oil, T_surface1=T_s1, T_surface2=T_s2,
@@ -633,6 +740,51 @@ def _build_scene(data: dict[str, Any], origin: str) -> Scene:
         feature=feature,
         raw=data, element=element, oil=oil,
     )
+    if check:
+        _check_plausibility(scene, plaus)
+    return scene
+
+
+#: Quantity of :data:`~ehl_multigrid.model.units.PLAUSIBLE` of each property of a solid.
+SOLID_PLAUSIBLE = {"E": "E", "nu": "poisson", "rho": "solid_density", "k": "solid_conductivity",
+                   "cp": "solid_specific_heat", "hardness": "hardness"}
+#: ... of each roughness parameter (Ra and the summit parameters only when given: nan passes).
+ROUGHNESS_PLAUSIBLE = {"Rq": "roughness", "Ra": "roughness", "sigma_s": "roughness", "dd": "roughness",
+                       "n": "summit_density", "beta": "summit_radius", "fc": "boundary_friction",
+                       "hardness": "hardness"}
+#: ... of each property of a lubricant (the viscosity is checked at the inlet, see below).
+LUBRICANT_PLAUSIBLE = {"z": "roelands_z", "S0": "roelands_S0", "rho0": "oil_density",
+                       "alpha_T": "thermal_expansion", "cp0": "oil_specific_heat",
+                       "k0": "oil_conductivity", "tau0": "tau0"}
+
+
+def _check_plausibility(scene: Scene, inputs: list[tuple[str, float, str]]) -> None:
+    """Warn about every implausible input (``(field, value, quantity)``), then about the
+    lubricant and the derived results: the Hertz pressure, the fitted central film and the
+    Moes groups: a :class:`~ehl_multigrid.model.errors.PlausibilityWarning` each, or in strict
+    mode an :class:`InputError` for the first."""
+    for field_name, value, key in inputs:
+        check_plausible(field_name, value, key)
+    lub = scene.lubricant
+    for k, q in LUBRICANT_PLAUSIBLE.items():
+        check_plausible(f"lubricant ({lub.name}).{k}", getattr(lub, k), q)
+    # the viscosity the contact sees: at T0 as given, then (if that is plausible) at the inlet
+    # temperature, then the pressure-viscosity coefficient there (one warning for one mistake)
+    ok = check_plausible(f"lubricant ({lub.name}).eta0 (at T0 = {lub.T0:g} degC)", lub.eta0, "eta0")
+    ok = ok and (scene.T_oil == lub.T0 or check_plausible(
+        f"inlet viscosity eta(T_oil = {scene.T_oil:g} degC)", scene.eta0, "eta0"))
+    if ok:
+        check_plausible(f"pressure-viscosity coefficient alpha(T_oil = {scene.T_oil:g} degC)", scene.alpha, "alpha")
+    try:
+        pmax = scene.hertz.pmax
+        M, L = scene.moes()
+        _, hc = scene.central_film_fit()
+    except (InputError, ValueError, ArithmeticError):
+        return  # a result the model cannot form: the solver refuses the inputs itself
+    check_plausible("Hertz pmax", pmax, "hertz_pmax")
+    check_plausible("fitted central film hc_fit", hc, "film")
+    check_plausible("Moes M", M, "moes_M")
+    check_plausible("Moes L", L, "moes_L")
 
 
 def _preset_lubricant(lub_spec: dict[str, Any]) -> Lubricant:
@@ -692,12 +844,12 @@ def _reduced_radii(geo: dict, kind: str) -> tuple[float, float]:
         Rx = require_positive("geometry.Rx", geo["Rx"], "m")
         default_Ry = math.inf if kind == "line" else Rx
         Ry = require_positive("geometry.Ry", geo.get("Ry", default_Ry), "m", allow_inf=True)
-    require_range("geometry.Rx", Rx, 1e-6, 100.0, "m")
+    _require("geometry.Rx", Rx, 1e-6, 100.0, "m", "Rx")
     if kind == "line":
         if math.isfinite(Ry):
             raise InputError(f"geometry.Ry = {Ry:.6g} m must be inf for a line contact")
     else:
-        require_range("geometry.Ry", Ry, 1e-6, 100.0, "m")
+        _require("geometry.Ry", Ry, 1e-6, 100.0, "m", "Ry")
         if kind == "point" and not math.isclose(Rx, Ry, rel_tol=1e-9):
             raise InputError(
                 f"contact.kind = 'point' needs Rx = Ry (got Rx = {Rx:.6g} m, Ry = {Ry:.6g} m); use 'elliptic'"
@@ -713,12 +865,12 @@ def _roughness(sec: dict) -> Roughness | None:
     reject_unknown_keys("roughness", sec, allowed)
     if "Rq" not in sec:
         raise InputError("roughness.Rq (m) is required when a [roughness] table is given")
-    Rq = require_range("roughness.Rq", sec["Rq"], 1e-10, 1e-4, "m")
-    sigma_s = require_range("roughness.sigma_s", sec.get("sigma_s", 0.7 * Rq), 1e-10, 1e-4, "m")
-    dd = require_range("roughness.dd", sec.get("dd", 0.82 * Rq), -1e-4, 1e-4, "m")
-    n = require_range("roughness.n", sec["n"], 1e4, 1e16, "1/m^2") if "n" in sec else math.nan
-    beta = require_range("roughness.beta", sec["beta"], 1e-8, 1e-1, "m") if "beta" in sec else math.nan
-    Ra = require_range("roughness.Ra", sec["Ra"], 1e-10, 1e-4, "m") if "Ra" in sec else math.nan
+    Rq = _require("roughness.Rq", sec["Rq"], 1e-10, 1e-4, "m", "roughness")
+    sigma_s = _require("roughness.sigma_s", sec.get("sigma_s", 0.7 * Rq), 1e-10, 1e-4, "m", "roughness")
+    dd = _require("roughness.dd", sec.get("dd", 0.82 * Rq), -1e-4, 1e-4, "m", "roughness")
+    n = _require("roughness.n", sec["n"], 1e4, 1e16, "1/m^2", "summit_density") if "n" in sec else math.nan
+    beta = _require("roughness.beta", sec["beta"], 1e-8, 1e-1, "m", "summit_radius") if "beta" in sec else math.nan
+    Ra = _require("roughness.Ra", sec["Ra"], 1e-10, 1e-4, "m", "roughness") if "Ra" in sec else math.nan
     fc = require_range("roughness.fc", sec.get("fc", 0.13), 0.0, 1.0, "-")
     hard = require_positive("roughness.hardness", sec.get("hardness", 5e9), "Pa")
     for key, what in (("n", "summit density, 1/m^2"), ("beta", "summit radius, m")):

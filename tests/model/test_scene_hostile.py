@@ -6,7 +6,7 @@ import math
 import pytest
 
 from ehl_multigrid.model.constants import THETA_MAX, THETA_MIN
-from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.errors import InputError, PlausibilityWarning
 from ehl_multigrid.model.scene import Scene, load_scene
 from ehl_multigrid.point.problem import PointProblem
 
@@ -126,4 +126,6 @@ def test_huge_scene_file_is_refused_unread(tmp_path):
 def test_scene_values_that_stay_valid():
     d = _base()
     assert Scene.from_dict(d).roughness.n == pytest.approx(5.816e10)
-    assert math.isfinite(Scene.from_dict(_with("operating.us", 999.0)).us)
+    # possible, but not for a real contact: a warning that asks whether mm/s were meant
+    with pytest.warns(PlausibilityWarning, match=r"operating\.us = 999 m/s.*mm/s"):
+        assert math.isfinite(Scene.from_dict(_with("operating.us", 999.0)).us)

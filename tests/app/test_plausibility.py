@@ -1,0 +1,115 @@
+"""``ehl`` and implausible inputs (issue 41): one stderr line per warning naming field, value
+and probable mistake, exit 0; ``--strict`` / ``EHL_STRICT=1`` refuse with exit 2; bad slip is
+refused before a solve; ``ehl show`` states the fitted film's range and bias."""
+
+import json
+import math
+import sys
+from importlib import resources
+
+import pytest
+import tomli_w
+
+from ehl_multigrid.app.cli import main
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+
+@pytest.fixture(autouse=True)
+def _not_strict(monkeypatch):
+    monkeypatch.delenv("EHL_STRICT", raising=False)
+
+
+def scene_file(tmp_path, name, section, changes):
+    d = tomllib.loads((resources.files("ehl_multigrid") / "scenes" / f"{name}.toml").read_text())
+    d[section].update(changes)
+    path = tmp_path / f"{name}_changed.toml"
+    path.write_text(tomli_w.dumps(d))
+    return str(path)
+
+
+def test_show_warns_once_per_mistake_on_one_stderr_line_and_exits_0(tmp_path, capsys):
+    path = scene_file(tmp_path, "default", "operating", {"T_oil": 343.0})
+    assert main(["show", path, "--json"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    lines = [x for x in err if "operating.T_oil" in x]
+    assert len(lines) == 1
+    assert lines[0].startswith("ehl show: warning:") and "343 degC" in lines[0] and "kelvin" in lines[0]
+    assert "[-40, 250] degC" in lines[0]
+
+
+def test_shaft_speed_of_3000_warns_naming_rpm(tmp_path, capsys):
+    path = scene_file(tmp_path, "bearing_6205_inner_race", "element", {"shaft_speed": 3000})
+    assert main(["show", path, "--json"]) == 0
+    err = capsys.readouterr().err
+    assert "element.shaft_speed = 3000 rad/s" in err and "rpm" in err and "3000 rpm = 314.2 rad/s" in err
+
+
+@pytest.mark.parametrize("how", ["flag", "environment"])
+def test_strict_turns_a_plausibility_warning_into_exit_2(tmp_path, capsys, monkeypatch, how):
+    path = scene_file(tmp_path, "default", "geometry", {"R1x": 10.32, "R1y": 10.32})
+    if how == "flag":
+        rc = main(["--strict", "show", path, "--json"])
+    else:
+        monkeypatch.setenv("EHL_STRICT", "1")
+        rc = main(["show", path, "--json"])
+    captured = capsys.readouterr()
+    assert rc == 2 and captured.out == ""
+    assert captured.err.startswith("ehl show: error: geometry.R1x = 10.32 m")
+    assert "millimetres" in captured.err and len(captured.err.strip().splitlines()) == 1
+
+
+def test_strict_accepts_a_plausible_scene(capsys):
+    assert main(["--strict", "show", "default", "--json"]) == 0
+    assert "warning" not in capsys.readouterr().err
+
+
+def test_scenes_lists_every_builtin_without_a_plausibility_warning(capsys):
+    assert main(["--strict", "scenes", "--json"]) == 0
+    assert "plausible" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv", [
+    ["solve", "default", "--thermal", "--slip", "5"],
+    ["solve", "default", "--thermal", "--slip", "nan"],
+])
+def test_solve_refuses_a_slip_outside_minus_2_2_before_solving(tmp_path, capsys, argv):
+    assert main([*argv, "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "--slip" in err and "[-2, 2]" in err and "S = 2(u1-u2)/(u1+u2)" in err
+    assert "did not converge" not in err and not list(tmp_path.iterdir())
+
+
+def test_show_says_the_6205_fitted_film_is_outside_the_fits_range(capsys):
+    assert main(["show", "bearing_6205_inner_race"]) == 0
+    captured = capsys.readouterr()
+    assert "hc_fit: the Nijenbanning fit is extrapolated" in captured.err
+    row = [x for x in captured.out.splitlines() if x.strip().startswith("hc_fit_in_range")]
+    assert row and row[0].split()[-1] == "False"
+    assert "M = 3620 outside [5, 1000]" in captured.out
+    assert main(["show", "bearing_6205_inner_race", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["hc_fit_in_range"] is False and out["hc_fit_deviation"] is None
+
+
+def test_show_states_the_fits_measured_bias_inside_its_range(capsys):
+    assert main(["show", "default", "--json"]) == 0
+    captured = capsys.readouterr()
+    out = json.loads(captured.out)
+    assert out["hc_fit_in_range"] is True and "hc_fit" not in captured.err
+    assert 0.1 < out["hc_fit_deviation_min"] <= out["hc_fit_deviation"] <= out["hc_fit_deviation_max"] < 0.4
+    lo, hi = round(100 * out["hc_fit_deviation_min"]), round(100 * out["hc_fit_deviation_max"])
+    assert f"{lo}-{hi} % above" in out["hc_fit_note"]
+
+
+def test_fits_reports_the_same_bias_as_show(capsys):
+    assert main(["show", "default", "--json"]) == 0
+    shown = json.loads(capsys.readouterr().out)
+    assert main(["fits", "--contact", "point", "--M", repr(shown["M"]), "--L", repr(shown["L"]), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["extrapolated"] is False
+    assert out["deviation"] == pytest.approx(shown["hc_fit_deviation"], rel=1e-12)
+    assert math.isfinite(out["deviation_min"]) and out["fit_note"] == shown["hc_fit_note"]
