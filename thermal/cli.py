@@ -56,7 +56,12 @@ def register(subparsers: Any) -> None:
     p.add_argument("--slices", type=int, default=None, help="slices over half a point contact (default: scene ny or 10)")
     p.add_argument("--input", choices=["hertz", "ehl"], default="hertz",
                    help="Hertz pressure + fitted uniform film, or an EHL solution (--ehl-file)")
-    p.add_argument("--ehl-file", default=None, help="HDF5 result of kind ehl_line/ehl_point for --input ehl")
+    p.add_argument("--ehl-file", default=None,
+                   help="HDF5 result of kind ehl_line/ehl_point for --input ehl; the scene stored beside "
+                        "the film must be the same contact (load, radii, moduli, oil, speed, supply)")
+    p.add_argument("--unchecked-ehl-file", action="store_true",
+                   help="accept an --ehl-file that stores no scene (its contact cannot be checked against "
+                        "the scene's; the film is then taken as the scene's)")
     p.add_argument("--x-in", type=float, default=None, help="inlet boundary X (default -2.5)")
     p.add_argument("--surface-kernel", choices=list(SURFACE_KERNELS), default=None)
     p.add_argument("--slice-pressure", choices=list(SLICE_PRESSURES), default=None)
@@ -94,8 +99,18 @@ def run_traction(args: argparse.Namespace) -> dict[str, Any]:
         if ehl.kind != want:
             raise InputError(f"--ehl-file {args.ehl_file!r} holds a result of kind {ehl.kind!r}; the {scene.kind} "
                              f"contact of scene {scene.name!r} needs one of kind {want!r} (from 'ehl solve')")
+        if ehl.scene is not None:
+            from .traction import check_ehl_contact
+
+            check_ehl_contact(ehl.scene, scene, f"--ehl-file {args.ehl_file!r}")
+        elif not args.unchecked_ehl_file:
+            raise InputError(f"--ehl-file {args.ehl_file!r} stores no scene, so its contact (load, radii, "
+                             f"materials, oil, speed) cannot be checked against scene {scene.name!r}; give "
+                             f"--unchecked-ehl-file to use it as this scene's film anyway")
     elif args.ehl_file is not None:
         raise InputError("--ehl-file applies to --input ehl only")
+    elif args.unchecked_ehl_file:
+        raise InputError("--unchecked-ehl-file applies to --input ehl only")
     out = writable_dir(args.out)
     stem = safe_stem(f"traction_{scene.name}{'_iso' if not options.thermal else ''}")
     h5 = output_file(out, stem, ".h5")

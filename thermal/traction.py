@@ -135,12 +135,67 @@ def ehl_viscosity(scene: Scene) -> Callable[[np.ndarray], np.ndarray]:
     return eta
 
 
+#: relative tolerance of :func:`check_ehl_contact` (the quantities are exact inputs; a scene
+#: written to HDF5 and read back keeps them to round-off)
+CONTACT_RTOL = 1e-6
+
+
+def ehl_contact_quantities(scene: Scene) -> dict[str, tuple[Any, str]]:
+    """What makes a scene's EHL film: ``name -> (value, units)`` for the contact kind, load,
+    radii, line length, reduced modulus, sum velocity, the oil's viscosity at the oil
+    temperature (at zero pressure and at the scene's Hertz pressure: the pressure-viscosity
+    behaviour) and the supplied oil layer."""
+    lub, T = scene.lubricant, scene.T_oil
+    out: dict[str, tuple[Any, str]] = {
+        "contact.kind": (scene.kind, ""), "load": (float(scene.load), "N"), "Rx": (float(scene.Rx), "m"),
+        "Ry": (float(scene.Ry), "m"), "E_reduced": (float(scene.E_reduced), "Pa"), "us": (float(scene.us), "m/s"),
+        "viscosity at T_oil, p = 0": (float(lub.viscosity(0.0, T)), "Pa s"),
+        "[supply] hoil": (float(scene.supply.hoil), "m"),
+    }
+    if scene.kind == "line":
+        out["length"] = (float(scene.length), "m")
+    return out
+
+
+def check_ehl_contact(film_scene: Scene, scene: Scene, source: str = "the EHL film") -> None:
+    """Raise :class:`InputError` when the contact an EHL film was solved for (``film_scene``,
+    stored beside it) is not the contact of ``scene``: kind, load, radii, line length, reduced
+    modulus, sum velocity, viscosity at the oil temperature (at zero pressure and at the
+    Hertz pressure) and oil supply must agree to :data:`CONTACT_RTOL`. The message names the
+    first quantity that differs and both values."""
+    mine = ehl_contact_quantities(scene)
+    theirs = ehl_contact_quantities(film_scene)
+    # the pressure-viscosity behaviour, at the pressure of the scene being run
+    p = float(scene.hertz.pmax)
+    for sc, q in ((scene, mine), (film_scene, theirs)):
+        q["viscosity at T_oil, pmax"] = (float(sc.lubricant.viscosity(p, sc.T_oil)), "Pa s")
+    for key, (want, units) in mine.items():
+        got = theirs.get(key, (None, units))[0]
+        if isinstance(want, str) or isinstance(got, str):
+            same = want == got
+        elif math.isinf(want) or math.isinf(got):
+            same = want == got
+        else:
+            same = math.isclose(want, got, rel_tol=CONTACT_RTOL, abs_tol=0.0)
+        if not same:
+            u = f" {units}" if units else ""
+            raise InputError(f"{source} was solved for another contact: its {key} is {got!r}{u} "
+                             f"(scene {film_scene.name!r}), the scene {scene.name!r} has {want!r}{u} "
+                             f"(relative tolerance {CONTACT_RTOL:g}); solve the film for this scene "
+                             f"('ehl solve {scene.name}') or run the film's own scene")
+
+
 def ehl_result_from(ehl: Any, scene: Scene) -> Result:
     """Accept an EHL :class:`Result` or plain arrays: ``(x, p, h)`` for a line contact,
-    ``(x, y, p, h)`` for a point contact (x, y [m], p [Pa], h [m]), or a dict with those keys."""
+    ``(x, y, p, h)`` for a point contact (x, y [m], p [Pa], h [m]), or a dict with those keys.
+
+    A Result that carries its scene must be a film of the same contact
+    (:func:`check_ehl_contact`); plain arrays are taken as the scene's."""
     if ehl is None:
         raise InputError("input = 'ehl' needs the EHL solution (ehl=Result or arrays x, p, h)")
     if isinstance(ehl, Result):
+        if ehl.scene is not None:
+            check_ehl_contact(ehl.scene, scene)
         return ehl
     if isinstance(ehl, dict):
         keys = ("x", "p", "h") if scene.kind == "line" else ("x", "y", "p", "h")

@@ -5,7 +5,10 @@ fidelity level, each decision compares an estimate computed from the scene with 
 
 * film from the fit or from the multigrid solver (fit deviation against tolerance);
 * asperity contact (Lambda = h / sigma over the scene's speed range against 3, thesis 4.3.1);
-* thermal model (estimated temperature rise times the friction's sensitivity to it);
+* thermal model (estimated temperature rise times the friction's sensitivity to it) at the
+  operating slip(s) (the scene's slip, or its ``[ranges] slip``), where the film and the
+  Stribeck curve are computed; the traction curve of ``ehl run`` sweeps its own slips and
+  chooses its thermal model there (the thermal layer's stage says which and why);
 * starvation (inlet oil film against 6 sigma, thesis chapter 6);
 * non-Newtonian Eyring (Newtonian shear stress against tau0);
 * Maxwell elasticity (Deborah number against 1).
@@ -138,6 +141,12 @@ def fit_deviation_estimate(scene: Scene) -> tuple[float, str]:
 #: |f_thermal / f_isothermal - 1| was >= 0.936, so the margin leaves about 17 % for cases
 #: outside that study.
 THERMAL_DECISION_MARGIN = 1.25
+#: what the thermal decision covers: the traction stage sweeps slips beyond the operating ones
+#: and decides its own model there
+TRACTION_SCOPE = ("this decision holds at the operating slip (film, Stribeck curve); the traction "
+                  "curve chooses its model at the largest slip it sweeps")
+#: the friction models (traction and Stribeck curves) are Eyring models whatever this decision
+EYRING_SCOPE = "the friction curves always use the Eyring law (3.3), which is Newtonian at low stress"
 
 
 def temperature_rise_estimate(scene: Scene, us: float, slip: float, h: float) -> dict[str, float]:
@@ -282,17 +291,20 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
             est["friction_sensitivity"], threshold, "-",
             f"estimated temperature rise {est['dT']:.3g} K at slip {s_worst:g}, us {u_est:.3g} m/s changes friction by "
             f"about {est['friction_sensitivity']:.2g} (relative; threshold = tolerance / {THERMAL_DECISION_MARGIN:g} "
-            "safety margin, validation/plan/REPORT.md)",
+            f"safety margin, validation/plan/REPORT.md); {TRACTION_SCOPE}",
         ))
         tau_newton = float(scene.lubricant.viscosity(scene.hertz.mean_pressure, scene.T_oil)) * s_worst * u_worst / 2 / h_worst
         plan.decisions.append(Decision(
             "eyring", tau_newton > scene.lubricant.tau0 * tol, "Eyring (non-Newtonian)" if tau_newton > scene.lubricant.tau0 * tol else "Newtonian",
             tau_newton / scene.lubricant.tau0, tol, "-",
-            f"Newtonian shear stress {tau_newton:.3g} Pa against tau0 = {scene.lubricant.tau0:.3g} Pa",
+            f"Newtonian shear stress {tau_newton:.3g} Pa against tau0 = {scene.lubricant.tau0:.3g} Pa at the "
+            f"operating slip; {EYRING_SCOPE}",
         ))
     else:
-        plan.decisions.append(Decision("thermal", False, "isothermal", 0.0, tol, "-", "no slip: no shear heating"))
-        plan.decisions.append(Decision("eyring", False, "Newtonian", 0.0, tol, "-", "no slip: no shear stress"))
+        plan.decisions.append(Decision("thermal", False, "isothermal", 0.0, tol, "-",
+                                       f"no slip at the operating point: no shear heating; {TRACTION_SCOPE}"))
+        plan.decisions.append(Decision("eyring", False, "Newtonian", 0.0, tol, "-",
+                                       f"no slip at the operating point: no shear stress; {EYRING_SCOPE}"))
 
     # 3b. thermal EHL: heat in the inlet thins the film (the decoupled method keeps its friction
     # within 0.6 % on the thesis's line conditions, validation/tehl/REPORT.md, but not its film)

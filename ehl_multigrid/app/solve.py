@@ -2,6 +2,9 @@
 
 :mod:`~ehl_multigrid.app.line_cli` and :mod:`~ehl_multigrid.app.point_cli` each provide
 ``run_solve(args, scene) -> dict``; ``scene`` is ``None`` in Moes-only mode (``--M``/``--L``).
+A mode of a layer above the core (``--thermal``) declares the options it reads; any other one
+given with it is refused (:func:`refuse_unread_options`), as ``--slip`` and ``--nz`` are
+without ``--thermal``.
 """
 
 from __future__ import annotations
@@ -11,7 +14,8 @@ import argparse
 from ..model.constants import MOES_ONLY_DEFAULTS
 from ..model.errors import InputError
 
-__all__ = ["MOES_ONLY_DEFAULTS", "add_solve_arguments", "resolve_contact", "run_solve", "seconds_argument"]
+__all__ = ["MOES_ONLY_DEFAULTS", "add_solve_arguments", "refuse_unread_options", "resolve_contact", "run_solve",
+           "seconds_argument"]
 
 
 def _accuracy(text: str) -> float | None:
@@ -148,4 +152,39 @@ def run_solve_mode(name: str, args: argparse.Namespace, scene) -> dict:
     if not found:
         raise InputError(f"--{name} is provided by a layer that is not installed "
                          f"(no entry point ehl.solve_modes:{name})")
-    return found[0].load()(args, scene)
+    mode = found[0].load()
+    refuse_unread_options(args, name, getattr(mode, "honoured_options", frozenset()))
+    return mode(args, scene)
+
+
+#: options every ``ehl solve`` path reads (the scene, the --contact check) or that belong to
+#: the command rather than the solve (--json, --out, --no-plots are not solve arguments)
+ALWAYS_READ = frozenset({"scene", "contact"})
+
+
+def refuse_unread_options(args: argparse.Namespace, name: str, honoured: frozenset[str] | set[str]) -> None:
+    """Raise :class:`InputError` for the first ``ehl solve`` option given (a value other than
+    its default) that the ``--name`` mode does not read.
+
+    A mode lists the argparse names of the options it reads in its ``honoured_options``
+    attribute; a mode without one reads none beyond :data:`ALWAYS_READ`. An option a path
+    does not honour must not be accepted silently (``--rigid`` with ``--thermal`` gave the
+    elastic solution)."""
+    probe = argparse.ArgumentParser(add_help=False)
+    add_solve_arguments(probe)
+    allowed = set(honoured) | ALWAYS_READ | {name}
+    for action in probe._actions:
+        dest = action.dest
+        if dest in allowed or not action.option_strings:
+            continue
+        value = getattr(args, dest, action.default)
+        if value is action.default or value == action.default:
+            continue  # not given
+        flag = max(action.option_strings, key=len)
+        raise InputError(f"{flag} does not apply to --{name} solves: the {name} solve does not read it "
+                         f"(options it reads: {', '.join(sorted(_flags(probe, allowed)))})")
+
+
+def _flags(parser: argparse.ArgumentParser, dests: set[str]) -> list[str]:
+    return [max(a.option_strings, key=len) for a in parser._actions
+            if a.dest in dests and a.option_strings]

@@ -2,8 +2,9 @@
 together with the generalised Reynolds equation (Yang & Wen 1990) and the Eyring law of the
 thermal layer acting on the flow.
 
-Main entry points: :func:`solve_tehl_line` (line contacts), :func:`tehl_traction_curve`,
-:func:`solve_tehl_point` (point contacts); :func:`estimate_error` (their error budget) and
+Main entry points: :func:`solve_tehl_line` (line contacts; starved by the inlet meniscus when
+the scene has a finite ``[supply] hoil``, :func:`solve_tehl_line_starved`),
+:func:`tehl_traction_curve`, :func:`solve_tehl_point` (point contacts, flooded inlets); :func:`estimate_error` (their error budget) and
 :func:`solve_tehl_to_accuracy` (solve, estimate, refine to an accuracy target).
 """
 
@@ -16,6 +17,7 @@ _LAZY = {
     "FactorLevel": "hierarchy", "FactorLineHierarchy": "hierarchy",
     "TEHLLineResult": "line", "TEHLOptions": "line",
     "isothermal_start": "line", "solve_tehl_line": "line", "tehl_traction_curve": "line",
+    "solve_tehl_line_starved": "line", "find_meniscus": "starved", "tehl_face_fluxes": "starved",
     "TEHLPointResult": "point", "solve_tehl_point": "point",
     "TEHLErrorEstimate": "accuracy", "estimate_error": "accuracy", "solve_tehl_to_accuracy": "accuracy",
 }

@@ -18,7 +18,12 @@ Parts of the budget (relative for Hc, Hm and the friction coefficient, kelvin fo
   :data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_SAFETY`;
 * ``iteration`` -- the last outer change divided by the damping it was made with (the
   stopping rule's measure of the distance to the fixed point), and at least the films'
-  alternation between the inner multilevel cycles.
+  alternation between the inner multilevel cycles; for a starved solve plus the meniscus
+  search's supply mismatch ``|F/Hoil - 1|`` (the film follows the supply it carries).
+
+A starved line solve (finite ``[supply] hoil``) is estimated at fixed supply: the coarser
+solves are starved solves with their own meniscus search, and the domain part is 0 (the box
+starts at the meniscus), as for the isothermal starved solver.
 
 ``total`` is their sum; it is NaN when a part could not be measured (a coarser solve or
 the box probe did not converge), and such a result cannot be called accurate.
@@ -35,7 +40,9 @@ from ehl_multigrid.model.errors import ConvergenceError, InputError, require_ran
 from ehl_multigrid.model.scene import Scene
 from ehl_multigrid.multigrid.accuracy import DOMAIN_DECAY, DOMAIN_SAFETY, GRID_SAFETY
 
+from ..traction import wall_speeds
 from .line import TEHLOptions
+from .point import require_flooded_point
 
 #: orders (along X, across the film) of the TEHL discretisation in the estimate. Line contacts:
 #: 2 and 2, observed on appendix C 4240 N and 42400 N at S = 0.5 (X: 257-4097 points, Hc 1.99-2.00,
@@ -67,6 +74,8 @@ class SolveCache:
         self.scene, self.slip, self.options, self.point = scene, float(slip), options, point
         self.results: dict[tuple[int, int, float], Any] = {}
         self.errors: dict[tuple[int, int, float], str] = {}
+        #: a starved solve's meniscus: where the searches of the other grids start
+        self.meniscus: float | None = None
 
     @classmethod
     def of(cls, result: Any) -> SolveCache:
@@ -77,6 +86,9 @@ class SolveCache:
     def add(self, result: Any) -> None:
         o = result.options
         self.results[(o.points, o.nz, o.box)] = result
+        xm = (getattr(result, "starved", None) or {}).get("meniscus_x")
+        if self.meniscus is None and xm is not None and math.isfinite(xm):
+            self.meniscus = float(xm)
 
     def __call__(self, points: int, nz: int, box: float) -> Any:
         key = (int(points), int(nz), float(box))
@@ -85,9 +97,13 @@ class SolveCache:
             from .point import solve_tehl_point
 
             opts = self.options.with_changes(points=key[0], nz=key[1], box=key[2])
-            solve = solve_tehl_point if self.point else solve_tehl_line
             try:
-                self.results[key] = solve(self.scene, self.slip, opts)
+                if self.point:
+                    res = solve_tehl_point(self.scene, self.slip, opts)
+                else:
+                    res = solve_tehl_line(self.scene, self.slip, opts, meniscus=self.meniscus)
+                self.results[key] = res
+                self.add(res)
             except (ConvergenceError, InputError) as exc:
                 self.results[key] = None
                 self.errors[key] = str(exc).splitlines()[0][:200]
@@ -212,7 +228,16 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
         notes.append(f"the solve on {(o.points - 1) // 2 + 1} points did not converge: grid error along X unknown")
     if coarse_z is None:
         notes.append(f"the solve on nz = {o.nz // 2} did not converge: grid error across the film unknown")
-    if domain is True:
+    starved = getattr(result, "starved", None) or {}
+    if starved and not starved.get("inlet_flooded", True):
+        # the box starts at the meniscus, ahead of which the starved inlet carries the layer
+        # at zero pressure (and the oil at its supply temperature): no box to enlarge
+        domain = dict.fromkeys(QUANTITIES, 0.0)
+        notes.append("domain part 0: the box starts at the meniscus (starved inlet)")
+        notes.append("Hc_ratio and Hm_ratio divide by the flooded thermal films on the same grid and the "
+                     "default box, whose own error is not estimated (a heavily loaded flooded contact "
+                     "needs a finer grid than its starved film)")
+    elif domain is True:
         domain = domain_change(result, cache)
         if domain is None:
             notes.append("the box probe did not converge: domain error unknown")
@@ -222,8 +247,13 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
     last = result.outer[-1]
     w = float(last.get("relax", 1.0))
     noise = float(max(o_.get("film_noise", 0.0) for o_ in result.outer[-2:]))
-    iteration = {"Hc": max(last["dHc"] / w, noise), "Hm": max(last["dHm"] / w, noise),
-                 "friction_coefficient": last["dP"] / w, "T_max": last["dT"] / w}
+    # a starved film is set by the supply it carries (rho_c Hc -> Hoil in the limit): the
+    # meniscus search's supply mismatch is a relative error of the films and the friction
+    supply = float(starved.get("supply_mismatch", 0.0))
+    if supply:
+        notes.append(f"iteration part includes the meniscus search's supply mismatch {supply:.2g}")
+    iteration = {"Hc": max(last["dHc"] / w, noise) + supply, "Hm": max(last["dHm"] / w, noise) + supply,
+                 "friction_coefficient": last["dP"] / w + supply, "T_max": last["dT"] / w}
     budget: dict[str, dict[str, float]] = {}
     for key in QUANTITIES:
         q = _value(result, key)
@@ -348,6 +378,10 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
     require_range("time_budget", time_budget, 0.0, 1e6, "s")
     limit = max_points or MAX_POINTS["point" if point else "line"]
     slip = scene.slip if slip is None else float(slip)
+    # bad input is refused here, not turned into a solve that "did not converge" by the cache
+    wall_speeds(scene.us, slip)
+    if point:
+        require_flooded_point(scene)
     cache = SolveCache(scene, slip, opts, point)
     points, nz, box, tol_scale = opts.points, opts.nz, opts.box, 1.0
     domains: dict[float, dict[str, Any]] = {}

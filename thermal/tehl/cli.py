@@ -111,6 +111,10 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
                "heat_balance_error": [r.heat_balance_error for r in curve],
                "converged": all(bool(r.report.converged) for r in curve),
                "wall_s": sum(r.wall_s for r in curve)}
+    if curve[0].starved is not None:
+        # a finite [supply] hoil: each slip's film is starved at its own meniscus
+        payload.update({k: [r.starved[k] for r in curve] for k in ("meniscus_x", "Hc_ratio", "mass_balance_error")})
+        payload["hoil"] = curve[0].starved["hoil"]
     if getattr(args, "estimate", True):
         payload.update(curve_error(curve))
     if not args.json:
@@ -137,17 +141,54 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
     default; ``args.time_budget``, default 600 s); explicit ``--points``/``--nz`` are only judged. ``converged`` is true only
     when the outer iteration converged and the estimate meets the target (status
     ``inaccurate`` otherwise). Returns the payload of :func:`solve_payload` with the error keys
-    (printed as JSON by ``--json``)."""
+    (printed as JSON by ``--json``).
+
+    A line scene with a finite ``[supply] hoil`` is solved starved (the meniscus search of
+    :func:`thermal.tehl.line.solve_tehl_line_starved`; ``meniscus_x``, ``Hc_ratio``,
+    ``mass_balance_error`` ... in the payload); a point scene with one is refused. A slip
+    outside [-2, 2] is refused before any solve; ``args.threads`` sets numba's threads for
+    the solve."""
+    point = scene.kind != "line"
+    slip = getattr(args, "slip", None)
+    if slip is not None and not -2.0 <= slip <= 2.0:  # also catches nan
+        raise InputError(f"--slip {slip:g} is outside the allowed range [-2, 2] (S = 2(u1-u2)/(u1+u2); "
+                         f"2 = pure sliding)")
+    if not point and (getattr(args, "half", False) or getattr(args, "full_domain", False)):
+        raise InputError("--half and --full-domain apply to point contacts, not to a line contact")
+    if point:
+        from .point import require_flooded_point
+
+        require_flooded_point(scene)
+    threads = getattr(args, "threads", None)
+    if threads is not None:
+        import numba
+
+        from ehl_multigrid.multigrid.threads import preserved_threads, resolve_threads
+
+        with preserved_threads():
+            numba.set_num_threads(resolve_threads(threads))
+            return _solve_mode(args, scene, point, slip)
+    return _solve_mode(args, scene, point, slip)
+
+
+#: the ``ehl solve`` options (argparse names) the ``--thermal`` mode reads; ``ehl solve``
+#: refuses any other one given with ``--thermal`` (besides the scene, --contact as a check,
+#: --json, --out and --no-plots)
+solve_mode.honoured_options = frozenset({
+    "scene", "contact", "accuracy", "max_points", "time_budget", "points", "nz", "slip",
+    "compressive_heating", "threads", "half", "thermal"})
+
+
+def _solve_mode(args: argparse.Namespace, scene: Scene, point: bool, slip: float | None) -> dict[str, Any]:
     from .accuracy import solve_tehl_to_accuracy
     from .line import TEHLOptions
 
-    point = scene.kind != "line"
     given = {k: v for k in ("points", "nz") if (v := getattr(args, k, None)) is not None}
     opts = TEHLOptions(points=given.get("points", 257 if point else 513), nz=given.get("nz", 20),
                        compressive_heating=getattr(args, "compressive_heating", True))
     accuracy = getattr(args, "accuracy", None)
     budget = {} if getattr(args, "time_budget", None) is None else {"time_budget": args.time_budget}
-    done = solve_tehl_to_accuracy(scene, getattr(args, "slip", None), opts, accuracy, refine=not given,
+    done = solve_tehl_to_accuracy(scene, slip, opts, accuracy, refine=not given,
                                   max_points=getattr(args, "max_points", None), **budget)
     r = done.result
     payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),

@@ -50,6 +50,11 @@ from ..traction import wall_speeds
 from .coefficients import film_factors
 from .hierarchy import FactorLineHierarchy
 from .outer import OUTER_HINT, Iterate, outer_iteration
+from .starved import find_meniscus, flux_summary, tehl_face_fluxes
+
+#: supply tolerance of the meniscus search, relative to ``tol_H``: a tenth, so that the
+#: mismatch stays below the films' own iteration tolerance on every grid of an error estimate
+SUPPLY_TOL = 0.1
 
 
 @dataclass(frozen=True)
@@ -160,7 +165,13 @@ class TEHLLineResult:
     heat_partition : (share into solid 1, share into solid 2) of the conducted heat;
     heat_balance_error : |shear - conduction - convection| / shear (interior budget);
     factors : final flow and Couette factors a(X), c(X);
-    outer : one dict per outer iteration (dP, dHc, dHm, dT, factor change, cycles, wall_s).
+    outer : one dict per outer iteration (dP, dHc, dHm, dT, factor change, cycles, wall_s);
+    flux_in : mass flux through the box's first face (Venner units: ``rho0 (u1 + u2)/2 b^2/R``)
+        of the generalised Reynolds equation the solution satisfies
+        (:func:`thermal.tehl.starved.tehl_face_fluxes`); flux_balance : the largest relative
+        deviation from it over the faces up to the pressure maximum;
+    starved : for a finite ``[supply] hoil`` (:func:`solve_tehl_line`), the starvation
+        observables (meniscus, supply, flooded film, mass balance), else None.
     """
 
     scene: Scene
@@ -193,6 +204,9 @@ class TEHLLineResult:
     options: TEHLOptions
     thermal: ThermalLineSolution = field(repr=False)
     wall_s: float = math.nan
+    flux_in: float = math.nan
+    flux_balance: float = math.nan
+    starved: dict[str, Any] | None = None
 
     @property
     def x(self) -> np.ndarray:
@@ -231,6 +245,7 @@ class TEHLLineResult:
             "outer_iterations": len(self.outer), "converged": bool(self.report.converged),
             "slip": self.slip, "wall_s": self.wall_s, "momentum": self.report.extra.get("momentum", "gradient"),
             "compressive_heating": self.options.compressive_heating,
+            **{k: v for k, v in (self.starved or {}).items() if not isinstance(v, (list, dict))},
         }
 
 
@@ -329,28 +344,52 @@ def interior_heat_budget(sol: ThermalLineSolution, lubricant: Any) -> dict[str, 
 
 def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None, *,
                     us: float | None = None, load: float | None = None, start: _State | None = None,
-                    guess: TEHLLineResult | None = None, **changes: Any) -> TEHLLineResult:
+                    guess: TEHLLineResult | None = None, meniscus: float | None = None,
+                    **changes: Any) -> TEHLLineResult:
     """Solve the thermal EHL line contact of ``scene`` at ``slip`` (S = 2 (u1 - u2)/(u1 + u2)).
+
+    A scene with a finite ``[supply] hoil`` is solved starved (:func:`solve_tehl_line_starved`:
+    the inlet meniscus that makes the contact carry the supplied layer), else with a flooded
+    inlet.
 
     Parameters
     ----------
-    scene : a line-contact scene (oil, solids, temperatures, operating point).
+    scene : a line-contact scene (oil, solids, temperatures, operating point, supply).
     slip : slide-to-roll ratio in [-2, 2] (None: the scene's).
     options : :class:`TEHLOptions`; keyword ``changes`` update it.
     us, load : sum velocity [m/s] and load [N] replacing the scene's.
     start : the isothermal start of an earlier solve of the same scene, grid and box
-        (:func:`isothermal_start`; it does not depend on the slip).
+        (:func:`isothermal_start`; it does not depend on the slip); flooded inlets only.
     guess : a TEHL solution of the same scene, grid and box (another slip) to start the
-        outer iteration from (pressure, film constant and across-film factors).
+        outer iteration from (pressure, film constant and across-film factors); flooded
+        inlets only.
+    meniscus : starved inlets: the meniscus X = x/b the search starts from (None: the
+        isothermal starved solver's on the same grid).
 
-    Raises :class:`ConvergenceError` when a multilevel or thermal solve fails, the fields
-    become non-finite, or the outer iteration does not meet its tolerances in ``max_outer``.
+    Raises :class:`InputError` for a slip outside [-2, 2] or bad options, and
+    :class:`ConvergenceError` when a multilevel or thermal solve fails, the fields become
+    non-finite, the outer iteration does not meet its tolerances in ``max_outer``, or (starved)
+    no meniscus carries the supply.
     """
-    t0 = time.perf_counter()
     opts = (options or TEHLOptions()).with_changes(**changes) if changes else (options or TEHLOptions())
     if us is not None or load is not None:
         scene = scene.with_operating(**{k: v for k, v in (("us", us), ("load", load)) if v is not None})
+    if scene.kind != "line":
+        raise InputError(f"contact.kind = {scene.kind!r}: solve_tehl_line needs a line contact")
     slip = scene.slip if slip is None else float(slip)
+    wall_speeds(scene.us, slip)  # the slip's range, before any solve
+    if math.isfinite(scene.supply.hoil):
+        if start is not None or guess is not None:
+            raise InputError("start and guess apply to flooded inlets: a starved solve (finite [supply] "
+                             "hoil) searches its own meniscus, and each box has its own start")
+        return solve_tehl_line_starved(scene, slip, opts, meniscus=meniscus)
+    return _solve_flooded(scene, slip, opts, start, guess)
+
+
+def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: _State | None = None,
+                   guess: TEHLLineResult | None = None) -> TEHLLineResult:
+    """The TEHL solve with a flooded inlet on the box of ``opts`` (see :func:`solve_tehl_line`)."""
+    t0 = time.perf_counter()
     u1, u2 = wall_speeds(scene.us, slip)
     env = Surroundings(scene.lubricant, scene.body1, scene.body2, u1, u2, scene.T_oil,
                        scene.T_surface1, scene.T_surface2)
@@ -431,6 +470,9 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
     cond = heat.get("conduction1", 0.0) + heat.get("conduction2", 0.0)
     part = (heat["conduction1"] / cond, heat["conduction2"] / cond) if cond > 0 else (math.nan, math.nan)
     F = sol.force_per_length * scene.length
+    # the mass flux of the generalised Reynolds equation of the final P, H and factors
+    hz.set_factors(a, c)
+    flux_in, flux_balance = flux_summary(tehl_face_fluxes(hz.levels[-1], st.P, st.H0), st.P)
     return TEHLLineResult(
         scene=scene, slip=slip, u1=u1, u2=u2, problem=pb, X=X.copy(), P=st.P, H=st.H, H0=st.H0,
         Z=sol.Z, T=sol.T, tau=sol.tau, Hc=st.Hc, Hm=st.Hm, Hc_isothermal=iso.Hc, Hm_isothermal=iso.Hm,
@@ -438,7 +480,98 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
         friction_decoupled=decoupled.force_per_length * scene.length, T_max=float(np.max(sol.T)),
         heat=heat, heat_partition=part, heat_balance_error=abs(heat.get("balance", 0.0)),
         a=a, c=c, outer=outer, report=report, options=opts, thermal=sol, wall_s=time.perf_counter() - t0,
+        flux_in=flux_in, flux_balance=flux_balance,
     )
+
+
+def solve_tehl_line_starved(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None, *,
+                            hoil: float | None = None, meniscus: float | None = None) -> TEHLLineResult:
+    """The TEHL line contact supplied with an oil layer ``hoil`` [m] (default the scene's
+    ``[supply] hoil``): the inlet meniscus found so that the mass flux through the contact
+    equals the supply (:mod:`thermal.tehl.starved`).
+
+    Solves the flooded TEHL contact on the box of ``options`` first (the reference of
+    ``Hc_ratio``; a supply at or above its flux floods the inlet and that solution is
+    returned), then the flooded-inlet TEHL solve on ``[X_m, xmax]`` for each meniscus ``X_m``
+    the search tries, from ``meniscus`` (default: the isothermal starved solver's meniscus
+    on the same grid, :func:`ehl_multigrid.starved.solve_starved_line`), until
+    ``|F/Hoil - 1|`` is below ``SUPPLY_TOL * tol_H``.
+
+    Returns the TEHL solution on the box from the meniscus; ``starved`` holds ``hoil`` [m],
+    ``hoil_venner``, ``meniscus_x``, ``supply_mismatch`` (``|F/Hoil - 1|``),
+    ``mass_balance_error`` (the larger of it and the flux imbalance of the solution),
+    ``flux_flooded``, ``Hc_flooded``, ``Hm_flooded`` (the flooded thermal films, Moes),
+    ``Hc_ratio``, ``Hm_ratio`` (these five NaN, with ``flooded_failure`` saying why, when the
+    flooded solve fails: the search then runs all the same), ``inlet_flooded``,
+    ``meniscus_solves`` (TEHL solves made), ``meniscus_history`` (each box solve: meniscus,
+    flux, status) and, when the isothermal solver gave the seed, ``meniscus_x_isothermal``,
+    ``Hc_isothermal_starved``, ``Hm_isothermal_starved`` and ``hc_isothermal_starved`` [m]
+    (its films at the same supply and grid). ``scene`` of the result is the starved scene,
+    ``options`` the options asked for (the box, from the meniscus, is ``problem``/``X``).
+    """
+    from ehl_multigrid.starved import hoil_venner, solve_starved_line
+
+    t0 = time.perf_counter()
+    opts = options or TEHLOptions()
+    slip = scene.slip if slip is None else float(slip)
+    wall_speeds(scene.us, slip)
+    hoil_m = scene.supply.hoil if hoil is None else float(hoil)
+    flooded_scene = scene.with_supply(hoil=math.inf)
+    pb = line_problem(flooded_scene, opts)
+    Hoil = hoil_venner(hoil_m, pb.b, pb.R)
+    if math.isinf(Hoil):
+        return _solve_flooded(flooded_scene, slip, opts)
+    try:
+        full: TEHLLineResult | None = _solve_flooded(flooded_scene, slip, opts)
+    except ConvergenceError as exc:
+        # the flooded reference fails (a thick inlet on a coarse grid): the starved film does
+        # not need it, only its ratio does
+        full, flooded_failure = None, str(exc).splitlines()[0][:200]
+    info: dict[str, Any] = {"hoil": hoil_m, "hoil_venner": Hoil,
+                            "flux_flooded": full.flux_in if full else math.nan,
+                            "Hc_flooded": full.Hc if full else math.nan, "Hm_flooded": full.Hm if full else math.nan}
+    if full is None:
+        info["flooded_failure"] = flooded_failure
+    elif Hoil >= full.flux_in:
+        # the layer carries at least what the flooded contact takes: the excess flows back
+        info.update(inlet_flooded=True, meniscus_x=-math.inf, supply_mismatch=0.0,
+                    mass_balance_error=full.flux_balance, Hc_ratio=1.0, Hm_ratio=1.0, meniscus_solves=1,
+                    meniscus_history=[])
+        full.scene, full.starved = scene, info
+        full.wall_s = time.perf_counter() - t0
+        return full
+    solves = 1
+    seed = meniscus
+    if seed is None:
+        try:
+            iso = solve_starved_line(pb, Hoil, None, None, estimate=False, points=opts.points,
+                                     raise_on_failure=False)
+        except ConvergenceError:
+            iso = None
+        if iso is not None and iso.success and math.isfinite(iso.scalars.get("meniscus_x", math.nan)):
+            seed = float(iso.scalars["meniscus_x"])
+            info.update(meniscus_x_isothermal=seed, Hc_isothermal_starved=float(iso.scalars["Hc"]),
+                        Hm_isothermal_starved=float(iso.scalars["Hm"]),
+                        hc_isothermal_starved=float(iso.scalars["Hc_venner"]) * pb.b**2 / pb.R)
+        else:
+            # no isothermal seed: the search starts at a meniscus a fifth of the contact
+            # half-width upstream and brackets outwards
+            seed = -1.2
+
+    def solve_box(xm: float) -> TEHLLineResult:
+        return _solve_flooded(flooded_scene, slip, opts.with_changes(xmin=min(xm, -1.0 - 1e-9), box=1.0))
+
+    found = find_meniscus(solve_box, lambda r: r.flux_in, Hoil, seed, SUPPLY_TOL * opts.tol_H)
+    r = found.result
+    info.update(inlet_flooded=False, meniscus_x=found.x, supply_mismatch=found.mismatch,
+                mass_balance_error=max(found.mismatch, r.flux_balance), Hc_ratio=r.Hc / info["Hc_flooded"],
+                Hm_ratio=r.Hm / info["Hm_flooded"], meniscus_solves=solves + len(found.history),
+                meniscus_history=found.history)
+    # the options as asked for (the box solve's own carry the meniscus as xmin): solves for an
+    # error estimate or a refinement start from them
+    r.scene, r.starved, r.options = scene, info, opts
+    r.wall_s = time.perf_counter() - t0
+    return r
 
 
 def tehl_traction_curve(scene: Scene, slips: Any = None, options: TEHLOptions | None = None,
@@ -446,7 +579,9 @@ def tehl_traction_curve(scene: Scene, slips: Any = None, options: TEHLOptions | 
     """TEHL solves over ``slips`` (default: the scene's slip range, else 21 slips over [0, 1]).
 
     The isothermal start is solved once (it does not depend on the slip) and each slip's
-    outer iteration starts from the previous slip's solution.
+    outer iteration starts from the previous slip's solution. A starved scene (finite
+    ``[supply] hoil``) solves each slip starved, its meniscus search starting from the
+    previous slip's meniscus.
     """
     from ..traction import default_slips
 
@@ -454,8 +589,15 @@ def tehl_traction_curve(scene: Scene, slips: Any = None, options: TEHLOptions | 
     S = default_slips(scene) if slips is None else np.asarray(slips, dtype=float)
     if S.size == 0:
         raise InputError("slip list is empty")
-    iso = isothermal_start(scene, opts)
     out: list[TEHLLineResult] = []
+    if math.isfinite(scene.supply.hoil):
+        # starved: each slip searches its meniscus, from the previous slip's
+        for s in S:
+            prev = out[-1].starved["meniscus_x"] if out else None
+            out.append(solve_tehl_line(scene, float(s), opts,
+                                       meniscus=prev if prev is not None and math.isfinite(prev) else None))
+        return out
+    iso = isothermal_start(scene, opts)
     for s in S:
         out.append(solve_tehl_line(scene, float(s), opts, start=iso, guess=out[-1] if out else None))
     return out

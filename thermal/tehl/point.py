@@ -175,6 +175,17 @@ def _films(pb: PointProblem, X: np.ndarray, Y: np.ndarray, P: np.ndarray, H: np.
     return m["Hc_center"] * pb.moes_factor, m["Hm"] * pb.moes_factor
 
 
+def require_flooded_point(scene: Scene) -> None:
+    """Refuse a point contact with a finite ``[supply] hoil`` (InputError naming it): the thermal
+    point solve has a flooded inlet only, and a starved contact must not get a flooded film."""
+    hoil = scene.supply.hoil
+    if math.isfinite(hoil) or scene.supply.hoil_profile:
+        raise InputError(f"[supply] hoil = {hoil:g} m: the thermal EHL point-contact solve models flooded "
+                         f"inlets only (allowed: hoil = inf, no hoil_profile); the starved point contact "
+                         f"is solved isothermally by 'ehl solve' without --thermal, and thermal starved "
+                         f"solves are available for line contacts")
+
+
 def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None, *,
                      threads: int | None = None, **changes: Any) -> TEHLPointResult:
     """Solve the thermal EHL point contact of ``scene`` at ``slip``.
@@ -182,10 +193,12 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
     ``options`` as for :func:`~thermal.tehl.line.solve_tehl_line` (``points`` along X, default
     257 here when not given; ``multigrid`` overrides the core :class:`PointOptions`); the
     half domain Y >= 0 is solved. ``threads``: thread pool of the row thermal solves.
+    A finite ``[supply] hoil`` is refused (:func:`require_flooded_point`).
     """
     t0 = time.perf_counter()
     if scene.kind == "line":
         raise InputError(f"scene {scene.name!r} is a line contact: use solve_tehl_line")
+    require_flooded_point(scene)
     if options is None and "points" not in changes:
         changes["points"] = 257
     opts = (options or TEHLOptions()).with_changes(**changes) if changes else options
