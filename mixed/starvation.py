@@ -28,99 +28,25 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from ehl_multigrid.model.errors import InputError, require_positive, require_range
-from ehl_multigrid.model.lubricant import density_ratio_dh
+from ehl_multigrid.model.errors import InputError, require_positive
+from ehl_multigrid.model.starvation import (  # noqa: F401  (chapter 6's film lives in the model)
+    DELTA_RANGE,
+    INLET,
+    INLET_DELTA_FIT,
+    INLET_HC_RANGE,
+    LINE_INLET_DELTA,
+    chevalier_reduction,
+    density_ratio_at,
+    inlet_delta,
+    log_starved_film,
+    require_delta,
+    starved_film,
+)
 
 from .film import johnson_film
 from .gw import asperity_pressure_coefficient, gw_f_inverse
 
 ArrayLike = float | np.ndarray
-
-#: ``delta = a + b log10(Hc_ff)`` (Venner units) of circular contacts, fitted to the starved point
-#: solver (validation/starved/study_collapse.py, rms 0.066, largest misfit 0.13)
-INLET_DELTA_FIT = (2.37, -0.95)
-#: Hc_ff (Venner) over which that fit was measured; outside it ``delta`` is held at the end values
-#: (a thicker film, (M, L) = (5, 10) with Hc_ff = 1.09, gave 2.82 where the line says 2.34:
-#: validation/starved/study_collapse_range.py)
-INLET_HC_RANGE = (0.063, 0.447)
-#: line contacts: (6.1) at its largest admitted exponent stands for the solver's min(r, 1)
-LINE_INLET_DELTA = 20.0
-#: the admitted constant exponents
-DELTA_RANGE = (0.5, 20.0)
-#: the one named exponent rule besides a number
-INLET = "inlet"
-
-
-def require_delta(name: str, delta: float | str) -> float | str:
-    """A Chevalier exponent: a number in :data:`DELTA_RANGE` or ``"inlet"`` (from the flooded inlet)."""
-    if isinstance(delta, str):
-        if delta != INLET:
-            raise InputError(f"{name} = {delta!r} must be a number in [{DELTA_RANGE[0]}, {DELTA_RANGE[1]}] "
-                             f"or {INLET!r} (the exponent from the flooded inlet length)")
-        return delta
-    return require_range(name, delta, DELTA_RANGE[0], DELTA_RANGE[1], "-")
-
-
-def inlet_delta(kind: str, hc_venner: ArrayLike) -> ArrayLike:
-    """Chevalier's exponent from the flooded inlet: ``kind`` ``"line"`` gives
-    :data:`LINE_INLET_DELTA`; ``"elliptic"`` is refused (not measured); a circular contact ``2.37 - 0.95 log10(Hc_ff)``, ``Hc_ff = hc Rx/a^2``
-    (flooded central film in Venner units, ``a`` the Hertzian semi-axis in the rolling
-    direction), with ``Hc_ff`` held inside :data:`INLET_HC_RANGE`, where it was measured."""
-    if kind == "elliptic":
-        raise InputError(
-            "supply.delta = 'inlet' is measured for line and circular contacts only: at theta = 0.5 and 2 "
-            "the starved point solver's exponent lies 0.4-0.8 from the circular rule (the side flow depends "
-            "on the ellipticity; validation/starved/study_collapse_range.py); give supply.delta a number "
-            "(0.5-20) for this elliptic contact")
-    h = np.asarray(hc_venner, dtype=float)
-    if np.any(~(h > 0)):
-        raise InputError(f"hc_venner = {h[~(h > 0)].ravel()[:3]} must be > 0 (flooded film, h Rx/a^2)")
-    if kind == "line":
-        out = np.full(h.shape, LINE_INLET_DELTA)
-    else:
-        a, b = INLET_DELTA_FIT
-        out = a + b * np.log10(np.clip(h, *INLET_HC_RANGE))
-    return float(out) if out.ndim == 0 else out
-
-
-def chevalier_reduction(r: ArrayLike, delta: float = 3.5) -> ArrayLike:
-    """Film reduction (6.1) ``Hcs/Hc = r/(1 + r^delta)^(1/delta)``; 1 for ``r = inf``."""
-    delta = require_range("delta", delta, 0.5, 20.0, "-")
-    r = np.asarray(r, dtype=float)
-    if np.any(~(r >= 0)):
-        raise InputError(f"r = {r[~(r >= 0)].ravel()[:3]} must be >= 0 (r = Hoil/(Hc rho_bar))")
-    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
-        lr = np.log(r)
-        out = np.exp(lr - np.logaddexp(0.0, delta * lr) / delta)
-    out = np.where(np.isinf(r), 1.0, out)
-    return float(out) if out.ndim == 0 else out
-
-
-def log_starved_film(log_hc: np.ndarray, hoil: float, rho_bar: float, delta: float) -> np.ndarray:
-    """``ln hcs`` from ``ln hc`` (metres) by (6.3)-(6.4); ``hoil = inf`` returns ``ln hc``."""
-    if math.isinf(hoil):
-        return np.asarray(log_hc, dtype=float)
-    log_cap = math.log(hoil / rho_bar)  # limit of hcs for hc -> inf
-    log_r = log_cap - np.asarray(log_hc, dtype=float)
-    return log_cap - np.logaddexp(0.0, delta * log_r) / delta
-
-
-def starved_film(hc: ArrayLike, hoil: float, rho_bar: float = 1.0, delta: float = 3.5) -> ArrayLike:
-    """Starved central film (6.4) ``hcs = hc r/(1 + r^delta)^(1/delta)``, ``r = hoil/(hc rho_bar)`` [m]."""
-    hoil = require_range("hoil", hoil, 0.0, math.inf, "m", lo_open=True)
-    require_positive("rho_bar", rho_bar, "-")
-    require_range("delta", delta, 0.5, 20.0, "-")
-    hc = np.asarray(hc, dtype=float)
-    if np.any(~(hc > 0)):
-        raise InputError(f"hc = {hc[~(hc > 0)].ravel()[:3]} m must be > 0")
-    out = np.exp(log_starved_film(np.log(hc), hoil, rho_bar, delta))
-    return float(out) if out.ndim == 0 else out
-
-
-def density_ratio_at(pmax: float) -> float:
-    """``rho_bar(pmax)`` of (6.3): isothermal Dowson-Higginson density ratio (2.7)."""
-    return float(density_ratio_dh(require_positive("pmax", pmax, "Pa")))
-
 
 def hss_min(load: float, area: float, n: float, beta: float, sigma_s: float, E_reduced: float) -> float:
     """Summit-plane separation [m] at which GW asperities carry the whole load:

@@ -160,12 +160,14 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
     points = traction_curve(scene, slips, options=options, **inputs)
     res = traction_result(scene, points, options)
     op = operating_friction(scene, options, choice, **inputs)
-    hc_fit = scene.central_film_fit()[1]
+    hc_fit = scene.supplied_film_fit()[1]
+    fitted = ("fitted film" if math.isinf(scene.supply.hoil) else
+              f"fitted film starved by Chevalier's (6.1) for hoil = {scene.supply.hoil * 1e9:.4g} nm")
     if use_ehl:
         film_source = (f"solved EHL pressure and film of the film stage (hc = {film.scalars['hc'] * 1e9:.4g} nm; "
-                       f"the fit gives {hc_fit * 1e9:.4g} nm)")
+                       f"the {fitted} gives {hc_fit * 1e9:.4g} nm)")
     else:
-        film_source = f"Hertz pressure and the fitted film hc = {hc_fit * 1e9:.4g} nm ({plan.get('film').setting})"
+        film_source = f"Hertz pressure and the {fitted} hc = {hc_fit * 1e9:.4g} nm ({plan.get('film').setting})"
     res.meta["film_source"] = film_source
     res.meta["thermal_model"] = choice.reason
     res.set_scalar("operating_slip", op.slip)

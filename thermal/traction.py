@@ -281,7 +281,7 @@ def prepare_traction(
     hz = contact_hertz(scene, load)
     if input == "hertz":
         if h is None:
-            h = scene.central_film_fit(us, load)[1]
+            h = scene.supplied_film_fit(us, load)[1]
         require_range("film thickness h", h, 0.0, 1e-2, "m", lo_open=True)
     elif h is not None:
         raise InputError("h applies to input = 'hertz' only; the EHL input carries its own film")
@@ -319,8 +319,8 @@ def solve_traction(
     scene : the contact; its operating values are defaults for slip, us, load and temperatures.
     slip : S = 2 (u1 - u2)/(u1 + u2), in [-2, 2].
     us : sum velocity [m/s]; load : normal force [N].
-    h : uniform film [m] for ``input='hertz'`` (default: Moes / Nijenbanning central film
-        ``scene.central_film_fit`` at us and load).
+    h : uniform film [m] for ``input='hertz'`` (default: Moes / Nijenbanning central film at
+        us and load, reduced by Chevalier's (6.1) for a starved scene: ``scene.supplied_film_fit``).
     input : ``hertz`` (Hertz pressure, uniform film) or ``ehl`` (``ehl`` = an ``ehl_line`` /
         ``ehl_point`` Result or plain arrays).
     options : :class:`ThermalOptions`; ``overrides`` update it (or the scene's

@@ -43,13 +43,15 @@ from ..model.errors import (
     ConvergenceError,
     InputError,
     PlausibilityWarning,
+    Terminated,
     require_range,
     require_slip,
+    signal_cause,
     strict_from_environment,
 )
 from .console import add_common_options, jsonable, print_payload, print_table
 
-__all__ = ["add_common_options", "build_parser", "jsonable", "main", "print_payload", "print_table"]
+__all__ = ["Terminated", "add_common_options", "build_parser", "jsonable", "main", "print_payload", "print_table"]
 
 EXIT_OK = 0
 EXIT_INTERNAL = 1
@@ -345,11 +347,6 @@ def _register_plugin(sub: Any, name: str, loader: Callable[[], Callable]) -> Non
     register(sub)
 
 
-class Terminated(BaseException):
-    """SIGTERM, turned into an exception so that ``finally`` blocks run (sweep workers are
-    stopped, the main job marks its partial results)."""
-
-
 def _raise_terminated(signum: int, frame: Any) -> None:
     raise Terminated()
 
@@ -461,6 +458,15 @@ def _run_command(args: argparse.Namespace) -> int:
     except Terminated:
         print(f"ehl {args.command}: terminated; finished work was kept", file=sys.stderr)
         return EXIT_TERMINATED
+    except SystemError as exc:
+        # a signal that arrived while compiled code ran reaches us wrapped in a SystemError
+        cause = signal_cause(exc)
+        if cause is None:
+            raise
+        interrupted = isinstance(cause, KeyboardInterrupt)
+        print(f"ehl {args.command}: {'interrupted' if interrupted else 'terminated'}; finished work was kept",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED if interrupted else EXIT_TERMINATED
     except OSError as exc:
         if exc.filename is None:
             raise

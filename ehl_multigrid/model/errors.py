@@ -164,3 +164,24 @@ def require_solution(result: Any, what: str) -> None:
     if getattr(result, "status_name", "") == "start_failed":
         raise ConvergenceError(f"{what}: {result.message}", getattr(result, "report", None),
                                "see the message; no solution was written")
+
+
+class Terminated(BaseException):
+    """SIGTERM, turned into an exception by the command line so that ``finally`` blocks run
+    (sweep workers are stopped, partial results are written and marked incomplete)."""
+
+
+def signal_cause(exc: BaseException) -> BaseException | None:
+    """The Ctrl-C or SIGTERM exception ``exc`` is, or the one behind a chain of ``SystemError``,
+    else None. A signal handler that raises while compiled code calls back into Python reaches
+    the caller as a ``SystemError`` caused by it (numba's dispatcher does this)."""
+    seen: set[int] = set()
+    e: BaseException | None = exc
+    while e is not None and id(e) not in seen:
+        if isinstance(e, (KeyboardInterrupt, Terminated)):
+            return e
+        if not isinstance(e, SystemError):
+            return None
+        seen.add(id(e))
+        e = e.__cause__ or e.__context__
+    return None

@@ -238,9 +238,13 @@ class Scene:
 
     @cached_property
     def hertz(self) -> hertz.HertzContact:
+        return self.hertz_at(self.load)
+
+    def hertz_at(self, load: float) -> hertz.HertzContact:
+        """The Hertzian contact of this geometry under ``load`` [N]."""
         if self.kind == "line":
-            return hertz.hertz_line(self.load, self.length, self.Rx, self.E_reduced)
-        return hertz.hertz_point(self.load, self.Rx, self.Ry, self.E_reduced)
+            return hertz.hertz_line(load, self.length, self.Rx, self.E_reduced)
+        return hertz.hertz_point(load, self.Rx, self.Ry, self.E_reduced)
 
     @property
     def eta0(self) -> float:
@@ -270,6 +274,24 @@ class Scene:
         M, L = self.moes(us, load)
         Hc = float(fits.central_film_fit(self.kind, M, L, 1.0 if self.kind == "line" else self.theta, gamma1))
         return Hc, Hc * self.film_scale(us)
+
+    def supplied_film_fit(self, us: float | None = None, load: float | None = None) -> tuple[float, float]:
+        """``(Hc, hc)``: the fitted central film for the scene's supply: the flooded fit
+        (:meth:`central_film_fit`) reduced by Chevalier's (6.1)-(6.4) for a finite
+        ``[supply] hoil`` (exponent ``supply.delta``; ``"inlet"`` from the flooded inlet), so
+        that a starved scene's estimate never carries more oil than supplied."""
+        Hc, hc = self.central_film_fit(us, load)
+        hoil = self.supply.hoil
+        if math.isinf(hoil):
+            return Hc, hc
+        from .starvation import INLET, chevalier_reduction, density_ratio_at, inlet_delta
+
+        hz = self.hertz_at(self.load if load is None else load)
+        delta = self.supply.delta
+        if delta == INLET:
+            delta = float(inlet_delta(self.kind, hc * self.Rx / hz.a**2))
+        k = float(chevalier_reduction(hoil / (hc * density_ratio_at(hz.pmax)), delta))
+        return Hc * k, hc * k
 
     def thermal_properties(self) -> dict[str, float]:
         """The oil's thermal properties at the oil temperature and the thermal loading:
