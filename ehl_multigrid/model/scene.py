@@ -312,7 +312,8 @@ class Scene:
         checked the fit against its solver (``hc_fit_in_range``, ``hc_fit_range``), the fit's
         measured bias there (``hc_fit_deviation`` = (Hc_fit - Hc_solver)/Hc_solver interpolated,
         ``hc_fit_deviation_min``/``_max`` around it; nan outside) and a sentence saying so
-        (``hc_fit_note``), from :func:`~ehl_multigrid.model.fits.fit_validity`.
+        (``hc_fit_note``), from :func:`~ehl_multigrid.model.fits.fit_validity`; for a finite
+        ``[supply] hoil`` also ``hc_fit_starved`` (:meth:`supplied_film_fit`).
         """
         hz = self.hertz
         M, L = self.moes()
@@ -347,6 +348,10 @@ class Scene:
             "hc_fit_deviation_max": fit["deviation_max"],
             "hc_fit_note": fit["note"],
         }
+        if math.isfinite(self.supply.hoil):
+            # the flooded fit above is not this scene's film: the supply bounds it ((6.1)-(6.4))
+            out["hoil"] = self.supply.hoil
+            out["Hc_fit_starved"], out["hc_fit_starved"] = self.supplied_film_fit()
         if self.kind == "line":
             out["b"] = hz.b
             out["length"] = self.length

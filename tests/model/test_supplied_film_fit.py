@@ -43,3 +43,12 @@ def test_inlet_exponent_is_used_for_delta_inlet() -> None:
     a = _starved(flooded, delta="inlet").supplied_film_fit()[1]
     b = _starved(flooded, delta=20.0).supplied_film_fit()[1]
     assert a != b and a < flooded
+
+
+def test_show_summary_of_a_starved_scene_gives_the_starved_fit_beside_the_flooded_one() -> None:
+    flooded = load_scene("appendix_d_point")
+    sc = _starved(0.3 * flooded.central_film_fit()[1])
+    s = sc.summary()
+    assert s["hc_fit_starved"] == pytest.approx(sc.supplied_film_fit()[1])
+    assert s["hc_fit_starved"] < 0.35 * s["hc_fit"]
+    assert "hc_fit_starved" not in flooded.summary()
