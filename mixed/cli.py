@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ehl_multigrid.app.console import add_common_options, print_table
+from ehl_multigrid.app.console import add_common_options, locked_command, print_table
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.paths import output_file, safe_stem, writable_dir
 
@@ -57,7 +57,7 @@ def register(subparsers: Any) -> None:
     p.add_argument("--bl-fraction", type=float, default=None, help="asperity load share at or above which the regime is BL (default 0.95)")
     p.add_argument("--ehl-fraction", type=float, default=None, help="asperity load share at or below which the regime is EHL (default 0.05)")
     add_common_options(p)
-    p.set_defaults(func=run_stribeck)
+    p.set_defaults(func=locked_command(run_stribeck, "ehl stribeck"))
 
 
 def run_stribeck(args: argparse.Namespace) -> dict:

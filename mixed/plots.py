@@ -13,6 +13,8 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from ehl_multigrid.model.paths import atomic_savefig
+
 DPI = 100
 
 
@@ -45,7 +47,7 @@ def plot_friction(curve, path: Path, title: str = "") -> Path:
     ax.legend(loc="upper right", fontsize=8)
     ax.set_title(title or f"{curve.scene.name}: Stribeck curve ({'thermal' if fr.thermal else 'isothermal'})", fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    atomic_savefig(fig, path, dpi=DPI)
     return path
 
 
@@ -72,7 +74,7 @@ def plot_load_shares(curve, path: Path) -> Path:
     ax.legend(fontsize=8)
     ax.set_title(f"{curve.scene.name}: load sharing ({_label(curve)})", fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    atomic_savefig(fig, path, dpi=DPI)
     return path
 
 
@@ -95,7 +97,7 @@ def plot_film_separation(curve, path: Path) -> Path:
             ax.set_title(f"{curve.scene.name}: film and separation ({_label(curve)})", fontsize=9)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    atomic_savefig(fig, path, dpi=DPI)
     return path
 
 
@@ -122,7 +124,7 @@ def plot_cases(curves: Sequence, path: Path, quantity: str, ylabel: str, title: 
     ax.legend(fontsize=7)
     ax.set_title(title, fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    atomic_savefig(fig, path, dpi=DPI)
     return path
 
 

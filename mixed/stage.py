@@ -82,6 +82,8 @@ def stribeck_stage(ctx: RunContext) -> StageOutput | None:
             f"{c.us[i_min]:.3g} m/s, {f[-1]:.3g} at the fastest"
             + (f"; starved curves for hoil/sigma = {hoil}" if hoil else "") + f"; converged: {c.converged}. "
             f"Film: {film_source}.")
+    if ctx.mark_film_failure(summary).get("status") == "film_estimate":
+        text += f" NOT A SOLVED-FILM RESULT: {summary['message']}."
     return StageOutput("stribeck", res, summary, figures, text)
 
 

@@ -6,7 +6,7 @@ import argparse
 import math
 from typing import Any
 
-from ehl_multigrid.app.console import add_common_options, print_table
+from ehl_multigrid.app.console import add_common_options, locked_command, print_table
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.paths import output_file, safe_stem, writable_dir
 from ehl_multigrid.model.results import Result
@@ -68,7 +68,7 @@ def register(subparsers: Any) -> None:
     p.add_argument("--slice-rule", choices=list(SLICE_RULES), default=None)
     p.add_argument("--tol", type=float, default=None, help="tol_T and tol_tau (default 1e-5)")
     add_common_options(p)
-    p.set_defaults(func=run_traction)
+    p.set_defaults(func=locked_command(run_traction, "ehl traction"))
 
 
 def run_traction(args: argparse.Namespace) -> dict[str, Any]:

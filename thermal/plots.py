@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from ehl_multigrid.model.paths import atomic_savefig
 from ehl_multigrid.model.results import Result
 
 DPI = 100
@@ -52,7 +53,7 @@ def plot_traction_curve(res: Result, path: Path, reference: dict | None = None) 
     ax.legend(fontsize=8, loc="best")
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    atomic_savefig(fig, path, dpi=DPI)
     return path
 
 
@@ -76,7 +77,7 @@ def plot_temperature_map(res: Result, path: Path, k: int | None = None, xlim: tu
     if xlim:
         a2.set_xlim(max(xlim[0], X[0]), min(xlim[1], X[-1]))
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    atomic_savefig(fig, path, dpi=DPI)
     return path
 
 
@@ -96,7 +97,7 @@ def plot_velocity_profiles(res: Result, path: Path, k: int | None = None, Xs: tu
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    atomic_savefig(fig, path, dpi=DPI)
     return path
 
 
@@ -126,7 +127,7 @@ def plot_inlet_temperatures(res: Result, path: Path, k: int | None = None, x_end
         a.grid(alpha=0.3)
     fig.suptitle(f"S = {res['slip'][k] * 100:.3g} %", fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    atomic_savefig(fig, path, dpi=DPI)
     return path
 
 

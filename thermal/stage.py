@@ -194,6 +194,8 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
             f"f = {op.coefficient:.4g} +- {op.error:.2g} (estimated; computed at that slip on {op.grid}, "
             f"temperature rise {op.max_temperature_rise:.3g} K); converged: {summary['converged']}. "
             f"Film: {film_source}.")
+    if ctx.mark_film_failure(summary).get("status") == "film_estimate":
+        text += f" NOT A SOLVED-FILM RESULT: {summary['message']}."
     return StageOutput("traction", res, summary, figures, text)
 
 

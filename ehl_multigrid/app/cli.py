@@ -49,7 +49,7 @@ from ..model.errors import (
     signal_cause,
     strict_from_environment,
 )
-from .console import add_common_options, jsonable, print_payload, print_table
+from .console import add_common_options, jsonable, locked_command, print_payload, print_table
 
 __all__ = ["Terminated", "add_common_options", "build_parser", "jsonable", "main", "print_payload", "print_table"]
 
@@ -203,7 +203,7 @@ def _cmd_sweep(args: argparse.Namespace) -> dict:
     spec = SweepSpec(load_scene(args.scene), args.task, params, options)
     check_spec(spec)
     out = writable_dir(args.out)
-    table = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler, progress=not args.json)
+    table = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler, progress=True)
     counts = table.counts
     payload = {"cases": len(table.rows), "counts": counts, "table": str(out / "table.csv")}
     if not args.json:
@@ -297,7 +297,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_solve_arguments(p)
     add_common_options(p)
-    p.set_defaults(func=_cmd_solve)
+    p.set_defaults(func=locked_command(_cmd_solve, "ehl solve"))
 
     p = sub.add_parser("plan", help="which physics a scene needs, and why (numbers behind each decision)")
     p.add_argument("scene", help="built-in scene name or TOML file")

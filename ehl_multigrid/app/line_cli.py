@@ -1,5 +1,12 @@
 """``ehl solve`` for line contacts: ``run_solve(args, scene) -> dict`` (called by
-:mod:`ehl_multigrid.app.solve`). Writes ``<out>/<name>.h5`` and PNG plots of P and H."""
+:mod:`ehl_multigrid.app.solve`). Writes ``<out>/<name>.h5`` and PNG plots of P and H.
+
+The output folder is locked while the command runs (a second command into it is refused);
+the files are written into a staging folder and moved into place together, so a stop during
+plotting keeps the result (not the figures of the interrupted plotting call) and nothing
+partial reaches the folder.
+Progress (each solve of the accuracy sequence, and the solver's cycles at most every few
+seconds) goes to stderr."""
 
 from __future__ import annotations
 
@@ -11,8 +18,8 @@ from typing import Any
 from ..line import solve_line
 from ..model.constants import MOES_ONLY_DEFAULTS
 from ..model.errors import ConvergenceError, InputError, require_solution
-from ..model.paths import output_file, safe_stem
-from .console import progress_printer
+from ..model.paths import StagedOutputs, fault_point, output_lock, safe_stem
+from .console import Progress, report_leftovers
 
 #: command-line flag (argparse name) -> line solver option
 _ARG_OPTIONS = {"points": "points", "levels": "levels", "cycle": "cycle", "cycles": "cycles",
@@ -24,8 +31,18 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
     """Solve the line contact of ``scene`` (or Moes ``--M``/``--L``), save and plot it.
 
     Options come from the solver's defaults, then the scene's ``[solver.ehl]`` table, then
-    the command-line flags.
+    the command-line flags. The output folder ``args.out`` is locked meanwhile
+    (:func:`~ehl_multigrid.model.paths.output_lock`).
     """
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    with output_lock(out, "ehl solve") as removed:
+        report_leftovers("ehl solve", removed)
+        with Progress("ehl solve") as prog:
+            return _run_solve(args, scene, out, prog)
+
+
+def _run_solve(args: argparse.Namespace, scene: Any, out: Path, prog: Progress) -> dict[str, Any]:
     for opt in ("ymax", "ellipticity"):
         if getattr(args, opt, None) is not None:
             raise InputError(f"--{opt} applies to point contacts, not to a line contact")
@@ -45,8 +62,8 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
     elastic = not getattr(args, "rigid", False)
     if scene is None:
         oil = {k: getattr(args, k, None) for k in ("alpha", "eta0", "p0")}
-        sol = solve_line(args.M, args.L, **oil, **model, elastic=elastic, progress=progress_printer(args),
-                         **opts)
+        sol = solve_line(args.M, args.L, **oil, **model, elastic=elastic, progress=prog.say,
+                         callback=prog.solver_callback, **opts)
         used = {k: (v if v is not None else MOES_ONLY_DEFAULTS[k]) for k, v in oil.items()}
         name = f"line_M{args.M:g}_L{args.L:g}"
         if not args.json:
@@ -73,14 +90,12 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
             if sol.X is None:  # nothing to write: e.g. a supply below the solver's reach
                 raise ConvergenceError(f"starved line solver: {sol.message}")
         else:
-            sol = solve_line(scene=scene, **model, elastic=elastic, progress=progress_printer(args), **opts)
+            sol = solve_line(scene=scene, **model, elastic=elastic, progress=prog.say,
+                             callback=prog.solver_callback, **opts)
         name = scene.name
     require_solution(sol, "line solver")
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
     stem = safe_stem(name)  # a scene name is a label: never a path out of --out
     res = sol.to_result(scene)
-    h5 = res.save(output_file(out, stem, ".h5"))
     starved = "meniscus_x" in sol.scalars
     if starved:
         from ..starved.line import starved_payload
@@ -88,19 +103,24 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
         payload = starved_payload(sol)  # adds Hc_flooded, meniscus_x, mass_balance_error ...
     else:
         payload = sol.payload()
-    payload["hdf5"] = str(h5)
-    if getattr(args, "csv", False):
-        from .profiles import write_profiles_csv
+    prog.status("writing the result", force=True)
+    # the finished files are moved into --out together when the block ends (a stop while
+    # plotting keeps the result and the CSV, not the figures of the interrupted call)
+    with StagedOutputs(out, stem) as staged:
+        payload["hdf5"] = str(staged.done(res.save(staged.path(f"{stem}.h5"))))
+        if getattr(args, "csv", False):
+            from .profiles import write_profiles_csv
 
-        payload["csv"] = [str(p) for p in write_profiles_csv(res, out, stem)]
-    if not args.no_plots:
-        from .line_plots import plot_solution
+            payload["csv"] = [str(staged.done(p)) for p in write_profiles_csv(res, staged.dir, stem)]
+        if not args.no_plots:
+            from .line_plots import plot_solution
 
-        payload["png"] = [str(p) for p in plot_solution(sol, out / stem, name)]
-        if starved:
-            from ..starved.plots import plot_starved
+            fault_point("solve.plots")
+            payload["png"] = [str(staged.done(p)) for p in plot_solution(sol, staged.dir / stem, name)]
+            if starved:
+                from ..starved.plots import plot_starved
 
-            payload["png"].append(str(plot_starved(sol, out / stem, name)))
+                payload["png"].append(str(staged.done(plot_starved(sol, staged.dir / stem, name))))
     if not args.json:
         from .console import print_table
 

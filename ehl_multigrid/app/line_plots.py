@@ -13,6 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..line.solution import LineSolution
+from ..model.paths import atomic_savefig
 
 
 def line_scales(sol: LineSolution) -> dict:
@@ -60,6 +61,6 @@ def plot_solution(sol: LineSolution, path: str | Path, title: str = "") -> list[
             ax2.plot([s["X_Hm"] * sc["x_per_X"]], [sc["hm"]], "v", color="C3")
         ax.set_title(f"{label}: {films}, {'converged' if s['converged'] else 'NOT converged'}", fontsize=9)
         p = path.with_name(f"{path.name}_{suffix}.png")
-        fig.savefig(p, dpi=100)
+        atomic_savefig(fig, p, dpi=100)
         out.append(p)
     return out

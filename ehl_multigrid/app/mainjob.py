@@ -13,13 +13,16 @@
 
 Outputs are one set per scene: ``<stem>.h5``, ``<stem>_report.md`` and the figures, where
 ``<stem>`` is the scene name made safe as a file name (:func:`~ehl_multigrid.model.paths.safe_stem`;
-nothing is ever written outside the output folder). The run writes into a hidden staging
-folder inside the output folder and then moves its files into place, removing the files of
-the scene's previous run that the new set does not replace (listed in ``.ehl-run-<stem>.json``),
-so a reused folder never shows old figures beside a new film, and runs of different scenes into
-one folder keep each other's outputs. The HDF5 file's root attribute ``complete`` is false until
-every stage has run; an interrupted run still moves its finished stages into place, marked
-incomplete in the file and in the report.
+nothing is ever written outside the output folder). The run holds the lock of the output folder
+(:func:`~ehl_multigrid.model.paths.output_lock`: a second command into it is refused, exit code
+2), removes the leftovers of dead runs there, writes into a hidden staging folder inside it and
+then moves the files of the finished stages into place, removing the files of the scene's
+previous run that the new set does not replace (listed in ``.ehl-run-<stem>.json``), so a reused
+folder never shows old figures beside a new film, and runs of different scenes into one folder
+keep each other's outputs. The HDF5 file's root attribute ``complete`` is false until every stage
+has run; an interrupted run (Ctrl-C, SIGTERM) still moves its finished stages into place, marked
+incomplete in the file and in the report, while the files of the stage it stopped in never
+reach the folder. Progress goes to stderr (:class:`~ehl_multigrid.app.console.Progress`).
 """
 
 from __future__ import annotations
@@ -29,7 +32,6 @@ import json
 import math
 import os
 import shutil
-import tempfile
 import time
 from dataclasses import dataclass
 from importlib.metadata import entry_points
@@ -40,10 +42,19 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..model.hertz import hertz_pressure_line, hertz_pressure_point
-from ..model.paths import default_file_mode, safe_stem, writable_dir
+from ..model.paths import (
+    atomic_savefig,
+    deferred_signals,
+    fault_point,
+    output_lock,
+    safe_stem,
+    staging_dir,
+    writable_dir,
+    write_text_atomic,
+)
 from ..model.results import Result, save_results
 from ..model.scene import Scene
-from .console import print_table
+from .console import Progress, print_table, report_leftovers
 from .plan import make_plan, print_plan
 from .stages import RunContext, StageOutput
 
@@ -66,7 +77,8 @@ class MainJobOptions:
     plots : bool
         Write PNG figures.
     quiet : bool
-        No progress bar and no printed summary (``ehl run --json``).
+        No printed summary on stdout (``ehl run --json``); progress still goes to stderr
+        (``EHL_PROGRESS=off`` silences it).
     time_budget : float or None
         Seconds for the film stage's multigrid accuracy sequence (flooded contacts): no
         refinement is started that is predicted to overrun it, and the most accurate film so
@@ -129,7 +141,7 @@ def plot_hertz(res: Result, path: Path) -> Path:
     ax.set_title(f"{sc.name}: pmax = {res.scalars['pmax'] / 1e9:.3g} GPa, hc(fit) = {res.scalars['hc_fit'] * 1e9:.3g} nm")
     fig.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    atomic_savefig(fig, path, dpi=110)
     return path
 
 
@@ -167,18 +179,24 @@ def film_stage(ctx: RunContext) -> StageOutput:
             # smooth point and elliptic contacts are symmetric in Y: the half domain gives the same
             # films (tested to 1e-5, measured 4e-8) in about half the time
             sol = solve_point(scene=scene, accuracy=plan.tolerance, half=True, **budget)
-        res = sol.to_result(scene)
-        points = res.scalars.get("points")
-        if sol.status_name not in ("converged", "inaccurate") or not (res.scalars.get("hm") or 0.0) > 0.0:
-            # an unconverged or non-positive film must not feed the later stages: fall back to
-            # Hertz + fit and say so in the plan and the report
-            note = (f"multigrid solve on {points} points did not give a converged positive film "
-                    f"(status {sol.status_name}, hm = {res.scalars.get('hm')}); film from the fit instead")
-            plan.notes.append(note)
-            dec.setting = "fit (solver fallback)"
-            out = _fit_film_output(ctx)
-            out.text = note + ". " + out.text
-            out.summary["solver_fallback"] = True
+        # a solve that ended without fields (a starved line supply below the meniscus search's
+        # reach, a failed search) has nothing to build: a failed film like any other
+        res = sol.to_result(scene) if sol.builder is not None else None
+        scalars = res.scalars if res is not None else sol.scalars
+        points = scalars.get("points")
+        usable = sol.status_name in ("converged", "inaccurate")
+        if res is None or not usable or not (scalars.get("hm") or 0.0) > 0.0:
+            # an unconverged or non-positive film must not feed the later stages, and it is not a
+            # success: the stage says it failed (converged false: exit 3) and its film is an
+            # estimate labelled as such (for a starved scene never the flooded fit)
+            status = "film_not_positive" if usable else sol.status_name
+            why = (sol.message or "no message").splitlines()[0]
+            hm = scalars.get("hm")
+            note = (f"multigrid solve{f' on {points} points' if points else ''} did not give a converged "
+                    f"positive film ({sol.status_name}: {why}{'' if hm is None else f'; hm = {hm:.3g} m'})")
+            plan.notes.append(note + "; the film is an estimate, not a solved film")
+            out = _fit_film_output(ctx, failure=note)
+            out.summary.update(converged=False, status=status, message=note, solver_fallback=True)
             return out
         if sol.status_name == "inaccurate":
             # still far closer than the fit (whose deviation made the planner call the solver):
@@ -225,14 +243,35 @@ def film_stage(ctx: RunContext) -> StageOutput:
     return StageOutput("film", res, summary, figures, text)
 
 
-def _fit_film_output(ctx: RunContext) -> StageOutput:
+def _fit_film_output(ctx: RunContext, failure: str | None = None) -> StageOutput:
+    """Hertz pressure with the fitted film: the flooded fit, or for a finite ``[supply] hoil``
+    the fit reduced by Chevalier's (6.1)-(6.4) (:meth:`Scene.supplied_film_fit`), never the
+    flooded fit. With ``failure`` (why the film solve failed) the film is reported as an
+    estimate, not a solved film."""
     scene = ctx.scene
     res = hertz_result(scene)
     Hc, hc = scene.central_film_fit()
+    fit = "Moes" if scene.kind == "line" else "Nijenbanning"
     summary = {"Hc_fit": Hc, "hc_fit": hc, "pmax": scene.hertz.pmax}
-    text = (f"Film from the {'Moes' if scene.kind == 'line' else 'Nijenbanning'} fit: hc = {hc * 1e9:.4g} nm "
-            f"under Hertz pressure pmax = {scene.hertz.pmax / 1e9:.4g} GPa.")
-    figures = [plot_hertz(res, ctx.outdir / f"{scene.name}_film.png")] if ctx.plots else []
+    starved = math.isfinite(scene.supply.hoil)
+    under = f"under Hertz pressure pmax = {scene.hertz.pmax / 1e9:.4g} GPa."
+    if starved:
+        hcs = scene.supplied_film_fit()[1]
+        summary.update(hc_estimate=hcs, starvation_factor=hcs / hc, film_source="starved estimate")
+        res.set_scalar("hc_estimate", hcs, "m")
+        res.set_scalar("starvation_factor", hcs / hc, "-")
+        text = (f"Starved inlet (oil layer {scene.supply.hoil * 1e9:.4g} nm): Chevalier's reduction (6.1) gives "
+                f"hc = {hcs / hc:.3g} x the {fit} fit of the flooded film = {hcs * 1e9:.4g} nm (the flooded fit, "
+                f"{hc * 1e9:.4g} nm, does not apply), {under}")
+    else:
+        text = f"Film from the {fit} fit: hc = {hc * 1e9:.4g} nm {under}"
+    # (the Hertz figure draws the flooded fit as the film: not for a starved scene)
+    figures = [plot_hertz(res, ctx.outdir / f"{scene.name}_film.png")] if ctx.plots and not starved else []
+    if failure is not None:
+        res.meta["film_source"] = "estimate: the film solve failed"
+        summary.setdefault("film_source", "fit estimate")
+        ctx.plan.get("film").setting = f"{'starved estimate' if starved else 'fit'} (solver fallback)"
+        text = f"{failure}. NO SOLVED FILM: the film is an ESTIMATE. {text}"
     return StageOutput("film", res, summary, figures, text)
 
 
@@ -267,17 +306,21 @@ def write_report(ctx: RunContext, path: Path, missing: list[str] | None = None) 
         lines += ["", f"## {name} ({out.wall_s:.2f} s)", "", out.text, ""]
         for fig in out.figures:
             lines.append(f"![{fig.stem}]({Path(fig).name})")
-    path.write_text("\n".join(lines) + "\n")
-    return path
+    return write_text_atomic(path, "\n".join(lines) + "\n")
 
 
-def _publish(staging: Path, out: Path, stem: str, scene_name: str) -> list[str]:
-    """Move the files of ``staging`` into ``out``, delete the files of the scene's previous run
-    that were not replaced, record the new set and remove ``staging``; return the file names."""
+def _publish(staging: Path, out: Path, stem: str, scene_name: str, names: list[str] | None = None) -> list[str]:
+    """Move the complete files ``names`` of ``staging`` (default: every plain file in it) into
+    ``out``, record the new set in ``.ehl-run-<stem>.json``, then delete the files of the
+    scene's previous run that it does not replace, and remove ``staging``; return the names
+    moved. The index is written before the deletions and names what is being removed, so a
+    crash between the two leaves no file that no index knows about; it never lists a file that
+    does not exist."""
     manifest = out / f".ehl-run-{stem}.json"
     try:
-        old = set(json.loads(manifest.read_text()).get("files", []))
-    except (OSError, ValueError, AttributeError):
+        data = json.loads(manifest.read_text())
+        old = set(data.get("files", [])) | set(data.get("removing", []))
+    except (OSError, ValueError, AttributeError, TypeError):
         old = set()
     legacy = out / "report.md"  # the single report of earlier versions: remove it if it was this scene's
     try:
@@ -285,18 +328,24 @@ def _publish(staging: Path, out: Path, stem: str, scene_name: str) -> list[str]:
             old.add(legacy.name)
     except (OSError, UnicodeDecodeError):
         pass
-    new = sorted(p.name for p in staging.iterdir() if p.is_file() and not p.name.startswith("."))
-    for name in new:
-        os.replace(staging / name, out / name)
-    for name in sorted(old - set(new)):
+    if names is None:
+        names = [p.name for p in staging.iterdir() if p.is_file() and not p.name.startswith(".")]
+    new = []
+    for name in dict.fromkeys(names):
+        if Path(name).name == name and not name.startswith(".") and (staging / name).is_file():
+            os.replace(staging / name, out / name)
+            new.append(name)
+            fault_point("publish")
+    new.sort()
+    stale = sorted(n for n in old - set(new) if Path(n).name == n)
+    write_text_atomic(manifest, json.dumps({"scene": scene_name, "files": new, "removing": stale}))
+    for name in stale:
         target = out / name
-        if Path(name).name == name and target.is_file():  # only plain names inside the folder
-            target.unlink()
-    fd, tmp = tempfile.mkstemp(prefix=f".{manifest.name}.", dir=out)
-    with os.fdopen(fd, "w") as f:
-        json.dump({"scene": scene_name, "files": new}, f)
-    os.chmod(tmp, default_file_mode())
-    os.replace(tmp, manifest)
+        if target.is_file():  # only plain names inside the folder
+            try:
+                target.unlink()
+            except OSError:
+                pass
     shutil.rmtree(staging, ignore_errors=True)
     return new
 
@@ -304,9 +353,22 @@ def _publish(staging: Path, out: Path, stem: str, scene_name: str) -> list[str]:
 def run_main_job(scene: Scene, options: MainJobOptions | None = None) -> dict[str, Any]:
     """Plan ``scene``, run the film stage and every registered stage, write the HDF5 results,
     ``<stem>_report.md`` and the figures into ``options.out_dir`` as one set (see the module
-    docstring); return the payload ``ehl run --json`` prints."""
+    docstring); return the payload ``ehl run --json`` prints.
+
+    Raises
+    ------
+    InputError : the output folder is not writable, or another process writes into it
+        (:class:`~ehl_multigrid.model.paths.OutputLocked`, naming its PID).
+    """
     options = options if options is not None else MainJobOptions()
     out = writable_dir(options.out_dir)  # before any work: a read-only folder costs nothing
+    with output_lock(out, "ehl run") as removed:
+        report_leftovers("ehl run", removed)
+        return _run_locked(scene, options, out)
+
+
+def _run_locked(scene: Scene, options: MainJobOptions, out: Path) -> dict[str, Any]:
+    """:func:`run_main_job` once the output folder ``out`` is locked."""
     stem = safe_stem(scene.name)
     plan = make_plan(scene, fidelity=options.fidelity, tolerance=options.tolerance)
     if stem != scene.name:
@@ -314,7 +376,7 @@ def run_main_job(scene: Scene, options: MainJobOptions | None = None) -> dict[st
         plan.notes.append(f"scene name {scene.name!r} is not a safe file name; outputs use {stem!r}")
         scene = dataclasses.replace(scene, name=stem)
     stages: list[tuple[str, Any]] = [("film", film_stage)] + registered_stages()
-    staging = Path(tempfile.mkdtemp(prefix=f".ehl-run-{stem}-", dir=out))
+    staging = staging_dir(out, stem)
     ctx = RunContext(scene, plan, staging, plots=options.plots, progress=not options.quiet,
                      time_budget=options.time_budget)
     h5_name, report_name = f"{stem}.h5", f"{stem}_report.md"
@@ -327,15 +389,11 @@ def run_main_job(scene: Scene, options: MainJobOptions | None = None) -> dict[st
                      meta={"plan": plan.to_dict(), "scene": scene.name, "stages_planned": planned,
                            "stages_run": list(ran)}, complete=complete, planned=planned)
 
-    bar = None
-    if ctx.progress:
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(stages), desc=f"ehl run {scene.name}", unit="stage")
+    prog = Progress(f"ehl run {scene.name}", total=len(stages), unit="stages")
     try:
-        for name, stage in stages:
-            if bar is not None:
-                bar.set_postfix_str(name)
+        for i, (name, stage) in enumerate(stages, 1):
+            prog.status(f"stage {i}/{len(stages)} {name}", force=True)
+            fault_point(f"run.stage.{name}")
             t0 = time.perf_counter()
             output = stage(ctx)
             ran.append(name)
@@ -345,18 +403,19 @@ def run_main_job(scene: Scene, options: MainJobOptions | None = None) -> dict[st
                     output.result.meta["plan"] = plan.to_dict()
                 ctx.outputs[name] = output
             save(complete=len(ran) == len(planned))
-            if bar is not None:
-                bar.update(1)
+            prog.advance(text=f"{name} took {time.perf_counter() - t0:.1f} s")
     finally:
-        if bar is not None:
-            bar.close()
-        complete = len(ran) == len(planned)
-        if ctx.outputs:
-            if not complete:
-                save(complete=False)
-            write_report(ctx, staging / report_name, missing=[n for n in planned if n not in ran])
-            _publish(staging, out, stem, scene.name)
-        else:
+        prog.close()
+        # only the finished stages' files are moved (a figure of the stage a stop interrupted
+        # stays in the staging folder, which is removed); a stop request waits for the move
+        with deferred_signals():
+            fault_point("run.publish")
+            if ctx.outputs:
+                if len(ran) != len(planned):
+                    save(complete=False)
+                write_report(ctx, staging / report_name, missing=[n for n in planned if n not in ran])
+                finished = [h5_name, report_name] + [Path(f).name for o in ctx.outputs.values() for f in o.figures]
+                _publish(staging, out, stem, scene.name, finished)
             shutil.rmtree(staging, ignore_errors=True)
         for o in ctx.outputs.values():
             o.figures = [out / Path(f).name for f in o.figures]

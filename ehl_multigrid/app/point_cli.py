@@ -1,4 +1,11 @@
-"""``ehl solve`` for point and elliptic contacts (``--contact point|elliptic`` or a point scene)."""
+"""``ehl solve`` for point and elliptic contacts (``--contact point|elliptic`` or a point scene).
+
+The output folder is locked while the command runs (a second command into it is refused); the
+files are written into a staging folder and moved into place together, so a stop during
+plotting keeps the result (not the figures of the interrupted plotting call) and nothing
+partial reaches the folder.
+Progress (each solve of the accuracy sequence, and the solver's cycles at most every few
+seconds) goes to stderr."""
 
 from __future__ import annotations
 
@@ -8,13 +15,13 @@ from dataclasses import fields
 from pathlib import Path
 
 from ..model.errors import InputError, require_solution
-from ..model.paths import output_file, safe_stem
+from ..model.paths import StagedOutputs, fault_point, output_lock, safe_stem
 from ..multigrid.options import PointOptions
 from ..point.newton import NewtonOptions
 from ..point.postprocess import summary_payload
 from ..point.problem import problem_from_moes, problem_from_scene
 from ..point.solve import solve_point
-from .console import progress_printer
+from .console import Progress, report_leftovers
 
 DEFAULT_POINTS = 257
 
@@ -83,7 +90,39 @@ def newton_options_from_args(args: argparse.Namespace, scene=None) -> NewtonOpti
 
 
 def run_solve(args: argparse.Namespace, scene) -> dict:
-    """Solve, write ``<out>/<name>.h5`` and PNGs (unless ``--no-plots``), return the payload."""
+    """Solve, write ``<out>/<name>.h5`` and PNGs (unless ``--no-plots``), return the payload;
+    the output folder ``args.out`` is locked meanwhile
+    (:func:`~ehl_multigrid.model.paths.output_lock`)."""
+    out = Path(getattr(args, "out", "ehl_out"))
+    out.mkdir(parents=True, exist_ok=True)
+    with output_lock(out, "ehl solve") as removed:
+        report_leftovers("ehl solve", removed)
+        with Progress("ehl solve") as prog:
+            return _run_solve(args, scene, out, prog)
+
+
+def _write_outputs(args: argparse.Namespace, res, out: Path, stem: str, payload: dict, key: str,
+                   extra_plot=None) -> None:
+    """Write the result ``res`` as ``<stem>.h5`` (its path under ``payload[key]``), the CSV
+    profiles (``--csv``) and the figures (``extra_plot(folder, stem)`` adds one) through a
+    staging folder: the finished files are moved into ``out`` together, also when a stop
+    interrupts the plotting."""
+    with StagedOutputs(out, stem) as staged:
+        payload[key] = str(staged.done(res.save(staged.path(f"{stem}.h5"))))
+        if getattr(args, "csv", False):
+            from .profiles import write_profiles_csv
+
+            payload["csv"] = [str(staged.done(p)) for p in write_profiles_csv(res, staged.dir, stem)]
+        if not getattr(args, "no_plots", False):
+            from .point_plots import plot_result
+
+            fault_point("solve.plots")
+            payload["plots"] = [str(staged.done(p)) for p in plot_result(res, staged.dir, stem)]
+            if extra_plot is not None:
+                payload["plots"].append(str(staged.done(extra_plot(staged.dir, stem))))
+
+
+def _run_solve(args: argparse.Namespace, scene, out: Path, prog: Progress) -> dict:
     pb = problem_from_args(args, scene)
     solver = getattr(args, "solver", None) or "fas"
     rigid = bool(getattr(args, "rigid", False))
@@ -106,7 +145,7 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
         if solver == "newton":
             raise InputError(f"the scene supplies a finite oil layer (supply.hoil = {scene.supply.hoil:g} m): "
                              f"the starved point solver is FAS only, so --solver newton does not apply")
-        return run_starved(args, scene, pb, fas_kw, rigid, quiet)
+        return run_starved(args, scene, pb, fas_kw, rigid, quiet, out)
     if not quiet:
         if scene is None:
             print(f"# Moes-only point contact: M = {pb.M:g}, L = {pb.L:g}, theta = {pb.theta:g}; "
@@ -121,7 +160,8 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
         print(f"# {pb.viscosity} viscosity, {pb.density} density; {opt.points} points along X, "
               f"{how}, deformation {opt.deformation}{', half domain' if opt.half else ''}"
               f"{', rigid surfaces' if rigid else ''}")
-    kw = vars(opt) if solver == "newton" else {**fas_kw, "progress": progress_printer(args)}
+    kw = (vars(opt) if solver == "newton" else
+          {**fas_kw, "progress": prog.say, "callback": prog.solver_callback})
     if scene is None:
         sol = solve_point(pb.M, pb.L, theta=pb.theta, viscosity=pb.viscosity, density=pb.density,
                           alpha=pb.alpha, eta0=pb.eta0, p0=pb.p_r, solver=solver, rigid=rigid, **kw)
@@ -131,20 +171,11 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
     require_solution(sol, "point solver")
     res = sol.to_result(scene)
     name = scene.name if scene is not None else f"point_M{pb.M:g}_L{pb.L:g}_th{pb.theta:g}"
-    out = Path(getattr(args, "out", "ehl_out"))
     stem = safe_stem(name)  # a scene name is a label: never a path out of --out
-    path = res.save(output_file(out, stem, ".h5"))
     payload = summary_payload(res)
     payload["solver"] = solver
-    payload["file"] = str(path)
-    if getattr(args, "csv", False):
-        from .profiles import write_profiles_csv
-
-        payload["csv"] = [str(p) for p in write_profiles_csv(res, out, stem)]
-    if not getattr(args, "no_plots", False):
-        from .point_plots import plot_result
-
-        payload["plots"] = [str(p) for p in plot_result(res, out, stem)]
+    prog.status("writing the result", force=True)
+    _write_outputs(args, res, out, stem, payload, "file")
     if not quiet:
         from .console import print_table
 
@@ -154,7 +185,8 @@ def run_solve(args: argparse.Namespace, scene) -> dict:
     return payload
 
 
-def run_starved(args: argparse.Namespace, scene, pb, fas_kw: dict, rigid: bool, quiet: bool) -> dict:
+def run_starved(args: argparse.Namespace, scene, pb, fas_kw: dict, rigid: bool, quiet: bool,
+                out: Path | None = None) -> dict:
     """``ehl solve`` on a point scene with a finite ``[supply] hoil``: the starved
     (mass-conserving) point solver, its error estimate, the flooded film of the same
     discretisation; writes ``<out>/<name>.h5`` (with ``theta``) and PNGs."""
@@ -175,22 +207,17 @@ def run_starved(args: argparse.Namespace, scene, pb, fas_kw: dict, rigid: bool, 
     sol = solve_starved_point_scene(scene, viscosity=pb.viscosity, density=pb.density,
                                     accuracy=fas_kw.get("accuracy"), raise_on_failure=False, **kw)
     res = sol.to_result(scene)
-    out = Path(getattr(args, "out", "ehl_out"))
+    out = Path(getattr(args, "out", "ehl_out")) if out is None else out
     stem = safe_stem(scene.name)  # a scene name is a label: never a path out of --out
-    path = res.save(output_file(out, stem, ".h5"))
     payload = starved_point_payload(sol, res)
     payload["solver"] = "starved-fas"
-    payload["file"] = str(path)
-    if getattr(args, "csv", False):
-        from .profiles import write_profiles_csv
 
-        payload["csv"] = [str(p) for p in write_profiles_csv(res, out, stem)]
-    if not getattr(args, "no_plots", False):
+    def starved_plot(folder: Path, stem: str) -> Path:
         from ..starved.plots import plot_starved_point
-        from .point_plots import plot_result
 
-        payload["plots"] = [str(p) for p in plot_result(res, out, stem)]
-        payload["plots"].append(str(plot_starved_point(sol, out / stem, scene.name)))
+        return plot_starved_point(sol, folder / stem, scene.name)
+
+    _write_outputs(args, res, out, stem, payload, "file", starved_plot)
     if not quiet:
         from .console import print_table
 

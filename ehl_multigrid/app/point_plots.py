@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..model.paths import atomic_savefig
 from ..model.results import Result
 
 #: Largest height/width (or width/height) of the plotted plane drawn with equal axes.
@@ -183,6 +184,6 @@ def plot_result(res: Result, outdir: str | Path, name: str) -> list[Path]:
     files = []
     for suffix, make in (("maps", maps_figure), ("profiles", profiles_figure), ("interference", interference_figure)):
         f = outdir / f"{name}_{suffix}.png"
-        make(res, label).savefig(f, dpi=100)
+        atomic_savefig(make(res, label), f, dpi=100)
         files.append(f)
     return files

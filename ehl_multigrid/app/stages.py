@@ -65,3 +65,20 @@ class RunContext:
         """The result of the earlier stage ``name``, or ``None`` if it did not run."""
         out = self.outputs.get(name)
         return out.result if out is not None else None
+
+    def film_failure(self) -> str | None:
+        """Why the film stage's film is an estimate (its solve failed), or ``None``: a stage
+        computed on that film is not a success either and says so (converged false, exit 3)."""
+        out = self.outputs.get("film")
+        if out is None or out.summary.get("converged") is not False:
+            return None
+        return (f"computed on an estimated film, not a solved one: the film stage's solve failed "
+                f"({out.summary.get('status')}: {out.summary.get('message')})")
+
+    def mark_film_failure(self, summary: dict) -> dict:
+        """``summary`` with ``converged`` false, ``status`` ``film_estimate`` and the reason
+        when the film is an estimate (:meth:`film_failure`); unchanged otherwise."""
+        why = self.film_failure()
+        if why is not None:
+            summary.update(converged=False, status="film_estimate", message=why)
+        return summary

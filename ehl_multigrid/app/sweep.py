@@ -11,6 +11,11 @@
   other options never returns the rows of an earlier one.
 * Local worker processes die with the sweep: interrupted (Ctrl-C, SIGTERM) the sweep stops them,
   and killed outright (SIGKILL) its workers notice the lost parent and exit.
+* The sweep folder is locked while the sweep runs (a second command into it is refused at
+  once, naming the PID that holds it); the temporary files of dead runs in it and in
+  ``cases/`` are removed when the next sweep takes the lock. An interrupted sweep still writes
+  the table of its finished cases (``complete`` false in ``table.json``).
+* Progress goes to stderr: a bar on a terminal, a line at most every few seconds otherwise.
 * Any :class:`concurrent.futures.Executor` can run the cases: processes locally by default, or
   a ``dask.distributed`` cluster when a scheduler address is given (optional extra ``dask``).
 * :func:`gather` collects the cases into one table (JSON and CSV), and into an
@@ -28,7 +33,6 @@ import math
 import multiprocessing
 import os
 import signal
-import tempfile
 import threading
 import time
 import traceback
@@ -39,8 +43,16 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import ConvergenceError, InputError
-from ..model.paths import default_file_mode, write_text_atomic
+from ..model.paths import (
+    atomic_path,
+    deferred_signals,
+    fault_point,
+    output_lock,
+    remove_leftovers,
+    write_text_atomic,
+)
 from ..model.scene import Scene
+from .console import Progress, report_leftovers
 
 STATUS_OK = "ok"
 STATUS_FAILED = "failed"  # clear error raised by the model (input or convergence)
@@ -283,10 +295,22 @@ def run_sweep(spec: SweepSpec, outdir: str | os.PathLike, executor: cf.Executor 
               workers: int | None = None, scheduler: str | None = None, progress: bool = True) -> SweepTable:
     """Run every case not already finished; returns the gathered table.
 
-    An interruption (Ctrl-C) cancels the pending cases; finished cases stay on disk and a
-    second call with the same spec runs only the rest.
+    An interruption (Ctrl-C, SIGTERM) cancels the pending cases; finished cases stay on disk,
+    the table of the finished ones is written (``complete`` false), and a second call with the
+    same spec runs only the rest. ``outdir`` is locked meanwhile
+    (:func:`~ehl_multigrid.model.paths.output_lock`: another process writing into it makes
+    this call raise :class:`~ehl_multigrid.model.paths.OutputLocked`).
     """
     outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    with output_lock(outdir, "ehl sweep", subfolders=("cases",)) as removed:
+        report_leftovers("ehl sweep", removed)
+        return _run_sweep_locked(spec, outdir, executor, workers, scheduler, progress)
+
+
+def _run_sweep_locked(spec: SweepSpec, outdir: Path, executor: cf.Executor | None, workers: int | None,
+                      scheduler: str | None, progress: bool) -> SweepTable:
+    """:func:`run_sweep` once ``outdir`` is locked."""
     casedir = outdir / "cases"
     casedir.mkdir(parents=True, exist_ok=True)
     cases = spec.cases()
@@ -302,30 +326,28 @@ def run_sweep(spec: SweepSpec, outdir: str | os.PathLike, executor: cf.Executor 
     scene_dict = spec.scene.to_dict()
     own = executor is None
     ex = executor or make_executor(workers, scheduler)
-    bar = None
-    if progress and todo:
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(cases), initial=len(cases) - len(todo), desc=f"sweep {spec.task}", unit="case")
+    prog = Progress(f"ehl sweep {spec.task}", total=len(cases), unit="cases", initial=len(cases) - len(todo),
+                    enabled=progress and bool(todo))
     futures = []
     interrupted = False
+    failed = 0
     try:
         for i in todo:
             scene_changes, opts, _ = spec.case_inputs(cases[i])
             futures.append(ex.submit(run_case, scene_dict, spec.task, scene_changes, opts, i, str(casedir),
                                      cases[i], keys[i]))
         for fut in cf.as_completed(futures):
-            fut.result()
-            if bar is not None:
-                bar.update(1)
+            rec = fut.result()
+            failed += rec.get("status") != STATUS_OK
+            prog.advance(text=f"{failed} failed" if failed else "")
+            fault_point("sweep.case")
     except BaseException:
         interrupted = True
         for fut in futures:
             fut.cancel()
         raise
     finally:
-        if bar is not None:
-            bar.close()
+        prog.close()
         if own:
             if interrupted:
                 _stop_workers(ex)
@@ -336,6 +358,15 @@ def run_sweep(spec: SweepSpec, outdir: str | os.PathLike, executor: cf.Executor 
             client = getattr(ex, "_client", None)
             if client is not None:
                 client.close()
+        if interrupted:
+            with deferred_signals():
+                if own:  # the stopped workers' temporary files
+                    remove_leftovers(casedir)
+                try:  # the finished cases, marked incomplete; not the table of an earlier sweep
+                    gather(outdir).save(outdir)
+                except (InputError, OSError):
+                    pass
+    fault_point("sweep.table")
     table = gather(outdir)
     table.save(outdir)
     return table
@@ -347,6 +378,12 @@ class SweepTable:
 
     params: list[str]
     rows: list[dict[str, Any]]
+    #: number of cases of the sweep (None: not known); ``complete`` when every one has a row
+    planned: int | None = None
+
+    @property
+    def complete(self) -> bool:
+        return self.planned is None or len(self.rows) >= self.planned
 
     def column(self, name: str) -> np.ndarray:
         return np.array([r.get(name, math.nan) for r in self.rows], dtype=object)
@@ -359,20 +396,20 @@ class SweepTable:
         return out
 
     def save(self, outdir: str | os.PathLike) -> None:
+        """Write ``table.json`` (rows, counts, ``complete``, ``planned``) and ``table.csv``,
+        each through a temporary file and a rename."""
         outdir = Path(outdir)
-        _write_json_atomic(outdir / "table.json", {"params": self.params, "rows": self.rows, "counts": self.counts})
+        _write_json_atomic(outdir / "table.json", {"params": self.params, "rows": self.rows, "counts": self.counts,
+                                                   "complete": self.complete, "planned": self.planned})
         cols: list[str] = []
         for r in self.rows:
             for k in r:
                 if k not in cols and not isinstance(r[k], (list, dict)):
                     cols.append(k)
-        fd, tmp = tempfile.mkstemp(dir=outdir)
-        with os.fdopen(fd, "w", newline="") as f:
+        with atomic_path(outdir / "table.csv") as tmp, open(tmp, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=cols, extrasaction="ignore")
             w.writeheader()
             w.writerows(self.rows)
-        os.chmod(tmp, default_file_mode())
-        os.replace(tmp, outdir / "table.csv")
 
     def to_xarray(self):
         """An ``xarray.Dataset`` on the parameter grid (needs xarray)."""
@@ -418,4 +455,4 @@ def gather(outdir: str | os.PathLike) -> SweepTable:
         else:
             row["error"] = rec.get("error", "")
         rows.append(row)
-    return SweepTable(list(meta["params"]), rows)
+    return SweepTable(list(meta["params"]), rows, planned=len(listed))

@@ -25,7 +25,6 @@ from __future__ import annotations
 import datetime as _dt
 import json
 import os
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -34,7 +33,7 @@ import h5py
 import numpy as np
 
 from .errors import InputError
-from .paths import default_file_mode
+from .paths import atomic_path, fault_point
 
 FORMAT_VERSION = 1
 
@@ -254,20 +253,15 @@ def save_results(path: str | os.PathLike, results: dict[str, Result], meta: dict
 
 
 def _write_atomic(path: str | os.PathLike, write: Any) -> Path:
-    """Run ``write(h5file)`` on a temporary file beside ``path``, then rename it into place."""
+    """Run ``write(h5file)`` on a temporary file beside ``path`` (hidden, named with this
+    process's PID so that a later run can tell it is left over from a dead writer), then
+    rename it into place with the user's usual file mode."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
+    with atomic_path(path) as tmp:
         with h5py.File(tmp, "w") as f:
             write(f)
-        os.chmod(tmp, default_file_mode())  # mkstemp creates 0600; the result gets the user's usual mode
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+        fault_point("h5")
     return path
 
 

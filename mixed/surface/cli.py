@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ehl_multigrid.app.console import add_common_options, print_table
+from ehl_multigrid.app.console import add_common_options, locked_command, print_table
 from ehl_multigrid.model.errors import InputError, require_positive, require_range
 from ehl_multigrid.model.paths import output_file, safe_stem, writable_dir, write_text_atomic
 
@@ -82,7 +82,7 @@ def register(subparsers: Any) -> None:
     g.add_argument("--write-scene", help="write the base scene with the measured roughness to this TOML file")
     g.add_argument("--fc", type=_float, help="boundary friction coefficient for the written roughness block (default: the scene's)")
     add_common_options(p)
-    p.set_defaults(func=run_surface)
+    p.set_defaults(func=locked_command(run_surface, "ehl surface"))
 
 
 def _analyse_file(path: str, args: argparse.Namespace, E: float | None, H: float | None) -> Analysis:

@@ -8,6 +8,8 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from ehl_multigrid.model.paths import atomic_savefig
+
 from .analysis import Analysis
 from .statistics import height_histograms
 
@@ -80,5 +82,5 @@ def plot_analysis(an: Analysis, path: str | Path, title: str = "") -> Path:
     fig.tight_layout()
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
+    atomic_savefig(fig, path, dpi=100)
     return path

@@ -412,9 +412,13 @@ def test_the_accuracy_sequence_reports_each_solve_to_a_progress_printer(monkeypa
     assert lines[0].startswith("257 points, box x1: estimated error Hc 3.00%, Hm 3.00%")
     assert lines[1].startswith("513 points, box x1: refining, predicted about")
     assert lines[2].startswith("513 points, box x1: estimated error Hc 0.50%")
-    # the command line prints them only on a terminal and never with --json
-    assert progress_printer(argparse.Namespace(json=True)) is None
-    monkeypatch.setattr(sys, "stderr", io.StringIO())  # not a terminal
+    # the command line prints them on stderr, on a terminal or not, --json or not (stdout may
+    # carry the payload); EHL_PROGRESS=off silences them
+    monkeypatch.delenv("EHL_PROGRESS", raising=False)
+    monkeypatch.setattr(sys, "stderr", io.StringIO())  # not a terminal: plain lines
+    progress_printer(argparse.Namespace(json=True))(lines[0])
+    assert sys.stderr.getvalue() == f"ehl solve: {lines[0]}\n"
+    monkeypatch.setenv("EHL_PROGRESS", "off")
     assert progress_printer(argparse.Namespace(json=False)) is None
 
 

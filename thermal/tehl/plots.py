@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from ehl_multigrid.model.paths import atomic_savefig
 from ehl_multigrid.model.results import Result
 
 DPI = 110
@@ -54,5 +55,5 @@ def plot_tehl(res: Result, path: Path) -> Path:
         ax2.set_title("temperature across the film", fontsize=9)
     fig.colorbar(m, ax=ax2, label="T [degC]")
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    atomic_savefig(fig, path, dpi=DPI)
     return Path(path)
