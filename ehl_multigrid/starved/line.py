@@ -61,6 +61,7 @@ from ..multigrid.policy import RobustnessPolicy, Settings
 from ..multigrid.result import EHLResult
 from ..multigrid.transfer import inject, interpolate_cubic, interpolate_linear
 from .discrete import face_fluxes
+from .gate import apply_mass_gate
 from .level import StarvedLevel
 from .newton import StarvedNewtonFailure, newton_solve
 
@@ -469,4 +470,7 @@ def solve_starved_problem(problem: LineProblem, hoil: float, options: LineOption
     res = solver.solve(callback=callback)
     out = finish_starved_result(res, solver, flooded, scene)
     hz.solver = None
+    if math.isfinite(hoil):
+        # the coupled path's result must conserve the supply like the meniscus search's
+        apply_mass_gate(out, out.scalars["mass_balance_error"], out.scalars["rho_c_Hc_over_hoil"])
     return out

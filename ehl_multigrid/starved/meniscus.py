@@ -45,6 +45,7 @@ from ..multigrid.accuracy import (
 )
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
+from .gate import apply_mass_gate
 from .line import solve_starved_problem, starved_options
 from .supply import check_hoil
 
@@ -363,6 +364,9 @@ def _solve_once(problem: LineProblem, hoil: float, opts: LineOptions, accuracy: 
     res.wall_s = time.perf_counter() - t0
     res.scalars.update(wall_s=res.wall_s, work_units=res.work_units, meniscus_solves=solves)
     res.scene = scene
+    if math.isfinite(hoil):
+        # a result that does not conserve mass is not a starved solution, whatever its iteration
+        apply_mass_gate(res, res.scalars["mass_balance_error"], res.scalars["rho_c_Hc_over_hoil"])
     if estimate and res.success:
         if res.scalars["inlet_flooded"]:
             # the flooded solver's estimate of its own solution on this grid (domain part by

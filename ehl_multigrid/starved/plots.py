@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..model.paths import atomic_savefig
 from ..multigrid.result import EHLResult
 
 
@@ -42,7 +43,7 @@ def plot_starved(sol: EHLResult, path: str | Path, title: str = "") -> Path:
     ax.set_title(f"{title or 'starved line contact'}: Hc/Hc_ff = {s['Hc_ratio']:.3f}, {where}", fontsize=9)
     out = Path(path)
     out = out.with_name(f"{out.name}_PHtheta.png")
-    fig.savefig(out, dpi=100)
+    atomic_savefig(fig, out, dpi=100)
     return out
 
 
@@ -86,5 +87,5 @@ def plot_starved_point(sol: EHLResult, path: str | Path, title: str = "") -> Pat
                  fontsize=9)
     out = Path(path)
     out = out.with_name(f"{out.name}_PHtheta.png")
-    fig.savefig(out, dpi=100)
+    atomic_savefig(fig, out, dpi=100)
     return out

@@ -27,15 +27,17 @@ that resolve the starved inlet (:data:`COARSE_THETA_MESH`), ``theta`` frozen (in
 Robustness (validation/starved/REPORT.md): pressurised points that a projected Jacobi step
 would cavitate are projected to P = 0 after each sweep; a solve the default coarse-grid rule
 does not converge is repeated with theta frozen on every coarse grid; a converged solve whose
-mass imbalance exceeds :data:`MASS_TOL` is repeated with an exact solve of the
-Poiseuille-dominated zone after every finest-grid cycle (:mod:`.point_mass`: sparse
-primal-dual active set on P and theta; :data:`EXACT_EPS`), and as a last resort at a tighter
-tolerance. Measured on the 55-supply map: every supply converges and conserves mass to 1e-6
-with either wedge order (largest imbalance 9.7e-7 first order, 9.4e-7 second order; before
-the exact solve 5.5e-5 and 8.3e-5 where the meniscus lies far upstream in thick-film
-contacts). First order: the flooded Hc 2-8 % above the core's second-order film; second
-order: the core's flooded film (within 6e-8), Hc converging at second order, on the map as
-robust and as conservative as first order at 1.8x its wall time, not the default.
+mass imbalance exceeds :data:`MASS_TOL`, or one that still did not converge, is repeated with
+an exact solve of the Poiseuille-dominated zone after every finest-grid cycle
+(:mod:`.point_mass`: sparse primal-dual active set on P and theta; :data:`EXACT_EPS`,
+:data:`EXACT_RULES`), and as a last resort at a tighter tolerance. A result whose boundary
+flows do not balance fails (:mod:`.gate`), whatever its iteration said. Measured on the
+55-supply map: every supply converges and conserves mass to 1e-6 with either wedge order
+(largest imbalance 9.7e-7 first order, 9.4e-7 second order; before the exact solve 5.5e-5
+and 8.3e-5 where the meniscus lies far upstream in thick-film contacts). First order: the
+flooded Hc 2-8 % above the core's second-order film; second order: the core's flooded film
+(within 6e-8), Hc converging at second order, on the map as robust and as conservative as
+first order at 1.8x its wall time, not the default.
 
 The supply may vary across the track (one layer per finest-grid row, e.g. side ridges).
 """
@@ -66,6 +68,7 @@ from ..point import numerics as nm
 from ..point.fas import HINT, POINT_POLICY, Level, PointHierarchy, point_settings
 from ..point.postprocess import build_result
 from ..point.problem import PointProblem
+from .gate import apply_mass_gate
 from .point_mass import inlet_solve
 from .point_wedge import face_value, flux_operator, march_theta, wedge_correction
 from .supply import check_hoil, check_profile
@@ -143,6 +146,13 @@ EXACT_MARGIN = 4
 #: 0, 1, default, free everywhere: imbalance 2.3e-6, 7.9e-7, 2.2e-5, 6.6e-5). With the exact
 #: solve at 257^2 (20, 10): the default rule converges Hoil = 4, 2 Hc_ff (imbalance 6e-9,
 #: 1.9e-8) and not 1.5, 1.2; rule 1 the reverse (1.7e-9 ... 1.9e-8 at 1.5 ... 0.4 Hc_ff).
+#: A solve whose cycles stop short of convergence under both coarse-grid rules is solved again
+#: with the exact zone solve too, the kept rule first, then these: at large M the cycles can
+#: stop at the flooded film, the meniscus near the box inlet (gap ~40 Hc), where the first
+#: full point of each row holds theta = 1 at P ~ 1e-4 with an unscaled residual of order 10 (an
+#: oil source of 30x the inflow) that the scaled residual (eps/hx^2 ~ 1e6) reads as a floor of
+#: 2e-6 (measured: M = 741, L = 6.34, Hoil = 0.35 Hc_ff, 257^2; with the exact solve the rule
+#: 0 converges in 39 cycles, imbalance 9e-8, rho_c Hc / Hoil = 0.996, Hc = 0.28 Hc_ff).
 EXACT_RULES: tuple[int | None, ...] = (None, 1)
 
 #: extra finest-grid cycles of a starved solve: measured at (179, 4.17) 257^2 the moderate
@@ -470,7 +480,7 @@ class StarvedPointHierarchy(PointHierarchy):
                                         lambda P, t: self._raw_residual(lev, P, t))
             self.update_film(lev)
             if not ok:
-                if len(self.exact_notes) < 3:
+                if note != "empty region" and len(self.exact_notes) < 3:
                     self.exact_notes.append(note)
                 break
         self._march(lev)
@@ -533,6 +543,15 @@ class StarvedPointHierarchy(PointHierarchy):
         self._march(lev)
         return cost
 
+    def start(self, solver: MultilevelSolver) -> int:
+        """The core's start; from a given solution (:attr:`guess`, ``start_on_guess``) the film
+        content of its unpressurised points follows from the supply (the theta march)."""
+        k = super().start(solver)
+        if self.start_on_guess and self.guess is not None:
+            self._top = k
+            self._march(self.levels[k])
+        return k
+
     def snapshot(self, k: int) -> tuple[np.ndarray, float, np.ndarray]:
         return (self.levels[k].P.copy(), self.H00, self.levels[k].theta.copy())
 
@@ -565,10 +584,13 @@ def imbalance_of(hz: StarvedPointHierarchy) -> float:
 
 
 def _solve_once(problem: PointProblem, hoil: float, opt: PointOptions, coarse_theta: int | None,
-                exact: bool = False) -> tuple[EHLResult, StarvedPointHierarchy]:
+                exact: bool = False,
+                guess: tuple[np.ndarray, np.ndarray, np.ndarray, float] | None = None,
+                ) -> tuple[EHLResult, StarvedPointHierarchy]:
     with preserved_threads():
         hz = StarvedPointHierarchy(problem, opt, hoil, coarse_theta)
         hz.exact = exact
+        hz.guess, hz.start_on_guess = guess, guess is not None
         solver = MultilevelSolver(hz, opt, point_settings(problem, opt),
                                   RobustnessPolicy(STARVED_POLICY, opt.adapt), HINT)
         hz.solver = solver
@@ -578,7 +600,9 @@ def _solve_once(problem: PointProblem, hoil: float, opt: PointOptions, coarse_th
 
 
 def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions | None = None,
-                        coarse_theta: int | None = None, **kw: Any) -> EHLResult:
+                        coarse_theta: int | None = None, *,
+                        guess: tuple[np.ndarray, np.ndarray, np.ndarray, float] | None = None,
+                        **kw: Any) -> EHLResult:
     """One multilevel (FMG + cycles) solve of a point contact with a supplied layer ``hoil``
     (Venner units ``h R/a^2``, total on both surfaces at ambient density; ``inf``: flooded
     inlet) and Elrod-Adams cavitation, the meniscus found inside the iteration. ``hoil`` is a
@@ -593,7 +617,14 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
     The result carries ``theta`` (``sol.extra["theta"]``), ``meniscus_x`` (centre line),
     ``mass_balance_error`` (relative imbalance of the boundary flows), ``outlet_layer`` (mean
     ``theta rho H`` leaving at the outlet face, per width), ``hoil`` (the mean supplied layer
-    over the rows of the balance), ``hoil_rows`` and ``hoil_centre``."""
+    over the rows of the balance), ``hoil_rows`` and ``hoil_centre``; ``coarse_theta`` the
+    coarse-grid theta rule of the kept solve, ``rescued`` whether only the exact zone solve
+    converged it (see :data:`EXACT_RULES`).
+
+    ``guess``: ``(X, Y, P, H00)`` of a solution of the same contact (e.g. on the grid with half
+    the intervals): the cycles start on the finest grid from it instead of the FMG, the film
+    content of its unpressurised points from the supply. A result whose mass balance fails
+    the gate of :mod:`.gate` gets a failed status."""
     if not callable(hoil) and np.ndim(hoil) == 0:
         hoil = check_hoil(hoil)
     explicit = set(kw)
@@ -602,17 +633,43 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
         kw.setdefault("wedge_order", STARVED_WEDGE_ORDER)
         kw.setdefault("max_cycles", STARVED_MAX_CYCLES if kw["wedge_order"] == 1 else STARVED_MAX_CYCLES_2)
     opt = PointOptions.build(options, **kw)
-    sol, hz = _solve_once(problem, hoil, opt, coarse_theta)
+    sol, hz = _solve_once(problem, hoil, opt, coarse_theta, guess=guess)
     if not sol.success and coarse_theta is None and math.isfinite(hz.hoil):
         # the other coarse-grid rule converges where this one stops (see FALLBACK_COARSE_THETA)
         first = (sol.status_name, float(sol.residual_history[-1]) if len(sol.residual_history) else math.inf)
-        sol2, hz2 = _solve_once(problem, hoil, opt, FALLBACK_COARSE_THETA)
+        sol2, hz2 = _solve_once(problem, hoil, opt, FALLBACK_COARSE_THETA, guess=guess)
         res2 = float(sol2.residual_history[-1]) if len(sol2.residual_history) else math.inf
         if sol2.success or res2 < first[1]:
             sol, hz = sol2, hz2
         sol.actions.append(f"default coarse-grid theta rule: {first[0]} (residual {first[1]:.3g}); "
                            f"theta frozen on every coarse grid: {sol2.status_name} (residual "
                            f"{res2:.3g}); kept the {'second' if hz is hz2 else 'first'}")
+    exact_rules: set[int | None] = set()  # rules already solved with the exact zone solve
+    rescued = False
+    if not sol.success and math.isfinite(hz.hoil):
+        # cycles stopped short of convergence: solved again with the exact solve of the
+        # Poiseuille-dominated zone (see EXACT_RULES)
+        rules = (hz.coarse_theta,) if coarse_theta is not None else \
+            (hz.coarse_theta,) + tuple(r for r in EXACT_RULES if r != hz.coarse_theta)
+        mb = imbalance_of(hz)
+        for rule in rules:
+            exact_rules.add(rule)
+            sol5, hz5 = _solve_once(problem, hoil, opt, rule, exact=True, guess=guess)
+            mb5 = imbalance_of(hz5)
+            keep = sol5.success or mb5 < mb
+            what = (f"{sol.status_name} with imbalance {mb:.2g}: re-solved with the exact solve "
+                    f"of the zone eps/hx^2 >= {EXACT_EPS:g} (coarse theta rule {rule}): "
+                    f"{sol5.status_name}, imbalance {mb5:.2g}")
+            if hz5.exact_notes:
+                what += f" (exact solves failed: {'; '.join(hz5.exact_notes)})"
+            what += f"; kept the {'second' if keep else 'first'}"
+            if keep:
+                sol5.actions[:0] = sol.actions
+                sol, hz, mb = sol5, hz5, mb5
+            sol.actions.append(what)
+            if sol.success:
+                rescued = True
+                break
     if sol.success and math.isfinite(hz.hoil) and options is None and "tol" not in explicit:
         mb = imbalance_of(hz)
         if mb > MASS_TOL:
@@ -620,7 +677,9 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
             # solved again with the exact solve of the Poiseuille-dominated zone, under the
             # coarse-grid theta rules of EXACT_RULES in turn (see there)
             for rule in (hz.coarse_theta,) + tuple(r for r in EXACT_RULES if r != hz.coarse_theta):
-                sol4, hz4 = _solve_once(problem, hoil, opt, rule, exact=True)
+                if rule in exact_rules:
+                    continue
+                sol4, hz4 = _solve_once(problem, hoil, opt, rule, exact=True, guess=guess)
                 mb4 = imbalance_of(hz4) if sol4.success else math.inf
                 keep = mb4 < mb
                 what = (f"mass imbalance {mb:.2g}: re-solved with the exact solve of the zone "
@@ -639,7 +698,7 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
             # a tighter residual tolerance (see MASS_TOL_FACTOR)
             tight = replace(opt, tol=opt.tol * MASS_TOL_FACTOR,
                             max_cycles=min(2 * len(sol.residual_history) + 10, 200))
-            sol3, hz3 = _solve_once(problem, hoil, tight, hz.coarse_theta, hz.exact)
+            sol3, hz3 = _solve_once(problem, hoil, tight, hz.coarse_theta, hz.exact, guess=guess)
             # the tighter solve counts when it meets the requested tolerances, even short of
             # its own (measured, second-order wedge, (179, 4.17) 257^2, Hoil = 1.5 Hc_ff: 142
             # cycles end at a residual of 2.8e-10 with the imbalance 2.2e-5 -> 6.3e-7)
@@ -675,11 +734,19 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
                      meniscus_x=meniscus_x(fine.X, fine.theta, row),
                      mass_balance_error=float(abs(imbalance)), fluxes=fl,
                      outlet_layer=fl["out"] / width if math.isfinite(hz.hoil) else math.nan,
-                     rho_c=float(fine.rho[row, i0]), domain=(hz.xmin, hz.xmax, hz.ymax))
+                     rho_c=float(fine.rho[row, i0]), domain=(hz.xmin, hz.xmax, hz.ymax),
+                     coarse_theta=hz.coarse_theta, rescued=rescued, from_guess=guess is not None)
     sol.builder = build_result
     sol.scalars = dict(build_result(sol, None, fields=False).scalars)
     sol.scalars.update(meniscus_x=sol.extra["meniscus_x"],
                        mass_balance_error=sol.extra["mass_balance_error"])
+    if math.isfinite(hz.hoil):
+        # a result that does not conserve mass is not a starved solution, whatever its iteration
+        hc_row = float(hz.hoil_rows[row])
+        ratio = (sol.extra["rho_c"] * float(sol.scalars["Hc_venner"]) / hc_row
+                 if math.isfinite(hc_row) else math.nan)
+        apply_mass_gate(sol, sol.extra["mass_balance_error"], ratio)
+    sol.scalars["converged"] = bool(sol.success)
     return sol
 
 
@@ -804,8 +871,20 @@ def starved_point_payload(sol: EHLResult, res: Any) -> dict[str, Any]:
 
 
 def _scene_solve(pb: PointProblem, Hoil: float, options: PointOptions | None, points: int,
-                 kw: dict[str, Any]) -> EHLResult:
-    return solve_starved_point(pb, Hoil, options, points=points, **kw)
+                 kw: dict[str, Any], start: EHLResult | None = None) -> EHLResult:
+    """One solve of a scene's sequence; from the converged solve ``start`` of a coarser grid
+    (its coarse-grid theta rule, cycles from its solution) when given.
+
+    A refinement starts from the previous grid's film when the FMG fails on the finer grid, or
+    failed on the previous one (the exact zone solve rescued it there). Measured: M = 741,
+    L = 6.34, Hoil = 0.0023 (0.09 Hc_ff): 257^2 converges only with the exact solve; at 513^2
+    the FMG with it diverges (the inlet jumps from the flooded to the starved film at frozen
+    film and the load balance runs away); from the 257^2 film the rule 0 converges in 67
+    cycles (Hc within 1e-7 of 257^2, imbalance 3.5e-8). Where the FMG converges nothing changes."""
+    if start is None:
+        return solve_starved_point(pb, Hoil, options, points=points, **kw)
+    return solve_starved_point(pb, Hoil, options, start.extra["coarse_theta"], points=points,
+                               guess=(start.X, start.Y, start.P, start.H0), **kw)
 
 
 def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: PointOptions | None = None,
@@ -857,8 +936,27 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
     explicit = "points" in kw or options is not None
     n = int(kw.pop("points", options.points if options is not None else SCENE_POINTS))
     coarse: EHLResult | None = None
+    prev: EHLResult | None = None  # the previous grid's (inaccurate) result of a refinement
     while True:
-        res = _scene_solve(pb, Hoil, options, n, kw)
+        # a refinement starts from the previous grid's film (see _scene_solve) when the FMG
+        # needed the exact zone solve there, or when the FMG fails here
+        rescued = prev is not None and prev.extra.get("rescued", False)
+        res = _scene_solve(pb, Hoil, options, n, kw, prev if rescued else None)
+        if prev is not None and not res.success and not res.extra.get("from_guess"):
+            first = f"{res.status_name} from the FMG"
+            res = _scene_solve(pb, Hoil, options, n, kw, prev)
+            res.actions.insert(0, f"{n} points: {first}; solved again from the "
+                                  f"{prev.X.size}-point film")
+        if prev is not None and not res.success:
+            # the refinement failed: the previous grid's converged film and its estimate stand
+            # (as the flooded accuracy sequence returns its most accurate solve)
+            why = (f"the refinement to {n} points did not converge ({res.status_name}: "
+                   f"{res.message.splitlines()[0] if res.message else ''})")
+            prev.message += f"; not refined further: {why}"
+            prev.extra["not_refined_because"] = why
+            prev.actions.append(f"not refined further: {why}")
+            res = prev
+            break
         if not estimate:
             break
         if coarse is None:
@@ -867,7 +965,7 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
         if (accuracy is None or res.success or explicit or res.status_name != "inaccurate"
                 or 2 * n - 1 > max_points):
             break
-        coarse, n = res, 2 * n - 1
+        coarse, prev, n = res, res, 2 * n - 1
     scale = pb.a**2 / pb.Rx
     fl = res.extra["fluxes"]
     Hoil_c = Hoil(0.0) if callable(Hoil) else Hoil  # the centre's layer
