@@ -7,6 +7,12 @@ Public API: line -- :func:`solve_transient_line`, the features :class:`Waviness`
 :class:`HeightMap`, :class:`PointTransientResult`. Venner's dimensionless time
 ``T = t u_m / b`` (line, ``b`` the Hertzian half-width) or ``t u_m / a`` (point, ``a`` the Hertz
 semi-axis along the rolling direction), ``u_m = (u1 + u2)/2``.
+
+Runs keep what they computed: a :class:`Checkpoint` writes the completed steps while a run
+goes on and when it ends early (a failed step, an interrupt, a signal), marked
+``complete = False``; :func:`read_checkpoint` reads such a file back for the ``resume``
+argument of the solvers. The solvers model a flooded inlet only
+(:func:`check_flooded_supply` refuses a scene whose oil supply starves the contact).
 """
 
 from ..lazy import lazy_exports
@@ -14,6 +20,8 @@ from ..lazy import lazy_exports
 #: public name -> submodule, loaded on first use (the command line registers 'ehl transient' at
 #: every start of 'ehl' and must not import the solvers)
 _LAZY = {
+    "Checkpoint": "checkpoint", "read_checkpoint": "checkpoint",
+    "check_flooded_supply": "supply",
     "solve_with_time_error": "accuracy", "time_error": "accuracy",
     "Bump": "features", "Profile": "features", "Smooth": "features", "Waviness": "features",
     "feature_from_table": "features", "feature_speed": "features",
@@ -30,8 +38,9 @@ _LAZY = {
 
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())
 
-__all__ = ["Bump", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth", "Smooth2D",
-           "TransientResult", "Waviness", "Waviness2D", "feature_from_table", "feature_speed",
+__all__ = ["Bump", "Checkpoint", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth",
+           "Smooth2D", "TransientResult", "Waviness", "Waviness2D", "check_flooded_supply",
+           "feature_from_table", "feature_speed",
            "load_series", "max_point_time_step", "max_time_step", "point_feature_from_table",
-           "point_mass_balance", "point_transient_options", "solve_transient_line",
+           "point_mass_balance", "point_transient_options", "read_checkpoint", "solve_transient_line",
            "solve_transient_point", "solve_with_time_error", "time_error", "transient_options"]

@@ -1,19 +1,26 @@
 """``ehl transient SCENE``: a surface feature from the scene's ``[feature]`` table passing
 through the line, point or elliptic contact of the scene (time-dependent isothermal EHL).
 
-Registered through the ``ehl.commands`` entry point (``register``)."""
+Every completed step is kept: the HDF5 is written as a checkpoint while the run goes on, and
+when a step fails (exit 3) or the run is stopped (Ctrl-C 130, SIGTERM 143) the steps computed
+so far are written, marked ``complete = False`` with the reason; ``--resume`` continues an
+incomplete file. Registered through the ``ehl.commands`` entry point (``register``)."""
 
 from __future__ import annotations
 
 import argparse
+import math
+import sys
 from collections.abc import Callable
 from typing import Any
 
-from ..app.console import add_common_options
-from ..model.errors import InputError
-from ..model.paths import output_file, safe_stem, writable_dir
+from ..app.console import add_common_options, locked_command
+from ..model.errors import ConvergenceError, InputError, require_range, require_slip, signal_cause
+from ..model.paths import output_file, record_outputs, safe_stem, writable_dir
 from ..model.scene import load_scene
+from .checkpoint import EVERY_S, Checkpoint, read_checkpoint
 from .stepping import SCHEMES
+from .supply import check_flooded_supply
 
 #: largest grid of the command line (a pass at 4097 points takes tens of minutes)
 MAX_POINTS = 4097
@@ -29,7 +36,9 @@ def register(subparsers: Any) -> None:
         "transient",
         help="a surface feature (waviness, bump, dent) passing through a line or point contact",
         description="Time-dependent isothermal EHL of a line, point or elliptic contact with the "
-                    "feature of the scene's [feature] table on one surface (BDF2 steps, constant load).")
+                    "feature of the scene's [feature] table on one surface (BDF2 steps, constant load, "
+                    "flooded inlet). Completed steps are kept: a run that fails or is stopped writes "
+                    "them, marked incomplete.")
     p.add_argument("scene", help="built-in scene name or TOML file (a contact with [feature])")
     p.add_argument("--points", type=int, default=None,
                    help="grid points along X (2^k + 1; default 513 line, 129 point)")
@@ -45,16 +54,29 @@ def register(subparsers: Any) -> None:
                    help="report the fraction of the Hertzian contact with h below this [m] "
                         "(point contacts also: the fraction of the load carried there)")
     p.add_argument("--animate", action="store_true", help="also write a GIF of H and P")
+    p.add_argument("--checkpoint-every", type=float, default=EVERY_S, metavar="SECONDS",
+                   help="while the run goes on, write the completed steps to the HDF5 (marked "
+                        "incomplete) every SECONDS, or less often when writing would take more than "
+                        "5%% of the run (default %(default)g s; 0: only at the start and when the "
+                        "run ends or stops)")
+    p.add_argument("--resume", action="store_true",
+                   help="continue the incomplete run of this scene in --out (a checkpoint, or a run "
+                        "that failed or was stopped) after its last completed step; the scene and "
+                        "the other options must be those of that run")
     add_common_options(p)
-    p.set_defaults(func=run_transient)
+    # one command at a time per output folder: a second run (or --resume) into it would
+    # replace the checkpoints of the first
+    p.set_defaults(func=locked_command(run_transient, "ehl transient"))
 
 
 def run_transient(args: argparse.Namespace) -> dict[str, Any]:
     if args.points is not None:
         _require_points(args.points, MAX_POINTS)
+    every = require_range("--checkpoint-every", args.checkpoint_every, 0.0, 1e6, "s")
     scene = load_scene(args.scene)
+    require_slip("operating.slip", scene.slip)
     if scene.kind != "line":
-        return run_transient_point(args, scene)
+        return run_transient_point(args, scene, every)
     from ..line.problem import LineProblem
     from .scene_feature import feature_from_scene_table
     from .solve import solve_transient_line
@@ -62,38 +84,54 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
     args.points = DEFAULT_POINTS["line"] if args.points is None else args.points
     pb = LineProblem.from_scene(scene, xmin=args.xmin)
     feature, body = feature_from_scene_table(scene.feature, pb)
-    res = solve_transient_line(pb, feature, body=body, slide_roll=scene.slip, dt=args.dt,
-                               steps=args.steps, t_end=args.t_end, points=args.points,
-                               scheme=args.scheme, snapshot_every=args.snapshot_every)
+    scale = pb.b**2 / pb.R
+    notes = _supply_notes(scene, feature, scale)
+
+    def solve(checkpoint: Checkpoint, resume: dict[str, Any] | None) -> Any:
+        return solve_transient_line(pb, feature, body=body, slide_roll=scene.slip, dt=args.dt,
+                                    steps=args.steps, t_end=args.t_end, points=args.points,
+                                    scheme=args.scheme, snapshot_every=args.snapshot_every,
+                                    checkpoint=checkpoint, resume=resume)
 
     def figures() -> tuple[Callable, Callable, Callable]:
         from .plots import animate, plot_series, plot_snapshots
 
         return plot_series, plot_snapshots, animate
 
-    return _report(args, scene, res, feature, body, pb.b**2 / pb.R, pb.pmax, None, figures)
+    return _run(args, scene, args.points, every, notes, [], solve, feature, body, scale, pb.pmax,
+                None, figures)
 
 
-def run_transient_point(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
+def run_transient_point(args: argparse.Namespace, scene: Any, every: float = EVERY_S) -> dict[str, Any]:
     """The point or elliptic contact of ``ehl transient``."""
-    from ..point.problem import problem_from_scene
+    from ..point.problem import problem_from_scene, resolve_domain
     from .point_solve import solve_transient_point
     from .scene_feature import point_feature_from_scene_table
 
     points = DEFAULT_POINTS["point"] if args.points is None else args.points
     _require_points(points, MAX_POINT_POINTS, f" for a {scene.kind} contact")
+    require_range("--xmin", args.xmin, -20000.0, -1.05, "- (x/a)")
     pb = problem_from_scene(scene)
-    feature, body = point_feature_from_scene_table(scene.feature, pb)
-    res = solve_transient_point(pb, feature, body=body, slide_roll=scene.slip, dt=args.dt,
-                                steps=args.steps, t_end=args.t_end, points=points, xmin=args.xmin,
-                                scheme=args.scheme, snapshot_every=args.snapshot_every)
+    warnings: list[str] = []
+    feature, body = point_feature_from_scene_table(scene.feature, pb,
+                                                   resolve_domain(pb, args.xmin, None, None), warnings)
+    scale = pb.a**2 / pb.Rx
+    notes = _supply_notes(scene, feature, scale)
+
+    def solve(checkpoint: Checkpoint, resume: dict[str, Any] | None) -> Any:
+        return solve_transient_point(pb, feature, body=body, slide_roll=scene.slip, dt=args.dt,
+                                     steps=args.steps, t_end=args.t_end, points=points,
+                                     xmin=args.xmin, scheme=args.scheme,
+                                     snapshot_every=args.snapshot_every, checkpoint=checkpoint,
+                                     resume=resume)
 
     def figures() -> tuple[Callable, Callable, Callable]:
         from .point_plots import animate_point, plot_point_series, plot_point_snapshots
 
         return plot_point_series, plot_point_snapshots, animate_point
 
-    return _report(args, scene, res, feature, body, pb.a**2 / pb.Rx, pb.pmax, scene.kind, figures)
+    return _run(args, scene, points, every, notes, warnings, solve, feature, body, scale, pb.pmax,
+                scene.kind, figures)
 
 
 def _require_points(points: int, most: int, where: str = "") -> None:
@@ -101,24 +139,90 @@ def _require_points(points: int, most: int, where: str = "") -> None:
         raise InputError(f"--points = {points} is outside the allowed range [65, {most}]{where}")
 
 
-def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: int, scale: float,
-            pmax: float, contact: str | None, figures: Callable[[], tuple[Callable, Callable, Callable]],
-            ) -> dict[str, Any]:
-    """Write the run (HDF5, figures) and return the payload of ``ehl transient`` (printing a
-    line without ``--json``). ``scale``: metres per film unit; ``pmax``: Pa per pressure unit;
-    ``contact``: the point or elliptic contact's kind (None for a line contact)."""
-    point = contact is not None
+def _supply_notes(scene: Any, feature: Any, scale: float) -> list[str]:
+    """The scene's oil supply checked against the flooded inlet the solver models (raises for
+    a starving supply); the note of a finite supply that counts as flooded."""
+    height = 0.0
+    if feature.kind == "height_map" or feature.kind == "profile":
+        height = float(abs(feature.z).max()) * scale
+    elif feature.kind != "smooth":
+        height = abs(float(feature.amplitude)) * scale
+    note = check_flooded_supply(scene, height)
+    return [] if note is None else [note]
+
+
+def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes: list[str],
+         warnings: list[str], solve: Callable[[Checkpoint, Any], Any], feature: Any, body: int,
+         scale: float, pmax: float, contact: str | None,
+         figures: Callable[[], tuple[Callable, Callable, Callable]]) -> dict[str, Any]:
+    """Solve with checkpoints into the output file and report; a failed step reports the
+    steps before it (not converged), a signal or interrupt propagates after they are written."""
     out = writable_dir(args.out)
     stem = safe_stem(f"transient_{scene.name}")
-    h5 = res.to_hdf5(output_file(out, stem, ".h5"))
+    h5 = output_file(out, stem, ".h5")
+    run = {"scene": scene.to_dict(), "points": points, "dt": args.dt, "steps": args.steps,
+           "t_end": args.t_end, "scheme": args.scheme, "snapshot_every": args.snapshot_every,
+           "xmin": args.xmin}
+    resume = read_checkpoint(h5, run) if args.resume else None
+    for text in warnings:
+        print(f"ehl transient: warning: {text}", file=sys.stderr)
+    for text in notes:
+        print(f"ehl transient: note: {text}", file=sys.stderr)
+    checkpoint = Checkpoint(h5, every_s=every if every > 0 else math.inf, run=run)
+    try:
+        res = solve(checkpoint, resume)
+    except ConvergenceError as exc:
+        res = getattr(exc, "partial", None)
+        if res is None or not checkpoint.writes:
+            raise
+        return _report(args, scene, res, feature, body, scale, pmax, contact, figures, out, stem,
+                       h5, notes, warnings, failure=str(exc))
+    except BaseException as raised:
+        # a signal inside a compiled kernel surfaces as a SystemError caused by it
+        exc = signal_cause(raised)
+        if exc is None:
+            raise
+        res = getattr(exc, "partial", None)
+        if res is not None and checkpoint.writes:
+            print(f"ehl transient: {res.stop_reason}; written to {h5} (complete = False; "
+                  f"'ehl transient {args.scene} --resume' with the same options continues it)",
+                  file=sys.stderr)
+            record_outputs(out, stem, [h5])  # the figures of an earlier run are not this run's
+        if exc is raised:
+            raise
+        raise exc from None
+    res.run = run
+    return _report(args, scene, res, feature, body, scale, pmax, contact, figures, out, stem, h5,
+                   notes, warnings)
+
+
+def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: int, scale: float,
+            pmax: float, contact: str | None, figures: Callable[[], tuple[Callable, Callable, Callable]],
+            out: Any, stem: str, h5: Any, notes: list[str], warnings: list[str],
+            failure: str | None = None) -> dict[str, Any]:
+    """Write the run (HDF5, figures) and return the payload of ``ehl transient`` (printing a
+    line without ``--json``). ``scale``: metres per film unit; ``pmax``: Pa per pressure unit;
+    ``contact``: the point or elliptic contact's kind (None for a line contact); ``failure``:
+    the message of the step that failed (the run is reported as not converged, with the steps
+    before it)."""
+    point = contact is not None
+    if failure is None:
+        h5 = res.to_hdf5(h5)
     summary = res.summary()
     payload: dict[str, Any] = {"scene": scene.name, **({"contact": contact} if point else {}),
-                               "file": str(h5), "converged": True, "feature": feature.describe(),
-                               "body": body, "slide_roll": scene.slip, "points": summary["points"]}
+                               "file": str(h5), "converged": failure is None and res.complete,
+                               "complete": res.complete}
+    if not res.complete:
+        payload["stop_reason"] = res.stop_reason
+        payload["failure"] = (f"{failure.splitlines()[0] if failure else res.stop_reason}; kept "
+                              f"steps 0..{summary['steps']} of {res.planned_steps} (T = 0.."
+                              f"{summary['T_end']:.5g}) in {h5}, marked complete = False")
+    payload.update({"feature": feature.describe(), "body": body, "slide_roll": scene.slip,
+                    "points": summary["points"]})
     if point:
         payload["points_y"] = summary["points_y"]
     payload.update({
-        "dt": summary["dt"], "steps": summary["steps"],
+        "dt": summary["dt"], "steps": summary["steps"], "planned_steps": res.planned_steps,
         "hc_steady": summary["Hc_steady"] * scale, "hc_min": summary["Hc_min"] * scale,
         "hc_max": summary["Hc_max"] * scale, "hm_min": summary["Hm_min"] * scale,
         "pressure_fluctuation": summary["dP_max"] * pmax,
@@ -129,6 +233,10 @@ def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: 
     if point:
         payload["mass_balance_max"] = summary["mass_balance_max"]
     payload.update({"wall_per_step_s": summary["wall_per_step_s"], "wall_s": summary["wall_s"]})
+    if notes:
+        payload["notes"] = notes
+    if warnings:
+        payload["warnings"] = warnings
     if args.threshold is not None:
         payload["fraction_below_threshold"] = res.fraction_below(args.threshold / scale)
         if point:
@@ -141,8 +249,11 @@ def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: 
             payload["plots"].append(str(animate(res, output_file(out, stem, ".gif"))))
     if not args.json:
         grid = f"{summary['points']}x{summary['points_y']}" if point else f"{summary['points']}"
-        print(f"{scene.name}: {feature.kind} on body {body}, S = {scene.slip:g}, {summary['steps']} steps "
+        done = (f"{summary['steps']} steps" if res.complete else
+                f"{summary['steps']} of {res.planned_steps} steps (stopped: {res.stop_reason})")
+        print(f"{scene.name}: {feature.kind} on body {body}, S = {scene.slip:g}, {done} "
               f"of dT = {summary['dt']:.4g} on {grid} points: hc {payload['hc_min']:.4g}"
               f"..{payload['hc_max']:.4g} m (smooth {payload['hc_steady']:.4g} m), hm min "
-              f"{payload['hm_min']:.4g} m; written {h5}")
+              f"{payload['hm_min']:.4g} m; written {h5}"
+              f"{'' if res.complete else ' (complete = False)'}")
     return payload

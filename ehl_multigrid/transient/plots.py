@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -9,6 +10,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..model.paths import atomic_path, atomic_savefig
 from .result import TransientResult
 
 
@@ -32,8 +34,15 @@ def series_figure(res: TransientResult, path: str | Path, hc_label: str, hc_stea
     ax[1].plot(res.T, res.Pmax, label="max P")
     ax[1].set_xlabel(time_label)
     ax[1].legend(fontsize=8)
-    fig.savefig(path, dpi=110)
-    return Path(path)
+    mark_incomplete(fig, res)
+    return atomic_savefig(fig, path, dpi=110)
+
+
+def mark_incomplete(fig: Figure, res: TransientResult) -> None:
+    """A red title on a figure of a run that ended before its last step, saying why."""
+    if not res.complete:
+        text = f"INCOMPLETE: {res.steps} of {res.planned_steps} steps: {res.stop_reason.split(';')[0]}"
+        fig.suptitle("\n".join(textwrap.wrap(text, 110, max_lines=2)), color="C3", fontsize=8)
 
 
 def plot_snapshots(res: TransientResult, path: str | Path, count: int = 6) -> Path:
@@ -53,8 +62,8 @@ def plot_snapshots(res: TransientResult, path: str | Path, count: int = 6) -> Pa
     ax[1].set_ylabel("P")
     ax[1].set_xlabel("X = x / b")
     ax[1].set_xlim(max(res.X[0], -2.5), res.X[-1])
-    fig.savefig(path, dpi=110)
-    return Path(path)
+    mark_incomplete(fig, res)
+    return atomic_savefig(fig, path, dpi=110)
 
 
 def animate(res: TransientResult, path: str | Path, fps: int = 15) -> Path:
@@ -91,5 +100,6 @@ def save_animation(fig: Figure, frame: Callable[[int], Any], steps: list[int], p
     from matplotlib.animation import FuncAnimation, PillowWriter
 
     anim = FuncAnimation(fig, frame, frames=steps, blit=False)
-    anim.save(str(path), writer=PillowWriter(fps=fps))
+    with atomic_path(path, keep_suffix=True) as tmp:  # Pillow picks the format by the suffix
+        anim.save(str(tmp), writer=PillowWriter(fps=fps))
     return Path(path)

@@ -9,7 +9,8 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from .plots import save_animation, series_figure, spread_steps
+from ..model.paths import atomic_savefig
+from .plots import mark_incomplete, save_animation, series_figure, spread_steps
 from .point_solve import PointTransientResult
 
 
@@ -57,8 +58,8 @@ def plot_point_snapshots(res: PointTransientResult, path: str | Path, count: int
         ax2.set_xlabel("X = x / a")
     fig.colorbar(im, ax=axes[0, -1])
     axes[1, 0].legend(fontsize=7)
-    fig.savefig(path, dpi=100)
-    return Path(path)
+    mark_incomplete(fig, res)
+    return atomic_savefig(fig, path, dpi=100)
 
 
 def animate_point(res: PointTransientResult, path: str | Path, fps: int = 12) -> Path:

@@ -37,6 +37,7 @@ from ..multigrid.threads import preserved_threads
 from ..point.fas import HINT, POINT_POLICY, point_settings
 from ..point.problem import PointProblem
 from ..point.solve import solve_fas
+from .checkpoint import Checkpoint, restore
 from .features import feature_speed
 from .point_features import PointFeature, Smooth2D
 from .point_hierarchy import TransientPointHierarchy
@@ -83,7 +84,6 @@ class PointTransientResult(TransientResult):
     yf: float = 0.0
     Hc_steady: float = math.nan
     Hm_steady: float = math.nan
-    stop_reason: str = ""
 
     file_kind = "ehl_transient_point"
 
@@ -189,7 +189,8 @@ def solve_transient_point(
     options: PointOptions | None = None, scheme: str = "bdf2", snapshot_every: int = 10,
     initial: tuple[np.ndarray, float] | None = None, accept_stall: float = 1e-3,
     on_film_collapse: str = "raise",
-    callback: Callable[[dict[str, Any]], None] | None = None, **kw: Any,
+    callback: Callable[[dict[str, Any]], None] | None = None, checkpoint: Checkpoint | None = None,
+    resume: dict[str, Any] | None = None, **kw: Any,
 ) -> PointTransientResult:
     """Run a surface feature through an EHL point contact at constant load.
 
@@ -207,8 +208,8 @@ def solve_transient_point(
         map's upstream edge has reached ``xmax``; waviness: one transit plus three periods).
     options : :class:`PointOptions` of every step (defaults :data:`POINT_TRANSIENT_DEFAULTS`);
         keywords override fields.
-    scheme, snapshot_every, initial, callback : as :func:`~.solve.solve_transient_line`
-        (``initial`` is ``(P[j, i], H00)``).
+    scheme, snapshot_every, initial, callback, checkpoint, resume : as
+        :func:`~.solve.solve_transient_line` (``initial`` is ``(P[j, i], H00)``).
     accept_stall : a step whose cycles end above the tolerances (stalled, cycle limit, or
         rejected cycles: seen as a limit cycle of the cavitation boundary when a dent or rough
         patch leaves the contact) is accepted when the relative residual and load error of
@@ -226,7 +227,8 @@ def solve_transient_point(
     Raises
     ------
     InputError : bad feature (too large for the domain), time step, step count or options.
-    ConvergenceError : a step's multilevel solve failed, or the film closed, naming the step.
+    ConvergenceError : a step's multilevel solve failed, or the film closed, naming the step;
+        ``partial`` holds the steps before it (as :func:`~.solve.solve_transient_line`).
     """
     require_choice("scheme", scheme, SCHEMES)
     require_choice("on_film_collapse", on_film_collapse, ("raise", "stop"))
@@ -258,10 +260,13 @@ def solve_transient_point(
         out.Hc_steady = float(steady.H[jc, ic])
         out.Hm_steady = float(np.min(steady.H[zone]))
         hz.h00_step_max = 0.1 * max(out.Hc_steady, 1e-6)
-        start(stepper, out, steady.P.copy(), steady.H0, initial, feature.kind != "smooth", t0)
+        if resume is None:
+            start(stepper, out, steady.P.copy(), steady.H0, initial, feature.kind != "smooth", t0)
+        else:
+            restore(out, resume, snapshot_every)
         march(stepper, out, speed=speed, dt=dt, steps=steps, scheme=scheme,
               snapshot_every=snapshot_every, accept_stall=accept_stall,
-              on_film_collapse=on_film_collapse, callback=callback, t0=t0)
+              on_film_collapse=on_film_collapse, callback=callback, t0=t0, checkpoint=checkpoint)
     return out
 
 

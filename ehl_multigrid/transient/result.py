@@ -14,25 +14,35 @@ Definitions (Venner units: ``X = x/b``, ``H = h R/b^2``, ``P = p/pmax``, ``T = t
 * ``stalled(T)`` -- 1 for a step accepted with a stalled residual (below ``accept_stall``);
 * ``mass_balance(T)`` -- the discrete flux balance of the pressurised (wetted) zone of the
   converged step (discrete.flux_balance) over the total flux through it.
+
+A run that ends early (a step fails, the film closes, the process is stopped) keeps every
+completed step: ``complete`` is False and ``stop_reason`` says why. The last completed step is
+always among the snapshots, and ``state`` holds what the next step needs (the unknowns of the
+last two steps and their films), so that a checkpoint file can be continued
+(:mod:`.checkpoint`).
 """
 
 from __future__ import annotations
 
+import json
 import math
 import os
-import tempfile
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ..line.problem import LineProblem
+from ..model.results import _write_atomic, package_version
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
 from .discrete import flux_balance
 
 SERIES = ("step", "T", "Hc", "Hm", "H0", "Pmax", "dP", "xf", "dH", "residual", "load_error",
           "cycles", "work_units", "wall_s", "mass_balance", "stalled")
+#: arrays of :attr:`TransientResult.state` (the next step's inputs), besides its scalars
+STATE_ARRAYS = ("P", "P_prev", "q", "q_prev")
+STATE_SCALARS = ("step", "T", "H0", "H0_prev")
 
 
 @dataclass
@@ -58,6 +68,17 @@ class TransientResult:
     setup_s: float = 0.0
     wall_s: float = 0.0
     failed_step: int | None = None
+    #: False when the run ended before its last planned step (see ``stop_reason``)
+    complete: bool = True
+    stop_reason: str = ""
+    planned_steps: int = 0
+    #: what produced the run (command-line arguments, scene), stored with the file
+    run: dict[str, Any] = field(default_factory=dict)
+    #: the inputs of the next step after the last completed one: ``step``, ``T``, the
+    #: unknowns ``P``, ``H0`` and ``P_prev``, ``H0_prev`` of the step before, the films
+    #: ``q = rho H`` of both (``q_prev`` None after the start)
+    state: dict[str, Any] | None = field(default=None, repr=False)
+    _unkept: int | None = field(default=None, repr=False)
 
     def __getattr__(self, name: str) -> Any:
         series = self.__dict__.get("series")
@@ -105,8 +126,19 @@ class TransientResult:
         self._record_mass_balance(hz, st, n)
         if n == 0:
             s["stalled"].append(0.0)
-        if keep:
-            self.snapshots[n] = {"P": P.copy(), "H": H.copy(), "rho": st.rho.copy()}
+        # the last completed step is always kept (a run that stops keeps its final state);
+        # it is dropped again when the next step completes, unless it is a kept step
+        if self._unkept is not None:
+            self.snapshots.pop(self._unkept, None)
+        self._unkept = None if keep else n
+        self.snapshots[n] = {"P": P.copy(), "H": H.copy(), "rho": st.rho.copy()}
+
+    def mark_incomplete(self, reason: str) -> None:
+        """Flag the run as ended before its last planned step, for ``reason`` (the first
+        reason given is kept)."""
+        self.complete = False
+        if not self.stop_reason:
+            self.stop_reason = reason
 
     # -- the contact's geometry (line here; the point result overrides) -------------------
     def _fields(self, hz: Any) -> tuple[Any, Any]:
@@ -203,7 +235,8 @@ class TransientResult:
         return np.histogram(H, bins=bins)
 
     def summary(self) -> dict[str, Any]:
-        """JSON-ready scalars of the run."""
+        """JSON-ready scalars of the run (``complete`` False and ``stop_reason`` for a run that
+        ended early)."""
         cyc = self.cycles[1:]
         wall = self.wall_s_series()[1:]
         amp = getattr(self.feature, "amplitude", math.nan)
@@ -226,6 +259,8 @@ class TransientResult:
             "wall_per_step_s": float(np.mean(wall)) if wall.size else math.nan,
             "work_units_per_step": float(np.mean(self.work_units[1:])) if cyc.size else math.nan,
             "setup_s": self.setup_s, "wall_s": self.wall_s,
+            "complete": self.complete, "stop_reason": self.stop_reason,
+            "planned_steps": self.planned_steps,
         }
         kind = self.feature.kind
         ad = (self.bump_amplitude_at_centre() if kind == "bump" else
@@ -245,45 +280,52 @@ class TransientResult:
         return self.problem.describe()
 
     def to_hdf5(self, path: str | os.PathLike) -> str:
-        """Write the series, snapshots and summary to HDF5 (temporary file, then rename)."""
-        import json
+        """Write the series, snapshots and summary to HDF5 (temporary file, then rename).
 
-        import h5py
-
+        Root attributes: ``kind``, ``complete`` (False for a run that ended early or a
+        checkpoint of a running one), ``stop_reason``, ``last_step``, ``last_T``,
+        ``planned_steps``, ``summary``, ``problem``, ``options``, ``run`` (JSON). An incomplete
+        file also holds the group ``state`` (the inputs of the next step) to continue from.
+        """
         path = os.fspath(path)
-        folder = os.path.dirname(os.path.abspath(path))
-        fd, tmp = tempfile.mkstemp(suffix=".h5.tmp", dir=folder)
-        os.close(fd)
-        try:
-            with h5py.File(tmp, "w") as f:
-                f.attrs["kind"] = self.file_kind
-                f.attrs["summary"] = json.dumps(self.summary(), default=_jsonable)
-                f.attrs["problem"] = json.dumps(self._problem_dict(), default=_jsonable)
-                f.attrs["options"] = json.dumps(self.options.describe(), default=_jsonable)
-                f.create_dataset("X", data=self.X)
-                if getattr(self, "Y", None) is not None:  # point contact: snapshots are [T, Y, X]
-                    f.create_dataset("Y", data=self.Y)
-                g = f.create_group("series")
-                for k in SERIES:
-                    g.create_dataset(k, data=np.asarray(self.series[k], dtype=float))
-                steps = sorted(self.snapshots)
-                s = f.create_group("snapshots")
-                s.create_dataset("step", data=np.asarray(steps, dtype=np.int64))
-                s.create_dataset("T", data=np.asarray([self.series["T"][i] for i in steps]))
-                for name in ("P", "H"):
-                    s.create_dataset(name, data=np.array([self.snapshots[i][name] for i in steps]),
-                                     compression="gzip")
-                st = f.create_group("steady")
-                st.create_dataset("P", data=self.steady.P)
-                st.create_dataset("H", data=self.steady.H)
-            from ..model.paths import default_file_mode
 
-            os.chmod(tmp, default_file_mode())  # mkstemp makes it owner-only
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.remove(tmp)
-        return path
+        def write(f: Any) -> None:
+            f.attrs["kind"] = self.file_kind
+            f.attrs["package_version"] = package_version()
+            f.attrs["complete"] = np.bool_(self.complete)
+            f.attrs["stop_reason"] = self.stop_reason
+            f.attrs["last_step"] = int(self.steps)
+            f.attrs["last_T"] = float(self.series["T"][-1]) if self.series["T"] else math.nan
+            f.attrs["planned_steps"] = int(self.planned_steps)
+            f.attrs["summary"] = json.dumps(self.summary(), default=_jsonable)
+            f.attrs["problem"] = json.dumps(self._problem_dict(), default=_jsonable)
+            f.attrs["options"] = json.dumps(self.options.describe(), default=_jsonable)
+            f.attrs["run"] = json.dumps(self.run, default=_jsonable)
+            f.create_dataset("X", data=self.X)
+            if getattr(self, "Y", None) is not None:  # point contact: snapshots are [T, Y, X]
+                f.create_dataset("Y", data=self.Y)
+            g = f.create_group("series")
+            for k in (*SERIES, *sorted(set(self.series) - set(SERIES))):
+                g.create_dataset(k, data=np.asarray(self.series[k], dtype=float))
+            steps = sorted(self.snapshots)
+            s = f.create_group("snapshots")
+            s.create_dataset("step", data=np.asarray(steps, dtype=np.int64))
+            s.create_dataset("T", data=np.asarray([self.series["T"][i] for i in steps]))
+            for name in ("P", "H", "rho"):
+                s.create_dataset(name, data=np.array([self.snapshots[i][name] for i in steps]),
+                                 compression="gzip")
+            st = f.create_group("steady")
+            st.create_dataset("P", data=self.steady.P)
+            st.create_dataset("H", data=self.steady.H)
+            if not self.complete and self.state is not None:
+                g = f.create_group("state")
+                for k in STATE_SCALARS:
+                    g.attrs[k] = self.state[k]
+                for k in STATE_ARRAYS:
+                    if self.state[k] is not None:
+                        g.create_dataset(k, data=self.state[k])
+
+        return str(_write_atomic(path, write))
 
 
 def _jsonable(v: Any) -> Any:
@@ -295,16 +337,23 @@ def _jsonable(v: Any) -> Any:
 
 
 def load_series(path: str | os.PathLike) -> dict[str, Any]:
-    """Read the series, snapshots and summary written by :meth:`TransientResult.to_hdf5`."""
-    import json
-
+    """Read the series, snapshots and summary written by :meth:`TransientResult.to_hdf5`
+    (with ``complete``, ``stop_reason``, ``run``, and ``state`` when the file holds one)."""
     import h5py
 
     with h5py.File(path, "r") as f:
         out: dict[str, Any] = {"summary": json.loads(f.attrs["summary"]), "X": f["X"][()],
-                               "kind": str(f.attrs["kind"])}
+                               "kind": str(f.attrs["kind"]),
+                               # files written before the attribute existed were complete
+                               "complete": bool(f.attrs.get("complete", True)),
+                               "stop_reason": str(f.attrs.get("stop_reason", "")),
+                               "run": json.loads(f.attrs.get("run", "{}"))}
         if "Y" in f:
             out["Y"] = f["Y"][()]
         out["series"] = {k: f["series"][k][()] for k in f["series"]}
         out["snapshots"] = {k: f["snapshots"][k][()] for k in f["snapshots"]}
+        if "state" in f:
+            g = f["state"]
+            out["state"] = {**{k: g.attrs[k].item() for k in STATE_SCALARS},
+                            **{k: g[k][()] if k in g else None for k in STATE_ARRAYS}}
     return out

@@ -39,7 +39,7 @@ import numpy as np
 
 from ..line.problem import LineProblem
 from ..model.errors import InputError, reject_unknown_keys, require_choice, require_range
-from .features import Bump, Feature, Profile, Waviness
+from .features import MAX_AMPLITUDE, SHAPES, Bump, Feature, Profile, Waviness, require_in
 from .point_features import Dent2D, HeightMap, PointFeature, Waviness2D
 
 KEYS = {"kind", "amplitude", "width", "wavelength", "x0", "shape", "body", "phase"}
@@ -103,44 +103,150 @@ def _map_table(table: dict[str, Any], ndim: int) -> tuple[np.ndarray, float, flo
     z = check_heights(z, ndim, table.get("file"))
     dx = require_range("feature.dx", dx, 1e-9, 1e-2, "m")
     dy = require_range("feature.dy", dy, 1e-9, 1e-2, "m") if ndim == 2 else None
-    body = int(require_range("feature.body", table.get("body", 1), 1, 2, "-"))
-    return z, dx, dy, body
+    return z, dx, dy, _body(table)
 
 
 def feature_from_scene_table(table: dict[str, Any] | None, problem: LineProblem) -> tuple[Feature, int]:
-    """``(feature, body)`` from a ``[feature]`` table in metres (see module docstring)."""
+    """``(feature, body)`` from a ``[feature]`` table in metres (see module docstring).
+
+    Every value is checked in the units the table gives it (lengths and heights in metres,
+    ``x0`` in b, ``phase`` in rad) against the range the solver takes on the problem's domain,
+    before it is made dimensionless: an :class:`InputError` names the key, the value and the
+    allowed range in those units."""
     if table and table.get("kind") == "map" and problem.physical:
         z, dx, _, body = _map_table(table, 1)
+        unit = _FilmUnit(problem.b, problem.R, "b", "b^2/R")
+        unit.check_map_heights(z)
         X = np.arange(z.size) * (dx / problem.b)
-        x0 = float(table.get("x0", problem.xmin))  # the first sample at the inlet, entering
+        x0 = require_in("feature.x0", table.get("x0", problem.xmin), problem.xmin, problem.xmax,
+                        "- (x/b)", f"the profile must start inside the domain X in [{problem.xmin:g}, "
+                                   f"{problem.xmax:g}]")
         return Profile(x0 + X, z * problem.R / problem.b**2), body
     kind, body, amp, length = _read_table(table, KEYS, problem, "b", "R, b")
+    unit = _FilmUnit(problem.b, problem.R, "b", "b^2/R")
+    unit.check_amplitude(kind, amp)
+    xmin, xmax = problem.xmin, problem.xmax
     scale = problem.R / problem.b**2
     if kind == "waviness":
-        return Waviness(amp * scale, length / problem.b, float(table.get("phase", 0.0))), body
+        unit.check_length("wavelength", length, xmax - xmin,
+                          f"the domain X in [{xmin:g}, {xmax:g}] must hold one wavelength")
+        phase = require_range("feature.phase", table.get("phase", 0.0), -1e3, 1e3, "rad")
+        return Waviness(amp * scale, length / problem.b, phase), body
+    shape = require_choice("feature.shape", table.get("shape", "cosine-gaussian"), SHAPES)
+    f = _reach_factor(shape)
+    unit.check_length("width", length, 0.5 * (xmax - xmin) / f,
+                      f"the {kind} must fit in the domain X in [{xmin:g}, {xmax:g}]")
+    reach = f * length / problem.b
+    x0 = require_in("feature.x0", table.get("x0", -3.0), xmin + reach, xmax - reach, "- (x/b)",
+                    f"the whole {kind} (its centre +- {reach:.3g} b) must start inside the domain "
+                    f"X in [{xmin:g}, {xmax:g}]")
     sign = -1.0 if kind == "dent" else 1.0
-    return Bump(sign * amp * scale, length / problem.b, float(table.get("x0", -3.0)),
-                str(table.get("shape", "cosine-gaussian"))), body
+    return Bump(sign * amp * scale, length / problem.b, x0, shape), body
 
 
-def point_feature_from_scene_table(table: dict[str, Any] | None, problem: Any) -> tuple[PointFeature, int]:
+def point_feature_from_scene_table(table: dict[str, Any] | None, problem: Any,
+                                   domain: tuple[float, float, float] | None = None,
+                                   warnings: list[str] | None = None) -> tuple[PointFeature, int]:
     """``(feature, body)`` of a point or elliptic scene from a ``[feature]`` table in metres
-    (``problem`` a physical :class:`~ehl_multigrid.point.problem.PointProblem`)."""
+    (``problem`` a physical :class:`~ehl_multigrid.point.problem.PointProblem`).
+
+    ``domain``: the solver's box ``(xmin, xmax, ymax)`` in units of a (default: the point
+    solver's default box); every value is checked against it in the units the table gives
+    (as :func:`feature_from_scene_table`). A height map wider than the box across the rolling
+    direction appends a warning to ``warnings`` (its rows outside the box are not seen)."""
+    from ..point.problem import resolve_domain
+
+    xmin, xmax, ymax = resolve_domain(problem, None, None, None) if domain is None else domain
+    unit = _FilmUnit(problem.a, problem.Rx, "a", "a^2/Rx")
     if table and table.get("kind") == "map" and problem.physical:
         z, dx, dy, body = _map_table(table, 2)
+        unit.check_map_heights(z)
         dxa, dya = dx / problem.a, dy / problem.a
         ny, nx = z.shape
-        x0 = float(table.get("x0", -1.5 - (nx - 1) * dxa))
-        y0 = float(table.get("y0", -0.5 * (ny - 1) * dya))
+        lx, ly = (nx - 1) * dxa, (ny - 1) * dya
+        x0 = require_in("feature.x0", table.get("x0", -1.5 - lx), xmin - lx, xmax - lx, "- (x/a)",
+                        f"the map's downstream edge x0 + {lx:.4g} a must start inside the domain "
+                        f"X in [{xmin:g}, {xmax:g}]")
+        y0 = require_in("feature.y0", table.get("y0", -0.5 * ly), -ymax - ly, ymax, "- (y/a)",
+                        f"the map's rows, y0 .. y0 + {ly:.4g} a, must overlap the domain "
+                        f"|Y| <= {ymax:g}")
+        if warnings is not None and (y0 < -ymax or y0 + ly > ymax):
+            a = problem.a
+            warnings.append(
+                f"the height map spans y = {y0 * a:.4g} .. {(y0 + ly) * a:.4g} m across the rolling "
+                f"direction ({ny} rows of dy = {dy:.4g} m), wider than the solver's box |y| <= "
+                f"{ymax * a:.4g} m (|Y| <= {ymax:g} a): the rows outside it are clipped and do not "
+                f"pass through the contact")
         return HeightMap(z * problem.Rx / problem.a**2, dxa, dya, x0, y0), body
     kind, body, amp, length = _read_table(table, POINT_KEYS, problem, "a", "Rx, a")
+    unit.check_amplitude(kind, amp)
     scale = problem.Rx / problem.a**2
     if kind == "waviness":
-        return Waviness2D(amp * scale, length / problem.a, float(table.get("angle", 0.0)),
-                          float(table.get("phase", 0.0))), body
+        angle = require_range("feature.angle", table.get("angle", 0.0), -90.0, 90.0, "degrees")
+        span = min(xmax - xmin, 2.0 * ymax) if 0.0 < abs(angle) < 90.0 else \
+            (xmax - xmin if angle == 0.0 else 2.0 * ymax)
+        unit.check_length("wavelength", length, span,
+                          f"the domain X in [{xmin:g}, {xmax:g}], |Y| <= {ymax:g} must hold one "
+                          f"wavelength at angle {angle:g} deg")
+        phase = require_range("feature.phase", table.get("phase", 0.0), -1e3, 1e3, "rad")
+        return Waviness2D(amp * scale, length / problem.a, angle, phase), body
+    shape = require_choice("feature.shape", table.get("shape", "cosine-gaussian"), SHAPES)
+    f = _reach_factor(shape)
+    unit.check_length("width", length, min(0.5 * (xmax - xmin), ymax) / f,
+                      f"the {kind} must fit in the domain X in [{xmin:g}, {xmax:g}], |Y| <= {ymax:g}")
+    reach = f * length / problem.a
+    x0 = require_in("feature.x0", table.get("x0", -2.5), xmin + reach, xmax - reach, "- (x/a)",
+                    f"the whole {kind} (its centre +- {reach:.3g} a) must start inside the domain "
+                    f"X in [{xmin:g}, {xmax:g}]")
+    y0 = require_in("feature.y0", table.get("y0", 0.0), -ymax + reach, ymax - reach, "- (y/a)",
+                    f"the whole {kind} (its centre +- {reach:.3g} a) must lie inside |Y| <= {ymax:g}")
     sign = -1.0 if kind == "dent" else 1.0
-    return Dent2D(sign * amp * scale, length / problem.a, float(table.get("x0", -2.5)),
-                  float(table.get("y0", 0.0)), str(table.get("shape", "cosine-gaussian"))), body
+    return Dent2D(sign * amp * scale, length / problem.a, x0, y0, shape), body
+
+
+def _reach_factor(shape: str) -> float:
+    """A single feature's reach over its width (:attr:`~.features.ShapedFeature.reach`)."""
+    return 1.0 if shape == "cosine-gaussian" else 2.6
+
+
+class _FilmUnit:
+    """The checks of a feature's heights and lengths in metres against the solver's limits
+    in its own units: lengths in ``length`` (b or a) [m], heights in the film unit
+    ``length^2/radius`` [m]; ``name`` and ``film`` spell them in messages."""
+
+    def __init__(self, length: float, radius: float, name: str, film: str) -> None:
+        self.length, self.name, self.film = length, name, film
+        self.height = length**2 / radius
+
+    def _limit(self) -> str:
+        return (f"the transient solver takes features up to {MAX_AMPLITUDE:g} film unit "
+                f"{self.film} = {MAX_AMPLITUDE * self.height:.4g} m high or deep for this contact")
+
+    def check_amplitude(self, kind: str, amp: float) -> float:
+        what = {"dent": "the dent's depth", "bump": "the bump's height",
+                "waviness": "the waviness amplitude"}[kind]
+        return require_in("feature.amplitude", amp, 0.0, min(1e-3, MAX_AMPLITUDE * self.height),
+                          "m", f"{what}; {self._limit()}")
+
+    def check_map_heights(self, z: np.ndarray) -> None:
+        require_in("feature.file (max |height|)", float(np.max(np.abs(z))), 0.0,
+                   MAX_AMPLITUDE * self.height, "m", self._limit())
+
+    def check_length(self, key: str, value: float, most: float, why: str) -> float:
+        """``value`` [m] within ``[1e-3, most]`` of the length unit, in metres."""
+        L = self.length
+        return require_in(f"feature.{key}", value, 1e-3 * L, min(1e3, most) * L, "m",
+                          f"{1e-3:g} .. {min(1e3, most):.4g} {self.name} with {self.name} = {L:.4g} m: "
+                          f"{why}")
+
+
+def _body(table: dict[str, Any]) -> int:
+    """``feature.body``: exactly 1 or 2."""
+    v = table.get("body", 1)
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or v not in (1, 2):
+        raise InputError(f"feature.body = {v!r} is not one of the allowed values [1, 2] (the "
+                         f"surface that carries the feature)")
+    return int(v)
 
 
 def _read_table(table: dict[str, Any] | None, keys: set[str], problem: Any, unit: str,
@@ -157,7 +263,7 @@ def _read_table(table: dict[str, Any] | None, keys: set[str], problem: Any, unit
     kind = require_choice("feature.kind", table.get("kind"), ("waviness", "bump", "dent", "map"))
     if kind == "map":
         raise InputError("feature.kind = 'map' needs a scene with known geometry and the keys file, dx (and dy for a point contact)")
-    body = int(require_range("feature.body", table.get("body", 1), 1, 2, "-"))
+    body = _body(table)
     amp = require_range("feature.amplitude", table.get("amplitude"), 0.0, 1e-3, "m")
     key = "wavelength" if kind == "waviness" else "width"
     return kind, body, amp, require_range(f"feature.{key}", table.get(key), 1e-9, 1.0, "m")

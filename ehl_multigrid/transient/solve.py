@@ -31,6 +31,7 @@ from ..line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
 from ..model.errors import InputError, require_choice
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
+from .checkpoint import Checkpoint, restore
 from .features import Feature, Smooth, feature_speed
 from .hierarchy import TransientLineHierarchy
 from .result import TransientResult
@@ -54,7 +55,8 @@ def solve_transient_line(
     dt: float | None = None, steps: int | None = None, t_end: float | None = None,
     options: LineOptions | None = None, scheme: str = "bdf2", snapshot_every: int = 10,
     initial: tuple[np.ndarray, float] | None = None, accept_stall: float = 1e-3,
-    callback: Callable[[dict[str, Any]], None] | None = None, **kw: Any,
+    callback: Callable[[dict[str, Any]], None] | None = None, checkpoint: Checkpoint | None = None,
+    resume: dict[str, Any] | None = None, **kw: Any,
 ) -> TransientResult:
     """Run a surface feature through an EHL line contact at constant load.
 
@@ -81,6 +83,11 @@ def solve_transient_line(
         residual and load error are below this; it is flagged in the ``stalled`` series and
         counted in the summary. 0 accepts no stalled step.
     callback : called after each step with a dict (step, T, Hc, Hm, cycles, residual).
+    checkpoint : a :class:`~.checkpoint.Checkpoint` that writes the completed steps while the
+        run goes on, and the run so far when it ends early (failure, interrupt, signal).
+    resume : a checkpoint of this run (:func:`~.checkpoint.read_checkpoint`) to continue
+        after its last completed step (same problem, feature, grid, time step and scheme;
+        the steady start is solved again, the feature is not pre-solved).
 
     Returns
     -------
@@ -90,7 +97,10 @@ def solve_transient_line(
     Raises
     ------
     InputError : bad feature, time step, step count or options (field, value, allowed range).
-    ConvergenceError : a step's multilevel solve failed (diverged, stalled, NaN), naming it.
+    ConvergenceError : a step's multilevel solve failed (diverged, stalled, NaN), naming it;
+        its ``partial`` attribute is the result up to the last completed step
+        (``complete = False``, ``stop_reason``), also written by ``checkpoint`` when given.
+        An interrupt or signal during the steps propagates after the same write.
     """
     if not problem.elastic:
         raise InputError("problem.elastic = False: the transient solver needs elastic surfaces")
@@ -111,9 +121,13 @@ def solve_transient_line(
     out = TransientResult(problem=problem, feature=feature, body=body, slide_roll=slide_roll,
                           speed=speed, dt=float(dt), scheme=scheme, options=opts, steady=steady,
                           X=stepper.hz.fine.X.copy())
-    start(stepper, out, steady.P.copy(), steady.H0, initial, True, t0)
+    if resume is None:
+        start(stepper, out, steady.P.copy(), steady.H0, initial, True, t0)
+    else:
+        restore(out, resume, snapshot_every)
     march(stepper, out, speed=speed, dt=dt, steps=steps, scheme=scheme, snapshot_every=snapshot_every,
-          accept_stall=accept_stall, on_film_collapse="raise", callback=callback, t0=t0)
+          accept_stall=accept_stall, on_film_collapse="raise", callback=callback, t0=t0,
+          checkpoint=checkpoint)
     return out
 
 

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ..model.errors import ConvergenceError, InputError, require_range
+from ..model.errors import ConvergenceError, InputError, Terminated, require_range, signal_cause
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.policy import RobustnessPolicy
 from ..multigrid.result import EHLResult
@@ -168,53 +168,110 @@ def _extrapolate(P_now: np.ndarray, P_prev: np.ndarray) -> np.ndarray:
 
 def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, scheme: str,
           snapshot_every: int, accept_stall: float, on_film_collapse: str,
-          callback: Callable[[dict[str, Any]], None] | None, t0: float) -> None:
-    """Steps ``1 .. steps`` from the recorded start, each recorded in ``out``."""
+          callback: Callable[[dict[str, Any]], None] | None, t0: float,
+          checkpoint: Any = None) -> None:
+    """Steps after the recorded start (or after ``out.state``, the last completed step of a
+    continued run) up to ``steps``, each recorded in ``out``.
+
+    After every completed step ``out.state`` holds the next step's inputs and ``checkpoint``
+    (a :class:`~.checkpoint.Checkpoint`, optional) may write the run so far. A run that ends
+    early -- a failed step (:class:`ConvergenceError`), a closed film, an interrupt or a signal
+    -- is marked incomplete with the reason and written by ``checkpoint`` when given; the
+    exception propagates, carrying ``out`` as its ``partial`` attribute.
+    """
     hz = stepper.hz
     fine = hz.fine
     name = stepper.name
-    q_prev: np.ndarray | None = None
-    q_now = stepper.film()[1]
-    P_prev, H0_prev = stepper.unknowns()
-    for n in range(1, steps + 1):
-        T = n * dt
-        ct, hist = step_coefficients(scheme, n, dt, q_now, q_prev)
-        P_now, H0_now = stepper.unknowns()
-        if n > 1:  # linear extrapolation in time: the start iterate of the step
-            stepper.set_unknowns(_extrapolate(P_now, P_prev), 2.0 * H0_now - H0_prev)
-        hz.set_step(speed * T, ct, hist)
-        ts = time.perf_counter()
-        res = stepper.solve_step()
-        wall = time.perf_counter() - ts
-        finite = bool(np.all(np.isfinite(fine.P)) and math.isfinite(stepper.H0))
-        # cycles that stall (a limit cycle of the free boundary) leave an iterate that the
-        # contact's rule may accept below accept_stall
-        stalled_ok = (not res.success and finite and stepper.accept_stalled(res, accept_stall))
-        H, q = stepper.film()
-        wet = fine.P > 0.0
-        closed = res.status == 7 or (finite and wet.any() and float(H[wet].min()) <= 0.0)
-        if closed and on_film_collapse == "stop":
-            out.failed_step = n
-            out.stop_reason = (f"the film closed at step {n} (T = {T:.5g}): min H = "
-                               f"{float(H[wet].min()) if wet.any() else math.nan:.3g}")
-            break
-        if not (res.success or stalled_ok) or not finite:
-            out.failed_step = n
-            raise ConvergenceError(
-                f"transient {name} solver: time step {n} (T = {T:.5g}, dT = {dt:.4g}) failed: "
-                f"{res.message}", res.report,
-                "a smaller time step (dt), more points, or a smaller feature amplitude")
-        if closed:
-            out.failed_step = n
-            raise ConvergenceError(
-                f"transient {name} solver: time step {n} (T = {T:.5g}): the film collapsed "
-                f"(min H = {float(H[wet].min()):.3g} where P > 0); the feature cuts through the "
-                f"film, which needs a mixed-lubrication model", None, "a smaller feature amplitude")
-        P_prev, H0_prev = P_now, H0_now
-        q_prev, q_now = q_now, q
-        out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
-        out.series["stalled"].append(0.0 if res.success else 1.0)
-        if callback is not None:
-            callback(out.last_step())
+    out.planned_steps = steps
+    if out.state is None:  # a fresh run: the start is step 0
+        P, H0 = stepper.unknowns()
+        out.state = {"step": 0, "T": 0.0, "P": P, "H0": H0, "P_prev": P, "H0_prev": H0,
+                     "q": stepper.film()[1].copy(), "q_prev": None}
+        if checkpoint is not None:
+            checkpoint.step(out)
+    else:
+        stepper.set_unknowns(np.array(out.state["P"], dtype=float), float(out.state["H0"]))
+    n = T = 0
+    try:
+        for n in range(int(out.state["step"]) + 1, steps + 1):
+            T = n * dt
+            last = out.state
+            ct, hist = step_coefficients(scheme, n, dt, last["q"], last["q_prev"])
+            if n > 1:  # linear extrapolation in time: the start iterate of the step
+                stepper.set_unknowns(_extrapolate(last["P"], last["P_prev"]),
+                                     2.0 * last["H0"] - last["H0_prev"])
+            hz.set_step(speed * T, ct, hist)
+            ts = time.perf_counter()
+            res = stepper.solve_step()
+            wall = time.perf_counter() - ts
+            finite = bool(np.all(np.isfinite(fine.P)) and math.isfinite(stepper.H0))
+            # cycles that stall (a limit cycle of the free boundary) leave an iterate that the
+            # contact's rule may accept below accept_stall
+            stalled_ok = (not res.success and finite and stepper.accept_stalled(res, accept_stall))
+            H, q = stepper.film()
+            wet = fine.P > 0.0
+            closed = res.status == 7 or (finite and wet.any() and float(H[wet].min()) <= 0.0)
+            if closed and on_film_collapse == "stop":
+                out.failed_step = n
+                out.mark_incomplete(f"the film closed at step {n} (T = {T:.5g}): min H = "
+                                    f"{float(H[wet].min()) if wet.any() else math.nan:.3g}")
+                break
+            if not (res.success or stalled_ok) or not finite:
+                out.failed_step = n
+                why = (res.message if finite else
+                       f"the pressure or film constant is not finite ({res.message})")
+                raise ConvergenceError(
+                    f"transient {name} solver: time step {n} (T = {T:.5g}, dT = {dt:.4g}) failed: "
+                    f"{why}", res.report,
+                    "a smaller time step (dt), more points, or a smaller feature amplitude")
+            if closed:
+                out.failed_step = n
+                raise ConvergenceError(
+                    f"transient {name} solver: time step {n} (T = {T:.5g}): the film collapsed "
+                    f"(min H = {float(H[wet].min()):.3g} where P > 0); the feature cuts through the "
+                    f"film, which needs a mixed-lubrication model", None, "a smaller feature amplitude")
+            out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
+            out.series["stalled"].append(0.0 if res.success else 1.0)
+            P, H0 = stepper.unknowns()
+            out.state = {"step": n, "T": T, "P": P, "H0": H0, "P_prev": last["P"],
+                         "H0_prev": last["H0"], "q": q, "q_prev": last["q"]}
+            if checkpoint is not None:
+                checkpoint.step(out)
+            if callback is not None:
+                callback(out.last_step())
+    except BaseException as raised:
+        # a signal that arrives inside a compiled kernel surfaces as a SystemError caused by
+        # it: the run stops for the signal, not for an internal error
+        exc = signal_cause(raised) or raised
+        out.mark_incomplete(stop_reason(exc, n, T, out))
+        out.wall_s = time.perf_counter() - t0
+        exc.partial = out  # the caller reports what was kept (no other way to reach it)
+        if checkpoint is not None:
+            try:
+                checkpoint.write(out)
+            except Exception as werr:  # the run's own failure is the error to report
+                exc.add_note(f"the steps computed so far could not be written: {werr}")
+        if exc is raised:
+            raise
+        raise exc from None
+    finally:
+        hz.solver = None
     out.wall_s = time.perf_counter() - t0
-    hz.solver = None
+    if checkpoint is not None and not out.complete:  # stopped at a closed film
+        checkpoint.write(out)
+
+
+def stop_reason(exc: BaseException, n: int, T: float, out: Any) -> str:
+    """Why a run ended at step ``n`` (time ``T``) by ``exc``, and what it kept."""
+    kept = f"steps 0..{out.steps} (T = 0..{out.series['T'][-1]:.5g}) were kept" if out.series["T"] \
+        else "no step was kept"
+    if isinstance(exc, KeyboardInterrupt):
+        why = "interrupted (Ctrl-C)"
+    elif isinstance(exc, Terminated):  # the command line's SIGTERM
+        why = "terminated (SIGTERM)"
+    elif isinstance(exc, ConvergenceError):
+        why = "did not converge: " + str(exc).splitlines()[0]
+    else:
+        why = f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"
+    at = f"during step {n} (T = {T:.5g})" if out.steps < n else f"after step {n}"
+    return f"{why} {at}; {kept}"
