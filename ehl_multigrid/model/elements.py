@@ -10,7 +10,7 @@ contacts), plus the intermediate numbers a designer checks (cage speed, contact 
 Inputs are SI, angles in degrees; the scene reader accepts strings with units, where a speed
 of rotation may be given as ``"1500 rpm"``, ``"25 Hz"`` (revolutions per second) or ``"157 rad/s"``;
 a plain number is rad/s. A scene's ``[element]`` values are also checked for plausibility
-(:func:`~ehl_multigrid.model.units.check_plausible`: a shaft speed of 3000 rad/s, 28648 rpm,
+(:func:`~ehl_multigrid.model.plausibility.check_plausible`: a shaft speed of 3000 rad/s, 28648 rpm,
 warns and asks whether rpm were meant).
 
 Sources
@@ -40,7 +40,8 @@ from ehl_multigrid.model.errors import (
     require_positive,
     require_range,
 )
-from ehl_multigrid.model.units import check_plausible, convert_table
+from ehl_multigrid.model.plausibility import check_plausible
+from ehl_multigrid.model.units import convert_table
 
 #: Stribeck's factor for the most heavily loaded ball, ``Q_max = 5 Fr/(Z cos a)`` (ball bearing
 #: with nominal diametral clearance; 4.37 with zero clearance), Harris & Kotzalas ch. 7.
@@ -458,7 +459,7 @@ ELEMENT_KINDS: dict[str, tuple[Callable[..., ElementContact], dict[str, str]]] =
 }
 
 
-#: Quantity of :data:`~ehl_multigrid.model.units.PLAUSIBLE` of each ``[element]`` value.
+#: Quantity of :data:`~ehl_multigrid.model.plausibility.PLAUSIBLE` of each ``[element]`` value.
 ELEMENT_PLAUSIBLE: dict[str, str] = {
     "ball_diameter": "rolling_element_diameter", "roller_diameter": "rolling_element_diameter",
     "pitch_diameter": "pitch_diameter", "n_balls": "rolling_elements", "n_rollers": "rolling_elements",
@@ -477,7 +478,7 @@ def element_contact(table: dict[str, Any], section: str = "element", check: bool
     Values may carry units (``ball_diameter = "7.938 mm"``, ``shaft_speed = "1500 rpm"``);
     plain numbers are SI, angles in degrees, speeds of rotation rad/s. With ``check``, every
     value outside the plausible range of real machine elements (:data:`ELEMENT_PLAUSIBLE`)
-    warns (:func:`~ehl_multigrid.model.units.check_plausible`), after the hard checks passed.
+    warns (:func:`~ehl_multigrid.model.plausibility.check_plausible`), after the hard checks passed.
     """
     if not isinstance(table, dict):
         raise InputError(f"[{section}] must be a table with a 'kind' key")

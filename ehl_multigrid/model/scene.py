@@ -6,7 +6,7 @@ nothing is half-loaded. A value that is allowed but implausible for a real conta
 radius: millimetres typed as metres), and a derived Hertz pressure, fitted film or Moes group far
 beyond real contacts, warn with a :class:`~ehl_multigrid.model.errors.PlausibilityWarning` naming
 the field, the value, the plausible range and the probable unit mistake
-(:data:`~ehl_multigrid.model.units.PLAUSIBLE`); strict mode refuses them. Built-in scenes live in
+(:data:`~ehl_multigrid.model.plausibility.PLAUSIBLE`); strict mode refuses them. Built-in scenes live in
 ``ehl_multigrid/scenes/*.toml``.
 
 TOML layout (plain numbers SI, temperatures in degC, angles in degrees; any value may instead
@@ -68,8 +68,9 @@ from .errors import (
 from .lubricant import T_MAX_C, T_MIN_C, Lubricant, lubricant_preset
 from .materials import Material, material, materials_from_tables
 from .oils import Oil, is_oil_table, oil_from_table
+from .plausibility import check_plausible, unit_hint
 from .solids import Solid, reduced_modulus_of
-from .units import check_plausible, convert_table, to_canonical, unit_hint
+from .units import convert_table, to_canonical
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -110,7 +111,7 @@ UNIT_KINDS: dict[str, dict[str, str]] = {
                 "dy": "length"},
 }
 RANGE_KINDS = {"us": "speed", "slip": "dimensionless", "load": "force", "pmax": "pressure"}
-#: Quantity of :data:`~ehl_multigrid.model.units.PLAUSIBLE` of each [operating] value.
+#: Quantity of :data:`~ehl_multigrid.model.plausibility.PLAUSIBLE` of each [operating] value.
 OPERATING_PLAUSIBLE = {"load": "load", "pmax": "pmax", "us": "us", "entrainment_speed": "entrainment_speed",
                        "T_oil": "temperature", "T_surface1": "temperature", "T_surface2": "temperature"}
 
@@ -497,7 +498,7 @@ def _temperature(field_name: str, value: Any) -> float:
 
 def _require(field_name: str, value: Any, lo: float, hi: float, units: str, key: str, **kw: bool) -> float:
     """:func:`require_range`; a refusal also names the probable unit mistake (``key`` of
-    :data:`~ehl_multigrid.model.units.PLAUSIBLE`), e.g. a roughness of 0.2 m given in um."""
+    :data:`~ehl_multigrid.model.plausibility.PLAUSIBLE`), e.g. a roughness of 0.2 m given in um."""
     try:
         return require_range(field_name, value, lo, hi, units, **kw)
     except InputError as exc:
@@ -584,7 +585,7 @@ def _build_scene(data: dict[str, Any], origin: str, check: bool = True) -> Scene
     if not isinstance(data, dict):
         raise InputError(f"scene {origin} must be a table")
     reject_unknown_keys("scene top level", data, TOP_KEYS)
-    # (field, value, quantity of units.PLAUSIBLE) of every input to check for plausibility
+    # (field, value, quantity of plausibility.PLAUSIBLE) of every input to check for plausibility
     plaus: list[tuple[str, float, str]] = []
     name = _text("name", data.get("name", Path(origin).stem))
     description = _text("description", data.get("description", ""))
@@ -772,7 +773,7 @@ def _build_scene(data: dict[str, Any], origin: str, check: bool = True) -> Scene
     return scene
 
 
-#: Quantity of :data:`~ehl_multigrid.model.units.PLAUSIBLE` of each property of a solid.
+#: Quantity of :data:`~ehl_multigrid.model.plausibility.PLAUSIBLE` of each property of a solid.
 SOLID_PLAUSIBLE = {"E": "E", "nu": "poisson", "rho": "solid_density", "k": "solid_conductivity",
                    "cp": "solid_specific_heat", "hardness": "hardness"}
 #: ... of each roughness parameter (Ra and the summit parameters only when given: nan passes).

@@ -12,8 +12,9 @@ import pytest
 
 from ehl_multigrid.model import fits
 from ehl_multigrid.model.errors import InputError, PlausibilityWarning, strict_plausibility
+from ehl_multigrid.model.plausibility import PLAUSIBLE, implausibility, unit_hint
 from ehl_multigrid.model.scene import Scene, builtin_scene_names, load_scene
-from ehl_multigrid.model.units import PLAUSIBLE, implausibility, to_canonical, unit_hint
+from ehl_multigrid.model.units import to_canonical
 
 if sys.version_info >= (3, 11):
     import tomllib

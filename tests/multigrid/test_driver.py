@@ -176,7 +176,8 @@ def test_repr_lists_levels_points_and_mesh_sizes():
 
 
 def test_status_table_is_complete():
-    assert set(STATUS) == {0, 1, 2, 3, 4, 5, 6, 7, 8}
+    assert set(STATUS) == set(range(10))
+    assert len(set(STATUS.values())) == len(STATUS) and STATUS[9] == "mass_not_conserved"
 
 
 def test_a_converged_iterate_with_a_non_positive_film_is_not_a_success():
