@@ -539,8 +539,8 @@ def wrong_answer_cases() -> list[Case]:
                           "starved", names, 900, files=f))
             C.append(Case("starved", f"starved_{tag}_{htag}_run", ["run", sc, "--no-plots", "--json", "--fidelity", "fast", *o],
                           "starved", names, 900, files=f))
-            C.append(Case("starved", f"starved_{tag}_{htag}_traction_ehl",
-                          ["traction", sc, "--input", "ehl", "--slip", "0.05", "--no-plots", "--json", *o],
+            C.append(Case("starved", f"starved_{tag}_{htag}_traction",
+                          ["traction", sc, "--slip", "0.05", "--no-plots", "--json", *o],
                           "starved", names, 900, files=f))
         d = scene(scene(base, "supply.hoil", 2e-8), "feature", {"kind": "dent", "amplitude": "-50 nm", "width": "20 um"})
         C.append(Case("starved", f"starved_{tag}_transient", ["transient", "{dir}/s.toml", "--no-plots", *o],
@@ -605,14 +605,18 @@ def _payload_failed(p: Any) -> bool:
     return any(_payload_failed(v) for v in p.values() if isinstance(v, dict))
 
 
+#: keys under which a payload reports the central film it used [m]
+FILM_KEYS = ("hc", "h_uniform", "hc_estimate")
+
+
 def _films(p: Any) -> list[float]:
-    """Every central film ``hc`` [m] a payload reports (at any depth, lists included)."""
+    """Every central film [m] a payload reports (:data:`FILM_KEYS`, at any depth, lists included)."""
     found: list[float] = []
     if isinstance(p, dict):
         for k, v in p.items():
-            if k == "hc" and isinstance(v, (int, float)):
+            if k in FILM_KEYS and isinstance(v, (int, float)):
                 found.append(float(v))
-            elif k == "hc" and isinstance(v, list):
+            elif k in FILM_KEYS and isinstance(v, list):
                 found += [float(x) for x in v if isinstance(x, (int, float))]
             else:
                 found += _films(v)
