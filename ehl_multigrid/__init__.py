@@ -9,7 +9,6 @@ Layers: :mod:`ehl_multigrid.model` (the physics foundation), the numerical packa
 :mod:`ehl_multigrid.app`.
 """
 
-from . import _moved
 from .model.errors import ConvergenceError, InputError
 from .model.fits import moes_line_central, nijenbanning_central
 from .model.hertz import HertzContact, hertz_circular, hertz_elliptic, hertz_line, hertz_point
@@ -17,8 +16,6 @@ from .model.lubricant import Lubricant, lubricant_preset
 from .model.results import Result
 from .model.scene import Scene, builtin_scene_names, load_scene
 from .model.solids import Solid, gw_modulus, reduced_modulus
-
-_moved.install()
 
 __all__ = [
     "ConvergenceError", "InputError", "moes_line_central", "nijenbanning_central",
