@@ -7,11 +7,13 @@ solved deep and the films' distance to it is compared with the result's stated a
 Line: default box only, tolerances 1e-7 / 1e-8. Point (``--contact point``): the result's box,
 tolerances 1e-7 / 1e-6 (the point load error stalls near 5e-8 at 513 points), square cells when
 the result came from the square-cell retry, results up to ``--max-points`` (default 1025).
-Writes ``out/algebraic_map_scan.json`` (line) or ``out/algebraic_map_scan_point.json``
+Writes ``build/validation/accuracy/algebraic_map_scan.json`` (line) or ``..._point.json``
 (resumable: a row already there for the same result is not solved again).
 
     python validation/accuracy/algebraic_map_scan.py [--contact point] [--max-points N] \
-        validation/extremes/out/fit_map_0.01_session9.json validation/extremes/out/accuracy_map_0.02_session9.json
+        build/validation/extremes/fit_map_0.01.json build/validation/extremes/accuracy_map_0.02.json
+
+(the maps are written by ``validation/extremes/accuracy_map.py``).
 """
 
 from __future__ import annotations
@@ -27,8 +29,12 @@ from ehl_multigrid.point import solve_point
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[0] / "extremes"))
+sys.path.insert(0, str(HERE.parent))
+from _paths import out_dir, require  # noqa: E402
 from accuracy_map import box_of  # noqa: E402
 from reference_check import reference_films  # noqa: E402
+
+MAP_COMMAND = "python validation/extremes/accuracy_map.py"
 
 
 def deep_solve(c: dict, r: dict, box: float):
@@ -56,11 +62,11 @@ def main() -> None:
     a = ap.parse_args()
     overrides: dict = {}
     for f in a.override:
-        overrides.update({k: (Path(f).name, v) for k, v in json.loads(Path(f).read_text()).items()})
-    out = HERE / "out" / ("algebraic_map_scan.json" if a.contact == "line" else "algebraic_map_scan_point.json")
+        overrides.update({k: (Path(f).name, v) for k, v in json.loads(require(Path(f), MAP_COMMAND).read_text()).items()})
+    out = out_dir("accuracy") / ("algebraic_map_scan.json" if a.contact == "line" else "algebraic_map_scan_point.json")
     todo = []
     for f in a.files:
-        recs = json.loads(Path(f).read_text())
+        recs = json.loads(require(Path(f), MAP_COMMAND).read_text())
         for k, v in recs.items():
             name, v = overrides.get(k, (Path(f).name, v))
             c, r = v["case"], v["result"]

@@ -7,7 +7,7 @@ are recorded. Resumable: a scene already solved by the same code is not solved a
 
     NUMBA_NUM_THREADS=1 python validation/accuracy/builtin_scenes.py [--timeout 1800] [--only NAME ...]
 
-Writes ``out/builtin_scenes.json``.
+Writes ``build/validation/accuracy/builtin_scenes.json``.
 """
 
 from __future__ import annotations
@@ -25,8 +25,9 @@ from tqdm import tqdm
 
 from ehl_multigrid.model.scene import builtin_scene_names
 
-OUT = Path(__file__).resolve().parent / "out" / "builtin_scenes.json"
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "validation"))
+from _paths import out_dir  # noqa: E402
 
 
 def code_version() -> str:
@@ -64,6 +65,7 @@ def main() -> None:
     ap.add_argument("--timeout", type=float, default=1800.0)
     ap.add_argument("--only", nargs="*", default=None)
     a = ap.parse_args()
+    OUT = out_dir("accuracy") / "builtin_scenes.json"
     done = json.loads(OUT.read_text()) if OUT.is_file() else {}
     version = code_version()
     names = a.only or builtin_scene_names()
@@ -71,7 +73,6 @@ def main() -> None:
         if done.get(name, {}).get("code") == version:
             continue
         done[name] = {**solve(name, a.timeout), "code": version}
-        OUT.parent.mkdir(exist_ok=True)
         tmp = OUT.with_suffix(".tmp")
         tmp.write_text(json.dumps(done, indent=1))
         tmp.replace(OUT)

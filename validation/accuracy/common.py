@@ -13,12 +13,14 @@ from pathlib import Path
 from typing import Any
 
 HERE = Path(__file__).resolve().parent
-OUT = HERE / "out"
-SOLVES = OUT / "solves"
-REFS = OUT / "references"
-for _d in (OUT, SOLVES, REFS):
-    _d.mkdir(parents=True, exist_ok=True)
 sys.path.insert(0, str(HERE.parents[1]))
+sys.path.insert(0, str(HERE.parent))
+# require: re-exported to the studies that read another study's output
+from _paths import out_dir, require  # noqa: E402, F401
+
+OUT = out_dir("accuracy")
+SOLVES = out_dir("accuracy/solves")
+REFS = out_dir("accuracy/references")
 
 from ehl_multigrid.line.problem import default_xmin  # noqa: E402
 from ehl_multigrid.point.problem import default_domain, problem_from_moes  # noqa: E402
@@ -144,7 +146,7 @@ def record(sol: Any, wall: float, cpu: float, load0: float) -> dict[str, Any]:
 def cached_solve(contact: str, M: float, L: float, theta: float, points: int, box: float = 1.0,
                  **opts: Any) -> dict[str, Any]:
     """A reference solve (no error estimate) at ``points`` on a box ``box`` times the default
-    at equal mesh size, cached in out/solves."""
+    at equal mesh size, cached in build/validation/accuracy/solves."""
     path = SOLVES / f"{solve_key(contact, M, L, theta, points, box, **opts)}.json"
     rec = read_json(path)
     if rec is not None:

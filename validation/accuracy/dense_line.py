@@ -14,7 +14,7 @@ grid, never from the multigrid iterate of the same grid. Its answer is the exact
 the discrete equations to round-off, so ``|F_multigrid / F_dense - 1|`` is the multigrid's
 true algebraic error on that grid.
 
-    python validation/accuracy/dense_line.py      # writes out/dense_check.json
+    python validation/accuracy/dense_line.py      # writes build/validation/accuracy/dense_check.json
 """
 
 from __future__ import annotations
@@ -29,6 +29,7 @@ import scipy.linalg
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1]))
+sys.path.insert(0, str(HERE.parent))
 
 from ehl_multigrid.line.discrete import fluid_state, reynolds_residual  # noqa: E402
 from ehl_multigrid.line.kernel import log_kernel  # noqa: E402
@@ -158,11 +159,12 @@ CASES = [(5.0, 0.0, 513), (20.0, 10.0, 513), (20.0, 10.0, 1025), (100.0, 10.0, 1
 def main() -> None:
     import json
 
+    from _paths import out_dir
     from tqdm import tqdm
 
     from ehl_multigrid.line import solve_line
 
-    out = HERE / "out" / "dense_check.json"
+    out = out_dir("accuracy") / "dense_check.json"
     rows = json.loads(out.read_text()) if out.exists() else {}
     for M, L, n in tqdm(CASES, desc="dense line"):
         key = f"{M:g}_{L:g}_{n}"

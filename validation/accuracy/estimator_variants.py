@@ -1,5 +1,5 @@
 """What-if: would other rules for the error estimate be more honest? Every usable row of
-out/honesty.json is re-estimated with the package's Richardson rule (GRID_SAFETY, the order
+build/validation/accuracy/honesty.json (from ``honesty.py``) is re-estimated with the package's Richardson rule (GRID_SAFETY, the order
 caps) fed with different inputs, against the same true errors. The solver's domain part is
 ``DOMAIN_SAFETY |d2|`` with ``d2`` the probe's change when the box is doubled, so ``|d2|``
 is recovered from the reported budget.
@@ -14,7 +14,7 @@ is recovered from the reported budget.
   series at equal mesh), instead of a fixed factor;
 * ``both`` -- converged coarse solves and the measured decay.
 
-    python validation/accuracy/estimator_variants.py   # writes out/estimator_variants.json
+    python validation/accuracy/estimator_variants.py   # writes build/validation/accuracy/estimator_variants.json
 """
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ from common import (
     line_reference_solve,
     nan,
     read_json,
+    require,
     usable,
     write_json,
 )
@@ -86,7 +87,7 @@ def domain_with_decay(d2_probe: float, r: float) -> float:
 
 
 def main() -> None:
-    hon = read_json(OUT / "honesty.json")
+    hon = read_json(require(OUT / "honesty.json", "python validation/accuracy/honesty.py"))
     rows = [r for r in hon["rows"] if r.get("usable")]
     out = []
     for row in rows:

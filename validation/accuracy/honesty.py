@@ -11,7 +11,7 @@ references of references.py. The true error is also split like the budget:
 Targets: the true error is below the estimate in >= 95 % of the cases, and the median of
 true/estimated lies between 0.2 and 1.
 
-    python validation/accuracy/honesty.py           # runs what is missing, writes out/honesty.*
+    python validation/accuracy/honesty.py           # runs what is missing, writes build/validation/accuracy/honesty.*
 """
 
 from __future__ import annotations
@@ -49,7 +49,7 @@ def cases() -> list[tuple[str, float, float, float, int]]:
 
 
 def tested_solve(contact: str, M: float, L: float, theta: float, n: int) -> dict[str, Any]:
-    """The default solve with its error estimate, cached in out/tested."""
+    """The default solve with its error estimate, cached in build/validation/accuracy/tested."""
     path = TESTED / f"{contact}_M{fmt(M)}_L{fmt(L)}_t{fmt(theta)}_n{n}.json"
     rec = read_json(path)
     if rec is not None and rec.get("code") == code_version():

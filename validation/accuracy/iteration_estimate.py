@@ -1,6 +1,6 @@
 """Is the algebraic (iteration) part of the error estimate honest on its own?
 
-Reads the cases of ``validation/bench/out/grid_stop.json`` (each solved with the default stop,
+Reads the cases of ``build/validation/bench/grid_stop.json`` (``validation/bench/grid_stop.py``) (each solved with the default stop,
 the residual rule alone and a deep reference with tolerances ten times tighter; the finest-grid
 films of every cycle are stored) and evaluates rules that turn the last finest-grid changes into
 an iteration-error estimate against the true distance to the deep solve:
@@ -18,7 +18,7 @@ an iteration-error estimate against the true distance to the deep solve:
 
 Each adds the load error times :data:`LOAD_SENSITIVITY`. A film is *covered* when its true
 distance to the deep solve is within its estimate plus the deep solve's own estimate (same
-rule). Writes ``out/iteration_estimate.json`` and prints a table.
+rule). Writes ``build/validation/accuracy/iteration_estimate.json`` and prints a table.
 
     python validation/accuracy/iteration_estimate.py [PATH]
 """
@@ -33,8 +33,11 @@ from pathlib import Path
 
 from ehl_multigrid.multigrid.accuracy import LOAD_SENSITIVITY, MAX_ITERATION_FACTOR, iteration_error
 
-HERE = Path(__file__).parent
-SOURCE = HERE.parents[0] / "bench" / "out" / "grid_stop.json"
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent))
+from _paths import BUILD, out_dir, require  # noqa: E402
+
+SOURCE = BUILD / "bench" / "grid_stop.json"
 
 
 def factor(films: list[float], floor_rho: float, ratios: int = 1) -> float:
@@ -100,10 +103,9 @@ def evaluate(rows: list[dict]) -> dict:
 
 def main() -> None:
     path = Path(sys.argv[1]) if len(sys.argv) > 1 else SOURCE
-    rows = json.loads(path.read_text())["rows"]
+    rows = json.loads(require(path, "python validation/bench/grid_stop.py").read_text())["rows"]
     res = evaluate(rows)
-    (HERE / "out").mkdir(exist_ok=True)
-    (HERE / "out" / "iteration_estimate.json").write_text(json.dumps({"source": str(path), "rules": res}, indent=1))
+    (out_dir("accuracy") / "iteration_estimate.json").write_text(json.dumps({"source": str(path), "rules": res}, indent=1))
     print("| stop / rule | films | covered | fraction | median true/est | max true/est |")
     print("|---|---|---|---|---|---|")
     for key, v in res.items():

@@ -86,7 +86,7 @@ def _films(rec: dict[str, Any]) -> tuple[float, float]:
 
 
 #: algebraic error of a converged tight line solve: the dense direct solver agrees with it to
-#: <= 2e-7 in Hc and Hm (out/dense_check.json)
+#: <= 2e-7 in Hc and Hm (build/validation/accuracy/dense_check.json, ``dense_line.py``)
 LINE_TIGHT_ALGEBRAIC = 1e-6
 
 

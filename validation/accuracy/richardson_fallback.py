@@ -1,9 +1,10 @@
 """Re-evaluate the honesty set with the grid part recomputed by today's ``richardson`` (the
-stored FMG films of ``out/tested/*.json``; true errors from ``out/honesty.json``), against the
-grid part those records were estimated with: what a change of the Richardson rule does to the
-coverage and the median true/estimate without re-running any solve.
+stored FMG films of ``build/validation/accuracy/tested/*.json``; true errors from ``honesty.json``
+there, both written by ``honesty.py``), against the grid part those records were estimated with:
+what a change of the Richardson rule does to the coverage and the median true/estimate without
+re-running any solve.
 
-    python validation/accuracy/richardson_fallback.py   # writes out/richardson_fallback.json
+    python validation/accuracy/richardson_fallback.py   # writes build/validation/accuracy/richardson_fallback.json
 """
 
 from __future__ import annotations
@@ -12,13 +13,13 @@ import json
 import math
 import statistics
 
-from common import OUT, write_json
+from common import OUT, require, write_json
 
 from ehl_multigrid.multigrid.accuracy import HM_MAX_ORDER, richardson
 
 
 def main() -> None:
-    hon = json.loads((OUT / "honesty.json").read_text())
+    hon = json.loads(require(OUT / "honesty.json", "python validation/accuracy/honesty.py").read_text())
     rows = {(r["contact"], r["M"], r["L"], r["theta"], r["points"]): r for r in hon["rows"]}
     out = []
     for f in sorted((OUT / "tested").glob("*.json")):

@@ -12,7 +12,7 @@ not depend on what else the shared machine runs). A stopped run, and every tight
 of the same contact and (M, L), is recorded as skipped with the reason.
 
     python validation/accuracy/speed_accuracy.py [--contact line] [--limit-cpu 600]
-    # writes out/speed_accuracy.json|png
+    # writes build/validation/accuracy/speed_accuracy.json|png
 """
 
 from __future__ import annotations

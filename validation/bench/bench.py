@@ -26,7 +26,7 @@ separately: ``ehl solve --help`` and the import of the solvers, each in a fresh 
     python validation/bench/bench.py --quick --label before
     python validation/bench/bench.py --label after --max-point 2049
 
-writes ``validation/bench/out/<label>.json``, ``<label>.md`` (table) and ``<label>.png``
+writes ``build/validation/bench/<label>.json``, ``<label>.md`` (table) and ``<label>.png``
 (time against points, log-log, with the fitted cost exponent).
 """
 
@@ -45,7 +45,10 @@ import sys
 import time
 from pathlib import Path
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir, require  # noqa: E402
+
+OUT = out_dir("bench")
 
 CASES = {
     "point": {"contact": "point", "M": 20.0, "L": 10.0, "kw": {"half": False}},
@@ -339,7 +342,8 @@ def plot(data: dict, path: Path) -> None:
 
 def compare(labels: list[str]) -> str:
     """Markdown table of the runs ``labels`` side by side (wall, CPU, WU, cycles, peak MB)."""
-    runs = [json.loads((OUT / f"{lab}.json").read_text()) for lab in labels]
+    runs = [json.loads(require(OUT / f"{lab}.json", f"python validation/bench/bench.py --label {lab}").read_text())
+            for lab in labels]
     keys = list(dict.fromkeys((r["case"], r["points"]) for d in runs for r in d["rows"]))
     cols = ["wall s", "CPU s", "WU", "cycles", "defo evals", "peak MB", "load"]
     head = "| case | points | " + " | ".join(f"{c} {lab}" for c in cols for lab in labels) + " |"
@@ -381,7 +385,7 @@ def main() -> None:
     ap.add_argument("--append", action="store_true",
                     help="keep the other cases' rows of an existing <label>.json")
     ap.add_argument("--compare", nargs="+", metavar="LABEL",
-                    help="only write out/compare.md from earlier runs")
+                    help="only write build/validation/bench/compare.md from earlier runs")
     a = ap.parse_args()
     if a.compare:
         text = compare(a.compare)

@@ -1,7 +1,7 @@
 """Robustness screen of the point solver's cycle type: every point case of the extremes matrix
 and of the fit-check map (validation/extremes/accuracy_map.py) solved on one fixed grid (257
 points, or the solver's smallest grid for the load, at most 513; half domain, default box and
-tolerances) with W cycles and with F cycles. Writes ``out/<label>.json`` (default
+tolerances) with W cycles and with F cycles. Writes ``build/validation/bench/<label>.json`` (default
 ``cycle_screen``) with status, work units, wall time and films per case and cycle type.
 
     python validation/bench/cycle_screen.py [--quick] [--label NAME]
@@ -20,7 +20,10 @@ from tqdm import tqdm
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "extremes"))
 from accuracy_map import cases, fit_cases  # noqa: E402
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("bench")
 
 
 def run(case: dict, cycle: str, points: int) -> dict:
@@ -43,7 +46,7 @@ def main() -> None:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--label", default="cycle_screen", help="output file stem under out/")
+    ap.add_argument("--label", default="cycle_screen", help="output file stem under build/validation/bench/")
     a = ap.parse_args()
     todo = [c for c in cases(a.quick) if c["contact"] == "point"]
     todo += [c for c in fit_cases(a.quick) if c["contact"] == "point"]

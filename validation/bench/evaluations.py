@@ -6,7 +6,7 @@ PYTHONPATH to measure that tree::
     PYTHONPATH=/tmp/old python validation/bench/evaluations.py old
     python validation/bench/evaluations.py new
 
-writes ``out/evaluations_<label>.json``. ``hierarchy N`` instead builds the circular (20, 10)
+writes ``build/validation/bench/evaluations_<label>.json``. ``hierarchy N`` instead builds the circular (20, 10)
 grid hierarchy on N^2 points and times two film updates (deformation, film, fluid properties)
 of the finest grid with a random pressure, with the peak memory (a solve's storage without
 solving)::
@@ -27,7 +27,10 @@ import numpy as np
 
 from ehl_multigrid.point.deformation import make_deformation
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("bench")
 
 
 def main(label: str, max_n: int = 2049) -> None:

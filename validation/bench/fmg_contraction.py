@@ -19,7 +19,7 @@ So rho must stay below ``E(n) / (E(n/2) + A(n/2))``, the "needed" column.
 
     python validation/bench/fmg_contraction.py --points 513 1025 2049 --label fmg_contraction
 
-writes ``out/<label>.json`` and ``.md``.
+writes ``build/validation/bench/<label>.json`` and ``.md``.
 """
 
 from __future__ import annotations
@@ -32,6 +32,8 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent))
+from _paths import require  # noqa: E402
 from outputs import OUT, write_study  # noqa: E402
 
 
@@ -61,7 +63,7 @@ def main() -> None:
     os.environ.setdefault("NUMBA_NUM_THREADS", "1")
     import fmg_textbook
 
-    ref = json.loads(Path(a.reference).read_text())
+    ref = json.loads(require(Path(a.reference), "python validation/bench/fmg_textbook.py").read_text())
     deep = {int(n): r for n, r in ref["deep"].items()
             if r["status"] in ("converged", "residual_floor")}
     limit, order = fmg_textbook.limit(deep, "Hc")

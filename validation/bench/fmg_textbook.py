@@ -19,7 +19,7 @@ Work units do not depend on the machine; wall times are recorded but not compare
 
     python validation/bench/fmg_textbook.py [--max-points 4097] [--label fmg_textbook]
 
-Writes ``out/<label>.json`` and ``out/<label>.md``; an interrupted run resumes from its JSON
+Writes ``build/validation/bench/<label>.json`` and ``build/validation/bench/<label>.md``; an interrupted run resumes from its JSON
 (rows of the same case, variant and grid are not solved again).
 """
 
@@ -30,12 +30,16 @@ import json
 import math
 import os
 import subprocess
+import sys
 import time
 from pathlib import Path
 
 from tqdm import tqdm
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("bench")
 CASE = {"M": 20.0, "L": 10.0, "theta": 1.0}
 #: FMG variants: (name, options); all with one cycle per FMG level and no cycle after it
 VARIANTS = {

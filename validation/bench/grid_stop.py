@@ -12,7 +12,7 @@ against the deep reference. A stop is *honest* when the true error is within the
 
 ``map``: every point case of the extremes matrix and the fit-check map on 513 points (half
 domain); ``fine``: (20, 10), (100, 10), (1000, 10) and theta 4 point contacts on 1025 and 2049
-points, line contacts up to 16385 points. Writes ``out/<label>.json`` and ``out/<label>.md``.
+points, line contacts up to 16385 points. Writes ``build/validation/bench/<label>.json`` and ``build/validation/bench/<label>.md``.
 """
 
 from __future__ import annotations
@@ -29,7 +29,10 @@ from tqdm import tqdm
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "extremes"))
 from accuracy_map import cases, fit_cases  # noqa: E402
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("bench")
 
 FINE = ([{"contact": "point", "M": M, "L": 10.0, "theta": 1.0, "points": n}
          for M in (20.0, 100.0, 1000.0) for n in (1025, 2049)]
@@ -143,7 +146,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--set", choices=("map", "fine", "all"), default="all")
     ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--label", default="grid_stop", help="output file stem under out/")
+    ap.add_argument("--label", default="grid_stop", help="output file stem under build/validation/bench/")
     a = ap.parse_args()
     todo: list[dict] = []
     if a.set in ("map", "all"):

@@ -16,7 +16,7 @@ is the serial share of the one-thread time (those grids plus the driver).
 
     python validation/bench/level_share.py --points 513 1025 --rounds 3 --label session19
 
-writes ``out/level_share_<label>.json`` and ``.md``.
+writes ``build/validation/bench/level_share_<label>.json`` and ``.md``.
 """
 
 from __future__ import annotations

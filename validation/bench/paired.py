@@ -5,7 +5,7 @@ warm-up, then one timed solve), so both see the same background load.
     git archive <commit> | tar -x -C /tmp/old
     python validation/bench/paired.py --old /tmp/old --cases point,point_half --points 513 1025
 
-writes ``out/paired.json`` and ``out/paired.md`` (median wall and CPU time of each side, their
+writes ``build/validation/bench/paired.json`` and ``build/validation/bench/paired.md`` (median wall and CPU time of each side, their
 ratio, the load average over the runs). ``--threads-pair`` compares one thread ("old" column)
 with two threads ("new" column) on the working tree instead.
 """

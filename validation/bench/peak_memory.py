@@ -9,7 +9,7 @@ after a 129^2 warm-up.
     NUMBA_NUM_THREADS=1 python validation/bench/peak_memory.py 2049 full [--label session14]
 
 appends one record (commit, points, domain, baseline and peak MB, the stack at the peak, work
-units) to ``out/peak_memory_<label>.json``; a record of another commit under the same label is
+units) to ``build/validation/bench/peak_memory_<label>.json``; a record of another commit under the same label is
 dropped (a label holds the runs of one code version). Session 14 (commit 365a12c): 2049^2 full 833 -> 727 MB, half
 636 -> 484 MB, 4097^2 half 1308 MB (validation/bench/REPORT.md).
 """
@@ -28,6 +28,8 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1]))
+sys.path.insert(0, str(HERE.parent))
+from _paths import out_dir  # noqa: E402
 
 
 def rss_mb() -> float:
@@ -71,7 +73,7 @@ def main() -> None:
            "ru_maxrss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
            "stack_at_peak": peak[1], "work_units": sol.work_units, "status": sol.status_name,
            "wall_s": wall}
-    out = HERE / "out" / f"peak_memory_{a.label}.json"
+    out = out_dir("bench") / f"peak_memory_{a.label}.json"
     rows = [r for r in (json.loads(out.read_text()) if out.is_file() else []) if r.get("commit") == commit]
     rows.append(rec)
     tmp = out.with_suffix(".tmp")

@@ -5,7 +5,7 @@ Variants (``--variant``): ``y_post`` -- fine-grid Y lines in the post-relaxation
 -- the robustness policy's ladder starting with "halve the under-relaxation, W cycles" instead
 of "alternate on every grid" (then "alternate", "switch"), for rejected and stalled cycles.
 
-Every point case of ``out/grid_stop.json`` (the extremes matrix and the fit-check map on 513
+Every point case of ``build/validation/bench/grid_stop.json`` (the extremes matrix and the fit-check map on 513
 points or the case's minimum grid, and the fine grids up to 2049^2) is solved twice with the
 default options otherwise, paired (new rule, then old rule): status, work units, wall time, cycles, the
 films and the algebraic error each result states. The true iteration error is taken against
@@ -15,7 +15,7 @@ its stated algebraic error plus the reference's.
 
     python validation/bench/point_variants.py [--variant y_post|hw_first] [--quick] [--label NAME]
 
-Writes ``out/<label>.json`` and ``out/<label>.md`` (default label: the variant's name); an
+Writes ``build/validation/bench/<label>.json`` and ``build/validation/bench/<label>.md`` (default label: the variant's name); an
 interrupted run resumes from its JSON (cases of the same list only).
 """
 
@@ -33,7 +33,10 @@ from tqdm import tqdm
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from grid_stop import save_json, solve, write_report  # noqa: E402
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir, require  # noqa: E402
+
+OUT = out_dir("bench")
 
 
 def solve_hw_first(case: dict) -> dict:
@@ -111,7 +114,7 @@ def main() -> None:
     ap.add_argument("--variant", choices=sorted(VARIANTS), default="y_post")
     ap.add_argument("--label", default=None, help="output stem (default: the variant)")
     a = ap.parse_args()
-    src = json.loads((OUT / "grid_stop.json").read_text())["rows"]
+    src = json.loads(require(OUT / "grid_stop.json", "python validation/bench/grid_stop.py").read_text())["rows"]
     todo = [r for r in src if r["contact"] == "point"]
     if a.quick:
         todo = todo[::6]

@@ -16,7 +16,7 @@ Cases (thermal Roelands-Eyring model, thesis ch. 3; Stribeck curves, thesis ch. 
 Every case runs ``--repeat`` times (median reported) after one warm-up of the compiled kernels;
 the 1-minute load average is read before and after each case, and the process CPU time (all
 threads) is recorded next to the wall time: on a loaded machine it shows the work done. The friction coefficients are
-stored, and with ``--reference`` (default ``out/thermal_before.json`` when the label is not
+stored, and with ``--reference`` (default ``build/validation/bench/thermal_before.json`` when the label is not
 ``before``) each case's largest friction-coefficient difference against that run is
 reported (absolute and relative to the largest |f| of the curve).
 
@@ -28,7 +28,7 @@ reported (absolute and relative to the largest |f| of the curve).
 (``--interleave``: the cases round-robin, one run each per round, and the median of the
 per-round EHL/Hertz-input ratios: a drift of the machine's speed falls on both inputs alike.)
 
-writes ``validation/bench/out/thermal_<label>.json``, ``thermal_<label>.md`` (table) and
+writes ``build/validation/bench/thermal_<label>.json``, ``thermal_<label>.md`` (table) and
 ``thermal_<label>.png`` (median wall time per case, with the reference's when given).
 """
 
@@ -54,7 +54,10 @@ sys.path.insert(0, str(ROOT))
 
 import numpy as np  # noqa: E402
 
-OUT = HERE / "out"
+sys.path.append(str(HERE.parent))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("bench")
 CACHE = Path(os.environ.get("EHL_BENCH_CACHE", "/tmp/ehl_bench_thermal_cache"))
 
 TRACTION_SCENES = [
@@ -354,17 +357,17 @@ def grid_study(label: str) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--label", required=True, help="run label: out/thermal_<label>.json")
+    ap.add_argument("--label", required=True, help="run label: build/validation/bench/thermal_<label>.json")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--quick", action="store_true", help="two traction scenes, the line Stribeck curves only")
-    ap.add_argument("--reference", default=None, help="JSON of an earlier run (default out/thermal_before.json)")
+    ap.add_argument("--reference", default=None, help="JSON of an earlier run (default build/validation/bench/thermal_before.json)")
     ap.add_argument("--only", default=None,
                     help="run only the cases whose name contains this text (several: comma-separated, any of them)")
     ap.add_argument("--interleave", action="store_true",
                     help="run the cases round-robin, one run each per round (--repeat rounds), and "
                          "report per-round EHL/Hertz ratios")
     ap.add_argument("--grid-study", action="store_true",
-                    help="instead: the thermal Stribeck curve (series C) on four grids, out/thermal_grid_<label>.json")
+                    help="instead: the thermal Stribeck curve (series C) on four grids, build/validation/bench/thermal_grid_<label>.json")
     args = ap.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
     if args.grid_study:

@@ -15,7 +15,7 @@ gains mean nothing.
 
     python validation/bench/thread_ceiling.py --label session18
 
-writes ``out/thread_ceiling_<label>.json`` and ``.md``.
+writes ``build/validation/bench/thread_ceiling_<label>.json`` and ``.md``.
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ import json
 import math
 import os
 import statistics
+import sys
 import time
 from pathlib import Path
 
@@ -32,7 +33,10 @@ import numba
 import numpy as np
 from numba import njit, prange
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("bench")
 
 
 @njit(parallel=True, cache=True)

@@ -3,9 +3,9 @@
 Runs a fixed set of line and point solves and writes their films, work and cycle counts to
 JSON, so two versions of the code can be compared number by number::
 
-    python validation/core/fingerprint.py out/before.json
-    python validation/core/fingerprint.py out/after.json
-    python validation/core/fingerprint.py --compare out/before.json out/after.json
+    python validation/core/fingerprint.py build/validation/core/before.json
+    python validation/core/fingerprint.py build/validation/core/after.json
+    python validation/core/fingerprint.py --compare build/validation/core/before.json build/validation/core/after.json
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@
 Dowson-Higginson, defaults otherwise). Median of ``--repeat`` solves after one warm-up, in one
 process; the load average before and after is recorded. Writes JSON::
 
-    python validation/core/timing.py out/timing_before.json
+    python validation/core/timing.py build/validation/core/timing_before.json
 """
 
 from __future__ import annotations

@@ -16,7 +16,7 @@ as such) where the check grid would exceed ``--check-max`` points.
 
 Usage: python validation/extremes/accuracy_map.py [--map extremes|fits] [--accuracy 0.02]
        [--timeout 600] [--quick]
-Writes validation/extremes/out/accuracy_map_<A>.json (fits: fit_map_<A>.json).
+Writes build/validation/extremes/accuracy_map_<A>.json (fits: fit_map_<A>.json).
 """
 
 from __future__ import annotations
@@ -29,7 +29,10 @@ import sys
 import time
 from pathlib import Path
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("extremes")
 
 
 def cases(quick: bool) -> list[dict]:

@@ -15,13 +15,15 @@ import json
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).parent))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import require  # noqa: E402
 from accuracy_map import check_case, classify  # noqa: E402
 
 
 def main() -> None:
     path, selectors, out_path = sys.argv[1], json.loads(sys.argv[2]), sys.argv[3]
-    records = json.loads(Path(path).read_text())
+    records = json.loads(require(Path(path), "python validation/extremes/accuracy_map.py").read_text())
     out = json.loads(Path(out_path).read_text()) if Path(out_path).is_file() else {}
     for want in selectors:
         for key, rec in records.items():

@@ -17,7 +17,7 @@ With ``--finer-film-stop`` the deep references are replaced by the map's own che
 finer, stopped on the films at a quarter of the target), started from the result
 (:func:`finer_check`), for results whose map check diverged from the FMG start.
 
-Writes ``out/check_from_solution_<M>_<L>_<theta>_<accuracy>[_finer].json`` after every solve.
+Writes ``build/validation/extremes/check_from_solution_<M>_<L>_<theta>_<accuracy>[_finer].json`` after every solve.
 """
 
 from __future__ import annotations

@@ -8,7 +8,7 @@ Each case ends as exactly one of
                converged that fails its own convergence criteria. Must be zero.
 
 Usage: python validation/extremes/extremes.py [--quick] [--models line,point,thermal,mixed]
-Writes validation/extremes/out/extremes[_quick].json (resumes: finished cases are kept).
+Writes build/validation/extremes/extremes[_quick].json (resumes: finished cases are kept).
 """
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 import time
 import traceback
 from collections.abc import Callable, Iterator
@@ -27,7 +28,7 @@ import numpy as np
 from ehl_multigrid.model.errors import ConvergenceError, InputError
 from ehl_multigrid.model.scene import load_scene
 
-OUT = Path(__file__).parent / "out"
+HERE = Path(__file__).resolve().parent
 
 Case = dict[str, Any]
 
@@ -168,8 +169,11 @@ def case_key(case: Case) -> str:
 
 
 def run(models: list[str], quick: bool, progress: bool = True) -> dict[str, Any]:
-    OUT.mkdir(parents=True, exist_ok=True)
-    path = OUT / f"extremes{'_quick' if quick else ''}.json"
+    # the folder is made here, not at import: tests import this module for its runners
+    sys.path.insert(0, str(HERE.parent))
+    from _paths import out_dir
+
+    path = out_dir("extremes") / f"extremes{'_quick' if quick else ''}.json"
     done: dict[str, Any] = json.loads(path.read_text())["cases"] if path.exists() else {}
     cases = [c for m in models for c in MODELS[m][0](quick)]
     it = cases

@@ -1,7 +1,7 @@
 """Run a map of accuracy_map.py with several case processes at once (resumable).
 
     python validation/extremes/map_parallel.py --map extremes --contact point --accuracy 0.02 \
-        --max-points 2049 --check-max 2049 --tag session8 --workers 2
+        --max-points 2049 --check-max 2049 --tag point2049 --workers 2
 
 Each case runs in its own process with one numba thread (as accuracy_map.py's serial loop);
 records are written as they finish, keyed like accuracy_map.py's, so either script resumes

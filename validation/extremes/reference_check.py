@@ -15,12 +15,12 @@ algebraic error (the box part is common to both) by more than the reference's ow
 (the finest reference's distance to the limit).
 
     python validation/extremes/reference_check.py [--contact line|point] [--max-points N] \
-        out/fit_map_0.01_session10.json out/accuracy_map_0.02_session10.json
+        build/validation/extremes/fit_map_0.01.json build/validation/extremes/accuracy_map_0.02.json
 
 ``--max-points`` raises the finest reference grid (default 65537 line, 2049 point; a line
 result on 65537 points needs 262145: about 1.5 GB and a minute per deep solve).
 
-Writes ``out/<contact>_reference_check_<tag>.json`` (resumable: a record already there for the same
+Writes ``build/validation/extremes/<contact>_reference_check_<tag>.json`` (resumable: a record already there for the same
 result is not solved again).
 """
 
@@ -35,6 +35,8 @@ from pathlib import Path
 from tqdm import tqdm
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import require  # noqa: E402
 from accuracy_map import OUT, box_of  # noqa: E402
 
 MAX_POINTS = {"line": 65537, "point": 2049}
@@ -150,7 +152,7 @@ def main() -> None:
     path = OUT / f"{contact}_reference_check_{tag}.json"
     todo = []
     for f in files:
-        for key, rec in json.loads(f.read_text()).items():
+        for key, rec in json.loads(require(f, "python validation/extremes/accuracy_map.py").read_text()).items():
             r = rec["result"]
             if rec["case"]["contact"] == contact and r.get("status") == "converged" and r.get("error_budget"):
                 todo.append((f"{f.stem}|{key}", rec))

@@ -1,10 +1,10 @@
 """Summaries of the accuracy maps written by accuracy_map.py: counts per outcome and reason,
 and the fit-check map as the package's answer to "how good are the fits".
 
-    python validation/extremes/summarize_maps.py [--extremes out/accuracy_map_0.02.json]
-                                                 [--fits out/fit_map_0.01.json]
+    python validation/extremes/summarize_maps.py [--extremes build/validation/extremes/accuracy_map_0.02.json]
+                                                 [--fits build/validation/extremes/fit_map_0.01.json]
 
-Writes maps_summary.json and <fits stem>.png into ``--out`` (default out/), and prints
+Writes maps_summary.json and <fits stem>.png into ``--out`` (default build/validation/extremes/), and prints
 markdown tables.
 
 The fit deviation ``Hc/Hc_fit - 1`` is reported only for cases that converged to the target,
@@ -17,10 +17,14 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 from collections import Counter
 from pathlib import Path
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("extremes")
 
 
 def reason(rec: dict) -> str:
@@ -151,8 +155,10 @@ def main() -> None:
     for f in a.override:
         overrides.update(json.loads(Path(f).read_text()))
     summary = {}
-    for name, path in (("extremes", Path(a.extremes)), ("fits", Path(a.fits))):
+    for name, path, accuracy in (("extremes", Path(a.extremes), 0.02), ("fits", Path(a.fits), 0.01)):
         if not path.is_file():
+            print(f"{path} is missing (skipped): run `python validation/extremes/accuracy_map.py "
+                  f"--map {name} --accuracy {accuracy:g}` first")
             continue
         recs = json.loads(path.read_text())
         replaced = [k for k in recs if k in overrides]

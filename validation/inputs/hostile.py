@@ -542,10 +542,10 @@ def wrong_answer_cases() -> list[Case]:
             C.append(Case("starved", f"starved_{tag}_{htag}_traction",
                           ["traction", sc, "--slip", "0.05", "--no-plots", "--json", *o],
                           "starved", names, 900, files=f))
-        d = scene(scene(base, "supply.hoil", 2e-8), "feature", {"kind": "dent", "amplitude": "-50 nm", "width": "20 um"})
+        d = scene(scene(base, "supply.hoil", 2e-8), "feature", {"kind": "dent", "amplitude": "50 nm", "width": "20 um"})
         C.append(Case("starved", f"starved_{tag}_transient", ["transient", "{dir}/s.toml", "--no-plots", *o],
                       "error", ["hoil"], 300, files={"s.toml": d}))
-    d = scene(scene(LINE_STARVED, "supply", delete=True), "feature", {"kind": "dent", "amplitude": "-50 nm", "width": "20 um",
+    d = scene(scene(LINE_STARVED, "supply", delete=True), "feature", {"kind": "dent", "amplitude": "50 nm", "width": "20 um",
                                                                      "x0": math.nan})
     C.append(Case("options", "transient_x0_nan_refused", ["transient", "{dir}/s.toml", "--no-plots", *o], "error", ["x0"],
                   files={"s.toml": d}))
@@ -562,7 +562,7 @@ def wrong_answer_cases() -> list[Case]:
     # the unit mistakes of the report: warned (exit 0 with the field named), refused with --strict
     plaus = {
         "load_1e12": ("operating.load", 1e12, ["load"]),
-        "radius_10m": ("geometry.R1x", 10.32, ["R1x"]),
+        "radius_10m": ("geometry", {"R1x": 10.32, "R1y": 10.32, "R2x": math.inf, "R2y": math.inf}, ["R1x"]),
         "eta0_1e6": ("lubricant.eta0", 1e6, ["eta0"]),
         "T_oil_343": ("operating.T_oil", 343.0, ["T_oil"]),
     }

@@ -1,9 +1,9 @@
-"""Validation studies of the line-contact solver. Writes JSON + PNG to ./out/.
+"""Validation studies of the line-contact solver. Writes JSON + PNG to build/validation/line/.
 
     python validation/line/studies.py [--study grid|fit|limits|extremes|cost|all] [--full]
 
 Quick mode (default) runs a subset in a few minutes; ``--full`` runs the whole study.
-Every finished case is written to ``out/<study>[_quick].json`` at once, so an interrupted
+Every finished case is written to ``build/validation/line/<study>[_quick].json`` at once, so an interrupted
 run keeps its work (a rerun recomputes).
 
 1. grid: Hc, Hm, p_spike at (M, L) = (20,10), (100,10), (1000,10) on 257 .. 8193 points;
@@ -22,6 +22,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -36,7 +37,10 @@ from ehl_multigrid.line import solve_line  # noqa: E402
 from ehl_multigrid.model.errors import ConvergenceError  # noqa: E402
 from ehl_multigrid.model.fits import moes_line_central  # noqa: E402
 
-OUT = Path(__file__).with_name("out")
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir, require  # noqa: E402
+
+OUT = out_dir("line")
 DPI = 100
 
 
@@ -160,7 +164,9 @@ def fitfine(full: bool) -> dict:
     """High-M columns of the fit study on doubled grids (M = 500: 8193, M >= 1000: 16385),
     so their grid error falls to ~0.5 % (the grid study shows 0.65 % at M = 1000, 8193)."""
     st = Store("fit_fine", full)
-    coarse = json.loads((OUT / f"fit{'' if full else '_quick'}.json").read_text())["rows"]
+    coarse_path = OUT / f"fit{'' if full else '_quick'}.json"
+    coarse = json.loads(require(coarse_path, f"python validation/line/studies.py --study fit{' --full' if full else ''}")
+                        .read_text())["rows"]
     Ms = [500, 1000, 2000] if full else [500]
     Ls = [0, 2, 5, 10, 15, 20] if full else [10]
     for visc, dens in (("barus", "incompressible"), ("roelands", "dowson-higginson")):

@@ -1,4 +1,4 @@
-"""Print the numbers of out/*.json as Markdown tables (used to write REPORT.md)."""
+"""Print the numbers of build/validation/line/*.json as Markdown tables (used to write REPORT.md)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,10 @@ import math
 import sys
 from pathlib import Path
 
-OUT = Path(__file__).with_name("out")
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("line")
 
 
 def load(name: str) -> dict | None:

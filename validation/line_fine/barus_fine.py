@@ -5,7 +5,7 @@ pre-relaxations (line/solver.py ``LOCAL_NEWTON_PRE_ALPHA``; REPORT.md "Barus fin
 default. Plain solves ``solve_line(M, L, points=N, estimate=False)`` of the three listed cases
 at tol 1e-8 / tol_load 1e-9 and at the default tolerance, and of a scan of M = 50-1000,
 L = 10-30 on 4097 and 8193 points plus some 16385/32769-point cases (all alpha_bar > 20) at the
-default tolerance. Writes ``out/barus_fine.json`` and prints one line per solve.
+default tolerance. Writes ``build/validation/line_fine/barus_fine.json`` and prints one line per solve.
 """
 
 from __future__ import annotations
@@ -19,6 +19,8 @@ from tqdm import tqdm
 import ehl_multigrid.line.solver as line_solver_module
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
 from study import plain_solve, save  # noqa: E402
 
 BARUS = {"viscosity": "barus", "density": "incompressible"}
@@ -34,7 +36,7 @@ SCAN = [(M, L, n) for M in (50, 100, 200, 500, 1000) for L in (10, 15, 20, 25, 3
 def main() -> None:
     default = line_solver_module.LOCAL_NEWTON_PRE_ALPHA
     out: dict[str, dict] = {}
-    path = Path(__file__).parent / "out" / "barus_fine.json"
+    path = out_dir("line_fine") / "barus_fine.json"
     jobs = [(c, "tol 1e-8", DEEP) for c in LISTED] + [(c, "default", {}) for c in LISTED] + \
         [(c, "default", {}) for c in SCAN]
     for (M, L, n), tag, kw in tqdm(jobs):

@@ -1,11 +1,12 @@
-"""The fit map's 15 failing line cases (validation/extremes/out/fit_map_0.01_line2026.json,
+"""The fit map's 15 failing line cases (build/validation/extremes/fit_map_0.01_line2026.json,
 accuracy 0.01) re-run with ``solve_line(M, L, accuracy=0.01)`` on the current code.
-Writes ``out/fitmap_failures.json`` (status, points, Hc, Hm, estimated errors, the map's
+Writes ``build/validation/line_fine/fitmap_failures.json`` (status, points, Hc, Hm, estimated errors, the map's
 status before)."""
 
 from __future__ import annotations
 
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -13,17 +14,21 @@ from tqdm import tqdm
 
 from ehl_multigrid.line import solve_line
 
-MAP = Path(__file__).parents[1] / "extremes" / "out" / "fit_map_0.01_line2026.json"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import BUILD, out_dir, require  # noqa: E402
+
+MAP = BUILD / "extremes" / "fit_map_0.01_line2026.json"
+MAP_COMMAND = "python validation/extremes/accuracy_map.py --map fits --contact line --accuracy 0.01 --tag line2026"
 
 
 def main() -> None:
-    cases = json.loads(MAP.read_text())
-    path = Path(__file__).parent / "out" / "fitmap_failures.json"
+    cases = json.loads(require(MAP, MAP_COMMAND).read_text())
+    path = out_dir("line_fine") / "fitmap_failures.json"
     out = json.loads(path.read_text()) if path.exists() else {}
     for v in tqdm(list(cases.values())):
         c = v["case"]
         if v["result"]["status"] == "converged" or f"{c['viscosity']} M={c['M']:g} L={c['L']:g}" in out:
-            continue  # (a re-run resumes: the cases already in out/ are kept)
+            continue  # (a re-run resumes: the cases already in build/validation/line_fine/ are kept)
         t = time.perf_counter()
         r = solve_line(c["M"], c["L"], viscosity=c["viscosity"], density=c["density"],
                        accuracy=v["accuracy"], raise_on_failure=False)

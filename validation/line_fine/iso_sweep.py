@@ -1,7 +1,7 @@
 """Isoviscous and low-L line solves with and without the film-scale switch (REPORT.md,
 "Isoviscous fine grids"). ``old`` passes ``switch_eps=0`` (the relaxation as before the
 switch), ``new`` the default. Plain solves ``solve_line(M, L, points=N, estimate=False)``;
-writes ``out/iso_sweep.json`` and prints one line per case."""
+writes ``build/validation/line_fine/iso_sweep.json`` and prints one line per case."""
 
 from __future__ import annotations
 
@@ -11,6 +11,8 @@ from pathlib import Path
 from tqdm import tqdm
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
 from study import plain_solve, save  # noqa: E402
 
 CASES = [(M, 0.0, n) for M in (0.5, 1, 2, 3, 5, 7, 10, 20, 50, 100, 200, 500, 1000, 2000)
@@ -20,7 +22,7 @@ CASES = [(M, 0.0, n) for M in (0.5, 1, 2, 3, 5, 7, 10, 20, 50, 100, 200, 500, 10
 
 def main() -> None:
     out = {}
-    path = Path(__file__).parent / "out" / "iso_sweep.json"
+    path = out_dir("line_fine") / "iso_sweep.json"
     for M, L, n in tqdm(CASES):
         o, w = plain_solve(M, L, n, switch_eps=0.0), plain_solve(M, L, n)
         out[f"M={M:g} L={L:g} N={n}"] = {"old": o, "new": w}

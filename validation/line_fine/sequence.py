@@ -1,16 +1,20 @@
 """Grid sequences of the solves fixed in validation/line_fine (REPORT.md): Hc and Hm (Moes
 units) of plain solves on successive grids, their differences and the observed order
-``log2(d_k / d_{k+1})``. Writes ``out/sequence.json``."""
+``log2(d_k / d_{k+1})``. Writes ``build/validation/line_fine/sequence.json``."""
 
 from __future__ import annotations
 
 import json
 import math
+import sys
 from pathlib import Path
 
 from tqdm import tqdm
 
 from ehl_multigrid.line import solve_line
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
 
 R, B = "roelands", "barus"
 SEQUENCES = [(R, 100, 0, (1025, 2049, 4097, 8193)), (R, 500, 0, (2049, 4097, 8193, 16385)),
@@ -36,7 +40,7 @@ def main() -> None:
         out[f"{visc} M={M} L={L}"] = {
             "solves": rows,
             "Hc_order": order([x["Hc"] for x in ok]), "Hm_order": order([x["Hm"] for x in ok])}
-        (Path(__file__).parent / "out" / "sequence.json").write_text(json.dumps(out, indent=1))
+        (out_dir("line_fine") / "sequence.json").write_text(json.dumps(out, indent=1))
 
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 
 Plain solves (``solve_line(M, L, points=N, estimate=False)``) of the fit map's failing
 fine-grid solves (validation/extremes, accuracy 0.01) and of a regression set of solves that
-converged before. Usage: ``python study.py TAG`` writes ``out/TAG.json``; run it once with the
+converged before. Usage: ``python study.py TAG`` writes ``build/validation/line_fine/TAG.json``; run it once with the
 old code on PYTHONPATH (TAG = before) and once with the current code (TAG = after).
 """
 
@@ -57,7 +57,7 @@ def plain_solve(M: float, L: float, n: int, **kw) -> dict:
 def save(path: Path, data: dict) -> None:
     """Write ``data`` whole (temporary file, then rename): an interrupted study keeps the
     cases it finished."""
-    path.parent.mkdir(exist_ok=True)
+    path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(".tmp")
     tmp.write_text(json.dumps(data, indent=1))
     tmp.replace(path)
@@ -71,8 +71,10 @@ def run(case: tuple) -> dict:
 
 def main() -> None:
     tag = sys.argv[1]
-    out = Path(__file__).parent / "out"
-    out.mkdir(exist_ok=True)
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from _paths import out_dir
+
+    out = out_dir("line_fine")
     res = {"code": str(Path(ehl_multigrid.__file__).parent), "cases": {}}
     seen = set()
     cases = [("listed", c) for c in LISTED] + [("regression", c) for c in REGRESSION]

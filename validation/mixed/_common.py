@@ -4,12 +4,16 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir as study_dir  # noqa: E402
+
+OUT = study_dir("mixed")
 
 
 def clean(obj: Any, digits: int = 6) -> Any:
@@ -33,7 +37,7 @@ def clean(obj: Any, digits: int = 6) -> Any:
 
 
 def out_dir(quick: bool = False) -> Path:
-    """``out/`` for full runs (committed); ``out/quick/`` for quick runs (scratch)."""
+    """``build/validation/mixed/`` for full runs, ``build/validation/mixed/quick/`` for quick runs."""
     path = OUT / "quick" if quick else OUT
     path.mkdir(parents=True, exist_ok=True)
     return path

@@ -1,6 +1,6 @@
 """Thesis chapter 4 line-contact results (Figs 4.4-4.15) and the critical load (4.3.1).
 
-Run: ``python validation/mixed/chapter4.py [--quick]``. Writes out/chapter4.json and PNGs
+Run: ``python validation/mixed/chapter4.py [--quick]``. Writes build/validation/mixed/chapter4.json and PNGs
 fig4_4.png, fig4_6_7.png, fig4_8.png, fig4_9_11.png, fig4_12_13.png, fig4_14.png, fig4_15.png,
 critical_load.png. ``--quick`` uses 30 instead of 80 speeds and a coarser critical-load scan.
 """

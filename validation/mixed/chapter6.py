@@ -1,6 +1,6 @@
 """Thesis chapter 6: Stribeck curves of starved point contacts (Figs 6.2-6.7) and varsigma (6.4).
 
-Run: ``python validation/mixed/chapter6.py [--quick]``. Writes out/chapter6.json and
+Run: ``python validation/mixed/chapter6.py [--quick]``. Writes build/validation/mixed/chapter6.json and
 fig6_2.png ... fig6_7.png. Isothermal, as in the thesis; delta = 3.5.
 """
 

@@ -1,7 +1,7 @@
 """Cost of a 60-point Stribeck curve, isothermal and thermal, and of the GW kernels.
 
 Run: ``python validation/mixed/cost.py [--quick]`` (``--quick`` skips the thermal curves).
-Writes out/cost.json. Wall times on this (shared, 2-core) machine; the first call of a
+Writes build/validation/mixed/cost.json. Wall times on this (shared, 2-core) machine; the first call of a
 process also loads numba's cached kernels, so every timing is the best of ``repeat`` runs
 after one warm-up.
 """

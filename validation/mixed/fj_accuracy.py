@@ -1,6 +1,6 @@
 """Accuracy of the Greenwood-Williamson functions F_j against adaptive quadrature.
 
-Run: ``python validation/mixed/fj_accuracy.py``. Writes out/fj_accuracy.json and fj_accuracy.png:
+Run: ``python validation/mixed/fj_accuracy.py``. Writes build/validation/mixed/fj_accuracy.json and fj_accuracy.png:
 the largest relative error over lam in [-10, 8] (361 points) for several orders, for this
 package's F_j and, for comparison, for scipy's parabolic-cylinder function pbdv.
 """

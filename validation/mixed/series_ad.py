@@ -1,6 +1,6 @@
 """WAM series A-D (thesis Figs 4.18-4.23), isothermal and thermal (Figs 5.9, 5.10).
 
-Run: ``python validation/mixed/series_ad.py [--quick]``. Writes out/series_ad.json and
+Run: ``python validation/mixed/series_ad.py [--quick]``. Writes build/validation/mixed/series_ad.json and
 fig4_18_19_20.png, fig4_19_20_<scene>.png, fig4_21.png, fig4_22_fig5_10.png, fig4_23.png,
 fig5_9.png. ``--quick``: 12 speeds, no thermal.
 

@@ -12,7 +12,7 @@ the end of its measured films.
 
     python validation/mixed/starved_delta.py [--quick]
 
-Writes out/starved_delta.json and out/starved_delta.png (isothermal, as chapter 6).
+Writes build/validation/mixed/starved_delta.json and build/validation/mixed/starved_delta.png (isothermal, as chapter 6).
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Thesis Table 4.1 (page 66): load sharing at the page-63 line-contact conditions.
 
-Run: ``python validation/mixed/table_4_1.py``. Writes out/table_4_1.json.
+Run: ``python validation/mixed/table_4_1.py``. Writes build/validation/mixed/table_4_1.json.
 Every quantity is compared with the thesis's rounded value; the criterion is 2 %.
 """
 

@@ -18,7 +18,7 @@ Models and knobs
              disc 3 at 0.3, 1, 3 m/s: isothermal vs thermal film friction, thermal nx x nz
 
 Usage: python validation/pareto/pareto.py [--quick] [--models line_ehl,point_ehl,traction,stribeck]
-Writes out/pareto[_quick].json, out/pareto_<model>.png and out/recommended[_quick].json;
+Writes build/validation/pareto/pareto[_quick].json, build/validation/pareto/pareto_<model>.png and build/validation/pareto/recommended[_quick].json;
 finished settings are kept (resume). Each setting is timed after one warm-up solve, so numba
 compilation is excluded.
 """
@@ -29,12 +29,16 @@ import argparse
 import json
 import math
 import os
+import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("pareto")
 FIDELITY_TOL = {"fast": 0.1, "standard": 0.02, "reference": 0.002}
 
 

@@ -1,7 +1,7 @@
 """`ehl run` on the four machine-element scenes: wall time, the plan, and the film each stage used.
 
 Usage: python validation/plan/machine_elements.py [--fidelity fast|standard|reference] [--scenes a,b]
-Writes validation/plan/out/machine_elements_<fidelity>.json (finished scenes are kept and skipped).
+Writes build/validation/plan/machine_elements_<fidelity>.json (finished scenes are kept and skipped).
 
 For every scene: exit code and wall time of ``ehl run SCENE --fidelity F --no-plots --json``;
 the film stage's central film (solved or fitted) and the fit; the film the traction stage ran on
@@ -24,7 +24,10 @@ from pathlib import Path
 import numpy as np
 from scene_run import run_scene
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("plan")
 SCENES = ("bearing_6205_inner_race", "spur_gear_pitch_point", "roller_bearing_inner_race", "ball_on_disc_tribometer")
 
 

@@ -4,11 +4,12 @@ measured numbers instead of priors.
 * ``ehl_multigrid/data/fit_deviation_line.json`` / ``_point.json``: relative deviation of the
   Moes / Nijenbanning central-film fit from the Roelands + Dowson-Higginson multigrid solution,
   ``(Hc_fit - Hc_solver) / Hc_solver``, on the (M, L) map of the fit-check studies
-  (validation/line/out/fit.json, validation/point/out/fit.json).
+  (build/validation/line/fit.json from ``validation/line/studies.py --study fit --full``,
+  build/validation/point/fit_check.json from ``validation/point/fit_check.py --roelands``).
 
 * ``ehl_multigrid/data/grid_error_line.json`` / ``_point.json``: the constant ``C(M)`` of the
   second-order grid error of Hc, ``|error| = C / (N - 1)^2``, from the accuracy-cost study
-  (validation/pareto/out/pareto.json: V cycles, FFT deformation, against its reference grid;
+  (build/validation/pareto/pareto.json from ``validation/pareto/pareto.py``: V cycles, FFT deformation, against its reference grid;
   ``C = |e| / ((N-1)^-2 - (N_ref-1)^-2)``, median over the grids listed in GRIDS).
 
 Usage: python validation/plan/planner_tables.py
@@ -18,12 +19,20 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "ehl_multigrid" / "data"
+sys.path.insert(0, str(ROOT / "validation"))
+from _paths import BUILD  # noqa: E402
+
+#: the studies read, and the command that writes each
+PARETO = BUILD / "pareto" / "pareto.json", "python validation/pareto/pareto.py"
+FITS = {"line": (BUILD / "line" / "fit.json", "python validation/line/studies.py --study fit --full"),
+        "point": (BUILD / "point" / "fit_check.json", "python validation/point/fit_check.py --roelands")}
 
 
 def table_from_rows(rows: list[dict], source: str) -> dict | None:
@@ -47,9 +56,9 @@ CASES = {"line_ehl": "LINE_CASES", "point_ehl": "POINT_CASES"}
 
 
 def grid_error_tables() -> None:
-    f = ROOT / "validation" / "pareto" / "out" / "pareto.json"
+    f, command = PARETO
     if not f.exists():
-        print("no validation/pareto/out/pareto.json; grid-error tables not written")
+        print(f"no {f.relative_to(ROOT)} (run `{command}` first); grid-error tables not written")
         return
     import importlib.util
 
@@ -85,7 +94,7 @@ def grid_error_tables() -> None:
         tab = {"M": Ms, "L": [float(L) for _M, L in cases][:len(Ms)], "C": Cs, "order": 2,
                "reference_points": n_ref, "grids": list(grids),
                "definition": "relative error of Hc = C / (points - 1)^2 (Roelands + Dowson-Higginson)",
-               "source": "validation/pareto/out/pareto.json"}
+               "source": f"{f.relative_to(ROOT)} ({command})"}
         out = DATA / f"grid_error_{contact}.json"
         out.write_text(json.dumps(tab, indent=1))
         print(f"{contact}: wrote {out.relative_to(ROOT)}: " + ", ".join(f"C({M:g}) = {C:.3g}" for M, C in zip(Ms, Cs, strict=True)))
@@ -94,14 +103,13 @@ def grid_error_tables() -> None:
 def main() -> None:
     DATA.mkdir(exist_ok=True)
     grid_error_tables()
-    for contact, name in (("line", "fit.json"), ("point", "fit_check.json")):
-        f = ROOT / "validation" / contact / "out" / name
+    for contact, (f, command) in FITS.items():
         if not f.exists():
-            print(f"{contact}: no {f.relative_to(ROOT)}; table not written")
+            print(f"{contact}: no {f.relative_to(ROOT)} (run `{command}` first); table not written")
             continue
         data = json.loads(f.read_text())
         rows = data.get("rows", []) if "rows" in data else [v for v in data.values() if isinstance(v, dict)]
-        tab = table_from_rows(rows, f"validation/{contact}/out/{name}")
+        tab = table_from_rows(rows, f"{f.relative_to(ROOT)} ({command})")
         if tab is None:
             print(f"{contact}: no converged Roelands + Dowson-Higginson rows; table not written")
             continue

@@ -2,7 +2,7 @@
 stage reported.
 
 Usage: python validation/plan/run_all_scenes.py [--fidelity standard]
-Writes validation/plan/out/run_all_<fidelity>.json (resumes: finished scenes are kept).
+Writes build/validation/plan/run_all_<fidelity>.json (resumes: finished scenes are kept).
 """
 
 from __future__ import annotations
@@ -16,7 +16,10 @@ from pathlib import Path
 
 from scene_run import run_scene
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("plan")
 
 
 def scenes() -> list[str]:

@@ -13,7 +13,7 @@ The planner's decision "thermal needed" (``THERMAL_DECISION_MARGIN * friction_se
 as in ``make_plan``; also reported without the margin) is scored against the truth ``|f_thermal / f_isothermal - 1| > tol`` at the fidelity tolerances
 (fast 10 %, standard 2 %, reference 0.2 %).
 
-Solver rows are cached in ``out/temperature_rise.json`` (written after every case, so an
+Solver rows are cached in ``build/validation/plan/temperature_rise.json`` (written after every case, so an
 interrupted run resumes); the estimate is cheap and recomputed from the current ``plan.py`` every
 run, so a change to the estimate is re-scored with ``--no-solve``.
 
@@ -29,6 +29,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -46,7 +47,10 @@ from ehl_multigrid.model.errors import ConvergenceError, InputError
 from ehl_multigrid.model.scene import Scene, load_scene
 from ehl_multigrid.model.solids import reduced_modulus
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("plan")
 JSON_PATH = OUT / "temperature_rise.json"
 PNG_PATH = OUT / "temperature_rise.png"
 #: the estimate before this study's fix (same solver rows), kept for the before/after plot
@@ -346,7 +350,7 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--resolve", action="store_true", help="ignore cached solver rows")
     ap.add_argument("--nx", type=int, default=None, help="thermal nx (default: scene / 80)")
     ap.add_argument("--nz", type=int, default=None, help="thermal nz (default: scene / 20)")
-    ap.add_argument("--out", type=Path, default=None, help="JSON path (default out/temperature_rise[_quick].json)")
+    ap.add_argument("--out", type=Path, default=None, help="JSON path (default build/validation/plan/temperature_rise[_quick].json)")
     args = ap.parse_args(argv)
     if args.out is None:
         args.out = JSON_PATH.with_name("temperature_rise_quick.json") if args.quick else JSON_PATH

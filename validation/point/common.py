@@ -11,9 +11,11 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-OUT = HERE / "out"
-OUT.mkdir(exist_ok=True)
 sys.path.insert(0, str(HERE.parents[1]))
+sys.path.insert(0, str(HERE.parent))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("point")
 
 from ehl_multigrid.model.errors import ConvergenceError, InputError  # noqa: E402
 from ehl_multigrid.point import build_result, problem_from_moes, solve_fas  # noqa: E402

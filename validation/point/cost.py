@@ -12,7 +12,7 @@ import math
 import time
 
 import numpy as np
-from common import OUT, Store, load_avg, plt, richardson, solve_case
+from common import HERE, OUT, Store, load_avg, plt, richardson, solve_case
 from tqdm import tqdm
 
 from ehl_multigrid.point import build_result, problem_from_moes
@@ -66,7 +66,7 @@ def main() -> None:
         if fkey not in st:
             st.put(fkey, solve_case(M, L, 1.0, "roelands", "dowson-higginson", n, max_cycles=60))
     # extrapolated Hc: tests/point/reference.json (257/513/1025 Richardson) if present
-    ref_path = OUT.parents[2] / "tests" / "point" / "reference.json"
+    ref_path = HERE.parents[1] / "tests" / "point" / "reference.json"
     rows = [st.data[f"grid_{n}"] for n in grids]
     hc = [r["Hc"] for r in rows]
     if ref_path.exists():

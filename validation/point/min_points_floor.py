@@ -10,12 +10,13 @@ wall time (one thread).
 
     NUMBA_NUM_THREADS=1 python validation/point/min_points_floor.py
 
-Writes ``out/min_points_floor.json``.
+Writes ``build/validation/point/min_points_floor.json``.
 """
 
 from __future__ import annotations
 
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -24,7 +25,10 @@ from tqdm import tqdm
 from ehl_multigrid.point import solve_point
 from ehl_multigrid.point.problem import min_points, problem_from_moes
 
-OUT = Path(__file__).resolve().parent / "out" / "min_points_floor.json"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("point") / "min_points_floor.json"
 
 
 def main() -> None:

@@ -14,7 +14,7 @@ holds ``d eps/d P`` and the local deformation. The whole film is refreshed once 
 
     NUMBA_NUM_THREADS=1 python validation/point/outlet_newton.py [--points 1025] [--min-nx 513]
 
-Writes ``out/outlet_newton.json`` (status, films, work units, windows, Newton steps, wall time,
+Writes ``build/validation/point/outlet_newton.json`` (status, films, work units, windows, Newton steps, wall time,
 with and without the windows).
 """
 
@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -31,7 +32,10 @@ from ehl_multigrid.point import fas, solve_point
 from ehl_multigrid.point import numerics as nm
 from ehl_multigrid.point.deformation import cell_kernel
 
-OUT = Path(__file__).resolve().parent / "out" / "outlet_newton.json"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("point") / "outlet_newton.json"
 STATS = {"windows": 0, "newton_steps": 0}
 
 
@@ -166,7 +170,6 @@ def main() -> None:
     for n in a.points:
         STATS.update(windows=0, newton_steps=0)
         out["runs"].append({"points": n, "windows": True, **run(*a.case, n)})
-    OUT.parent.mkdir(exist_ok=True)
     OUT.write_text(json.dumps(out, indent=1))
     for r in out["runs"]:
         print(r)

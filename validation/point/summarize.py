@@ -1,4 +1,4 @@
-"""Print markdown tables from out/*.json (used to write REPORT.md)."""
+"""Print markdown tables from build/validation/point/*.json (used to write REPORT.md)."""
 
 import json
 import sys

@@ -9,7 +9,7 @@ Hc, Hm, status, work units and wall time.
 
     python validation/point/y_cells.py [--points 513 1025 2049] [--tag T]
 
-Writes ``out/y_cells[_T].json`` (resumable by case, grid and ratio; a record computed by other
+Writes ``build/validation/point/y_cells[_T].json`` (resumable by case, grid and ratio; a record computed by other
 code is not reused).
 """
 
@@ -24,6 +24,8 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[0] / "extremes"))
+sys.path.insert(0, str(HERE.parent))
+from _paths import out_dir  # noqa: E402
 from accuracy_map import code_version  # noqa: E402
 
 CASES = [  # (M, L, theta, viscosity, density)
@@ -62,7 +64,7 @@ def main() -> None:
         return
     from tqdm import tqdm
 
-    out = HERE / "out" / f"y_cells{'_' + a.tag if a.tag else ''}.json"
+    out = out_dir("point") / f"y_cells{'_' + a.tag if a.tag else ''}.json"
     code = code_version()
     done = json.loads(out.read_text()) if out.is_file() else {}
     done = {k: v for k, v in done.items() if v.get("code") == code and not code.endswith("dirty")}

@@ -1,7 +1,7 @@
 """Validation of the starved, mass-conserving line solver (ehl_multigrid.starved).
 
-Run: ``python validation/starved/study.py [--quick]``. Writes out/starved_line.json and
-out/starved_line.png (film reduction, starved limit, fields of one solution, grid
+Run: ``python validation/starved/study.py [--quick]``. Writes build/validation/starved/starved_line.json and
+build/validation/starved/starved_line.png (film reduction, starved limit, fields of one solution, grid
 convergence). Every number in REPORT.md comes from the JSON.
 
 Checks, each against something independent of the starved solver:
@@ -24,6 +24,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -37,7 +38,10 @@ from ehl_multigrid.starved import solve_starved_line
 from ehl_multigrid.starved.line import solve_starved_problem, starved_options
 from mixed.starvation import chevalier_reduction
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("starved")
 #: (M, L) of the map: moderate and high load, a compressible thick film, low pressure-viscosity
 CASES = [(20.0, 10.0), (100.0, 10.0), (5.0, 5.0), (50.0, 5.0)]
 #: supplies as fractions of the flooded flux (beyond 1: flooded)
@@ -273,7 +277,7 @@ if __name__ == "__main__":
     ap.add_argument("--quick", action="store_true", help="coarser grids, two (M, L)")
     ap.add_argument("--replot", action="store_true", help="only redraw the PNG from the JSON")
     ap.add_argument("--estimate-check", action="store_true",
-                    help="only the estimate honesty check (out/estimate_check.json)")
+                    help="only the estimate honesty check (build/validation/starved/estimate_check.json)")
     a = ap.parse_args()
     if a.estimate_check:
         OUT.mkdir(exist_ok=True)

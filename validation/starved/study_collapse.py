@@ -19,7 +19,7 @@ the map and against the spread at equal M.
 
     python validation/starved/study_collapse.py [--quick]
 
-Writes ``out/starved_collapse.json`` and ``out/starved_collapse.png`` (``_quick`` with
+Writes ``build/validation/starved/starved_collapse.json`` and ``build/validation/starved/starved_collapse.png`` (``_quick`` with
 ``--quick``); resumes from the JSON of an interrupted run with the same plan.
 """
 
@@ -42,7 +42,10 @@ from ehl_multigrid.point.problem import problem_from_moes  # noqa: E402
 from ehl_multigrid.point.solve import solve_fas  # noqa: E402
 from ehl_multigrid.starved.point import STARVED_TOL  # noqa: E402
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("starved")
 POINTS = 129
 #: (M, L) of the earlier map (study_point.py), the last the chapter-6 0.5 GPa scene
 BASE = [(20.0, 10.0), (100.0, 10.0), (100.0, 5.0), (179.0, 4.17)]

@@ -16,8 +16,8 @@ where ``Hc_ff`` runs over decades. This study adds, with the same solver, grid a
 
     python validation/starved/study_collapse_range.py [--quick]
 
-Writes ``out/starved_collapse_range.json`` (resumable: cases of the same plan are kept) and
-``out/starved_collapse_range.png``.
+Writes ``build/validation/starved/starved_collapse_range.json`` (resumable: cases of the same plan are kept) and
+``build/validation/starved/starved_collapse_range.png``.
 """
 
 from __future__ import annotations
@@ -33,7 +33,10 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from study_point import RATIOS, fit_delta, run_case  # noqa: E402
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("starved")
 #: (M, L, theta, points): circular films outside the first study's range, then ellipses. The
 #: stiff (300, 5) reaches max_cycles at every supply on 129^2 (measured), so it runs on 257^2.
 #: Thicker films than (5, 10) are not meaningful in the default box: at (2, 5) (Hc_ff 5.2) a

@@ -8,7 +8,7 @@ the wall time.
 
     python validation/starved/study_edge.py [--label NAME]
 
-Writes ``out/starved_edge_<label>.json`` (default label ``now``).
+Writes ``build/validation/starved/starved_edge_<label>.json`` (default label ``now``).
 """
 
 from __future__ import annotations
@@ -16,10 +16,14 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("starved")
 CASES = [(20.0, 10.0), (100.0, 10.0), (50.0, 5.0)]
 FRACTIONS = [0.12, 0.08, 0.05, 0.03, 0.02]
 

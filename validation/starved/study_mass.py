@@ -2,8 +2,8 @@
 solve of the Poiseuille-dominated zone (ehl_multigrid/starved/point_mass.py).
 
 Run: ``python validation/starved/study_mass.py [--order 1|2] [--quick]``. Writes
-out/starved_mass_order{1,2}[_quick].json and .png. The "before" numbers are read from the
-previous studies' JSON (out/starved_point.json for the first-order wedge, out/starved_order_map.json
+build/validation/starved/starved_mass_order{1,2}[_quick].json and .png. The "before" numbers are read from the
+previous studies' JSON (build/validation/starved/starved_point.json for the first-order wedge, build/validation/starved/starved_order_map.json
 for the second order); the supplies are the same multiples of the same flooded films
 (``Hc_ff`` of those files), so each solve repeats one of theirs with the current code.
 
@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -26,7 +27,10 @@ from tqdm import tqdm
 from ehl_multigrid.point.problem import problem_from_moes
 from ehl_multigrid.starved.point import MASS_TOL, solve_starved_point
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir, require  # noqa: E402
+
+OUT = out_dir("starved")
 RATIOS = [4.0, 2.0, 1.5, 1.2, 1.0, 0.8, 0.6, 0.4, 0.25, 0.1, 0.03]
 PLAN = [(20.0, 10.0, 129), (20.0, 10.0, 257), (100.0, 10.0, 257), (100.0, 5.0, 257), (179.0, 4.17, 257)]
 
@@ -34,9 +38,9 @@ PLAN = [(20.0, 10.0, 129), (20.0, 10.0, 257), (100.0, 10.0, 257), (100.0, 5.0, 2
 def _before(order: int) -> dict:
     """The previous map's cases by (M, L, points), with ``Hc_ff`` (the supplies' unit)."""
     if order == 1:
-        d = json.loads((OUT / "starved_point.json").read_text())
+        d = json.loads(require(OUT / "starved_point.json", "python validation/starved/study_point.py").read_text())
         return {(c["M"], c["L"], c["points"]): {"Hc_ff": c["Hc_ff"], "runs": c["runs"]} for c in d["cases"]}
-    d = json.loads((OUT / "starved_order_map.json").read_text())
+    d = json.loads(require(OUT / "starved_order_map.json", "python validation/starved/study_order.py map").read_text())
     return {(c["M"], c["L"], c["points"]): {"Hc_ff": c["Hc_ff1"], "runs": c["runs"]} for c in d["cases"]}
 
 

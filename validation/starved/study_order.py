@@ -3,16 +3,16 @@
 Run: ``python validation/starved/study_order.py {map,map1,grid,scene,scenefine,summary,all}
 [--quick]``
 (about 18 min in all on the shared 2-core box); writes
-``out/starved_order_<part>.json``. Every number of the "second-order wedge" part of REPORT.md
+``build/validation/starved/starved_order_<part>.json``. Every number of the "second-order wedge" part of REPORT.md
 comes from these files.
 
 * ``map``: the 55-supply map of study_point.py (same cases, same supplies in units of the
   first-order flooded film, so the supplies are identical to the first-order run in
-  out/starved_point.json) solved with ``wedge_order = 2``; flooded limit against the core's
+  build/validation/starved/starved_point.json) solved with ``wedge_order = 2``; flooded limit against the core's
   default second-order solve on the same grid; status, cycles, mass imbalance, wall time;
-  the film ratios against the first-order ones (read from out/starved_point.json).
+  the film ratios against the first-order ones (read from build/validation/starved/starved_point.json).
 * ``map1``: the same map with ``wedge_order = 1`` and the current code (the first-order
-  reference of the comparison; ``first`` in each record is the older out/starved_point.json).
+  reference of the comparison; ``first`` in each record is the older build/validation/starved/starved_point.json).
 * ``grid``: Hc and Hm on 129/257/513 for a few supplies, first and second order: observed
   order and Richardson value.
 * ``scene``: the chapter-6 0.5 GPa scene with a 20 nm layer through
@@ -25,6 +25,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -34,7 +35,10 @@ from ehl_multigrid.point.problem import problem_from_moes
 from ehl_multigrid.point.solve import solve_fas
 from ehl_multigrid.starved.point import STARVED_TOL, solve_starved_point
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir, require  # noqa: E402
+
+OUT = out_dir("starved")
 RATIOS = [4.0, 2.0, 1.5, 1.2, 1.0, 0.8, 0.6, 0.4, 0.25, 0.1, 0.03]
 PLAN = [(20.0, 10.0, 129), (20.0, 10.0, 257), (100.0, 10.0, 257), (100.0, 5.0, 257), (179.0, 4.17, 257)]
 
@@ -172,6 +176,12 @@ def run_scene_fine(plan: list[tuple[int, int]]) -> dict:
     return {"runs": out}
 
 
+def _part(part: str) -> dict:
+    """The JSON of another part of this study (written by ``study_order.py <part>``)."""
+    path = OUT / f"starved_order_{part}.json"
+    return json.loads(require(path, f"python validation/starved/study_order.py {part}").read_text())
+
+
 def summarise() -> dict:
     """Tables of REPORT.md from the JSON of the other parts: map statistics per case (both
     orders with the current code), grid orders, and the estimate check (the two-grid estimate
@@ -180,8 +190,8 @@ def summarise() -> dict:
     from ehl_multigrid.multigrid.accuracy import GRID_SAFETY
     from ehl_multigrid.starved.point import GRID_ORDER
 
-    m2 = json.loads((OUT / "starved_order_map.json").read_text())
-    m1 = json.loads((OUT / "starved_order_map1.json").read_text())
+    m2 = _part("map")
+    m1 = _part("map1")
     rows = []
     for c2, c1 in zip(m2["cases"], m1["cases"], strict=True):
         row = {"case": [c2["M"], c2["L"], c2["points"]]}
@@ -205,7 +215,7 @@ def summarise() -> dict:
                                    for r in c2["runs"] if math.isfinite(r["hoil_over_Hc_ff"])}
         rows.append(row)
     checks = []
-    g = json.loads((OUT / "starved_order_grid.json").read_text())
+    g = _part("grid")
     for c in g["cases"]:
         for order in (1, 2):
             r = c[f"order{order}"]
@@ -216,7 +226,7 @@ def summarise() -> dict:
                                "grid": 257, "coarse_converged": r["status"][0] == "converged",
                                "estimate": est, "change_to_513": abs(v[2] / v[1] - 1.0),
                                "vs_richardson": abs(v[1] / r[key]["richardson"] - 1.0)})
-    sc = json.loads((OUT / "starved_order_scene.json").read_text())["runs"]
+    sc = _part("scene")["runs"]
     for order in (1, 2):
         a, b = [x for x in sc if x["order"] == order]
         for key in ("Hc", "Hm"):

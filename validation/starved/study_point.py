@@ -1,7 +1,7 @@
 """Validation of the starved, mass-conserving point (circular) contact (ehl_multigrid.starved.point).
 
-Run: ``python validation/starved/study_point.py [--quick]``. Writes out/starved_point.json and
-out/starved_point.png. Every number in the point section of REPORT.md comes from the JSON.
+Run: ``python validation/starved/study_point.py [--quick]``. Writes build/validation/starved/starved_point.json and
+build/validation/starved/starved_point.png. Every number in the point section of REPORT.md comes from the JSON.
 
 Checks, each against something independent of the starved solver:
 
@@ -22,6 +22,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -33,7 +34,10 @@ from ehl_multigrid.point.solve import solve_fas
 from ehl_multigrid.starved.point import STARVED_TOL, solve_starved_point
 from mixed.starvation import chevalier_reduction
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("starved")
 #: supplied layer as multiples of the flooded central film
 RATIOS = [4.0, 2.0, 1.5, 1.2, 1.0, 0.8, 0.6, 0.4, 0.25, 0.1, 0.03]
 DELTA_MIXED = 3.5

@@ -1,7 +1,7 @@
 """Supply profile across the track: side ridges left by the previous over-rolling.
 
-Run: ``python validation/starved/study_ridges.py [--quick]``. Writes out/starved_ridges.json and
-out/starved_ridges.png. Circular contact (M, L) = (20, 10), half domain, Roelands +
+Run: ``python validation/starved/study_ridges.py [--quick]``. Writes build/validation/starved/starved_ridges.json and
+build/validation/starved/starved_ridges.png. Circular contact (M, L) = (20, 10), half domain, Roelands +
 Dowson-Higginson, the point core's default box (Y in [0, 3]).
 
 The over-rolled track (``|Y| < 1``, the Hertzian width) carries a layer ``h_in``; ridges beside
@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -29,7 +30,10 @@ from ehl_multigrid.multigrid.options import PointOptions
 from ehl_multigrid.point.problem import problem_from_moes
 from ehl_multigrid.starved.point import StarvedPointHierarchy, solve_starved_point
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("starved")
 M, L = 20.0, 10.0
 #: track layer as a fraction of the flooded central film; ridge height over the track layer
 CASES = [(0.25, 3.0, 1.0, 3.0), (0.25, 3.0, 0.8, 1.4), (0.6, 3.0, 1.0, 3.0)]

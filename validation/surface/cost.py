@@ -3,7 +3,7 @@
 Steps timed separately: reading (.npy and CSV text), NaN fill (1 % missing), plane removal,
 summits + statistics, one 3x3 low-pass pass, one ISO Gaussian low-pass, a whole
 filter-until-psi study, and the `ehl surface` command end to end (a new Python process,
-PNG included). Writes out/cost.json.
+PNG included). Writes build/validation/surface/cost.json.
 
     python validation/surface/cost.py [--quick]
 """
@@ -35,7 +35,10 @@ from mixed.surface import (
     surface_statistics,
 )
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("surface")
 
 
 def best(fn, repeat):

@@ -6,7 +6,7 @@ slip 5 %, T9 at 80 degC - built-in scene series_D_disc3_1.93GPa with the roughne
 
 The surface is a self-affine Gaussian random surface (Hurst 0.8, roll-off 50 um) - no
 measured map of the thesis is available, so the numbers compare in kind, not digit by digit.
-Writes out/filtering.json and out/filtering.png.
+Writes build/validation/surface/filtering.json and build/validation/surface/filtering.png.
 
     python validation/surface/filtering.py [--quick]
 """
@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -29,7 +30,10 @@ from mixed.surface import (
     surface_statistics,
 )
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("surface")
 BASE_SCENE = "series_D_disc3_1.93GPa"
 E_THESIS = 2.3e11
 KEYS = ("Ra", "Rq", "n", "beta", "sigma_s", "dd", "psi", "n_summits")

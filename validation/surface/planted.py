@@ -3,7 +3,7 @@
 Caps of one radius with normal apex heights on a flat base (mixed.surface.planted_asperities);
 the 9-point rule and the 3-point curvature should return what was planted. The reference for
 each case is what a perfect detector would see: the caps whose nearest grid point is an
-interior point (edge points cannot be tested). Writes out/planted.json and out/planted.png.
+interior point (edge points cannot be tested). Writes build/validation/surface/planted.json and build/validation/surface/planted.png.
 
     python validation/surface/planted.py [--quick]
 """
@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -19,7 +20,10 @@ import numpy as np
 
 from mixed.surface import analyse_surface, parse_filter, planted_asperities
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("surface")
 
 CASES = [
     # name, dx, density, radius, height mean, height std, noise Rq, filter

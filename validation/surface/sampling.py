@@ -11,7 +11,7 @@ References, neither of which uses a generated surface:
     distribution of a 3 x 3 neighbourhood (mixed.surface.nine_point_prediction).
 Second part: a self-affine surface (Hurst 0.8) analysed at 1, 2, 4, 8 times its finest
 interval (decimation of the same map) - no limit exists, n and beta keep changing.
-Writes out/sampling.json and out/sampling.png.
+Writes build/validation/surface/sampling.json and build/validation/surface/sampling.png.
 
     python validation/surface/sampling.py [--quick]
 """
@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -35,7 +36,10 @@ from mixed.surface import (
     surface_statistics,
 )
 
-OUT = Path(__file__).parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir, require  # noqa: E402
+
+OUT = out_dir("surface")
 ELL = 1e-6  # correlation length [m]
 RQ = 0.1e-6
 RATIOS = (0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0)
@@ -45,10 +49,10 @@ KEYS = ("n", "kappa_mean", "sigma_s", "dd")
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--quick", action="store_true", help="512^2 maps, 1 seed, 1e6 Monte Carlo samples")
-    ap.add_argument("--plot-only", action="store_true", help="redraw out/sampling.png from out/sampling.json")
+    ap.add_argument("--plot-only", action="store_true", help="redraw sampling.png from sampling.json (build/validation/surface/)")
     args = ap.parse_args()
     if args.plot_only:
-        d = json.loads((OUT / "sampling.json").read_text())
+        d = json.loads(require(OUT / "sampling.json", "python validation/surface/sampling.py").read_text())
         _plot(d["rows"], d["continuous"], d["self_affine"])
         return
     npts, seeds, nmc = (512, 1, 1_000_000) if args.quick else (1024, 3, 4_000_000)

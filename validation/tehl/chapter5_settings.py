@@ -4,7 +4,8 @@ given settings, printing every inner multilevel solve's last finest-grid residua
 (Venner units) and, at the end, the outer iteration's history.
 
 Usage: ``python validation/tehl/chapter5_settings.py POINTS SLIP ['{"tol_H": 1e-3, ...}']``
-(the JSON holds TEHLOptions changes). The runs of the report are in ``out/chapter5_settings.log``.
+(the JSON holds TEHLOptions changes). The runs of the report were kept with
+``... > build/validation/tehl/chapter5_settings.log``.
 """
 
 from __future__ import annotations

@@ -6,8 +6,8 @@ TEHL solve on a wider box at the solve's own mesh.
 Usage: ``python validation/tehl/honesty.py [CASE ...]`` (default: all cases, then ``summary``);
 ``orders`` re-runs the point grid sequences behind the point orders of the estimate,
 ``chapter5`` estimates the chapter 5 point solve (series D, disc 3). Each case
-adds its row to ``out/honesty.json``; ``summary`` computes the coverage and writes
-``out/honesty_summary.json`` and ``out/honesty.png``.
+adds its row to ``build/validation/tehl/honesty.json``; ``summary`` computes the coverage and writes
+``build/validation/tehl/honesty_summary.json`` and ``build/validation/tehl/honesty.png``.
 """
 
 from __future__ import annotations
@@ -24,8 +24,10 @@ from thermal.tehl import TEHLOptions
 from thermal.tehl.accuracy import QUANTITIES, SolveCache, estimate_error
 
 HERE = Path(__file__).resolve().parent
-OUT = HERE / "out"
-OUT.mkdir(exist_ok=True)
+sys.path.insert(0, str(HERE.parent))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("tehl")
 ROWS = OUT / "honesty.json"
 
 #: name -> (scene, load or None, slip, points, nz, box check: None, or the box factor of a
@@ -157,7 +159,7 @@ def _plot(rows: dict) -> None:
     fig.tight_layout()
     fig.savefig(OUT / "honesty.png", dpi=120)
     plt.close(fig)
-    print("wrote out/honesty.png")
+    print("wrote build/validation/tehl/honesty.png")
 
 
 def _order(v: list[float]) -> float:

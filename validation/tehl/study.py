@@ -4,7 +4,7 @@ correlations, the decoupled thesis method against TEHL over slip, and cost.
 
 Usage: ``python validation/tehl/study.py [PART ...]`` with parts ``limit``, ``energy``,
 ``grid``, ``correlations``, ``decoupled``, ``cost``, ``point``, ``chapter5``, ``compression``
-(default: all); each writes ``out/<part>.json``; ``plot`` draws the PNGs from the JSON files.
+(default: all); each writes ``build/validation/tehl/<part>.json``; ``plot`` draws the PNGs from the JSON files.
 """
 
 from __future__ import annotations
@@ -24,8 +24,10 @@ from thermal.tehl import TEHLOptions, solve_tehl_line, tehl_traction_curve
 from thermal.traction import solve_traction
 
 HERE = Path(__file__).resolve().parent
-OUT = HERE / "out"
-OUT.mkdir(exist_ok=True)
+sys.path.insert(0, str(HERE.parent))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("tehl")
 
 
 def dump(name: str, data: dict) -> None:
@@ -43,7 +45,7 @@ def dump(name: str, data: dict) -> None:
         return o
 
     (OUT / f"{name}.json").write_text(json.dumps(clean(data), indent=1))
-    print(f"wrote out/{name}.json", flush=True)
+    print(f"wrote build/validation/tehl/{name}.json", flush=True)
 
 
 def scalars(r) -> dict:
@@ -420,7 +422,7 @@ def part_chapter5() -> None:
     points against the thermal layer on the isothermal film, at the series' slip 0.05 and 0.5.
 
     The outer tolerances are loosened to the noise floor of the point multilevel solve at this
-    M = 1595 (chapter5_settings.py, out/chapter5_settings.log: the core's own isothermal solve
+    M = 1595 (chapter5_settings.py, build/validation/tehl/chapter5_settings.log: the core's own isothermal solve
     stalls at residual 3.6e-5 with Hm jittering by 0.2 % from cycle to cycle; with the default
     tolerances the outer iteration reaches that floor in ~5 iterations and then cannot stop:
     dP 0.5-4e-4, dHm up to 3e-3, max dT 0.01-0.1 K between iterations)."""

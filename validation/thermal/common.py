@@ -12,8 +12,10 @@ from typing import Any
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-OUT = HERE / "out"
-OUT.mkdir(exist_ok=True)
+sys.path.insert(0, str(HERE.parent))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("thermal")
 CACHE = Path("/tmp/ehl_thermal_validation_cache")
 
 

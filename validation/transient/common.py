@@ -103,7 +103,7 @@ def finish_figure(fig: Any, ax: Any, path: Path, legend_size: int = 8) -> None:
 
 def main(doc: str, parts: dict[str, Callable[[bool], None]], study: Any) -> None:
     """Command line of a study: ``--part`` (repeatable) runs those parts; ``--quick`` a smaller
-    set, written below ``out/quick/`` (the study module's ``OUT`` is redirected there, so the
+    set, written below ``build/validation/transient/quick/`` (the study module's ``OUT`` is redirected there, so the
     measured full runs are never overwritten)."""
     ap = argparse.ArgumentParser(description=doc.split("\n")[0])
     ap.add_argument("--part", choices=sorted(parts), action="append", required=True)

@@ -5,7 +5,7 @@ another speed), ``time`` (BDF2/Euler time-step refinement at a fixed grid), ``gr
 refinement at Courant number 1), ``waviness`` (amplitude reduction Ad/Ai against Venner &
 Lubrecht's wavelength parameter, pure rolling), ``bump`` (dent and bump passing under rolling
 and with slip: profiles at several positions), ``cost`` (time per step against grid size).
-Each part writes ``out/<part>.json`` and a PNG; ``--quick`` runs a smaller set into ``out/quick/``.
+Each part writes ``build/validation/transient/<part>.json`` and a PNG; ``--quick`` runs a smaller set into ``build/validation/transient/quick/``.
 
 Moes-only problems (default oil of the core), Roelands + Dowson-Higginson, domain
 X in [-4.5, 1.5] (Venner & Lubrecht's box) unless stated.
@@ -36,7 +36,7 @@ OUT = Path(__file__).resolve().parent / "out"
 
 def save(name: str, data: dict) -> None:
     common.write_json(OUT, name, data)
-    print(f"wrote out/{name}.json")
+    print(f"wrote build/validation/transient/{name}.json")
 
 
 def problem(M: float, L: float, xmin: float = -4.5) -> LineProblem:

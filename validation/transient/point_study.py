@@ -6,7 +6,7 @@ reduction Ad/Ai of transverse waviness, circular contacts, pure rolling), ``dent
 through a circular contact, rolling and slip: profiles at several positions), ``cost`` (time
 per step at 257^2 and 513^2), ``rough`` (a synthetic surface with the statistics of a series-B
 disc through the contact: the load carried where the film is thin, against the mixed layer's
-Greenwood-Williamson asperity share). Each part writes ``out/point_<part>.json`` and a PNG.
+Greenwood-Williamson asperity share). Each part writes ``build/validation/transient/point_<part>.json`` and a PNG.
 
 Moes-only circular problems (default oil of the core), Roelands + Dowson-Higginson, domain
 X in [-4.5, 1.5], |Y| <= 3 (the core's default box) unless stated.
@@ -164,7 +164,7 @@ def nabla_circular(wavelength: float, M: float, L: float) -> float:
 
 def part_collapse(quick: bool) -> None:
     """Which parameter collapses the circular waviness runs: the line contact's nabla or
-    nabla_c = (lambda/a)(M/L)^(1/2). Reads out/point_waviness.json (no new solves): rows with
+    nabla_c = (lambda/a)(M/L)^(1/2). Reads build/validation/transient/point_waviness.json (no new solves): rows with
     at least 40 points per wavelength (resolved to 0.003, REPORT.md 8.3); deviation from the
     recalled curve and the spread between operating conditions at equal parameter."""
     rows = [r for r in json.loads((OUT / "point_waviness.json").read_text())["rows"]
