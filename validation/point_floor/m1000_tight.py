@@ -1,5 +1,5 @@
 """(M, L) = (1000, 10) at 513 points, half domain, tol 1e-7: X lines alone against the default
-(fine-grid alternation). Output: m1000_tight.log."""
+(fine-grid alternation). Prints one line per solve (kept as build/validation/point_floor/m1000_tight.log)."""
 from ehl_multigrid.point.solve import solve_point
 
 for alt in (False, None):

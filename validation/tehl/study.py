@@ -454,7 +454,7 @@ CHAPTER5_SLIPS = (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0)
 
 
 def plot_chapter5(rows: list[dict]) -> None:
-    """out/chapter5_curves.png: friction coefficient of TEHL and of the decoupled method, and
+    """chapter5_curves.png: friction coefficient of TEHL and of the decoupled method, and
     the TEHL films against the isothermal ones, over slip."""
     import matplotlib
 

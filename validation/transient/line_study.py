@@ -31,12 +31,15 @@ from ehl_multigrid.line.solver import solve_line_problem  # noqa: E402
 from ehl_multigrid.model.fits import moes_line_central  # noqa: E402
 from ehl_multigrid.transient import Bump, Waviness, solve_transient_line, transient_options  # noqa: E402
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = out_dir("transient")
 
 
 def save(name: str, data: dict) -> None:
     common.write_json(OUT, name, data)
-    print(f"wrote build/validation/transient/{name}.json")
+    print(f"wrote {OUT / name}.json")
 
 
 def problem(M: float, L: float, xmin: float = -4.5) -> LineProblem:

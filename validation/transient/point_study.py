@@ -38,7 +38,10 @@ from ehl_multigrid.transient import (  # noqa: E402
     solve_transient_point,
 )
 
-OUT = Path(__file__).resolve().parent / "out"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir, require  # noqa: E402
+
+OUT = out_dir("transient")
 
 
 def save(name: str, data: dict) -> None:
@@ -167,7 +170,8 @@ def part_collapse(quick: bool) -> None:
     nabla_c = (lambda/a)(M/L)^(1/2). Reads build/validation/transient/point_waviness.json (no new solves): rows with
     at least 40 points per wavelength (resolved to 0.003, REPORT.md 8.3); deviation from the
     recalled curve and the spread between operating conditions at equal parameter."""
-    rows = [r for r in json.loads((OUT / "point_waviness.json").read_text())["rows"]
+    path = require(OUT / "point_waviness.json", "python validation/transient/point_study.py --part waviness")
+    rows = [r for r in json.loads(path.read_text())["rows"]
             if r["wavelength"] * (r["points"] - 1) / 6.0 >= 40.0]
     # the finest run of each (M, L, lambda)
     best: dict[tuple, dict] = {}
