@@ -16,7 +16,7 @@ Usage::
 
     python validation/inputs/hostile.py [--only SUBSTRING] [--jobs 2] [--label before|after]
 
-Writes ``validation/inputs/out/hostile.json`` (every case with its exit code, the last line of
+Writes ``build/validation/inputs/hostile.json`` (every case with its exit code, the last line of
 stderr and the class) and the summary table of ``validation/inputs/REPORT.md`` (between the
 markers ``<!-- counts:LABEL -->``).
 """
@@ -41,8 +41,11 @@ from typing import Any
 import numpy as np
 import tomli_w
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
 HERE = Path(__file__).resolve().parent
-OUT = HERE / "out"
+OUT = out_dir("inputs")
 REPORT = HERE / "REPORT.md"
 
 CLASSES = ("clear error", "unclear error", "traceback", "silent", "exit-0 failure", "warned", "ok")
