@@ -16,7 +16,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("ehl_multigrid", "thermal", "mixed")
-NUMERICAL = ("ehl_multigrid.line", "ehl_multigrid.point", "ehl_multigrid.multigrid")
+NUMERICAL = ("ehl_multigrid.line", "ehl_multigrid.point", "ehl_multigrid.multigrid", "ehl_multigrid.starved",
+             "ehl_multigrid.front", "ehl_multigrid.solution")
 APP_LEAVES = {"ehl_multigrid.app.console", "ehl_multigrid.app.stages"}
 
 

@@ -1,0 +1,540 @@
+"""The front door of every film solve, in the manner of ``scipy.optimize.minimize(method=...)``::
+
+    import ehl_multigrid as ehl
+    sol = ehl.solve("page63_line_2000N")                     # a scene: name, TOML path or Scene
+    sol = ehl.solve(ehl.MoesProblem("line", M=20, L=10))     # Moes groups alone
+    sol = ehl.solve(scene, physics="thermal", accuracy=0.01, options={"points": 257})
+    sol.Hc, sol.Hm, sol.success, sol.status, sol.error.Hc, sol.error.dominant
+
+:func:`solve` resolves the problem (a :class:`~ehl_multigrid.model.scene.Scene`, a built-in
+scene name, a TOML path, or a :class:`~ehl_multigrid.solution.MoesProblem`), decides the
+physics and the contact (line, point or elliptic, from the problem), checks the options and
+hands the solve to the existing solver of that physics and contact, whose answer it returns as
+a :class:`~ehl_multigrid.solution.Solution` (the same contract for every physics). The solvers
+and their numbers are unchanged: this is an adapter over
+:func:`~ehl_multigrid.line.solve_line`, :func:`~ehl_multigrid.point.solve_point`,
+:func:`~ehl_multigrid.starved.solve_starved_scene`,
+:func:`~ehl_multigrid.starved.solve_starved_point_scene`, the transient solvers
+(:func:`~ehl_multigrid.transient.solve_transient_line`,
+:func:`~ehl_multigrid.transient.solve_transient_point`), and the physics the layers above the
+core register in the entry-point group ``ehl.physics`` (``thermal``:
+:func:`thermal.front.solve_thermal`; the core never imports a layer).
+
+One failure policy: a numerical failure never raises; the solution says it failed
+(``success`` False, a :class:`~ehl_multigrid.solution.Status` other than ``CONVERGED``, the
+message) and keeps what was computed in ``raw``. Bad input raises
+:class:`~ehl_multigrid.model.errors.InputError` naming the field, the value and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+import warnings
+from collections.abc import Callable, Collection, Mapping
+from dataclasses import fields, is_dataclass
+from typing import Any
+
+from .model.errors import ConvergenceError, InputError, require_range, require_slip
+from .model.scene import Scene, load_scene
+from .solution import (
+    ErrorEstimate,
+    Grid,
+    MoesProblem,
+    Outcome,
+    PartError,
+    Solution,
+    StarvedDetails,
+    Status,
+    TransientDetails,
+    as_float,
+    frozen_fields,
+)
+
+__all__ = ["solve", "resolve_problem", "decide_physics", "solver_keywords", "status_of_error",
+           "failed_solution", "ehl_solution", "ehl_error"]
+
+#: the physics the core solves itself; others come from the entry-point group ``ehl.physics``
+BUILTIN = ("steady", "starved", "transient")
+#: the entry-point group of the physics of the layers above the core:
+#: ``solve_physics(scene, *, accuracy, options, callback) -> Solution``
+PHYSICS_GROUP = "ehl.physics"
+#: names of the older error budgets -> the contract's part names
+PART_NAMES = {"algebraic": "iteration"}
+#: ``ehl transient``'s defaults: points along X (line, point) and the inlet X = x/b (x/a),
+#: upstream enough for a feature to enter the contact
+TRANSIENT_POINTS = {"line": 513, "point": 129}
+TRANSIENT_XMIN = -4.5
+#: options of a transient run besides the multigrid options of its time steps
+TRANSIENT_RUN_KEYS = ("dt", "steps", "t_end", "scheme", "snapshot_every", "accept_stall", "xmin",
+                      "xmax", "time_error")
+#: option names the front door refuses, and why
+REFUSED = {"raise_on_failure": "the front door never raises for a numerical failure: the "
+                               "solution says it failed (check solution.success and solution.status)"}
+
+
+# -- problem and physics ---------------------------------------------------------------------------
+def resolve_problem(problem: Any) -> tuple[Scene | None, MoesProblem | None]:
+    """``(scene, None)`` for a :class:`Scene`, a built-in scene name or a TOML path (loaded with
+    :func:`~ehl_multigrid.model.scene.load_scene`); ``(None, problem)`` for a
+    :class:`MoesProblem`; InputError otherwise."""
+    if isinstance(problem, Scene):
+        return problem, None
+    if isinstance(problem, MoesProblem):
+        return None, problem
+    if isinstance(problem, (str, os.PathLike)):
+        return load_scene(problem), None
+    raise InputError(f"problem = {problem!r} ({type(problem).__name__}) is not a scene (Scene, built-in "
+                     f"scene name or TOML path) or a MoesProblem")
+
+
+def _starved_supply(scene: Scene) -> bool:
+    return math.isfinite(scene.supply.hoil) or bool(scene.supply.hoil_profile)
+
+
+def registered_physics() -> dict[str, Any]:
+    """The physics the installed layers register (entry-point group ``ehl.physics``):
+    name -> entry point."""
+    from importlib.metadata import entry_points
+
+    return {e.name: e for e in entry_points(group=PHYSICS_GROUP) if e.name not in BUILTIN}
+
+
+def decide_physics(physics: str | None, scene: Scene | None, moes: MoesProblem | None) -> str:
+    """The physics to solve: ``physics`` checked against the problem, or (None) ``"starved"``
+    for a scene with a finite ``[supply] hoil`` and ``"steady"`` otherwise.
+
+    A flooded ("steady") film is never solved for a starved scene, the starved, thermal and
+    transient physics need a scene, and a transient run needs a ``[feature]`` table."""
+    known = list(BUILTIN[:2]) + sorted(registered_physics()) + [BUILTIN[2]]
+    if physics is None:
+        return "starved" if scene is not None and _starved_supply(scene) else "steady"
+    if physics not in known:
+        raise InputError(f"physics = {physics!r} is not one of the allowed values {known}"
+                         + (" (the thermal physics comes with the thermal layer's entry point "
+                            f"{PHYSICS_GROUP}:thermal; reinstall the package: pip install -e .)"
+                            if physics == "thermal" else ""))
+    if moes is not None and physics != "steady":
+        raise InputError(f"physics = {physics!r} needs a scene (oil supply, temperatures, solids, "
+                         f"feature); a MoesProblem is solved with physics = 'steady'")
+    if scene is None:
+        return physics
+    hoil = scene.supply.hoil
+    if physics == "steady" and _starved_supply(scene):
+        raise InputError(f"[supply] hoil = {hoil:.4g} m: the scene supplies a finite oil layer, and "
+                         f"physics = 'steady' would give the flooded film; use physics = 'starved' "
+                         f"(or None, which chooses it), or remove hoil (inf) for a flooded contact")
+    if physics == "starved" and not _starved_supply(scene):
+        raise InputError(f"[supply] hoil = {hoil:g} m: physics = 'starved' needs a finite oil layer "
+                         f"(allowed: (0, inf) m); the scene's inlet is flooded: use physics = 'steady'")
+    if physics == "transient" and not scene.feature:
+        raise InputError(f"scene {scene.name!r} has no [feature] table: physics = 'transient' runs a "
+                         f"surface feature (waviness, bump, dent, map) through the contact")
+    return physics
+
+
+# -- options ---------------------------------------------------------------------------------------
+def solver_keywords(options: Any, accepted: Collection[str], cls: type | None,
+                    what: str) -> tuple[Any, dict[str, Any]]:
+    """``(options_object, keywords)`` of a solve from ``options``: the solver's own options
+    dataclass ``cls`` (returned as is), a mapping of keywords (every key in ``accepted``), or
+    None. InputError for an unknown key (naming it and the accepted ones), a key of
+    :data:`REFUSED`, another dataclass, or anything else."""
+    if options is None:
+        return None, {}
+    if cls is not None and isinstance(options, cls):
+        return options, {}
+    if is_dataclass(options) and not isinstance(options, type):
+        want = f"{cls.__name__} or " if cls is not None else ""
+        raise InputError(f"options = {type(options).__name__}(...) are not the options of {what}: give "
+                         f"{want}a mapping of {sorted(accepted)}")
+    if not isinstance(options, Mapping):
+        raise InputError(f"options = {options!r} must be a mapping of solver options (or None)")
+    for key in options:
+        if key in REFUSED:
+            raise InputError(f"option {key!r} is not accepted: {REFUSED[key]}")
+    unknown = sorted(str(k) for k in options if k not in accepted)
+    if unknown:
+        raise InputError(f"unknown option{'s' if len(unknown) > 1 else ''} {unknown} for {what}; "
+                         f"accepted: {sorted(accepted)}")
+    return None, dict(options)
+
+
+def _field_names(cls: type) -> set[str]:
+    return {f.name for f in fields(cls)} - set(REFUSED)
+
+
+def warn_unused_callback(callback: Any, what: str) -> None:
+    """Say (UserWarning) that ``what`` calls no callback, when one was given."""
+    if callback is not None:
+        warnings.warn(f"callback is not called: {what} takes no per-cycle callback", UserWarning,
+                      stacklevel=4)
+
+
+# -- failures --------------------------------------------------------------------------------------
+def status_of_error(exc: ConvergenceError) -> Status:
+    """The status of a :class:`ConvergenceError`: its report's status when it carries one (a
+    multilevel solve's), else from its message: a film that closed -> ``FILM_NOT_POSITIVE``,
+    a failed start -> ``START_FAILED``, an iteration limit -> ``MAX_CYCLES``, otherwise
+    ``DIVERGED`` (as the solvers' own results say for a search or solve that failed)."""
+    rep = getattr(exc, "report", None)
+    label = (getattr(rep, "extra", None) or {}).get("status")
+    # (a report that says converged belongs to a solve whose result was refused afterwards,
+    # e.g. a time step that converged to a non-finite pressure: never a success here)
+    if isinstance(label, str) and label.upper() in Status.__members__ and label != "converged":
+        return Status[label.upper()]
+    text = str(exc).splitlines()[0].lower()
+    if "film collapsed" in text or "film closed" in text:
+        return Status.FILM_NOT_POSITIVE
+    if "start" in text and ("fail" in text or "not converge" in text):
+        return Status.START_FAILED
+    if "not converge in" in text or "not converged in" in text or "not converged after" in text:
+        return Status.MAX_CYCLES
+    return Status.DIVERGED
+
+
+#: statuses whose iterate is no film (an initial guess, or a diverged iterate that may hold
+#: NaN/inf): their films and fields are left out of the solution (``raw`` keeps them)
+NO_FILM = (Status.START_FAILED, Status.DIVERGED)
+
+
+def failed_solution(physics: str, contact: str, exc: ConvergenceError, accuracy: float | None,
+                    t0: float, scene: Any = None, raw: Any = None) -> Solution:
+    """The solution of a solve that raised ``exc``: no films or fields, the status of
+    :func:`status_of_error`, the error's message (with its hint), ``raw`` what was kept."""
+    status = status_of_error(exc)
+    return Solution(physics=physics, contact=contact,
+                    outcome=Outcome(False, status, str(exc), time.perf_counter() - t0),
+                    error=ErrorEstimate(target=accuracy, notes=("the solve failed: no error estimate",)),
+                    raw=raw, scene=scene)
+
+
+# -- the multilevel results (steady, starved) ---------------------------------------------------------
+def ehl_error(est: Any, accuracy: float | None) -> ErrorEstimate:
+    """The contract's estimate of an :class:`~ehl_multigrid.multigrid.accuracy.ErrorEstimate`
+    (budget ``grid``, ``domain``, ``algebraic`` -> parts ``grid``, ``domain``, ``iteration``)."""
+    if est is None:
+        return ErrorEstimate(target=accuracy, notes=("not estimated: the iteration did not converge",))
+    parts = {PART_NAMES.get(k, k): PartError(as_float(v.get("Hc")), as_float(v.get("Hm")))
+             for k, v in est.budget.items()}
+    return ErrorEstimate(as_float(est.Hc), as_float(est.Hm), parts, accuracy, tuple(est.notes))
+
+
+def _grid_of(res: Any, line: bool) -> Grid | None:
+    X = getattr(res, "X", None)
+    if X is None:
+        return None
+    levels = int(res.levels) if getattr(res, "levels", 0) else None
+    if line:
+        return Grid(int(X.shape[0]), None, levels, (float(X[0]), float(X[-1])), False)
+    Y = res.Y
+    half = bool(getattr(res, "half", False))
+    ylo = -float(Y[-1]) if half else float(Y[0])
+    return Grid(int(X.shape[0]), int(Y.shape[0]), levels, (float(X[0]), float(X[-1]), ylo, float(Y[-1])), half)
+
+
+def ehl_solution(res: Any, physics: str, contact: str, accuracy: float | None, t0: float,
+                 scene: Any = None, details: Any = None, extra_fields: Mapping[str, Any] | None = None
+                 ) -> Solution:
+    """The :class:`Solution` of a multilevel solver's
+    :class:`~ehl_multigrid.multigrid.result.EHLResult`. A result whose start failed holds the
+    initial guess and a diverged one an iterate that is no film (:data:`NO_FILM`): their films
+    and fields are left out (they stay in ``raw``); any other failed result keeps its last
+    iterate, flagged by its status."""
+    status = Status(int(res.status))
+    scal = res.scalars
+    line = contact == "line"
+    film = status not in NO_FILM and getattr(res, "X", None) is not None
+    arrays: dict[str, Any] = {}
+    if film:
+        arrays = {"X": res.X, "P": res.P, "H": res.H}
+        if not line:
+            arrays["Y"] = res.Y
+        arrays.update(extra_fields or {})
+    builder = None
+    if film and getattr(res, "builder", None) is not None:
+        def builder() -> Any:
+            return res.to_result(scene)
+    outcome = Outcome(bool(res.success), status, str(res.message), time.perf_counter() - t0,
+                      as_float(res.work_units), int(res.cycles), tuple(res.actions))
+    films = {k: as_float(scal.get(k)) if film else math.nan for k in ("Hc", "Hm", "hc", "hm")}
+    return Solution(physics=physics, contact=contact, outcome=outcome, **films,
+                    error=ehl_error(getattr(res, "error", None), accuracy), fields=frozen_fields(arrays),
+                    grid=_grid_of(res, line) if film else None, details=details, raw=res, scene=scene,
+                    _result_builder=builder)
+
+
+def _starved_details(scal: Mapping[str, Any]) -> StarvedDetails:
+    flooded = scal.get("inlet_flooded")
+    return StarvedDetails(
+        meniscus_x=as_float(scal.get("meniscus_x")), Hc_flooded=as_float(scal.get("Hc_flooded")),
+        Hm_flooded=as_float(scal.get("Hm_flooded")), Hc_ratio=as_float(scal.get("Hc_ratio")),
+        Hm_ratio=as_float(scal.get("Hm_ratio")), mass_balance_error=as_float(scal.get("mass_balance_error")),
+        hoil=as_float(scal.get("hoil")), rho_c_Hc_over_hoil=as_float(scal.get("rho_c_Hc_over_hoil")),
+        inlet_flooded=None if flooded is None else bool(flooded))
+
+
+# -- the physics -------------------------------------------------------------------------------------
+def _steady(scene: Scene | None, moes: MoesProblem | None, contact: str, accuracy: float | None,
+            options: Any, callback: Any, t0: float) -> Solution:
+    from .multigrid.options import LineOptions, PointOptions
+
+    problem: dict[str, Any] = {"scene": scene}
+    if moes is not None:
+        problem = {"M": moes.M, "L": moes.L, "viscosity": moes.viscosity, "density": moes.density,
+                   "alpha": moes.alpha, "eta0": moes.eta0, "p0": moes.p0}
+    if contact == "line":
+        from .line import solve_line as run
+
+        accepted = _field_names(LineOptions) | {"max_points", "time_budget", "xmin", "xmax", "elastic"}
+        dc, kw = solver_keywords(options, accepted, LineOptions, "the steady line solver")
+    else:
+        from .point import solve_point as run
+
+        if moes is not None:
+            problem["theta"] = moes.theta
+        accepted = _field_names(PointOptions) | {"max_points", "time_budget"}
+        dc, kw = solver_keywords(options, accepted, PointOptions, "the steady point solver")
+    try:
+        # (point: the symmetric half domain unless the options, keywords or the scene's
+        # [solver.ehl] table say otherwise -- solve_point's default, as 'ehl run' solves)
+        res = run(**problem, options=dc, accuracy=accuracy, callback=callback, raise_on_failure=False, **kw)
+    except ConvergenceError as exc:
+        return failed_solution("steady", contact, exc, accuracy, t0, scene)
+    return ehl_solution(res, "steady", contact, accuracy, t0, scene)
+
+
+def _starved(scene: Scene, contact: str, accuracy: float | None, options: Any, callback: Any,
+             t0: float) -> Solution:
+    from .multigrid.options import LineOptions, PointOptions
+
+    if contact == "line":
+        from .starved import solve_starved_scene as run
+
+        accepted = _field_names(LineOptions) | {"max_points", "xmin", "xmax", "elastic"}
+        dc, kw = solver_keywords(options, accepted, LineOptions, "the starved line solver")
+        warn_unused_callback(callback, "the starved line solver (meniscus search)")
+    else:
+        from .starved import solve_starved_point_scene as run
+
+        accepted = _field_names(PointOptions) | {"max_points", "flooded"}
+        dc, kw = solver_keywords(options, accepted, PointOptions, "the starved point solver")
+        warn_unused_callback(callback, "the starved point solver")
+    try:
+        res = run(scene, options=dc, accuracy=accuracy, raise_on_failure=False, **kw)
+    except ConvergenceError as exc:
+        return failed_solution("starved", contact, exc, accuracy, t0, scene)
+    theta = res.extra.get("theta")
+    return ehl_solution(res, "starved", contact, accuracy, t0, scene, _starved_details(res.scalars),
+                        {"theta": theta} if theta is not None else None)
+
+
+def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any, callback: Any,
+               t0: float) -> Solution:
+    from .multigrid.options import LineOptions, PointOptions
+    from .transient.supply import check_flooded_supply
+
+    line = contact == "line"
+    cls = LineOptions if line else PointOptions
+    accepted = _field_names(cls) | set(TRANSIENT_RUN_KEYS)
+    dc, kw = solver_keywords(options, accepted, cls, f"the transient {'line' if line else 'point'} solver")
+    runkw = {k: kw.pop(k) for k in TRANSIENT_RUN_KEYS if k in kw}
+    want_time_error = bool(runkw.pop("time_error", False))
+    require_slip("operating.slip", scene.slip)
+    if dc is None:
+        kw.setdefault("points", TRANSIENT_POINTS["line" if line else "point"])
+    box_keys = {k: runkw.pop(k) for k in ("xmin", "xmax") if k in runkw}
+    warn: list[str] = []
+    if line:
+        from .line.problem import LineProblem
+        from .transient.scene_feature import feature_from_scene_table
+        from .transient.solve import solve_transient_line as solver
+
+        # the box is the problem's (xmin, xmax), as 'ehl transient' builds it
+        pb = LineProblem.from_scene(scene, **{"xmin": TRANSIENT_XMIN, **box_keys})
+        feature, body = feature_from_scene_table(scene.feature, pb)
+        scale = pb.b**2 / pb.R
+    else:
+        from .point.problem import problem_from_scene, resolve_domain
+        from .transient.point_solve import solve_transient_point as solver
+        from .transient.scene_feature import point_feature_from_scene_table
+
+        pb = problem_from_scene(scene)
+        if dc is not None and box_keys:
+            raise InputError(f"options {sorted(box_keys)} with a PointOptions object: give the box "
+                             f"(xmin, xmax, ymax) in the PointOptions")
+        if dc is None:
+            kw.update({"xmin": TRANSIENT_XMIN, **box_keys})
+        src = kw if dc is None else {k: getattr(dc, k) for k in ("xmin", "xmax", "ymax")}
+        box = resolve_domain(pb, src.get("xmin"), src.get("xmax"), src.get("ymax"))
+        feature, body = point_feature_from_scene_table(scene.feature, pb, box, warn)
+        scale = pb.a**2 / pb.Rx
+    # the solvers model a flooded inlet: a starving supply is refused (as 'ehl transient')
+    height = 0.0
+    if feature.kind in ("height_map", "profile"):
+        height = float(abs(feature.z).max()) * scale
+    elif feature.kind != "smooth":
+        height = abs(float(feature.amplitude)) * scale
+    note = check_flooded_supply(scene, height)
+    notes = warn + ([] if note is None else [note])
+
+    def run(call: Any = callback, **step: Any) -> Any:
+        return solver(pb, feature, body=body, slide_roll=scene.slip, options=dc, callback=call,
+                      **{**runkw, **step}, **kw)
+
+    try:
+        res = run()
+    except ConvergenceError as exc:
+        part = getattr(exc, "partial", None)
+        if part is None or not part.series["T"]:
+            return failed_solution("transient", contact, exc, accuracy, t0, scene, part)
+        return _transient_solution(part, pb, line, scale, accuracy, t0, scene, notes, None,
+                                   (status_of_error(exc), str(exc)))
+    terr = None
+    if want_time_error:
+        from .transient.accuracy import time_error
+
+        try:
+            coarse = run(None, dt=2.0 * res.dt, steps=max(res.planned_steps // 2, 1), t_end=None)
+            terr = time_error(res, coarse)
+        except ConvergenceError as exc:
+            notes.append(f"the run at twice the time step for the time error failed: {str(exc).splitlines()[0]}")
+        except InputError as exc:  # twice the step is beyond what the feature allows
+            notes.append(f"time error not measured: the run at twice the time step is refused ({exc}); "
+                         f"a smaller dt allows it")
+    return _transient_solution(res, pb, line, scale, accuracy, t0, scene, notes, terr, None)
+
+
+def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: float | None, t0: float,
+                        scene: Any, notes: list[str], terr: dict[str, float] | None,
+                        failure: tuple[Status, str] | None) -> Solution:
+    import numpy as np
+
+    def moes(H: Any) -> Any:
+        if line:
+            return np.array([pb.moes_from_venner(float(h)) for h in np.atleast_1d(H)])
+        return np.atleast_1d(np.asarray(H, dtype=float)) * pb.moes_factor
+
+    Hc_v, Hm_v = res.Hc, res.Hm
+    Hc_s, Hm_s = moes(Hc_v), moes(Hm_v)
+    last = max(res.snapshots)
+    snap = res.snapshots[last]
+    arrays = {"X": res.X, "P": snap["P"], "H": snap["H"]}
+    Y = getattr(res, "Y", None)
+    if not line:
+        arrays["Y"] = Y
+    s = res.summary()
+    cyc = np.asarray(res.series["cycles"][1:], dtype=float)
+    wu = np.asarray(res.series["work_units"][1:], dtype=float)
+    details = TransientDetails(
+        times=res.T, Hc_series=Hc_s, Hm_series=Hm_s, hc_series=Hc_v * scale, hm_series=Hm_v * scale,
+        complete=bool(res.complete), stop_reason=res.stop_reason, steps=int(res.steps),
+        planned_steps=int(res.planned_steps), dt=float(res.dt), scheme=res.scheme,
+        feature=res.feature.describe(), Hc_steady=float(moes(res.steady_film("Hc"))[0]),
+        Hm_steady=float(moes(res.steady_film("Hm"))[0]), Hc_min=float(Hc_s.min()), Hc_max=float(Hc_s.max()),
+        Hm_min=float(Hm_s.min()), stalled_steps=int(s["stalled_steps"]), notes=tuple(notes))
+    measured = terr is not None
+    parts = {"grid": PartError(math.nan, math.nan),
+             "time": PartError(terr["Hc"], terr["Hm"]) if measured else PartError(math.nan, math.nan)}
+    enotes = ("the transient solver has no accuracy control: it estimates no grid (space) error, and "
+              "each time step is converged to its residual tolerance",
+              "time part: Richardson in the time step from a run at twice the step (max over the run, "
+              "relative to the smooth steady film)" if measured else
+              "time part not measured (options time_error=True measures it: a second run at twice the "
+              "time step, about 1.5 times the cost)")
+    error = ErrorEstimate(math.nan, math.nan, parts, accuracy, enotes)
+    if failure is not None:
+        status, message = failure
+    elif not res.complete:
+        status, message = Status.FILM_NOT_POSITIVE, res.stop_reason
+    else:
+        done = f"completed {res.steps} time steps of dT = {res.dt:.4g}"
+        if accuracy is None:
+            status, message = Status.CONVERGED, done
+        else:
+            tm = f"; time error measured: Hc {terr['Hc']:.2g}, Hm {terr['Hm']:.2g}" if measured else ""
+            status = Status.INACCURATE
+            message = (f"{done}, but the error is not known: the transient solver has no accuracy "
+                       f"control and estimates no grid (space) error{tm}, so the accuracy {accuracy:g} "
+                       f"cannot be confirmed (accuracy=None judges the run on its steps alone)")
+    outcome = Outcome(status == Status.CONVERGED, status, message, time.perf_counter() - t0,
+                      float(wu.sum()) if wu.size else math.nan, int(cyc.sum()),
+                      tuple(getattr(res.steady, "actions", ())))
+    grid = Grid(int(res.X.size), None if line else int(Y.size), None,
+                (float(res.X[0]), float(res.X[-1])) if line else
+                (float(res.X[0]), float(res.X[-1]), float(Y[0]), float(Y[-1])), False)
+    return Solution(physics="transient", contact=scene.kind, outcome=outcome, Hc=float(Hc_s[-1]),
+                    Hm=float(Hm_s[-1]), hc=float(Hc_v[-1]) * scale, hm=float(Hm_v[-1]) * scale, error=error,
+                    fields=frozen_fields(arrays), grid=grid, details=details, raw=res, scene=scene)
+
+
+# -- the front door ----------------------------------------------------------------------------------
+def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | None = None,
+          accuracy: float | None = 0.005, options: Mapping[str, Any] | Any = None,
+          callback: Callable[[dict[str, Any]], Any] | None = None) -> Solution:
+    """Solve the film of a lubricated contact.
+
+    Parameters
+    ----------
+    problem : a :class:`~ehl_multigrid.model.scene.Scene`, a built-in scene name or a TOML
+        path (:func:`~ehl_multigrid.model.scene.load_scene`), or a
+        :class:`~ehl_multigrid.solution.MoesProblem`. The contact (line, point, elliptic)
+        follows from it.
+    physics : ``"steady"`` (isothermal, flooded), ``"starved"`` (mass-conserving, Elrod-Adams,
+        the scene's finite ``[supply] hoil``), ``"thermal"`` (TEHL; from the thermal layer)
+        or ``"transient"`` (the scene's ``[feature]`` passing through the contact). None:
+        ``"starved"`` for a scene with a finite ``[supply] hoil``, else ``"steady"``. A
+        flooded film is never solved for a starved scene (``"steady"`` with a finite hoil is
+        refused).
+    accuracy : relative target of the estimated errors of Hc and Hm, in [1e-5, 0.5]; the
+        solvers refine their grid (box, tolerances) towards it unless the options fix the grid,
+        and a result that misses it has status ``INACCURATE``. None: judged on the iteration
+        alone. The transient solver has no accuracy control: with a target its result is
+        ``INACCURATE`` (its error is not known); use None.
+    options : a mapping of the solver's options (e.g. ``{"points": 257, "max_points": 513,
+        "time_budget": 30, "half": True}``), or the solver's own options object
+        (:class:`~ehl_multigrid.multigrid.options.LineOptions`,
+        :class:`~ehl_multigrid.multigrid.options.PointOptions`, thermal:
+        ``thermal.tehl.line.TEHLOptions``). An unknown key is refused, naming it and the
+        accepted ones (see docs/api.md for each physics).
+    callback : called with a small dict after every multilevel cycle (steady) or time step
+        (transient); raising StopIteration in it stops a steady solve (status ``STOPPED``).
+        The starved and thermal solvers take none (a UserWarning says so).
+
+    Returns
+    -------
+    Solution
+        ``Hc``, ``Hm`` (Moes), ``hc``, ``hm`` [m], ``success``, ``status``, ``message``,
+        ``error`` (``Hc``, ``Hm``, ``parts``, ``dominant``), ``fields``, ``grid``,
+        ``details`` -- the same meaning for every physics.
+
+    Raises
+    ------
+    InputError
+        Bad input only (problem, physics, accuracy, options, scene values), naming the field,
+        the value and what is allowed. A numerical failure is returned, never raised.
+    """
+    t0 = time.perf_counter()
+    scene, moes = resolve_problem(problem)
+    contact = scene.kind if scene is not None else moes.contact
+    physics = decide_physics(physics, scene, moes)
+    if accuracy is not None:
+        require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
+    if callback is not None and not callable(callback):
+        raise InputError(f"callback = {callback!r} is not callable")
+    if physics == "steady":
+        return _steady(scene, moes, contact, accuracy, options, callback, t0)
+    if physics == "starved":
+        return _starved(scene, contact, accuracy, options, callback, t0)
+    if physics == "transient":
+        return _transient(scene, contact, accuracy, options, callback, t0)
+    run = registered_physics()[physics].load()
+    try:
+        sol = run(scene, accuracy=accuracy, options=options, callback=callback)
+    except ConvergenceError as exc:  # the layer's adapter should return it; the policy holds anyway
+        return failed_solution(physics, contact, exc, accuracy, t0, scene)
+    if not isinstance(sol, Solution):
+        raise TypeError(f"the {PHYSICS_GROUP}:{physics} entry point returned {type(sol).__name__}, "
+                        f"not a Solution")
+    return sol

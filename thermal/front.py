@@ -1,0 +1,136 @@
+"""The thermal physics of the front door :func:`ehl_multigrid.solve` (``physics="thermal"``),
+registered in the entry-point group ``ehl.physics`` so the core never imports this layer.
+
+:func:`solve_thermal` wraps :func:`thermal.tehl.accuracy.solve_tehl_to_accuracy` (line and
+point contacts; a line scene with a finite ``[supply] hoil`` is solved starved, a point scene
+with one is refused) and returns its answer as a :class:`~ehl_multigrid.solution.Solution`:
+the TEHL films, the budget of :func:`thermal.tehl.accuracy.estimate_error` as error parts
+(``grid`` along X, ``nz`` across the film, ``domain``, ``iteration``) and the thermal
+quantities in :class:`~ehl_multigrid.solution.ThermalDetails`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import fields
+from typing import Any
+
+from ehl_multigrid.front import failed_solution, solver_keywords, warn_unused_callback
+from ehl_multigrid.model.errors import ConvergenceError
+from ehl_multigrid.model.scene import Scene
+from ehl_multigrid.solution import (
+    ErrorEstimate,
+    Grid,
+    Outcome,
+    PartError,
+    Solution,
+    StarvedDetails,
+    Status,
+    ThermalDetails,
+    as_float,
+    frozen_fields,
+)
+
+#: keywords of :func:`~thermal.tehl.accuracy.solve_tehl_to_accuracy` accepted as options beside
+#: the :class:`~thermal.tehl.line.TEHLOptions` fields
+RUN_KEYS = ("slip", "max_points", "max_nz", "box_limit", "time_budget")
+#: the estimate's part names -> the contract's
+PARTS = {"grid_x": "grid", "grid_z": "nz", "domain": "domain", "iteration": "iteration"}
+
+
+def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
+                  callback: Any = None) -> Solution:
+    """Thermal EHL (TEHL) solve of a line or point ``scene`` to ``accuracy``.
+
+    Parameters
+    ----------
+    scene : the scene (its slip unless ``options["slip"]``).
+    accuracy : relative target of the estimated errors of Hc and Hm, or None (judged on the
+        outer iteration alone).
+    options : a mapping of :class:`~thermal.tehl.line.TEHLOptions` fields (``points``, ``nz``,
+        ``compressive_heating`` ...) and of ``slip``, ``max_points``, ``max_nz``, ``box_limit``,
+        ``time_budget`` [s] (the refinement's budgets); or a ``TEHLOptions``. As ``ehl solve
+        --thermal``: the grid starts at 513 points (line) or 257 (point), nz 20, and is refined
+        towards the target unless ``points`` or ``nz`` is given (or a ``TEHLOptions``), which
+        are only judged.
+    callback : not called (the TEHL solve takes none; a UserWarning says so).
+
+    Returns a :class:`~ehl_multigrid.solution.Solution` (``physics="thermal"``); a solve that
+    fails returns ``success`` False with its status, never raises. InputError for bad input
+    (options, slip, a starved point scene).
+    """
+    from .tehl.accuracy import solve_tehl_to_accuracy
+    from .tehl.line import TEHLOptions
+
+    t0 = time.perf_counter()
+    accepted = {f.name for f in fields(TEHLOptions)} | set(RUN_KEYS)
+    dc, kw = solver_keywords(options, accepted, TEHLOptions, "the thermal (TEHL) solve")
+    run = {k: kw.pop(k) for k in RUN_KEYS if k in kw}
+    warn_unused_callback(callback, "the thermal (TEHL) solve")
+    point = scene.kind != "line"
+    if dc is None:
+        refine = not ({"points", "nz"} & set(kw))
+        dc = TEHLOptions(**{"points": 257 if point else 513, **kw})
+    else:
+        refine = False
+    slip = run.pop("slip", None)
+    try:
+        done = solve_tehl_to_accuracy(scene, slip, dc, accuracy, refine=refine, **run)
+    except ConvergenceError as exc:
+        return failed_solution("thermal", scene.kind, exc, accuracy, t0, scene)
+    return thermal_solution(done, scene, accuracy, t0)
+
+
+def thermal_solution(done: Any, scene: Scene, accuracy: float | None, t0: float) -> Solution:
+    """The :class:`Solution` of an :class:`~thermal.tehl.accuracy.AccurateTEHL`."""
+    from .tehl.results import tehl_line_result, tehl_point_result
+
+    r, est = done.result, done.estimate
+    point = scene.kind != "line"
+    if done.accurate:
+        status, message = Status.CONVERGED, done.message
+    else:  # as 'ehl solve --thermal': converged means the estimate meets the target too
+        status, message = Status.INACCURATE, "iteration converged but " + done.message
+    actions = tuple((getattr(r.report, "extra", None) or {}).get("actions", ()))
+    outcome = Outcome(status == Status.CONVERGED, status, message, time.perf_counter() - t0,
+                      math.nan, len(r.outer), actions)
+    parts = {PARTS[p]: PartError(as_float(est.budget["Hc"][p]), as_float(est.budget["Hm"][p])) for p in PARTS}
+    error = ErrorEstimate(as_float(est.Hc), as_float(est.Hm), parts, accuracy, tuple(est.notes))
+    o = r.options
+    starved = None
+    if getattr(r, "starved", None):
+        s = r.starved
+        flooded = s.get("inlet_flooded")
+        starved = StarvedDetails(
+            meniscus_x=as_float(s.get("meniscus_x")), Hc_flooded=as_float(s.get("Hc_flooded")),
+            Hm_flooded=as_float(s.get("Hm_flooded")), Hc_ratio=as_float(s.get("Hc_ratio")),
+            Hm_ratio=as_float(s.get("Hm_ratio")), mass_balance_error=as_float(s.get("mass_balance_error")),
+            hoil=as_float(s.get("hoil")), inlet_flooded=None if flooded is None else bool(flooded))
+    details = ThermalDetails(
+        Hc_isothermal=float(r.Hc_isothermal), Hm_isothermal=float(r.Hm_isothermal),
+        friction=float(r.friction), friction_coefficient=float(r.friction_coefficient),
+        friction_decoupled=float(r.friction_decoupled), T_max=float(r.T_max),
+        heat_balance_error=float(r.heat_balance_error),
+        heat_partition=tuple(float(x) for x in r.heat_partition), slip=float(r.slip), nz=int(o.nz),
+        outer_iterations=len(r.outer),
+        friction_coefficient_error=as_float(est.budget["friction_coefficient"]["total"]),
+        T_max_error_K=as_float(est.budget["T_max"]["total"]), starved=starved)
+    scale = r.problem.film_scale
+    if point:
+        arrays = {"X": r.X, "Y": r.Y, "P": r.P, "H": r.H, "T_mid": r.T_mid,
+                  "T_surface1": r.T_surface1, "T_surface2": r.T_surface2}
+        box = (float(r.X[0]), float(r.X[-1]), -float(r.Y[-1]), float(r.Y[-1]))
+        grid = Grid(int(r.X.size), int(r.Y.size), None, box, True)
+
+        def builder() -> Any:
+            return tehl_point_result(r)
+    else:
+        arrays = {"X": r.X, "P": r.P, "H": r.H, "Z": r.Z, "T": r.T, "tau": r.tau}
+        grid = Grid(int(r.X.size), None, None, (float(r.X[0]), float(r.X[-1])), False)
+
+        def builder() -> Any:
+            return tehl_line_result(r)
+    return Solution(physics="thermal", contact=scene.kind, outcome=outcome, Hc=float(r.Hc), Hm=float(r.Hm),
+                    hc=float(r.Hc) * scale, hm=float(r.Hm) * scale, error=error, fields=frozen_fields(arrays),
+                    grid=grid, details=details, raw=done, scene=scene, _result_builder=builder)
