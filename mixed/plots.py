@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from ehl_multigrid.model.paths import atomic_savefig
+from ehl_multigrid.model.atomic import atomic_savefig
 
 DPI = 100
 

@@ -194,10 +194,11 @@ def report_leftovers(command: str, removed: list[tuple[Path, int]]) -> None:
 
 def locked_command(func: Callable[[argparse.Namespace], Any], command: str) -> Callable[[argparse.Namespace], Any]:
     """``func(args)`` run under the lock of its output folder ``args.out``
-    (:func:`~ehl_multigrid.model.paths.output_lock`): a second command into the same folder is
+    (:func:`~ehl_multigrid.model.output_folder.output_lock`): a second command into the same folder is
     refused at once (exit code 2), and the leftovers of dead runs there are removed first.
     For the ``func`` of a subcommand: ``p.set_defaults(func=locked_command(run, "ehl x"))``."""
-    from ..model.paths import output_lock, writable_dir
+    from ..model.output_folder import output_lock
+    from ..model.paths import writable_dir
 
     def run(args: argparse.Namespace) -> Any:
         out = writable_dir(args.out)

@@ -16,9 +16,11 @@ from pathlib import Path
 from typing import Any
 
 from ..line import solve_line
+from ..model.atomic import fault_point
 from ..model.constants import MOES_ONLY_DEFAULTS
 from ..model.errors import ConvergenceError, InputError, require_solution
-from ..model.paths import StagedOutputs, fault_point, output_lock, safe_stem
+from ..model.output_folder import StagedOutputs, output_lock
+from ..model.paths import safe_stem
 from .console import Progress, report_leftovers
 
 #: command-line flag (argparse name) -> line solver option
@@ -32,7 +34,7 @@ def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:
 
     Options come from the solver's defaults, then the scene's ``[solver.ehl]`` table, then
     the command-line flags. The output folder ``args.out`` is locked meanwhile
-    (:func:`~ehl_multigrid.model.paths.output_lock`).
+    (:func:`~ehl_multigrid.model.output_folder.output_lock`).
     """
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

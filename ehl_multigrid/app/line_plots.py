@@ -13,7 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..line.solution import LineSolution
-from ..model.paths import atomic_savefig
+from ..model.atomic import atomic_savefig
 
 
 def line_scales(sol: LineSolution) -> dict:

@@ -14,7 +14,7 @@
 Outputs are one set per scene: ``<stem>.h5``, ``<stem>_report.md`` and the figures, where
 ``<stem>`` is the scene name made safe as a file name (:func:`~ehl_multigrid.model.paths.safe_stem`;
 nothing is ever written outside the output folder). The run holds the lock of the output folder
-(:func:`~ehl_multigrid.model.paths.output_lock`: a second command into it is refused, exit code
+(:func:`~ehl_multigrid.model.output_folder.output_lock`: a second command into it is refused, exit code
 2), removes the leftovers of dead runs there, writes into a hidden staging folder inside it and
 then moves the files of the finished stages into place, removing the files of the scene's
 previous run that the new set does not replace (listed in ``.ehl-run-<stem>.json``), so a reused
@@ -41,17 +41,10 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..model.atomic import atomic_savefig, deferred_signals, fault_point, write_text_atomic
 from ..model.hertz import hertz_pressure_line, hertz_pressure_point
-from ..model.paths import (
-    atomic_savefig,
-    deferred_signals,
-    fault_point,
-    output_lock,
-    safe_stem,
-    staging_dir,
-    writable_dir,
-    write_text_atomic,
-)
+from ..model.output_folder import output_lock, staging_dir
+from ..model.paths import safe_stem, writable_dir
 from ..model.results import Result, save_results
 from ..model.scene import Scene
 from .console import Progress, print_table, report_leftovers

@@ -14,8 +14,10 @@ import math
 from dataclasses import fields
 from pathlib import Path
 
+from ..model.atomic import fault_point
 from ..model.errors import InputError, require_solution
-from ..model.paths import StagedOutputs, fault_point, output_lock, safe_stem
+from ..model.output_folder import StagedOutputs, output_lock
+from ..model.paths import safe_stem
 from ..multigrid.options import PointOptions
 from ..point.newton import NewtonOptions
 from ..point.postprocess import summary_payload
@@ -92,7 +94,7 @@ def newton_options_from_args(args: argparse.Namespace, scene=None) -> NewtonOpti
 def run_solve(args: argparse.Namespace, scene) -> dict:
     """Solve, write ``<out>/<name>.h5`` and PNGs (unless ``--no-plots``), return the payload;
     the output folder ``args.out`` is locked meanwhile
-    (:func:`~ehl_multigrid.model.paths.output_lock`)."""
+    (:func:`~ehl_multigrid.model.output_folder.output_lock`)."""
     out = Path(getattr(args, "out", "ehl_out"))
     out.mkdir(parents=True, exist_ok=True)
     with output_lock(out, "ehl solve") as removed:

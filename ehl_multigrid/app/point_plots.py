@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..model.paths import atomic_savefig
+from ..model.atomic import atomic_savefig
 from ..model.results import Result
 
 #: Largest height/width (or width/height) of the plotted plane drawn with equal axes.

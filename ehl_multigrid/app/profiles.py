@@ -18,7 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.paths import output_file, write_text_atomic
+from ..model.atomic import write_text_atomic
+from ..model.paths import output_file
 from ..model.results import Result
 
 

@@ -42,15 +42,9 @@ from typing import Any
 
 import numpy as np
 
+from ..model.atomic import atomic_path, deferred_signals, fault_point, write_text_atomic
 from ..model.errors import ConvergenceError, InputError
-from ..model.paths import (
-    atomic_path,
-    deferred_signals,
-    fault_point,
-    output_lock,
-    remove_leftovers,
-    write_text_atomic,
-)
+from ..model.output_folder import output_lock, remove_leftovers
 from ..model.scene import Scene
 from .console import Progress, report_leftovers
 
@@ -298,7 +292,7 @@ def run_sweep(spec: SweepSpec, outdir: str | os.PathLike, executor: cf.Executor 
     An interruption (Ctrl-C, SIGTERM) cancels the pending cases; finished cases stay on disk,
     the table of the finished ones is written (``complete`` false), and a second call with the
     same spec runs only the rest. ``outdir`` is locked meanwhile
-    (:func:`~ehl_multigrid.model.paths.output_lock`: another process writing into it makes
+    (:func:`~ehl_multigrid.model.output_folder.output_lock`: another process writing into it makes
     this call raise :class:`~ehl_multigrid.model.paths.OutputLocked`).
     """
     outdir = Path(outdir)

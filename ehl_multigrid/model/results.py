@@ -32,8 +32,8 @@ from typing import Any
 import h5py
 import numpy as np
 
+from .atomic import atomic_path, fault_point
 from .errors import InputError
-from .paths import atomic_path, fault_point
 
 FORMAT_VERSION = 1
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..model.paths import atomic_savefig
+from ..model.atomic import atomic_savefig
 from ..multigrid.result import EHLResult
 
 

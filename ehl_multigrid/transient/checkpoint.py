@@ -20,8 +20,8 @@ from typing import Any
 
 import numpy as np
 
+from ..model.atomic import deferred_signals
 from ..model.errors import InputError
-from ..model.paths import deferred_signals
 
 #: default interval between checkpoints [s]
 EVERY_S = 30.0

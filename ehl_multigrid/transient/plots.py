@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..model.paths import atomic_path, atomic_savefig
+from ..model.atomic import atomic_path, atomic_savefig
 from .result import TransientResult
 
 

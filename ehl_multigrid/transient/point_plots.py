@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..model.paths import atomic_savefig
+from ..model.atomic import atomic_savefig
 from .plots import mark_incomplete, save_animation, series_figure, spread_steps
 from .point_solve import PointTransientResult
 

@@ -17,8 +17,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ehl_multigrid.app.console import add_common_options, locked_command, print_table
+from ehl_multigrid.model.atomic import write_text_atomic
 from ehl_multigrid.model.errors import InputError, require_positive, require_range
-from ehl_multigrid.model.paths import output_file, safe_stem, writable_dir, write_text_atomic
+from ehl_multigrid.model.paths import output_file, safe_stem, writable_dir
 
 from .readers import HDF5_SUFFIXES, LAYOUTS
 

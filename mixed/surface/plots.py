@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from ehl_multigrid.model.paths import atomic_savefig
+from ehl_multigrid.model.atomic import atomic_savefig
 
 from .analysis import Analysis
 from .statistics import height_histograms

@@ -4,7 +4,7 @@ valid files (HDF5 that opens and says whether it is complete, PNG with its IEND 
 CSV that parse, indexes that list only existing files), and the next run into the folder leaves
 no temporary file and no staging folder.
 
-The moments are chosen with the test hook of :func:`ehl_multigrid.model.paths.fault_point`
+The moments are chosen with the test hook of :func:`ehl_multigrid.model.atomic.fault_point`
 (``EHL_FAULT_AT=<point>``, ``EHL_FAULT_SIGNAL=TERM|KILL``, ``EHL_FAULT_COUNT=n``: the process
 signals itself the n-th time it reaches the point), or by watching the output folder (SIGTERM
 while the real traction stage writes its first figure, the issue's reproduction). SIGTERM runs
@@ -28,7 +28,7 @@ from pathlib import Path
 import h5py
 import pytest
 
-import ehl_multigrid.model.paths as paths
+import ehl_multigrid.model.atomic as atomic
 from ehl_multigrid.app.cli import main
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
@@ -126,10 +126,10 @@ def check_output_folder(out: Path, leftovers_allowed: bool = False) -> dict[str,
 @pytest.fixture
 def fault(monkeypatch):
     """``fault(point, count=1)``: arm the hook for an in-process run (SIGTERM)."""
-    monkeypatch.setattr(paths, "_fault_hits", {})
+    monkeypatch.setattr(atomic, "_fault_hits", {})
 
     def arm(point: str | None, count: int = 1) -> None:
-        paths._fault_hits.clear()
+        atomic._fault_hits.clear()
         if point is None:
             monkeypatch.delenv("EHL_FAULT_AT", raising=False)
             return
@@ -139,13 +139,13 @@ def fault(monkeypatch):
 
     monkeypatch.setenv("MPLBACKEND", "Agg")
     yield arm
-    paths._fault_hits.clear()
+    atomic._fault_hits.clear()
 
 
 def ehl_child(argv: list[str], point: str | None = None, sig: str = "KILL", count: int = 1,
               timeout: float = 300.0) -> subprocess.CompletedProcess:
     """``ehl argv`` in a child process, killed by ``sig`` at the fault point ``point``."""
-    env = {k: v for k, v in os.environ.items() if k not in paths.FAULT_ENV}
+    env = {k: v for k, v in os.environ.items() if k not in atomic.FAULT_ENV}
     env.update(MPLBACKEND="Agg", EHL_PROGRESS="lines", EHL_PROGRESS_INTERVAL="0")
     if point is not None:
         env.update(EHL_FAULT_AT=point, EHL_FAULT_SIGNAL=sig, EHL_FAULT_COUNT=str(count))
@@ -321,7 +321,7 @@ def test_a_signal_at_any_moment_leaves_whole_files(command, sig, delay, tmp_path
     out = tmp_path / "out"
     argv = {"run": RUN, "solve": SOLVE_POINT, "transient": transient_args(transient_scene(tmp_path))
             if command == "transient" else []}[command]
-    env = {k: v for k, v in os.environ.items() if k not in paths.FAULT_ENV}
+    env = {k: v for k, v in os.environ.items() if k not in atomic.FAULT_ENV}
     env.update(MPLBACKEND="Agg", EHL_PROGRESS="lines", EHL_PROGRESS_INTERVAL="0")
     proc = subprocess.Popen([sys.executable, "-m", "ehl_multigrid", *argv, "--out", str(out)], env=env,
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)

@@ -17,15 +17,9 @@ import pytest
 from matplotlib.figure import Figure
 
 import ehl_multigrid.model.paths as paths
-from ehl_multigrid.model.paths import (
-    StagedOutputs,
-    atomic_savefig,
-    deferred_signals,
-    output_lock,
-    record_outputs,
-    remove_leftovers,
-    write_text_atomic,
-)
+from ehl_multigrid.model.atomic import atomic_savefig, deferred_signals, write_text_atomic
+from ehl_multigrid.model.output_folder import StagedOutputs, output_lock, remove_leftovers
+from ehl_multigrid.model.paths import record_outputs
 
 
 def dead_pid() -> int:

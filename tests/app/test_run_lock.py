@@ -15,10 +15,10 @@ import pytest
 
 from ehl_multigrid.app.cli import main
 from ehl_multigrid.model.errors import InputError
-from ehl_multigrid.model.paths import LOCK_NAME, OutputLocked, output_lock
+from ehl_multigrid.model.output_folder import LOCK_NAME, OutputLocked, output_lock
 
 HOLD = ("import sys\n"
-        "from ehl_multigrid.model.paths import output_lock\n"
+        "from ehl_multigrid.model.output_folder import output_lock\n"
         "with output_lock(sys.argv[1], 'ehl run'):\n"
         "    print('locked', flush=True)\n"
         "    sys.stdin.read()\n")
@@ -102,5 +102,5 @@ def test_one_process_may_take_the_lock_of_a_folder_twice(tmp_path):
         assert (tmp_path / LOCK_NAME).read_text().startswith(f"{os.getpid()} outer")
     assert not (tmp_path / LOCK_NAME).exists()  # the holder deletes it
     # released when the outer block ends: another process can take it
-    code = f"from ehl_multigrid.model.paths import output_lock\nwith output_lock({str(tmp_path)!r}):\n    pass\n"
+    code = f"from ehl_multigrid.model.output_folder import output_lock\nwith output_lock({str(tmp_path)!r}):\n    pass\n"
     assert subprocess.run([sys.executable, "-c", code], capture_output=True).returncode == 0
