@@ -20,3 +20,33 @@ def scene_with_feature():
         return Scene.from_dict(d)
 
     return make
+
+
+#: the two contacts of the issue-41 report: a 10 mm steel ball on a steel flat (50 N) and a
+#: 10 mm roller, 10 mm long, on a flat (5000 N); T9 at 60 degC, us 2 m/s, slip 0.05
+REPORT_CONTACTS = {
+    "ball": {"contact": {"kind": "point"},
+             "geometry": {"R1x": 0.01, "R1y": 0.01, "R2x": float("inf"), "R2y": float("inf")},
+             "operating": {"load": 50.0, "us": 2.0, "slip": 0.05, "T_oil": 60.0}},
+    "roller": {"contact": {"kind": "line", "length": 0.01},
+               "geometry": {"R1x": 0.01, "R2x": float("inf")},
+               "operating": {"load": 5000.0, "us": 2.0, "slip": 0.05, "T_oil": 60.0}},
+}
+
+
+@pytest.fixture(scope="session")
+def report_scene():
+    """``write(kind, folder, name, hoil=None) -> Path``: the report's ``"ball"`` or ``"roller"``
+    contact as a scene file in ``folder``, with ``[supply] hoil`` [m] when given."""
+    import tomli_w
+
+    def write(kind, folder, name, hoil=None):
+        d = {"name": name, **REPORT_CONTACTS[kind],
+             "solids": {"body1": "steel", "body2": "steel"}, "lubricant": {"preset": "T9"}}
+        if hoil is not None:
+            d["supply"] = {"hoil": float(hoil)}
+        path = folder / f"{name}.toml"
+        path.write_text(tomli_w.dumps(d))
+        return path
+
+    return write

@@ -16,57 +16,13 @@ from ehl_multigrid.model.results import load_results
 from ehl_multigrid.multigrid.result import EHLResult
 from ehl_multigrid.starved import point as starved_point
 
-SOLIDS_T9 = """[solids]
-body1 = "steel"
-body2 = "steel"
-[lubricant]
-preset = "T9"
-"""
-
-#: the point scene of issue 41: a 10 mm ball on a steel flat, 50 N, 2 m/s, 60 C
-BALL_ON_FLAT = """name = "{name}"
-[contact]
-kind = "point"
-[geometry]
-R1x = 0.01
-R1y = 0.01
-R2x = inf
-R2y = inf
-""" + SOLIDS_T9 + """[operating]
-load = 50.0
-us = 2.0
-slip = 0.05
-T_oil = 60.0
-"""
-
-#: the line scene of issue 41: R 10 mm, 10 mm long, 5000 N
-ROLLER = """name = "{name}"
-[contact]
-kind = "line"
-length = 0.01
-[geometry]
-R1x = 0.01
-R2x = inf
-""" + SOLIDS_T9 + """[operating]
-load = 5000.0
-us = 2.0
-slip = 0.05
-T_oil = 60.0
-"""
-
-
-def _scene(tmp_path, text: str, name: str, hoil: str | None) -> str:
-    path = tmp_path / f"{name}.toml"
-    path.write_text(text.format(name=name) + (f"[supply]\nhoil = {hoil}\n" if hoil else ""))
-    return str(path)
-
 
 def _film_section(report: str) -> str:
     return report.split("## film", 1)[1].split("\n## ", 1)[0]
 
 
 def test_run_on_a_starved_scene_whose_film_solve_fails_exits_3_and_reports_no_fitted_film(
-        tmp_path, capsys, monkeypatch):
+        tmp_path, capsys, monkeypatch, report_scene):
     # the starved point solver as before issue 41 (no exact zone solve), on 129^2: it stops at
     # the flooded film, which the mass gate fails
     real_once, real_scene = starved_point._solve_once, starved_pkg.solve_starved_point_scene
@@ -75,7 +31,7 @@ def test_run_on_a_starved_scene_whose_film_solve_fails_exits_3_and_reports_no_fi
     monkeypatch.setattr(starved_point, "EXACT_RULES", ())
     monkeypatch.setattr(starved_pkg, "solve_starved_point_scene",
                         lambda scene, **kw: real_scene(scene, **{**kw, "points": 129}))
-    scene = _scene(tmp_path, BALL_ON_FLAT, "ball_starved", "2e-8")
+    scene = str(report_scene("ball", tmp_path, "ball_starved", 2e-8))
     rc = main(["run", scene, "--no-plots", "--json", "--out", str(tmp_path / "o")])
     out = json.loads(capsys.readouterr().out)
     assert rc == 3
@@ -93,10 +49,10 @@ def test_run_on_a_starved_scene_whose_film_solve_fails_exits_3_and_reports_no_fi
     assert res.kind == "hertz_fit" and res.scalars["hc_estimate"] == pytest.approx(film["hc_estimate"])
 
 
-def test_run_on_a_flooded_scene_whose_film_solve_fails_exits_3(tmp_path, capsys, monkeypatch):
+def test_run_on_a_flooded_scene_whose_film_solve_fails_exits_3(tmp_path, capsys, monkeypatch, report_scene):
     monkeypatch.setattr(point_pkg, "solve_point",
                         lambda **kw: EHLResult(status=2, message="stalled: the residual fell only from 1e-3 to 9e-4"))
-    scene = _scene(tmp_path, BALL_ON_FLAT, "ball_flooded", None)
+    scene = str(report_scene("ball", tmp_path, "ball_flooded"))
     rc = main(["run", scene, "--no-plots", "--json", "--out", str(tmp_path / "o")])
     out = json.loads(capsys.readouterr().out)
     assert rc == 3
@@ -114,9 +70,10 @@ UNREACHABLE = ("Hoil = 0.0004 is below the flux the solver reaches with the meni
 
 
 @pytest.mark.parametrize("command", ["run", "solve"])
-def test_a_starved_line_supply_the_solver_cannot_reach_is_a_clear_failure(tmp_path, capsys, monkeypatch, command):
+def test_a_starved_line_supply_the_solver_cannot_reach_is_a_clear_failure(tmp_path, capsys, monkeypatch, command,
+                                                                          report_scene):
     monkeypatch.setattr(starved_pkg, "solve_starved_scene", lambda scene, **kw: EHLResult(status=5, message=UNREACHABLE))
-    scene = _scene(tmp_path, ROLLER, "roller_1nm", "1e-9")
+    scene = str(report_scene("roller", tmp_path, "roller_1nm", 1e-9))
     rc = main([command, scene, "--no-plots", "--json", "--out", str(tmp_path / "o")])
     cap = capsys.readouterr()
     assert rc == 3  # not 1 (the TypeError "this result has no field builder")
@@ -128,8 +85,8 @@ def test_a_starved_line_supply_the_solver_cannot_reach_is_a_clear_failure(tmp_pa
 
 
 @pytest.mark.slow
-def test_run_on_the_line_scene_of_issue_41_at_1_nm_is_a_clear_failure(tmp_path, capsys):
-    scene = _scene(tmp_path, ROLLER, "roller_1nm", "1e-9")
+def test_run_on_the_line_scene_of_issue_41_at_1_nm_is_a_clear_failure(tmp_path, capsys, report_scene):
+    scene = str(report_scene("roller", tmp_path, "roller_1nm", 1e-9))
     rc = main(["run", scene, "--no-plots", "--json", "--out", str(tmp_path / "o")])
     cap = capsys.readouterr()
     # measured: the meniscus search fails next to the Hertzian edge (exit 3); a solver that

@@ -20,38 +20,14 @@ from ehl_multigrid.starved.gate import MASS_GATE, apply_mass_gate
 from ehl_multigrid.starved.line import solve_starved_problem, starved_options
 from ehl_multigrid.starved.point import solve_starved_point_scene
 
-#: the point scene of issue 41 (10 mm ball on a steel flat, T9, 50 N, 2 m/s, 60 C, 20 nm layer)
-BALL_ON_FLAT = """name = "ball_on_flat_starved"
-[contact]
-kind = "point"
-[geometry]
-R1x = 0.01
-R1y = 0.01
-R2x = inf
-R2y = inf
-[solids]
-body1 = "steel"
-body2 = "steel"
-[lubricant]
-preset = "T9"
-[operating]
-load = 50.0
-us = 2.0
-slip = 0.05
-T_oil = 60.0
-[supply]
-hoil = 2e-8
-"""
-
 #: statuses a result that does not conserve mass must not have
 NOT_FAILED = ("converged", "residual_floor", "inaccurate")
 
 
 @pytest.fixture
-def ball_on_flat(tmp_path):
-    path = tmp_path / "ball_on_flat_starved.toml"
-    path.write_text(BALL_ON_FLAT)
-    return path
+def ball_on_flat(tmp_path, report_scene):
+    """The issue's point contact with a 20 nm layer."""
+    return report_scene("ball", tmp_path, "ball_on_flat_starved", 2e-8)
 
 
 @pytest.fixture

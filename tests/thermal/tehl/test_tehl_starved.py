@@ -16,33 +16,11 @@ from ehl_multigrid.model.scene import Scene, load_scene
 from thermal.tehl.line import TEHLOptions, solve_tehl_line
 from thermal.tehl.point import solve_tehl_point
 
-STARVED_LINE = """name = "line_starved"
-[contact]
-kind = "line"
-length = 0.01
-[geometry]
-R1x = 0.01
-R2x = inf
-[solids]
-body1 = "steel"
-body2 = "steel"
-[lubricant]
-preset = "T9"
-[operating]
-load = 5000.0
-us = 2.0
-slip = 0.05
-T_oil = 60.0
-[supply]
-hoil = 2e-8
-"""
-
 
 @pytest.fixture(scope="module")
-def starved_scene(tmp_path_factory) -> Scene:
-    path = tmp_path_factory.mktemp("scene") / "line_starved.toml"
-    path.write_text(STARVED_LINE)
-    return load_scene(str(path))
+def starved_scene(tmp_path_factory, report_scene) -> Scene:
+    """The issue's line contact with a 20 nm layer."""
+    return load_scene(str(report_scene("roller", tmp_path_factory.mktemp("scene"), "line_starved", 2e-8)))
 
 
 def test_starved_tehl_with_the_thermal_effects_off_is_the_isothermal_starved_film(starved_scene):
@@ -82,9 +60,9 @@ def test_a_supply_above_the_flooded_flux_floods_the_thermal_inlet(starved_scene)
     assert rich.Hc == flooded.Hc and flooded.starved is None
 
 
-def test_ehl_solve_thermal_of_a_starved_scene_reports_the_meniscus_and_its_error(starved_scene, tmp_path, capsys):
-    path = tmp_path / "line_starved.toml"
-    path.write_text(STARVED_LINE)
+def test_ehl_solve_thermal_of_a_starved_scene_reports_the_meniscus_and_its_error(starved_scene, tmp_path, capsys,
+                                                                             report_scene):
+    path = report_scene("roller", tmp_path, "line_starved", 2e-8)
     # 257 points: the estimate's solve on 129 resolves the 0.015 b between meniscus and
     # Hertzian edge by one cell, so only the estimate is asked for (measured Hm error 0.18)
     code = main(["solve", str(path), "--thermal", "--points", "257", "--nz", "8", "--accuracy", "none",
@@ -127,9 +105,8 @@ def test_ehl_solve_thermal_slip_5_exits_2_at_input(tmp_path, capsys):
     assert code == 2 and "--slip" in err and "5" in err and "[-2, 2]" in err and "converge" not in err
 
 
-def test_a_tehl_traction_curve_of_a_starved_scene_is_starved_at_every_slip(tmp_path, capsys):
-    path = tmp_path / "line_starved.toml"
-    path.write_text(STARVED_LINE)
+def test_a_tehl_traction_curve_of_a_starved_scene_is_starved_at_every_slip(tmp_path, capsys, report_scene):
+    path = report_scene("roller", tmp_path, "line_starved", 2e-8)
     # (on 129 points the flooded solve of the default box is so coarse that its flux falls below
     # this supply: that grid's flooded contact takes less oil than supplied, and the film comes
     # back flooded, as its error estimate would then show)
