@@ -599,6 +599,29 @@ def _solve_once(problem: PointProblem, hoil: float, opt: PointOptions, coarse_th
     return sol, hz
 
 
+def _exact_resolve(problem: Any, hoil: float, opt: PointOptions, rule: int | None, guess: Any,
+                   sol: EHLResult, hz: Any, mb: float, why: str,
+                   failed_counts: bool) -> tuple[EHLResult, Any, float]:
+    """Solve again with the exact solve of the Poiseuille-dominated zone under the coarse-grid
+    theta ``rule`` and keep the better of the two: the new solve when it converged or its mass
+    imbalance is smaller (an unconverged new solve competes on its imbalance only when
+    ``failed_counts``). The step, headed by ``why``, goes into the kept solve's actions.
+    Returns the kept ``(sol, hz, imbalance)``."""
+    new, hz_new = _solve_once(problem, hoil, opt, rule, exact=True, guess=guess)
+    mb_new = imbalance_of(hz_new) if (new.success or failed_counts) else math.inf
+    keep = (failed_counts and new.success) or mb_new < mb
+    what = (f"{why}: re-solved with the exact solve of the zone eps/hx^2 >= {EXACT_EPS:g} "
+            f"(coarse theta rule {rule}): {new.status_name}, imbalance {mb_new:.2g}")
+    if hz_new.exact_notes:
+        what += f" (exact solves failed: {'; '.join(hz_new.exact_notes)})"
+    what += f"; kept the {'second' if keep else 'first'}"
+    if keep:
+        new.actions[:0] = sol.actions
+        sol, hz, mb = new, hz_new, mb_new
+    sol.actions.append(what)
+    return sol, hz, mb
+
+
 def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions | None = None,
                         coarse_theta: int | None = None, *,
                         guess: tuple[np.ndarray, np.ndarray, np.ndarray, float] | None = None,
@@ -654,19 +677,8 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
         mb = imbalance_of(hz)
         for rule in rules:
             exact_rules.add(rule)
-            sol5, hz5 = _solve_once(problem, hoil, opt, rule, exact=True, guess=guess)
-            mb5 = imbalance_of(hz5)
-            keep = sol5.success or mb5 < mb
-            what = (f"{sol.status_name} with imbalance {mb:.2g}: re-solved with the exact solve "
-                    f"of the zone eps/hx^2 >= {EXACT_EPS:g} (coarse theta rule {rule}): "
-                    f"{sol5.status_name}, imbalance {mb5:.2g}")
-            if hz5.exact_notes:
-                what += f" (exact solves failed: {'; '.join(hz5.exact_notes)})"
-            what += f"; kept the {'second' if keep else 'first'}"
-            if keep:
-                sol5.actions[:0] = sol.actions
-                sol, hz, mb = sol5, hz5, mb5
-            sol.actions.append(what)
+            sol, hz, mb = _exact_resolve(problem, hoil, opt, rule, guess, sol, hz, mb,
+                                         f"{sol.status_name} with imbalance {mb:.2g}", failed_counts=True)
             if sol.success:
                 rescued = True
                 break
@@ -679,19 +691,8 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
             for rule in (hz.coarse_theta,) + tuple(r for r in EXACT_RULES if r != hz.coarse_theta):
                 if rule in exact_rules:
                     continue
-                sol4, hz4 = _solve_once(problem, hoil, opt, rule, exact=True, guess=guess)
-                mb4 = imbalance_of(hz4) if sol4.success else math.inf
-                keep = mb4 < mb
-                what = (f"mass imbalance {mb:.2g}: re-solved with the exact solve of the zone "
-                        f"eps/hx^2 >= {EXACT_EPS:g} (coarse theta rule {rule}): "
-                        f"{sol4.status_name}, imbalance {mb4:.2g}")
-                if hz4.exact_notes:
-                    what += f" (exact solves failed: {'; '.join(hz4.exact_notes)})"
-                what += f"; kept the {'second' if keep else 'first'}"
-                if keep:
-                    sol4.actions[:0] = sol.actions
-                    sol, hz, mb = sol4, hz4, mb4
-                sol.actions.append(what)
+                sol, hz, mb = _exact_resolve(problem, hoil, opt, rule, guess, sol, hz, mb,
+                                             f"mass imbalance {mb:.2g}", failed_counts=False)
                 if mb <= MASS_TOL:
                     break
         if mb > MASS_TOL:
