@@ -64,8 +64,6 @@ PHYSICS_GROUP = "ehl.physics"
 PART_NAMES = {"algebraic": "iteration"}
 #: ``ehl transient``'s defaults: points along X (line, point) and the inlet X = x/b (x/a),
 #: upstream enough for a feature to enter the contact
-TRANSIENT_POINTS = {"line": 513, "point": 129}
-TRANSIENT_XMIN = -4.5
 #: options of a transient run besides the multigrid options of its time steps
 TRANSIENT_RUN_KEYS = ("dt", "steps", "t_end", "scheme", "snapshot_every", "accept_stall", "xmin",
                       "xmax", "time_error")
@@ -333,7 +331,7 @@ def _starved(scene: Scene, contact: str, accuracy: float | None, options: Any, c
 def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any, callback: Any,
                t0: float) -> Solution:
     from .multigrid.options import LineOptions, PointOptions
-    from .transient.supply import check_flooded_supply
+    from .transient.supply import DEFAULT_POINTS, DEFAULT_XMIN, supply_notes
 
     line = contact == "line"
     cls = LineOptions if line else PointOptions
@@ -343,7 +341,7 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
     want_time_error = bool(runkw.pop("time_error", False))
     require_slip("operating.slip", scene.slip)
     if dc is None:
-        kw.setdefault("points", TRANSIENT_POINTS["line" if line else "point"])
+        kw.setdefault("points", DEFAULT_POINTS["line" if line else "point"])
     box_keys = {k: runkw.pop(k) for k in ("xmin", "xmax") if k in runkw}
     warn: list[str] = []
     if line:
@@ -352,7 +350,7 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
         from .transient.solve import solve_transient_line as solver
 
         # the box is the problem's (xmin, xmax), as 'ehl transient' builds it
-        pb = LineProblem.from_scene(scene, **{"xmin": TRANSIENT_XMIN, **box_keys})
+        pb = LineProblem.from_scene(scene, **{"xmin": DEFAULT_XMIN, **box_keys})
         feature, body = feature_from_scene_table(scene.feature, pb)
         scale = pb.b**2 / pb.R
     else:
@@ -365,19 +363,13 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
             raise InputError(f"options {sorted(box_keys)} with a PointOptions object: give the box "
                              f"(xmin, xmax, ymax) in the PointOptions")
         if dc is None:
-            kw.update({"xmin": TRANSIENT_XMIN, **box_keys})
+            kw.update({"xmin": DEFAULT_XMIN, **box_keys})
         src = kw if dc is None else {k: getattr(dc, k) for k in ("xmin", "xmax", "ymax")}
         box = resolve_domain(pb, src.get("xmin"), src.get("xmax"), src.get("ymax"))
         feature, body = point_feature_from_scene_table(scene.feature, pb, box, warn)
         scale = pb.a**2 / pb.Rx
     # the solvers model a flooded inlet: a starving supply is refused (as 'ehl transient')
-    height = 0.0
-    if feature.kind in ("height_map", "profile"):
-        height = float(abs(feature.z).max()) * scale
-    elif feature.kind != "smooth":
-        height = abs(float(feature.amplitude)) * scale
-    note = check_flooded_supply(scene, height)
-    notes = warn + ([] if note is None else [note])
+    notes = warn + supply_notes(scene, feature, scale)
 
     def run(call: Any = callback, **step: Any) -> Any:
         return solver(pb, feature, body=body, slide_roll=scene.slip, options=dc, callback=call,

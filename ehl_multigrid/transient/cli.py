@@ -20,15 +20,13 @@ from ..model.paths import output_file, record_outputs, safe_stem, writable_dir
 from ..model.scene import load_scene
 from .checkpoint import EVERY_S, Checkpoint, read_checkpoint
 from .stepping import SCHEMES
-from .supply import check_flooded_supply
+from .supply import DEFAULT_POINTS, DEFAULT_XMIN, supply_notes
 
 #: largest grid of the command line (a pass at 4097 points takes tens of minutes)
 MAX_POINTS = 4097
 #: largest point-contact grid (points along X) of the command line: a pass at 513^2 takes
 #: about an hour
 MAX_POINT_POINTS = 513
-#: default grids: line, point
-DEFAULT_POINTS = {"line": 513, "point": 129}
 
 
 def register(subparsers: Any) -> None:
@@ -49,7 +47,8 @@ def register(subparsers: Any) -> None:
     p.add_argument("--t-end", type=float, default=None, help="end time T instead of --steps")
     p.add_argument("--scheme", choices=list(SCHEMES), default="bdf2")
     p.add_argument("--snapshot-every", type=int, default=10, help="keep P and H every N steps")
-    p.add_argument("--xmin", type=float, default=-4.5, help="inlet X = x/b (point: x/a) (default -4.5)")
+    p.add_argument("--xmin", type=float, default=DEFAULT_XMIN,
+                   help=f"inlet X = x/b (point: x/a) (default {DEFAULT_XMIN:g})")
     p.add_argument("--threshold", type=float, default=None,
                    help="report the fraction of the Hertzian contact with h below this [m] "
                         "(point contacts also: the fraction of the load carried there)")
@@ -85,7 +84,7 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
     pb = LineProblem.from_scene(scene, xmin=args.xmin)
     feature, body = feature_from_scene_table(scene.feature, pb)
     scale = pb.b**2 / pb.R
-    notes = _supply_notes(scene, feature, scale)
+    notes = supply_notes(scene, feature, scale)
 
     def solve(checkpoint: Checkpoint, resume: dict[str, Any] | None) -> Any:
         return solve_transient_line(pb, feature, body=body, slide_roll=scene.slip, dt=args.dt,
@@ -116,7 +115,7 @@ def run_transient_point(args: argparse.Namespace, scene: Any, every: float = EVE
     feature, body = point_feature_from_scene_table(scene.feature, pb,
                                                    resolve_domain(pb, args.xmin, None, None), warnings)
     scale = pb.a**2 / pb.Rx
-    notes = _supply_notes(scene, feature, scale)
+    notes = supply_notes(scene, feature, scale)
 
     def solve(checkpoint: Checkpoint, resume: dict[str, Any] | None) -> Any:
         return solve_transient_point(pb, feature, body=body, slide_roll=scene.slip, dt=args.dt,
@@ -137,18 +136,6 @@ def run_transient_point(args: argparse.Namespace, scene: Any, every: float = EVE
 def _require_points(points: int, most: int, where: str = "") -> None:
     if not 65 <= points <= most:
         raise InputError(f"--points = {points} is outside the allowed range [65, {most}]{where}")
-
-
-def _supply_notes(scene: Any, feature: Any, scale: float) -> list[str]:
-    """The scene's oil supply checked against the flooded inlet the solver models (raises for
-    a starving supply); the note of a finite supply that counts as flooded."""
-    height = 0.0
-    if feature.kind == "height_map" or feature.kind == "profile":
-        height = float(abs(feature.z).max()) * scale
-    elif feature.kind != "smooth":
-        height = abs(float(feature.amplitude)) * scale
-    note = check_flooded_supply(scene, height)
-    return [] if note is None else [note]
 
 
 def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes: list[str],

@@ -27,6 +27,9 @@ from ..model.starvation import chevalier_reduction
 #: a supply whose Chevalier film reduction leaves the film within this fraction of the
 #: flooded film counts as flooded
 FLOODED_REDUCTION = 0.01
+#: default grid of a transient run (points along X) per contact, and its inlet X = x/b (x/a)
+DEFAULT_POINTS = {"line": 513, "point": 129}
+DEFAULT_XMIN = -4.5
 #: Chevalier's exponent when the scene gives ``delta = "inlet"``: the low end of the range
 #: 2-5 the thesis quotes (section 6.2.1), which asks for the thickest layer
 DELTA_LOW = 2.0
@@ -73,3 +76,23 @@ def check_flooded_supply(scene: Any, feature_height: float = 0.0,
             f"requirement rho h = {need:.4g} m (at least {r_flooded:.3g} times counts as flooded: "
             f"Chevalier's film reduction (6.1) below {FLOODED_REDUCTION:.0%}); solved as a "
             f"flooded contact")
+
+
+def feature_height(feature: Any, scale: float) -> float:
+    """The largest height or depth [m] of a dimensionless ``feature`` (film units times
+    ``scale`` [m]): the volume a dent or trough passing through the inlet adds to the film the
+    supply has to fill (0 for a smooth surface)."""
+    if feature.kind in ("height_map", "profile"):
+        return float(abs(feature.z).max()) * scale
+    if feature.kind == "smooth":
+        return 0.0
+    return abs(float(feature.amplitude)) * scale
+
+
+def supply_notes(scene: Any, feature: Any, scale: float) -> list[str]:
+    """The scene's supply checked against the flooded inlet the transient solvers model
+    (:func:`check_flooded_supply`: raises for a starving supply); the note of a finite supply
+    that counts as flooded."""
+    note = check_flooded_supply(scene, feature_height(feature, scale))
+    return [] if note is None else [note]
+
