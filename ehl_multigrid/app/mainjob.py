@@ -198,6 +198,7 @@ def film_stage(ctx: RunContext) -> StageOutput:
                               f"errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g}")
         summary = {k: res.scalars.get(k) for k in ("Hc", "Hm", "hc", "hm", "p_spike", "load_error", "points",
                                                      "converged", "Hc_error", "Hm_error")}
+        summary["status"], summary["message"] = sol.status_name, sol.message
         summary["Hc_fit"], summary["hc_fit"] = scene.central_film_fit()
         starved = "meniscus_x" in sol.scalars
         if starved:

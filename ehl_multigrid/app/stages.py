@@ -70,7 +70,7 @@ class RunContext:
         """Why the film stage's film is an estimate (its solve failed), or ``None``: a stage
         computed on that film is not a success either and says so (converged false, exit 3)."""
         out = self.outputs.get("film")
-        if out is None or out.summary.get("converged") is not False:
+        if out is None or not out.summary.get("solver_fallback"):
             return None
         return (f"computed on an estimated film, not a solved one: the film stage's solve failed "
                 f"({out.summary.get('status')}: {out.summary.get('message')})")
