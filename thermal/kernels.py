@@ -896,7 +896,7 @@ def march_line(
     N = 2 * n + n * nzp
     X = np.empty((depth + 1, N))
     F = np.empty((depth + 1, N))
-    count = 0
+    count = np.int64(0)  # not a literal 0: one signature of _anderson_step
     settled = False
     n_fail = 0
     n_tau_fail = 0

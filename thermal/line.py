@@ -186,6 +186,8 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
         lagged = _reaches_upstream(WL1, WR1) or _reaches_upstream(WL2, WR2)
     else:
         WL1 = WR1 = WL2 = WR2 = np.zeros(2 * nx - 1)
+        # read-only like the cached weights of the thermal path: one compiled specialisation
+        WL1.setflags(write=False)
         lagged = False
     T = np.full((nx, nzp), float(env.T_oil))
     tau = np.zeros((nx, nzp))

@@ -120,9 +120,10 @@ def operator(P, H, rho, eps, hx, hy, sym, order, out, ct=0.0):
             out[j, i] = 0.0
         if j < j0 or j > ny - 2:
             continue
-        jm = 1 if (sym and j == 0) else j - 1
+        js = np.int64(j)  # prange(ny) counts in uint64: one signature of the stencils for all callers
+        jm = 1 if (sym and js == 0) else js - 1
         for i in range(1, nx - 1):
-            out[j, i] = _poiseuille(P, eps, j, jm, j + 1, i, hx2, hy2) - _wedge(rho, H, j, i, hx, order, ct)
+            out[js, i] = _poiseuille(P, eps, js, jm, js + 1, i, hx2, hy2) - _wedge(rho, H, js, i, hx, order, ct)
 
 
 @njit(cache=True, parallel=True)
@@ -173,7 +174,7 @@ def wedge_norm(H, rho, hx, sym, order):
     n = 0
     for j in range(j0, ny - 1):
         for i in range(1, nx - 1):
-            w = _wedge(rho, H, j, i, hx, order)
+            w = _wedge(rho, H, j, i, hx, order, 0.0)
             s += w * w
             n += 1
     return math.sqrt(s / max(n, 1))
