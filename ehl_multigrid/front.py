@@ -62,8 +62,6 @@ BUILTIN = ("steady", "starved", "transient")
 PHYSICS_GROUP = "ehl.physics"
 #: names of the older error budgets -> the contract's part names
 PART_NAMES = {"algebraic": "iteration"}
-#: ``ehl transient``'s defaults: points along X (line, point) and the inlet X = x/b (x/a),
-#: upstream enough for a feature to enter the contact
 #: options of a transient run besides the multigrid options of its time steps
 TRANSIENT_RUN_KEYS = ("dt", "steps", "t_end", "scheme", "snapshot_every", "accept_stall", "xmin",
                       "xmax", "time_error")
@@ -331,7 +329,8 @@ def _starved(scene: Scene, contact: str, accuracy: float | None, options: Any, c
 def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any, callback: Any,
                t0: float) -> Solution:
     from .multigrid.options import LineOptions, PointOptions
-    from .transient.supply import DEFAULT_POINTS, DEFAULT_XMIN, supply_notes
+    from .transient.defaults import DEFAULT_POINTS, DEFAULT_XMIN
+    from .transient.supply import supply_notes
 
     line = contact == "line"
     cls = LineOptions if line else PointOptions

@@ -115,11 +115,7 @@ def require_gw_roughness(rough: Roughness | None, where: str = "scene") -> Rough
 
 def contact_at_load(scene: Scene, load: float) -> hertz.HertzContact:
     """Hertz contact of the scene's geometry at another load."""
-    if load == scene.load:
-        return scene.hertz
-    if scene.kind == "line":
-        return hertz.hertz_line(load, scene.length, scene.Rx, scene.E_reduced)
-    return hertz.hertz_point(load, scene.Rx, scene.Ry, scene.E_reduced)
+    return scene.hertz if load == scene.load else scene.hertz_at(load)
 
 
 def _us_array(us: float | np.ndarray | None, scene: Scene) -> np.ndarray:

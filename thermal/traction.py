@@ -18,7 +18,7 @@ import numpy as np
 
 from ehl_multigrid.model.convergence import ConvergenceReport
 from ehl_multigrid.model.errors import InputError, require_range
-from ehl_multigrid.model.hertz import HertzContact, hertz_line, hertz_point
+from ehl_multigrid.model.hertz import HertzContact
 from ehl_multigrid.model.lubricant import T_MAX_C, Lubricant, lubricant_preset
 from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import Scene
@@ -85,12 +85,6 @@ def resolve_lubricant(lubricant: Lubricant | str | None, scene: Scene) -> Lubric
     if isinstance(lubricant, str):
         return lubricant_preset(lubricant)
     raise InputError(f"lubricant = {lubricant!r} must be a Lubricant or a preset name")
-
-
-def contact_hertz(scene: Scene, load: float) -> HertzContact:
-    if scene.kind == "line":
-        return hertz_line(load, scene.length, scene.Rx, scene.E_reduced)
-    return hertz_point(load, scene.Rx, scene.Ry, scene.E_reduced)
 
 
 def wall_speeds(us: float, slip: float) -> tuple[float, float]:
@@ -278,7 +272,7 @@ def prepare_traction(
         T_surface1=scene.T_surface1 if T_surface1 is None else T_surface1,
         T_surface2=scene.T_surface2 if T_surface2 is None else T_surface2,
     )
-    hz = contact_hertz(scene, load)
+    hz = scene.hertz_at(load)
     if input == "hertz":
         if h is None:
             h = scene.supplied_film_fit(us, load)[1]

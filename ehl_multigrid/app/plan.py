@@ -112,26 +112,19 @@ def fit_deviation_estimate(scene: Scene) -> tuple[float, str]:
     """Expected relative deviation of the fitted central film from a Roelands + Dowson-Higginson
     solution at the scene's (M, L), and where the number comes from.
 
-    Uses the table measured by the fit-check studies when one is installed
-    (``ehl_multigrid/data/fit_deviation_<contact>.json``), else the 10-25 % range the literature states for
-    Barus-type fits against Roelands + Dowson-Higginson solutions.
+    Uses the table measured by the fit-check studies (:func:`~ehl_multigrid.model.fits.deviation_table`,
+    nearest tabulated point), else the 10-25 % range the literature states for Barus-type fits
+    against Roelands + Dowson-Higginson solutions.
     """
-    from importlib import resources
-
     M, L = scene.moes()
-    contact = "line" if scene.kind == "line" else "point"
-    res = resources.files("ehl_multigrid") / "data" / f"fit_deviation_{contact}.json"
-    if res.is_file():
-        import json
-
-        tab = json.loads(res.read_text())
-        Ms, Ls, dev = np.array(tab["M"]), np.array(tab["L"]), np.abs(np.array(tab["deviation"], dtype=float))
-        # nearest tabulated point in log M and L (the fit error varies slowly)
-        i = int(np.argmin(np.abs(np.log(Ms) - math.log(M))))
-        j = int(np.argmin(np.abs(Ls - L)))
-        val = dev[i, j]
-        if np.isfinite(val):
-            return float(val), f"measured fit check ({tab.get('source', res.name)}) at M={Ms[i]:g}, L={Ls[j]:g}"
+    tab = fits.deviation_table("line" if scene.kind == "line" else "point")
+    Ms, Ls, dev = np.array(tab["M"]), np.array(tab["L"]), np.abs(tab["deviation"])
+    # nearest tabulated point in log M and L (the fit error varies slowly)
+    i = int(np.argmin(np.abs(np.log(Ms) - math.log(M))))
+    j = int(np.argmin(np.abs(Ls - L)))
+    val = dev[i, j]
+    if np.isfinite(val):
+        return float(val), f"measured fit check ({tab['source'] or 'fit_deviation table'}) at M={Ms[i]:g}, L={Ls[j]:g}"
     return 0.25, "Barus-type, incompressible fits exceed Roelands + Dowson-Higginson solutions by 10-25 % (not yet measured here)"
 
 

@@ -287,7 +287,7 @@ class Scene:
             return Hc, hc
         from .starvation import INLET, chevalier_reduction, density_ratio_at, inlet_delta
 
-        hz = self.hertz_at(self.load if load is None else load)
+        hz = self.hertz if load is None else self.hertz_at(load)
         delta = self.supply.delta
         if delta == INLET:
             delta = float(inlet_delta(self.kind, hc * self.Rx / hz.a**2))

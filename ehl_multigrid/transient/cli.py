@@ -19,8 +19,9 @@ from ..model.errors import ConvergenceError, InputError, require_range, require_
 from ..model.paths import output_file, record_outputs, safe_stem, writable_dir
 from ..model.scene import load_scene
 from .checkpoint import EVERY_S, Checkpoint, read_checkpoint
+from .defaults import DEFAULT_POINTS, DEFAULT_XMIN
 from .stepping import SCHEMES
-from .supply import DEFAULT_POINTS, DEFAULT_XMIN, supply_notes
+from .supply import supply_notes
 
 #: largest grid of the command line (a pass at 4097 points takes tens of minutes)
 MAX_POINTS = 4097

@@ -27,9 +27,6 @@ from ..model.starvation import chevalier_reduction
 #: a supply whose Chevalier film reduction leaves the film within this fraction of the
 #: flooded film counts as flooded
 FLOODED_REDUCTION = 0.01
-#: default grid of a transient run (points along X) per contact, and its inlet X = x/b (x/a)
-DEFAULT_POINTS = {"line": 513, "point": 129}
-DEFAULT_XMIN = -4.5
 #: Chevalier's exponent when the scene gives ``delta = "inlet"``: the low end of the range
 #: 2-5 the thesis quotes (section 6.2.1), which asks for the thickest layer
 DELTA_LOW = 2.0

@@ -23,7 +23,7 @@ def _film_section(report: str) -> str:
 
 def test_run_on_a_starved_scene_whose_film_solve_fails_exits_3_and_reports_no_fitted_film(
         tmp_path, capsys, monkeypatch, report_scene):
-    # the starved point solver as before issue 41 (no exact zone solve), on 129^2: it stops at
+    # the starved point solver without its exact zone solve, on 129^2: it stops at
     # the flooded film, which the mass gate fails
     real_once, real_scene = starved_point._solve_once, starved_pkg.solve_starved_point_scene
     monkeypatch.setattr(starved_point, "_solve_once",

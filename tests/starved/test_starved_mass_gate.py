@@ -33,7 +33,7 @@ def ball_on_flat(tmp_path, report_scene):
 @pytest.fixture
 def without_exact_zone_solve(monkeypatch):
     """The starved point solver without its exact zone solve: on the issue's contact the cycles
-    then stop at the flooded film (the behaviour before the fix)."""
+    then stop at the flooded film."""
     real = starved_point._solve_once
 
     def no_exact(problem, hoil, opt, coarse_theta, exact=False, guess=None):
