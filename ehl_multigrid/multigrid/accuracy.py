@@ -32,8 +32,10 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
+
+from .controller import Candidate, Refinement, Resolution, choose, control
 
 #: multiplies the Richardson grid-error estimate
 GRID_SAFETY = 1.5
@@ -377,21 +379,6 @@ def film_change(solve_default: Any, solve_wide: Any, floor_ok: bool = False) -> 
     return (math.copysign(abs(dc) + jitter[0], dc), math.copysign(abs(dm) + jitter[1], dm))
 
 
-@dataclass(frozen=True)
-class Refinement:
-    """One solve of an accuracy-driven sequence: grid, box scale, tolerance and its estimate."""
-
-    points: int
-    box: float
-    tol: float
-    Hc_error: float
-    Hm_error: float
-    wall_s: float
-    #: "solve" (a candidate answer) or "levels" (a coarser grid solved to convergence for the
-    #: estimate of a finer one, :data:`REPAIR_LEVELS`)
-    purpose: str = "solve"
-
-
 def attach_estimate(result: Any, estimate: ErrorEstimate, accuracy: float | None) -> None:
     """Store the estimate in the result and judge it against ``accuracy``: a result whose
     iteration converged but whose estimated error exceeds the target gets status 6."""
@@ -427,18 +414,18 @@ DOMAIN_DECAY = 4.0
 PREASYMPTOTIC_GRID = 0.1
 
 
-def next_refinement(budget: dict[str, dict[str, float]], accuracy: float, points: int, box: float,
-                    tol_factor: float, max_points: int, box_limit: float) -> tuple[int, float, float] | None:
-    """The cheapest refinement predicted to meet ``accuracy`` (else the one predicted to come
-    closest): one more grid (grid error / 4), a box twice as wide at the same mesh (domain
-    error / :data:`DOMAIN_DECAY`) or on the same points (grid error x 4), both, or tolerances
-    ten times tighter (algebraic / 10). No jump of two grids while the grid error is above
+def refinement_candidates(budget: dict[str, dict[str, float]], accuracy: float, points: int, box: float,
+                          tol_factor: float, max_points: int, box_limit: float) -> list[Candidate]:
+    """The refinements of a steady solve and the larger film error each is predicted to leave:
+    one more grid (grid error / 4), a box twice as wide at the same mesh (domain error /
+    :data:`DOMAIN_DECAY`) or on the same points (grid error x 4), both, or tolerances ten times
+    tighter (algebraic / 10). No jump of two grids while the grid error is above
     :data:`PREASYMPTOTIC_GRID`.
 
-    Where the domain part is not known (its probes did not converge) but the grid part is, the
-    grid alone is refined, predicted from the known parts: the finer grid's probes run on a
-    finer mesh and may then measure it (Barus (5, 20, theta 4) at 1 %: the 257-point solve's
-    probes failed, and its grid error, Hc 7.7 %, Hm 19 %, was left standing)."""
+    Where the domain part is not known (its probes did not converge) but the grid part is and
+    the known parts miss ``accuracy``, the one candidate is the finer grid, its prediction
+    unknown: the finer grid's probes run on a finer mesh and may then measure the domain part
+    (Barus (5, 20, theta 4) at 1 %: the 257-point solve's probes failed)."""
     dom_known = all(math.isfinite(budget["domain"][k]) for k in ("Hc", "Hm"))
     grid_known = all(math.isfinite(budget["grid"][k]) for k in ("Hc", "Hm"))
 
@@ -446,35 +433,41 @@ def next_refinement(budget: dict[str, dict[str, float]], accuracy: float, points
         return max(g * budget["grid"][k] + d * (budget["domain"][k] if dom_known else 0.0)
                    + a * budget["algebraic"][k] for k in ("Hc", "Hm"))
 
-    finer = 2 * (points - 1) + 1
+    here = Resolution(points, box, tol_factor)
+    finer = here.finer()
     if not dom_known:
-        if grid_known and finer <= max_points and total(1.0, 0.0, 1.0) > accuracy:
-            return (finer, box, tol_factor)
-        return None
-    options = []  # (cost rank, predicted total, step)
-    if 2.0 * box <= box_limit:
+        if grid_known and finer.points <= max_points and total(1.0, 0.0, 1.0) > accuracy:
+            return [Candidate("points", finer, 1, math.nan)]
+        return []
+    wide = 2.0 * box <= box_limit
+    out = []
+    if wide:
         # twice the box on the same points: a coarser mesh (grid error x4 at second order)
         # that pays where the box error dominates and the mesh is fine for the film's scale
-        options.append((0, total(4.0, 1.0 / DOMAIN_DECAY, 1.0), (points, 2.0 * box, tol_factor)))
-    if finer <= max_points:
-        options.append((1, total(0.25, 1.0, 1.0), (finer, box, tol_factor)))
-        if 2.0 * box <= box_limit:
-            options.append((1, total(1.0, 1.0 / DOMAIN_DECAY, 1.0), (finer, 2.0 * box, tol_factor)))
+        out.append(Candidate("box", replace(here, box=2.0 * box), 0, total(4.0, 1.0 / DOMAIN_DECAY, 1.0)))
+    if finer.points <= max_points:
+        out.append(Candidate("points", finer, 1, total(0.25, 1.0, 1.0)))
+        if wide:
+            out.append(Candidate("points+box", replace(finer, box=2.0 * box), 1,
+                                 total(1.0, 1.0 / DOMAIN_DECAY, 1.0)))
         rough = max(budget["grid"].values()) > PREASYMPTOTIC_GRID
-        if 2 * (finer - 1) + 1 <= max_points and 2.0 * box <= box_limit and not rough:
-            options.append((2, total(0.25, 1.0 / DOMAIN_DECAY, 1.0), (2 * (finer - 1) + 1, 2.0 * box, tol_factor)))
+        two = finer.finer()
+        if two.points <= max_points and wide and not rough:
+            out.append(Candidate("2 points+box", replace(two, box=2.0 * box), 2,
+                                 total(0.25, 1.0 / DOMAIN_DECAY, 1.0)))
     if tol_factor > 1e-4:
-        options.append((0, total(1.0, 1.0, 0.1), (points, box, 0.1 * tol_factor)))
-    if not options:
-        return None
-    meeting = [o for o in options if o[1] <= accuracy]
-    if meeting:
-        return min(meeting, key=lambda o: (o[0], o[1]))[2]
-    now = total(1.0, 1.0, 1.0)
-    lowest = min(o[1] for o in options)
-    # the cheapest of those predicted within 10 % of the lowest: predictions are not sharper
-    best = min((o for o in options if o[1] <= 1.1 * lowest), key=lambda o: (o[0], o[1]))
-    return best[2] if best[1] < 0.9 * now else None
+        out.append(Candidate("tolerance", replace(here, tol=0.1 * tol_factor), 0, total(1.0, 1.0, 0.1)))
+    return out
+
+
+def next_refinement(budget: dict[str, dict[str, float]], accuracy: float, points: int, box: float,
+                    tol_factor: float, max_points: int, box_limit: float) -> tuple[int, float, float] | None:
+    """The refinement :func:`~ehl_multigrid.multigrid.controller.choose` takes among
+    :func:`refinement_candidates`, as ``(points, box, tol_factor)``; None when none helps."""
+    now = max(sum(v[k] for v in budget.values()) for k in ("Hc", "Hm"))
+    c = choose(refinement_candidates(budget, accuracy, points, box, tol_factor, max_points, box_limit),
+               accuracy, now)
+    return None if c is None else (c.at.points, c.at.box, c.at.tol)
 
 
 def points_needed(budget: dict[str, dict[str, float]], accuracy: float, points: int,
@@ -542,19 +535,6 @@ def decay_could_meet(est: ErrorEstimate, accuracy: float) -> bool:
     return True
 
 
-def predicted_seconds(last_round: float, points: int, step: tuple[int, float, float],
-                      dimensions: int) -> float:
-    """Wall time predicted for the refinement ``step`` = (points, box, tol_factor) from
-    ``last_round``, the seconds the last solve and its probes took on ``points``: the work of
-    the multilevel solve grows as the number of unknowns, ``(n' - 1)/(n - 1)`` to the power of
-    ``dimensions`` (a box twice as wide at the same mesh doubles the points too); a tolerance
-    step on the same grid costs about as much again. Measured on circular (5000, 0) at 2 %
-    (one thread, the other core busy): the 1025-point round (with probes) 20 s; then predicted
-    against taken, 2049 points 82 against 24 s (its probes were cached), 4097 points 95
-    against 133 s (with probes), the tolerance step 133 against 106 s (without its probes)."""
-    return last_round * max(1.0, (step[0] - 1) / max(points - 1, 1)) ** dimensions
-
-
 def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: int, max_points: int,
                       box_limit: float = 4.0, refine: bool = True, time_budget: float = math.inf,
                       decay_probe: Any = None, progress: Any = None, dimensions: int = 2) -> Any:
@@ -583,133 +563,108 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     command line shows them.
 
     ``time_budget`` (seconds) bounds the sequence: a refinement is not started when its
-    predicted time (:func:`predicted_seconds`, ``dimensions`` 2 for point, 1 for line
+    predicted time (:func:`~ehl_multigrid.multigrid.controller.predicted_seconds`, ``dimensions`` 2 for point, 1 for line
     contacts) would exceed what is left of it, and the sequence stops once it is spent; the
     most accurate result so far is returned, its status ``inaccurate`` when it misses the
     target. A solve already running is not interrupted.
     """
+    steady = _SteadyControl(solve, probe, decay_probe, accuracy, refine, max_points, box_limit,
+                            dimensions)
     t0 = time.perf_counter()
-    round_t0 = t0  # start of the current refinement's solve (with its probes)
+    out = control(steady, Resolution(points), accuracy, refine=refine, time_budget=time_budget,
+                  max_points=max_points, progress=progress)
+    res = out.result
+    res.extra["refinements"] = [vars(s) for s in out.steps]
+    if out.converged and out.why:
+        if res is not out.last:
+            n_b = res.X.shape[0] if getattr(res, "X", None) is not None else "?"
+            res.message += f"; returned the most accurate solve of the sequence ({n_b} points)"
+        res.message += f"; not refined further: {out.why}"
+        res.extra["not_refined_because"] = out.why
+    return _stamp(res, t0)
 
-    def say(what: str, n: int, b: float) -> None:
-        if progress is not None:
-            progress(f"{n} points, box x{b:g}: {what} ({time.perf_counter() - t0:.1f} s)")
 
-    box, tol_factor = 1.0, 1.0
-    steps: list[Refinement] = []
-    # per box (and cell aspect): films of the converged solves (the same discrete problem on
-    # each grid; a point solve that fell back to square cells is another problem)
-    finals: dict[tuple[float, Any], dict[int, tuple[float, float]]] = {}
+class _SteadyControl:
+    """The steady line or point solve as a :class:`~ehl_multigrid.multigrid.controller.Controlled`
+    physics: the estimate of :func:`estimate_error` with the domain probes, the repair of
+    irregular FMG films (:data:`REPAIR_LEVELS`) and the decay probe; the candidates of
+    :func:`refinement_candidates`."""
 
-    def disc(r: Any) -> tuple[float, Any]:
-        return (box, getattr(r, "extra", {}).get("y_ratio"))
+    def __init__(self, solve: Any, probe: Any, decay_probe: Any, accuracy: float | None, refine: bool,
+                 max_points: int, box_limit: float, dimensions: int) -> None:
+        self._solve, self.probe, self.decay_probe = solve, probe, decay_probe
+        self.accuracy, self.refine = accuracy, refine
+        self.max_points, self.box_limit, self.dimensions = max_points, box_limit, dimensions
+        # per box (and cell aspect): films of the converged solves (the same discrete problem on
+        # each grid; a point solve that fell back to square cells is another problem)
+        self.finals: dict[tuple[float, Any], dict[int, tuple[float, float]]] = {}
+        self.last_domain: tuple[float, float] | None = None
 
-    last_domain: tuple[float, float] | None = None
-    best: Any = None  # most accurate converged-iteration result so far
-    failed: set[tuple[int, float, float]] = set()  # (points, box, tol_factor) that did not converge
-    done = (points, box, tol_factor)  # the last solve whose iteration converged
-    why = ""
-    while True:
-        res = solve(points, box, tol_factor)
-        if not res.success:
-            say(res.status_name, points, box)
-        if (res.status_name == "film_not_positive" and refine and accuracy is not None
-                and 2 * points - 1 <= max_points):
-            # a grid too coarse for the load: the finer grid is the only remedy
-            steps.append(Refinement(points, box, tol_factor, math.nan, math.nan, res.wall_s))
-            points = 2 * points - 1
-            continue
-        if not res.success:
-            steps.append(Refinement(points, box, tol_factor, math.nan, math.nan, res.wall_s))
-            res.extra["refinements"] = [vars(s) for s in steps]
-            if best is None:
-                return _stamp(res, t0)
-            failed.add((points, box, tol_factor))
-            safe = (2 * (done[0] - 1) + 1, done[1], done[2])  # one grid finer, as before
-            if safe not in failed and safe[0] <= max_points and (points, box) != safe[:2]:
-                # a larger step failed: the smallest one, from the last converged solve
-                # (point Barus (20, 20, theta 4): 513 points -> 2049 on a box twice as wide
-                # diverged, 1025 on the same box converged)
-                points, box, tol_factor = safe
-                continue
-            why = (f"the refinement to {points} points (box x{box:g}) did not converge "
-                   f"({res.status_name}: {res.message.split(';')[0]})")
-            break
-        done = (points, box, tol_factor)
-        dom = probe(res, box)
-        if dom is None and last_domain is not None:
+    def solve(self, at: Resolution) -> Any:
+        return self._solve(at.points, at.box, at.tol)
+
+    def converged(self, result: Any) -> bool:
+        return bool(result.success)
+
+    def failure(self, result: Any) -> str:
+        return f"{result.status_name}: {result.message.split(';')[0]}"
+
+    def remedy(self, result: Any, at: Resolution, first: bool) -> Resolution | None:
+        # a grid too coarse for the load: the finer grid is the only remedy
+        return at.finer() if result.status_name == "film_not_positive" else None
+
+    def estimate(self, res: Any, at: Resolution, record: Any) -> tuple[float, float]:
+        box, tol = at.box, at.tol
+        key = (box, getattr(res, "extra", {}).get("y_ratio"))
+        dom = self.probe(res, box)
+        if dom is None and self.last_domain is not None:
             # the change measured around a smaller box bounds the one around a wider box
-            dom = last_domain
+            dom = self.last_domain
             res.extra["domain_note"] = "domain error bounded by the change measured at a smaller box"
-        last_domain = dom if dom is not None else last_domain
-        est = estimate_error(res, dom, finals.get(disc(res)))
+        self.last_domain = dom if dom is not None else self.last_domain
+        est = estimate_error(res, dom, self.finals.get(key))
         grid_unknown = not all(math.isfinite(v) for v in est.budget["grid"].values())
-        if est.irregular and (grid_unknown or (refine and accuracy is not None
-                                               and max(est.Hc, est.Hm) > accuracy)):
+        if est.irregular and (grid_unknown or (self.refine and self.accuracy is not None
+                                               and max(est.Hc, est.Hm) > self.accuracy)):
             # the FMG films may be what is irregular: the coarser grids solved to convergence;
             # also where the FMG left no films below the finest grid (a start from a given
             # solution), so that every result states its grid error, explicit grids too
-            known = finals.setdefault(disc(res), {})
-            n = points
+            known = self.finals.setdefault(key, {})
+            n = at.points
             for _ in range(REPAIR_LEVELS):
                 n = (n - 1) // 2 + 1
                 if n < REPAIR_MIN_POINTS or n in known:
                     continue
-                rc = solve(n, box, 0.1 * tol_factor)
-                say(f"{rc.status_name}, for the grid estimate", n, box)
-                steps.append(Refinement(n, box, 0.1 * tol_factor, math.nan, math.nan, rc.wall_s, "levels"))
+                rc = self._solve(n, box, 0.1 * tol)
+                record(Refinement(n, box, 0.1 * tol, math.nan, math.nan, rc.wall_s, "levels"))
                 if rc.success:
-                    finals.setdefault(disc(rc), {})[n] = (float(rc.scalars["Hc_venner"]),
-                                                          float(rc.scalars["Hm_venner"]))
+                    key_c = (box, getattr(rc, "extra", {}).get("y_ratio"))
+                    self.finals.setdefault(key_c, {})[n] = (float(rc.scalars["Hc_venner"]),
+                                                            float(rc.scalars["Hm_venner"]))
             est = estimate_error(res, dom, known)
-        if accuracy is not None and decay_probe is not None and decay_could_meet(est, accuracy):
-            changes = decay_probe(res, box)
+        if (self.accuracy is not None and self.decay_probe is not None
+                and decay_could_meet(est, self.accuracy)):
+            changes = self.decay_probe(res, box)
             if changes is not None:
                 res.extra["domain_changes"] = [list(changes[0]), list(changes[1])]
-                est = estimate_error(res, dom, finals.get(disc(res)), decay=changes)
+                est = estimate_error(res, dom, self.finals.get(key), decay=changes)
         films = (res.scalars.get("Hc_venner"), res.scalars.get("Hm_venner"))
         if None not in films:
-            finals.setdefault(disc(res), {})[points] = (float(films[0]), float(films[1]))
-        attach_estimate(res, est, accuracy)
-        say(f"estimated error Hc {est.Hc:.2%}, Hm {est.Hm:.2%}", points, box)
-        steps.append(Refinement(points, box, tol_factor, est.Hc, est.Hm, res.wall_s))
-        res.extra["refinements"] = [vars(s) for s in steps]
-        if res.success or not refine or accuracy is None:
-            return _stamp(res, t0)
-        worst = max(est.Hc, est.Hm)
-        if best is None or not (max(best.error.Hc, best.error.Hm) <= worst):  # NaN counts as worst
-            best = res
-        step = next_refinement(est.budget, accuracy, points, box, tol_factor, max_points, box_limit)
-        if step in failed:
-            why = f"the refinement to {step[0]} points (box x{step[1]:g}) did not converge before"
-            break
-        if step is None:
-            why = (f"no refinement within {max_points} points and a box of {box_limit:g} times "
-                   f"the default is predicted to help")
-            if math.isfinite(worst):
-                why += ": " + _why_short(est, accuracy, points, max_points, box, box_limit)
-            break
-        now = time.perf_counter()
-        cost = predicted_seconds(now - round_t0, points, step, dimensions)
-        left = time_budget - (now - t0)
-        if left <= 0.0:
-            why = f"the time budget of {time_budget:g} s is spent"
-            break
-        if cost > left:
-            why = (f"the refinement to {step[0]} points (box x{step[1]:g}, tolerance x{step[2]:g}) "
-                   f"is predicted to take about {cost:.0f} s, more than the {left:.0f} s "
-                   f"left of the time budget of {time_budget:g} s")
-            break
-        say(f"refining, predicted about {cost:.0f} s", step[0], step[1])
-        points, box, tol_factor = step
-        round_t0 = time.perf_counter()
-    best.extra["refinements"] = [vars(s) for s in steps]
-    if best is not res:
-        n_b = best.X.shape[0] if getattr(best, "X", None) is not None else "?"
-        best.message += f"; returned the most accurate solve of the sequence ({n_b} points)"
-    best.message += f"; not refined further: {why}"
-    best.extra["not_refined_because"] = why
-    return _stamp(best, t0)
+            self.finals.setdefault(key, {})[at.points] = (float(films[0]), float(films[1]))
+        attach_estimate(res, est, self.accuracy)
+        return est.Hc, est.Hm
+
+    def candidates(self, res: Any, at: Resolution) -> list[Candidate]:
+        return refinement_candidates(res.error.budget, self.accuracy, at.points, at.box, at.tol,
+                                     self.max_points, self.box_limit)
+
+    def why_short(self, res: Any, at: Resolution) -> str:
+        est = res.error
+        why = (f"no refinement within {self.max_points} points and a box of {self.box_limit:g} "
+               f"times the default is predicted to help")
+        if math.isfinite(max(est.Hc, est.Hm)):
+            why += ": " + _why_short(est, self.accuracy, at.points, self.max_points, at.box, self.box_limit)
+        return why
 
 
 def _stamp(res: Any, t0: float) -> Any:

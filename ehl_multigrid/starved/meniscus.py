@@ -43,6 +43,7 @@ from ..multigrid.accuracy import (
     hm_max_order,
     richardson,
 )
+from ..multigrid.controller import Candidate, Resolution, control
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
 from .gate import apply_mass_gate
@@ -215,7 +216,8 @@ def supply_estimate(res: EHLResult, ladder: list[tuple[int, float, EHLResult]]) 
 def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions | None = None,
                        accuracy: float | None = None, *, estimate: bool = True,
                        callback: Callable[[dict[str, Any]], None] | None = None,
-                       scene: Any = None, max_points: int = MAX_ACCURACY_POINTS, **kw: Any) -> EHLResult:
+                       scene: Any = None, max_points: int = MAX_ACCURACY_POINTS,
+                       refine: bool | None = None, **kw: Any) -> EHLResult:
     """Solve the starved, mass-conserving isothermal EHL line contact for a supplied oil layer.
 
     Parameters
@@ -229,8 +231,11 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
         defaults with ``tol = tol_load = 1e-7``: the mass balance is the sum of the residuals);
         keywords override its fields (``points`` ...).
     accuracy : relative target for Hc and Hm: while the estimate exceeds it the grid is
-        doubled (up to ``max_points``; not when ``points`` or ``options`` are given, which are
-        only judged); the result's status is ``"inaccurate"`` when it is still not met.
+        doubled by the package's accuracy controller
+        (:func:`~ehl_multigrid.multigrid.controller.control`, up to ``max_points``); the
+        result's status is ``"inaccurate"`` when it is still not met.
+    refine : whether the grid may be refined; None: unless ``points`` or ``options`` are
+        given (an explicit grid is only judged).
     estimate : attach the error estimate (:func:`supply_estimate`: the core's Richardson
         rule over the films of nested root searches on 257, 513, ... points at fixed Hoil; the
         flooded solver's estimate when the inlet is flooded).
@@ -257,16 +262,66 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
     opts = starved_options(options, **kw)
     if accuracy is not None:
         require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
-    refine = accuracy is not None and estimate and "points" not in kw and options is None
-    while True:
-        res = _solve_once(problem, hoil, opts, accuracy, estimate, callback, scene)
-        if not refine or res.status != 6 or 2 * (opts.points - 1) + 1 > max_points:
-            if res.status == 6 and opts.raise_on_failure:
-                raise ConvergenceError(f"starved line solver: {res.message} ({opts.points} points)",
-                                       res.report, f"more points (up to max_points = {max_points})")
-            return res
-        # the estimate exceeds the target: one grid finer (the nested searches start again)
-        opts = dataclasses.replace(opts, points=2 * (opts.points - 1) + 1)
+    if refine is None:
+        refine = "points" not in kw and options is None
+    line = _StarvedLineControl(problem, hoil, opts, accuracy, estimate, callback, scene, max_points)
+    out = control(line, Resolution(opts.points), accuracy, refine=refine and estimate,
+                  max_points=max_points)
+    res = out.result
+    if out.converged and out.why and res.status == 6:
+        res.message += f"; not refined further: {out.why}"
+        res.extra["not_refined_because"] = out.why
+    if res.status == 6 and opts.raise_on_failure:
+        raise ConvergenceError(f"starved line solver: {res.message} ({res.X.size} points)",
+                               res.report, f"more points (up to max_points = {max_points})")
+    return res
+
+
+class _StarvedLineControl:
+    """A starved line solve as a :class:`~ehl_multigrid.multigrid.controller.Controlled`
+    physics: the grid is the one refinement (the nested meniscus searches start again on the
+    finer grid); each solve carries its own estimate (:func:`supply_estimate`)."""
+
+    dimensions = 1
+
+    def __init__(self, problem: LineProblem, hoil: float, opts: LineOptions, accuracy: float | None,
+                 estimate: bool, callback: Any, scene: Any, max_points: int) -> None:
+        self.problem, self.hoil, self.opts = problem, hoil, opts
+        self.accuracy, self.with_estimate, self.callback, self.scene = accuracy, estimate, callback, scene
+        self.max_points = max_points
+
+    def solve(self, at: Resolution) -> EHLResult:
+        opts = dataclasses.replace(self.opts, points=at.points)
+        return _solve_once(self.problem, self.hoil, opts, self.accuracy, self.with_estimate,
+                           self.callback, self.scene)
+
+    def converged(self, result: EHLResult) -> bool:
+        return bool(result.success) or result.status == 6
+
+    def failure(self, result: EHLResult) -> str:
+        return f"{result.status_name}: {result.message.splitlines()[0] if result.message else ''}"
+
+    def remedy(self, result: EHLResult, at: Resolution, first: bool) -> Resolution | None:
+        return None
+
+    def estimate(self, res: EHLResult, at: Resolution, record: Any) -> tuple[float, float]:
+        err = getattr(res, "error", None)
+        return (err.Hc, err.Hm) if err is not None else (math.nan, math.nan)
+
+    def candidates(self, res: EHLResult, at: Resolution) -> list[Candidate]:
+        finer = at.finer()
+        if finer.points > self.max_points or getattr(res, "error", None) is None:
+            return []
+        b = res.error.budget
+        # second order on the grid (the core's Richardson rule on the nested searches' films)
+        predicted = max(b["grid"][k] / 4.0 + sum(v[k] for n, v in b.items() if n != "grid")
+                        for k in ("Hc", "Hm"))
+        return [Candidate("points", finer, 1, predicted)]
+
+    def why_short(self, res: EHLResult, at: Resolution) -> str:
+        if at.finer().points > self.max_points:
+            return f"the next grid ({at.finer().points} points) exceeds max_points = {self.max_points}"
+        return "a finer grid is not predicted to lower the error by 10 %"
 
 
 def _solve_once(problem: LineProblem, hoil: float, opts: LineOptions, accuracy: float | None,
@@ -404,8 +459,10 @@ def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOpti
     pb = LineProblem.from_scene(scene, elastic=elastic, **prob)
     h_m = scene.supply.hoil if hoil is None else hoil
     opts = build_scene_options(LineOptions, starved_options(options), table, kw)
+    # the grid is refined towards the accuracy unless the caller or the scene fixed it
+    refine = options is None and "points" not in kw and "points" not in table
     res = solve_starved_line(pb, hoil_venner(h_m, pb.b, pb.R), opts, accuracy, estimate=estimate,
-                             scene=scene, max_points=max_points)
+                             scene=scene, max_points=max_points, refine=refine)
     scale = pb.b**2 / pb.R
     res.scalars["hoil"] = h_m
     if "Hc_venner" in res.scalars:  # (not when the supply is out of reach)

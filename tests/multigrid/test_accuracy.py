@@ -15,6 +15,7 @@ from ehl_multigrid.multigrid.accuracy import (
     richardson,
     solve_to_accuracy,
 )
+from ehl_multigrid.multigrid.controller import Candidate, Resolution
 from ehl_multigrid.point import solve_point
 
 
@@ -150,7 +151,8 @@ def test_a_two_grid_refinement_that_fails_falls_back_to_one_grid_finer(monkeypat
 
     monkeypatch.setattr(acc, "attach_estimate", fake_attach)
     # the planner asks for two grids finer on a box twice as wide, once
-    monkeypatch.setattr(acc, "next_refinement", lambda b, a, n, box, t, mx, lim: (2049, 2.0, 1.0) if n == 513 else None)
+    monkeypatch.setattr(acc, "refinement_candidates", lambda b, a, n, box, t, mx, lim:
+                        [Candidate("2 points+box", Resolution(2049, 2.0), 2, 0.001)] if n == 513 else [])
     runs = {(513, 1.0): _Fake(513, True, 0.03), (2049, 2.0): _Fake(2049, False, math.nan),
             (1025, 1.0): _Fake(1025, True, 0.005)}
     out = solve_to_accuracy(lambda n, b, t: runs[(n, b)], lambda r, b: (0.0, 0.0), 0.01, 513, 2049)
@@ -158,7 +160,8 @@ def test_a_two_grid_refinement_that_fails_falls_back_to_one_grid_finer(monkeypat
     assert [(s["points"], s["box"]) for s in out.extra["refinements"]] == [(513, 1.0), (2049, 2.0), (1025, 1.0)]
     # a failed one-grid step has nothing smaller to fall back to
     runs = {(513, 1.0): _Fake(513, True, 0.03), (1025, 1.0): _Fake(1025, False, math.nan)}
-    monkeypatch.setattr(acc, "next_refinement", lambda b, a, n, box, t, mx, lim: (1025, 1.0, 1.0) if n == 513 else None)
+    monkeypatch.setattr(acc, "refinement_candidates", lambda b, a, n, box, t, mx, lim:
+                        [Candidate("points", Resolution(1025), 1, 0.001)] if n == 513 else [])
     out = solve_to_accuracy(lambda n, b, t: runs[(n, b)], lambda r, b: (0.0, 0.0), 0.01, 513, 2049)
     assert out is runs[(513, 1.0)] and "refinement to 1025 points" in out.message
 
@@ -429,9 +432,11 @@ def test_a_refinement_predicted_to_overrun_the_time_budget_is_not_started(monkey
     import types
 
     import ehl_multigrid.multigrid.accuracy as acc
+    import ehl_multigrid.multigrid.controller as ctl
 
     clock = [0.0]
-    monkeypatch.setattr(acc, "time", types.SimpleNamespace(perf_counter=lambda: clock[0]))
+    for mod in (acc, ctl):
+        monkeypatch.setattr(mod, "time", types.SimpleNamespace(perf_counter=lambda: clock[0]))
     _preset_estimates(monkeypatch)
 
     def run(budget, dimensions=2):

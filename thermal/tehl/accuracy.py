@@ -33,12 +33,14 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ehl_multigrid.model.errors import ConvergenceError, InputError, require_range
 from ehl_multigrid.model.scene import Scene
 from ehl_multigrid.multigrid.accuracy import DOMAIN_DECAY, DOMAIN_SAFETY, GRID_SAFETY
+from ehl_multigrid.multigrid.controller import Candidate, Refinement, Resolution, choose, control
 
 from ..traction import wall_speeds
 from .line import TEHLOptions
@@ -267,19 +269,6 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
     return TEHLErrorEstimate(budget, (px, pz), domain, noise, notes, time.perf_counter() - t0)
 
 
-@dataclass(frozen=True)
-class TEHLRefinement:
-    """One solve of an accuracy-driven TEHL sequence and its estimated film errors."""
-
-    points: int
-    nz: int
-    box: float
-    Hc_error: float
-    Hm_error: float
-    wall_s: float
-    next: str  # what the next step refined ("" for the last)
-
-
 @dataclass
 class AccurateTEHL:
     """Outcome of :func:`solve_tehl_to_accuracy`: the returned ``result`` (the most accurate
@@ -290,7 +279,7 @@ class AccurateTEHL:
     estimate: TEHLErrorEstimate
     accuracy: float | None
     accurate: bool
-    refinements: list[TEHLRefinement]
+    refinements: list[Refinement]
     message: str
     wall_s: float
 
@@ -305,43 +294,45 @@ def _predicted(est: TEHLErrorEstimate, fx: float, fz: float, fd: float, tighter:
     return worst
 
 
-def next_step(est: TEHLErrorEstimate, accuracy: float, points: int, nz: int, box: float,
-              tol_scale: float, max_points: int, max_nz: int = MAX_NZ,
-              box_limit: float = 4.0) -> tuple[str, int, int, float, float] | None:
-    """The refinement predicted to meet ``accuracy`` at least cost (else the one predicted to
-    come closest, if it lowers the error by 10 % or more): ``(what, points, nz, box, tol_scale)``.
-
-    Steps and their predicted effect: twice the points along X (grid_x / 2^p), twice nz
-    (grid_z / 2^p), twice the box at equal mesh (domain / 4, the core's
-    :data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_DECAY`), outer tolerances ten times
-    tighter (iteration / 10, not below the inner films' alternation). A part that could not be
-    measured is refined first: a coarser solve that did not converge asks for more points,
-    an unknown box probe too (its probes then run on finer grids).
-    """
+def step_candidates(est: TEHLErrorEstimate, points: int, nz: int, box: float, tol_scale: float,
+                    max_points: int, max_nz: int = MAX_NZ, box_limit: float = 4.0) -> list[Candidate]:
+    """The refinements of a TEHL solve and the larger film error each is predicted to leave:
+    twice the points along X (grid_x / 2^p), twice nz (grid_z / 2^p), twice the box at equal
+    mesh (domain / 4, the core's :data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_DECAY`), outer
+    tolerances ten times tighter (iteration / 10, not below the inner films' alternation). A
+    part that could not be measured is refined first (prediction NaN): a coarser solve that
+    did not converge asks for more points, an unknown box probe too (its probes then run on
+    finer grids)."""
     px, pz = est.orders
-    finer = 2 * (points - 1) + 1
+    here = Resolution(points, box, tol_scale, nz)
+    finer = here.finer()
     parts = {p: max(est.budget[k][p] for k in ("Hc", "Hm")) for p in ("grid_x", "grid_z", "domain")}
     if not all(math.isfinite(v) for v in parts.values()):
         if not math.isfinite(parts["grid_z"]) and 2 * nz <= max_nz:
-            return ("nz", points, 2 * nz, box, tol_scale)
-        return ("points", finer, nz, box, tol_scale) if finer <= max_points else None
-    options = []  # (cost rank, predicted, step)
+            return [Candidate("nz", replace(here, nz=2 * nz), 0, math.nan)]
+        return [Candidate("points", finer, 1, math.nan)] if finer.points <= max_points else []
+    out = []
     if 2 * nz <= max_nz:
-        options.append((0, _predicted(est, 1.0, 2.0**-pz, 1.0, False), ("nz", points, 2 * nz, box, tol_scale)))
+        out.append(Candidate("nz", replace(here, nz=2 * nz), 0, _predicted(est, 1.0, 2.0**-pz, 1.0, False)))
     if tol_scale > 1e-3:
-        options.append((0, _predicted(est, 1.0, 1.0, 1.0, True), ("tolerance", points, nz, box, 0.1 * tol_scale)))
-    if finer <= max_points:
-        options.append((1, _predicted(est, 2.0**-px, 1.0, 1.0, False), ("points", finer, nz, box, tol_scale)))
+        out.append(Candidate("tolerance", replace(here, tol=0.1 * tol_scale), 0,
+                             _predicted(est, 1.0, 1.0, 1.0, True)))
+    if finer.points <= max_points:
+        out.append(Candidate("points", finer, 1, _predicted(est, 2.0**-px, 1.0, 1.0, False)))
         if 2.0 * box <= box_limit:
-            options.append((1, _predicted(est, 1.0, 1.0, 1.0 / DOMAIN_DECAY, False),
-                            ("box", finer, nz, 2.0 * box, tol_scale)))
-    if not options:
-        return None
-    meeting = [o for o in options if o[1] <= accuracy]
-    if meeting:
-        return min(meeting, key=lambda o: (o[0], o[1]))[2]
-    best = min(options, key=lambda o: (o[1], o[0]))
-    return best[2] if best[1] <= 0.9 * est.worst else None
+            out.append(Candidate("box", replace(finer, box=2.0 * box), 1,
+                                 _predicted(est, 1.0, 1.0, 1.0 / DOMAIN_DECAY, False)))
+    return out
+
+
+def next_step(est: TEHLErrorEstimate, accuracy: float, points: int, nz: int, box: float,
+              tol_scale: float, max_points: int, max_nz: int = MAX_NZ,
+              box_limit: float = 4.0) -> tuple[str, int, int, float, float] | None:
+    """The refinement the controller (:func:`~ehl_multigrid.multigrid.controller.choose`) takes
+    among :func:`step_candidates`: ``(what, points, nz, box, tol_scale)``, None when none helps."""
+    c = choose(step_candidates(est, points, nz, box, tol_scale, max_points, max_nz, box_limit),
+               accuracy, est.worst)
+    return None if c is None else (c.what, c.at.points, c.at.nz, c.at.box, c.at.tol)
 
 
 def _dominant(est: TEHLErrorEstimate) -> str:
@@ -357,20 +348,22 @@ def _dominant(est: TEHLErrorEstimate) -> str:
 def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None,
                            accuracy: float | None = 0.005, *, refine: bool = True,
                            max_points: int | None = None, max_nz: int = MAX_NZ, box_limit: float = 4.0,
-                           time_budget: float = 600.0) -> AccurateTEHL:
+                           time_budget: float = 600.0,
+                           progress: Callable[[str], None] | None = None) -> AccurateTEHL:
     """Solve a TEHL line or point contact, estimate its error (:func:`estimate_error`) and,
     with ``refine`` and an ``accuracy`` (relative error of Hc and Hm), refine the part that
-    dominates (:func:`next_step`: points along X, nz, the box, the outer tolerances) until the
-    estimate meets the target or a budget runs out: ``max_points`` along X (default 4097
-    line, 513 point), ``max_nz``, a box ``box_limit`` times the default, ``time_budget``
-    seconds (checked between solves). Solves already made for an estimate are reused.
+    dominates (:func:`step_candidates`: points along X, nz, the box, the outer tolerances) with
+    the package's one accuracy controller (:func:`~ehl_multigrid.multigrid.controller.control`)
+    until the estimate meets the target or a budget runs out: ``max_points`` along X (default
+    4097 line, 513 point), ``max_nz``, a box ``box_limit`` times the default, ``time_budget``
+    seconds (a refinement predicted to overrun it is not started). Solves already made for an
+    estimate are reused. ``progress(text)`` receives one line per solve.
 
     Returns the most accurate converged solve of the sequence (smallest estimated film error)
     with its estimate; ``accurate`` is False when that estimate misses the target (or is
     unknown), and ``message`` says why the refinement stopped. Raises
     :class:`ConvergenceError` when the first solve, and every finer one tried, fails.
     """
-    t0 = time.perf_counter()
     point = scene.kind != "line"
     opts = options or TEHLOptions(points=257 if point else 513)
     if accuracy is not None:
@@ -382,55 +375,16 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
     wall_speeds(scene.us, slip)
     if point:
         require_flooded_point(scene)
-    cache = SolveCache(scene, slip, opts, point)
-    points, nz, box, tol_scale = opts.points, opts.nz, opts.box, 1.0
-    domains: dict[float, dict[str, Any]] = {}
-    steps: list[TEHLRefinement] = []
-    best: tuple[Any, TEHLErrorEstimate] | None = None
-    why = ""
-    cache_scale = 1.0
-    while True:
-        if tol_scale != cache_scale:
-            # tighter outer tolerances: a new sequence of solves (the coarse ones too)
-            cache = SolveCache(scene, slip, opts.with_changes(
-                tol_P=opts.tol_P * tol_scale, tol_H=opts.tol_H * tol_scale, tol_T=opts.tol_T * tol_scale), point)
-            cache_scale = tol_scale
-        ts = time.perf_counter()
-        res = cache(points, nz, box)
-        if res is None:
-            err = cache.errors[(points, nz, float(box))]
-            finer = 2 * (points - 1) + 1
-            if best is None and refine and accuracy is not None and finer <= limit:
-                # a grid too coarse for the contact: the finer grid is the remedy
-                steps.append(TEHLRefinement(points, nz, box, math.nan, math.nan, time.perf_counter() - ts, "points"))
-                points = finer
-                continue
-            if best is None:
-                raise ConvergenceError(f"TEHL: the solve on {points} points, nz = {nz} did not converge: {err}",
-                                       None, "more points (the contact may need a finer grid) or check the inputs")
-            why = f"the refinement to {points} points, nz = {nz}, box x{box:g} did not converge ({err})"
-            break
-        est = estimate_error(res, cache=cache, domain=domains.get(box, True))
-        if est.domain is not None:
-            domains[box] = est.domain  # a far-field change: the same at every grid of this box
-        if best is None or est.worst < best[1].worst:
-            best = (res, est)
-        if accuracy is None or est.worst <= accuracy or not refine:
-            steps.append(TEHLRefinement(points, nz, box, est.Hc, est.Hm, time.perf_counter() - ts, ""))
-            break
-        step = next_step(est, accuracy, points, nz, box, tol_scale, limit, max_nz, box_limit)
-        steps.append(TEHLRefinement(points, nz, box, est.Hc, est.Hm, time.perf_counter() - ts,
-                                    step[0] if step else ""))
-        if step is None:
-            why = (f"no refinement within {limit} points, nz = {max_nz} and a box {box_limit:g} times the "
-                   f"default is predicted to help: {_dominant(est)}")
-            break
-        if time.perf_counter() - t0 > time_budget:
-            why = f"the time budget of {time_budget:g} s is spent: {_dominant(est)}"
-            break
-        _, points, nz, box, tol_scale = step
-    res, est = best
-    accurate = accuracy is None or est.worst <= accuracy
+    tehl = _TEHLControl(scene, slip, opts, point, limit, max_nz, box_limit)
+    out = control(tehl, Resolution(opts.points, opts.box, 1.0, opts.nz), accuracy, refine=refine,
+                  time_budget=time_budget, max_points=limit, progress=progress)
+    if not out.converged:
+        at = out.steps[-1]
+        raise ConvergenceError(f"TEHL: the solve on {at.points} points, nz = {at.nz} did not converge: "
+                               f"{out.why}", None, "more points (the contact may need a finer grid) "
+                               "or check the inputs")
+    res, est = out.result, tehl.estimates[id(out.result)]
+    accurate = out.met
     if accurate:
         msg = "converged" if accuracy is None else f"converged; estimated error within {accuracy:g}"
     elif not refine:
@@ -439,5 +393,62 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
     else:
         o = res.options
         msg = (f"the estimated error (Hc {est.Hc:.2g}, Hm {est.Hm:.2g}) at {o.points} points, nz = {o.nz}, "
-               f"box x{o.box:g} exceeds the requested accuracy {accuracy:g}; not refined further: {why}")
-    return AccurateTEHL(res, est, accuracy, accurate, steps, msg, time.perf_counter() - t0)
+               f"box x{o.box:g} exceeds the requested accuracy {accuracy:g}; not refined further: {out.why}")
+    return AccurateTEHL(res, est, accuracy, accurate, out.steps, msg, out.wall_s)
+
+
+class _TEHLControl:
+    """A TEHL line or point solve as a :class:`~ehl_multigrid.multigrid.controller.Controlled`
+    physics: solves shared through one :class:`SolveCache` per tolerance scale, the estimate of
+    :func:`estimate_error` (its box part measured once per box), the candidates of
+    :func:`step_candidates`."""
+
+    def __init__(self, scene: Scene, slip: float, opts: TEHLOptions, point: bool, limit: int,
+                 max_nz: int, box_limit: float) -> None:
+        self.scene, self.slip, self.opts, self.point = scene, slip, opts, point
+        self.limit, self.max_nz, self.box_limit = limit, max_nz, box_limit
+        self.dimensions = 2 if point else 1
+        self.cache = SolveCache(scene, slip, opts, point)
+        self.cache_scale = 1.0
+        self.domains: dict[float, dict[str, Any]] = {}
+        self.estimates: dict[int, TEHLErrorEstimate] = {}
+        self.errors: dict[Resolution, str] = {}
+
+    def solve(self, at: Resolution) -> Any:
+        if at.tol != self.cache_scale:
+            # tighter outer tolerances: a new sequence of solves (the coarse ones too)
+            o = self.opts
+            self.cache = SolveCache(self.scene, self.slip, o.with_changes(
+                tol_P=o.tol_P * at.tol, tol_H=o.tol_H * at.tol, tol_T=o.tol_T * at.tol), self.point)
+            self.cache_scale = at.tol
+        res = self.cache(at.points, at.nz, at.box)
+        if res is None:
+            self.errors[at] = self.cache.errors[(at.points, at.nz, float(at.box))]
+            return at
+        return res
+
+    def converged(self, result: Any) -> bool:
+        return not isinstance(result, Resolution)
+
+    def failure(self, result: Any) -> str:
+        return self.errors.get(result, "did not converge")
+
+    def remedy(self, result: Any, at: Resolution, first: bool) -> Resolution | None:
+        # a grid too coarse for the contact: the finer grid is the remedy
+        return at.finer() if first else None
+
+    def estimate(self, res: Any, at: Resolution, record: Any) -> tuple[float, float]:
+        est = estimate_error(res, cache=self.cache, domain=self.domains.get(at.box, True))
+        if est.domain is not None:
+            self.domains[at.box] = est.domain  # a far-field change: the same at every grid of this box
+        self.estimates[id(res)] = est
+        return est.Hc, est.Hm
+
+    def candidates(self, res: Any, at: Resolution) -> list[Candidate]:
+        return step_candidates(self.estimates[id(res)], at.points, at.nz, at.box, at.tol, self.limit,
+                               self.max_nz, self.box_limit)
+
+    def why_short(self, res: Any, at: Resolution) -> str:
+        return (f"no refinement within {self.limit} points, nz = {self.max_nz} and a box "
+                f"{self.box_limit:g} times the default is predicted to help: "
+                f"{_dominant(self.estimates[id(res)])}")

@@ -1,0 +1,254 @@
+"""One accuracy controller for every physics: solve at a resolution, estimate the error, refine
+the cheapest way until the target or a budget is met.
+
+A physics plugs in through :class:`Controlled`: how to solve at a :class:`Resolution` (points
+along X, box scale, tolerance scale, z-layers of a thermal film), how to estimate the error of a
+converged solve (parts such as grid, domain, iteration, each with its own refinement), which
+refinements it can make and what each is predicted to leave of the error
+(:class:`Candidate`). The controller owns what every physics shares: the choice among the
+candidates (:func:`choose`), the time budget (a refinement predicted to overrun it is not
+started), the most accurate solve kept when a finer one fails or the budget runs out, the
+fallback to one grid finer than the last converged solve when a larger step diverges, and the
+record of every solve (:class:`Refinement`).
+
+Used by the steady line and point solvers (:func:`~ehl_multigrid.multigrid.accuracy.solve_to_accuracy`),
+the starved line and point solvers and the thermal (TEHL) solver.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import Any, Protocol
+
+
+@dataclass(frozen=True)
+class Resolution:
+    """What a solve is resolved with: ``points`` along X (``2^k m + 1``), the default box scaled
+    by ``box``, the iteration tolerances scaled by ``tol``, ``nz`` layers across a thermal film
+    (0 without)."""
+
+    points: int
+    box: float = 1.0
+    tol: float = 1.0
+    nz: int = 0
+
+    def finer(self) -> Resolution:
+        """One grid finer, all else equal."""
+        return replace(self, points=2 * (self.points - 1) + 1)
+
+    def describe(self) -> str:
+        nz = f", nz = {self.nz}" if self.nz else ""
+        return f"{self.points} points{nz} (box x{self.box:g})"
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A refinement the physics can make: its name (``points``, ``box``, ``points+box``,
+    ``tolerance``, ``nz``), the resolution it leads to, a cost rank (0 cheapest) and the
+    largest relative film error it is predicted to leave."""
+
+    what: str
+    at: Resolution
+    rank: int
+    predicted: float
+
+
+@dataclass(frozen=True)
+class Refinement:
+    """One solve of a controlled sequence: its resolution, estimated film errors (NaN when the
+    iteration did not converge), wall time, purpose (``solve``: a candidate answer;
+    ``levels``: a coarser grid solved for the estimate of a finer one) and the refinement
+    chosen after it (``""`` for none)."""
+
+    points: int
+    box: float
+    tol: float
+    Hc_error: float
+    Hm_error: float
+    wall_s: float
+    purpose: str = "solve"
+    nz: int = 0
+    next: str = ""
+
+
+class Controlled(Protocol):
+    """What a physics provides to :func:`control`."""
+
+    #: 1 (line) or 2 (point): the work of a solve grows as ``points^dimensions``
+    dimensions: int
+
+    def solve(self, at: Resolution) -> Any:
+        """One solve at ``at``; never raises for a numerical failure."""
+
+    def converged(self, result: Any) -> bool:
+        """Whether the iteration of ``result`` converged (its accuracy not yet judged)."""
+
+    def failure(self, result: Any) -> str:
+        """One line on why ``result`` did not converge."""
+
+    def estimate(self, result: Any, at: Resolution,
+                 record: Callable[[Refinement], None]) -> tuple[float, float]:
+        """Estimate the error of a converged ``result``, store it in the result and judge it;
+        return the relative errors of Hc and Hm (NaN when unknown). Extra solves made for the
+        estimate are passed to ``record``."""
+
+    def candidates(self, result: Any, at: Resolution) -> list[Candidate]:
+        """The refinements possible from ``at`` within the physics' limits, with predictions."""
+
+    def remedy(self, result: Any, at: Resolution, first: bool) -> Resolution | None:
+        """A refinement that may cure a failed solve (a grid too coarse for the load), or None;
+        ``first`` when no solve has converged yet."""
+
+    def why_short(self, result: Any, at: Resolution) -> str:
+        """What the estimate says is missing when no candidate helps, in the user's terms."""
+
+
+#: a candidate predicted within this factor of the lowest prediction counts as equal to it:
+#: the predictions are not sharper, and the cheaper one is taken
+PREDICTION_SHARPNESS = 1.1
+#: a refinement that misses the target must at least lower the error by this factor
+REQUIRED_GAIN = 0.9
+
+
+def choose(candidates: list[Candidate], accuracy: float, now: float) -> Candidate | None:
+    """The cheapest candidate predicted to meet ``accuracy``; else the cheapest of those predicted
+    within :data:`PREDICTION_SHARPNESS` of the lowest, if it lowers ``now`` (the current error)
+    by :data:`REQUIRED_GAIN`; else None. A candidate whose prediction is NaN is a refinement
+    the estimate itself needs (a part could not be measured at this resolution) and is taken
+    first."""
+    unknown = [c for c in candidates if math.isnan(c.predicted)]
+    if unknown:
+        return min(unknown, key=lambda c: c.rank)
+    ok = [c for c in candidates if math.isfinite(c.predicted)]
+    meeting = [c for c in ok if c.predicted <= accuracy]
+    if meeting:
+        return min(meeting, key=lambda c: (c.rank, c.predicted))
+    if not ok:
+        return None
+    lowest = min(c.predicted for c in ok)
+    best = min((c for c in ok if c.predicted <= PREDICTION_SHARPNESS * lowest),
+               key=lambda c: (c.rank, c.predicted))
+    # an unknown current error (NaN) is improved by any finite prediction
+    return best if not best.predicted >= REQUIRED_GAIN * now else None
+
+
+def predicted_seconds(last_round: float, points: int, to: Resolution, dimensions: int) -> float:
+    """Wall time of a refinement to ``to`` from ``last_round``, the seconds the last solve and
+    its estimate took on ``points``: the multilevel work grows as the number of unknowns,
+    ``((n' - 1)/(n - 1))^dimensions``; a tolerance or nz step costs about as much again."""
+    return last_round * max(1.0, (to.points - 1) / max(points - 1, 1)) ** dimensions
+
+
+@dataclass
+class ControlOutcome:
+    """Outcome of :func:`control`."""
+
+    #: the returned solve: the one that met the target, else the most accurate converged one,
+    #: else (nothing converged) the last failed one
+    result: Any
+    #: its estimated larger film error (NaN when unknown or nothing converged)
+    worst: float
+    #: whether a converged solve met the target (True without a target)
+    met: bool
+    #: whether any solve converged
+    converged: bool
+    steps: list[Refinement]
+    #: why the refinement stopped short of the target ("" when it did not)
+    why: str
+    wall_s: float
+    #: the last solve made (the returned one unless a finer solve failed or missed more)
+    last: Any = None
+
+
+def control(physics: Controlled, start: Resolution, accuracy: float | None, *, refine: bool = True,
+            time_budget: float = math.inf, max_points: int | None = None,
+            progress: Callable[[str], None] | None = None) -> ControlOutcome:
+    """Solve at ``start``, estimate, and refine until the estimated film errors meet
+    ``accuracy`` (relative; None: judge the iteration only) or a budget is spent.
+
+    ``refine=False`` judges the first solve only (an explicit grid or box). ``time_budget``
+    (seconds) bounds the sequence: a refinement whose predicted time
+    (:func:`predicted_seconds`) exceeds what is left is not started; a solve already running
+    is not interrupted. ``max_points`` bounds the fallback of a failed large step (one grid
+    finer than the last converged solve). ``progress(text)`` receives one line per solve and,
+    before each refinement, its predicted time.
+    """
+    t0 = time.perf_counter()
+    round_t0 = t0
+    steps: list[Refinement] = []
+    limit = max_points if max_points is not None else 1 << 30
+
+    def say(what: str, at: Resolution) -> None:
+        if progress is not None:
+            progress(f"{at.points} points, box x{at.box:g}: {what} ({time.perf_counter() - t0:.1f} s)")
+
+    def done(result: Any, worst: float, met: bool, ok: bool, why: str = "") -> ControlOutcome:
+        return ControlOutcome(result, worst, met, ok, steps, why, time.perf_counter() - t0, last)
+
+    best: tuple[Any, float] | None = None
+    failed: set[Resolution] = set()
+    last_ok: Resolution | None = None
+    at = start
+    why = ""
+    last: Any = None
+    while True:
+        ts = time.perf_counter()
+        res = last = physics.solve(at)
+        if not physics.converged(res):
+            reason = physics.failure(res)
+            say(reason.split(":")[0], at)
+            steps.append(Refinement(at.points, at.box, at.tol, math.nan, math.nan,
+                                    time.perf_counter() - ts, nz=at.nz))
+            fix = physics.remedy(res, at, best is None) if refine and accuracy is not None else None
+            if fix is not None and fix.points <= limit and fix not in failed:
+                failed.add(at)
+                at = fix
+                continue
+            if best is None:
+                return done(res, math.nan, False, False, reason)
+            failed.add(at)
+            safe = last_ok.finer() if last_ok is not None else None
+            if safe is not None and safe not in failed and safe.points <= limit and safe != at:
+                # a larger step failed: the smallest one, from the last converged solve
+                at = safe
+                continue
+            why = f"the refinement to {at.describe()} did not converge ({reason})"
+            break
+        last_ok = at
+        ec, em = physics.estimate(res, at, steps.append)
+        worst = max(ec, em) if not (math.isnan(ec) or math.isnan(em)) else math.nan
+        if best is None or not best[1] <= worst:  # NaN counts as worst
+            best = (res, worst)
+        met = accuracy is None or worst <= accuracy
+        say(f"estimated error Hc {ec:.2%}, Hm {em:.2%}", at)
+        if met or not refine:
+            steps.append(Refinement(at.points, at.box, at.tol, ec, em, time.perf_counter() - ts, nz=at.nz))
+            return done(res, worst, met, True)
+        step = choose(physics.candidates(res, at), accuracy, worst)
+        steps.append(Refinement(at.points, at.box, at.tol, ec, em, time.perf_counter() - ts,
+                                nz=at.nz, next=step.what if step else ""))
+        if step is not None and step.at in failed:
+            why = f"the refinement to {step.at.describe()} did not converge before"
+            break
+        if step is None:
+            why = physics.why_short(res, at)
+            break
+        now = time.perf_counter()
+        cost = predicted_seconds(now - round_t0, at.points, step.at, physics.dimensions)
+        left = time_budget - (now - t0)
+        if left <= 0.0:
+            why = f"the time budget of {time_budget:g} s is spent"
+            break
+        if cost > left:
+            why = (f"the refinement to {step.at.points} points (box x{step.at.box:g}, tolerance "
+                   f"x{step.at.tol:g}) is predicted to take about {cost:.0f} s, more than the "
+                   f"{left:.0f} s left of the time budget of {time_budget:g} s")
+            break
+        say(f"refining, predicted about {cost:.0f} s", step.at)
+        at = step.at
+        round_t0 = time.perf_counter()
+    return done(best[0], best[1], False, True, why)
+
