@@ -1,0 +1,120 @@
+"""The one accuracy controller (multigrid/controller.py) on a toy physics whose error halves
+with every grid: the choice among candidates, failures, budgets and the record of solves."""
+
+import math
+from dataclasses import dataclass, field
+
+import pytest
+
+from ehl_multigrid.multigrid.controller import Candidate, Resolution, choose, control
+
+
+def test_choose_takes_the_cheapest_candidate_that_meets_the_target():
+    a = Candidate("points", Resolution(513), 1, 0.004)
+    b = Candidate("tolerance", Resolution(257, tol=0.1), 0, 0.003)
+    c = Candidate("box", Resolution(257, box=2.0), 0, 0.02)
+    assert choose([a, b, c], 0.005, 0.03) is b
+    assert choose([a, c], 0.005, 0.03) is a
+
+
+def test_choose_takes_a_cheaper_candidate_within_the_sharpness_of_the_best_prediction():
+    fine = Candidate("points", Resolution(513), 1, 0.0100)
+    cheap = Candidate("box", Resolution(257, box=2.0), 0, 0.0105)
+    assert choose([fine, cheap], 0.005, 0.03) is cheap
+    # a prediction that does not lower the error by 10 % is no refinement
+    assert choose([fine], 0.005, 0.0105) is None
+
+
+def test_choose_takes_a_candidate_with_an_unknown_prediction_first():
+    measured = Candidate("points", Resolution(513), 1, 0.001)
+    needed = Candidate("nz", Resolution(257, nz=16), 0, math.nan)
+    assert choose([measured, needed], 0.005, math.nan) is needed
+
+
+@dataclass
+class Toy:
+    """Error 0.04 at 257 points, halving per grid; ``fail`` lists resolutions that diverge."""
+
+    fail: set = field(default_factory=set)
+    remedy_to: Resolution | None = None
+    dimensions: int = 1
+    solved: list = field(default_factory=list)
+
+    def solve(self, at):
+        self.solved.append(at)
+        err = 0.04 * 257 / at.points
+        return {"at": at, "ok": at not in self.fail, "err": err}
+
+    def converged(self, r):
+        return r["ok"]
+
+    def failure(self, r):
+        return "diverged: load error 1e10"
+
+    def estimate(self, r, at, record):
+        return r["err"], r["err"] / 2
+
+    def candidates(self, r, at):
+        return [Candidate("points", at.finer(), 1, r["err"] / 2)] if at.points < 4097 else []
+
+    def remedy(self, r, at, first):
+        return self.remedy_to
+
+    def why_short(self, r, at):
+        return f"max points at {at.points}"
+
+
+def test_control_refines_until_the_target_and_records_every_solve():
+    toy = Toy()
+    out = control(toy, Resolution(257), 0.006)
+    assert out.met and out.converged and out.result["at"].points == 2049
+    assert [s.points for s in out.steps] == [257, 513, 1025, 2049]
+    assert [s.next for s in out.steps] == ["points", "points", "points", ""]
+    assert out.steps[0].Hc_error == pytest.approx(0.04)
+
+
+def test_control_stops_at_the_limit_and_says_why():
+    out = control(Toy(), Resolution(257), 1e-4)
+    assert not out.met and out.converged and out.result["at"].points == 4097
+    assert "max points at 4097" in out.why
+
+
+def test_a_failed_refinement_returns_the_most_accurate_converged_solve():
+    toy = Toy(fail={Resolution(1025)})
+    out = control(toy, Resolution(257), 0.006, max_points=4097)
+    assert out.result["at"].points == 513 and not out.met
+    assert "1025" in out.why and "did not converge" in out.why and "diverged" in out.why
+    assert out.last["at"].points == 1025
+
+
+def test_a_first_failure_with_a_remedy_is_refined_and_without_one_is_returned():
+    toy = Toy(fail={Resolution(257)}, remedy_to=Resolution(513))
+    out = control(toy, Resolution(257), 0.021)
+    assert out.met and out.result["at"].points == 513
+    out = control(Toy(fail={Resolution(257)}), Resolution(257), 0.02)
+    assert not out.converged and out.result["at"].points == 257 and "diverged" in out.why
+
+
+def test_a_refinement_predicted_to_overrun_the_time_budget_is_not_started(monkeypatch):
+    import types
+
+    import ehl_multigrid.multigrid.controller as ctl
+
+    clock = [0.0]
+    monkeypatch.setattr(ctl, "time", types.SimpleNamespace(perf_counter=lambda: clock[0]))
+
+    class Slow(Toy):
+        def solve(self, at):
+            clock[0] += 10.0 * ((at.points - 1) / 256) ** self.dimensions
+            return super().solve(at)
+
+    out = control(Slow(dimensions=2), Resolution(257), 0.006, time_budget=30.0)
+    assert [s.points for s in out.steps] == [257] and not out.met
+    assert "40 s" in out.why and "30 s" in out.why
+
+
+def test_without_a_target_or_refinement_the_first_solve_is_only_judged():
+    toy = Toy()
+    assert control(toy, Resolution(257), None).met
+    out = control(toy, Resolution(257), 0.001, refine=False)
+    assert not out.met and len(out.steps) == 1 and out.why == ""
