@@ -15,10 +15,7 @@ from ehl_multigrid.app.stages import RunContext, StageOutput
 
 #: Thermal film-friction grid of the Stribeck stage per fidelity: the coarsest grid whose largest
 #: friction error stays below the fidelity's tolerance (fast 10 %, standard 2 %, reference 0.2 %)
-#: on the hardest measured curve. Against 160 x 40 with 20 slices: page-63 line 0.82 % (20 x 5),
-#: 0.09 % (40 x 10); series D 0.51 %, 0.08 % at three speeds (validation/pareto/REPORT.md); series C
-#: over 60 speeds up to 56 m/s 6.5 % (20 x 5), 1.2 % (40 x 10), 0.12 % (80 x 20)
-#: (validation/bench/THERMAL.md). Standard was 20 x 5 and reference 40 x 10 before series C.
+#: on the hardest curve measured, series C at up to 56 m/s (docs/mixed.md)
 THERMAL_GRID = {"fast": {"nx": 20, "nz": 5}, "standard": {"nx": 40, "nz": 10}, "reference": {"nx": 80, "nz": 20}}
 
 

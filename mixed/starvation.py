@@ -7,13 +7,11 @@
 * ``delta = "inlet"``: the exponent from the flooded inlet instead of a constant (the thesis's
   range 2-5, section 6.2.1). Circular contacts: ``delta = 2.37 - 0.95 log10(Hc_ff)`` with
   ``Hc_ff = hc Rx/a^2`` the flooded central film in Venner units (inlet length ~ Hc_ff^(2/3)),
-  fitted to the package's mass-conserving starved point solver (validation/starved,
-  study_collapse.py: nine contacts, L = 2-20, within 0.1 at equal Hc_ff), held at its ends
-  outside Hc_ff = 0.063-0.447; in the spirit of Damiens et al. (2004), whose one inlet
+  fitted to the package's mass-conserving starved point solver and held at its ends outside
+  Hc_ff = 0.063-0.447 (docs/fits.md); in the spirit of Damiens et al. (2004), whose one inlet
   parameter collapses circular contacts. Elliptic contacts are refused: their exponent depends
-  on the ellipticity too (study_collapse_range.py). Line contacts
-  (no side flow): the starved line solver gives ``Hc/Hc_ff = min(r, 1)`` within 0.4 %, which
-  (6.1) approaches at its largest admitted ``delta`` (20).
+  on the ellipticity too. Line contacts (no side flow): the starved line solver gives
+  ``Hc/Hc_ff = min(r, 1)``, which (6.1) approaches at its largest admitted ``delta`` (20).
 * ``hs_min``: the separation at which the asperities alone carry the load (gamma2 = 1). When the
   starved film cannot keep ``hs`` above it the contact is in boundary lubrication (Fig. 6.1).
 * The limiting inlet film ``hoil = varsigma sigma`` below which all load is on the asperities

@@ -31,10 +31,8 @@ from .surface import wall_weights
 ANDERSON_DEPTH = 6
 
 #: at most this many symmetric passes over a reverse-flow zone per sweep (kernels._zone_relax),
-#: and at most FIRST_ZONE_PASSES in the first sweep: its zone coefficients come from a field
-#: the second sweep still changes by ~1e-3, and relaxing them further would be redone there
-#: (appendix C's EHL inlet, 21 slips: 135 passes against 219 without the cap and with
-#: ZONE_TOL = 0.1, same sweeps, friction within 3e-9 of max |f|)
+#: and FIRST_ZONE_PASSES in the first sweep, whose zone coefficients the second sweep still
+#: changes, so relaxing them further would be redone there (docs/thermal.md)
 ZONE_PASSES = 30
 FIRST_ZONE_PASSES = 2
 #: the zone passes stop when they change the temperature by less than ZONE_TOL * tol_T

@@ -61,7 +61,7 @@ class ThermalOptions:
         with a uniform film. A uniform film carries no net Poiseuille flux (mass conservation),
         and the square-root edges of the Hertz pressure make the Eyring Poiseuille heating at
         the edge nodes grow without bound under grid refinement; ``on`` keeps it anyway
-        (validation/thermal measures the effect). With a fixed gradient, the steep outlet of an
+        (docs/thermal.md). With a fixed gradient, the steep outlet of an
         EHL field (wall stress h/2 |dp/dx| of several tau0 where the pressure falls from the
         spike) drives an Eyring flow that the heating thins further: the Poiseuille flow and its
         heat run away (hundreds of kelvin, then NaN) although the EHL film carries a modest
@@ -138,11 +138,9 @@ class ThermalOptions:
         return asdict(self)
 
 
-#: Thermal grid per fidelity, from the accuracy-cost study (validation/pareto/REPORT.md): the
-#: cheapest setting whose largest friction error over slips 0.02, 0.3 and 1 stays within the
-#: fidelity's tolerance (10 %, 2 %, 0.2 %). Line, appendix C 42400 N: 20 x 5 3.9 %, 40 x 10
-#: 0.94 %, 160 x 40 0.04 % (80 x 20: 0.21 %). Point, appendix D: 20 x 5 x 5 slices 2.5 %,
-#: 40 x 10 x 5 0.26 %, 80 x 20 x 10 0.11 %.
+#: Thermal grid per fidelity: the cheapest setting whose largest friction error over slips
+#: 0.02, 0.3 and 1 stays within the fidelity's tolerance (10 %, 2 %, 0.2 %) in the
+#: accuracy-cost study (docs/thermal.md)
 FIDELITY_GRID: dict[str, dict[str, dict[str, int]]] = {
     "line": {"fast": {"nx": 20, "nz": 5}, "standard": {"nx": 40, "nz": 10}, "reference": {"nx": 160, "nz": 40}},
     "point": {"fast": {"nx": 20, "nz": 5, "slices": 5}, "standard": {"nx": 40, "nz": 10, "slices": 5},

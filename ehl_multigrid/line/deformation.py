@@ -9,7 +9,7 @@ interface (the film equation's elastic integral):
   index (anterpolation of ``P``), the result interpolated at order ``p`` back to the fine
   grid, and both interpolations corrected exactly within ``m`` points of the diagonal.
   The error left is the interpolation error of the kernel beyond ``m`` points; it falls like
-  ``m^-p`` (measured in tests/line/test_deformation.py and validation/line/REPORT.md).
+  ``m^-p`` (tests/line/test_deformation.py; docs/accuracy.md).
 
 Use :func:`make_deformation` to build one; all have ``apply(P) -> W`` and ``kernel``.
 Operators are cached per ``(n, h, method, options)`` because the multigrid solver calls them

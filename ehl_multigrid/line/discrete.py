@@ -142,16 +142,13 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
     ``frozen[i]`` keeps point ``i`` unchanged (coarse-grid points next to the fine grid's
     cavitation boundary, see solver.py).
 
-    ``jd_free``: a point next to a cavitated one or the boundary is always Gauss-Seidel
-    (not next to a frozen coarse-grid point: with those too, the wide-box reference of
-    tests/multigrid/test_accuracy.py, (20, 10) at 16385 points with an inlet twice as long,
-    needed more than 74 cycles instead of 52; without them validation/line_fine's study keeps
-    all 46 of 56 solves at 0.93 of the work units). A distributive change moves its neighbours by ``-delta/2``; at a fixed
-    neighbour that move is either not applied (frozen, boundary) or projected away (``P = 0``),
-    so the system solved is not the one applied and the free boundary oscillates from sweep to
-    sweep (measured: isoviscous (M, L) = (100, 0) at 4097 points, where the Jacobi-distributive
-    zone reaches the outlet's cavitation point, fine-grid relaxation alone lets the residual
-    jump from 1e-4 to 1e-3 every few sweeps; with the rule it falls steadily).
+    ``jd_free``: a point next to a cavitated one or the boundary is always Gauss-Seidel (not
+    next to a frozen coarse-grid point, which costs cycles on fine long-inlet grids). A
+    distributive change moves its neighbours by ``-delta/2``; at a fixed neighbour that move is
+    either not applied (frozen, boundary) or projected away (``P = 0``), so the system solved
+    is not the one applied and the free boundary oscillates from sweep to sweep (seen where the
+    Jacobi-distributive zone reaches the outlet's cavitation point: isoviscous (100, 0), 4097
+    points).
 
     Returns ``(ab, rhs, jac)``: LAPACK band storage (``q`` sub- and super-diagonals) of the
     matrix for the interior points, the right-hand side, and the Jacobi flags.

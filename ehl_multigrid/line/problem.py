@@ -164,9 +164,8 @@ def default_xmin(M: float, L: float) -> float:
     """Default inlet ``X = x/b``: -4.5 (Venner & Lubrecht's classic box), moved upstream at low load.
 
     The inlet zone scales with the rigid length ``sqrt(2 H)`` (H Venner, from the Moes fit);
-    the inlet is put 20 such lengths upstream of the contact edge when that is beyond -4.5.
-    Measured at equal mesh size (REPORT.md): with X >= -4.5 fixed, Hc is 0.19 % (M = 20,
-    L = 10), 0.9 % (M = 5, L = 5) and 1.7 % (M = 2, L = 2) below its long-inlet value.
+    the inlet is put 20 such lengths upstream of the contact edge when that is beyond -4.5,
+    since the classic box thins the film at low load (docs/accuracy.md, "Domain error").
     """
     H = fit_central_film(M, L)
     return float(min(-4.5, math.floor(2.0 * (-1.0 - 20.0 * math.sqrt(2.0 * H))) / 2.0))

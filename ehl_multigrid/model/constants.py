@@ -15,11 +15,9 @@ P_R = 1.962e8
 DH_A = 0.59263e9
 DH_B = 0.34615
 
-#: Oil of a problem given only by the Moes groups (M, L), when no scene supplies one:
-#: pressure-viscosity coefficient alpha [1/Pa], ambient viscosity eta0 [Pa s] and the Roelands
-#: reference pressure p0 [Pa]. p0 = 1.96e8 is the Moes-only default, rounded from P_R; stored
-#: regression values were computed with it, so it stays until it is unified with P_R in a
-#: separate, measured change.
+#: Oil of a problem given only by the Moes groups (M, L): alpha [1/Pa], eta0 [Pa s] and the
+#: Roelands reference pressure p0 [Pa], rounded from P_R; stored regression values depend on p0,
+#: so unifying it with P_R is a change of numbers of its own (docs/conventions.md)
 MOES_ONLY_DEFAULTS = {"p0": 1.96e8, "alpha": 2.2e-8, "eta0": 0.04}
 
 #: Ellipticity ``theta = Rx/Ry`` an elliptic contact may have: the range of the point solver

@@ -9,8 +9,8 @@ All take Moes groups (M, L) built on the sum velocity and return the Moes-scaled
 Vectorised: arguments broadcast against each other.
 
 The fits were built on Barus-type, incompressible solutions: a solver with Roelands viscosity
-and Dowson-Higginson compressibility gives markedly thinner central films (of the order of
-10-25 % at L = 10, more at high M), which is physics, not an error of either.
+and Dowson-Higginson compressibility gives markedly thinner central films, which is physics,
+not an error of either (how much thinner, and where the fits were checked: docs/fits.md).
 """
 
 from __future__ import annotations
@@ -119,8 +119,8 @@ def nijenbanning_central(
     return _out(np.sqrt(g) * (iso + piezo) ** (1.0 / s))
 
 
-#: Ellipticities at which the Nijenbanning fit was checked against the point solver
-#: (validation/point fit-check study: theta = 0.25, 1, 4).
+#: Ellipticity range over which the Nijenbanning fit was checked against the point solver
+#: (theta = 0.25, 1 and 4; docs/fits.md).
 CHECKED_THETA = (0.25, 4.0)
 
 
@@ -129,13 +129,15 @@ def deviation_table(contact: str) -> dict[str, Any]:
     """The package's fit-check table of ``contact`` (``ehl_multigrid/data/fit_deviation_*.json``):
     ``M`` and ``L`` grids, ``deviation[i, j]`` = (Hc_fit - Hc_solver)/Hc_solver at (M_i, L_j)
     against converged Roelands + Dowson-Higginson solutions (nan where no solve converged; point
-    contacts at theta = 1), ``definition`` and ``source``. Read once."""
+    contacts at theta = 1), ``definition``, ``source`` and ``provenance`` (package version, date,
+    command and solver fingerprint of the run that wrote it; docs/fits.md). Read once."""
     kind = "line" if contact == "line" else "point"
     tab = json.loads((resources.files("ehl_multigrid") / "data" / f"fit_deviation_{kind}.json").read_text())
     dev = np.array([[np.nan if v is None else v for v in row] for row in tab["deviation"]], dtype=float)
     dev.setflags(write=False)
     return {"M": tuple(float(m) for m in tab["M"]), "L": tuple(float(x) for x in tab["L"]), "deviation": dev,
-            "definition": tab.get("definition", ""), "source": tab.get("source", "")}
+            "definition": tab.get("definition", ""), "source": tab.get("source", ""),
+            "provenance": tab.get("provenance", {})}
 
 
 def checked_range(contact: str) -> dict[str, tuple[float, float]]:
@@ -241,10 +243,9 @@ def extrapolation_note(contact: str, M: float, L: float, theta: float = 1.0) -> 
             "against the solver); treat Hc as an estimate")
 
 
-#: measured range of (solver Hc)/(Nijenbanning Hc) - 1 at theta = 4, converged to 1 % (Barus,
-#: incompressible, M 5-100, L 0-10; validation/extremes/REPORT.md): the fit under-predicts
-#: contacts long in the rolling direction. Nijenbanning et al. (1994) demonstrate its accuracy
-#: for theta < 1; the ellipticity factor of Chittenden et al. (1985) agrees with the fit.
+#: range of (solver Hc)/(Nijenbanning Hc) - 1 at theta = 4 (Barus, incompressible, M 5-100,
+#: L 0-10): the fit, demonstrated by Nijenbanning et al. (1994) for theta < 1, under-predicts
+#: contacts long in the rolling direction (docs/fits.md)
 THETA_ABOVE_ONE_DEVIATION = (0.10, 0.54)
 
 
@@ -273,10 +274,9 @@ def gupta_thermal_factor(L: ArrayLike, S: ArrayLike, ph_over_E: float) -> ArrayL
     in the form commonly quoted (not checked against the paper here):
     ``(1 - 13.2 (ph/E') L^0.42) / (1 + 0.213 (1 + 2.23 |S|^0.83) L^0.64)`` with the thermal
     loading ``L = beta eta0 um^2/k`` (:meth:`Scene.thermal_properties`), the slide-to-roll ratio
-    ``S`` and ``ph/E'``. The package's coupled thermal EHL solver measured 35-70 % of this
-    reduction of the central film on line contacts, but a larger reduction of the minimum film
-    at high load and slip (0.75 of isothermal at 1.6 GPa, S = 1, where this gives 0.94;
-    validation/tehl/REPORT.md): a flag for the central film, not a bound on the minimum film."""
+    ``S`` and ``ph/E'``. A flag for the central film, not a bound on the minimum film: the
+    coupled thermal EHL solver reduces the minimum film more than this at high load and slip
+    (docs/fits.md)."""
     L = np.asarray(L, dtype=float)
     S = np.abs(np.asarray(S, dtype=float))
     if np.any(L < 0.0):

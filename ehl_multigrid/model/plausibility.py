@@ -63,11 +63,9 @@ class Plausible:
 
 _LEN = (MM, INCH)
 
-#: Plausible ranges of scene inputs and derived results for real contacts: ball and roller
-#: bearings (miniature to large slewing bearings), gears (module 0.2 to 50 mm), cams and
-#: followers, tribometers (ball-on-disc, HFRR, MTM). A value outside is possible but rare and
-#: much more often a unit mistake; hard limits (negative, NaN, beyond the models) are checked
-#: where the values are read.
+#: Plausible ranges of scene inputs and derived results for real contacts (bearings, gears,
+#: cams, tribometers; docs/inputs.md): outside is possible but more often a unit mistake. Hard
+#: limits (negative, NaN, beyond the models) are checked where the values are read.
 PLAUSIBLE: dict[str, Plausible] = {
     # operating point
     "load": Plausible(1e-3, 1e7, "N", (KN,), "no bearing, gear or tribometer contact carries that"),

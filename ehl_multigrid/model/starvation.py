@@ -23,11 +23,10 @@ from .lubricant import density_ratio_dh
 ArrayLike = float | np.ndarray
 
 #: ``delta = a + b log10(Hc_ff)`` (Venner units) of circular contacts, fitted to the starved point
-#: solver (validation/starved/study_collapse.py, rms 0.066, largest misfit 0.13)
+#: solver (docs/fits.md, "Starved films")
 INLET_DELTA_FIT = (2.37, -0.95)
-#: Hc_ff (Venner) over which that fit was measured; outside it ``delta`` is held at the end values
-#: (a thicker film, (M, L) = (5, 10) with Hc_ff = 1.09, gave 2.82 where the line says 2.34:
-#: validation/starved/study_collapse_range.py)
+#: Hc_ff (Venner) over which that fit was made; outside it ``delta`` is held at the end values,
+#: since the fitted line does not hold beyond them (docs/fits.md)
 INLET_HC_RANGE = (0.063, 0.447)
 #: line contacts: (6.1) at its largest admitted exponent stands for the solver's min(r, 1)
 LINE_INLET_DELTA = 20.0

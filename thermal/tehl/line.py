@@ -88,8 +88,7 @@ class TEHLOptions:
     multigrid : overrides of the core :class:`LineOptions` (tol, cycle, levels ...); by default
         each multilevel solve stops on the films (``film_tol = tol_H / 4``: Hc and Hm change by
         less between two finest-grid cycles, load error below it), since a residual of 1e-5
-        leaves Hm uncertain to 7e-4 (measured: an outer iteration alternating between two
-        films with the factors fixed).
+        leaves Hm uncertain to about 7e-4 (docs/thermal.md).
     """
 
     points: int = 513
