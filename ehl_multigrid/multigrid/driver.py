@@ -83,14 +83,6 @@ GRID_STOP_RESIDUAL = 10.0
 #: (thermal in its isothermal limit, half and full domain) differ by more than the tests allow;
 #: the rule is meant for fine grids, where the residual tolerance costs the extra cycles
 GRID_STOP_CAP = 1e-4
-#: A stop before the residual meets its tolerance (the film rule of accuracy-driven solves, the
-#: grid rule) is confirmed by one W cycle over which the stop's test must hold again, when the
-#: solve runs V or F cycles: a V-cycle stall can hold the films still far from the discrete
-#: solution. Measured: line Roelands + Dowson-Higginson (500, 20) at 16385 points, accuracy
-#: 0.0025: V cycles stop on the films after 4 cycles (residual 2.6e-5, ratios up to 0.87) with
-#: Hm 1 % above the discrete solution and an algebraic estimate of 8e-5; the first W cycle from
-#: that state moves Hm by 0.6 % (validation/accuracy/REPORT.md, session 9).
-CONFIRM_EARLY_STOP = True
 
 
 class _Stop(Exception):
@@ -265,10 +257,12 @@ class MultilevelSolver:
 
     def needs_confirmation(self) -> bool:
         """True when :meth:`converged` holds only by an early rule (residual above ``tol``), the
-        cycles are not W already and the last cycle was not the confirming W cycle."""
-        if not CONFIRM_EARLY_STOP or self.settings.cycle == "W" or not self.residuals:
-            return False
+        cycles are not W already, the last cycle was not the confirming W cycle and the options
+        ask for the confirmation (``confirm_early_stop``: a V-cycle stall can hold the films
+        still far from the discrete solution; docs/robustness.md)."""
         o = self.options
+        if not o.confirm_early_stop or self.settings.cycle == "W" or not self.residuals:
+            return False
         if self.residuals[-1] < o.tol and abs(self.load_errors[-1]) < o.tol_load:
             return False
         return self._confirmed_at != len(self.history)

@@ -17,12 +17,16 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import asdict, dataclass, fields, replace
+from numbers import Integral
 from typing import Any, ClassVar
 
 from ..model.errors import InputError, require_choice, require_range
 
 CYCLES = ("V", "W", "F")
 DEFORMATIONS = ("mlmi", "fft", "direct")
+#: the robustness retries of a failed point solve (:class:`PointOptions`, docs/robustness.md)
+RETRIES = ("retry_square_cells", "retry_full_refresh", "retry_finer_start", "retry_coarser_start",
+           "retry_from_neighbour")
 
 
 @dataclass(frozen=True)
@@ -61,6 +65,9 @@ class MultigridOptions:
         (Brandt's rule: iterate to the discretisation error, not to a fixed residual). Needs
         three finest-grid cycles and a coarser FMG grid; only the steady solvers use it
         (None: residual rule only).
+    confirm_early_stop : a stop of a V- or F-cycle solve before the residual meets ``tol``
+        (``film_tol``, ``grid_stop``) is confirmed by one W cycle over which the stop's test
+        must hold again (False: the first stop stands). See docs/robustness.md.
     """
 
     points: int = 129
@@ -83,6 +90,7 @@ class MultigridOptions:
     raise_on_failure: bool = False
     film_tol: float | None = None
     grid_stop: float | None = 0.25
+    confirm_early_stop: bool = True
 
     #: the contact chooses the cycle type when ``cycle`` is None
     CYCLE_OPTIONAL: ClassVar[bool] = False
@@ -126,6 +134,7 @@ class MultigridOptions:
         if self.grid_stop is not None:
             require_range("grid_stop", self.grid_stop, 0.0, 1.0, "- (fraction of the grid error)",
                           lo_open=True)
+        require_choice("confirm_early_stop", self.confirm_early_stop, (True, False))
 
     @classmethod
     def build(cls, options: MultigridOptions | None = None, **kw: Any):
@@ -236,7 +245,28 @@ class PointOptions(MultigridOptions):
     less robust over the extremes map: validation/bench/point_variants.py).
     ``local_film_update`` -- False: the film between the X and Y halves of an alternating sweep
     is refreshed by a whole deformation evaluation instead of locally (the steady solve's
-    retry when the local refresh fails, ``point.solve.RETRY_FULL_REFRESH``).
+    retry when the local refresh fails, ``retry_full_refresh``).
+
+    Robustness retries of a failed solve (each True by default; False leaves the failure as
+    it is; what each costs: docs/robustness.md). The retries of one solve act only with
+    ``adapt``, the coarse-grid ones only on the automatic coarse grid (``n_coarse`` and
+    ``levels`` None):
+    ``retry_square_cells`` -- a contact with b/a < 1 that diverges on the default cells
+    (``y_ratio`` None) is solved again on square cells, before the other retries;
+    ``retry_full_refresh`` -- a contact with b/a >= 0.5 that still fails after the retry with
+    X and Y lines alternating on every grid is solved again with ``local_film_update`` off;
+    ``retry_finer_start`` -- a diverged contact with b/a < 0.5 is solved again from four times
+    as many coarse intervals; ``retry_coarser_start`` -- a solve still diverged is solved again
+    from half as many; ``retry_from_neighbour`` -- in an accuracy-driven sequence
+    (``point.solve.solve_point``), a refinement whose own start fails is solved again from the
+    last converged solution of the sequence.
+    ``serial_below`` -- grids of fewer points (``nx ny``) run their kernels on one numba
+    thread, finer grids on ``threads``: on a small grid a thread barrier costs more than the
+    work it splits (docs/robustness.md).
+    ``exact_rules`` -- the starved solver only: the coarse-grid theta rules (None: the default
+    rule; k: theta free on the k grids below the current one, frozen below) under which its
+    mass re-solve with the exact zone solve is tried after the solve's own rule; ``()``: the
+    solve's own rule only.
     """
 
     CYCLE_OPTIONAL: ClassVar[bool] = True
@@ -259,10 +289,31 @@ class PointOptions(MultigridOptions):
     y_pre: bool = True
     local_film_update: bool = True
     alternating: bool | None = None
+    retry_square_cells: bool = True
+    retry_full_refresh: bool = True
+    retry_finer_start: bool = True
+    retry_coarser_start: bool = True
+    retry_from_neighbour: bool = True
+    exact_rules: tuple[int | None, ...] = (None, 1)
+    serial_below: int = 129 * 129
 
     def __post_init__(self) -> None:
         super().__post_init__()
         require_range("points", self.points, 9, 8193)
+        for name in RETRIES:
+            require_choice(name, getattr(self, name), (True, False))
+        require_range("serial_below", self.serial_below, 1, 2**31, "grid points (nx ny)")
+        if int(self.serial_below) != self.serial_below:
+            raise InputError(f"serial_below = {self.serial_below} must be an integer (grid points)")
+        rules = self.exact_rules
+        if not isinstance(rules, (tuple, list)) or not all(
+                r is None or (isinstance(r, Integral) and not isinstance(r, bool) and 0 <= r <= 20)
+                for r in rules):
+            raise InputError(f"exact_rules = {rules!r} must be a sequence of coarse-grid theta "
+                             "rules, each None (the default rule) or an integer in [0, 20] (the "
+                             "grids below the current one where theta moves)")
+        # a tuple of ints, so that the options stay hashable (a list from a mapping of options)
+        object.__setattr__(self, "exact_rules", tuple(None if r is None else int(r) for r in rules))
         if self.xmin is not None:
             require_range("xmin", self.xmin, -20000.0, -1.05, "- (x/a)")
         if self.xmax is not None:

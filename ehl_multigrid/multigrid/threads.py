@@ -4,12 +4,17 @@ numba's thread count is process state: a solve that changes it (one thread on co
 where a barrier costs more than the work) restores the caller's value when it ends, and
 the FFT worker count is passed to each deformation operator rather than set globally.
 
-OpenMP threads (numba's usual threading layer) wait passively at the end of a parallel region
-unless the environment already sets ``OMP_WAIT_POLICY``: this module sets the default before
-the first parallel kernel loads the OpenMP runtime. Spinning threads take the time slice of the
-thread doing the work when the other core is busy. Measured on a 2-core machine under load
-(load average about 7; circular (20, 10), half domain, 513^2, median of 2): 8.3 s with two
-spinning threads, 2.0 s with two passive threads, 4.0 s with one thread.
+Importing the package changes no environment variable. OpenMP threads (numba's usual
+threading layer) spin at the end of a parallel region unless ``OMP_WAIT_POLICY`` says
+otherwise, and a spinning thread takes the time slice of the thread doing the work when the
+other core is busy (on a loaded 2-core machine, circular (20, 10) at 513^2: 8.3 s with two
+spinning threads, 2.0 s with two passive ones, 4.0 s with one thread). The ``ehl`` command
+calls :func:`passive_openmp_wait` at its start; a library user who wants the same sets
+``OMP_WAIT_POLICY=PASSIVE`` before the first parallel kernel runs (the OpenMP runtime reads it
+once, when numba loads it).
+
+numba is imported on first use, so that the command line can call
+:func:`passive_openmp_wait` without loading it.
 """
 
 from __future__ import annotations
@@ -18,15 +23,33 @@ import os
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-# before numba loads libgomp (it does at the first parallel kernel, not at import); an
-# explicit setting of the user's wins
-os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+#: the OpenMP wait policy the ``ehl`` command defaults to (:func:`passive_openmp_wait`)
+OMP_WAIT_POLICY = "PASSIVE"
 
-import numba  # noqa: E402
+
+def passive_openmp_wait() -> bool:
+    """Default ``OMP_WAIT_POLICY`` to ``PASSIVE`` in this process's environment (a value already
+    set wins): waiting OpenMP threads then sleep instead of spinning.
+
+    For programs (the ``ehl`` entry point), not for import: call it before the first parallel
+    numba kernel, after which the OpenMP runtime no longer reads the variable. Child processes
+    inherit it.
+
+    Returns
+    -------
+    bool
+        True when this call set the variable, False when the environment already had it.
+    """
+    if "OMP_WAIT_POLICY" in os.environ:
+        return False
+    os.environ["OMP_WAIT_POLICY"] = OMP_WAIT_POLICY
+    return True
 
 
 def resolve_threads(threads: int | None) -> int:
     """Threads for a solve: the option, else the caller's current numba setting."""
+    import numba
+
     current = numba.get_num_threads()
     if threads is None:
         return current
@@ -34,16 +57,30 @@ def resolve_threads(threads: int | None) -> int:
 
 
 class ThreadBudget:
-    """Switches numba between one thread (small grids) and the solve's thread count."""
+    """Switches numba between one thread (small grids) and the solve's thread count.
+
+    Parameters
+    ----------
+    threads : the solve's thread count (:func:`resolve_threads`).
+    serial_below : grids with fewer points run on one thread
+        (``PointOptions.serial_below``).
+
+    The caller restores its own thread count afterwards (:func:`preserved_threads`).
+    """
 
     def __init__(self, threads: int, serial_below: int) -> None:
         self.threads = threads
         self.serial_below = serial_below
+        import numba
+
         self._current = numba.get_num_threads()
 
     def for_size(self, npts: int) -> None:
+        """Set numba's thread count for the kernels of a grid of ``npts`` points."""
         want = 1 if npts < self.serial_below else self.threads
         if want != self._current:
+            import numba
+
             numba.set_num_threads(want)
             self._current = want
 
@@ -51,6 +88,8 @@ class ThreadBudget:
 @contextmanager
 def preserved_threads() -> Iterator[None]:
     """Restore numba's thread count on exit, whatever the body set."""
+    import numba
+
     saved = numba.get_num_threads()
     try:
         yield

@@ -32,10 +32,6 @@ from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
 from .problem import PointProblem, coarse_intervals, domain_scale, resolve_domain, rigid_length
 
-#: grids with fewer points than this run single-threaded: their kernels are too small to pay
-#: for a thread barrier, which on a busy machine can cost a scheduler time slice each
-SERIAL_BELOW = 129 * 129
-
 HINT = "raise max_cycles, use W cycles, a longer inlet, more points or fewer levels"
 
 #: Measured on the point solver's robustness set: reject a cycle whose residual exceeds 3x
@@ -240,7 +236,7 @@ class PointHierarchy:
         xmin, xmax, ymax = resolve_domain(problem, options.xmin, options.xmax, options.ymax)
         self.xmin, self.xmax, self.ymax = xmin, xmax, ymax
         self.options = options
-        self.threads = ThreadBudget(resolve_threads(options.threads), SERIAL_BELOW)
+        self.threads = ThreadBudget(resolve_threads(options.threads), options.serial_below)
         self.par = problem.rheology()
         self.lam = problem.lam
         self.cd = problem.cd if options.elastic else 0.0

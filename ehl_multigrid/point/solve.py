@@ -114,44 +114,6 @@ def _finish(sol: EHLResult, scene: Any) -> EHLResult:
     return sol
 
 
-#: After the alternating retry, a solve that still fails (RETRY_ALTERNATING) is solved again
-#: with the film refreshed by whole deformation evaluations between the X and Y halves of the
-#: alternating sweeps instead of locally: the local refresh (commit c64ae80) made circular
-#: Barus (500, 20, theta 0.25) at 1025 points diverge in its FMG (bisected); with the whole
-#: refresh its iteration converges (12 s; with the residual rule, accuracy=None, every attempt
-#: still diverges).
-RETRY_FULL_REFRESH = True
-
-
-#: A solve that still ends ``diverged`` after those retries is solved once more with half as
-#: many coarse intervals (one more, coarser level to start the FMG on), when the coarse grid
-#: was the automatic one. Measured on the 6205 inner-race contact (M 3620, L 13.1, b/a 9.4,
-#: 1025 points): the default box converges from 64 coarse intervals (2.5 s) and diverges from
-#: 128 (the rule's count on a box twice as long, as the domain probe uses), 256 too; the
-#: doubled box converges from 64 (2.9 s). Coarse sweeps 10 -> 40 do not help: it is the FMG
-#: start on the finer coarsest grid that fails.
-RETRY_COARSER_START = True
-
-#: A contact narrower than long (b/a < ALTERNATE_BELOW) whose solve ends ``diverged`` is first
-#: solved again from four times as many coarse intervals (two levels fewer), when the coarse
-#: grid was the automatic one: its coarse mesh follows a, which leaves the narrow axis b two
-#: or three cells on the coarsest grid, where the film goes negative and FMG starts from
-#: nonsense. Measured at theta = 10 (b/a = 0.22), 2049 points: (1000, 25) diverges from 64
-#: and 128 coarse intervals and converges from 256 (25 s); (1000, 0) diverges from 64 and
-#: ends "film not positive" (the grid is too coarse, said so) from 128 and 256. (Measured on
-#: square cells; the default cells, stretched with the ellipse, give b as many cells as a and
-#: converge (1000, 0) at 1025 points from the automatic coarse grid.)
-RETRY_FINER_START = True
-
-#: A contact long in the rolling direction (b/a < 1) whose solve on the default cells,
-#: stretched with the ellipse (``hy/hx ~ b/a``), ends ``diverged`` is solved again on square
-#: cells (half the points along Y) before any other retry. Measured (Barus + incompressible,
-#: theta = 4, b/a = 0.40): (20, 20) and (5, 20) diverge on stretched cells at 257 and 513
-#: points (NaN from the first coarse cycles) and converge on square ones; at L <= 10 the
-#: stretched cells converge (validation/point/y_cells.py).
-RETRY_SQUARE_CELLS = True
-
-
 def _again(problem: PointProblem, opt: PointOptions, solver: Any, sol: EHLResult,
            callback: Callable[[dict[str, Any]], None] | None, how: str,
            guess: Any = None) -> tuple[Any, EHLResult]:
@@ -186,9 +148,10 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     # adapt=False asks for the iteration exactly as configured: no retry either
     retry = opt.alternating is None and opt.adapt and problem.b_over_a >= ALTERNATE_BELOW
     auto_coarse = opt.adapt and opt.n_coarse is None and opt.levels is None
-    coarser = RETRY_COARSER_START and auto_coarse
-    finer = RETRY_FINER_START and auto_coarse and problem.b_over_a < ALTERNATE_BELOW
-    square = RETRY_SQUARE_CELLS and opt.adapt and opt.y_ratio is None and problem.b_over_a < 1.0
+    # the robustness retries (PointOptions.retry_*; docs/robustness.md)
+    coarser = opt.retry_coarser_start and auto_coarse
+    finer = opt.retry_finer_start and auto_coarse and problem.b_over_a < ALTERNATE_BELOW
+    square = opt.retry_square_cells and opt.adapt and opt.y_ratio is None and problem.b_over_a < 1.0
     first = replace(opt, raise_on_failure=False) if (retry or coarser or finer or square) else opt
     with preserved_threads():
         solver = point_solver(problem, first, guess)
@@ -200,7 +163,7 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
         if square and sol.status_name == "diverged" and square_ratio < hz0.y_ratio:
             solver, sol = _again(problem, replace(opt, y_ratio=square_ratio, raise_on_failure=False),
                                  solver, sol, callback, f"square cells (y_ratio {square_ratio:g} "
-                                 f"instead of {hz0.y_ratio:g}; RETRY_SQUARE_CELLS)", guess)
+                                 f"instead of {hz0.y_ratio:g}; retry_square_cells)", guess)
             base = replace(opt, y_ratio=solver.hierarchy.y_ratio)
         if retry and sol.status_name in RETRY_ALTERNATING:
             # X lines alone failed: solve again alternating X and Y lines on every grid from
@@ -208,18 +171,19 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
             # (with W cycles unless the options name one: point_cycle)
             solver, sol = _again(problem, replace(base, alternating=True, raise_on_failure=False), solver,
                                  sol, callback, "X and Y lines alternating on every grid", guess)
-        if retry and RETRY_FULL_REFRESH and sol.status_name in RETRY_ALTERNATING and opt.local_film_update:
+        if (retry and opt.retry_full_refresh and sol.status_name in RETRY_ALTERNATING
+                and opt.local_film_update):
             solver, sol = _again(problem, replace(base, local_film_update=False, raise_on_failure=False),
                                  solver, sol, callback, "the film refreshed by whole deformations "
-                                 "between the X and Y halves (RETRY_FULL_REFRESH)", guess)
+                                 "between the X and Y halves (retry_full_refresh)", guess)
         if finer and sol.status_name == "diverged" and 4 * n_coarse <= (opt.points - 1) // 4:
             solver, sol = _again(problem, replace(base, n_coarse=4 * n_coarse, raise_on_failure=False), solver,
                                  sol, callback, f"{4 * n_coarse} coarse intervals instead of {n_coarse} "
-                                 "(RETRY_FINER_START)", guess)
+                                 "(retry_finer_start)", guess)
         if coarser and sol.status_name == "diverged" and n_coarse >= 32:
             solver, sol = _again(problem, replace(base, n_coarse=n_coarse // 2, raise_on_failure=False), solver,
                                  sol, callback, f"{n_coarse // 2} coarse intervals instead of {n_coarse} "
-                                 "(RETRY_COARSER_START)", guess)
+                                 "(retry_coarser_start)", guess)
         if (retry or coarser or finer or square) and not sol.success and opt.raise_on_failure:
             raise ConvergenceError(f"point solver: {sol.message}", sol.report, solver.hint)
     hz = solver.hierarchy
@@ -258,16 +222,8 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     return _finish(sol, scene)
 
 
-#: A refinement of the accuracy sequence whose own start fails (FMG from the Hertzian guess)
-#: is solved again from the last converged solution of the sequence (continuation from a
-#: converged neighbour: the same contact on a coarser grid or a smaller box), on its cells.
-#: Measured: (20, 25, theta 10): the 4097-point grid on a box twice as wide diverged from the FMG
-#: on stretched and on square cells; started from the converged 2049-point solution on the
-#: default box it converged in 3 cycles (143 s with the failed stretched attempt). In the
-#: sequence at 2 % it starts from the 1025-point solution: converged, Hc 0.42 %, Hm 1.23 %
-#: stated, 195 s in all (validation/extremes/REPORT.md, session 17).
-RETRY_FROM_NEIGHBOUR = True
 #: statuses of a failed start that the retry from a converged neighbour answers
+#: (``PointOptions.retry_from_neighbour``)
 NEIGHBOUR_RETRY = ("diverged", "max_cycles", "stalled")
 
 
@@ -282,7 +238,7 @@ def solve_from_neighbour(problem: PointProblem, options: PointOptions, failed: E
                       guess=(neighbour.X, neighbour.Y, neighbour.P, float(neighbour.H0)))
     n_nb = neighbour.X.shape[0]
     note = (f"ended {failed.status_name} ({failed.message.split(';')[0]}); solved again from the "
-            f"converged {n_nb}-point solution of the sequence (RETRY_FROM_NEIGHBOUR): "
+            f"converged {n_nb}-point solution of the sequence (retry_from_neighbour): "
             f"{again.status_name}")
     keep = again if again.success else failed
     keep.work_units = failed.work_units + again.work_units
@@ -517,7 +473,7 @@ def solve_point(
             if seq["y_ratio"] is not None:
                 o = replace(o, y_ratio=seq["y_ratio"])
             r = solve_fas(pb, o, callback=callback, scene=scene)
-            if (RETRY_FROM_NEIGHBOUR and not r.success and seq["ok"] is not None
+            if (opts.retry_from_neighbour and not r.success and seq["ok"] is not None
                     and r.status_name in NEIGHBOUR_RETRY):
                 r = solve_from_neighbour(pb, o, r, seq["ok"], callback, scene)
             if r.success:

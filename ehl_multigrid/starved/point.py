@@ -30,9 +30,9 @@ does not converge is repeated with theta frozen on every coarse grid; a converge
 mass imbalance exceeds :data:`MASS_TOL`, or one that still did not converge, is repeated with
 an exact solve of the Poiseuille-dominated zone after every finest-grid cycle
 (:mod:`.point_mass`: sparse primal-dual active set on P and theta; :data:`EXACT_EPS`,
-:data:`EXACT_RULES`), and as a last resort at a tighter tolerance. A result whose boundary
-flows do not balance fails (:mod:`.gate`), whatever its iteration said. Measured on the
-55-supply map: every supply converges and conserves mass to 1e-6 with either wedge order
+``PointOptions.exact_rules``), and as a last resort at a tighter tolerance. A result whose
+boundary flows do not balance fails (:mod:`.gate`), whatever its iteration said. Measured on
+the 55-supply map: every supply converges and conserves mass to 1e-6 with either wedge order
 (largest imbalance 9.7e-7 first order, 9.4e-7 second order; before the exact solve 5.5e-5
 and 8.3e-5 where the meniscus lies far upstream in thick-film contacts). First order: the
 flooded Hc 2-8 % above the core's second-order film; second order: the core's flooded film
@@ -59,6 +59,7 @@ from ..multigrid.accuracy import (
     attach_estimate,
     iteration_error,
 )
+from ..multigrid.controller import Candidate, Refinement, Resolution, control
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import PointOptions
 from ..multigrid.policy import RobustnessPolicy, Settings
@@ -103,10 +104,10 @@ FALLBACK_COARSE_THETA = 0
 
 #: relative mass imbalance a starved solve aims for. A solve that converges to its residual
 #: tolerance with a larger imbalance is solved again with the exact solve of the
-#: Poiseuille-dominated zone (:data:`EXACT_EPS`, :data:`EXACT_RULES`), and, if that does not
-#: meet MASS_TOL either, with the tolerance times MASS_TOL_FACTOR (at most twice its cycles +
-#: 10); a repeated solve is kept when it converges with a smaller imbalance. Measured on the
-#: 55-supply map (validation/starved/study_mass.py): 55/55 below 1e-6 (largest 9.7e-7), the
+#: Poiseuille-dominated zone (:data:`EXACT_EPS`, ``PointOptions.exact_rules``), and, if that
+#: does not meet MASS_TOL either, with the tolerance times MASS_TOL_FACTOR (at most twice its
+#: cycles + 10); a repeated solve is kept when it converges with a smaller imbalance. Measured
+#: on the 55-supply map (validation/starved/study_mass.py): 55/55 below 1e-6 (largest 9.7e-7), the
 #: tighter tolerance no longer needed. Measured before the exact solve at 257^2 (imbalance at tol 1e-8 -> 1e-10): (179, 4.17)
 #: Hoil = 4 ... 0.8 Hc_ff 7.7e-5 ... 8e-7 -> 1.7e-6 ... 6.9e-9 (4 and 2 Hc_ff: 8.8e-7 and
 #: 1.1e-6 at 1e-11); (100, 5) 4 ... 0.8 Hc_ff 3.5e-5 ... 2.2e-6 -> 8.3e-7 ... 3.0e-8; but
@@ -138,23 +139,6 @@ MASS_PASSES = 1
 #: the grid) a call took 1.8 s at 513^2 ((20, 10), 2 Hc_ff), with the margin 1.3 s with two
 #: passes; the zone is then 29-32 % of the grid at 2 Hc_ff and 0-2 % at 0.25 Hc_ff.
 EXACT_MARGIN = 4
-#: coarse-grid theta rules of the exact re-solve, tried in turn after the first solve's own
-#: rule until the imbalance is below MASS_TOL (``None``: the default rule; 1: theta free on the
-#: grid below the finest only, frozen below). The theta march on the coarse grids is not
-#: consistent with the fine grid's mass balance at the meniscus (the cycle's fixed point keeps an
-#: inlet residual; measured at (20, 10), 129^2, Hoil = 1.2 Hc_ff, without the exact solve: rule
-#: 0, 1, default, free everywhere: imbalance 2.3e-6, 7.9e-7, 2.2e-5, 6.6e-5). With the exact
-#: solve at 257^2 (20, 10): the default rule converges Hoil = 4, 2 Hc_ff (imbalance 6e-9,
-#: 1.9e-8) and not 1.5, 1.2; rule 1 the reverse (1.7e-9 ... 1.9e-8 at 1.5 ... 0.4 Hc_ff).
-#: A solve whose cycles stop short of convergence under both coarse-grid rules is solved again
-#: with the exact zone solve too, the kept rule first, then these: at large M the cycles can
-#: stop at the flooded film, the meniscus near the box inlet (gap ~40 Hc), where the first
-#: full point of each row holds theta = 1 at P ~ 1e-4 with an unscaled residual of order 10 (an
-#: oil source of 30x the inflow) that the scaled residual (eps/hx^2 ~ 1e6) reads as a floor of
-#: 2e-6 (measured: M = 741, L = 6.34, Hoil = 0.35 Hc_ff, 257^2; with the exact solve the rule
-#: 0 converges in 39 cycles, imbalance 9e-8, rho_c Hc / Hoil = 0.996, Hc = 0.28 Hc_ff).
-EXACT_RULES: tuple[int | None, ...] = (None, 1)
-
 #: extra finest-grid cycles of a starved solve: measured at (179, 4.17) 257^2 the moderate
 #: supplies (Hoil = 1.5 ... 0.4 Hc_ff) converge in 62-94 cycles.
 STARVED_MAX_CYCLES = 100
@@ -642,7 +626,7 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
     ``theta rho H`` leaving at the outlet face, per width), ``hoil`` (the mean supplied layer
     over the rows of the balance), ``hoil_rows`` and ``hoil_centre``; ``coarse_theta`` the
     coarse-grid theta rule of the kept solve, ``rescued`` whether only the exact zone solve
-    converged it (see :data:`EXACT_RULES`).
+    converged it (see ``PointOptions.exact_rules``, docs/robustness.md).
 
     ``guess``: ``(X, Y, P, H00)`` of a solution of the same contact (e.g. on the grid with half
     the intervals): the cycles start on the finest grid from it instead of the FMG, the film
@@ -671,9 +655,9 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
     rescued = False
     if not sol.success and math.isfinite(hz.hoil):
         # cycles stopped short of convergence: solved again with the exact solve of the
-        # Poiseuille-dominated zone (see EXACT_RULES)
+        # Poiseuille-dominated zone (see PointOptions.exact_rules)
         rules = (hz.coarse_theta,) if coarse_theta is not None else \
-            (hz.coarse_theta,) + tuple(r for r in EXACT_RULES if r != hz.coarse_theta)
+            (hz.coarse_theta,) + tuple(r for r in opt.exact_rules if r != hz.coarse_theta)
         mb = imbalance_of(hz)
         for rule in rules:
             exact_rules.add(rule)
@@ -687,8 +671,8 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
         if mb > MASS_TOL:
             # the residual tolerance does not see the inlet's mass balance (see MASS_TOL):
             # solved again with the exact solve of the Poiseuille-dominated zone, under the
-            # coarse-grid theta rules of EXACT_RULES in turn (see there)
-            for rule in (hz.coarse_theta,) + tuple(r for r in EXACT_RULES if r != hz.coarse_theta):
+            # coarse-grid theta rules of PointOptions.exact_rules in turn
+            for rule in (hz.coarse_theta,) + tuple(r for r in opt.exact_rules if r != hz.coarse_theta):
                 if rule in exact_rules:
                     continue
                 sol, hz, mb = _exact_resolve(problem, hoil, opt, rule, guess, sol, hz, mb,
@@ -888,6 +872,76 @@ def _scene_solve(pb: PointProblem, Hoil: float, options: PointOptions | None, po
                                guess=(start.X, start.Y, start.P, start.H0), **kw)
 
 
+class _StarvedPointControl:
+    """A starved point scene solve as a :class:`~ehl_multigrid.multigrid.controller.Controlled`
+    physics: the grid is the one refinement (the meniscus lies inside the box), estimated by
+    :func:`starved_point_error` from the grid with half the intervals; a refinement starts from
+    the previous grid's film (:func:`_scene_solve`)."""
+
+    dimensions = 2
+
+    def __init__(self, pb: PointProblem, Hoil: Any, options: PointOptions | None, kw: dict[str, Any],
+                 accuracy: float | None, estimate: bool, max_points: int) -> None:
+        self.pb, self.Hoil, self.options, self.kw = pb, Hoil, options, kw
+        self.accuracy, self.with_estimate, self.max_points = accuracy, estimate, max_points
+        self.prev: EHLResult | None = None  # the previous grid's converged result
+        self.coarse: EHLResult | None = None  # the solve on the grid with half the intervals
+
+    def solve(self, at: Resolution) -> EHLResult:
+        prev, n = self.prev, at.points
+        # a refinement starts from the previous grid's film (see _scene_solve) when the FMG
+        # needed the exact zone solve there, or when the FMG fails here
+        rescued = prev is not None and prev.extra.get("rescued", False)
+        res = _scene_solve(self.pb, self.Hoil, self.options, n, self.kw, prev if rescued else None)
+        if prev is not None and not res.success and not res.extra.get("from_guess"):
+            first = f"{res.status_name} from the FMG"
+            res = _scene_solve(self.pb, self.Hoil, self.options, n, self.kw, prev)
+            res.actions.insert(0, f"{n} points: {first}; solved again from the "
+                                  f"{prev.X.size}-point film")
+        return res
+
+    def converged(self, result: EHLResult) -> bool:
+        return bool(result.success)
+
+    def failure(self, result: EHLResult) -> str:
+        return f"{result.status_name}: {result.message.splitlines()[0] if result.message else ''}"
+
+    def remedy(self, result: EHLResult, at: Resolution, first: bool) -> Resolution | None:
+        return None
+
+    def coarse_of(self, points: int) -> EHLResult:
+        """The solve on the grid with half the intervals of ``points`` (made once)."""
+        if self.coarse is None:
+            self.coarse = _scene_solve(self.pb, self.Hoil, self.options, (points - 1) // 2 + 1, self.kw)
+        return self.coarse
+
+    def estimate(self, res: EHLResult, at: Resolution, record: Any) -> tuple[float, float]:
+        self.prev = res
+        if not self.with_estimate:
+            return math.nan, math.nan
+        if self.coarse is None:
+            record(Refinement((at.points - 1) // 2 + 1, 1.0, 1.0, math.nan, math.nan,
+                              self.coarse_of(at.points).wall_s, "levels"))
+        est = starved_point_error(res, self.coarse)
+        attach_estimate(res, est, self.accuracy)
+        self.coarse = res  # the coarse solve of the next grid
+        return est.Hc, est.Hm
+
+    def candidates(self, res: EHLResult, at: Resolution) -> list[Candidate]:
+        finer = at.finer()
+        if finer.points > self.max_points:
+            return []
+        b, pc = res.error.budget, GRID_ORDER[int(res.options.wedge_order)][0]
+        predicted = max(b["grid"][k] / 2.0**pc + b["algebraic"][k] + b["domain"][k] for k in ("Hc", "Hm"))
+        return [Candidate("points", finer, 1, predicted)]
+
+    def why_short(self, res: EHLResult, at: Resolution) -> str:
+        if at.finer().points > self.max_points:
+            return (f"the next grid ({at.finer().points} points) exceeds max_points = {self.max_points} "
+                    f"(ehl solve --max-points raises it)")
+        return "a finer grid is not predicted to lower the error by 10 %: the iteration part dominates"
+
+
 def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: PointOptions | None = None,
                               *, flooded: bool = True, viscosity: str = "roelands",
                               density: str = "dowson-higginson", accuracy: float | None = None,
@@ -936,37 +990,17 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
                 break
     explicit = "points" in kw or options is not None
     n = int(kw.pop("points", options.points if options is not None else SCENE_POINTS))
-    coarse: EHLResult | None = None
-    prev: EHLResult | None = None  # the previous grid's (inaccurate) result of a refinement
-    while True:
-        # a refinement starts from the previous grid's film (see _scene_solve) when the FMG
-        # needed the exact zone solve there, or when the FMG fails here
-        rescued = prev is not None and prev.extra.get("rescued", False)
-        res = _scene_solve(pb, Hoil, options, n, kw, prev if rescued else None)
-        if prev is not None and not res.success and not res.extra.get("from_guess"):
-            first = f"{res.status_name} from the FMG"
-            res = _scene_solve(pb, Hoil, options, n, kw, prev)
-            res.actions.insert(0, f"{n} points: {first}; solved again from the "
-                                  f"{prev.X.size}-point film")
-        if prev is not None and not res.success:
-            # the refinement failed: the previous grid's converged film and its estimate stand
-            # (as the flooded accuracy sequence returns its most accurate solve)
-            why = (f"the refinement to {n} points did not converge ({res.status_name}: "
-                   f"{res.message.splitlines()[0] if res.message else ''})")
-            prev.message += f"; not refined further: {why}"
-            prev.extra["not_refined_because"] = why
-            prev.actions.append(f"not refined further: {why}")
-            res = prev
-            break
-        if not estimate:
-            break
-        if coarse is None:
-            coarse = _scene_solve(pb, Hoil, options, (n - 1) // 2 + 1, kw)
-        attach_estimate(res, starved_point_error(res, coarse), accuracy)
-        if (accuracy is None or res.success or explicit or res.status_name != "inaccurate"
-                or 2 * n - 1 > max_points):
-            break
-        coarse, prev, n = res, res, 2 * n - 1
+    starved = _StarvedPointControl(pb, Hoil, options, kw, accuracy, estimate, max_points)
+    out = control(starved, Resolution(n), accuracy, refine=estimate and not explicit,
+                  max_points=max_points)
+    res = out.result
+    if not out.converged and estimate:
+        # a failed solve still states what its estimate would be (the coarse grid's difference)
+        attach_estimate(res, starved_point_error(res, starved.coarse_of(n)), accuracy)
+    elif out.converged and out.why:
+        res.message += f"; not refined further: {out.why}"
+        res.extra["not_refined_because"] = out.why
+        res.actions.append(f"not refined further: {out.why}")
     scale = pb.a**2 / pb.Rx
     fl = res.extra["fluxes"]
     Hoil_c = Hoil(0.0) if callable(Hoil) else Hoil  # the centre's layer

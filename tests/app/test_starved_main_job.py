@@ -28,9 +28,8 @@ def test_run_on_a_starved_scene_whose_film_solve_fails_exits_3_and_reports_no_fi
     real_once, real_scene = starved_point._solve_once, starved_pkg.solve_starved_point_scene
     monkeypatch.setattr(starved_point, "_solve_once",
                         lambda pb, h, opt, rule, exact=False, guess=None: real_once(pb, h, opt, rule, False, guess))
-    monkeypatch.setattr(starved_point, "EXACT_RULES", ())
     monkeypatch.setattr(starved_pkg, "solve_starved_point_scene",
-                        lambda scene, **kw: real_scene(scene, **{**kw, "points": 129}))
+                        lambda scene, **kw: real_scene(scene, **{**kw, "points": 129, "exact_rules": ()}))
     scene = str(report_scene("ball", tmp_path, "ball_starved", 2e-8))
     rc = main(["run", scene, "--no-plots", "--json", "--out", str(tmp_path / "o")])
     out = json.loads(capsys.readouterr().out)

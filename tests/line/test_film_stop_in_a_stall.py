@@ -4,7 +4,7 @@ Dowson-Higginson (M, L) = (500, 20) at 16385 points, ``accuracy=0.0025`` (the fi
 solve): V cycles alone stop after 4 cycles, residual 2.6e-5 (tol 1e-5), with Hm 1 % above the
 discrete solution and a stated algebraic error of 8e-5. An early stop (residual above its
 tolerance) of a V- or F-cycle solve is therefore confirmed by one W cycle
-(``driver.CONFIRM_EARLY_STOP``).
+(``confirm_early_stop``, an option of every multilevel solve).
 
 The stall came from the outlet pressure drop, where the line relaxation's frozen ``eps`` cannot
 settle; the local Newton solve there (``LineOptions.local_newton``, the default since) removes
@@ -13,7 +13,6 @@ tested against the same discrete solution."""
 
 import pytest
 
-import ehl_multigrid.multigrid.driver as driver
 from ehl_multigrid.line import solve_line
 
 CASE = dict(M=500.0, L=20.0, points=16385, local_newton=None)
@@ -24,13 +23,12 @@ def deep():
     return solve_line(**CASE, estimate=False, tol=1e-8, tol_load=1e-9, max_cycles=200)
 
 
-def _film_stopped():
-    return solve_line(**CASE, accuracy=0.0025, raise_on_failure=False)
+def _film_stopped(**kw):
+    return solve_line(**CASE, accuracy=0.0025, raise_on_failure=False, **kw)
 
 
-def test_v_cycle_film_stop_without_confirmation_is_one_percent_off(deep, monkeypatch):
-    monkeypatch.setattr(driver, "CONFIRM_EARLY_STOP", False)
-    r = _film_stopped()
+def test_v_cycle_film_stop_without_confirmation_is_one_percent_off(deep):
+    r = _film_stopped(confirm_early_stop=False)
     assert abs(r.scalars["Hm"] / deep.scalars["Hm"] - 1.0) > 5e-3
 
 

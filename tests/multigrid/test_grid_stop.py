@@ -4,7 +4,6 @@ once further cycles would change the films by less than a fraction of their grid
 
 import pytest
 
-import ehl_multigrid.multigrid.driver as driver
 from ehl_multigrid.line import solve_line
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.multigrid.accuracy import estimate_error
@@ -21,10 +20,8 @@ def line_pair():
     # confirming W cycle of an early stop (tested with it below). Without the local Newton
     # solve (LineOptions.local_newton), which converges this case by the residual rule in 4
     # cycles, 24.6 WU: the rule needs a solve that takes several cycles
-    kw = dict(points=4097, estimate=False, local_newton=None)
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(driver, "CONFIRM_EARLY_STOP", False)
-        return solve_line(500.0, 0.0, **kw), solve_line(500.0, 0.0, grid_stop=None, **kw)
+    kw = dict(points=4097, estimate=False, local_newton=None, confirm_early_stop=False)
+    return solve_line(500.0, 0.0, **kw), solve_line(500.0, 0.0, grid_stop=None, **kw)
 
 
 def test_early_stop_of_a_v_cycle_solve_is_confirmed_by_a_w_cycle(line_pair):

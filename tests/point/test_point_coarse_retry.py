@@ -1,5 +1,5 @@
 """A point solve whose FMG start diverges on the automatic coarse grid is solved again from a
-coarser one (``RETRY_COARSER_START``): the 6205 inner-race contact (M 3620, b/a 9.4)
+coarser one (``retry_coarser_start``): the 6205 inner-race contact (M 3620, b/a 9.4)
 converges from 64 coarse intervals and diverges from 128, the count the coarse-grid rule gives
 on a box twice as long (the domain probe's wide solve)."""
 
@@ -22,7 +22,7 @@ def test_diverged_fmg_start_is_solved_again_from_a_coarser_grid(bearing, monkeyp
     monkeypatch.setattr(fas, "coarse_intervals", lambda *a, **k: min(2 * rule(*a, **k), a[2] - 1))
     sol = solve_fas(bearing, points=513, half=True, tol_load=1e-4, raise_on_failure=False)
     assert sol.status_name == "converged"
-    assert any("64 coarse intervals instead of 128 (RETRY_COARSER_START)" in a for a in sol.actions)
+    assert any("64 coarse intervals instead of 128 (retry_coarser_start)" in a for a in sol.actions)
     assert sol.levels == 4
     # the same discrete problem as a solve started from 64 intervals directly
     ref = solve_fas(bearing, points=513, half=True, tol_load=1e-4, n_coarse=64)
@@ -32,4 +32,4 @@ def test_diverged_fmg_start_is_solved_again_from_a_coarser_grid(bearing, monkeyp
 def test_explicit_coarse_grid_is_not_changed(bearing):
     sol = solve_fas(bearing, points=513, half=True, tol_load=1e-4, n_coarse=128, raise_on_failure=False)
     assert sol.status_name == "diverged"
-    assert not any("RETRY_COARSER_START" in a for a in sol.actions)
+    assert not any("retry_coarser_start" in a for a in sol.actions)

@@ -1,5 +1,5 @@
 """A contact narrower than long whose FMG start diverges on the automatic coarse grid is
-solved again from four times as many coarse intervals (``RETRY_FINER_START``), and a narrow
+solved again from four times as many coarse intervals (``retry_finer_start``), and a narrow
 contact at high M that the grid cannot resolve says how many points it needs
 (``min_points(..., cap=None)``, thesis-independent measurements in point/problem.py). Both
 on square cells (``y_ratio`` given); the default cells, stretched with the ellipse, converge
@@ -7,7 +7,6 @@ the same contact on the same X points."""
 
 import pytest
 
-import ehl_multigrid.point.solve as solve_mod
 from ehl_multigrid.point.problem import NARROW_BELOW, min_points, problem_from_moes
 from ehl_multigrid.point.solve import solve_fas
 
@@ -32,14 +31,12 @@ def test_narrow_contact_rule_asks_for_more_points_than_the_cap(narrow):
 SQUARE = 0.25
 
 
-def test_diverged_narrow_contact_is_solved_again_from_a_finer_coarse_grid(narrow, monkeypatch):
-    monkeypatch.setattr(solve_mod, "RETRY_COARSER_START", False)
-    monkeypatch.setattr(solve_mod, "RETRY_FINER_START", False)
-    before = solve_fas(narrow, points=1025, half=True, y_ratio=SQUARE, raise_on_failure=False)
+def test_diverged_narrow_contact_is_solved_again_from_a_finer_coarse_grid(narrow):
+    kw = dict(points=1025, half=True, y_ratio=SQUARE, raise_on_failure=False, retry_coarser_start=False)
+    before = solve_fas(narrow, retry_finer_start=False, **kw)
     assert before.status_name == "diverged"
-    monkeypatch.setattr(solve_mod, "RETRY_FINER_START", True)
-    sol = solve_fas(narrow, points=1025, half=True, y_ratio=SQUARE, raise_on_failure=False)
-    assert any("256 coarse intervals instead of 64 (RETRY_FINER_START)" in a for a in sol.actions)
+    sol = solve_fas(narrow, **kw)
+    assert any("256 coarse intervals instead of 64 (retry_finer_start)" in a for a in sol.actions)
     # the iteration now converges, to a film the grid cannot make positive: said, with the grid
     assert sol.status_name == "film_not_positive"
     assert "use points >= 4097" in sol.message
@@ -55,17 +52,14 @@ def test_narrow_contact_converges_on_cells_stretched_with_the_ellipse(narrow):
     assert sol.scalars["Hm"] > 0.0
 
 
-def test_diverged_solve_on_stretched_cells_is_solved_again_on_square_cells(monkeypatch):
+def test_diverged_solve_on_stretched_cells_is_solved_again_on_square_cells():
     # Barus (20, 20, theta 4): NaN from the first coarse cycles on stretched cells
     pb = problem_from_moes(20.0, 20.0, 4.0, viscosity="barus", density="incompressible")
-    monkeypatch.setattr(solve_mod, "RETRY_SQUARE_CELLS", False)
-    monkeypatch.setattr(solve_mod, "RETRY_FINER_START", False)
-    monkeypatch.setattr(solve_mod, "RETRY_COARSER_START", False)
-    before = solve_fas(pb, points=257, raise_on_failure=False)
+    no_start_retry = dict(retry_finer_start=False, retry_coarser_start=False)
+    before = solve_fas(pb, points=257, raise_on_failure=False, retry_square_cells=False, **no_start_retry)
     assert before.status_name == "diverged"
-    monkeypatch.setattr(solve_mod, "RETRY_SQUARE_CELLS", True)
-    sol = solve_fas(pb, points=257, raise_on_failure=False)
-    assert any("RETRY_SQUARE_CELLS" in a for a in sol.actions)
+    sol = solve_fas(pb, points=257, raise_on_failure=False, **no_start_retry)
+    assert any("retry_square_cells" in a for a in sol.actions)
     assert sol.status_name == "converged"
     assert sol.extra["y_ratio"] == 0.5  # square cells for b/a = 0.40
     assert sol.extra["square_cells_fallback"] and not before.extra["square_cells_fallback"]

@@ -1,7 +1,7 @@
 """A point solve started on its finest grid from a converged solution of the same contact
 (another grid, or a box twice as wide) reaches the FMG solve's discrete answer, and the
 accuracy sequence answers a refinement whose own start fails by solving it again from the
-sequence's last converged solution (``RETRY_FROM_NEIGHBOUR``)."""
+sequence's last converged solution (``retry_from_neighbour``)."""
 
 from types import SimpleNamespace
 
@@ -104,7 +104,7 @@ def test_failed_refinement_is_solved_again_from_the_converged_neighbour(monkeypa
     res = solve_point(20.0, 10.0, accuracy=0.003, max_points=257, half=True, raise_on_failure=False)
     i = calls.index((257, -9.0, False, False))
     assert calls[i + 1] == (257, -9.0, True, False)  # the same grid and box, from the neighbour
-    assert any("RETRY_FROM_NEIGHBOUR" in a for a in res.actions)
+    assert any("retry_from_neighbour" in a for a in res.actions)
     assert res.X.shape[0] == 257
     solves = [r["points"] for r in res.extra["refinements"] if r["purpose"] == "solve"]
     assert solves == [129, 257]
@@ -120,10 +120,10 @@ def test_failed_refinement_is_solved_again_from_the_converged_neighbour(monkeypa
 
 def test_without_the_neighbour_retry_the_sequence_falls_back_to_the_smaller_step(monkeypatch):
     calls = _fail_first_257(monkeypatch)
-    monkeypatch.setattr(solve_mod, "RETRY_FROM_NEIGHBOUR", False)
-    res = solve_point(20.0, 10.0, accuracy=0.003, max_points=257, half=True, raise_on_failure=False)
+    res = solve_point(20.0, 10.0, accuracy=0.003, max_points=257, half=True, raise_on_failure=False,
+                      retry_from_neighbour=False)
     assert (257, -9.0, True, False) not in calls
-    assert not any("RETRY_FROM_NEIGHBOUR" in a for a in res.actions)
+    assert not any("retry_from_neighbour" in a for a in res.actions)
     steps = [(r["points"], r["box"]) for r in res.extra["refinements"] if r["purpose"] == "solve"]
     # the failed box step, then one grid finer on the default box (the sequence's safe step)
     assert steps == [(129, 1.0), (257, 2.0), (257, 1.0)]

@@ -32,15 +32,18 @@ def ball_on_flat(tmp_path, report_scene):
 
 @pytest.fixture
 def without_exact_zone_solve(monkeypatch):
-    """The starved point solver without its exact zone solve: on the issue's contact the cycles
-    then stop at the flooded film."""
-    real = starved_point._solve_once
+    """The starved point solver without its exact zone solve and with no other coarse-grid rule
+    for its re-solve (``exact_rules=()``, also under ``ehl solve``): on the issue's contact the
+    cycles then stop at the flooded film."""
+    real, real_solve = starved_point._solve_once, starved_point.solve_starved_point
 
     def no_exact(problem, hoil, opt, coarse_theta, exact=False, guess=None):
         return real(problem, hoil, opt, coarse_theta, False, guess)
 
     monkeypatch.setattr(starved_point, "_solve_once", no_exact)
-    monkeypatch.setattr(starved_point, "EXACT_RULES", ())
+    monkeypatch.setattr(starved_point, "solve_starved_point",
+                        lambda problem, hoil, options=None, *a, **kw:
+                        real_solve(problem, hoil, options, *a, **{"exact_rules": (), **kw}))
 
 
 def test_the_ball_on_flat_of_issue_41_converges_to_a_starved_film_not_the_flooded_one(ball_on_flat):
