@@ -43,7 +43,8 @@ def deep_solve(c: dict, r: dict, box: float):
     if c["contact"] == "line":
         return solve_line(c["M"], c["L"], points=r["points"], estimate=False, tol=1e-7, tol_load=1e-8,
                           max_cycles=200, raise_on_failure=False, **model)
-    cells = {"y_ratio": 1.0} if any("RETRY_SQUARE_CELLS" in a for a in r.get("actions", [])) else {}
+    cells = {"y_ratio": 1.0} if any(t in a for a in r.get("actions", [])
+                                             for t in ("RETRY_SQUARE_CELLS", "retry_square_cells")) else {}
     return solve_point(c["M"], c["L"], theta=c["theta"], points=r["points"], estimate=False, tol=1e-7,
                        tol_load=1e-6, max_cycles=100, raise_on_failure=False, **model, **cells,
                        **box_of(c, box))

@@ -1,5 +1,5 @@
 """Where a point solve spends its wall time, grid by grid, on one and on two threads: the share
-that stays serial (grids below ``point.fas.SERIAL_BELOW`` run one thread by design) and the
+that stays serial (grids below ``PointOptions.serial_below`` run one thread by design) and the
 speed-up two threads can reach at most with it (Amdahl).
 
 Each run is a fresh process: a warm-up on 65 points and one on the measured grid (numba cache,
@@ -9,7 +9,7 @@ measurement) are timed per grid. An operation between two grids (restriction, co
 counts toward the finer one; the rest of the wall time (the driver's Python) is "driver".
 One and two threads alternate for ``--rounds`` rounds; medians are reported.
 
-The bound: if every grid at or above ``SERIAL_BELOW`` ran ``--ceiling`` times faster on two
+The bound: if every grid at or above ``serial_below`` ran ``--ceiling`` times faster on two
 threads (1.9: what a kernel with nothing serial gains on this machine, ``thread_ceiling.py``)
 and the rest as on one thread, the solve would gain ``1 / (s + (1 - s) / ceiling)``, where s
 is the serial share of the one-thread time (those grids plus the driver).
@@ -41,6 +41,7 @@ OPS = ("relax", "coarse_solve", "restrict", "correct", "fmg_interpolate", "measu
 
 def child(points: int, threads: int) -> dict:
     """One timed solve in this process, its wall time split by grid."""
+    from ehl_multigrid.multigrid.options import PointOptions
     from ehl_multigrid.point import fas, solve_point
 
     spent: dict[int, float] = collections.defaultdict(float)
@@ -73,7 +74,7 @@ def child(points: int, threads: int) -> dict:
     grids = {str(n): t for n, t in sorted(spent.items()) if n > 0}
     return {"points": points, "threads": threads, "wall_s": wall, "grid_s": grids,
             "driver_s": wall - sum(grids.values()), "work_units": res.work_units,
-            "Hc": res.Hc, "serial_below": fas.SERIAL_BELOW}
+            "Hc": res.Hc, "serial_below": PointOptions().serial_below}
 
 
 def run(points: int, threads: int) -> dict:
