@@ -36,7 +36,7 @@ from collections.abc import Callable, Collection, Mapping
 from dataclasses import fields, is_dataclass
 from typing import Any
 
-from .model.errors import ConvergenceError, InputError, require_range, require_slip
+from .model.errors import ConvergenceError, InputError, require_choice, require_range, require_slip
 from .model.scene import Scene, load_scene
 from .solution import (
     ErrorEstimate,
@@ -64,7 +64,12 @@ PHYSICS_GROUP = "ehl.physics"
 PART_NAMES = {"algebraic": "iteration"}
 #: options of a transient run besides the multigrid options of its time steps
 TRANSIENT_RUN_KEYS = ("dt", "steps", "t_end", "scheme", "snapshot_every", "accept_stall", "xmin",
-                      "xmax", "time_error")
+                      "xmax", "time_error", "checkpoint", "resume")
+#: options of a scene's steady or starved solve that choose the model rather than the numerics
+#: (the scene's ``[solver.ehl]`` table applies below them; a MoesProblem carries its own)
+MODEL_KEYS = ("viscosity", "density")
+#: the point solvers of the steady physics: FAS/FMG multigrid, and the Newton/pyamg cross-check
+POINT_SOLVERS = ("fas", "newton")
 #: option names the front door refuses, and why
 REFUSED = {"raise_on_failure": "the front door never raises for a numerical failure: the "
                                "solution says it failed (check solution.success and solution.status)"}
@@ -272,30 +277,72 @@ def _starved_details(scal: Mapping[str, Any]) -> StarvedDetails:
 
 
 # -- the physics -------------------------------------------------------------------------------------
+def _model_keys(options: Any, moes: MoesProblem | None) -> set[str]:
+    """The model options a solve accepts: :data:`MODEL_KEYS` for a scene; none for a
+    MoesProblem, whose laws are its own fields (InputError naming them when given)."""
+    if moes is None:
+        return set(MODEL_KEYS)
+    given = sorted(k for k in MODEL_KEYS if isinstance(options, Mapping) and k in options)
+    if given:
+        raise InputError(f"option{'s' if len(given) > 1 else ''} {given} with a MoesProblem: its laws are "
+                         f"its own fields (MoesProblem(..., viscosity='barus', density='incompressible'))")
+    return set()
+
+
 def _steady(scene: Scene | None, moes: MoesProblem | None, contact: str, accuracy: float | None,
-            options: Any, callback: Any, t0: float) -> Solution:
+            options: Any, callback: Any, progress: Any, t0: float) -> Solution:
     from .multigrid.options import LineOptions, PointOptions
 
     problem: dict[str, Any] = {"scene": scene}
     if moes is not None:
         problem = {"M": moes.M, "L": moes.L, "viscosity": moes.viscosity, "density": moes.density,
                    "alpha": moes.alpha, "eta0": moes.eta0, "p0": moes.p0}
+    model = _model_keys(options, moes)
     if contact == "line":
         from .line import solve_line as run
 
-        accepted = _field_names(LineOptions) | {"max_points", "time_budget", "xmin", "xmax", "elastic"}
+        accepted = _field_names(LineOptions) | {"max_points", "time_budget", "xmin", "xmax", "elastic"} | model
         dc, kw = solver_keywords(options, accepted, LineOptions, "the steady line solver")
     else:
         from .point import solve_point as run
 
         if moes is not None:
             problem["theta"] = moes.theta
-        accepted = _field_names(PointOptions) | {"max_points", "time_budget"}
+        solver = options.get("solver", "fas") if isinstance(options, Mapping) else "fas"
+        require_choice("solver", solver, POINT_SOLVERS)
+        if solver == "newton":
+            return _newton(run, problem, scene, contact, accuracy, options, callback, model, t0)
+        accepted = _field_names(PointOptions) | {"max_points", "time_budget", "solver"} | model
         dc, kw = solver_keywords(options, accepted, PointOptions, "the steady point solver")
+        kw.pop("solver", None)
     try:
         # (point: the symmetric half domain unless the options, keywords or the scene's
         # [solver.ehl] table say otherwise -- solve_point's default, as 'ehl run' solves)
-        res = run(**problem, options=dc, accuracy=accuracy, callback=callback, raise_on_failure=False, **kw)
+        res = run(**problem, options=dc, accuracy=accuracy, callback=callback, progress=progress,
+                  raise_on_failure=False, **kw)
+    except ConvergenceError as exc:
+        return failed_solution("steady", contact, exc, accuracy, t0, scene)
+    return ehl_solution(res, "steady", contact, accuracy, t0, scene)
+
+
+def _newton(run: Callable[..., Any], problem: dict[str, Any], scene: Scene | None, contact: str,
+            accuracy: float | None, options: Mapping[str, Any], callback: Any, model: set[str],
+            t0: float) -> Solution:
+    """The steady point contact on the Newton/pyamg cross-check path of
+    :func:`~ehl_multigrid.point.solve_point` (``options["solver"] == "newton"``): a fixed grid,
+    the full domain, no error estimate."""
+    from .point.newton import NewtonOptions
+
+    if accuracy is not None:
+        raise InputError(f"accuracy = {accuracy:g} with solver = 'newton': the Newton/pyamg cross-check "
+                         f"path estimates no error and refines nothing; give accuracy = None (judged on "
+                         f"its iteration alone) or the FAS solver (solver = 'fas', the default)")
+    accepted = _field_names(NewtonOptions) | {"solver"} | model
+    _, kw = solver_keywords(options, accepted, None, "the Newton/pyamg point solver")
+    kw.pop("solver")
+    warn_unused_callback(callback, "the Newton/pyamg point solver")
+    try:
+        res = run(**problem, solver="newton", raise_on_failure=False, **kw)
     except ConvergenceError as exc:
         return failed_solution("steady", contact, exc, accuracy, t0, scene)
     return ehl_solution(res, "steady", contact, accuracy, t0, scene)
@@ -308,13 +355,13 @@ def _starved(scene: Scene, contact: str, accuracy: float | None, options: Any, c
     if contact == "line":
         from .starved import solve_starved_scene as run
 
-        accepted = _field_names(LineOptions) | {"max_points", "xmin", "xmax", "elastic"}
+        accepted = _field_names(LineOptions) | {"max_points", "xmin", "xmax", "elastic"} | set(MODEL_KEYS)
         dc, kw = solver_keywords(options, accepted, LineOptions, "the starved line solver")
         warn_unused_callback(callback, "the starved line solver (meniscus search)")
     else:
         from .starved import solve_starved_point_scene as run
 
-        accepted = _field_names(PointOptions) | {"max_points", "flooded"}
+        accepted = _field_names(PointOptions) | {"max_points", "flooded"} | set(MODEL_KEYS)
         dc, kw = solver_keywords(options, accepted, PointOptions, "the starved point solver")
         warn_unused_callback(callback, "the starved point solver")
     try:
@@ -387,7 +434,9 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
         from .transient.accuracy import time_error
 
         try:
-            coarse = run(None, dt=2.0 * res.dt, steps=max(res.planned_steps // 2, 1), t_end=None)
+            # (a run of its own: it neither writes the run's checkpoint nor continues it)
+            coarse = run(None, dt=2.0 * res.dt, steps=max(res.planned_steps // 2, 1), t_end=None,
+                         checkpoint=None, resume=None)
             terr = time_error(res, coarse)
         except ConvergenceError as exc:
             notes.append(f"the run at twice the time step for the time error failed: {str(exc).splitlines()[0]}")
@@ -463,7 +512,8 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
 # -- the front door ----------------------------------------------------------------------------------
 def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | None = None,
           accuracy: float | None = 0.005, options: Mapping[str, Any] | Any = None,
-          callback: Callable[[dict[str, Any]], Any] | None = None) -> Solution:
+          callback: Callable[[dict[str, Any]], Any] | None = None,
+          progress: Callable[[str], None] | None = None) -> Solution:
     """Solve the film of a lubricated contact.
 
     Parameters
@@ -487,11 +537,21 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
         "time_budget": 30, "half": True}``), or the solver's own options object
         (:class:`~ehl_multigrid.multigrid.options.LineOptions`,
         :class:`~ehl_multigrid.multigrid.options.PointOptions`, thermal:
-        ``thermal.tehl.line.TEHLOptions``). An unknown key is refused, naming it and the
-        accepted ones (see docs/api.md for each physics).
+        ``thermal.tehl.line.TEHLOptions``). Besides the numerical options a scene's steady or
+        starved solve takes the model, ``viscosity`` and ``density`` (above the scene's
+        ``[solver.ehl]`` table; a MoesProblem carries its own), a steady point solve
+        ``solver="newton"`` (the Newton/pyamg cross-check path: a fixed grid, the
+        :class:`~ehl_multigrid.point.newton.NewtonOptions` fields, ``accuracy=None``), and a
+        transient run ``checkpoint`` and ``resume`` (:mod:`ehl_multigrid.transient.checkpoint`).
+        An unknown key is refused, naming it and the accepted ones (see docs/api.md for each
+        physics).
     callback : called with a small dict after every multilevel cycle (steady) or time step
         (transient); raising StopIteration in it stops a steady solve (status ``STOPPED``).
-        The starved and thermal solvers take none (a UserWarning says so).
+        The starved and thermal solvers and the Newton path take none (a UserWarning says so).
+    progress : called with one line of text per solve of a steady FAS solve's accuracy
+        sequence (grid, box, estimate, seconds), as ``ehl solve`` prints on stderr. Only the
+        steady FAS solvers report such lines: the starved, thermal and transient solvers and
+        the Newton path have none, and ``progress`` is then never called.
 
     Returns
     -------
@@ -512,10 +572,11 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     physics = decide_physics(physics, scene, moes)
     if accuracy is not None:
         require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
-    if callback is not None and not callable(callback):
-        raise InputError(f"callback = {callback!r} is not callable")
+    for name, fn in (("callback", callback), ("progress", progress)):
+        if fn is not None and not callable(fn):
+            raise InputError(f"{name} = {fn!r} is not callable")
     if physics == "steady":
-        return _steady(scene, moes, contact, accuracy, options, callback, t0)
+        return _steady(scene, moes, contact, accuracy, options, callback, progress, t0)
     if physics == "starved":
         return _starved(scene, contact, accuracy, options, callback, t0)
     if physics == "transient":

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import enum
 import math
+import numbers
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, fields, is_dataclass
 from types import MappingProxyType
@@ -429,10 +430,13 @@ class MoesProblem:
         if self.contact == "elliptic" and self.theta == 1.0:
             raise InputError("theta = 1 with contact = 'elliptic' is a circular contact: give "
                              "contact = 'point', or theta in [0.01, 100] other than 1")
-        for name in ("M", "L"):
-            require_range(name, getattr(self, name), 0.0, math.inf, "-", hi_open=True)
-        # the solver problem checks every value against its own ranges (a lazy import: the
-        # solvers' modules load numba)
+        for name, what in (("M", "load"), ("L", "lubricant")):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, numbers.Real):
+                raise InputError(f"{name} = {value!r} is not a number (the Moes {what} parameter)")
+        # the solver problem checks every value against its own ranges, which differ by contact
+        # (line M in [0.1, 20000], point M in (0, 1e6]: the message names the contact's); a lazy
+        # import: the solvers' modules load numba
         self.solver_problem()
 
     @property

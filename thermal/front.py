@@ -13,11 +13,13 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import fields
 from typing import Any
 
 from ehl_multigrid.front import failed_solution, solver_keywords, warn_unused_callback
-from ehl_multigrid.model.errors import ConvergenceError
+from ehl_multigrid.model.errors import ConvergenceError, require_range
 from ehl_multigrid.model.scene import Scene
 from ehl_multigrid.solution import (
     ErrorEstimate,
@@ -34,7 +36,7 @@ from ehl_multigrid.solution import (
 
 #: keywords of :func:`~thermal.tehl.accuracy.solve_tehl_to_accuracy` accepted as options beside
 #: the :class:`~thermal.tehl.line.TEHLOptions` fields
-RUN_KEYS = ("slip", "max_points", "max_nz", "box_limit", "time_budget")
+RUN_KEYS = ("slip", "max_points", "max_nz", "box_limit", "time_budget", "threads")
 #: the estimate's part names -> the contract's
 PARTS = {"grid_x": "grid", "grid_z": "nz", "domain": "domain", "iteration": "iteration"}
 
@@ -50,11 +52,13 @@ def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
         outer iteration alone).
     options : a mapping of :class:`~thermal.tehl.line.TEHLOptions` fields (``points``, ``nz``,
         ``compressive_heating`` ...) and of ``slip``, ``max_points``, ``max_nz``, ``box_limit``,
-        ``time_budget`` [s] (the refinement's budgets); or a ``TEHLOptions``. As ``ehl solve
-        --thermal``: the grid starts at 513 points (line) or 257 (point), nz 20, and is refined
-        towards the target unless ``points`` or ``nz`` is given (or a ``TEHLOptions``), which
-        are only judged.
-    callback : not called (the TEHL solve takes none; a UserWarning says so).
+        ``time_budget`` [s] (the refinement's budgets), ``threads`` (numba threads of the
+        solve, in [1, 1024]; the caller's setting is restored afterwards); or a
+        ``TEHLOptions``. As ``ehl solve --thermal``: the grid starts at 513 points (line) or
+        257 (point), nz 20, and is refined towards the target unless ``points`` or ``nz`` is
+        given (or a ``TEHLOptions``), which are only judged.
+    callback : not called (the TEHL solve takes none; a UserWarning says so). The TEHL solve
+        reports no progress lines either (the front door's ``progress`` is not passed here).
 
     Returns a :class:`~ehl_multigrid.solution.Solution` (``physics="thermal"``); a solve that
     fails returns ``success`` False with its status, never raises. InputError for bad input
@@ -75,11 +79,31 @@ def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
     else:
         refine = False
     slip = run.pop("slip", None)
+    threads = run.pop("threads", None)
+    if threads is not None:
+        require_range("threads", threads, 1, 1024, "threads")
     try:
-        done = solve_tehl_to_accuracy(scene, slip, dc, accuracy, refine=refine, **run)
+        with _threads(threads):
+            done = solve_tehl_to_accuracy(scene, slip, dc, accuracy, refine=refine, **run)
     except ConvergenceError as exc:
         return failed_solution("thermal", scene.kind, exc, accuracy, t0, scene)
     return thermal_solution(done, scene, accuracy, t0)
+
+
+@contextmanager
+def _threads(threads: int | None) -> Iterator[None]:
+    """numba's thread count for the solve (None: the caller's), restored afterwards: it is
+    process state, and the TEHL options carry none."""
+    if threads is None:
+        yield
+        return
+    import numba
+
+    from ehl_multigrid.multigrid.threads import preserved_threads, resolve_threads
+
+    with preserved_threads():
+        numba.set_num_threads(resolve_threads(threads))
+        yield
 
 
 def thermal_solution(done: Any, scene: Scene, accuracy: float | None, t0: float) -> Solution:

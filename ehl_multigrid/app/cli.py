@@ -383,6 +383,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     quietly: stdout is pointed at the null device, so that nothing is written (nor complained
     about) at exit, and the exit code is 141, as for a process ended by SIGPIPE.
     """
+    from ..multigrid.threads import passive_openmp_wait
+
+    # before any solver loads the OpenMP runtime (which reads the policy once): idle threads
+    # sleep instead of taking the time slice of the one doing the work
+    passive_openmp_wait()
     try:
         code = _main(argv)
         sys.stdout.flush()

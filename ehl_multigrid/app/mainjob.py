@@ -1,8 +1,9 @@
 """``ehl run``: the main job on a scene, planned and end to end.
 
 1. :func:`~ehl_multigrid.app.plan.make_plan` decides what the scene needs (with the numbers why).
-2. The core *film* stage computes the pressure and film field: the multigrid solver when the plan
-   asks for it (grid from the fidelity), otherwise Hertz pressure with the fitted film.
+2. The core *film* stage computes the pressure and film field: the multigrid solver through the
+   front door :func:`ehl_multigrid.solve` when the plan asks for it (accuracy from the
+   fidelity), otherwise Hertz pressure with the fitted film.
 3. Stages that the layers above register in the ``ehl.stages`` entry-point group run next, in
    the order of their ``order`` attribute (thermal traction curve, Stribeck curve, ...). A stage
    is a callable ``stage(ctx: RunContext) -> StageOutput | None`` (:mod:`ehl_multigrid.app.stages`);
@@ -47,8 +48,10 @@ from ..model.output_folder import output_lock, staging_dir
 from ..model.paths import safe_stem, writable_dir
 from ..model.results import Result, save_results
 from ..model.scene import Scene
+from ..solution import Status
 from .console import Progress, print_table, report_leftovers
 from .plan import make_plan, print_plan
+from .solved import package_result, require_computed
 from .stages import RunContext, StageOutput
 
 __all__ = ["MainJobOptions", "RunContext", "StageOutput", "film_stage", "hertz_result",
@@ -153,52 +156,45 @@ def film_stage(ctx: RunContext) -> StageOutput:
             budget_note = (f"The time budget ({ctx.time_budget:g} s) is not applied: the starved solver "
                            "refines its grid only.")
             plan.notes.append(budget_note)
-        if contact == "line" and math.isfinite(scene.supply.hoil):
+        from .. import front
+
+        if math.isfinite(scene.supply.hoil):
             # a finite inlet oil layer: the mass-conserving starved solver finds the meniscus
-            from ..starved import solve_starved_scene
-
-            sol = solve_starved_scene(scene, accuracy=plan.tolerance, raise_on_failure=False)
-        elif math.isfinite(scene.supply.hoil):
-            from ..starved import solve_starved_point_scene
-
-            sol = solve_starved_point_scene(scene, accuracy=plan.tolerance, raise_on_failure=False)
-        elif contact == "line":
-            from ..line import solve_line
-
-            sol = solve_line(scene=scene, accuracy=plan.tolerance, raise_on_failure=False, **budget)
+            fsol = front.solve(scene, physics="starved", accuracy=plan.tolerance)
         else:
-            from ..point import solve_point
-
             # smooth point and elliptic contacts are symmetric in Y: the half domain gives the same
             # films (tested to 1e-5, measured 4e-8) in about half the time
-            sol = solve_point(scene=scene, accuracy=plan.tolerance, half=True, **budget)
+            fsol = front.solve(scene, physics="steady", accuracy=plan.tolerance,
+                               options={**budget, **({"half": True} if contact == "point" else {})} or None)
+        sol = require_computed(fsol)  # the solver's result: what the payload and the figures read
         # a solve that ended without fields (a starved line supply below the meniscus search's
         # reach, a failed search) has nothing to build: a failed film like any other
-        res = sol.to_result(scene) if sol.builder is not None else None
+        res = package_result(fsol) if sol.builder is not None else None
         scalars = res.scalars if res is not None else sol.scalars
         points = scalars.get("points")
-        usable = sol.status_name in ("converged", "inaccurate")
+        label = fsol.status.label
+        usable = fsol.status in (Status.CONVERGED, Status.INACCURATE)
         if res is None or not usable or not (scalars.get("hm") or 0.0) > 0.0:
             # an unconverged or non-positive film must not feed the later stages, and it is not a
             # success: the stage says it failed (converged false: exit 3) and its film is an
             # estimate labelled as such (for a starved scene never the flooded fit)
-            status = "film_not_positive" if usable else sol.status_name
-            why = (sol.message or "no message").splitlines()[0]
+            status = "film_not_positive" if usable else label
+            why = (fsol.message or "no message").splitlines()[0]
             hm = scalars.get("hm")
             note = (f"multigrid solve{f' on {points} points' if points else ''} did not give a converged "
-                    f"positive film ({sol.status_name}: {why}{'' if hm is None else f'; hm = {hm:.3g} m'})")
+                    f"positive film ({label}: {why}{'' if hm is None else f'; hm = {hm:.3g} m'})")
             plan.notes.append(note + "; the film is an estimate, not a solved film")
             out = _fit_film_output(ctx, failure=note)
             out.summary.update(converged=False, status=status, message=note, solver_fallback=True)
             return out
-        if sol.status_name == "inaccurate":
+        if fsol.status is Status.INACCURATE:
             # still far closer than the fit (whose deviation made the planner call the solver):
             # used, with its estimated error stated
             plan.notes.append(f"film solve did not reach the {plan.tolerance:g} target: estimated "
                               f"errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g}")
         summary = {k: res.scalars.get(k) for k in ("Hc", "Hm", "hc", "hm", "p_spike", "load_error", "points",
                                                      "converged", "Hc_error", "Hm_error")}
-        summary["status"], summary["message"] = sol.status_name, sol.message
+        summary["status"], summary["message"] = label, fsol.message
         summary["Hc_fit"], summary["hc_fit"] = scene.central_film_fit()
         starved = "meniscus_x" in sol.scalars
         if starved:
@@ -207,10 +203,10 @@ def film_stage(ctx: RunContext) -> StageOutput:
         text = (f"Film from the multigrid solver on {points} points per direction: hc = {res.scalars['hc'] * 1e9:.4g} nm, "
                 f"hm = {res.scalars['hm'] * 1e9:.4g} nm (fit: hc = {summary['hc_fit'] * 1e9:.4g} nm); "
                 f"estimated errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g} (target {plan.tolerance:g}); "
-                f"load error {res.scalars['load_error']:.2g}, status: {sol.status_name}.")
+                f"load error {res.scalars['load_error']:.2g}, status: {label}.")
         if budget_note:
             text += " " + budget_note
-        why = sol.extra.get("not_refined_because") if sol.status_name == "inaccurate" else None
+        why = sol.extra.get("not_refined_because") if fsol.status is Status.INACCURATE else None
         if why:
             text += f" Not refined further: {why}."
             summary["not_refined_because"] = why

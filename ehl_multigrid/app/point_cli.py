@@ -5,7 +5,7 @@ files are written into a staging folder and moved into place together, so a stop
 plotting keeps the result (not the figures of the interrupted plotting call) and nothing
 partial reaches the folder.
 Progress (each solve of the accuracy sequence, and the solver's cycles at most every few
-seconds) goes to stderr."""
+seconds) goes to stderr. The film is solved by the front door :func:`ehl_multigrid.solve`."""
 
 from __future__ import annotations
 
@@ -14,6 +14,7 @@ import math
 from dataclasses import fields
 from pathlib import Path
 
+from .. import front
 from ..model.atomic import fault_point
 from ..model.errors import InputError, require_solution
 from ..model.output_folder import StagedOutputs, output_lock
@@ -22,8 +23,9 @@ from ..multigrid.options import PointOptions
 from ..point.newton import NewtonOptions
 from ..point.postprocess import summary_payload
 from ..point.problem import problem_from_moes, problem_from_scene
-from ..point.solve import solve_point
+from ..solution import MoesProblem
 from .console import Progress, report_leftovers
+from .solved import package_result, require_computed
 
 DEFAULT_POINTS = 257
 
@@ -162,16 +164,27 @@ def _run_solve(args: argparse.Namespace, scene, out: Path, prog: Progress) -> di
         print(f"# {pb.viscosity} viscosity, {pb.density} density; {opt.points} points along X, "
               f"{how}, deformation {opt.deformation}{', half domain' if opt.half else ''}"
               f"{', rigid surfaces' if rigid else ''}")
-    kw = (vars(opt) if solver == "newton" else
-          {**fas_kw, "progress": prog.say, "callback": prog.solver_callback})
     if scene is None:
-        sol = solve_point(pb.M, pb.L, theta=pb.theta, viscosity=pb.viscosity, density=pb.density,
-                          alpha=pb.alpha, eta0=pb.eta0, p0=pb.p_r, solver=solver, rigid=rigid, **kw)
+        # a circular contact given as elliptic with theta = 1 is solved as the point contact it is
+        problem = MoesProblem("point" if pb.theta == 1.0 else "elliptic", pb.M, pb.L, theta=pb.theta,
+                              viscosity=pb.viscosity, density=pb.density, alpha=pb.alpha, eta0=pb.eta0,
+                              p0=pb.p_r)
+        model = {}
     else:
-        sol = solve_point(scene=scene, viscosity=pb.viscosity, density=pb.density, solver=solver,
-                          rigid=rigid, **kw)
-    require_solution(sol, "point solver")
-    res = sol.to_result(scene)
+        problem, model = scene, {"viscosity": pb.viscosity, "density": pb.density}
+    if solver == "newton":
+        # the cross-check path has no accuracy control: judged on its iteration alone
+        newton = {k: v for k, v in vars(opt).items() if k != "raise_on_failure"}
+        sol = front.solve(problem, physics="steady", accuracy=None, options={"solver": "newton", **newton, **model})
+    else:
+        fas = {k: v for k, v in fas_kw.items() if k != "accuracy"}
+        if rigid:
+            fas["elastic"] = False
+        sol = front.solve(problem, physics="steady", accuracy=fas_kw["accuracy"], options={**fas, **model},
+                          callback=prog.solver_callback, progress=prog.say)
+    raw = require_computed(sol)
+    require_solution(raw, "point solver")
+    res = package_result(sol)
     name = scene.name if scene is not None else f"point_M{pb.M:g}_L{pb.L:g}_th{pb.theta:g}"
     stem = safe_stem(name)  # a scene name is a label: never a path out of --out
     payload = summary_payload(res)
@@ -192,7 +205,7 @@ def run_starved(args: argparse.Namespace, scene, pb, fas_kw: dict, rigid: bool, 
     """``ehl solve`` on a point scene with a finite ``[supply] hoil``: the starved
     (mass-conserving) point solver, its error estimate, the flooded film of the same
     discretisation; writes ``<out>/<name>.h5`` (with ``theta``) and PNGs."""
-    from ..starved.point import solve_starved_point_scene, starved_point_payload
+    from ..starved.point import starved_point_payload
 
     if fas_kw.get("time_budget") is not None:
         raise InputError("--time-budget applies to flooded contacts: the starved point solver "
@@ -206,9 +219,10 @@ def run_starved(args: argparse.Namespace, scene, pb, fas_kw: dict, rigid: bool, 
         print(f"# scene {scene.name}: M = {pb.M:.5g}, L = {pb.L:.5g}, theta = {pb.theta:.4g}, "
               f"pmax = {pb.pmax:.4g} Pa, a = {pb.a:.4g} m; starved inlet: oil layer "
               f"{scene.supply.hoil:.4g} m (mass-conserving Elrod-Adams solver)")
-    sol = solve_starved_point_scene(scene, viscosity=pb.viscosity, density=pb.density,
-                                    accuracy=fas_kw.get("accuracy"), raise_on_failure=False, **kw)
-    res = sol.to_result(scene)
+    fsol = front.solve(scene, physics="starved", accuracy=fas_kw.get("accuracy"),
+                       options={**kw, "viscosity": pb.viscosity, "density": pb.density})
+    sol = require_computed(fsol)
+    res = package_result(fsol)
     out = Path(getattr(args, "out", "ehl_out")) if out is None else out
     stem = safe_stem(scene.name)  # a scene name is a label: never a path out of --out
     payload = starved_point_payload(sol, res)

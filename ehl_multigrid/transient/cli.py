@@ -4,7 +4,9 @@ through the line, point or elliptic contact of the scene (time-dependent isother
 Every completed step is kept: the HDF5 is written as a checkpoint while the run goes on, and
 when a step fails (exit 3) or the run is stopped (Ctrl-C 130, SIGTERM 143) the steps computed
 so far are written, marked ``complete = False`` with the reason; ``--resume`` continues an
-incomplete file. Registered through the ``ehl.commands`` entry point (``register``)."""
+incomplete file. The run goes through the front door :func:`ehl_multigrid.solve`
+(``physics="transient"``, with the checkpoint and the resumed state as options). Registered
+through the ``ehl.commands`` entry point (``register``)."""
 
 from __future__ import annotations
 
@@ -79,19 +81,16 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
         return run_transient_point(args, scene, every)
     from ..line.problem import LineProblem
     from .scene_feature import feature_from_scene_table
-    from .solve import solve_transient_line
 
     args.points = DEFAULT_POINTS["line"] if args.points is None else args.points
+    # the feature, its body and the scales of the report (the front door builds the same run)
     pb = LineProblem.from_scene(scene, xmin=args.xmin)
     feature, body = feature_from_scene_table(scene.feature, pb)
     scale = pb.b**2 / pb.R
     notes = supply_notes(scene, feature, scale)
 
     def solve(checkpoint: Checkpoint, resume: dict[str, Any] | None) -> Any:
-        return solve_transient_line(pb, feature, body=body, slide_roll=scene.slip, dt=args.dt,
-                                    steps=args.steps, t_end=args.t_end, points=args.points,
-                                    scheme=args.scheme, snapshot_every=args.snapshot_every,
-                                    checkpoint=checkpoint, resume=resume)
+        return _front_door(scene, args, args.points, checkpoint, resume)
 
     def figures() -> tuple[Callable, Callable, Callable]:
         from .plots import animate, plot_series, plot_snapshots
@@ -105,7 +104,6 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
 def run_transient_point(args: argparse.Namespace, scene: Any, every: float = EVERY_S) -> dict[str, Any]:
     """The point or elliptic contact of ``ehl transient``."""
     from ..point.problem import problem_from_scene, resolve_domain
-    from .point_solve import solve_transient_point
     from .scene_feature import point_feature_from_scene_table
 
     points = DEFAULT_POINTS["point"] if args.points is None else args.points
@@ -119,11 +117,7 @@ def run_transient_point(args: argparse.Namespace, scene: Any, every: float = EVE
     notes = supply_notes(scene, feature, scale)
 
     def solve(checkpoint: Checkpoint, resume: dict[str, Any] | None) -> Any:
-        return solve_transient_point(pb, feature, body=body, slide_roll=scene.slip, dt=args.dt,
-                                     steps=args.steps, t_end=args.t_end, points=points,
-                                     xmin=args.xmin, scheme=args.scheme,
-                                     snapshot_every=args.snapshot_every, checkpoint=checkpoint,
-                                     resume=resume)
+        return _front_door(scene, args, points, checkpoint, resume)
 
     def figures() -> tuple[Callable, Callable, Callable]:
         from .point_plots import animate_point, plot_point_series, plot_point_snapshots
@@ -132,6 +126,28 @@ def run_transient_point(args: argparse.Namespace, scene: Any, every: float = EVE
 
     return _run(args, scene, points, every, notes, warnings, solve, feature, body, scale, pb.pmax,
                 scene.kind, figures)
+
+
+def _front_door(scene: Any, args: argparse.Namespace, points: int, checkpoint: Checkpoint,
+                resume: dict[str, Any] | None) -> Any:
+    """The run through the front door :func:`ehl_multigrid.solve` (``physics="transient"``,
+    judged on its steps alone: the solver has no accuracy control), writing ``checkpoint`` and
+    continuing ``resume``."""
+    from .. import front
+
+    return front.solve(scene, physics="transient", accuracy=None, options={
+        "points": points, "dt": args.dt, "steps": args.steps, "t_end": args.t_end, "scheme": args.scheme,
+        "snapshot_every": args.snapshot_every, "xmin": args.xmin, "checkpoint": checkpoint,
+        "resume": resume})
+
+
+def _failure(sol: Any) -> str | None:
+    """The error of the step that ended the run of ``sol``, or None when the run completed or
+    stopped on its own (at a closed film: the reason is then ``stop_reason``)."""
+    res = sol.raw
+    if sol.success or (res is not None and sol.details is not None and sol.message == res.stop_reason):
+        return None
+    return sol.message
 
 
 def _require_points(points: int, most: int, where: str = "") -> None:
@@ -158,13 +174,7 @@ def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes:
         print(f"ehl transient: note: {text}", file=sys.stderr)
     checkpoint = Checkpoint(h5, every_s=every if every > 0 else math.inf, run=run)
     try:
-        res = solve(checkpoint, resume)
-    except ConvergenceError as exc:
-        res = getattr(exc, "partial", None)
-        if res is None or not checkpoint.writes:
-            raise
-        return _report(args, scene, res, feature, body, scale, pmax, contact, figures, out, stem,
-                       h5, notes, warnings, failure=str(exc))
+        sol = solve(checkpoint, resume)
     except BaseException as raised:
         # a signal inside a compiled kernel surfaces as a SystemError caused by it
         exc = signal_cause(raised)
@@ -179,6 +189,13 @@ def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes:
         if exc is raised:
             raise
         raise exc from None
+    # a failed step comes back from the front door with the steps before it (``raw``)
+    res, failure = sol.raw, _failure(sol)
+    if failure is not None:
+        if res is None or not checkpoint.writes:
+            raise ConvergenceError(failure)
+        return _report(args, scene, res, feature, body, scale, pmax, contact, figures, out, stem,
+                       h5, notes, warnings, failure=failure)
     res.run = run
     return _report(args, scene, res, feature, body, scale, pmax, contact, figures, out, stem, h5,
                    notes, warnings)

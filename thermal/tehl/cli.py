@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from ehl_multigrid.app.console import print_table
-from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.errors import ConvergenceError, InputError
 from ehl_multigrid.model.scene import Scene, load_scene
 
 from ..slips import parse_slips
@@ -27,6 +27,14 @@ def solve_payload(r: Any) -> dict[str, Any]:
     out = r.summary()
     out["outer"] = [{k: v for k, v in o.items()} for o in r.outer]
     return out
+
+
+def require_computed(sol: Any) -> Any:
+    """The solver's own result of the front door's ``sol``; a :class:`ConvergenceError` with its
+    message (exit 3, naming why) when the solve raised and nothing was computed."""
+    if sol.raw is None:
+        raise ConvergenceError(sol.message)
+    return sol.raw
 
 
 def register(subparsers: Any) -> None:
@@ -94,12 +102,20 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
     opts = TEHLOptions(**changes, compressive_heating=getattr(args, "compressive_heating", True))
     slips = parse_slips(args.slip) if args.slip is not None else [scene.slip]
     if len(slips) == 1:
-        r = solve_tehl_line(scene, slips[0], opts)
-        payload = {"scene": scene.name, **solve_payload(r), **{"properties": thermal_properties(scene)}}
         if getattr(args, "estimate", True):
-            from .accuracy import estimate_error
+            # the front door's thermal physics on this fixed grid: the solve and its estimate
+            from ehl_multigrid import front
 
-            payload.update(estimate_error(r).payload())
+            sol = front.solve(scene, physics="thermal", accuracy=None,
+                              options={**changes, "compressive_heating": opts.compressive_heating,
+                                       "slip": slips[0]})
+            done = require_computed(sol)
+            r, estimate = done.result, done.estimate.payload()
+        else:
+            # (the front door always estimates the error: --no-estimate solves the film alone)
+            r, estimate = solve_tehl_line(scene, slips[0], opts), {}
+        payload = {"scene": scene.name, **solve_payload(r), **{"properties": thermal_properties(scene)}}
+        payload.update(estimate)
         if not args.json:  # with --json the ehl command prints the returned payload
             print_table({k: v for k, v in payload.items() if k not in ("outer", "properties")})
         return payload
@@ -159,15 +175,6 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
         from .point import require_flooded_point
 
         require_flooded_point(scene)
-    threads = getattr(args, "threads", None)
-    if threads is not None:
-        import numba
-
-        from ehl_multigrid.multigrid.threads import preserved_threads, resolve_threads
-
-        with preserved_threads():
-            numba.set_num_threads(resolve_threads(threads))
-            return _solve_mode(args, scene, point, slip)
     return _solve_mode(args, scene, point, slip)
 
 
@@ -180,16 +187,20 @@ solve_mode.honoured_options = frozenset({
 
 
 def _solve_mode(args: argparse.Namespace, scene: Scene, point: bool, slip: float | None) -> dict[str, Any]:
-    from .accuracy import solve_tehl_to_accuracy
-    from .line import TEHLOptions
+    from ehl_multigrid import front
 
-    given = {k: v for k in ("points", "nz") if (v := getattr(args, k, None)) is not None}
-    opts = TEHLOptions(points=given.get("points", 257 if point else 513), nz=given.get("nz", 20),
-                       compressive_heating=getattr(args, "compressive_heating", True))
+    # the front door's thermal physics (thermal.front.solve_thermal): from 513 points (line) or
+    # 257 (point) and nz 20, refined towards the accuracy unless --points or --nz is given
+    options: dict[str, Any] = {k: v for k in ("points", "nz") if (v := getattr(args, k, None)) is not None}
+    options["compressive_heating"] = getattr(args, "compressive_heating", True)
+    for key in ("max_points", "time_budget", "threads"):
+        if getattr(args, key, None) is not None:
+            options[key] = getattr(args, key)
+    if slip is not None:
+        options["slip"] = slip
     accuracy = getattr(args, "accuracy", None)
-    budget = {} if getattr(args, "time_budget", None) is None else {"time_budget": args.time_budget}
-    done = solve_tehl_to_accuracy(scene, slip, opts, accuracy, refine=not given,
-                                  max_points=getattr(args, "max_points", None), **budget)
+    sol = front.solve(scene, physics="thermal", accuracy=accuracy, options=options)
+    done = require_computed(sol)
     r = done.result
     payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),
                "outer": [dict(o) for o in r.outer], "properties": thermal_properties(scene),
@@ -211,11 +222,9 @@ def _solve_mode(args: argparse.Namespace, scene: Scene, point: bool, slip: float
 
         from ehl_multigrid.model.paths import output_file, safe_stem
 
-        from .results import tehl_line_result, tehl_point_result
-
         folder = Path(out)
         folder.mkdir(parents=True, exist_ok=True)
-        res = tehl_point_result(r) if point else tehl_line_result(r)
+        res = sol.to_result()
         payload["hdf5"] = str(res.save(output_file(folder, safe_stem(f"{scene.name}_tehl"), ".h5")))
         if not getattr(args, "no_plots", False):
             from .plots import plot_tehl

@@ -1,0 +1,31 @@
+"""What the ``ehl`` commands read from the front door's answer.
+
+Every ``ehl`` subcommand that solves a film calls :func:`ehl_multigrid.solve` and reads the
+:class:`~ehl_multigrid.solution.Solution` it returns. The front door never raises for a
+numerical failure; the command line keeps its exit codes by turning a solve that computed
+nothing back into a :class:`~ehl_multigrid.model.errors.ConvergenceError` (exit 3, naming why)
+and by writing what a failed solve computed, marked with its status.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..model.errors import ConvergenceError
+
+
+def require_computed(sol: Any) -> Any:
+    """The solver's own result of ``sol`` (``sol.raw``); a :class:`ConvergenceError` with the
+    solution's message when the solver raised and nothing was computed (``raw`` is None)."""
+    if sol.raw is None:
+        raise ConvergenceError(sol.message)
+    return sol.raw
+
+
+def package_result(sol: Any) -> Any:
+    """The HDF5 :class:`~ehl_multigrid.model.results.Result` of ``sol`` to write:
+    ``sol.to_result()``, or for a solve whose iterate the contract leaves out (a diverged or
+    failed start) the solver's result as it is, whose status and message say it failed."""
+    if sol.fields:  # a film: the contract's own view
+        return sol.to_result()
+    return sol.raw.to_result(sol.scene)

@@ -1,0 +1,112 @@
+"""Every ``ehl`` subcommand that solves a film calls the front door ``ehl_multigrid.solve``
+(issue 42) and keeps its exit code when the front door returns a failure: a solve that
+computed nothing exits 3 naming why. The front door is replaced by one that records the call
+and fails, so no film is solved here."""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+
+import ehl_multigrid.front as front
+from ehl_multigrid.app.cli import main
+from ehl_multigrid.model.errors import ConvergenceError
+from ehl_multigrid.model.scene import Scene, load_scene
+from ehl_multigrid.solution import MoesProblem
+
+MARK = "no film from the recording front door (marker 7731)"
+
+
+@pytest.fixture
+def calls(monkeypatch):
+    """The calls of the front door, which returns a failed solution without computing anything."""
+    seen: list[dict] = []
+
+    def recording(problem, *, physics=None, accuracy=0.005, options=None, callback=None, progress=None):
+        seen.append({"problem": problem, "physics": physics, "accuracy": accuracy,
+                     "options": dict(options or {}), "callback": callback, "progress": progress})
+        contact = problem.contact if isinstance(problem, MoesProblem) else (
+            problem.kind if isinstance(problem, Scene) else load_scene(problem).kind)
+        return front.failed_solution(physics or "steady", contact, ConvergenceError(MARK), accuracy,
+                                     time.perf_counter(), problem if isinstance(problem, Scene) else None)
+
+    monkeypatch.setattr(front, "solve", recording)
+    return seen
+
+
+def _scene_file(folder, base, name, **tables):
+    d = load_scene(base).to_dict()
+    d.update(tables, name=name)
+    path = folder / f"{name}.toml"
+    path.write_text(Scene.from_dict(d).to_toml())
+    return str(path)
+
+
+def _dent_scene(folder):
+    from ehl_multigrid.line.problem import LineProblem
+
+    pb = LineProblem.from_scene(load_scene("page63_line_2000N"), xmin=-4.5)
+    feature = {"kind": "dent", "amplitude": 0.5 * 0.0084 * pb.b**2 / pb.R, "width": 0.5 * pb.b, "x0": -3.0}
+    return _scene_file(folder, "page63_line_2000N", "dent", feature=feature)
+
+
+CASES = {
+    "solve-moes-line": (lambda d: ["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "129"],
+                        "steady"),
+    "solve-point-scene": (lambda d: ["solve", "appendix_d_point", "--points", "65", "--accuracy", "none"], "steady"),
+    "solve-newton": (lambda d: ["solve", "--contact", "point", "--M", "20", "--L", "10", "--solver", "newton",
+                                "--points", "65"], "steady"),
+    "solve-starved-line": (lambda d: ["solve", _scene_file(d, "roller_bearing_inner_race", "sl",
+                                                           supply={"hoil": "0.15 um"})], "starved"),
+    "solve-starved-point": (lambda d: ["solve", _scene_file(d, "appendix_d_point", "sp", supply={"hoil": 5e-8}),
+                                       "--points", "65"], "starved"),
+    "solve-thermal": (lambda d: ["solve", "page63_line_2000N", "--thermal", "--points", "129", "--nz", "8"],
+                      "thermal"),
+    "tehl-one-slip": (lambda d: ["tehl", "page63_line_2000N", "--points", "129", "--nz", "8"], "thermal"),
+    "run-film-stage": (lambda d: ["run", "default"], "steady"),
+    "transient": (lambda d: ["transient", _dent_scene(d), "--points", "129", "--steps", "2"], "transient"),
+}
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_each_film_solving_subcommand_calls_the_front_door_and_exits_3_on_its_failure(case, calls, tmp_path,
+                                                                                       capsys):
+    make, physics = CASES[case]
+    argv = make(tmp_path)
+    if argv[0] != "tehl":  # ('ehl tehl' writes no file)
+        argv += ["--no-plots", "--out", str(tmp_path / "o")]
+    rc = main(argv)
+    err = capsys.readouterr().err
+    assert rc == 3, err
+    assert MARK in err  # the failure's own message, one line on stderr
+    assert [c["physics"] for c in calls] == [physics]
+
+
+def test_ehl_solve_hands_its_options_and_progress_to_the_front_door(calls, tmp_path, capsys):
+    main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "129", "--viscosity", "barus",
+          "--rigid", "--accuracy", "0.01", "--no-plots", "--out", str(tmp_path)])
+    (call,) = calls
+    assert call["problem"] == MoesProblem("line", 20.0, 10.0, viscosity="barus")
+    assert call["accuracy"] == 0.01
+    assert call["options"] == {"points": 129, "elastic": False}
+    assert callable(call["progress"]) and callable(call["callback"])
+
+
+def test_the_newton_path_is_judged_on_its_iteration_alone(calls, tmp_path, capsys):
+    main(["solve", "--contact", "point", "--M", "20", "--L", "10", "--solver", "newton", "--points", "65",
+          "--no-plots", "--out", str(tmp_path)])
+    (call,) = calls
+    assert call["accuracy"] is None and call["options"]["solver"] == "newton"
+    assert call["options"]["points"] == 65 and "raise_on_failure" not in call["options"]
+
+
+def test_ehl_transient_hands_its_checkpoint_to_the_front_door(calls, tmp_path, capsys):
+    from ehl_multigrid.transient.checkpoint import Checkpoint
+
+    main(["transient", _dent_scene(tmp_path), "--points", "129", "--steps", "2", "--no-plots",
+          "--out", str(tmp_path / "o")])
+    (call,) = calls
+    assert call["accuracy"] is None
+    assert isinstance(call["options"]["checkpoint"], Checkpoint) and call["options"]["resume"] is None
+    assert call["options"]["points"] == 129 and call["options"]["steps"] == 2
