@@ -45,5 +45,7 @@ def solve_with_time_error(problem: Any, feature: Any, *, dt: float,
     if not isinstance(problem, LineProblem):
         from .point_solve import solve_transient_point as run
     fine = run(problem, feature, dt=dt, steps=steps, **kw)
-    coarse = run(problem, feature, dt=2.0 * dt, steps=max(steps // 2, 1), **kw)
+    # the run at twice the step keeps no checkpoint: it must not overwrite the fine run's
+    own = {k: v for k, v in kw.items() if k not in ("checkpoint", "resume")}
+    coarse = run(problem, feature, dt=2.0 * dt, steps=max(steps // 2, 1), **own)
     return fine, time_error(fine, coarse)
