@@ -179,15 +179,31 @@ def check_ehl_contact(film_scene: Scene, scene: Scene, source: str = "the EHL fi
                              f"('ehl solve {scene.name}') or run the film's own scene")
 
 
+#: statuses of an EHL film that friction is computed on: its iteration converged
+#: (``inaccurate``: only its estimated error misses a requested target)
+USABLE_EHL_STATUS = ("converged", "inaccurate")
+
+
 def ehl_result_from(ehl: Any, scene: Scene) -> Result:
     """Accept an EHL :class:`Result` or plain arrays: ``(x, p, h)`` for a line contact,
     ``(x, y, p, h)`` for a point contact (x, y [m], p [Pa], h [m]), or a dict with those keys.
 
     A Result that carries its scene must be a film of the same contact
-    (:func:`check_ehl_contact`); plain arrays are taken as the scene's."""
+    (:func:`check_ehl_contact`), and one that carries its solve's status must have converged
+    (:data:`USABLE_EHL_STATUS`): the solvers return a failed film rather than raising, and
+    friction on it would be wrong. Plain arrays are taken as the scene's."""
     if ehl is None:
         raise InputError("input = 'ehl' needs the EHL solution (ehl=Result or arrays x, p, h)")
     if isinstance(ehl, Result):
+        status = ehl.scalars.get("status")
+        if isinstance(status, bytes):
+            status = status.decode()
+        if status is not None and status not in USABLE_EHL_STATUS:
+            lines = str(ehl.scalars.get("message") or "").splitlines()
+            why = f" ({lines[0][:160]})" if lines else ""
+            raise InputError(f"ehl: the EHL film's status is {status!r}{why}, allowed: "
+                             f"{', '.join(USABLE_EHL_STATUS)}; friction on a film that did not converge "
+                             f"would be wrong: solve the film again (e.g. more points)")
         if ehl.scene is not None:
             check_ehl_contact(ehl.scene, scene)
         return ehl

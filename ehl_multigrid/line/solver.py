@@ -611,6 +611,8 @@ def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = N
                    scene: Any = None) -> EHLResult | None:
     """Solve ``problem`` from a converged solution at a smaller M (continuation in M, see
     :data:`CONTINUATION_HALVINGS`); None when no halving starts or a step back up fails."""
+    # a failed step is this search's answer (None), not an error: its solves return failures
+    options = dataclasses.replace(options, raise_on_failure=False)
     chain = [problem]
     start: EHLResult | None = None
     for _ in range(CONTINUATION_HALVINGS):
@@ -647,7 +649,10 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     ``options``. ``guess = (X, P, H0)``, a solution of the same contact on another grid or box,
     starts the FMG start grid's Newton (the answer is the same; it takes fewer iterations);
     with ``from_guess`` the cycles start on the finest grid from it, without FMG (the FMG
-    films, and so the Richardson part of an error estimate, are then missing)."""
+    films, and so the Richardson part of an error estimate, are then missing).
+
+    A numerical failure is returned (``success`` False, its status and message), or raised as
+    :class:`ConvergenceError` with ``raise_on_failure=True``."""
     from .solution import finish_line_result
 
     opts = LineOptions.build(options, **kw)
@@ -757,8 +762,19 @@ def solve_line(
     started that is predicted to overrun it, and the most accurate answer so far comes back
     (``"inaccurate"`` when it misses the target).
 
-    Returns an :class:`~ehl_multigrid.multigrid.result.EHLResult`; ``.to_result()`` gives the
-    package :class:`~ehl_multigrid.model.results.Result` (kind ``"ehl_line"``).
+    Returns
+    -------
+    EHLResult
+        ``.to_result()`` gives the package :class:`~ehl_multigrid.model.results.Result` (kind
+        ``"ehl_line"``). By default a numerical failure is returned, not raised: ``success``
+        False, a status other than ``converged``, the message, and what was computed.
+
+    Raises
+    ------
+    InputError
+        Bad input (field, value, allowed range).
+    ConvergenceError
+        Only with ``raise_on_failure=True``: the failure the result would have carried.
 
     Examples
     --------

@@ -52,7 +52,10 @@ class MultigridOptions:
     threads : numba threads and FFT workers for this solve (None: the current numba setting,
         which is restored afterwards).
     adapt : False disables the adaptive robustness policy (fixed classic settings).
-    raise_on_failure : raise :class:`ConvergenceError` instead of returning ``success=False``.
+    raise_on_failure : False (the default of every solver): a numerical failure is returned --
+        ``success`` False, a status other than ``converged``, the message and what was
+        computed; True: raised as :class:`ConvergenceError` instead (for callers whose
+        control flow is the exception, e.g. a search that catches it).
     film_tol : stop instead when the last finest-grid cycle changed Hc and Hm by less than this
         (relative) and the relative load error is below it: the films' algebraic error, which
         is what the error estimate counts, rather than a residual (None: residual rule).
@@ -195,7 +198,7 @@ class LineOptions(MultigridOptions):
     omega_jd: float = 0.3
     tol: float = 1e-5
     tol_load: float = 1e-6
-    raise_on_failure: bool = True
+    raise_on_failure: bool = False
     switch_h: float | None = None
     switch_eps: float | None = None
     band: int = 4

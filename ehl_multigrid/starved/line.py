@@ -454,7 +454,10 @@ def solve_starved_problem(problem: LineProblem, hoil: float, options: LineOption
                           callback: Callable[[dict[str, Any]], None] | None = None,
                           scene: Any = None) -> EHLResult:
     """One mass-conserving solve as given (no error estimate). ``flooded``: the flooded
-    solution of the same problem and grid (solved here when None)."""
+    solution of the same problem and grid (solved here when None).
+
+    A numerical failure (also of the flooded start) is returned (``success`` False, its status
+    and message), or raised as :class:`ConvergenceError` with ``options.raise_on_failure``."""
     if flooded is None:
         flooded = solve_line_problem(problem, dataclasses.replace(
             options, raise_on_failure=False, film_tol=None))
@@ -472,5 +475,7 @@ def solve_starved_problem(problem: LineProblem, hoil: float, options: LineOption
     hz.solver = None
     if math.isfinite(hoil):
         # the coupled path's result must conserve the supply like the meniscus search's
-        apply_mass_gate(out, out.scalars["mass_balance_error"], out.scalars["rho_c_Hc_over_hoil"])
+        failed = apply_mass_gate(out, out.scalars["mass_balance_error"], out.scalars["rho_c_Hc_over_hoil"])
+        if failed and options.raise_on_failure:  # the driver raised only for its own verdict
+            raise ConvergenceError(f"starved line solver: {out.message}", out.report, HINT)
     return out

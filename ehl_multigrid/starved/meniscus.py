@@ -253,10 +253,15 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
         final solve, ``extra['meniscus_solves']`` the number of box solves and
         ``extra['meniscus_history']`` each of them (grid, meniscus, flux, status, cycles).
 
+        By default a numerical failure is returned, not raised: ``success`` False, its status
+        (``inaccurate`` when the estimate misses ``accuracy``) and the message naming why (a
+        diverged solve, no meniscus carrying the supply).
+
     Raises
     ------
     InputError : bad ``hoil`` (negative, zero, NaN) or options.
-    ConvergenceError : a solve diverged or no meniscus carries the supply.
+    ConvergenceError : only with ``raise_on_failure=True``: the failure the result would have
+        carried.
     """
     hoil = check_hoil(hoil)
     opts = starved_options(options, **kw)
@@ -271,9 +276,14 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
     if out.converged and out.why and res.status == 6:
         res.message += f"; not refined further: {out.why}"
         res.extra["not_refined_because"] = out.why
-    if res.status == 6 and opts.raise_on_failure:
-        raise ConvergenceError(f"starved line solver: {res.message} ({res.X.size} points)",
-                               res.report, f"more points (up to max_points = {max_points})")
+    if not res.success and opts.raise_on_failure:
+        # the solves of the sequence return their failures (the controller judges them): the
+        # caller's request to raise is honoured once, for the answer
+        if res.status == 6:
+            raise ConvergenceError(f"starved line solver: {res.message} ({res.X.size} points)",
+                                   res.report, f"more points (up to max_points = {max_points})")
+        raise ConvergenceError(f"starved line solver: {res.message}", res.report,
+                               res.extra.get("hint", HINT))
     return res
 
 
@@ -327,13 +337,13 @@ class _StarvedLineControl:
 def _solve_once(problem: LineProblem, hoil: float, opts: LineOptions, accuracy: float | None,
                 estimate: bool, callback: Callable[[dict[str, Any]], None] | None,
                 scene: Any) -> EHLResult:
-    """One starved solve on ``opts.points`` (see :func:`solve_starved_line`)."""
+    """One starved solve on ``opts.points`` (see :func:`solve_starved_line`); a numerical
+    failure is returned (the accuracy controller's solves never raise), whatever
+    ``opts.raise_on_failure``: :func:`solve_starved_line` raises for the final answer."""
     t0 = time.perf_counter()
     full = solve_starved_problem(problem, math.inf, dataclasses.replace(opts, raise_on_failure=False),
                                  callback=callback, scene=scene)
     if not full.success:
-        if opts.raise_on_failure:
-            raise ConvergenceError(f"starved line solver (flooded inlet): {full.message}", full.report, HINT)
         return full
     F_ff = float(full.scalars["flux_in"])
     solves = 1
@@ -369,16 +379,12 @@ def _solve_once(problem: LineProblem, hoil: float, opts: LineOptions, accuracy: 
             msg = (f"Hoil = {hoil:.4g} is below the flux the solver reaches with the meniscus next "
                    f"to the Hertzian edge ({exc.F:.4g} at X_m = {exc.x:g}, {exc.F / F_ff:.3g} of the "
                    f"flooded flux): severe starvation beyond this solver's range")
-            if opts.raise_on_failure:
-                raise ConvergenceError(f"starved line solver: {msg}", None,
-                                       "a larger Hoil; the film then follows rho_c Hc = Hoil") from None
             out = EHLResult(status=5, message=msg)
+            out.extra["hint"] = "a larger Hoil; the film then follows rho_c Hc = Hoil"
             out.scalars["Hc_flooded"] = full.scalars["Hc_flooded"]
             return out
         except ConvergenceError as exc:
             # a box solve of the search failed: a result with the reason, as for any failed solve
-            if opts.raise_on_failure:
-                raise
             out = EHLResult(status=3, message=f"meniscus search: {str(exc).splitlines()[0]}")
             out.scalars["Hc_flooded"] = full.scalars["Hc_flooded"]
             return out
@@ -433,8 +439,6 @@ def _solve_once(problem: LineProblem, hoil: float, opts: LineOptions, accuracy: 
             res.extra["meniscus_ladder"] = [{"points": n, "meniscus_x": x, "Hc_venner": r.scalars["Hc_venner"],
                                              "Hm_venner": r.scalars["Hm_venner"]} for n, x, r in ladder]
         attach_estimate(res, est, accuracy)
-    if not res.success and res.status != 6 and opts.raise_on_failure:
-        raise ConvergenceError(f"starved line solver: {res.message}", res.report, HINT)
     return res
 
 
@@ -448,7 +452,9 @@ def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOpti
     :func:`~ehl_multigrid.starved.supply.hoil_venner` (``Hoil = hoil R/b^2``). The scene's
     ``[solver.ehl]`` table applies (problem keys: viscosity, density, xmin, xmax; the rest are
     options below the keywords); explicit ``viscosity``, ``density``, ``xmin``, ``xmax``,
-    ``elastic`` override it. Films in metres: ``hc = Hc_venner b^2/R`` (scalar ``hc``)."""
+    ``elastic`` override it. Films in metres: ``hc = Hc_venner b^2/R`` (scalar ``hc``). A
+    numerical failure is returned (or raised with ``raise_on_failure=True``), as by
+    :func:`solve_starved_line`."""
     from ..multigrid.options import build_scene_options, scene_solver_table
     from .supply import hoil_venner
 

@@ -60,7 +60,8 @@ POINT_TRANSIENT_DEFAULTS = {"points": 129, "deformation": "fft", "tol": 1e-5, "t
 
 def point_transient_options(options: PointOptions | None = None, **kw: Any) -> PointOptions:
     """Point options of the time steps: :data:`POINT_TRANSIENT_DEFAULTS` below ``options``
-    and keywords (always the full domain)."""
+    and keywords (always the full domain; ``raise_on_failure`` always False, as
+    :func:`~.solve.transient_options`)."""
     base = PointOptions.build(None, **POINT_TRANSIENT_DEFAULTS) if options is None else options
     if kw.get("half") or (options is not None and options.half and "half" not in kw):
         raise InputError("half = True: the transient point solver needs the full domain "
@@ -227,8 +228,9 @@ def solve_transient_point(
     Raises
     ------
     InputError : bad feature (too large for the domain), time step, step count or options.
-    ConvergenceError : a step's multilevel solve failed, or the film closed, naming the step;
-        ``partial`` holds the steps before it (as :func:`~.solve.solve_transient_line`).
+    ConvergenceError : the steady start or a step's multilevel solve failed, or the film closed
+        (``on_film_collapse="raise"``), naming the step; ``partial`` holds the steps before it.
+        Raised whatever ``raise_on_failure``, as by :func:`~.solve.solve_transient_line`.
     """
     require_choice("scheme", scheme, SCHEMES)
     require_choice("on_film_collapse", on_film_collapse, ("raise", "stop"))

@@ -45,7 +45,8 @@ TRANSIENT_DEFAULTS = {"points": 257, "deformation": "fft", "tol": 1e-6, "tol_loa
 
 def transient_options(options: LineOptions | None = None, **kw: Any) -> LineOptions:
     """Line options for the time steps: :data:`TRANSIENT_DEFAULTS` below ``options`` and
-    keywords."""
+    keywords. ``raise_on_failure`` is always False: a step's failure goes back to the time loop,
+    which judges it (``accept_stall``) and ends the run with it."""
     base = LineOptions.build(None, **TRANSIENT_DEFAULTS) if options is None else options
     return LineOptions.build(base, **{**kw, "raise_on_failure": False})
 
@@ -97,9 +98,12 @@ def solve_transient_line(
     Raises
     ------
     InputError : bad feature, time step, step count or options (field, value, allowed range).
-    ConvergenceError : a step's multilevel solve failed (diverged, stalled, NaN), naming it;
-        its ``partial`` attribute is the result up to the last completed step
-        (``complete = False``, ``stop_reason``), also written by ``checkpoint`` when given.
+    ConvergenceError : the steady start or a step's multilevel solve failed (diverged, stalled,
+        NaN) or the film closed, naming it; its ``partial`` attribute is the result up to the
+        last completed step (``complete = False``, ``stop_reason``), also written by
+        ``checkpoint`` when given. A run's failure is raised whatever ``raise_on_failure``
+        (:class:`~.result.TransientResult` has no success or status to return it with);
+        :func:`ehl_multigrid.solve` returns it as a failed Solution with those steps.
         An interrupt or signal during the steps propagates after the same write.
     """
     if not problem.elastic:

@@ -8,8 +8,6 @@ from pathlib import Path
 
 import pytest
 
-from ehl_multigrid.model.errors import ConvergenceError
-
 SCRIPT = Path(__file__).resolve().parents[2] / "validation" / "extremes" / "extremes.py"
 
 
@@ -22,24 +20,25 @@ def extremes():
 
 
 # one pinned outcome per corner (measured with the shared multilevel core): "converged", a
-# returned failure whose message names the remedy, or a ConvergenceError naming it
+# returned failure whose message names the remedy, or ("no_solution") a returned failure
+# without a film (its start failed: Hc is NaN, not a number that could be taken for a film)
 EHL = [
     ({"model": "point_ehl", "M": 1.0, "L": 25.0, "theta": 1.0}, 65, "converged", ""),
     ({"model": "point_ehl", "M": 5000.0, "L": 0.0, "theta": 1.0}, 65, "failed", "use points >= 513"),
     ({"model": "point_ehl", "M": 20.0, "L": 10.0, "theta": 10.0}, 65, "failed", "use points >= 513"),
     ({"model": "line_ehl", "M": 1.0, "L": 0.0, "theta": 1.0}, 1025, "converged", ""),
-    ({"model": "line_ehl", "M": 5000.0, "L": 25.0, "theta": 1.0}, 1025, "raises",
+    ({"model": "line_ehl", "M": 5000.0, "L": 25.0, "theta": 1.0}, 1025, "no_solution",
      "not positive on the 1025-point start grid"),
 ]
 
 
 @pytest.mark.parametrize(("case", "points", "outcome", "says"), EHL, ids=lambda c: str(c))
 def test_ehl_corner_has_its_measured_outcome(extremes, case, points, outcome, says):
-    if outcome == "raises":
-        with pytest.raises(ConvergenceError, match=says):
-            extremes.run_ehl(case, points=points)
-        return
     verdict, info = extremes.run_ehl(case, points=points)
+    if outcome == "no_solution":
+        assert info["converged"] is False and not math.isfinite(info["Hc"]), info
+        assert says in info["message"]
+        return
     assert verdict == outcome, info
     assert says in info["message"]
     if outcome == "converged":

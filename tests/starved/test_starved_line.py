@@ -2,6 +2,7 @@
 starved limit rho_c Hc = rho_0 Hoil, monotone film, the coupled inlet relaxation, bad input."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -20,6 +21,7 @@ def half_starved():
     return solve_starved_line(PB, 0.05, points=513)
 
 
+@pytest.mark.solver
 def test_thick_supply_reproduces_the_flooded_core_solution_within_its_error():
     core = solve_line(20.0, 10.0, points=513)
     thick = solve_starved_line(PB, 10.0, points=513)
@@ -32,6 +34,7 @@ def test_thick_supply_reproduces_the_flooded_core_solution_within_its_error():
     assert abs(thick.scalars["outlet_change_Hm"]) < 1e-4
 
 
+@pytest.mark.solver
 def test_mass_is_conserved_to_1e6_relative(half_starved):
     s = half_starved.scalars
     assert half_starved.success
@@ -44,6 +47,7 @@ def test_mass_is_conserved_to_1e6_relative(half_starved):
     assert theta[-1] < 1.0
 
 
+@pytest.mark.solver
 def test_starved_central_film_carries_the_supply_in_pure_rolling(half_starved):
     # rho_c Hc = rho_0 Hoil when the pressure flow at the centre vanishes
     assert half_starved.scalars["rho_c_Hc_over_hoil"] == pytest.approx(1.0, abs=1e-3)
@@ -53,6 +57,7 @@ def test_starved_central_film_carries_the_supply_in_pure_rolling(half_starved):
     assert deep.scalars["meniscus_x"] > half_starved.scalars["meniscus_x"]
 
 
+@pytest.mark.solver
 def test_central_film_decreases_monotonically_with_the_supply():
     films, menisci = [], []
     for hoil in (0.09, 0.045, 0.015):
@@ -64,6 +69,7 @@ def test_central_film_decreases_monotonically_with_the_supply():
     assert films[0] < solve_starved_line(PB, 10.0, points=257, estimate=False).scalars["Hc_venner"]
 
 
+@pytest.mark.solver
 def test_coupled_inlet_relaxation_agrees_with_the_meniscus_search():
     # the same Elrod-Adams problem with the meniscus found inside the multilevel iteration
     coupled = solve_starved_problem(PB, 0.05, starved_options(points=257, raise_on_failure=False))
@@ -73,19 +79,22 @@ def test_coupled_inlet_relaxation_agrees_with_the_meniscus_search():
     assert coupled.scalars["mass_balance_error"] < 1e-5
 
 
-def test_supply_below_the_reachable_flux_raises_a_clear_convergence_error():
-    with pytest.raises(ConvergenceError, match="Hoil = 0.001 is below"):
-        solve_starved_line(PB, 0.001, points=257, estimate=False)
+@pytest.mark.solver
+def test_supply_below_the_reachable_flux_is_a_failed_result_naming_it():
+    r = solve_starved_line(PB, 0.001, points=257, estimate=False)
+    assert not r.success and r.status_name == "start_failed"
+    assert re.search(r"Hoil = 0\.001\b.*0\.00198\d* at X_m", r.message), r.message
 
 
 @pytest.mark.parametrize("bad", [-0.01, 0.0, math.nan, "thick"])
 def test_bad_supply_is_rejected_naming_field_value_and_range(bad):
-    with pytest.raises(InputError, match=r"hoil = .*(outside the allowed range \(0, inf\]|not a number)"):
+    shown = repr(bad) if isinstance(bad, str) else f"{bad:g}"
+    with pytest.raises(InputError, match=rf"hoil = {re.escape(shown)} .*\(0, inf\]"):
         solve_starved_line(PB, bad, points=257)
 
 
 def test_bad_supply_in_metres_names_the_scene_field():
-    with pytest.raises(InputError, match=r"supply.hoil = -1e-06 m is outside the allowed range"):
+    with pytest.raises(InputError, match=r"supply\.hoil = -1e-06 m .*\(0, inf\] m"):
         hoil_venner(-1e-6, 1e-4, 0.01)
     assert hoil_venner(1e-7, 1e-4, 0.01) == pytest.approx(0.1)
     assert math.isinf(hoil_venner(math.inf, 1e-4, 0.01))
@@ -93,13 +102,14 @@ def test_bad_supply_in_metres_names_the_scene_field():
 
 
 def test_supply_profile_longer_than_the_grid_is_rejected():
-    with pytest.raises(InputError, match=r"hoil_profile has 66 values; .* exactly 65"):
+    with pytest.raises(InputError, match=r"hoil_profile\b.*\b66\b.*\b65\b"):
         check_profile(np.full(66, 0.05), 65)
     with pytest.raises(InputError, match=r"hoil_profile\[3\] = nan"):
         check_profile([0.05, 0.05, 0.05, math.nan], 4)
     assert check_profile([0.05, math.inf], 2).shape == (2,)
 
 
+@pytest.mark.solver
 def test_scene_supply_in_metres_gives_the_film_that_carries_it():
     from ehl_multigrid.model.scene import load_scene
     from ehl_multigrid.starved import solve_starved_scene
@@ -111,14 +121,16 @@ def test_scene_supply_in_metres_gives_the_film_that_carries_it():
     assert r.scalars["outlet_layer_m"] == pytest.approx(1.5e-8, rel=1e-6)
 
 
-def test_an_unconverged_solve_raises_a_convergence_error_with_the_reason():
-    with pytest.raises(ConvergenceError, match="not converged after 0 extra cycles"):
-        solve_starved_line(PB, 0.05, points=257, max_cycles=0)
-    r = solve_starved_line(PB, 0.05, points=257, max_cycles=0, raise_on_failure=False)
+def test_an_unconverged_solve_is_a_failed_result_with_the_reason_and_raises_when_asked_to():
+    cycles = r"\b0 extra cycles\b.*residual \d\S* \(tol 1e-07\)"
+    with pytest.raises(ConvergenceError, match=cycles):
+        solve_starved_line(PB, 0.05, points=257, max_cycles=0, raise_on_failure=True)
+    r = solve_starved_line(PB, 0.05, points=257, max_cycles=0)
     assert not r.success and r.status_name == "start_failed"  # the flooded start did not converge
-    assert "not converged after 0 extra cycles" in r.message
+    assert re.search(cycles, r.message), r.message
 
 
+@pytest.mark.solver
 def test_the_outer_iteration_is_recorded(half_starved):
     hist = half_starved.extra["meniscus_history"]
     assert len(hist) == half_starved.extra["meniscus_solves"] - 1  # plus the flooded-inlet solve
@@ -128,14 +140,16 @@ def test_the_outer_iteration_is_recorded(half_starved):
     assert half_starved.residual_history.size >= 1 and half_starved.load_error_history.size >= 1
 
 
+@pytest.mark.solver
 def test_an_accuracy_the_estimate_does_not_meet_is_reported(half_starved):
     # 513 points: estimated Hm error about 4e-4 (the fixed-supply Richardson estimate)
     assert 1e-4 < half_starved.Hm_error < 2e-3
-    with pytest.raises(ConvergenceError, match="exceeds the requested accuracy 0.0001") as exc:
-        solve_starved_line(PB, 0.05, accuracy=1e-4, points=513)
-    assert exc.value.report.extra["status"] == "inaccurate"
+    r = solve_starved_line(PB, 0.05, accuracy=1e-4, points=513)
+    assert not r.success and r.status_name == "inaccurate"
+    assert re.search(r"Hm 0\.000\d+\b.*accuracy 0\.0001\b", r.message), r.message
 
 
+@pytest.mark.solver
 def test_box_solve_next_to_the_hertzian_edge_is_finished_by_dense_newton():
     """A flooded-inlet box with its inlet 0.004 a ahead of the Hertzian edge: the coarse grids
     cannot carry the short inlet and the first finest-grid cycle is rejected; the dense Newton
@@ -150,6 +164,7 @@ def test_box_solve_next_to_the_hertzian_edge_is_finished_by_dense_newton():
     assert r.scalars["mass_balance_error"] < 1e-6
 
 
+@pytest.mark.solver
 def test_severe_starvation_at_three_percent_of_the_flooded_flux_carries_the_supply():
     """The meniscus 0.003-0.004 a ahead of the Hertzian edge (searched closer than the scan's
     first position, ``meniscus.EDGE_SCAN``): the central film carries the supply."""
@@ -163,6 +178,7 @@ def test_severe_starvation_at_three_percent_of_the_flooded_flux_carries_the_supp
     assert r.scalars["mass_balance_error"] < 1e-6
 
 
+@pytest.mark.solver
 def test_a_failed_box_solve_in_the_meniscus_search_is_a_result_unless_raising(monkeypatch):
     from ehl_multigrid.starved import meniscus
 
@@ -170,13 +186,14 @@ def test_a_failed_box_solve_in_the_meniscus_search_is_a_result_unless_raising(mo
     # the boxes strictly inside the bracket [-1.02, -1.01] of Hoil = 0.01 fail (NaN flux)
     monkeypatch.setattr(meniscus._FluxMap, "flux",
                         lambda fm, xm: math.nan if -1.02 < xm < -1.01 else real(fm, xm))
-    r = solve_starved_line(PB, 0.01, points=257, estimate=False, raise_on_failure=False)
+    r = solve_starved_line(PB, 0.01, points=257, estimate=False)
     assert not r.success and r.status_name == "diverged"
-    assert r.message.startswith("meniscus search: the flooded-inlet box solve at X_m = -1.01")
-    with pytest.raises(ConvergenceError, match="the flooded-inlet box solve at X_m"):
-        solve_starved_line(PB, 0.01, points=257, estimate=False)
+    assert re.search(r"meniscus search\b.*X_m = -1\.01", r.message), r.message
+    with pytest.raises(ConvergenceError, match=r"X_m = -1\.01"):
+        solve_starved_line(PB, 0.01, points=257, estimate=False, raise_on_failure=True)
 
 
+@pytest.mark.solver
 def test_dense_newton_leaves_cavitated_points_at_exactly_zero_pressure():
     """On 1025 points the Newton-finished box 0.004 a ahead of the edge kept round-off
     pressures (~1e-17) behind the rupture; with eps/h^2 ~ 1e7 there they left a relative
@@ -193,6 +210,7 @@ def test_dense_newton_leaves_cavitated_points_at_exactly_zero_pressure():
     assert r.scalars["mass_balance_error"] < 1e-9
 
 
+@pytest.mark.solver
 def test_box_solve_whose_flooded_start_fails_is_continued_from_the_nearest_meniscus():
     """(50, 5) on 513 points: the flooded box solve with its inlet at X_m = -1.00483 diverges in
     its FMG from the Hertzian guess; started on the finest grid from the converged box at
