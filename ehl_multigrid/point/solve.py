@@ -259,13 +259,8 @@ DECAY_PROBE_TOL = 1e-5
 #: the residual tolerance
 PROBE_RESIDUAL_TOL = 1e-5
 #: the decay is measured only where the widest probe (4x box) needs no more points than the
-#: solve (or this many), so no probe is larger than the solve (the 6205 inner race: 513-2049
-#: point probes for a 2049-point solve; at their tight tolerance they still dominate its default
-#: solve: 192 s on two threads, of which the 2049-point solve 19 s; validation/accuracy/REPORT.md).
-#: Where the probe mesh must be finer than two grids below the solve (thick films, narrow
-#: contacts: min_points) it is not: (1, 0, theta 10) at 1025 points on a 2x box would need a
-#: 4097-point probe (more than 13 min instead of 2 for the whole solve)
-DECAY_PROBE_MAX_POINTS = 513
+#: solve itself: at its tight tolerance a larger probe costs more than the refinement it could
+#: save (circular (20, 10) at 5 %: a 513-point probe, 16 s, for a 0.3 s solve on 129 points)
 
 
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
@@ -298,7 +293,7 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
             n_min = 2 * (n_min - 1) + 1
     n_p = min(max((n_f - 1) // 4 + 1, n_min), n_f) if top >= 2 else n_f
     while True:
-        if len(boxes) > 2 and (n_p - 1) * boxes[-1] / boxes[0] + 1 > max(n_f, DECAY_PROBE_MAX_POINTS):
+        if len(boxes) > 2 and (n_p - 1) * boxes[-1] / boxes[0] + 1 > n_f:
             return None  # the widest box would need more points than the solve itself
 
         def solve(n: int, f: float) -> EHLResult:

@@ -547,24 +547,44 @@ def test_the_decay_probe_runs_only_where_the_fixed_domain_factor_decides_a_miss(
     assert calls == [] and not out.success
 
 
-def test_a_measured_decay_of_the_box_change_is_honest_and_sharper_than_the_fixed_factor():
-    """Circular (20, 10) on 129 points: the fixed factor (3 x the first doubling's change)
-    misses a 6 % target, the box change measured over a third box (it falls about 6x per
-    doubling) meets it; against a reference on boxes twice and four times as wide the estimate
-    still bounds the true error."""
-    fixed = solve_point(20.0, 10.0, points=129)
-    sol = solve_point(20.0, 10.0, points=129, accuracy=0.06)
-    assert max(fixed.Hc_error, fixed.Hm_error) > 0.06
-    assert sol.success and sol.status_name == "converged" and sol.X.shape[0] == 129
+def test_point_target_missed_only_by_the_fixed_domain_factor_is_met_by_the_measured_decay():
+    """Circular (20, 10) on 513 points (the widest decay probe, 4x box at the mesh of 129
+    points, is no larger than the solve): a target between the fixed factor's estimate and the
+    smallest the decay could give is met by measuring the decay over a third box."""
+    fixed = solve_point(20.0, 10.0, points=513)
+    b = fixed.error.budget
+    target = max(b["grid"][k] + b["algebraic"][k] + 0.7 * b["domain"][k] for k in ("Hc", "Hm"))
+    assert max(fixed.Hc_error, fixed.Hm_error) > target
+    sol = solve_point(20.0, 10.0, points=513, accuracy=target)
     (d2c, d2m), (d4c, d4m) = sol.extra["domain_changes"]
     assert 3.0 < d2c / d4c < 12.0 and 3.0 < d2m / d4m < 12.0
     assert sol.Hc_error < fixed.Hc_error and sol.Hm_error < fixed.Hm_error
+    assert sol.success and sol.X.shape[0] == 513
+
+
+def test_no_decay_probe_is_larger_than_the_solve():
+    """On 129 points the widest decay probe would need 513: the fixed factor stands (a
+    refinement costs less than that probe)."""
+    sol = solve_point(20.0, 10.0, points=129, accuracy=0.06)
+    assert "domain_changes" not in sol.extra
+    assert sol.status_name == "inaccurate" and max(sol.Hc_error, sol.Hm_error) > 0.06
+
+
+@pytest.mark.slow
+def test_a_measured_decay_of_the_box_change_is_honest_against_wider_boxes():
+    """Circular (20, 10) on 513 points with the decay measured: against a reference on boxes
+    twice and four times as wide, one grid finer, the estimate bounds the true error."""
+    fixed = solve_point(20.0, 10.0, points=513)
+    b = fixed.error.budget
+    target = max(b["grid"][k] + b["algebraic"][k] + 0.7 * b["domain"][k] for k in ("Hc", "Hm"))
+    sol = solve_point(20.0, 10.0, points=513, accuracy=target)
+    assert "domain_changes" in sol.extra
     d = sol.extra["domain"]
     box = [dict(xmin=f * d[0], xmax=f * d[1], ymax=f * d[2], half=True, estimate=False, tol=1e-6,
                 tol_load=1e-7) for f in (2, 4)]
-    a = solve_point(20.0, 10.0, points=257, **box[0])
-    b = solve_point(20.0, 10.0, points=513, **box[0])
-    c = solve_point(20.0, 10.0, points=513, **box[1])  # the mesh of a, box 4x
+    a = solve_point(20.0, 10.0, points=1025, **box[0])
+    b = solve_point(20.0, 10.0, points=2049, **box[0])
+    c = solve_point(20.0, 10.0, points=2049, **box[1])  # the mesh of a, box 4x
     for k, est in (("Hc_venner", sol.Hc_error), ("Hm_venner", sol.Hm_error)):
         ref = (b.scalars[k] + (b.scalars[k] - a.scalars[k]) / 3.0) * c.scalars[k] / a.scalars[k]
         true = abs(sol.scalars[k] / ref - 1.0)
