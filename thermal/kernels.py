@@ -34,7 +34,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, types
 
 from ehl_multigrid.model.lubricant import G_ELASTICITY_OFF
 
@@ -52,6 +52,16 @@ from .properties import (
 )
 
 T_KELVIN = 273.15
+
+try:
+    # LAPACK's least-squares solver (dgelsd) through the (private) helper of numba's
+    # np.linalg.lstsq: the same result without compiling lstsq's checks, copies and messages
+    from numba.np.linalg import _LAPACK, F_INT_nptype
+
+    _gelsd = _LAPACK.numba_ez_gelsd(types.float64)
+except (ImportError, AttributeError):  # a numba without that helper: np.linalg.lstsq
+    _gelsd = None
+_KIND_D = ord("d")  # float64
 
 
 @njit(cache=True)
@@ -173,6 +183,35 @@ def _slope_residual(G, sgn, b, tm, Zc, d, w, inv_eta, tau0, mx_a, mx_r, target):
 
 
 @njit(cache=True)
+def _newton_resid(tm_, G_, Zc, w, inv_eta, tau0, mx_a, target, b, sw, swz, swz2, swr, swzi):
+    """Residuals of the wall-speed condition and the pressure-driven flow of the Eyring-Maxwell
+    film (3.3) at ``(tau_m, G)`` and their Jacobian (:func:`_slope_newton`; ``sw``.. are its
+    fixed Maxwell sums)."""
+    n = Zc.shape[0]
+    s0 = min(max(tm_ / tau0, -700.0), 700.0)
+    sh0, ch0 = _sinh_cosh(s0)
+    e1 = 0.0
+    e2 = 0.0
+    e3 = 0.0
+    e4 = 0.0
+    e5 = 0.0
+    for j in range(n):
+        s = min(max((tm_ + G_ * Zc[j]) / tau0, -700.0), 700.0)
+        sh, ch = _sinh_cosh(s)
+        wi = w[j] * inv_eta[j]
+        esh = wi * sh
+        ech = wi * ch
+        e1 += esh
+        e2 += Zc[j] * esh
+        e3 += ech
+        e4 += Zc[j] * ech
+        e5 += Zc[j] * Zc[j] * ech
+    fa = tau0 * e1 + mx_a * (tm_ * sw + G_ * swz) + swr
+    fr = tau0 * (e2 - sh0 * swzi) + mx_a * G_ * swz2
+    return fa - target, fr - b, e3 + mx_a * sw, e4 + mx_a * swz, e4 - ch0 * swzi, e5 + mx_a * swz2
+
+
+@njit(cache=True)
 def _slope_newton(G, tm, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b):
     """Newton on ``(tau_m, G)`` for the wall-speed condition and the pressure-driven flow ``b``
     (the fast path of :func:`solve_stress_slope` from a warm start). Returns
@@ -194,30 +233,7 @@ def _slope_newton(G, tm, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b):
         swr += w[j] * mx_r[j]
         swzi += w[j] * Zc[j] * inv_eta[j]
 
-    def resid(tm_, G_):
-        s0 = min(max(tm_ / tau0, -700.0), 700.0)
-        sh0, ch0 = _sinh_cosh(s0)
-        e1 = 0.0
-        e2 = 0.0
-        e3 = 0.0
-        e4 = 0.0
-        e5 = 0.0
-        for j in range(n):
-            s = min(max((tm_ + G_ * Zc[j]) / tau0, -700.0), 700.0)
-            sh, ch = _sinh_cosh(s)
-            wi = w[j] * inv_eta[j]
-            esh = wi * sh
-            ech = wi * ch
-            e1 += esh
-            e2 += Zc[j] * esh
-            e3 += ech
-            e4 += Zc[j] * ech
-            e5 += Zc[j] * Zc[j] * ech
-        fa = tau0 * e1 + mx_a * (tm_ * sw + G_ * swz) + swr
-        fr = tau0 * (e2 - sh0 * swzi) + mx_a * G_ * swz2
-        return fa - target, fr - b, e3 + mx_a * sw, e4 + mx_a * swz, e4 - ch0 * swzi, e5 + mx_a * swz2
-
-    fa, fr, a11, a12, a21, a22 = resid(tm, G)
+    fa, fr, a11, a12, a21, a22 = _newton_resid(tm, G, Zc, w, inv_eta, tau0, mx_a, target, b, sw, swz, swz2, swr, swzi)
     for _ in range(30):
         det = a11 * a22 - a12 * a21
         if not (math.isfinite(det) and det > 0.0 and math.isfinite(fa) and math.isfinite(fr)):
@@ -235,7 +251,8 @@ def _slope_newton(G, tm, Zc, w, inv_eta, tau0, mx_a, mx_r, target, b):
         for _k in range(20):
             tn = tm + lam * dtm
             Gn = G + lam * dG
-            fa_n, fr_n, b11, b12, b21, b22 = resid(tn, Gn)
+            fa_n, fr_n, b11, b12, b21, b22 = _newton_resid(tn, Gn, Zc, w, inv_eta, tau0, mx_a, target, b,
+                                                           sw, swz, swz2, swr, swzi)
             if math.isfinite(fa_n) and math.isfinite(fr_n) and b11 > 0.0 and b22 > 0.0:
                 if abs(fa_n) / b11 + abs(fr_n) / b22 < norm0 or lam * (abs(dtm) + abs(dG)) <= tolx:
                     ok = True
@@ -817,22 +834,54 @@ def sweep_line(
 
 
 @njit(cache=True, nogil=True)
+def _least_squares_gelsd(At, f):
+    """``argmin |A gamma - f|`` for ``A`` given transposed (``At``, m x N, overwritten) by LAPACK's
+    dgelsd with the inputs np.linalg.lstsq(A, f, rcond=1e-10) gives it; empty on failure."""
+    m, N = At.shape
+    ldb = max(N, m)
+    b = np.zeros(ldb)  # in: f; out: gamma in b[:m]
+    for r in range(N):
+        b[r] = f[r]
+    sv = np.empty(m)
+    rank = np.empty(1, dtype=F_INT_nptype)
+    if _gelsd(_KIND_D, N, m, 1, At.ctypes, N, b.ctypes, ldb, sv.ctypes, 1e-10, rank.ctypes) != 0:
+        return np.empty(0)
+    return b[:m].copy()
+
+
+@njit(cache=True, nogil=True)
+def _least_squares_numpy(At, f):
+    """The same by np.linalg.lstsq (numba versions without the LAPACK helper)."""
+    m, N = At.shape
+    A = np.empty((N, m))
+    for c in range(m):
+        for r in range(N):
+            A[r, c] = At[c, r]
+    return np.linalg.lstsq(A, f, rcond=1e-10)[0]
+
+
+_least_squares = _least_squares_gelsd if _gelsd is not None else _least_squares_numpy
+
+
+@njit(cache=True, nogil=True)
 def _anderson_step(X, F, count, x, g, depth):
     """One Anderson step (Walker & Ni 2011, type II, mixing 1) of the sweep map ``x -> g(x)``.
 
     ``X``, ``F`` hold the last ``count`` (at most ``depth + 1``) iterates and residuals
     ``g - x``, oldest first. Returns ``(x_new, count)``; on a degenerate or non-finite step
-    the history is cleared and ``g`` returned.
+    (or a least-squares solve that fails) the history is cleared and ``g`` returned.
     """
     N = x.shape[0]
     f = g - x
     if count == depth + 1:
         for r in range(depth):
-            X[r, :] = X[r + 1, :]
-            F[r, :] = F[r + 1, :]
+            for c in range(N):
+                X[r, c] = X[r + 1, c]
+                F[r, c] = F[r + 1, c]
         count -= 1
-    X[count, :] = x
-    F[count, :] = f
+    for c in range(N):
+        X[count, c] = x[c]
+        F[count, c] = f[c]
     count += 1
     if count < 2:
         return g.copy(), count
@@ -849,16 +898,19 @@ def _anderson_step(X, F, count, x, g, depth):
         norms[c] = math.sqrt(s)
         if not (math.isfinite(norms[c]) and norms[c] > 0.0):
             return g.copy(), 0
-    A = np.empty((N, m))
+    # gamma = argmin |A gamma - f|, A = dF with unit columns (np.linalg.lstsq, rcond 1e-10)
+    At = np.empty((m, N))  # row c of At is column c of A: A in column-major order
     for c in range(m):
         for r in range(N):
-            A[r, c] = dF[r, c] / norms[c]
-    gamma = np.linalg.lstsq(A, f, rcond=1e-10)[0]
+            At[c, r] = dF[r, c] / norms[c]
+    b = _least_squares(At, f)
+    if b.size == 0:
+        return g.copy(), 0
     out = np.empty(N)
     for r in range(N):
         t = 0.0
         for c in range(m):
-            t += (dX[r, c] + dF[r, c]) * (gamma[c] / norms[c])
+            t += (dX[r, c] + dF[r, c]) * (b[c] / norms[c])
         out[r] = g[r] - t
     for r in range(N):
         if not math.isfinite(out[r]):
