@@ -7,6 +7,31 @@ import pytest
 matplotlib.use("Agg")
 os.environ.setdefault("MPLBACKEND", "Agg")
 
+#: per-test timeout [s] of a `slow` study without its own @pytest.mark.timeout (the default run's
+#: is `timeout` in pyproject's [tool.pytest.ini_options])
+SLOW_TIMEOUT = 1800
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Tiers (docs/testing.md): `slow` studies run only when the -m expression names them, so
+    the quick tier ``-m "not solver"`` and ``-m solver`` leave them out as the default run
+    does; each study gets :data:`SLOW_TIMEOUT` unless it sets its own."""
+    run_slow = "slow" in (config.getoption("markexpr", "") or "")
+    kept, dropped = [], []
+    for item in items:
+        if item.get_closest_marker("slow") is None:
+            kept.append(item)
+            continue
+        if not run_slow:
+            dropped.append(item)
+            continue
+        if item.get_closest_marker("timeout") is None:
+            item.add_marker(pytest.mark.timeout(SLOW_TIMEOUT))
+        kept.append(item)
+    if dropped:
+        config.hook.pytest_deselected(items=dropped)
+        items[:] = kept
+
 
 @pytest.fixture
 def scene_with_feature():

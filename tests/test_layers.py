@@ -119,45 +119,54 @@ def test_cycle_finder_finds_a_planted_cycle():
     assert cycles(g) == [["a", "b", "c"]]
 
 
+@pytest.mark.xdist_group("layers_graph")
 def test_graph_covers_the_three_packages(graph):
     assert {"ehl_multigrid.app.cli", "ehl_multigrid.model.scene", "thermal.traction",
             "mixed.surface.cli"} <= set(graph)
     assert "ehl_multigrid.app.mainjob" in {t for t, _ in graph["ehl_multigrid.app.cli"]}
 
 
+@pytest.mark.xdist_group("layers_graph")
 def test_no_import_cycles(graph):
     assert cycles(graph) == []
 
 
+@pytest.mark.xdist_group("layers_graph")
 def test_model_imports_nothing_above_it(graph):
     above = NUMERICAL + ("ehl_multigrid.app", "thermal", "mixed")
     assert violations(graph, ("ehl_multigrid.model",), lambda t: within(t, *above)) == []
 
 
+@pytest.mark.xdist_group("layers_graph")
 def test_numerical_packages_never_import_the_application_or_the_layers_above(graph):
     above = ("ehl_multigrid.app", "thermal", "mixed")
     assert violations(graph, NUMERICAL, lambda t: within(t, *above)) == []
 
 
+@pytest.mark.xdist_group("layers_graph")
 def test_multilevel_core_never_imports_a_contact(graph):
     # the core is shared: line and point specialise it, never the other way round
     contacts = ("ehl_multigrid.line", "ehl_multigrid.point")
     assert violations(graph, ("ehl_multigrid.multigrid",), lambda t: within(t, *contacts)) == []
 
 
+@pytest.mark.xdist_group("layers_graph")
 def test_contacts_do_not_import_each_other(graph):
     assert violations(graph, ("ehl_multigrid.line",), lambda t: within(t, "ehl_multigrid.point")) == []
     assert violations(graph, ("ehl_multigrid.point",), lambda t: within(t, "ehl_multigrid.line")) == []
 
 
+@pytest.mark.xdist_group("layers_graph")
 def test_thermal_never_imports_mixed(graph):
     assert violations(graph, ("thermal",), lambda t: within(t, "mixed")) == []
 
 
+@pytest.mark.xdist_group("layers_graph")
 def test_thermal_and_mixed_use_only_the_application_leaves(graph):
     assert violations(graph, ("thermal", "mixed"), lambda t: within(t, "ehl_multigrid.app"),
                       allowed=lambda t: t in APP_LEAVES) == []
 
 
+@pytest.mark.xdist_group("layers_graph")
 def test_application_leaves_import_nothing_else_from_the_application(graph):
     assert violations(graph, tuple(APP_LEAVES), lambda t: within(t, "ehl_multigrid.app")) == []

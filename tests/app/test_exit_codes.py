@@ -4,6 +4,7 @@ fit's extrapolation warned about, and ``ehl solve --csv``."""
 
 import csv
 import json
+import re
 
 import pytest
 
@@ -45,7 +46,8 @@ def test_solve_with_a_failed_start_exits_3_without_a_traceback_or_a_file(tmp_pat
     rc = main(["solve", "--contact", "line", "--M", "5000", "--L", "0", "--points", "129",
                "--out", str(tmp_path)])
     err = _err(capsys)
-    assert rc == 3 and "not positive on the 129-point start grid" in err
+    # the message names the film, the grid it failed on and the contact
+    assert rc == 3 and all(s in err for s in ("film", "positive", "129-point", "M = 5000"))
     assert not list(tmp_path.iterdir())
 
 
@@ -69,7 +71,10 @@ def test_max_points_caps_the_refinement_and_the_message_names_the_grid_needed(tm
                "--max-points", "513", "--no-plots", "--out", str(tmp_path), "--json"])
     out = json.loads(capsys.readouterr().out)
     assert rc == 3 and out["status"] == "inaccurate"
-    assert "max_points = 513" in out["message"] and "points along X are predicted" in out["message"]
+    # names the cap and the number of points predicted to meet the target (more than the cap)
+    assert "max_points = 513" in out["message"]
+    needed = [int(n) for n in re.findall(r"\b(\d+) points\b", out["message"])]
+    assert max(needed, default=0) > 513, out["message"]
 
 
 def test_a_time_budget_stops_the_refinement_and_the_message_says_so(tmp_path, capsys):
@@ -79,7 +84,7 @@ def test_a_time_budget_stops_the_refinement_and_the_message_says_so(tmp_path, ca
                "--time-budget", "0", "--no-plots", "--out", str(tmp_path), "--json"])
     out = json.loads(capsys.readouterr().out)
     assert rc == 3 and out["status"] == "inaccurate"
-    assert "not refined further: the time budget of 0 s" in out["message"]
+    assert re.search(r"time budget\b.* 0 s\b", out["message"]), out["message"]
 
 
 def test_a_negative_time_budget_is_refused_by_the_parser(tmp_path, capsys):
@@ -87,7 +92,8 @@ def test_a_negative_time_budget_is_refused_by_the_parser(tmp_path, capsys):
         main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--time-budget", "-1",
               "--out", str(tmp_path)])
     assert exit_.value.code == 2
-    assert "time-budget = -1 s is outside the allowed range [0, inf) s" in _err(capsys)
+    err = _err(capsys)
+    assert "time-budget = -1 s" in err and "[0, inf)" in err
 
 
 def test_solve_into_a_file_is_refused_before_solving(tmp_path, capsys):
@@ -126,7 +132,8 @@ def test_fits_warns_that_the_fit_under_predicts_contacts_long_in_the_rolling_dir
     captured = capsys.readouterr()
     out = json.loads(captured.out)
     assert out["extrapolated"] is False and "theta = 4 > 1" in out["warning"]
-    assert "above the Nijenbanning fit" in captured.err
+    # the warning gives the measured bias of the solver's film against the fit, in per cent
+    assert re.search(r"\d+%-\d+%.*Nijenbanning", captured.err), captured.err
     assert fits.deviation_note("point", 0.25) is None and fits.deviation_note("line", 4.0) is None
 
 
@@ -155,6 +162,7 @@ def test_bad_numbers_exit_2_naming_the_flag(argv, field, capsys):
     assert field in _err(capsys)
 
 
+@pytest.mark.solver
 def test_run_takes_a_time_budget_for_its_film_solve_and_reports_why_it_stopped(tmp_path, capsys):
     # the Appendix C line contact at 0.1 %: the first solve misses the target, and with no time
     # to refine the film stage says so in its summary and the report
@@ -162,6 +170,6 @@ def test_run_takes_a_time_budget_for_its_film_solve_and_reports_why_it_stopped(t
                "--out", str(tmp_path), "--json"])
     out = json.loads(capsys.readouterr().out)
     assert rc == 3 and out["film"]["converged"] is False
-    assert out["film"]["not_refined_because"] == "the time budget of 0 s is spent"
+    assert re.search(r"time budget\b.* 0 s\b", out["film"]["not_refined_because"])
     report = (tmp_path / "appendix_c_line_4240N_report.md").read_text()
-    assert "Not refined further: the time budget of 0 s is spent." in report
+    assert re.search(r"time budget\b.* 0 s\b", report)

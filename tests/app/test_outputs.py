@@ -138,7 +138,7 @@ def test_output_folder_that_is_a_file_is_refused_before_any_work(tmp_path, only_
 
 @pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="needs a read-only /proc")
 def test_output_folder_on_a_read_only_file_system_is_a_clear_error():
-    with pytest.raises(InputError, match="--out '/proc/ehl_test_out' is not a writable folder"):
+    with pytest.raises(InputError, match="--out '/proc/ehl_test_out'.*writable"):
         writable_dir("/proc/ehl_test_out")
 
 
@@ -148,7 +148,7 @@ def test_read_only_output_folder_is_a_clear_error(tmp_path):
     ro.mkdir()
     ro.chmod(0o555)
     try:
-        with pytest.raises(InputError, match="not a writable folder"):
+        with pytest.raises(InputError, match=f"--out.*{ro.name}.*writable"):
             writable_dir(ro)
     finally:
         ro.chmod(0o755)
@@ -182,6 +182,7 @@ def test_interrupted_stribeck_curve_keeps_its_finished_curves_marked_incomplete(
     assert not is_complete(h5)
 
 
+@pytest.mark.solver
 @pytest.mark.parametrize("command", [
     ["solve", "{scene}", "--points", "65", "--accuracy", "none", "--csv"],
     ["traction", "{scene}", "--slip", "0.1", "--nx", "16", "--nz", "4"],
@@ -200,6 +201,7 @@ def test_every_writing_command_keeps_a_hostile_scene_name_inside_out(command, tm
     assert written and all(p.parent == out for p in written), written
 
 
+@pytest.mark.solver
 def test_a_new_result_leaves_no_figure_of_the_previous_run_beside_it(tmp_path):
     """``ehl solve --out o`` with plots, then again with ``--no-plots``: the earlier figures
     of that result are gone (two processes, as a user runs them); files the runs did not

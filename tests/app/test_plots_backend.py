@@ -30,6 +30,7 @@ def other_backend():
         matplotlib.use(before)
 
 
+@pytest.mark.solver
 @pytest.mark.parametrize("argv", [
     ["solve", "--contact", "line", "--M", "20", "--L", "10", "--points", "129", "--accuracy", "none"],
     ["solve", "--contact", "point", "--M", "20", "--L", "10", "--points", "65", "--accuracy", "none"],
@@ -42,6 +43,7 @@ def test_commands_that_plot_leave_the_backend_alone(argv, tmp_path, capsys, othe
     assert matplotlib.get_backend() == OTHER
 
 
+@pytest.mark.solver
 def test_main_job_and_surface_figures_leave_the_backend_alone(tmp_path, other_backend):
     from mixed.surface import analyse_surface, gaussian_random_surface
     from mixed.surface.plots import plot_analysis

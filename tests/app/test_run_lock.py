@@ -89,8 +89,8 @@ def test_the_lock_of_a_killed_process_is_released(tmp_path, holder):
 
 
 def test_the_refusal_is_an_input_error_so_the_exit_code_is_2(tmp_path, holder):
-    holder(tmp_path)
-    with pytest.raises(InputError, match="in use by another ehl process"):
+    other = holder(tmp_path)
+    with pytest.raises(InputError, match=rf"--out .*{tmp_path.name}.*PID {other.pid}"):
         with output_lock(tmp_path):
             pass
 

@@ -1,10 +1,15 @@
+
 """``ehl solve`` and ``ehl run`` on a line scene with a finite ``[supply] hoil``: the
 mass-conserving starved solver, its keys, and the planner naming it."""
 
 import json
 
+import pytest
+
 from ehl_multigrid.app.cli import main
 from ehl_multigrid.model.scene import Scene, load_scene
+
+pytestmark = pytest.mark.solver
 
 
 def _starved_scene_file(tmp_path, hoil="0.15 um"):

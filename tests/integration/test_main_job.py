@@ -9,6 +9,7 @@ from ehl_multigrid.model.results import load_results
 from ehl_multigrid.model.scene import load_scene
 
 
+@pytest.mark.solver
 def test_main_job_on_a_rough_line_contact_runs_film_traction_and_stribeck(capsys, tmp_path):
     assert main(["run", "page63_line_2000N", "--fidelity", "fast", "--out", str(tmp_path), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -41,6 +42,7 @@ def test_main_job_on_the_default_scene(capsys, tmp_path):
     assert set(load_results(out["hdf5"])) == {"film", "traction", "stribeck"}
 
 
+@pytest.mark.solver
 def test_unconverged_solver_film_falls_back_to_the_fit_fails_the_run_and_says_so(capsys, tmp_path, monkeypatch):
     # M = 6114 at 1.93 GPa: forced onto a 129^2 grid (the accuracy target would take 513 or
     # more) the point solver does not converge, which must not reach the later stages

@@ -40,7 +40,9 @@ def coarse():
     return r1, r2
 
 
+@pytest.mark.solver
 @pytest.mark.parametrize("tol", [1e-8, None])
+@pytest.mark.xdist_group("line_barus_coarse")
 def test_barus_high_alpha_converges_at_4097_points_with_the_drop_settled_before_restriction(coarse, tol):
     kw = DEEP if tol is not None else {"estimate": False, **BARUS}
     r = solve_line(M, L, points=4097, raise_on_failure=False, **kw)
@@ -56,6 +58,7 @@ def test_barus_high_alpha_converges_at_4097_points_with_the_drop_settled_before_
         assert abs(r.scalars[key] - (h2 + q)) < rel * abs(q), (key, r.scalars[key], h2 + q)
 
 
+@pytest.mark.solver
 def test_without_the_pre_relaxation_window_solve_the_same_case_diverges():
     pb = LineProblem.from_moes(M, L, **BARUS)
     solver = line_solver(pb, LineOptions.build(points=4097, raise_on_failure=False))

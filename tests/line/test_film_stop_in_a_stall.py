@@ -18,6 +18,9 @@ from ehl_multigrid.line import solve_line
 CASE = dict(M=500.0, L=20.0, points=16385, local_newton=None)
 
 
+pytestmark = pytest.mark.solver
+
+
 @pytest.fixture(scope="module")
 def deep():
     return solve_line(**CASE, estimate=False, tol=1e-8, tol_load=1e-9, max_cycles=200)

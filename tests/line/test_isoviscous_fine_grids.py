@@ -38,8 +38,10 @@ def dense_newton():
     return films
 
 
+@pytest.mark.solver
 @pytest.mark.parametrize("model", [{}, BARUS], ids=["roelands", "barus"])
 @pytest.mark.parametrize("points", [4097, 8193, 16385])
+@pytest.mark.xdist_group("line_isoviscous_dense_newton")
 def test_isoviscous_line_converges_on_fine_grids(dense_newton, points, model):
     r = solve_line(20.0, 0.0, points=points, estimate=False, raise_on_failure=False,
                    grid_stop=None, **model)

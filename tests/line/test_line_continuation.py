@@ -24,6 +24,7 @@ def test_neighbour_keeps_alpha_pmax_equal_to_alpha_bar():
     assert q.alpha * q.pmax == pytest.approx(LineProblem.from_moes(1000.0, 10.0).alpha_bar, rel=1e-12)
 
 
+@pytest.mark.solver
 def test_start_that_holds_no_film_is_continued_from_half_the_load(heavy):
     pb, opts = heavy
     assert solve_line_problem(pb, opts).status_name == "start_failed"

@@ -63,6 +63,7 @@ def test_local_newton_settles_a_disturbed_window_and_leaves_the_rest():
     assert np.abs(lv.P - exact).max() < 1e-9 * exact.max()
 
 
+@pytest.mark.solver
 def test_barus_line_at_4097_points_converges_with_local_newton_and_stalls_without():
     kw = {"points": 4097, "estimate": False, "raise_on_failure": False, **BARUS}
     off = solve_line(100.0, 20.0, local_newton=None, **kw)

@@ -42,6 +42,7 @@ def test_newton_jacobian_matches_finite_differences(M, L, elastic, order):
     assert np.abs(J - fd).max() < 1e-6 * scale
 
 
+@pytest.mark.solver
 def test_a_start_from_another_box_solution_gives_the_same_film_in_fewer_newton_steps():
     import dataclasses
 
@@ -73,6 +74,7 @@ def test_serial_blas_restores_the_callers_thread_count():
     assert blas_threads() == before
 
 
+@pytest.mark.solver
 def test_a_guess_replaces_a_start_grid_too_coarse_for_the_dense_newton(monkeypatch):
     # M = 1000 needs a 1025-point start grid; with the dense start capped at 513 points the
     # given solution starts the cycles on the finest grid and they reach the same films

@@ -17,6 +17,7 @@ from mixed.starvation import INLET_HC_RANGE, LINE_INLET_DELTA, chevalier_reducti
 from mixed.stribeck import stribeck_curve
 
 
+@pytest.mark.solver
 def test_inlet_exponent_matches_the_starved_point_solver_where_3p5_does_not():
     """(20, 10), supply = the flooded central film: the solver's Hc/Hc_ff against (6.1) with
     r = Hoil/(Hc_ff rho_c) (rho at the flooded centre), as in validation/starved."""

@@ -41,6 +41,7 @@ def test_json_has_the_required_lists_and_matches_the_library(capsys, tmp_path):
     assert res.scalars["converged"] is True
 
 
+@pytest.mark.solver
 def test_hoil_list_adds_starved_cases_and_plots_are_written(capsys, tmp_path):
     out = run_json(capsys, ["stribeck", "chapter6_starved_0.5GPa", "--json", "--n", "6", "--hoil", "0.5,3",
                             "--out", str(tmp_path)])

@@ -58,14 +58,14 @@ def test_operating_values_override_the_element_and_entrainment_speed_doubles_to_
     sc = _bod(operating={"T_oil": 40.0, "pmax": "1 GPa", "entrainment_speed": "0.5 m/s", "slip": 0.1})
     assert sc.hertz.pmax == pytest.approx(1e9, rel=1e-9)
     assert sc.us == pytest.approx(1.0) and sc.slip == 0.1
-    with pytest.raises(InputError, match="not both"):
+    with pytest.raises(InputError, match=r"\bus\b.*entrainment_speed"):
         _bod(operating={"us": 1.0, "entrainment_speed": 0.5})
 
 
 def test_element_scene_errors():
-    with pytest.raises(InputError, match=r"give \[geometry\] or \[element\]"):
+    with pytest.raises(InputError, match=r"\[geometry\].*\[element\]"):
         _bod(geometry={"Rx": 0.01})
-    with pytest.raises(InputError, match="contradicts"):
+    with pytest.raises(InputError, match=r"contact\.kind = 'line'.*'ball_on_disc'.*'point'"):
         _bod(contact={"kind": "line", "length": 0.01})
 
 

@@ -64,11 +64,11 @@ def test_stribeck_load_and_outer_race_and_angular_contact():
 def test_ball_bearing_bad_input_names_field_value_and_range():
     with pytest.raises(InputError, match=r"f_inner = 0.49.*\(0.5, 0.7\]"):
         ball_bearing(D, DM, 9, 0.49, 0.525, 100.0, ball_load=1.0)
-    with pytest.raises(InputError, match="exactly one of"):
+    with pytest.raises(InputError, match=r"ball_load.*radial_load.*axial_load.*\['ball_load', 'radial_load'\]"):
         ball_bearing(D, DM, 9, 0.52, 0.525, 100.0, ball_load=1.0, radial_load=2.0)
     with pytest.raises(InputError, match="race = 'middle'"):
         ball_bearing(D, DM, 9, 0.52, 0.525, 100.0, race="middle", ball_load=1.0)
-    with pytest.raises(InputError, match="axial_load needs a contact angle"):
+    with pytest.raises(InputError, match=r"axial_load.*angle.* 0 deg"):
         ball_bearing(D, DM, 9, 0.52, 0.525, 100.0, axial_load=1.0)
 
 
@@ -105,7 +105,7 @@ def test_spur_gear_off_the_pitch_point_slides_and_shares_load_in_the_double_zone
     assert g.details["sliding_speed"] == pytest.approx((w1 + w1 * 20 / 40) * s, rel=1e-12)
     assert g.details["load_share"] == 0.5
     assert g.slip > 0.0  # pinion flank faster near its tip
-    with pytest.raises(InputError, match=r"spur_gear\).position = .*outside the allowed range"):
+    with pytest.raises(InputError, match=r"spur_gear\)\.position = 0\.0126\d* m.*\[-0\.0126\d*, 0\.0114\d*\]"):
         spur_gear(5e-3, 20, 40, 0.02, w1, torque=200.0, position=1.1 * end)
 
 
@@ -132,7 +132,7 @@ def test_ball_on_disc_rolling_fixed_ball_and_driven_ball():
     assert c.u2 == pytest.approx(120 * RPM * 0.04, rel=1e-12) and c.slip == 0.0
     fixed = ball_on_disc(9.525e-3, 0.04, 120 * RPM, 20.0, ball_speed=0.0)
     assert fixed.slip == pytest.approx(-2.0)  # pin-on-disc: pure sliding, ball at rest
-    with pytest.raises(InputError, match="sum velocity"):
+    with pytest.raises(InputError, match=r"u1 \+ u2 = -0\.497\d* m/s.*> 0"):
         ball_on_disc(9.525e-3, 0.04, 120 * RPM, 20.0, ball_speed=-1.0)
 
 
@@ -153,11 +153,11 @@ def test_element_table_with_units_matches_the_si_call():
 def test_element_table_errors_name_the_problem():
     with pytest.raises(InputError, match="element.kind = 'cam'"):
         element_contact({"kind": "cam"})
-    with pytest.raises(InputError, match=r"unknown key\(s\) \['radius'\]"):
+    with pytest.raises(InputError, match=r"\['radius'\].*\['ball_radius', 'frequency', 'load', 'stroke'\]"):
         element_contact({"kind": "ball_on_flat", "radius": 1.0})
     with pytest.raises(InputError, match="missing"):
         element_contact({"kind": "ball_on_flat", "ball_radius": "3 mm"})
-    with pytest.raises(InputError, match="n_balls = 8.5 must be a whole number"):
+    with pytest.raises(InputError, match=r"n_balls = 8\.5 .*whole"):
         element_contact({"kind": "ball_bearing", "n_balls": 8.5})
     with pytest.raises(InputError, match=r"element.ball_radius = '3 GPa'.*length"):
         element_contact({"kind": "ball_on_flat", "ball_radius": "3 GPa"})

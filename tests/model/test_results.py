@@ -1,5 +1,7 @@
 """HDF5 results: round trip, scene stored beside the fields, atomic writes."""
 
+import re
+
 import h5py
 import numpy as np
 import pytest
@@ -68,9 +70,9 @@ def test_failed_write_keeps_the_previous_file(tmp_path):
 def test_field_dims_are_checked_against_coordinates():
     r = Result("demo")
     r.add_coord("x", np.zeros(4))
-    with pytest.raises(InputError, match="axis 0 has 3 points"):
+    with pytest.raises(InputError, match=r"'p'.* 3 points.*'x' has 4"):
         r.add_field("p", np.zeros(3), "Pa", ("x",))
-    with pytest.raises(InputError, match="unknown coordinate 'z'"):
+    with pytest.raises(InputError, match=r"'p'.*coordinate 'z'"):
         r.add_field("p", np.zeros(4), "Pa", ("z",))
 
 
@@ -78,7 +80,7 @@ def test_loading_a_foreign_file_is_refused(tmp_path):
     f = tmp_path / "other.h5"
     with h5py.File(f, "w") as h:
         h.attrs["x"] = 1
-    with pytest.raises(InputError, match="not an ehl-multigrid result"):
+    with pytest.raises(InputError, match=re.escape(str(f)) + ".*ehl-multigrid"):
         Result.load(f)
 
 
@@ -94,5 +96,5 @@ def test_several_results_round_trip_in_one_file(tmp_path):
     assert back["traction"].kind == "other" and back["traction"].scalars["Hc"] == 0.5
     np.testing.assert_array_equal(back["film"]["p"], a["p"])
     assert Result.load(path, group="film").scene == a.scene
-    with pytest.raises(InputError, match="no result 'stribeck'"):
+    with pytest.raises(InputError, match=r"'stribeck'.*\['film', 'traction'\]"):
         Result.load(path, group="stribeck")

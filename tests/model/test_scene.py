@@ -126,7 +126,7 @@ def test_bad_scene_value_raises_error_naming_field_value_and_range(path, value, 
 
 
 def test_load_and_pmax_together_are_rejected():
-    with pytest.raises(InputError, match="exactly one of load"):
+    with pytest.raises(InputError, match=r"\bload\b.*\bpmax\b"):
         Scene.from_dict(scene_with("operating.pmax", 1e9))
 
 
@@ -139,7 +139,7 @@ def test_point_contact_with_unequal_radii_must_be_declared_elliptic():
 
 
 def test_unknown_scene_name_lists_builtins():
-    with pytest.raises(InputError, match="built-in scenes"):
+    with pytest.raises(InputError, match=r"'no_such_scene'.*'default'"):
         load_scene("no_such_scene")
 
 

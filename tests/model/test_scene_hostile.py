@@ -2,6 +2,7 @@
 now an InputError naming the field (or the file) on load."""
 
 import math
+import re
 
 import pytest
 
@@ -34,7 +35,7 @@ _DELETE = object()
 @pytest.mark.parametrize("log", ["no", "false", 1, 0, "yes"])
 def test_range_log_must_be_a_boolean(log):
     d = _with("ranges.us", {"min": 0.1, "max": 10.0, "n": 5, "log": log})
-    with pytest.raises(InputError, match=r"ranges\.us\.log = .* must be true or false"):
+    with pytest.raises(InputError, match=rf"ranges\.us\.log = {re.escape(repr(log))} .*true.*false"):
         Scene.from_dict(d)
 
 
@@ -45,7 +46,7 @@ def test_range_log_false_gives_linear_spacing():
 
 @pytest.mark.parametrize("name", [{"a": 1}, 5, ["x"]])
 def test_name_must_be_a_string(name):
-    with pytest.raises(InputError, match="name = .* must be a string"):
+    with pytest.raises(InputError, match=rf"name = {re.escape(repr(name))} .*string"):
         Scene.from_dict(_with("name", name))
 
 
@@ -53,7 +54,7 @@ def test_name_must_be_a_string(name):
 def test_theta_outside_the_point_solvers_range_is_refused_on_load(theta):
     d = _with("geometry", {"Rx": 0.01, "Ry": 0.01 / theta})
     d["contact"] = {"kind": "elliptic"}
-    with pytest.raises(InputError, match=r"theta = Rx/Ry = .* outside the allowed range \[0.01, 100\]"):
+    with pytest.raises(InputError, match=rf"theta = Rx/Ry = {theta:g} .*\[0\.01, 100\]"):
         Scene.from_dict(d)
 
 
@@ -71,7 +72,7 @@ def test_scene_theta_range_is_the_point_solvers():
 
 @pytest.mark.parametrize("key", ["n", "beta"])
 def test_roughness_without_summit_parameters_is_refused_on_load(key):
-    with pytest.raises(InputError, match=rf"roughness\.{key} \(.*\) is required"):
+    with pytest.raises(InputError, match=rf"roughness\.{key} .*required"):
         Scene.from_dict(_with(f"roughness.{key}", _DELETE))
 
 
@@ -87,39 +88,39 @@ def test_absurd_speeds_are_refused(field, value):
 def test_binary_scene_file_is_an_input_error(tmp_path):
     f = tmp_path / "bin.toml"
     f.write_bytes(bytes(range(256)) * 4)
-    with pytest.raises(InputError, match="not a TOML text file"):
+    with pytest.raises(InputError, match=re.escape(str(f)) + ".*binary"):
         load_scene(f)
 
 
 def test_non_utf8_scene_file_is_an_input_error(tmp_path):
     f = tmp_path / "latin.toml"
     f.write_bytes('name = "caf\xe9"\n'.encode("latin-1"))
-    with pytest.raises(InputError, match="is not UTF-8 text"):
+    with pytest.raises(InputError, match=re.escape(str(f)) + r".*UTF-8.*byte 11"):
         load_scene(f)
 
 
 def test_truncated_and_empty_scene_files_are_input_errors(tmp_path):
     text = (tmp_path / "ok.toml")
     text.write_text('name = "x"\n[contact]\nkind = "po')
-    with pytest.raises(InputError, match="is not valid TOML"):
+    with pytest.raises(InputError, match=re.escape(str(text)) + ".*TOML"):
         load_scene(text)
     empty = tmp_path / "empty.toml"
     empty.write_bytes(b"")
-    with pytest.raises(InputError, match=r"missing the \[contact\] table"):
+    with pytest.raises(InputError, match=r"\[contact\]"):
         load_scene(empty)
 
 
 def test_special_files_and_folders_are_not_read_as_scenes(tmp_path):
-    with pytest.raises(InputError, match="is not a regular file"):
+    with pytest.raises(InputError, match=re.escape(str(tmp_path)) + ".*regular file"):
         load_scene(tmp_path)
-    with pytest.raises(InputError, match="is not a regular file"):
+    with pytest.raises(InputError, match="/dev/zero.*regular file"):
         load_scene("/dev/zero")
 
 
 def test_huge_scene_file_is_refused_unread(tmp_path):
     f = tmp_path / "huge.toml"
     f.write_text("# " + "x" * 2_000_000 + "\n")
-    with pytest.raises(InputError, match="bytes; a scene is a TOML file"):
+    with pytest.raises(InputError, match=re.escape(str(f)) + ".* 2000003 bytes.* 1000000 bytes"):
         load_scene(f)
 
 

@@ -547,6 +547,7 @@ def test_the_decay_probe_runs_only_where_the_fixed_domain_factor_decides_a_miss(
     assert calls == [] and not out.success
 
 
+@pytest.mark.solver
 def test_point_target_missed_only_by_the_fixed_domain_factor_is_met_by_the_measured_decay():
     """Circular (20, 10) on 513 points (the widest decay probe, 4x box at the mesh of 129
     points, is no larger than the solve): a target between the fixed factor's estimate and the
@@ -591,6 +592,7 @@ def test_a_measured_decay_of_the_box_change_is_honest_against_wider_boxes():
         assert true <= est <= 5.0 * true
 
 
+@pytest.mark.solver
 def test_line_target_missed_only_by_the_fixed_domain_factor_is_met_by_the_measured_decay(line_reference):
     fixed = solve_line(20.0, 10.0, points=2049)
     b = fixed.error.budget

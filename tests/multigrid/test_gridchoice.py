@@ -21,6 +21,7 @@ def test_grid_error_constant_grows_with_load():
     assert all(b > a for a, b in zip(cs, cs[1:], strict=False))
 
 
+@pytest.mark.solver
 def test_predicted_grid_error_holds_between_tabulated_loads():
     """M = 50 lies between the study's M = 20 and 100: the interpolated C predicts the error of
     Hc on 1025 points against a 16x finer solve within a factor 1.5."""

@@ -3,6 +3,8 @@ mesh is as fine as 2049 points on the classic X box [-4.5, 1.5] or finer, where 
 Jacobi-distributive zone has shrunk (measured at 4097^2: the default (20, 10) converges in FMG
 alone instead of stalling for eight cycles)."""
 
+import pytest
+
 from ehl_multigrid.multigrid.options import PointOptions
 from ehl_multigrid.point import fas
 from ehl_multigrid.point.problem import problem_from_moes
@@ -17,6 +19,7 @@ def test_switch_is_raised_only_on_meshes_as_fine_as_2049_points_on_the_classic_b
     assert fas.sweep_switch(1.0, 6.0 / 16) == 1.0
 
 
+@pytest.mark.solver
 def test_default_box_grids_get_it_from_2049_points_and_a_widened_box_does_not():
     pb = problem_from_moes(20.0, 10.0)
     fine = fas.PointHierarchy(pb, PointOptions(points=2049, half=True))

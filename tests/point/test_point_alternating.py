@@ -51,6 +51,7 @@ def test_narrow_contact_relaxes_alternately_by_default():
     assert not fas.PointHierarchy(problem_from_moes(100.0, 20.0, theta=1.0), opt).alternating
 
 
+@pytest.mark.solver
 def test_alternating_relaxation_converges_where_x_lines_stall():
     """(M, L) = (100, 20), theta = 4 at 257 points: X lines alone stall above the tolerance
     within max_cycles; alternating X and Y lines converge."""
@@ -61,10 +62,11 @@ def test_alternating_relaxation_converges_where_x_lines_stall():
     assert both.status_name == "converged"
 
 
+@pytest.mark.solver
 def test_alternating_and_x_only_give_the_same_film():
-    """Where both smoothers converge, (20, 10), theta = 4 at 257 points, to a residual of
+    """Where both smoothers converge, (20, 10), theta = 4 at 129 points, to a residual of
     1e-6, their central films agree to that level: the Y sweep solves the same equations."""
-    kw = dict(theta=4.0, points=257, half=True, estimate=False, tol=1e-6, tol_load=1e-7,
+    kw = dict(theta=4.0, points=129, half=True, estimate=False, tol=1e-6, tol_load=1e-7,
               max_cycles=40, threads=1)
     x_only = solve_point(20.0, 10.0, alternating=False, **kw)
     both = solve_point(20.0, 10.0, alternating=True, **kw)
@@ -83,6 +85,7 @@ def test_alternating_sweep_counts_two_sweeps_of_work(alternating, sweeps_of_work
     assert hz.relax(0, 3, solver.settings, True) == pytest.approx(3.0 * sweeps_of_work * hz.work(0))
 
 
+@pytest.mark.solver
 def test_y_pre_false_relaxes_y_lines_after_the_correction_only():
     """``y_pre=False``: the fine grids of a wider contact alternate in the post-relaxation only,
     so one F cycle per FMG level on 513^2 costs 2 + 2 instead of 4 + 2 sweeps of work per

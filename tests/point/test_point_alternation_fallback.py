@@ -1,12 +1,17 @@
+
 """A wider contact whose X-line relaxation fails is relaxed along X and Y lines instead: the
 policy's ``"alternate"`` step within a solve and, when the solve still fails, one solve
 again with alternation on every grid (``point.solve.RETRY_ALTERNATING``)."""
+
+import pytest
 
 from ehl_multigrid.multigrid.options import PointOptions
 from ehl_multigrid.multigrid.policy import RobustnessPolicy
 from ehl_multigrid.point import solve_point
 from ehl_multigrid.point.fas import POINT_POLICY, PointHierarchy
 from ehl_multigrid.point.problem import problem_from_moes
+
+pytestmark = pytest.mark.solver
 
 
 def _barus(M, L, points=129, **kw):

@@ -22,9 +22,11 @@ def test_solve_point_from_moes_returns_result_with_line_solver_shape():
     assert set(("Hc", "Hm", "load_error", "converged", "solver")) <= set(sol.payload())
 
 
+@pytest.mark.solver
 def test_solve_point_newton_path_agrees_with_fas_on_the_same_grid():
-    a = solve_point(20, 10, points=65)
-    b = solve_point(20, 10, points=65, solver="newton")
+    # no error estimate: its extra solves do not change the films compared
+    a = solve_point(20, 10, points=65, estimate=False)
+    b = solve_point(20, 10, points=65, solver="newton", estimate=False)
     assert b.converged, b.report.message
     assert b.Hc == pytest.approx(a.Hc, rel=3e-4)
 
@@ -38,7 +40,7 @@ def test_solve_point_from_scene_gives_physical_film():
 def test_solve_point_rejects_bad_combinations():
     with pytest.raises(InputError, match="solver"):
         solve_point(20, 10, solver="sor")
-    with pytest.raises(InputError, match="scene or M and L"):
+    with pytest.raises(InputError, match=r"\bscene\b.*\bM\b.*\bL\b"):
         solve_point(20, 10, scene=load_scene("appendix_d_point"))
     with pytest.raises(InputError, match="rigid"):
         solve_point(20, 10, solver="newton", rigid=True)
@@ -59,6 +61,7 @@ def test_low_M_thick_film_converges_with_the_default_domain():
     assert sol.Hc > 0
 
 
+@pytest.mark.solver
 def test_elliptic_grid_stretches_cells_with_the_ellipse():
     # hy/hx follows b/a (within the power-of-2 rounding) on both sides of the circle
     for theta in (4.0, 0.25):
@@ -84,8 +87,10 @@ def test_unconverged_coarse_high_M_solve_names_the_grid_it_needs():
     assert "points >= 513" in sol.report.message
 
 
+@pytest.mark.solver
 def test_cli_solver_newton_and_rigid(tmp_path, capsys):
-    rc = main(["solve", "--M", "20", "--L", "10", "--contact", "point", "--points", "65", "--accuracy", "none",
+    # the Newton path on the light (3, 0) contact of the rigid comparison below (fewer Newton steps)
+    rc = main(["solve", "--M", "3", "--L", "0", "--contact", "point", "--points", "65", "--accuracy", "none",
                "--solver", "newton", "--json", "--no-plots", "--out", str(tmp_path)])
     assert rc == 0
     d = json.loads(capsys.readouterr().out)
@@ -103,11 +108,13 @@ def test_cli_solver_newton_and_rigid(tmp_path, capsys):
     assert math.isclose(rigid["Hc"], rigid["Hm"], rel_tol=1e-2)
 
 
-def test_cli_line_refuses_newton_path(capsys):
-    rc = main(["solve", "--M", "20", "--L", "10", "--contact", "line", "--solver", "newton", "--json"])
+def test_cli_line_refuses_newton_path(capsys, tmp_path):
+    rc = main(["solve", "--M", "20", "--L", "10", "--contact", "line", "--solver", "newton", "--json",
+               "--out", str(tmp_path)])
     assert rc == 2
 
 
+@pytest.mark.solver
 def test_highly_piezoviscous_case_converges_with_the_default_switch():
     """(M, L) = (100, 20), alpha_bar = 34 at 257^2: the default GS/JD switch (40) converges;
     the switch of moderate loads (1) does not within the same cycle budget."""
@@ -118,6 +125,7 @@ def test_highly_piezoviscous_case_converges_with_the_default_switch():
     assert not low.converged
 
 
+@pytest.mark.solver
 def test_half_domain_equals_full_domain_for_an_elliptic_contact_with_square_cells():
     # y_ratio 2: twice the intervals along Y (the default stretches the cells with the ellipse)
     full = solve_point(20, 10, theta=0.25, points=65, half=False, y_ratio=2)

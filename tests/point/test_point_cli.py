@@ -3,6 +3,7 @@
 import json
 
 import h5py
+import pytest
 
 from ehl_multigrid.app.cli import main
 from ehl_multigrid.model.results import Result
@@ -27,17 +28,19 @@ def test_cli_json_moes_only(tmp_path, capsys):
         assert "residual" in f["history"]
 
 
+@pytest.mark.solver
 def test_cli_prints_the_oil_used_in_moes_only_mode(tmp_path, capsys):
     rc = main(["solve", "--contact", "elliptic", "--ellipticity", "4", "--M", "20", "--L", "5",
-               "--points", "257", "--accuracy", "none", "--out", str(tmp_path), "--alpha", "1.5e-8"])
+               "--points", "129", "--accuracy", "none", "--out", str(tmp_path), "--alpha", "1.5e-8"])
     out = capsys.readouterr().out
     assert rc == 0
     assert "alpha = 1.5e-08" in out and "eta0 = 0.04" in out and "p0 = 1.96e+08" in out
     assert list(tmp_path.glob("*_maps.png")) and list(tmp_path.glob("*_interference.png"))
 
 
+@pytest.mark.solver
 def test_cli_scene_gives_physical_films(tmp_path, capsys):
-    rc = main(["solve", "appendix_d_point", "--points", "257", "--accuracy", "none", "--json", "--no-plots",
+    rc = main(["solve", "appendix_d_point", "--points", "129", "--accuracy", "none", "--json", "--no-plots",
                "--out", str(tmp_path)])
     payload = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert rc == 0

@@ -10,6 +10,8 @@ from ehl_multigrid.model.scene import load_scene
 from ehl_multigrid.point.problem import problem_from_scene
 from ehl_multigrid.point.solve import solve_fas
 
+pytestmark = pytest.mark.solver
+
 
 @pytest.fixture(scope="module")
 def bearing():

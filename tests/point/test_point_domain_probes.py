@@ -1,10 +1,13 @@
 """The box (domain) probes of an accuracy-driven point solve: a refinement sequence never
 solves the same probe twice (the wide solve of one box is the narrow solve of the next)."""
 
+import pytest
+
 import ehl_multigrid.point.solve as point_solve
 from ehl_multigrid.point.solve import solve_point
 
 
+@pytest.mark.solver
 def test_a_refinement_sequence_solves_each_probe_once(monkeypatch):
     seen = []
     original = point_solve.solve_fas

@@ -38,6 +38,7 @@ def test_a_fine_grid_alternating_sweep_counts_two_sweeps_of_work():
     assert hz.sweep_cost(0) == pytest.approx(hz.work(0))
 
 
+@pytest.mark.solver
 def test_513_points_reach_a_tight_residual_in_four_cycles_where_x_lines_need_more():
     """(20, 10) at 513^2, half domain, one W cycle per FMG level, adaptation off: residual
     1e-5 and load error 1e-5 within four cycles after FMG with the fine-grid alternation

@@ -41,6 +41,7 @@ def test_the_local_update_mirrors_rows_at_the_symmetry_line():
     assert np.allclose(H, expect, rtol=1e-12, atol=1e-15)
 
 
+@pytest.mark.solver
 def test_a_solve_with_the_local_refresh_reaches_the_same_films(monkeypatch):
     kw = dict(points=513, half=True, estimate=False, tol=1e-7, max_cycles=40)
     local = solve_point(20.0, 10.0, **kw)
@@ -50,6 +51,7 @@ def test_a_solve_with_the_local_refresh_reaches_the_same_films(monkeypatch):
     assert abs(local.Hc / full.Hc - 1.0) < 1e-6 and abs(local.Hm / full.Hm - 1.0) < 1e-6
 
 
+@pytest.mark.solver
 def test_whole_refresh_option_gives_the_same_discrete_film():
     """``local_film_update=False`` refreshes the film between the X and Y halves by a whole
     deformation evaluation: another iteration of the same discrete problem."""

@@ -10,6 +10,8 @@ import pytest
 from ehl_multigrid.point.problem import NARROW_BELOW, min_points, problem_from_moes
 from ehl_multigrid.point.solve import solve_fas
 
+pytestmark = pytest.mark.solver
+
 
 @pytest.fixture(scope="module")
 def narrow():

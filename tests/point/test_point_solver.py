@@ -77,6 +77,7 @@ def test_rigid_isoviscous_limit_matches_independent_direct_solve():
     assert np.abs(out.P - ref["P"]).max() < 1e-5
 
 
+@pytest.mark.solver
 def test_newton_pyamg_path_reaches_the_fas_answer(sol65):
     from ehl_multigrid.point.newton import solve_newton_amg
 
@@ -88,6 +89,7 @@ def test_newton_pyamg_path_reaches_the_fas_answer(sol65):
     assert a.scalars["Hm_venner"] == pytest.approx(b.scalars["Hm_venner"], rel=3e-3)
 
 
+@pytest.mark.solver
 def test_thick_film_wide_box_converges_to_the_newton_answer():
     """At M = 1 the pressure spreads over the inlet length s = 8 a: on a box four times the
     default the coarse mesh follows s, so the FAS cycles converge (a coarse mesh tied to a left

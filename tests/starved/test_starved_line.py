@@ -35,6 +35,7 @@ def test_thick_supply_reproduces_the_flooded_core_solution_within_its_error():
 
 
 @pytest.mark.solver
+@pytest.mark.xdist_group("starved_line_half_starved")
 def test_mass_is_conserved_to_1e6_relative(half_starved):
     s = half_starved.scalars
     assert half_starved.success
@@ -48,6 +49,7 @@ def test_mass_is_conserved_to_1e6_relative(half_starved):
 
 
 @pytest.mark.solver
+@pytest.mark.xdist_group("starved_line_half_starved")
 def test_starved_central_film_carries_the_supply_in_pure_rolling(half_starved):
     # rho_c Hc = rho_0 Hoil when the pressure flow at the centre vanishes
     assert half_starved.scalars["rho_c_Hc_over_hoil"] == pytest.approx(1.0, abs=1e-3)
@@ -131,6 +133,7 @@ def test_an_unconverged_solve_is_a_failed_result_with_the_reason_and_raises_when
 
 
 @pytest.mark.solver
+@pytest.mark.xdist_group("starved_line_half_starved")
 def test_the_outer_iteration_is_recorded(half_starved):
     hist = half_starved.extra["meniscus_history"]
     assert len(hist) == half_starved.extra["meniscus_solves"] - 1  # plus the flooded-inlet solve
@@ -141,6 +144,7 @@ def test_the_outer_iteration_is_recorded(half_starved):
 
 
 @pytest.mark.solver
+@pytest.mark.xdist_group("starved_line_half_starved")
 def test_an_accuracy_the_estimate_does_not_meet_is_reported(half_starved):
     # 513 points: estimated Hm error about 4e-4 (the fixed-supply Richardson estimate)
     assert 1e-4 < half_starved.Hm_error < 2e-3

@@ -24,6 +24,9 @@ from ehl_multigrid.starved.point import solve_starved_point_scene
 NOT_FAILED = ("converged", "residual_floor", "inaccurate")
 
 
+pytestmark = pytest.mark.solver
+
+
 @pytest.fixture
 def ball_on_flat(tmp_path, report_scene):
     """The issue's point contact with a 20 nm layer."""

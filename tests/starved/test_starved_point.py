@@ -33,6 +33,8 @@ def starved(problem, flooded):
     return {ratio: solve_starved_point(problem, ratio * Hff, **KW) for ratio in (0.03, 0.4, 1.0)}
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("starved_point_row")
 def test_flooded_inlet_reproduces_the_core_flooded_solution(problem, flooded):
     for hoil in (math.inf, 50.0):  # 50: thicker than the gap at the inlet boundary
         s = solve_starved_point(problem, hoil, **KW)
@@ -43,6 +45,8 @@ def test_flooded_inlet_reproduces_the_core_flooded_solution(problem, flooded):
         assert np.all(s.extra["theta"][s.P > 0.0] == 1.0)
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("starved_point_row")
 def test_starved_solutions_conserve_mass(starved):
     for s in starved.values():
         assert s.status_name == "converged"
@@ -54,6 +58,8 @@ def test_starved_solutions_conserve_mass(starved):
         assert fl["in"] == pytest.approx(s.extra["hoil"] * (s.Y[-1] - 0.5 * (s.Y[1] - s.Y[0])), rel=1e-3)
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("starved_point_row")
 def test_severe_starvation_carries_the_supply_through_the_centre(starved):
     s = starved[0.03]
     ratio = s.extra["rho_c"] * s.scalars["Hc_venner"] / s.extra["hoil"]
@@ -63,6 +69,8 @@ def test_severe_starvation_carries_the_supply_through_the_centre(starved):
     assert m.extra["rho_c"] * m.scalars["Hc_venner"] / m.extra["hoil"] < 0.9
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("starved_point_row")
 def test_film_and_meniscus_fall_with_the_supply(starved, flooded):
     ratios = sorted(starved)
     Hc = [starved[r].scalars["Hc_venner"] for r in ratios]
@@ -84,6 +92,7 @@ def test_bad_supply_is_a_clear_error(problem, hoil):
         solve_starved_point(problem, hoil, **KW)
 
 
+@pytest.mark.solver
 def test_point_scene_supply_in_metres_gives_films_in_metres():
     from ehl_multigrid.model.scene import load_scene
     from ehl_multigrid.point.problem import problem_from_scene

@@ -35,6 +35,8 @@ def flooded(problem):
     return solve_fas(problem, wedge_order=1, tol=STARVED_TOL, max_cycles=40, **KW)
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("starved_point_mass_flooded")
 def test_mild_starvation_of_a_thick_film_conserves_mass_to_1e_6(problem, flooded):
     # Hoil = 2 Hc_ff: the meniscus far upstream; the cycles alone stop at an imbalance of 3.6e-5
     s = solve_starved_point(problem, 2.0 * flooded.scalars["Hc_venner"], **KW)
@@ -46,6 +48,8 @@ def test_mild_starvation_of_a_thick_film_conserves_mass_to_1e_6(problem, flooded
     assert any("exact solve" in a and "kept the second" in a for a in s.actions)
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("starved_point_mass_flooded")
 def test_exact_zone_solve_zeroes_the_residual_of_its_zone(problem, flooded):
     opt = PointOptions.build(None, points=65, half=True, raise_on_failure=False, tol=1e-6, wedge_order=1)
     sol, hz = _solve_once(problem, 2.0 * flooded.scalars["Hc_venner"], opt, None)
@@ -77,6 +81,8 @@ def test_exact_zone_solve_zeroes_the_residual_of_its_zone(problem, flooded):
     assert imbalance_of(hz) == pytest.approx(abs(total) / fl["in"], rel=1e-6, abs=1e-14)
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("starved_point_mass_flooded")
 def test_flooded_limit_is_unchanged(problem, flooded):
     s = solve_starved_point(problem, math.inf, **KW)
     assert s.status_name == "converged"

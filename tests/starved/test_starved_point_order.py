@@ -39,6 +39,7 @@ def test_the_default_wedge_stays_first_order():
     assert STARVED_WEDGE_ORDER == 1
 
 
+@pytest.mark.solver
 def test_flooded_inlet_reproduces_the_core_second_order_film(problem):
     core = solve_fas(problem, tol=STARVED_TOL, max_cycles=40, **KW)  # core default: second order
     assert core.options.wedge_order == 2 and core.status_name == "converged"
@@ -49,6 +50,7 @@ def test_flooded_inlet_reproduces_the_core_second_order_film(problem):
     assert s.extra["mass_balance_error"] < 1e-8
 
 
+@pytest.mark.solver
 @pytest.mark.parametrize("ratio", [0.6, 0.03])  # mild, severe
 def test_second_order_starved_solutions_conserve_mass(problem, ratio):
     s = solve_starved_point(problem, ratio * HC_FF1_129, **KW2)
@@ -93,6 +95,7 @@ def test_face_order_follows_the_upstream_film_content():
     assert face_value(rq, H, full, 0, 2, 1) == pytest.approx(2.0)
 
 
+@pytest.mark.solver
 @pytest.mark.slow
 def test_central_film_converges_at_second_order_with_a_full_film(problem):
     """Hoil = Hc_ff (the meniscus at X ~ -1.6, the film full from there to the outlet): the
@@ -105,6 +108,7 @@ def test_central_film_converges_at_second_order_with_a_full_film(problem):
     assert 3.5 < ratio < 4.5
 
 
+@pytest.mark.solver
 def test_a_scene_solver_table_selects_the_second_order_wedge_of_ehl_solve(tmp_path, capsys):
     import json
 

@@ -20,6 +20,7 @@ HC_FF_179 = 0.0609
 HC_FF_20 = 0.439
 
 
+@pytest.mark.solver
 def test_moderate_starvation_of_the_chapter6_contact_converges_and_conserves_mass():
     # Hoil = 0.8 Hc_ff at 129^2 stopped at max_cycles before the held-point projection
     s = solve_starved_point(problem_from_moes(179.0, 4.17), 0.8 * HC_FF_179, points=129, half=True,
@@ -38,6 +39,7 @@ def test_chapter6_contact_row_converges_at_257(ratio):
     assert s.extra["mass_balance_error"] < (2e-6 if ratio >= 1.0 else 1e-6)
 
 
+@pytest.mark.solver
 def test_the_second_coarse_grid_rule_finishes_what_the_first_cannot():
     # (20, 10) at 129^2, Hoil = 0.25 Hc_ff: the default rule stops at a residual of 2.3e-8
     s = solve_starved_point(problem_from_moes(20.0, 10.0), 0.25 * HC_FF_20, points=129, half=True,
@@ -47,6 +49,7 @@ def test_the_second_coarse_grid_rule_finishes_what_the_first_cannot():
     assert s.extra["mass_balance_error"] < 1e-6
 
 
+@pytest.mark.solver
 def test_a_failed_starved_solve_is_reported_as_not_converged():
     s = solve_starved_point(problem_from_moes(179.0, 4.17), 0.8 * HC_FF_179, points=129, half=True,
                             raise_on_failure=False, max_cycles=2)
@@ -62,6 +65,7 @@ def _starved_point_scene(tmp_path, hoil="20 nm"):
     return path
 
 
+@pytest.mark.solver
 def test_solve_uses_the_starved_point_solver_for_a_finite_oil_layer(tmp_path, capsys):
     scene = _starved_point_scene(tmp_path)
     rc = main(["solve", str(scene), "--points", "129", "--accuracy", "none", "--no-plots", "--json",
@@ -81,6 +85,7 @@ def test_solve_uses_the_starved_point_solver_for_a_finite_oil_layer(tmp_path, ca
     assert rc == 3 and out["converged"] is False and out["status"] != "converged"
 
 
+@pytest.mark.solver
 def test_the_starved_point_estimate_judges_the_accuracy(tmp_path):
     from ehl_multigrid.starved import solve_starved_point_scene
 
@@ -103,6 +108,7 @@ def test_the_plan_names_the_starved_point_solver(tmp_path):
     assert dec.include and "Elrod-Adams solver (starved point)" in dec.setting
 
 
+@pytest.mark.solver
 def test_a_refinement_step_estimates_the_grid_error_from_the_previous_inaccurate_solve():
     """The coarse solve of a refinement step is the previous one, whose own verdict was
     'inaccurate' (its estimate missed the target): its iteration converged, so it still gives

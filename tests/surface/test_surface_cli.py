@@ -44,6 +44,7 @@ def test_surface_json_has_the_main_keys(tmp_path, csv_map, capsys):
     assert hm.shape == (96, 96) and hm.dx == pytest.approx(0.781e-6)
 
 
+@pytest.mark.solver
 def test_surface_filter_and_scene_roundtrip(tmp_path, csv_map, capsys):
     out = tmp_path / "meas.toml"
     d = run_json(capsys, ["surface", str(csv_map), "--dx", "0.781um", "--units", "um", "--filter", "until-psi",
@@ -73,9 +74,10 @@ def test_surface_errors_exit_2(tmp_path, csv_map, capsys):
     assert "dx" in capsys.readouterr().err
     assert main(["surface", str(csv_map), "--dx", "1um", "--filter", "gauss", "--out", str(tmp_path)]) == 2
     assert "cut-off" in capsys.readouterr().err
-    assert main(["surface", str(tmp_path / "none.csv"), "--dx", "1um"]) == 2
+    assert main(["surface", str(tmp_path / "none.csv"), "--dx", "1um", "--out", str(tmp_path)]) == 2
 
 
+@pytest.mark.solver
 def test_measured_surface_to_stribeck_curve_in_two_commands(tmp_path, csv_map, capsys):
     """The issue's 'done when': file -> scene (ehl surface) -> Stribeck curve (ehl stribeck)."""
     pytest.importorskip("mixed.stribeck")

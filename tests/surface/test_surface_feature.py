@@ -98,6 +98,7 @@ def test_the_scene_keys_of_the_solver_stay_its_own(tmp_path, scene_with_feature)
     assert lf.z.size == 16
 
 
+@pytest.mark.solver
 def test_a_synthetic_surface_passes_through_a_line_contact_from_a_scene_file(tmp_path):
     """``ehl transient`` on a scene whose [feature] is a synthetic height map written as text with
     a unit header (nanometres, 1.5 nm Rq under a 6 nm film): it runs, and the central film

@@ -91,12 +91,13 @@ def test_non_uniform_grid_is_rejected(tmp_path):
     rows = [(x, y, 0.1) for y in (0.0, 1.0, 2.0) for x in xs]
     p = tmp_path / "bad.xyz"
     np.savetxt(p, rows)
-    with pytest.raises(InputError, match="non-uniform grid"):
+    # the file, the axis and the two steps found
+    with pytest.raises(InputError, match=r"bad\.xyz\b.*\bx steps\b.*\b1 to 1\.5\b"):
         read_height_map(p)
     with h5py.File(tmp_path / "bad.h5", "w") as f:
         f.create_dataset("z", data=np.zeros((3, 4)))
         f.create_dataset("x", data=np.array(xs))
-    with pytest.raises(InputError, match="non-uniform grid"):
+    with pytest.raises(InputError, match=r"bad\.h5\b.*\bx steps\b.*\b1 to 1\.5\b"):
         read_height_map(tmp_path / "bad.h5", dy=1.0)
 
 
@@ -116,14 +117,14 @@ def test_wrong_shapes_are_rejected(tmp_path):
 
 def test_missing_spacing_is_an_error(tmp_path):
     np.save(tmp_path / "m.npy", Z_UM)
-    with pytest.raises(InputError, match="dx is missing"):
+    with pytest.raises(InputError, match=r"m\.npy\b.*\bdx\b.*--dx"):
         read_height_map(tmp_path / "m.npy")
     with pytest.raises(InputError, match="dx"):
         make_height_map(Z_UM, dx=None)
 
 
 def test_other_input_errors(tmp_path):
-    with pytest.raises(InputError, match="does not exist"):
+    with pytest.raises(InputError, match=r"none\.csv\b.*\bexist"):
         read_height_map(tmp_path / "none.csv", dx=1e-6)
     (tmp_path / "m.xls").write_text("x")
     with pytest.raises(InputError, match="suffix"):
@@ -161,5 +162,5 @@ def test_instrument_format_without_reader_says_how_to_install(tmp_path, monkeypa
 
     monkeypatch.setattr(builtins, "__import__", no_surfalize)
     (tmp_path / "m.opd").write_bytes(b"\x00" * 16)
-    with pytest.raises(InputError, match="pip install surfalize"):
+    with pytest.raises(InputError, match=r"\.opd\b.*\bsurfalize\b"):
         read_height_map(tmp_path / "m.opd")

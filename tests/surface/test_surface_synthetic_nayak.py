@@ -56,6 +56,7 @@ def test_nayak_formulas_against_kac_rice_sampling():
         nayak_continuous(1.0, 1.0, 1.0)
 
 
+@pytest.mark.solver
 def test_nine_point_rule_limits():
     ell, rq = 1e-6, 1e-8
     mom = gaussian_acf_moments(rq, ell)

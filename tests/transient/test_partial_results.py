@@ -5,6 +5,7 @@ leave the completed steps in the HDF5, marked ``complete = False`` with the reas
 from __future__ import annotations
 
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -62,6 +63,7 @@ def _failing_after(monkeypatch, k, how):
     monkeypatch.setattr(line_solve._LineStepper, "solve_step", step)
 
 
+@pytest.mark.solver
 @pytest.mark.parametrize("how", ["nan", "raise"])
 def test_a_failing_step_keeps_the_steps_before_it_marked_incomplete_with_exit_3(
         dent_scene, tmp_path, monkeypatch, capsys, how):
@@ -77,7 +79,7 @@ def test_a_failing_step_keeps_the_steps_before_it_marked_incomplete_with_exit_3(
     assert list(f["snapshots"]["step"]) == [0, 3, 4]  # the kept steps and the last completed one
     assert f["state"]["step"] == 4 and np.all(np.isfinite(f["state"]["P"]))
     err = capsys.readouterr().err
-    assert "kept steps 0..4 of 10" in err and "complete = False" in err
+    assert re.search(r"\bsteps 0\.\.4\b.*\b10\b", err) and "complete = False" in err
     assert not [p for p in os.listdir(out) if p.endswith(".tmp")]
 
 
@@ -133,6 +135,7 @@ def _start(dent_scene, out, *extra):
     return proc
 
 
+@pytest.mark.solver
 def test_sigterm_leaves_a_valid_file_of_the_finished_steps_marked_incomplete(dent_scene, tmp_path):
     out = tmp_path / "out"
     proc = _start(dent_scene, out)
@@ -148,6 +151,7 @@ def test_sigterm_leaves_a_valid_file_of_the_finished_steps_marked_incomplete(den
     assert not [p for p in os.listdir(out) if p.endswith(".tmp")]
 
 
+@pytest.mark.solver
 def test_sigkill_leaves_the_last_checkpoint(dent_scene, tmp_path):
     out = tmp_path / "out"
     proc = _start(dent_scene, out, "--checkpoint-every", "0.2")

@@ -13,6 +13,7 @@ from ehl_multigrid.transient.scene_feature import (
 )
 
 
+@pytest.mark.solver
 def test_a_text_profile_becomes_a_line_feature_in_venner_units(tmp_path, scene_with_feature):
     z = 20e-9 * np.sin(np.linspace(0.0, 6.0, 50))
     f = tmp_path / "profile.csv"

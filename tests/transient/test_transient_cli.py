@@ -27,6 +27,7 @@ def _scene_with(feature):
     return Scene.from_dict(d)
 
 
+@pytest.mark.solver
 def test_transient_command_writes_series_plots_and_summary(monkeypatch, tmp_path):
     sc = _scene_with(None)
     pb = LineProblem.from_scene(sc, xmin=-4.5)
@@ -52,10 +53,11 @@ def test_transient_command_writes_series_plots_and_summary(monkeypatch, tmp_path
 def test_transient_command_without_feature_table_names_it(monkeypatch, tmp_path):
     monkeypatch.setattr(cli, "load_scene", lambda name: _scene_with(None))
     args = _parser().parse_args(["transient", "x", "--out", str(tmp_path)])
-    with pytest.raises(InputError, match=r"no \[feature\] table"):
+    with pytest.raises(InputError, match=r"\[feature\] table"):
         args.func(args)
 
 
+@pytest.mark.solver
 def test_transient_command_runs_a_dent_through_a_point_scene(monkeypatch, tmp_path):
     from ehl_multigrid.point.problem import problem_from_scene
 
@@ -81,7 +83,7 @@ def test_transient_command_runs_a_dent_through_a_point_scene(monkeypatch, tmp_pa
 
 def test_transient_command_rejects_huge_grids(tmp_path):
     args = _parser().parse_args(["transient", "series_B_disc1_1GPa", "--points", "1025", "--out", str(tmp_path)])
-    with pytest.raises(InputError, match=r"--points = 1025 .*\[65, 513\] for a point"):
+    with pytest.raises(InputError, match=r"--points = 1025 .*\[65, 513\]"):
         args.func(args)
     args = _parser().parse_args(["transient", "page63_line_2000N", "--points", "9000", "--out", str(tmp_path)])
     with pytest.raises(InputError, match=r"--points = 9000 .*\[65, 4097\]"):

@@ -43,6 +43,7 @@ def test_zero_amplitude_feature_reproduces_the_steady_core_solution(problem):
     assert res.summary()["cycles_max"] <= 3
 
 
+@pytest.mark.solver
 def test_smooth_start_from_another_speed_settles_to_the_steady_solution(problem):
     # steady film at a 1.2x higher M at the same load (same alpha_bar, lambda changes: a
     # speed step), then run at the problem's speed without a feature
@@ -79,6 +80,8 @@ def time_refinement(problem):
     return out
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("transient_time_refinement")
 def test_bdf2_time_steps_converge_at_second_order(time_refinement):
     runs = [time_refinement["bdf2", dt] for dt in ORDER_DTS]
     e1 = np.max(np.abs(runs[0][0] - runs[1][0]))
@@ -90,6 +93,8 @@ def test_bdf2_time_steps_converge_at_second_order(time_refinement):
     assert 1.7 < math.log2(h1 / h2) < 2.6
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("transient_time_refinement")
 def test_backward_euler_is_first_order_and_less_accurate(time_refinement):
     ref = time_refinement["bdf2", ORDER_DTS[-1]][0]
     be = [time_refinement["euler", dt][0] for dt in ORDER_DTS[:2]]
@@ -108,6 +113,7 @@ def _balance(storage, q, P, eps, h, i0, i1):
     return abs(h * np.sum(storage[i0:i1 + 1]) - (flux_in - flux_out)) / q[i1]
 
 
+@pytest.mark.solver
 def test_squeeze_formulation_conserves_mass_in_the_wetted_zone(problem):
     res = solve_transient_line(problem, Bump(0.03, 0.5, x0=-2.0), dt=0.05, steps=40, points=129,
                                snapshot_every=1)
@@ -170,16 +176,16 @@ def test_features_larger_than_the_domain_are_rejected(problem, feature, field):
 @pytest.mark.parametrize("dt", [0.0, -0.1, math.nan, 0.2])
 def test_invalid_or_unresolving_time_steps_are_rejected(problem, dt):
     # cosine-Gaussian of width 0.5: length scale 0.25, so dT <= 0.0625 at speed 1
-    with pytest.raises(InputError, match=r"dt = .* allowed range \(0, 0\.0625\]"):
+    with pytest.raises(InputError, match=rf"dt = {dt:g} .*\(0, 0\.0625\]"):
         solve_transient_line(problem, Bump(0.01, 0.5, x0=-3.0), dt=dt, steps=1, points=65)
 
 
 def test_bad_step_count_and_scheme_are_rejected(problem):
-    with pytest.raises(InputError, match=r"steps = 0 .*allowed range"):
+    with pytest.raises(InputError, match=r"steps = 0 .*\[1, 200000\]"):
         solve_transient_line(problem, Bump(0.01, 0.5), dt=0.01, steps=0, points=65)
     with pytest.raises(InputError, match="scheme"):
         solve_transient_line(problem, Bump(0.01, 0.5), dt=0.01, steps=1, scheme="rk4", points=65)
-    with pytest.raises(InputError, match=r"feature.amplitude = 2 .*allowed range"):
+    with pytest.raises(InputError, match=r"feature\.amplitude = 2 .*\[-1, 1\]"):
         Bump(2.0, 0.5)
 
 
@@ -200,7 +206,7 @@ def test_scene_feature_table_in_metres_becomes_venner_units():
     assert dent.width == pytest.approx(0.5)
     wav, _ = feature_from_scene_table({"kind": "waviness", "amplitude": 1e-8, "wavelength": pb.b}, pb)
     assert wav.wavelength == pytest.approx(1.0)
-    with pytest.raises(InputError, match="no \\[feature\\] table"):
+    with pytest.raises(InputError, match=r"\[feature\] table"):
         feature_from_scene_table(None, pb)
     with pytest.raises(InputError, match="unknown key"):
         feature_from_scene_table({"kind": "dent", "depth": 1e-8}, pb)
@@ -208,6 +214,8 @@ def test_scene_feature_table_in_metres_becomes_venner_units():
         feature_from_scene_table({"kind": "dent", "amplitude": 1e-8, "width": 1e-5, "body": 3}, pb)
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("transient_time_refinement")
 def test_time_error_estimate_matches_the_error_against_a_finer_step(time_refinement):
     from ehl_multigrid.transient import time_error
 
@@ -218,10 +226,11 @@ def test_time_error_estimate_matches_the_error_against_a_finer_step(time_refinem
     diff = np.max(np.abs(fine.Hc - finer.Hc[::2])) / fine.steady.Hc_venner
     assert 0.8 < est["Hc"] / diff < 2.0
     assert est["Hm"] > 0.0
-    with pytest.raises(ValueError, match="twice the step"):
+    with pytest.raises(ValueError, match=r"time_error\b.*\bstep\b"):
         time_error(finer, coarse)
 
 
+@pytest.mark.solver
 def test_sampled_profile_of_a_bump_runs_like_the_bump(problem):
     from ehl_multigrid.transient import Profile
 

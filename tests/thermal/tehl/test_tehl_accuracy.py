@@ -22,6 +22,9 @@ POINT_LOAD = 5.0
 POINT_FINE = {"Hc": 3.924134836115908, "Hm": 2.5763119913152797}
 
 
+pytestmark = pytest.mark.solver
+
+
 @pytest.fixture(scope="module")
 def point_scene():
     return load_scene("appendix_d_point").with_operating(load=POINT_LOAD)

@@ -22,6 +22,7 @@ def pair(scene):
     return (solve_tehl_point(scene, 0.5, points=65, nz=10), solve_tehl_point(scene, -0.5, points=65, nz=10))
 
 
+@pytest.mark.solver
 def test_isothermal_newtonian_limit_equals_the_core_point_solver(scene):
     r = solve_tehl_point(scene, 0.0, TEHLOptions(points=65, nz=10, thermal=False, shear_thinning=False))
     assert np.all(r.a == 1.0) and np.all(r.c == 1.0)
@@ -29,6 +30,8 @@ def test_isothermal_newtonian_limit_equals_the_core_point_solver(scene):
     assert r.Hm == pytest.approx(r.Hm_isothermal, rel=1e-4)
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("tehl_point_pair")
 def test_point_slip_sign_mirrors_the_solution(pair):
     pos, neg = pair
     assert neg.Hc == pytest.approx(pos.Hc, rel=1e-6)
@@ -37,6 +40,8 @@ def test_point_slip_sign_mirrors_the_solution(pair):
     assert neg.heat_partition[0] == pytest.approx(pos.heat_partition[1], rel=1e-6)
 
 
+@pytest.mark.solver
+@pytest.mark.xdist_group("tehl_point_pair")
 def test_point_energy_balance_and_heating(pair):
     pos, _ = pair
     assert pos.heat_balance_error < 0.01

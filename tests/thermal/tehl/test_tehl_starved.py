@@ -16,6 +16,8 @@ from ehl_multigrid.model.scene import Scene, load_scene
 from thermal.tehl.line import TEHLOptions, solve_tehl_line
 from thermal.tehl.point import solve_tehl_point
 
+pytestmark = pytest.mark.solver
+
 
 @pytest.fixture(scope="module")
 def starved_scene(tmp_path_factory, report_scene) -> Scene:
