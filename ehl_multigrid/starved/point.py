@@ -51,7 +51,7 @@ from typing import Any
 import numpy as np
 from scipy import ndimage
 
-from ..model.errors import InputError, require_range
+from ..model.errors import ConvergenceError, InputError, require_range
 from ..multigrid.accuracy import (
     GRID_SAFETY,
     LOAD_SENSITIVITY,
@@ -640,6 +640,9 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
         kw.setdefault("wedge_order", STARVED_WEDGE_ORDER)
         kw.setdefault("max_cycles", STARVED_MAX_CYCLES if kw["wedge_order"] == 1 else STARVED_MAX_CYCLES_2)
     opt = PointOptions.build(options, **kw)
+    # the fallback and exact re-solves below need the failed attempt back, not an exception:
+    # a failure is raised (when asked) only for the solve that is finally kept
+    asked, opt = opt.raise_on_failure, replace(opt, raise_on_failure=False)
     sol, hz = _solve_once(problem, hoil, opt, coarse_theta, guess=guess)
     if not sol.success and coarse_theta is None and math.isfinite(hz.hoil):
         # the other coarse-grid rule converges where this one stops (see FALLBACK_COARSE_THETA)
@@ -732,6 +735,9 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
                  if math.isfinite(hc_row) else math.nan)
         apply_mass_gate(sol, sol.extra["mass_balance_error"], ratio)
     sol.scalars["converged"] = bool(sol.success)
+    sol.options = replace(sol.options, raise_on_failure=asked)
+    if asked and not sol.success:
+        raise ConvergenceError(f"starved point solver: {sol.message}", sol.report, HINT)
     return sol
 
 
