@@ -148,9 +148,9 @@ def run_mixed(case: Case) -> tuple[str, dict[str, Any]]:
 
 # -- driver ------------------------------------------------------------------------------------------
 def classify(converged: bool, checks: dict[str, bool]) -> str:
-    """wrong if any sanity check fails on a result that claims convergence, or non-finite values."""
-    if not checks.get("finite", True):
-        return "wrong"
+    """wrong if any sanity check (finite values included) fails on a result that claims
+    convergence; a result that does not claim it is failed, whatever its values (a returned
+    failure carries NaN films)."""
     if converged:
         return "converged" if all(checks.values()) else "wrong"
     return "failed"

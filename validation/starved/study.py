@@ -82,7 +82,7 @@ def reduction_map(points: int, cases: list, fractions: list) -> list[dict]:
             hoil = frac * F_ff
             t = time.perf_counter()
             try:
-                r = solve_starved_line(pb, hoil, points=points)
+                r = solve_starved_line(pb, hoil, points=points, raise_on_failure=True)
                 row = scalars(r)
             except ConvergenceError as exc:
                 row = {"status": "failed", "message": str(exc).split("\n")[0]}
@@ -156,7 +156,7 @@ def starved_limit(points: int) -> list[dict]:
     rows = []
     for hoil in (0.09, 0.05, 0.02, 0.01, 0.007):
         try:
-            r = solve_starved_line(pb, hoil, points=points, estimate=False)
+            r = solve_starved_line(pb, hoil, points=points, estimate=False, raise_on_failure=True)
             rows.append({"hoil_venner": hoil, "Hc_ratio": r.scalars["Hc_ratio"],
                          "rho_c_Hc_over_hoil": r.scalars["rho_c_Hc_over_hoil"], "rho_c": r.scalars["rho_c"],
                          "meniscus_x": r.scalars["meniscus_x"]})
