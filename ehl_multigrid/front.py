@@ -58,7 +58,7 @@ __all__ = ["solve", "resolve_problem", "decide_physics", "solver_keywords", "sta
 #: the physics the core solves itself; others come from the entry-point group ``ehl.physics``
 BUILTIN = ("steady", "starved", "transient")
 #: the entry-point group of the physics of the layers above the core:
-#: ``solve_physics(scene, *, accuracy, options, callback) -> Solution``
+#: ``solve_physics(scene, *, accuracy, options, callback, progress) -> Solution``
 PHYSICS_GROUP = "ehl.physics"
 #: names of the older error budgets -> the contract's part names
 PART_NAMES = {"algebraic": "iteration"}
@@ -311,6 +311,9 @@ def _steady(scene: Scene | None, moes: MoesProblem | None, contact: str, accurac
         solver = options.get("solver", "fas") if isinstance(options, Mapping) else "fas"
         require_choice("solver", solver, POINT_SOLVERS)
         if solver == "newton":
+            if progress is not None:
+                warnings.warn("progress is not called: the Newton/pyamg point solver has no "
+                              "accuracy sequence", UserWarning, stacklevel=3)
             return _newton(run, problem, scene, contact, accuracy, options, callback, model, t0)
         accepted = _field_names(PointOptions) | {"max_points", "time_budget", "solver"} | model
         dc, kw = solver_keywords(options, accepted, PointOptions, "the steady point solver")
@@ -349,7 +352,7 @@ def _newton(run: Callable[..., Any], problem: dict[str, Any], scene: Scene | Non
 
 
 def _starved(scene: Scene, contact: str, accuracy: float | None, options: Any, callback: Any,
-             t0: float) -> Solution:
+             progress: Any, t0: float) -> Solution:
     from .multigrid.options import LineOptions, PointOptions
 
     if contact == "line":
@@ -365,7 +368,7 @@ def _starved(scene: Scene, contact: str, accuracy: float | None, options: Any, c
         dc, kw = solver_keywords(options, accepted, PointOptions, "the starved point solver")
         warn_unused_callback(callback, "the starved point solver")
     try:
-        res = run(scene, options=dc, accuracy=accuracy, raise_on_failure=False, **kw)
+        res = run(scene, options=dc, accuracy=accuracy, raise_on_failure=False, progress=progress, **kw)
     except ConvergenceError as exc:
         return failed_solution("starved", contact, exc, accuracy, t0, scene)
     theta = res.extra.get("theta")
@@ -548,10 +551,10 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     callback : called with a small dict after every multilevel cycle (steady) or time step
         (transient); raising StopIteration in it stops a steady solve (status ``STOPPED``).
         The starved and thermal solvers and the Newton path take none (a UserWarning says so).
-    progress : called with one line of text per solve of a steady FAS solve's accuracy
-        sequence (grid, box, estimate, seconds), as ``ehl solve`` prints on stderr. Only the
-        steady FAS solvers report such lines: the starved, thermal and transient solvers and
-        the Newton path have none, and ``progress`` is then never called.
+    progress : called with one line of text per solve of the accuracy sequence (grid, box,
+        estimate, seconds), as ``ehl solve`` prints on stderr: steady FAS, starved and thermal
+        solves. The transient run and the Newton path have no such sequence: a UserWarning
+        says ``progress`` is not called.
 
     Returns
     -------
@@ -578,12 +581,15 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     if physics == "steady":
         return _steady(scene, moes, contact, accuracy, options, callback, progress, t0)
     if physics == "starved":
-        return _starved(scene, contact, accuracy, options, callback, t0)
+        return _starved(scene, contact, accuracy, options, callback, progress, t0)
     if physics == "transient":
+        if progress is not None:
+            warnings.warn("progress is not called: the transient run reports per time step through "
+                          "callback", UserWarning, stacklevel=2)
         return _transient(scene, contact, accuracy, options, callback, t0)
     run = registered_physics()[physics].load()
     try:
-        sol = run(scene, accuracy=accuracy, options=options, callback=callback)
+        sol = run(scene, accuracy=accuracy, options=options, callback=callback, progress=progress)
     except ConvergenceError as exc:  # the layer's adapter should return it; the policy holds anyway
         return failed_solution(physics, contact, exc, accuracy, t0, scene)
     if not isinstance(sol, Solution):

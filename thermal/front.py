@@ -42,7 +42,7 @@ PARTS = {"grid_x": "grid", "grid_z": "nz", "domain": "domain", "iteration": "ite
 
 
 def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
-                  callback: Any = None) -> Solution:
+                  callback: Any = None, progress: Any = None) -> Solution:
     """Thermal EHL (TEHL) solve of a line or point ``scene`` to ``accuracy``.
 
     Parameters
@@ -57,6 +57,7 @@ def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
         ``TEHLOptions``. As ``ehl solve --thermal``: the grid starts at 513 points (line) or
         257 (point), nz 20, and is refined towards the target unless ``points`` or ``nz`` is
         given (or a ``TEHLOptions``), which are only judged.
+    progress : called with one line of text per solve of the refinement sequence.
     callback : not called (the TEHL solve takes none; a UserWarning says so). The TEHL solve
         reports no progress lines either (the front door's ``progress`` is not passed here).
 
@@ -84,7 +85,8 @@ def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
         require_range("threads", threads, 1, 1024, "threads")
     try:
         with _threads(threads):
-            done = solve_tehl_to_accuracy(scene, slip, dc, accuracy, refine=refine, **run)
+            done = solve_tehl_to_accuracy(scene, slip, dc, accuracy, refine=refine, progress=progress,
+                                          **run)
     except ConvergenceError as exc:
         return failed_solution("thermal", scene.kind, exc, accuracy, t0, scene)
     return thermal_solution(done, scene, accuracy, t0)

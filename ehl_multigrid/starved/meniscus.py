@@ -217,7 +217,8 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
                        accuracy: float | None = None, *, estimate: bool = True,
                        callback: Callable[[dict[str, Any]], None] | None = None,
                        scene: Any = None, max_points: int = MAX_ACCURACY_POINTS,
-                       refine: bool | None = None, **kw: Any) -> EHLResult:
+                       refine: bool | None = None, progress: Callable[[str], None] | None = None,
+                       **kw: Any) -> EHLResult:
     """Solve the starved, mass-conserving isothermal EHL line contact for a supplied oil layer.
 
     Parameters
@@ -236,6 +237,7 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
         result's status is ``"inaccurate"`` when it is still not met.
     refine : whether the grid may be refined; None: unless ``points`` or ``options`` are
         given (an explicit grid is only judged).
+    progress : called with one line of text per solve of the refinement sequence.
     estimate : attach the error estimate (:func:`supply_estimate`: the core's Richardson
         rule over the films of nested root searches on 257, 513, ... points at fixed Hoil; the
         flooded solver's estimate when the inlet is flooded).
@@ -271,7 +273,7 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
         refine = "points" not in kw and options is None
     line = _StarvedLineControl(problem, hoil, opts, accuracy, estimate, callback, scene, max_points)
     out = control(line, Resolution(opts.points), accuracy, refine=refine and estimate,
-                  max_points=max_points)
+                  max_points=max_points, progress=progress)
     res = out.result
     if out.converged and out.why and res.status == 6:
         res.message += f"; not refined further: {out.why}"
@@ -446,7 +448,8 @@ def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOpti
                         accuracy: float | None = None, *, estimate: bool = True,
                         viscosity: str | None = None, density: str | None = None,
                         xmin: float | None = None, xmax: float | None = None, elastic: bool = True,
-                        max_points: int = MAX_ACCURACY_POINTS, **kw: Any) -> EHLResult:
+                        max_points: int = MAX_ACCURACY_POINTS,
+                        progress: Callable[[str], None] | None = None, **kw: Any) -> EHLResult:
     """Starved line contact of a line-contact ``scene`` at its operating point, supplied with
     the scene's ``[supply] hoil`` [m] (or ``hoil`` [m]), converted with
     :func:`~ehl_multigrid.starved.supply.hoil_venner` (``Hoil = hoil R/b^2``). The scene's
@@ -468,7 +471,7 @@ def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOpti
     # the grid is refined towards the accuracy unless the caller or the scene fixed it
     refine = options is None and "points" not in kw and "points" not in table
     res = solve_starved_line(pb, hoil_venner(h_m, pb.b, pb.R), opts, accuracy, estimate=estimate,
-                             scene=scene, max_points=max_points, refine=refine)
+                             scene=scene, max_points=max_points, refine=refine, progress=progress)
     scale = pb.b**2 / pb.R
     res.scalars["hoil"] = h_m
     if "Hc_venner" in res.scalars:  # (not when the supply is out of reach)

@@ -45,6 +45,7 @@ The supply may vary across the track (one layer per finest-grid row, e.g. side r
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
 
@@ -952,7 +953,7 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
                               *, flooded: bool = True, viscosity: str = "roelands",
                               density: str = "dowson-higginson", accuracy: float | None = None,
                               estimate: bool = True, max_points: int = SCENE_MAX_POINTS,
-                              **kw: Any) -> EHLResult:
+                              progress: Callable[[str], None] | None = None, **kw: Any) -> EHLResult:
     """Starved point (circular) contact of a point-contact ``scene`` at its operating point,
     supplied with the scene's ``[supply] hoil`` [m] (or ``hoil`` [m]): ``Hoil = hoil Rx/a^2``.
 
@@ -965,7 +966,8 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
     With ``estimate`` the same supply is also solved on the grid with half the intervals and
     the result carries ``Hc_error``, ``Hm_error`` (:func:`starved_point_error`); ``accuracy``
     (relative) judges them (status ``"inaccurate"`` when missed) and, without an explicit
-    ``points``, refines the grid up to ``max_points`` until they meet it.
+    ``points``, refines the grid up to ``max_points`` until they meet it; ``progress(text)``
+    receives one line per solve of that sequence.
 
     The wedge order (:data:`STARVED_WEDGE_ORDER` by default) is the keyword ``wedge_order``
     or, without it, the scene's ``[solver.ehl]`` ``wedge_order`` (or ``order``).
@@ -998,7 +1000,7 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
     n = int(kw.pop("points", options.points if options is not None else SCENE_POINTS))
     starved = _StarvedPointControl(pb, Hoil, options, kw, accuracy, estimate, max_points)
     out = control(starved, Resolution(n), accuracy, refine=estimate and not explicit,
-                  max_points=max_points)
+                  max_points=max_points, progress=progress)
     res = out.result
     if not out.converged and estimate:
         # a failed solve still states what its estimate would be (the coarse grid's difference)

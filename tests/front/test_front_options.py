@@ -23,6 +23,15 @@ def test_progress_gets_the_lines_of_the_steady_accuracy_sequence():
     assert any("129" in t for t in lines)
 
 
+def test_progress_gets_the_lines_of_the_starved_accuracy_sequence():
+    d = load_scene("page63_line_500N").to_dict()
+    d["supply"] = {"hoil": 1.5e-8}
+    lines: list[str] = []
+    sol = ehl.solve(Scene.from_dict(d), options={"points": 257}, progress=lines.append)
+    assert sol.physics == "starved" and sol.grid.points == 257
+    assert any("257 points" in t and "estimated error" in t for t in lines), lines
+
+
 def test_a_progress_that_is_not_callable_is_refused_naming_it():
     with pytest.raises(InputError, match="progress"):
         ehl.solve(ehl.MoesProblem("line", 20, 10), progress="stderr")
