@@ -15,7 +15,14 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import ConvergenceError, InputError, require_choice, require_range
-from ..multigrid.accuracy import PROBE_FILM_TOL, film_change, film_tol, solve_to_accuracy
+from ..multigrid.accuracy import (
+    PROBE_FILM_TOL,
+    BoxSeries,
+    film_change,
+    film_tol,
+    iteration_error,
+    solve_to_accuracy,
+)
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import PointOptions, build_scene_options, scene_solver_table
 from ..multigrid.result import EHLResult
@@ -247,11 +254,8 @@ def solve_from_neighbour(problem: PointProblem, options: PointOptions, failed: E
     return keep
 
 
-#: film and load tolerances of the probe solves that measure the decay of the box change
-#: (:func:`point_domain_decay`; its resolution is accuracy.DECAY_FLOOR). Measured on the 6205
-#: inner race at 2049 points (probes on 513-2049 points, one thread, loaded machine): at 1e-5
-#: the changes (Hc 1.214e-3 then 1.498e-4, Hm 9.37e-4 then 1.041e-4) are those at 1e-6 within
-#: 2e-6 and 5e-6, in 245 s instead of 392 s; PROBE_FILM_TOL (1e-4) cannot resolve the second
+#: film and load tolerances of the tight probe solves (``tight=True`` in
+#: :func:`point_domain_change`; resolution accuracy.DECAY_FLOOR)
 DECAY_PROBE_TOL = 1e-5
 #: the probes' residual tolerance is no tighter than this: they stop on their films, and a
 #: tolerance step of the solve (x0.1, x0.01) need not repeat them. Measured: circular (5000, 0)
@@ -265,7 +269,8 @@ PROBE_RESIDUAL_TOL = 1e-5
 
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
                         cache: dict[PointOptions, EHLResult] | None = None,
-                        boxes: tuple[float, ...] = (1.0, 2.0), tight: bool = False
+                        boxes: tuple[float, ...] = (1.0, 2.0), tight: bool | float = False, coarser: int = 0,
+                        used: list[EHLResult] | None = None
                         ) -> tuple[float, float] | list[tuple[float, float]] | None:
     """Relative change of (Hc, Hm) when the box is doubled in X and Y at equal mesh size,
     measured by two converged solves on a coarse grid of the solve (two grids below the
@@ -274,7 +279,10 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
 
     ``boxes`` (scales of the solve's box, each twice the one before) with more than two entries
     returns the list of the successive changes, each relative to the smaller box; ``tight``
-    solves to :data:`DECAY_PROBE_TOL` instead of the probes' film tolerance.
+    solves to :data:`DECAY_PROBE_TOL` (or to ``tight`` when a number) instead of the probes'
+    film tolerance. ``coarser``
+    halves the probe mesh that many times (no finer mesh is then tried when it fails);
+    ``used`` receives the probe solves.
 
     ``cache`` (options -> result) keeps the probe solves of one refinement sequence: the wide
     solve of a box is the narrow solve of the next box's probe, on the same mesh."""
@@ -292,6 +300,8 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
         while (xmax - xmin) / (n_min - 1) > 0.25 * s:
             n_min = 2 * (n_min - 1) + 1
     n_p = min(max((n_f - 1) // 4 + 1, n_min), n_f) if top >= 2 else n_f
+    for _ in range(coarser):
+        n_p = (n_p - 1) // 2 + 1
     while True:
         if len(boxes) > 2 and (n_p - 1) * boxes[-1] / boxes[0] + 1 > n_f:
             return None  # the widest box would need more points than the solve itself
@@ -306,7 +316,7 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
             # stop (a twentieth of its target): thick films converge slowly on the wide boxes,
             # (1, 0) at 2 %: 1025 points on a 400 a box reached max_cycles at 1e-4 (93 s)
             if tight:
-                ftol, ltol = DECAY_PROBE_TOL, DECAY_PROBE_TOL
+                ftol = ltol = DECAY_PROBE_TOL if tight is True else float(tight)
             else:
                 ftol, ltol = max(PROBE_FILM_TOL, options.film_tol or 0.0), max(options.tol_load, 1e-4)
             # the films stop the probes; a residual tolerance no tighter than PROBE_RESIDUAL_TOL
@@ -316,10 +326,14 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
                         raise_on_failure=False, tol=max(options.tol, PROBE_RESIDUAL_TOL),
                         tol_load=ltol, film_tol=ftol)
             if cache is None:
-                return solve_fas(problem, o)
-            if o not in cache:
-                cache[o] = solve_fas(problem, o)
-            return cache[o]
+                r = solve_fas(problem, o)
+            else:
+                if o not in cache:
+                    cache[o] = solve_fas(problem, o)
+                r = cache[o]
+            if used is not None:
+                used.append(r)
+            return r
 
         changes = []
         for f in boxes[:-1]:  # a pair that fails ends the series: no wider box is solved for it
@@ -332,26 +346,37 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
             changes.append(change)
         if len(changes) == len(boxes) - 1:
             return changes[0] if len(boxes) == 2 else changes
-        if n_p >= n_f:
+        if n_p >= n_f or coarser:
             return None
         n_p = 2 * (n_p - 1) + 1  # one grid finer when the coarse probe does not converge
 
 
-def point_domain_decay(problem: PointProblem, options: PointOptions, sol: EHLResult,
-                       cache: dict[PointOptions, EHLResult] | None = None
-                       ) -> tuple[tuple[float, float], tuple[float, float]] | None:
-    """The changes of (Hc, Hm) over two successive doublings of the box (1x -> 2x -> 4x of the
-    solve's box, equal mesh), from tight probe solves (:data:`DECAY_PROBE_TOL`): the input of
-    :func:`~ehl_multigrid.multigrid.accuracy.domain_from_decay`. None when a solve fails.
+#: film and load tolerance of the box-series probes (:func:`point_box_series`)
+SERIES_FILM_TOL = 1e-4
 
-    Measured on the 6205 inner-race contact (M 3620, L 13.1, b/a 9.4) at the mesh of 513
-    points on the default box: Hc +0.121 % from 1x to 2x and +0.015 % from 2x to 4x (decay 8.1
-    per doubling; Hm 9.0), so the domain part of its estimate is 0.17 % instead of the fixed
-    factor's 0.38 % (validation/accuracy/REPORT.md, session 13)."""
-    changes = point_domain_change(problem, options, sol, cache, boxes=(1.0, 2.0, 4.0), tight=True)
+
+def point_box_series(problem: PointProblem, options: PointOptions, sol: EHLResult,
+                     cache: dict[PointOptions, EHLResult] | None = None) -> BoxSeries | None:
+    """The box series of a box correction (:func:`~ehl_multigrid.multigrid.accuracy.domain_correction`):
+    the changes of (Hc, Hm) over two doublings of the solve's box on the probe mesh of
+    :func:`point_domain_change` (its film-stopped probes; the first pair is the domain probe's
+    own), the first change again on a mesh twice as coarse, and the probes' iteration errors.
+    None when the series on the probe mesh fails."""
+    used: list[EHLResult] = []
+    changes = point_domain_change(problem, options, sol, cache, boxes=(1.0, 2.0, 4.0), used=used,
+                                  tight=SERIES_FILM_TOL)
     if changes is None:
         return None
-    return changes[0], changes[1]
+    coarse = point_domain_change(problem, options, sol, cache, coarser=1, tight=SERIES_FILM_TOL)
+    noise = [0.0, 0.0]
+    # the solves of the last (converged) series, pairs 1x-2x and 2x-4x (the 2x solve shared)
+    for r in {id(r): r for r in used[-4:]}.values():
+        fin = [h for h in r.history if h.level == r.levels - 1]
+        for i, k in enumerate(("Hc", "Hm")):
+            films = [getattr(h, k) for h in fin]
+            e = iteration_error(films) / abs(films[-1]) if len(films) >= 2 and films[-1] else math.inf
+            noise[i] += e  # each film enters the correction about once
+    return BoxSeries(changes[0], changes[1], coarse, (noise[0], noise[1]))
 
 
 def thick_film_reason(problem: PointProblem, res: EHLResult, accuracy: float) -> str:
@@ -482,8 +507,8 @@ def solve_point(
         def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
             return point_domain_change(pb, res.options, res, probes)
 
-        def decay_probe(res: EHLResult, box: float) -> tuple[tuple[float, float], tuple[float, float]] | None:
-            return point_domain_decay(pb, res.options, res, probes)
+        def decay_probe(res: EHLResult, box: float) -> BoxSeries | None:
+            return point_box_series(pb, res.options, res, probes)
 
         # thick films (low M) spread over many inlet lengths: their box may grow further, on a
         # mesh that coarsens with it (the coarse grid follows the inlet length)
@@ -494,7 +519,7 @@ def solve_point(
         res = solve_to_accuracy(solve, probe, accuracy, points, max_points, box_limit=box_limit,
                                 refine=accuracy is not None and not (explicit or fixed_box),
                                 decay_probe=decay_probe if domain_scale(pb) <= 1.0 else None,
-                                progress=progress,
+                                progress=progress, correct_box=True, extrapolate=True,
                                 time_budget=math.inf if time_budget is None else time_budget)
         why = thick_film_reason(pb, res, accuracy) if res.status_name == "inaccurate" \
             and domain_scale(pb) > 1.0 else ""
