@@ -504,6 +504,12 @@ def film_change(solve_default: Any, solve_wide: Any, floor_ok: bool = False) -> 
 CORRECTED_SCALARS = {"Hc": ("Hc", "Hc_venner", "hc"), "Hm": ("Hm", "Hm_venner", "hm")}
 
 
+def correction_factors(parts: dict[str, dict[str, float]] | None) -> tuple[float, float]:
+    """Factors on (Hc, Hm) of the corrections ``parts`` (by part, as ``ErrorEstimate.correction``)."""
+    parts = parts or {}
+    return (math.prod(1.0 + c["Hc"] for c in parts.values()), math.prod(1.0 + c["Hm"] for c in parts.values()))
+
+
 def apply_correction(result: Any) -> None:
     """Scale the film scalars of ``result`` by the box correction its estimate is for (nothing
     when it has none). The films of the fields on the solve's own box stay as ``Hc_field`` and
@@ -513,9 +519,9 @@ def apply_correction(result: Any) -> None:
     if not corr or result.extra.get("film_correction"):
         return
     scal = result.scalars
-    for film, keys in CORRECTED_SCALARS.items():
+    for film, factor in zip(CORRECTED_SCALARS, correction_factors(corr), strict=True):
+        keys = CORRECTED_SCALARS[film]
         scal[f"{film}_field"] = scal.get(film)
-        factor = math.prod(1.0 + part[film] for part in corr.values())
         for k in keys:
             if isinstance(scal.get(k), (int, float)):
                 scal[k] = float(scal[k]) * factor

@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from ..model.results import Result
+from ..multigrid.accuracy import correction_factors
 from .deformation import mirror_full
 
 
@@ -93,6 +94,14 @@ def build_result(sol, scene=None, extra_scalars: dict | None = None, fields: boo
     res.add_report(sol.report)
     Hc_v = m["Hc_center"]
     Hm_v = m["Hm"]
+    corr = getattr(sol, "extra", {}).get("film_correction")
+    if corr:
+        # an accuracy-driven solve reports its films extrapolated over the grids and the box
+        res.set_scalar("Hc_field", Hc_v * fac)
+        res.set_scalar("Hm_field", Hm_v * fac)
+        res.meta["film_correction"] = corr
+        fc, fm = correction_factors(corr)
+        Hc_v, Hm_v = Hc_v * fc, Hm_v * fm
     res.set_scalar("Hc_venner", Hc_v)
     res.set_scalar("Hm_venner", Hm_v)
     res.set_scalar("Hc", Hc_v * fac)
@@ -165,6 +174,7 @@ def summary_payload(res: Result) -> dict:
             "Hm_centerline", "X_spike", "P_max", "H00", "M", "L", "theta", "final_residual",
             "work_units", "message", "status", "Hc_error", "Hm_error", "wall_total_s"]
     out = {k: res.scalars.get(k) for k in keys}
+    out.update({k: res.scalars[k] for k in ("Hc_field", "Hm_field") if k in res.scalars})
     out["actions"] = res.meta.get("actions", [])
     if "error_budget" in res.meta:
         out["error_budget"] = res.meta["error_budget"]
