@@ -400,14 +400,17 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
     le = abs(float(result.load_error_history[-1])) if len(result.load_error_history) else math.inf
     algebraic = {"Hc": alg_c + LOAD_SENSITIVITY * le, "Hm": alg_m + LOAD_SENSITIVITY * le}
     correction: dict[str, dict[str, float]] = {}
-    fixes = None
+    fixes, floor_fixed = None, False
     if isinstance(decay, BoxSeries):
         fixes = [domain_correction(decay.d2[i], decay.d4[i], None if decay.d2_coarse is None
                                    else decay.d2_coarse[i], decay.noise[i]) for i in (0, 1)]
         if None in fixes:
+            # the series' film-stopped probes were not calibrated for the decay alone: the
+            # estimate is never below the fixed factor's
             notes.append("box series measured but not used for a correction (slow decay, sign "
-                         "change or no coarse-mesh pair)")
-            decay = (decay.d2, decay.d4)
+                         "change or no coarse-mesh pair): domain part the larger of the fixed "
+                         "factor and the geometric continuation")
+            domain, floor_fixed, decay = decay.d2, True, (decay.d2, decay.d4)
     if fixes is not None and None not in fixes:
         (cc, ec), (cm, em) = fixes
         domain = decay.d2
@@ -424,6 +427,8 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
         # fixed factor ((5, 0): 4.9 |d2| against a true 2.6 |d2|; the decay speeds up beyond
         # the third box), a change that does not shrink gives no bound
         dom = {"Hc": domain_from_decay(d2c, d4c), "Hm": domain_from_decay(d2m, d4m)}
+        if floor_fixed:
+            dom = {"Hc": max(dom["Hc"], DOMAIN_SAFETY * abs(d2c)), "Hm": max(dom["Hm"], DOMAIN_SAFETY * abs(d2m))}
         notes.append(f"domain error from the box changes of two doublings (Hc {d2c:.3g}, {d4c:.3g}; "
                      f"Hm {d2m:.3g}, {d4m:.3g}) continued geometrically")
     elif domain is None:

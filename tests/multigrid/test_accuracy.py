@@ -582,6 +582,23 @@ def test_an_asymptotic_grid_sequence_is_extrapolated_and_an_irregular_one_is_not
     assert extrapolated(v[1:]) is None
 
 
+def test_a_box_series_that_allows_no_correction_never_states_less_than_the_fixed_factor():
+    from types import SimpleNamespace
+
+    from ehl_multigrid.multigrid.accuracy import DOMAIN_SAFETY, BoxSeries, estimate_error
+
+    res = SimpleNamespace(scalars={"Hc_venner": 0.4, "Hm_venner": 0.3}, levels=4, contact="point",
+                          fmg=[{"level": k, "points": 2**(k + 5) + 1, "Hc": 0.4 - 0.01 / 4**k,
+                                "Hm": 0.3 - 0.01 / 4**k} for k in range(3)],
+                          history=[], load_error_history=np.array([1e-6]))
+    # Hm decays by 8 per doubling but Hc by 1.5 only: no correction; the fixed factor stands
+    series = BoxSeries((1e-2, 4e-3), (6.7e-3, 5e-4), (1.1e-2, 4.2e-3), (1e-5, 1e-5))
+    est = estimate_error(res, (1e-2, 4e-3), decay=series)
+    assert not est.correction
+    assert est.budget["domain"]["Hm"] == pytest.approx(DOMAIN_SAFETY * 4e-3)
+    assert est.budget["domain"]["Hc"] >= DOMAIN_SAFETY * 1e-2
+
+
 def test_a_corrected_result_scales_its_film_scalars_and_keeps_the_fields_films():
     from types import SimpleNamespace
 
