@@ -86,8 +86,8 @@ def run(case: str, accuracy: float, timeout: float) -> dict[str, Any]:
         row.update(status="no output", stderr=p.stderr[-400:])
         return row
     for k in ("status", "Hc", "Hm", "Hc_venner", "Hm_venner", "Hc_error", "Hm_error", "points",
-              "work_units", "wall_total_s", "levels"):
-        row[k] = out.get(k)
+              "work_units", "wall_total_s", "levels", "Hc_field", "Hm_field", "message"):
+        row[k] = out.get(k)  # Hc_field, Hm_field: the finest grid's films where Hc, Hm are extrapolated
     ref = reference(key)
     if ref is not None and out.get("Hc_venner") is not None:
         row["Hc_true"] = abs(out["Hc_venner"] / ref["Hc_ref"] - 1.0)
