@@ -12,6 +12,7 @@ true error is within the estimate.
 
     python validation/bench/verified.py --label before
     python validation/bench/verified.py --label quick --accuracies 0.05 0.01 --cases circular_20_10
+    git worktree add /tmp/before REV && python validation/bench/verified.py --label before --code /tmp/before
 
 writes build/validation/bench/verified_<label>.json and .md. Timings depend on the machine's
 load: compare labels measured under the same conditions (the load average is recorded).
@@ -67,10 +68,20 @@ def reference(key: tuple[str, float, float, float] | None) -> dict[str, Any] | N
     return rec if rec.get("ok") else None
 
 
-def run(case: str, accuracy: float, timeout: float) -> dict[str, Any]:
+def ehl_command(code: str | None = None) -> list[str]:
+    """The command that runs `ehl`: the installed package, or the package of the checkout
+    ``code`` (a git worktree of another revision: the "before" of a before/after table)."""
+    if code is None:
+        return [sys.executable, "-m", "ehl_multigrid"]
+    boot = ("import runpy, sys; sys.path.insert(0, sys.argv.pop(1)); "
+            "runpy.run_module('ehl_multigrid', run_name='__main__', alter_sys=True)")
+    return [sys.executable, "-c", boot, str(Path(code).resolve())]
+
+
+def run(case: str, accuracy: float, timeout: float, code: str | None = None) -> dict[str, Any]:
     args, key = CASES[case]
     with tempfile.TemporaryDirectory() as tmp:
-        cmd = [sys.executable, "-m", "ehl_multigrid", "solve", *args, "--accuracy", f"{accuracy:g}",
+        cmd = [*ehl_command(code), "solve", *args, "--accuracy", f"{accuracy:g}",
                "--json", "--no-plots", "--out", tmp]
         l0, t0 = load(), time.perf_counter()
         try:
@@ -111,27 +122,38 @@ def table(rows: list[dict[str, Any]]) -> str:
     return "\n".join(lines)
 
 
+def revision(code: str | None) -> str:
+    """The git revision of the package that ran (the checkout ``code`` or this one)."""
+    where = Path(code) if code else Path(__file__).resolve().parents[2]
+    p = subprocess.run(["git", "-C", str(where), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    return p.stdout.strip() or "unknown"
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--label", default="verified")
     ap.add_argument("--cases", nargs="*", default=list(CASES), choices=list(CASES))
     ap.add_argument("--accuracies", nargs="*", type=float, default=list(ACCURACIES))
     ap.add_argument("--timeout", type=float, default=1800.0, help="seconds per run")
+    ap.add_argument("--code", default=None,
+                    help="run the package of this checkout instead of the installed one (e.g. a "
+                         "`git worktree add /tmp/before REV`: the 'before' of a before/after table)")
     args = ap.parse_args()
     # numba cache and imports warm before timing
-    subprocess.run([sys.executable, "-m", "ehl_multigrid", "solve", "--contact", "point", "--M", "20",
+    subprocess.run([*ehl_command(args.code), "solve", "--contact", "point", "--M", "20",
                     "--L", "10", "--accuracy", "0.1", "--json", "--no-plots", "--out",
                     tempfile.mkdtemp()], capture_output=True)
     rows = []
     path = Path(OUT) / f"verified_{args.label}.json"
     for case in args.cases:
         for acc in args.accuracies:
-            row = run(case, acc, args.timeout)
+            row = run(case, acc, args.timeout, args.code)
             rows.append(row)
             print(f"{case} at {acc:g}: {row['wall_s']:.1f} s, {row.get('status')}, "
                   f"est. {row.get('Hc_error')}, {row.get('Hm_error')}", file=sys.stderr)
             tmp = path.with_suffix(".json.tmp")
-            tmp.write_text(json.dumps({"rows": rows, "python": sys.version}, indent=1))
+            tmp.write_text(json.dumps({"rows": rows, "python": sys.version, "code": revision(args.code)},
+                                      indent=1))
             tmp.replace(path)  # every finished run kept when interrupted
     md = path.with_suffix(".md")
     md.write_text(table(rows) + "\n")
