@@ -254,22 +254,16 @@ def solve_from_neighbour(problem: PointProblem, options: PointOptions, failed: E
     return keep
 
 
-#: film and load tolerances of the tight probe solves (``tight=True`` in
-#: :func:`point_domain_change`; resolution accuracy.DECAY_FLOOR)
-DECAY_PROBE_TOL = 1e-5
 #: the probes' residual tolerance is no tighter than this: they stop on their films, and a
 #: tolerance step of the solve (x0.1, x0.01) need not repeat them. Measured: circular (5000, 0)
 #: at 2 %, the second tolerance step re-ran its 1025/2049-point probes (56 s) for nothing but
 #: the residual tolerance
 PROBE_RESIDUAL_TOL = 1e-5
-#: the decay is measured only where the widest probe (4x box) needs no more points than the
-#: solve itself: at its tight tolerance a larger probe costs more than the refinement it could
-#: save (circular (20, 10) at 5 %: a 513-point probe, 16 s, for a 0.3 s solve on 129 points)
 
 
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
                         cache: dict[PointOptions, EHLResult] | None = None,
-                        boxes: tuple[float, ...] = (1.0, 2.0), tight: bool | float = False, coarser: int = 0,
+                        boxes: tuple[float, ...] = (1.0, 2.0), tight: float | None = None, coarser: int = 0,
                         used: list[EHLResult] | None = None
                         ) -> tuple[float, float] | list[tuple[float, float]] | None:
     """Relative change of (Hc, Hm) when the box is doubled in X and Y at equal mesh size,
@@ -279,10 +273,9 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
 
     ``boxes`` (scales of the solve's box, each twice the one before) with more than two entries
     returns the list of the successive changes, each relative to the smaller box; ``tight``
-    solves to :data:`DECAY_PROBE_TOL` (or to ``tight`` when a number) instead of the probes'
-    film tolerance. ``coarser``
-    halves the probe mesh that many times (no finer mesh is then tried when it fails);
-    ``used`` receives the probe solves.
+    (a film and load tolerance) replaces the probes' own film tolerance. ``coarser`` halves the
+    probe mesh that many times (no finer mesh is then tried when it fails); ``used`` receives
+    the probe solves.
 
     ``cache`` (options -> result) keeps the probe solves of one refinement sequence: the wide
     solve of a box is the narrow solve of the next box's probe, on the same mesh."""
@@ -304,7 +297,10 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
         n_p = (n_p - 1) // 2 + 1
     while True:
         if len(boxes) > 2 and (n_p - 1) * boxes[-1] / boxes[0] + 1 > n_f:
-            return None  # the widest box would need more points than the solve itself
+            # the widest box would need more points than the solve itself: such a probe costs more
+            # than the refinement it could save (circular (20, 10) at 5 %: a 513-point probe, 16 s,
+            # for a 0.3 s solve on 129 points)
+            return None
 
         def solve(n: int, f: float) -> EHLResult:
             # the probes need the film to well below the domain change, not the load to 1e-5:
@@ -315,8 +311,8 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
             # Hm -1.2 % (film-stopped: +1.3e-4, +7.5e-5). No tighter than the solve's own film
             # stop (a twentieth of its target): thick films converge slowly on the wide boxes,
             # (1, 0) at 2 %: 1025 points on a 400 a box reached max_cycles at 1e-4 (93 s)
-            if tight:
-                ftol = ltol = DECAY_PROBE_TOL if tight is True else float(tight)
+            if tight is not None:
+                ftol = ltol = tight
             else:
                 ftol, ltol = max(PROBE_FILM_TOL, options.film_tol or 0.0), max(options.tol_load, 1e-4)
             # the films stop the probes; a residual tolerance no tighter than PROBE_RESIDUAL_TOL
@@ -338,9 +334,9 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
         changes = []
         for f in boxes[:-1]:  # a pair that fails ends the series: no wider box is solved for it
             # a probe at its residual floor counts, its jitter added to the change (not the
-            # tight decay probes: a jitter there would read as a box change that does not decay)
+            # box-series probes: a jitter there would read as a box change that does not decay)
             change = film_change(lambda n=n_p, f=f: solve(n, f), lambda n=n_p, f=f: solve(n, 2.0 * f),
-                                 floor_ok=not tight)
+                                 floor_ok=tight is None)
             if change is None:
                 break
             changes.append(change)
