@@ -377,7 +377,8 @@ def _run_locked(scene: Scene, options: MainJobOptions, out: Path) -> dict[str, A
     def save(complete: bool) -> None:
         save_results(staging / h5_name, {k: o.result for k, o in ctx.outputs.items() if o.result is not None},
                      meta={"plan": plan.to_dict(), "scene": scene.name, "stages_planned": planned,
-                           "stages_run": list(ran)}, complete=complete, planned=planned)
+                           "stages_run": list(ran)}, complete=complete, planned=planned,
+                     compress=complete)  # a partial file is replaced by the next stage's
 
     prog = Progress(f"ehl run {scene.name}", total=len(stages), unit="stages")
     try:

@@ -36,6 +36,10 @@ from .atomic import atomic_path, fault_point
 from .errors import InputError
 
 FORMAT_VERSION = 1
+#: HDF5 filters of the larger fields: the byte shuffle before gzip level 1 (standard filters
+#: every HDF5 reader has). On the four 1025^2 float64 fields of a point film: 24.5 MB in 0.67 s,
+#: against 29.4 MB in 1.05 s with gzip level 4 alone and 34.8 MB uncompressed
+COMPRESSION = {"compression": "gzip", "compression_opts": 1, "shuffle": True}
 
 
 def package_version() -> str:
@@ -146,7 +150,7 @@ class Result:
         """Write atomically to ``path`` (HDF5). Returns the path."""
         return _write_atomic(path, self._write)
 
-    def _write(self, f: h5py.Group) -> None:
+    def _write(self, f: h5py.Group, compress: bool = True) -> None:
         f.attrs["kind"] = self.kind
         f.attrs["package"] = "ehl-multigrid"
         f.attrs["package_version"] = self.package_version
@@ -165,7 +169,8 @@ class Result:
             ds.make_scale(name)
         gf = f.create_group("fields")
         for name, v in self.fields.items():
-            ds = gf.create_dataset(name, data=v.data, compression="gzip" if v.data.size > 4096 else None)
+            big = compress and v.data.size > 4096
+            ds = gf.create_dataset(name, data=v.data, **(COMPRESSION if big else {}))
             ds.attrs["units"] = v.units
             ds.attrs["long_name"] = v.long_name
             ds.attrs["dims"] = json.dumps(list(v.dims))
@@ -228,13 +233,15 @@ class Result:
 
 
 def save_results(path: str | os.PathLike, results: dict[str, Result], meta: dict[str, Any] | None = None,
-                 complete: bool = True, planned: list[str] | None = None) -> Path:
+                 complete: bool = True, planned: list[str] | None = None, compress: bool = True) -> Path:
     """Several results in one HDF5 file, each under ``/<name>`` with the layout above;
     written atomically like :meth:`Result.save`.
 
     The root attributes ``complete`` (bool) and ``planned`` (JSON list of the result names the
     writer meant to store) say whether the file holds everything: a run interrupted after some of
     its stages stores ``complete = False``, and :func:`load_results` readers can tell.
+    ``compress=False`` writes the fields uncompressed (a file the next save replaces: gzip
+    costs 0.65 s on the four 1025^2 film fields, against 0.1 s uncompressed).
     """
 
     def write(f: h5py.File) -> None:
@@ -247,7 +254,7 @@ def save_results(path: str | os.PathLike, results: dict[str, Result], meta: dict
         for k, v in (meta or {}).items():
             f.attrs[k] = json.dumps(v, default=_json_default)
         for name, res in results.items():
-            res._write(f.create_group(name))
+            res._write(f.create_group(name), compress)
 
     return _write_atomic(path, write)
 

@@ -16,8 +16,10 @@ import numpy as np
 
 from ..model.errors import ConvergenceError, InputError, require_choice, require_range
 from ..multigrid.accuracy import (
+    CORRECTION_MIN_DECAY,
     PROBE_FILM_TOL,
     BoxSeries,
+    domain_correction,
     film_change,
     film_tol,
     iteration_error,
@@ -264,7 +266,7 @@ PROBE_RESIDUAL_TOL = 1e-5
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
                         cache: dict[PointOptions, EHLResult] | None = None,
                         boxes: tuple[float, ...] = (1.0, 2.0), tight: float | None = None, coarser: int = 0,
-                        used: list[EHLResult] | None = None
+                        used: list[EHLResult] | None = None, widest: float = 1.0
                         ) -> tuple[float, float] | list[tuple[float, float]] | None:
     """Relative change of (Hc, Hm) when the box is doubled in X and Y at equal mesh size,
     measured by two converged solves on a coarse grid of the solve (two grids below the
@@ -273,7 +275,8 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
 
     ``boxes`` (scales of the solve's box, each twice the one before) with more than two entries
     returns the list of the successive changes, each relative to the smaller box; ``tight``
-    (a film and load tolerance) replaces the probes' own film tolerance. ``coarser`` halves the
+    (a film and load tolerance) replaces the probes' own film tolerance; a series whose widest
+    probe has more than ``widest`` times the solve's intervals is not run. ``coarser`` halves the
     probe mesh that many times (no finer mesh is then tried when it fails); ``used`` receives
     the probe solves.
 
@@ -296,7 +299,7 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     for _ in range(coarser):
         n_p = (n_p - 1) // 2 + 1
     while True:
-        if len(boxes) > 2 and (n_p - 1) * boxes[-1] / boxes[0] + 1 > n_f:
+        if len(boxes) > 2 and (n_p - 1) * boxes[-1] > widest * (n_f - 1):
             # the widest box would need more points than the solve itself: such a probe costs more
             # than the refinement it could save (circular (20, 10) at 5 %: a 513-point probe, 16 s,
             # for a 0.3 s solve on 129 points)
@@ -351,28 +354,71 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
 SERIES_FILM_TOL = 1e-4
 
 
+#: the series one box lower is measured only where its widest probe has at most this share of
+#: the solve's intervals (a quarter of its unknowns); where it would be as large as the solve a
+#: failed correction costs more than it saves (elliptic (20, 10, theta 4) at 0.5 %: 1025-point
+#: probes for a 1025-point solve, 41 -> 49 s when the grid part then still missed the target)
+LOWER_WIDEST = 0.5
+
+
+def decays_below(problem: PointProblem, options: PointOptions, sol: EHLResult,
+                 cache: dict[PointOptions, EHLResult] | None = None) -> bool:
+    """Whether the box change decays fast enough below the solve's box for a correction
+    (:data:`~ehl_multigrid.multigrid.accuracy.CORRECTION_MIN_DECAY`, same sign), judged on the
+    domain probes at their own tolerance: the pair around the solve's box is its domain probe,
+    the pair below it usually the probe of the solve before (both cached), so that a series
+    that cannot correct is not solved ((20, 0): about 2 per doubling)."""
+    pre = point_domain_change(problem, options, sol, cache, boxes=(0.5, 1.0, 2.0), widest=LOWER_WIDEST)
+    if pre is None:
+        return False
+    (bc, bm), (dc, dm) = pre
+    return all(d != 0.0 and b / d >= CORRECTION_MIN_DECAY for b, d in ((bc, dc), (bm, dm)))
+
+
 def point_box_series(problem: PointProblem, options: PointOptions, sol: EHLResult,
                      cache: dict[PointOptions, EHLResult] | None = None) -> BoxSeries | None:
-    """The box series of a box correction (:func:`~ehl_multigrid.multigrid.accuracy.domain_correction`):
-    the changes of (Hc, Hm) over two doublings of the solve's box on the probe mesh of
-    :func:`point_domain_change` (its film-stopped probes; the first pair is the domain probe's
-    own), the first change again on a mesh twice as coarse, and the probes' iteration errors.
-    None when the series on the probe mesh fails."""
-    used: list[EHLResult] = []
-    changes = point_domain_change(problem, options, sol, cache, boxes=(1.0, 2.0, 4.0), used=used,
-                                  tight=SERIES_FILM_TOL)
-    if changes is None:
-        return None
-    coarse = point_domain_change(problem, options, sol, cache, coarser=1, tight=SERIES_FILM_TOL)
-    noise = [0.0, 0.0]
-    # the solves of the last (converged) series, pairs 1x-2x and 2x-4x (the 2x solve shared)
-    for r in {id(r): r for r in used[-4:]}.values():
-        fin = [h for h in r.history if h.level == r.levels - 1]
-        for i, k in enumerate(("Hc", "Hm")):
-            films = [getattr(h, k) for h in fin]
-            e = iteration_error(films) / abs(films[-1]) if len(films) >= 2 and films[-1] else math.inf
-            noise[i] += e  # each film enters the correction about once
-    return BoxSeries(changes[0], changes[1], coarse, (noise[0], noise[1]))
+    """The box series of a box correction (:func:`~ehl_multigrid.multigrid.accuracy.domain_correction`)
+    on the probe mesh of :func:`point_domain_change` (film-stopped probes): the change of (Hc,
+    Hm) from the solve's box to twice it and, where the solve's box is at least twice the
+    default and the change decays fast enough below it (:func:`decays_below`), the change one
+    box lower (half the solve's box to it); else the change from twice to four times the box
+    (a box below the default would cut the Hertz contact). Also the first change again on a
+    mesh twice as coarse, and the probes' iteration errors. None when the series on the probe
+    mesh fails. One box lower costs an eighth of one box further: circular (20, 10) at 0.5 % on
+    1025 points and twice the box, 0.1 s against 5.2 s."""
+    xmin, xmax, _ = sol.extra["domain"]
+    d0 = default_domain(problem)
+    coarse: list[tuple[float, float] | None] = []
+
+    def series(boxes: tuple[float, float, float]) -> BoxSeries | None:
+        used: list[EHLResult] = []
+        changes = point_domain_change(problem, options, sol, cache, boxes=boxes, used=used,
+                                      tight=SERIES_FILM_TOL, widest=LOWER_WIDEST if boxes[0] < 1.0 else 1.0)
+        if changes is None:
+            return None
+        if not coarse:  # the mesh dependence, once a series exists to correct with
+            coarse.append(point_domain_change(problem, options, sol, cache, coarser=1, tight=SERIES_FILM_TOL))
+        noise = [0.0, 0.0]
+        # the solves of the last (converged) series: its two pairs, the middle box shared
+        for r in {id(r): r for r in used[-4:]}.values():
+            fin = [h for h in r.history if h.level == r.levels - 1]
+            for i, k in enumerate(("Hc", "Hm")):
+                films = [getattr(h, k) for h in fin]
+                e = iteration_error(films) / abs(films[-1]) if len(films) >= 2 and films[-1] else math.inf
+                noise[i] += e  # each film enters the correction about once
+        if boxes[0] < 1.0:
+            return BoxSeries(changes[1], None, coarse[0], (noise[0], noise[1]), below=changes[0])
+        return BoxSeries(changes[0], changes[1], coarse[0], (noise[0], noise[1]))
+
+    if (xmax - xmin) >= 2.0 * (d0[1] - d0[0]) * (1.0 - 1e-9) and decays_below(problem, options, sol, cache):
+        low = series((0.5, 1.0, 2.0))
+        if low is None or low.d2_coarse is None or all(
+                domain_correction(low.d2[i], None, low.d2_coarse[i], low.noise[i], low.below[i]) is not None
+                for i in (0, 1)):
+            return low
+        # the decay below the box is too slow for a correction (thick films, L = 0: about 2
+        # per doubling): measured beyond the box, where it is faster
+    return series((1.0, 2.0, 4.0))
 
 
 def thick_film_reason(problem: PointProblem, res: EHLResult, accuracy: float) -> str:

@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from ..line.problem import LineProblem
-from ..model.results import _write_atomic, package_version
+from ..model.results import COMPRESSION, _write_atomic, package_version
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
 from .discrete import flux_balance
@@ -313,7 +313,7 @@ class TransientResult:
             s.create_dataset("T", data=np.asarray([self.series["T"][i] for i in steps]))
             for name in ("P", "H", "rho"):
                 s.create_dataset(name, data=np.array([self.snapshots[i][name] for i in steps]),
-                                 compression="gzip")
+                                 **COMPRESSION)
             st = f.create_group("steady")
             st.create_dataset("P", data=self.steady.P)
             st.create_dataset("H", data=self.steady.H)

@@ -98,3 +98,19 @@ def test_several_results_round_trip_in_one_file(tmp_path):
     assert Result.load(path, group="film").scene == a.scene
     with pytest.raises(InputError, match=r"'stribeck'.*\['film', 'traction'\]"):
         Result.load(path, group="stribeck")
+
+
+def test_a_partial_run_file_is_written_uncompressed_and_the_final_one_compressed(tmp_path):
+    from ehl_multigrid.model.results import load_results, save_results
+
+    r = make_result()
+    r.add_coord("x", np.linspace(-1, 1, 101), "m")
+    r.add_coord("y", np.linspace(-1, 1, 81), "m")
+    r.fields.pop("p")
+    r.add_field("p", np.outer(np.linspace(0, 1, 101), np.linspace(1, 2, 81)), "Pa", ("x", "y"))
+    for compress, filters in ((False, (None, False)), (True, ("gzip", True))):
+        path = save_results(tmp_path / f"run_{compress}.h5", {"film": r}, compress=compress)
+        with h5py.File(path) as f:
+            ds = f["film/fields/p"]
+            assert (ds.compression, ds.shuffle) == filters
+        np.testing.assert_array_equal(load_results(path)["film"]["p"], r["p"])

@@ -565,6 +565,44 @@ def test_box_correction_continues_two_measured_doublings_and_states_what_it_leav
     assert domain_correction(1e-2, 2.5e-3, None) is None  # mesh dependence not measured
 
 
+def test_box_correction_from_the_decay_below_the_box_counts_everything_beyond_it_as_error():
+    from ehl_multigrid.multigrid.accuracy import DECAY_SAFETY, MESH_SAFETY, domain_correction
+
+    # 1 % from half the box to it, 0.25 % beyond it (decay 4): the geometric rest 0.25 % / 3
+    # beyond twice the box is unmeasured and counted whole
+    c, err = domain_correction(2.5e-3, None, 2.5e-3, 0.0, below=1e-2)
+    assert c == pytest.approx(1.0025 * (1.0 + 2.5e-3 / 3.0) - 1.0)
+    assert err == pytest.approx(DECAY_SAFETY * 2.5e-3 / 3.0)
+    c2, err2 = domain_correction(2.5e-3, None, 3e-3, 1e-5, below=1e-2)
+    assert err2 == pytest.approx(DECAY_SAFETY * (2.5e-3 / 3.0 + MESH_SAFETY * 5e-4 * c2 / 2.5e-3 + 1e-5))
+    # the same series with the next doubling measured (d4 = 0.0625 %) leaves less unmeasured
+    assert err > domain_correction(2.5e-3, 6.25e-4, 2.5e-3, 0.0)[1]
+    assert domain_correction(2.5e-3, None, 2.5e-3, below=4e-3) is None  # decays by 1.6 only
+    assert domain_correction(2.5e-3, None, 2.5e-3, below=-1e-2) is None  # changes sign
+    assert domain_correction(2.5e-3, None, 2.5e-3) is None  # neither d4 nor below
+
+
+@pytest.mark.solver
+def test_a_solve_on_twice_the_box_is_corrected_with_the_decay_measured_one_box_lower(monkeypatch):
+    """Circular (20, 10) on 513 points and twice the default box at 0.4 %, which the fixed
+    domain factor misses: the box series is measured on the default box and twice it (half the
+    solve's box), no wider box is solved, and the corrected films move towards the wider box
+    and meet the target. (Probes as large as the solve allowed here, to keep the test small.)"""
+    from ehl_multigrid.multigrid.accuracy import DOMAIN_SAFETY
+    from ehl_multigrid.point import solve as point_solve
+
+    monkeypatch.setattr(point_solve, "LOWER_WIDEST", 1.0)
+    sol = solve_point(20.0, 10.0, points=513, xmin=-9.0, xmax=3.0, ymax=6.0, accuracy=4e-3)
+    (below_c, below_m), (d2c, d2m) = sol.extra["domain_changes_below"]
+    assert DOMAIN_SAFETY * max(abs(d2c), abs(d2m)) > 4e-3  # the fixed factor alone misses
+    assert "domain_changes" not in sol.extra
+    assert below_c / d2c > 2.0 and below_m / d2m > 2.0
+    corr = sol.extra["film_correction"]["box"]
+    assert corr["Hc"] > d2c > 0.0 and corr["Hm"] > d2m > 0.0
+    assert sol.success and max(sol.Hc_error, sol.Hm_error) <= 4e-3
+    assert any("below and beyond the box" in n for n in sol.error.notes)
+
+
 def test_an_asymptotic_grid_sequence_is_extrapolated_and_an_irregular_one_is_not():
     from ehl_multigrid.multigrid.accuracy import EXTRAPOLATION_FLOOR, extrapolated
 

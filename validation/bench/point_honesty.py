@@ -1,0 +1,106 @@
+"""Point solves at a target accuracy against the deep references, in one process: time, grid,
+box, status, the estimated and the true error of Hc and Hm (issue "Accuracy per second").
+
+Every point reference of validation/accuracy (`python validation/accuracy/references.py
+--contact point` writes them to build/validation/accuracy/references) is solved through
+`ehl_multigrid.solve` at each accuracy, one case after another in this process (numba warm
+after two small warm-up solves; no process start-up in the times, unlike verified.py). A film is
+*within its estimate* when |true error| <= the stated error; the references' own uncertainty
+is listed beside (Hm's reaches 0.2 % where its box change depends on the mesh, and (5, 0) is
+not resolved by its reference).
+
+    python validation/bench/point_honesty.py --label after
+    git worktree add /tmp/before REV && python validation/bench/point_honesty.py --label before --code /tmp/before
+
+writes build/validation/bench/point_honesty_<label>.json and .md (kept after every case).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _paths import out_dir  # noqa: E402
+
+OUT = Path(out_dir("bench"))
+REFS = Path(out_dir("accuracy/references"))
+CASES = ((20, 10, 1), (100, 10, 1), (100, 20, 1), (20, 0, 1), (20, 10, 0.25), (20, 10, 4),
+         (1000, 10, 1), (5, 0, 1))
+
+
+def reference(M: float, L: float, theta: float) -> dict[str, Any] | None:
+    path = REFS / f"point_M{M:g}_L{L:g}_t{theta:g}.json"  # validation/accuracy/references.ref_path
+    if not path.exists():
+        return None
+    rec = json.loads(path.read_text())
+    return rec if rec.get("ok") else None
+
+
+def table(rows: list[dict[str, Any]]) -> str:
+    out = ["| (M, L, theta) | target | status | wall s | points | box | est Hc | est Hm | true Hc | true Hm | "
+           "ref +- Hc | ref +- Hm |", "|" + " --- |" * 12]
+    for r in rows:
+        t = r["true"] or [math.nan, math.nan]
+        out.append(f"| ({r['M']:g}, {r['L']:g}, {r['theta']:g}) | {r['accuracy']:g} | {r['status']} | "
+                   f"{r['wall_s']:.1f} | {r['points']} | {r['box']:g} | {r['est'][0]:.2%} | {r['est'][1]:.2%} | "
+                   f"{t[0]:+.2%} | {t[1]:+.2%} | {r['ref_unc'][0]:.2%} | {r['ref_unc'][1]:.2%} |")
+    within = [abs(t) <= e for r in rows if r["status"] == "converged" and r["true"]
+              for t, e in zip(r["true"], r["est"], strict=True)]
+    ratios = sorted(abs(t) / e for r in rows if r["status"] == "converged" and r["true"]
+                    for t, e in zip(r["true"], r["est"], strict=True))
+    if ratios:
+        out.append(f"\nConverged films within their estimate: {sum(within)} of {len(within)}; median "
+                   f"true/estimated {ratios[len(ratios) // 2]:.2f}, largest {ratios[-1]:.2f}.")
+    return "\n".join(out)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--label", default="point_honesty")
+    ap.add_argument("--accuracies", nargs="*", type=float, default=[0.005, 0.01])
+    ap.add_argument("--code", default=None, help="import the package of this checkout (a git worktree)")
+    args = ap.parse_args()
+    if args.code:
+        sys.path.insert(0, os.path.abspath(args.code))
+    import ehl_multigrid as ehl
+
+    def problem(M: float, L: float, theta: float) -> Any:
+        return ehl.MoesProblem("point" if theta == 1 else "elliptic", M=M, L=L, theta=theta)
+
+    for theta in (1, 4):  # numba compiled and loaded before timing
+        ehl.solve(problem(20, 10, theta), accuracy=0.05)
+    rows: list[dict[str, Any]] = []
+    path = OUT / f"point_honesty_{args.label}.json"
+    for acc in args.accuracies:
+        for M, L, theta in CASES:
+            ref = reference(M, L, theta)
+            t0 = time.perf_counter()
+            sol = ehl.solve(problem(M, L, theta), accuracy=acc)
+            wall = time.perf_counter() - t0
+            raw = sol.raw
+            films = (raw.scalars["Hc_venner"], raw.scalars["Hm_venner"])
+            true = [f / ref[k] - 1.0 for f, k in zip(films, ("Hc_ref", "Hm_ref"), strict=True)] if ref else None
+            steps = raw.extra.get("refinements", [])
+            rows.append(dict(M=M, L=L, theta=theta, accuracy=acc, status=sol.status.name.lower(),
+                             wall_s=wall, points=int(raw.X.shape[0]), box=steps[-1]["box"] if steps else 1.0,
+                             est=[sol.error.Hc, sol.error.Hm], true=true,
+                             ref_unc=[ref["Hc_unc"], ref["Hm_unc"]] if ref else [math.nan, math.nan],
+                             budget=raw.error.budget, correction=raw.extra.get("film_correction"),
+                             solves=[(s["points"], s["box"], s["purpose"]) for s in steps]))
+            print(table(rows[-1:]).splitlines()[-1], file=sys.stderr, flush=True)
+            tmp = path.with_suffix(".json.tmp")
+            tmp.write_text(json.dumps({"rows": rows, "code": args.code or "installed"}, indent=1, default=str))
+            tmp.replace(path)
+    path.with_suffix(".md").write_text(table(rows) + "\n")
+    print(table(rows))
+
+
+if __name__ == "__main__":
+    main()
