@@ -94,7 +94,7 @@ def main() -> None:
                              ref_unc=[ref["Hc_unc"], ref["Hm_unc"]] if ref else [math.nan, math.nan],
                              budget=raw.error.budget, correction=raw.extra.get("film_correction"),
                              solves=[(s["points"], s["box"], s["purpose"]) for s in steps]))
-            print(table(rows[-1:]).splitlines()[-1], file=sys.stderr, flush=True)
+            print(table(rows[-1:]).splitlines()[2], file=sys.stderr, flush=True)  # the row
             tmp = path.with_suffix(".json.tmp")
             tmp.write_text(json.dumps({"rows": rows, "code": args.code or "installed"}, indent=1, default=str))
             tmp.replace(path)
