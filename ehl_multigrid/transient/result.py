@@ -12,6 +12,7 @@ Definitions (Venner units: ``X = x/b``, ``H = h R/b^2``, ``P = p/pmax``, ``T = t
   (:meth:`TransientResult.bump_amplitude_at_centre`); waviness: half the peak-to-peak of
   ``Hc(T)`` over the last full period (:meth:`TransientResult.waviness_amplitude`);
 * ``stalled(T)`` -- 1 for a step accepted with a stalled residual (below ``accept_stall``);
+* ``substeps(T)`` -- the solves a step took: 1, or more where a failed solve was halved;
 * ``mass_balance(T)`` -- the discrete flux balance of the pressurised (wetted) zone of the
   converged step (discrete.flux_balance) over the total flux through it.
 
@@ -39,7 +40,7 @@ from ..multigrid.result import EHLResult
 from .discrete import flux_balance
 
 SERIES = ("step", "T", "Hc", "Hm", "H0", "Pmax", "dP", "xf", "dH", "residual", "load_error",
-          "cycles", "work_units", "wall_s", "mass_balance", "stalled")
+          "cycles", "work_units", "wall_s", "mass_balance", "stalled", "substeps")
 #: arrays of :attr:`TransientResult.state` (the next step's inputs), besides its scalars
 STATE_ARRAYS = ("P", "P_prev", "q", "q_prev")
 STATE_SCALARS = ("step", "T", "H0", "H0_prev")
@@ -126,6 +127,7 @@ class TransientResult:
         self._record_mass_balance(hz, st, n)
         if n == 0:
             s["stalled"].append(0.0)
+            s["substeps"].append(1.0)
         # the last completed step is always kept (a run that stops keeps its final state);
         # it is dropped again when the next step completes, unless it is a kept step
         if self._unkept is not None:

@@ -5,8 +5,9 @@ steps.
 Each step ``T_n = n dT`` solves the BDF2 (first step backward Euler) equations at the new time
 level by one FAS solve of the contact's hierarchy, started from the previous solution
 extrapolated linearly in time; a step whose cycles stall below ``accept_stall`` is accepted
-and flagged, a step that fails or whose film closes ends the run (:class:`ConvergenceError`,
-or a stop with ``failed_step`` set). The contact supplies a :class:`Stepper` (its unknowns,
+and flagged, a step whose solve fails is solved again as two half steps (variable-step BDF2,
+down to 2^-:data:`MAX_HALVINGS` of the step; docs/robustness.md), a step that still fails or
+whose film closes ends the run (:class:`ConvergenceError`, or a stop with ``failed_step`` set). The contact supplies a :class:`Stepper` (its unknowns,
 film, step solve and stall rule); the result object records every step.
 """
 
@@ -81,13 +82,16 @@ class Stepper:
 
 
 def step_coefficients(scheme: str, n: int, dt: float, q1: np.ndarray,
-                      q0: np.ndarray | None) -> tuple[float, np.ndarray]:
+                      q0: np.ndarray | None, dt_prev: float | None = None) -> tuple[float, np.ndarray]:
     """``(c_t, s)`` of ``d(rho H)/dT ~ c_t (rho H)^(n+1) - s`` at step ``n`` from the films
     ``q1 = (rho H)^n`` and ``q0 = (rho H)^(n-1)`` (BDF2; backward Euler for ``"euler"``, the
-    first step, or without ``q0``)."""
+    first step, or without ``q0``). ``dt_prev`` (default ``dt``) is the interval between ``q0``
+    and ``q1``: the variable-step BDF2 of ratio ``w = dt/dt_prev``,
+    ``[(1 + 2w)/(1 + w) q^(n+1) - (1 + w) q^n + w^2/(1 + w) q^(n-1)] / dt``."""
     if scheme == "euler" or n == 1 or q0 is None:
         return 1.0 / dt, q1 / dt
-    return 1.5 / dt, (2.0 * q1 - 0.5 * q0) / dt
+    w = 1.0 if dt_prev is None else dt / dt_prev
+    return (1.0 + 2.0 * w) / ((1.0 + w) * dt), ((1.0 + w) * q1 - w * w / (1.0 + w) * q0) / dt
 
 
 def max_time_step(feature: Any, speed: float) -> float:
@@ -155,15 +159,57 @@ def start(stepper: Stepper, out: Any, P_steady: np.ndarray, H0_steady: float,
     out.setup_s = time.perf_counter() - t0
 
 
-def _extrapolate(P_now: np.ndarray, P_prev: np.ndarray) -> np.ndarray:
-    """Linear extrapolation in time, projected on ``P >= 0`` with ``P = 0`` on the boundary."""
-    P = np.maximum(2.0 * P_now - P_prev, 0.0)
+def _extrapolate(P_now: np.ndarray, P_prev: np.ndarray, w: float = 1.0) -> np.ndarray:
+    """Linear extrapolation in time over ``w`` times the last interval, projected on ``P >= 0``
+    with ``P = 0`` on the boundary."""
+    P = np.maximum(P_now + w * (P_now - P_prev), 0.0)
     for axis in range(P.ndim):
         edges = [slice(None)] * P.ndim
         for end in (0, -1):
             edges[axis] = end
             P[tuple(edges)] = 0.0
     return P
+
+
+#: A step whose solve fails is solved again as two steps of half the size, each of which may be
+#: halved again, down to 2^-MAX_HALVINGS of the step; the output times stay those of the step
+MAX_HALVINGS = 3
+
+
+def _advance(stepper: Stepper, speed: float, scheme: str, n: int, T0: float, h: float,
+             last: dict[str, Any], accept_stall: float, halvings: int
+             ) -> tuple[EHLResult, dict[str, Any], int, bool]:
+    """Solve the interval ``[T0, T0 + h]`` from ``last`` (the state at ``T0``: ``P``, ``H0``,
+    ``q`` and the level before it, ``P_prev``, ``H0_prev``, ``q_prev``, ``dt_prev`` apart).
+    A solve that fails (not converged and not an accepted stall, or not finite) is repeated as
+    two halves while ``halvings`` remain. Returns the last solve, the state at ``T0 + h``, the
+    number of solves the interval took and whether the accepted solve was a stall."""
+    fine = stepper.hz.fine
+    dt_prev = last.get("dt_prev", h)
+    ct, hist = step_coefficients(scheme, n, h, last["q"], last["q_prev"], dt_prev)
+    if n > 1 or last["q_prev"] is not None:  # linear extrapolation in time: the start iterate
+        w = h / dt_prev
+        stepper.set_unknowns(_extrapolate(last["P"], last["P_prev"], w),
+                             last["H0"] + w * (last["H0"] - last["H0_prev"]))
+    else:
+        stepper.set_unknowns(last["P"].copy(), last["H0"])
+    stepper.hz.set_step(speed * (T0 + h), ct, hist)
+    res = stepper.solve_step()
+    finite = bool(np.all(np.isfinite(fine.P)) and math.isfinite(stepper.H0))
+    stalled_ok = not res.success and finite and stepper.accept_stalled(res, accept_stall)
+    if (res.success or stalled_ok) and finite or halvings <= 0 or res.status == 7:
+        P, H0 = stepper.unknowns()
+        state = {"P": P, "H0": H0, "q": stepper.film()[1].copy(), "P_prev": last["P"],
+                 "H0_prev": last["H0"], "q_prev": last["q"], "dt_prev": h}
+        return res, state, 1, bool(stalled_ok and finite)
+    half = 0.5 * h
+    res1, mid, k1, _ = _advance(stepper, speed, scheme, n, T0, half, last, accept_stall, halvings - 1)
+    if not (res1.success or stepper.accept_stalled(res1, accept_stall)):
+        return res1, mid, k1, False
+    # the second half: BDF2 on the half step's own levels (the first step of a run included)
+    res2, end, k2, stalled = _advance(stepper, speed, scheme, max(n, 2), T0 + half, half, mid,
+                                      accept_stall, halvings - 1)
+    return res2, end, k1 + k2, stalled
 
 
 def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, scheme: str,
@@ -192,22 +238,19 @@ def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, sc
     else:
         stepper.set_unknowns(np.array(out.state["P"], dtype=float), float(out.state["H0"]))
     n = T = 0
+    # a run continued from a file of an earlier version has no substep series
+    out.series.setdefault("substeps", [1.0] * len(out.series["T"]))
     try:
         for n in range(int(out.state["step"]) + 1, steps + 1):
             T = n * dt
-            last = out.state
-            ct, hist = step_coefficients(scheme, n, dt, last["q"], last["q_prev"])
-            if n > 1:  # linear extrapolation in time: the start iterate of the step
-                stepper.set_unknowns(_extrapolate(last["P"], last["P_prev"]),
-                                     2.0 * last["H0"] - last["H0_prev"])
-            hz.set_step(speed * T, ct, hist)
+            last = {**out.state, "dt_prev": dt}  # the output levels are dt apart
             ts = time.perf_counter()
-            res = stepper.solve_step()
+            # cycles that stall (a limit cycle of the free boundary) leave an iterate that the
+            # contact's rule may accept below accept_stall; a failed solve is halved
+            res, nxt, solves, stalled_ok = _advance(stepper, speed, scheme, n, T - dt, dt, last,
+                                                    accept_stall, MAX_HALVINGS)
             wall = time.perf_counter() - ts
             finite = bool(np.all(np.isfinite(fine.P)) and math.isfinite(stepper.H0))
-            # cycles that stall (a limit cycle of the free boundary) leave an iterate that the
-            # contact's rule may accept below accept_stall
-            stalled_ok = (not res.success and finite and stepper.accept_stalled(res, accept_stall))
             H, q = stepper.film()
             wet = fine.P > 0.0
             closed = res.status == 7 or (finite and wet.any() and float(H[wet].min()) <= 0.0)
@@ -232,8 +275,8 @@ def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, sc
                     f"film, which needs a mixed-lubrication model", None, "a smaller feature amplitude")
             out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
             out.series["stalled"].append(0.0 if res.success else 1.0)
-            P, H0 = stepper.unknowns()
-            out.state = {"step": n, "T": T, "P": P, "H0": H0, "P_prev": last["P"],
+            out.series["substeps"].append(float(solves))
+            out.state = {"step": n, "T": T, "P": nxt["P"], "H0": nxt["H0"], "P_prev": last["P"],
                          "H0_prev": last["H0"], "q": q, "q_prev": last["q"]}
             if checkpoint is not None:
                 checkpoint.step(out)

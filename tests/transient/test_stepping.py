@@ -45,3 +45,44 @@ def test_line_and_point_share_the_time_step_limit():
     assert (dt, steps, every) == (0.01, 100, 10)
     with pytest.raises(InputError, match=r"t_end = 5e\+06 .*\(T = t u_m/a\)"):
         time_steps(dent, 1.0, 0.01, None, None, 5e6, 10, 1e-3, "a", lambda: 0.0)
+
+
+@pytest.mark.parametrize("ratio", [0.5, 2.0, 0.125])
+def test_variable_step_bdf2_differentiates_quadratics_exactly(ratio):
+    """BDF2 with the step ``dt`` after an interval ``dt_prev = dt/ratio`` (the halved steps of a
+    failed solve) is exact for polynomials up to degree 2 and not for degree 3."""
+    dt = 0.05
+    T = np.array([-dt / ratio, 0.0, dt])
+    for degree, exact in ((0, True), (1, True), (2, True), (3, False)):
+        q = T**degree
+        ct, s = step_coefficients("bdf2", 3, dt, np.array([q[1]]), np.array([q[0]]), dt / ratio)
+        dq = degree * T[2] ** (degree - 1) if degree else 0.0
+        assert bool(abs(ct * q[2] - s[0] - dq) < 1e-10) is exact
+
+
+def test_a_step_whose_solve_fails_is_solved_again_in_halves_on_the_same_output_times(monkeypatch):
+    """A step whose solve diverges is repeated as two half steps: the run goes on, its output
+    times stay n dT, the step records two solves, and the films agree with the undisturbed run
+    to well within the step's time error."""
+    from ehl_multigrid.line.problem import LineProblem
+    from ehl_multigrid.transient import solve_transient_line, stepping
+
+    problem = LineProblem.from_moes(20, 10, xmin=-4.5)
+    kw = dict(dt=0.05, steps=8, points=129, snapshot_every=100)
+    plain = solve_transient_line(problem, Bump(-0.05, 0.5, x0=-2.0), **kw)
+    real = stepping.Stepper.solve_step
+    calls = {"n": 0}
+
+    def flaky(self):
+        calls["n"] += 1
+        res = real(self)
+        if calls["n"] == 5:  # the first attempt of a step in the middle of the run
+            res.success, res.status = False, 3
+        return res
+
+    monkeypatch.setattr(stepping.Stepper, "solve_step", flaky)
+    res = solve_transient_line(problem, Bump(-0.05, 0.5, x0=-2.0), **kw)
+    assert res.complete and res.steps == 8
+    np.testing.assert_allclose(res.series["T"], np.arange(9) * 0.05)
+    assert sorted(res.series["substeps"]) == [1.0] * 8 + [2.0]
+    assert np.max(np.abs(res.Hc / plain.Hc - 1.0)) < 2e-3
