@@ -114,20 +114,16 @@ REQUIRED_GAIN = 0.9
 
 
 def choose(candidates: list[Candidate], accuracy: float, now: float) -> Candidate | None:
-    """The cheapest candidate predicted to meet ``accuracy`` that lowers ``now`` (the current
-    error) by :data:`REQUIRED_GAIN`; else the cheapest of those predicted within
-    :data:`PREDICTION_SHARPNESS` of the lowest, if it lowers ``now`` by :data:`REQUIRED_GAIN`;
-    else None. (A refinement predicted to meet the target by less than the estimates' own
-    spread is not one: elliptic (20, 10, theta 0.25) at 1 % took a tolerance step from 1.0004 %
-    predicted to 0.998 %, 8 s, and was re-estimated at 1.11 %.) A candidate whose prediction is
-    NaN is a refinement the estimate itself needs (a part could not be measured at this
-    resolution) and is taken first."""
+    """The cheapest candidate predicted to meet ``accuracy``; else the cheapest of those predicted
+    within :data:`PREDICTION_SHARPNESS` of the lowest, if it lowers ``now`` (the current error)
+    by :data:`REQUIRED_GAIN`; else None. A candidate whose prediction is NaN is a refinement
+    the estimate itself needs (a part could not be measured at this resolution) and is taken
+    first."""
     unknown = [c for c in candidates if math.isnan(c.predicted)]
     if unknown:
         return min(unknown, key=lambda c: c.rank)
     ok = [c for c in candidates if math.isfinite(c.predicted)]
-    # an unknown current error (NaN) is improved by any finite prediction
-    meeting = [c for c in ok if c.predicted <= accuracy and not c.predicted >= REQUIRED_GAIN * now]
+    meeting = [c for c in ok if c.predicted <= accuracy]
     if meeting:
         return min(meeting, key=lambda c: (c.rank, c.predicted))
     if not ok:
@@ -135,6 +131,7 @@ def choose(candidates: list[Candidate], accuracy: float, now: float) -> Candidat
     lowest = min(c.predicted for c in ok)
     best = min((c for c in ok if c.predicted <= PREDICTION_SHARPNESS * lowest),
                key=lambda c: (c.rank, c.predicted))
+    # an unknown current error (NaN) is improved by any finite prediction
     return best if not best.predicted >= REQUIRED_GAIN * now else None
 
 
