@@ -422,8 +422,9 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
             # the series' film-stopped probes were not calibrated for the decay alone: the
             # estimate is never below the fixed factor's
             notes.append("box series measured but not used for a correction (slow decay, sign "
-                         "change or no coarse-mesh pair): domain part the larger of the fixed "
-                         "factor and the geometric continuation")
+                         "change or no coarse-mesh pair): domain part " + (
+                             "the fixed factor" if decay.d4 is None else
+                             "the larger of the fixed factor and the geometric continuation"))
             domain, floor_fixed = decay.d2, True
             decay = None if decay.d4 is None else (decay.d2, decay.d4)
     if fixes is not None and None not in fixes:

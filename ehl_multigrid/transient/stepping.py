@@ -7,8 +7,9 @@ level by one FAS solve of the contact's hierarchy, started from the previous sol
 extrapolated linearly in time; a step whose cycles stall below ``accept_stall`` is accepted
 and flagged, a step whose solve fails is solved again as two half steps (variable-step BDF2,
 down to 2^-:data:`MAX_HALVINGS` of the step; docs/robustness.md), a step that still fails or
-whose film closes ends the run (:class:`ConvergenceError`, or a stop with ``failed_step`` set). The contact supplies a :class:`Stepper` (its unknowns,
-film, step solve and stall rule); the result object records every step.
+whose film closes ends the run (:class:`ConvergenceError`, or a stop with ``failed_step``
+set). The contact supplies a :class:`Stepper` (its unknowns, film, step solve and stall
+rule); the result object records every step.
 """
 
 from __future__ import annotations

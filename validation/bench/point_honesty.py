@@ -28,19 +28,11 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _paths import out_dir  # noqa: E402
+from verified import reference  # noqa: E402  (this folder is the script's own path entry)
 
 OUT = Path(out_dir("bench"))
-REFS = Path(out_dir("accuracy/references"))
 CASES = ((20, 10, 1), (100, 10, 1), (100, 20, 1), (20, 0, 1), (20, 10, 0.25), (20, 10, 4),
          (1000, 10, 1), (5, 0, 1))
-
-
-def reference(M: float, L: float, theta: float) -> dict[str, Any] | None:
-    path = REFS / f"point_M{M:g}_L{L:g}_t{theta:g}.json"  # validation/accuracy/references.ref_path
-    if not path.exists():
-        return None
-    rec = json.loads(path.read_text())
-    return rec if rec.get("ok") else None
 
 
 def table(rows: list[dict[str, Any]]) -> str:
@@ -80,7 +72,7 @@ def main() -> None:
     path = OUT / f"point_honesty_{args.label}.json"
     for acc in args.accuracies:
         for M, L, theta in CASES:
-            ref = reference(M, L, theta)
+            ref = reference(("point", float(M), float(L), float(theta)))
             t0 = time.perf_counter()
             sol = ehl.solve(problem(M, L, theta), accuracy=acc)
             wall = time.perf_counter() - t0
