@@ -44,7 +44,9 @@ def plot_solution(sol: LineSolution, path: str | Path, title: str = "") -> list[
     films = (f"hc = {sc['hc']:.4g} nm, hm = {sc['hm']:.4g} nm" if sc["units"] == "nm"
              else f"Hc = {sc['hc']:.4g}, Hm = {sc['hm']:.4g} (Moes)")
     for suffix, lim in (("PH", None), ("zoom", (-1.3, 1.3))):
-        fig = Figure(figsize=(6.4, 3.8), layout="constrained")
+        fig = Figure(figsize=(6.4, 3.8))
+        # fixed margins: a constrained layout costs 0.15-0.25 s per figure
+        fig.subplots_adjust(left=0.11, right=0.88, bottom=0.13, top=0.91)
         ax = fig.subplots()
         ax.plot(sc["x"], sc["p"], "C0", lw=1.2, label="pressure")
         ax.set_xlabel(sc["xlabel"])

@@ -80,9 +80,9 @@ def map_scales(res: Result, name: str = "") -> MapScales:
                      float(s["X_Hm"]), float(s["Y_Hm"]), False, title, math.nan)
 
 
-#: Most points per axis a map draws: a map panel is about 340 pixels wide at the figures' dpi,
-#: and filled contours of the 1025^2 fields took 1.3 s against 0.5 s at every second point
-MAP_POINTS = 513
+#: Most points per axis a map draws: a map panel is about 340 pixels wide at the figures' dpi
+#: (docs/performance.md: what the figures cost)
+MAP_POINTS = 257
 
 
 def thinned(sc: MapScales, most: int = MAP_POINTS) -> MapScales:
@@ -127,7 +127,10 @@ def maps_figure(res: Result, name: str = "") -> Figure:
     box, stretch = plane_aspect(sc.x, sc.y)
     tall = box > 1.0
     # two panels side by side, each about 3.4 in wide once the colour bars have their room
-    fig = Figure(figsize=(10.0, 3.4 * max(box, 0.55) + 1.0), layout="constrained")
+    height = 3.4 * max(box, 0.55) + 1.0
+    fig = Figure(figsize=(10.0, height))
+    # fixed margins: a constrained layout costs 0.25 s per figure
+    fig.subplots_adjust(left=0.07, right=0.93, bottom=0.5 / height, top=1.0 - 0.75 / height, wspace=0.35)
     ax = fig.subplots(1, 2)
     c0 = ax[0].contourf(sc.x, sc.y, sc.p, levels=30, cmap="viridis")
     fig.colorbar(c0, ax=ax[0], label=sc.plabel, shrink=0.9 if tall else 1.0)
@@ -151,7 +154,8 @@ def profiles_figure(res: Result, name: str = "") -> Figure:
     jc = int(np.argmin(np.abs(sc.y)))
     ic = int(np.argmin(np.abs(sc.x)))
     i0 = int(np.argmin(np.abs(sc.x - sc.x_hm))) if np.isfinite(sc.x_hm) else ic
-    fig = Figure(figsize=(10, 4), layout="constrained")
+    fig = Figure(figsize=(10, 4))
+    fig.subplots_adjust(left=0.07, right=0.93, bottom=0.12, top=0.84, wspace=0.42)
     ax = fig.subplots(1, 2)
     ax[0].plot(sc.x, sc.p[jc], label="pressure")
     ax2 = ax[0].twinx()
@@ -179,10 +183,13 @@ def profiles_figure(res: Result, name: str = "") -> Figure:
 def interference_figure(res: Result, name: str = "") -> Figure:
     """Interference-style film map (white light through oil of index 1.5 on the film in m; a
     Moes-only result, having no physical scale, is drawn with 1 Moes unit = 1 um)."""
-    sc = thinned(map_scales(res, name))
+    # twice the maps' points: the fringes are finer than the contours (an image costs little)
+    sc = thinned(map_scales(res, name), 2 * MAP_POINTS - 1)
     h_m = sc.h * 1e-9 if sc.physical else sc.h * 1e-6
     box, stretch = plane_aspect(sc.x, sc.y)
-    fig = Figure(figsize=(5.5, 5.5 * min(max(box, 0.5), 1.6) + 0.6), layout="constrained")
+    height = 5.5 * min(max(box, 0.5), 1.6) + 0.6
+    fig = Figure(figsize=(5.5, height))
+    fig.subplots_adjust(left=0.13, right=0.96, bottom=0.55 / height, top=1.0 - 0.7 / height)
     ax = fig.subplots()
     ax.imshow(interference_rgb(np.maximum(h_m, 0.0)), origin="lower",
               extent=(sc.x[0], sc.x[-1], sc.y[0], sc.y[-1]), interpolation="bilinear", aspect="auto")

@@ -100,14 +100,15 @@ def test_line_plots_label_the_film_in_the_titles_scaling():
     assert float(np.interp(0.0, moes["x"], moes["h"])) == pytest.approx(moes["hc"], rel=0.05)
 
 
-def test_maps_of_a_fine_grid_are_drawn_on_every_second_point_with_the_edges_kept():
+def test_maps_of_a_fine_grid_are_drawn_on_every_fourth_point_with_the_edges_kept():
     from ehl_multigrid.app.point_plots import MAP_POINTS, thinned
 
     sc = map_scales(_point_result(1.0, physical=False))
     fine = type(sc)(**{**vars(sc), "x": np.linspace(-4.5, 1.5, 1025), "y": np.linspace(-3, 3, 1025),
                        "p": np.random.default_rng(0).random((1025, 1025)), "h": np.ones((1025, 1025))})
     th = thinned(fine)
-    assert th.x.size == th.y.size == MAP_POINTS == 513
+    assert th.x.size == th.y.size == MAP_POINTS == 257
     assert (th.x[0], th.x[-1], th.y[-1]) == (-4.5, 1.5, 3.0)
-    np.testing.assert_array_equal(th.p, fine.p[::2, ::2])
+    np.testing.assert_array_equal(th.p, fine.p[::4, ::4])
+    assert thinned(fine, 2 * MAP_POINTS - 1).x.size == 513  # the interference image's
     assert thinned(sc).p.shape == sc.p.shape  # coarse maps unchanged
