@@ -111,20 +111,32 @@ class Controlled(Protocol):
 PREDICTION_SHARPNESS = 1.1
 #: a refinement that misses the target must at least lower the error by this factor
 REQUIRED_GAIN = 0.9
+#: a cheaper candidate predicted within this factor of the target is tried before the one
+#: predicted to meet it (once per sequence): the predictions leave out what the finer FMG
+#: sequence adds (an extrapolated film, a box correction), and a cost rank is 4x the work in
+#: two dimensions (docs/accuracy.md)
+HOPE = 1.5
 
 
-def choose(candidates: list[Candidate], accuracy: float, now: float) -> Candidate | None:
+def choose(candidates: list[Candidate], accuracy: float, now: float, hope: float = 1.0) -> Candidate | None:
     """The cheapest candidate predicted to meet ``accuracy``; else the cheapest of those predicted
     within :data:`PREDICTION_SHARPNESS` of the lowest, if it lowers ``now`` (the current error)
     by :data:`REQUIRED_GAIN`; else None. A candidate whose prediction is NaN is a refinement
     the estimate itself needs (a part could not be measured at this resolution) and is taken
-    first."""
+    first. With ``hope`` > 1, a finer grid (a candidate whose name has ``points``: one more FMG
+    grid, whose extrapolation the prediction leaves out) of a lower cost rank than every meeting
+    candidate and predicted within ``hope`` times ``accuracy`` is taken instead (the lowest
+    prediction of those)."""
     unknown = [c for c in candidates if math.isnan(c.predicted)]
     if unknown:
         return min(unknown, key=lambda c: c.rank)
     ok = [c for c in candidates if math.isfinite(c.predicted)]
     meeting = [c for c in ok if c.predicted <= accuracy]
     if meeting:
+        rank = min(c.rank for c in meeting)
+        near = [c for c in ok if c.rank < rank and "points" in c.what and c.predicted <= hope * accuracy]
+        if near:
+            return min(near, key=lambda c: (c.predicted, c.rank))
         return min(meeting, key=lambda c: (c.rank, c.predicted))
     if not ok:
         return None
@@ -194,6 +206,7 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
     at = start
     why = ""
     last: Any = None
+    hoped = False
     while True:
         ts = time.perf_counter()
         res = last = physics.solve(at)
@@ -227,7 +240,9 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
         if met or not refine:
             steps.append(Refinement(at.points, at.box, at.tol, ec, em, time.perf_counter() - ts, nz=at.nz))
             return done(res, worst, met, True)
-        step = choose(physics.candidates(res, at), accuracy, worst)
+        # one hopeful step per sequence: after it missed, the candidate predicted to meet
+        step = choose(physics.candidates(res, at), accuracy, worst, 1.0 if hoped else HOPE)
+        hoped = hoped or (step is not None and step.predicted > accuracy)
         steps.append(Refinement(at.points, at.box, at.tol, ec, em, time.perf_counter() - ts,
                                 nz=at.nz, next=step.what if step else ""))
         if step is not None and step.at in failed:

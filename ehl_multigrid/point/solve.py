@@ -285,6 +285,22 @@ def learned_coarse(problem: PointProblem, cache: dict[PointOptions, EHLResult] |
     return max(16, int(rule * share))
 
 
+def looser_probe(cache: dict[PointOptions, EHLResult], options: PointOptions) -> EHLResult | None:
+    """A converged probe of ``cache`` on the same grid and box as ``options`` stopped at a
+    looser film or load tolerance (a domain probe before the box series needs it tighter):
+    the tighter probe continues its cycles from it instead of solving again from the coarsest
+    grid. None when there is none."""
+    def same(o: PointOptions) -> dict[str, Any]:
+        return {k: v for k, v in vars(o).items() if k not in ("film_tol", "tol_load", "n_coarse")}
+
+    key = same(options)
+    for o, r in cache.items():
+        if (r.success and same(o) == key and (o.film_tol or 0.0) >= (options.film_tol or 0.0)
+                and o.tol_load >= options.tol_load):
+            return r
+    return None
+
+
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
                         cache: dict[PointOptions, EHLResult] | None = None,
                         boxes: tuple[float, ...] = (1.0, 2.0), tight: float | None = None, coarser: int = 0,
@@ -352,7 +368,11 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
                 r = solve_fas(problem, o)
             else:
                 if o not in cache:
-                    cache[o] = solve_fas(problem, o)
+                    start = looser_probe(cache, o)
+                    cache[o] = solve_fas(problem, o, guess=None if start is None else
+                                         (start.X, start.Y, start.P, float(start.H0)))
+                    if start is not None and not cache[o].success:
+                        cache[o] = solve_fas(problem, o)
                 r = cache[o]
             if used is not None:
                 used.append(r)

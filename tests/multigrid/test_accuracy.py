@@ -584,22 +584,23 @@ def test_box_correction_from_the_decay_below_the_box_counts_everything_beyond_it
 
 @pytest.mark.solver
 def test_a_solve_on_twice_the_box_is_corrected_with_the_decay_measured_one_box_lower(monkeypatch):
-    """Circular (20, 10) on 513 points and twice the default box at 0.4 %, which the fixed
-    domain factor misses: the box series is measured on the default box and twice it (half the
-    solve's box), no wider box is solved, and the corrected films move towards the wider box
-    and meet the target. (Probes as large as the solve allowed here, to keep the test small.)"""
+    """Circular (20, 10) on 513 points and twice the default box at 0.45 %, which the fixed
+    domain factor misses (0.8 %): the box series is measured on the default box and twice it
+    (half the solve's box), no wider box is solved, and the corrected films move towards the
+    wider box and meet the target (estimate 0.40 %, the probes' iteration moving it by 1e-5).
+    (Probes as large as the solve allowed here, to keep the test small.)"""
     from ehl_multigrid.multigrid.accuracy import DOMAIN_SAFETY
     from ehl_multigrid.point import solve as point_solve
 
     monkeypatch.setattr(point_solve, "LOWER_WIDEST", 1.0)
-    sol = solve_point(20.0, 10.0, points=513, xmin=-9.0, xmax=3.0, ymax=6.0, accuracy=4e-3)
+    sol = solve_point(20.0, 10.0, points=513, xmin=-9.0, xmax=3.0, ymax=6.0, accuracy=4.5e-3)
     (below_c, below_m), (d2c, d2m) = sol.extra["domain_changes_below"]
-    assert DOMAIN_SAFETY * max(abs(d2c), abs(d2m)) > 4e-3  # the fixed factor alone misses
+    assert DOMAIN_SAFETY * max(abs(d2c), abs(d2m)) > 4.5e-3  # the fixed factor alone misses
     assert "domain_changes" not in sol.extra
     assert below_c / d2c > 2.0 and below_m / d2m > 2.0
     corr = sol.extra["film_correction"]["box"]
     assert corr["Hc"] > d2c > 0.0 and corr["Hm"] > d2m > 0.0
-    assert sol.success and max(sol.Hc_error, sol.Hm_error) <= 4e-3
+    assert sol.success and max(sol.Hc_error, sol.Hm_error) <= 4.5e-3
     assert any("below and beyond the box" in n for n in sol.error.notes)
 
 

@@ -31,6 +31,18 @@ def test_choose_takes_a_candidate_with_an_unknown_prediction_first():
     assert choose([measured, needed], 0.005, math.nan) is needed
 
 
+def test_choose_tries_a_cheaper_finer_grid_predicted_near_the_target_before_the_meeting_one():
+    one = Candidate("points", Resolution(513), 1, 0.007)
+    two = Candidate("2 points+box", Resolution(1025, box=2.0), 2, 0.003)
+    tol = Candidate("tolerance", Resolution(257, tol=0.1), 0, 0.006)
+    assert choose([one, two, tol], 0.005, 0.03) is two  # no hope: the one predicted to meet
+    assert choose([one, two, tol], 0.005, 0.03, hope=1.5) is one
+    # a tolerance step adds no FMG grid: nothing the prediction leaves out, no hope
+    assert choose([two, tol], 0.005, 0.03, hope=1.5) is two
+    far = Candidate("points", Resolution(513), 1, 0.008)  # beyond 1.5 x the target
+    assert choose([far, two], 0.005, 0.03, hope=1.5) is two
+
+
 @dataclass
 class Toy:
     """Error 0.04 at 257 points, halving per grid; ``fail`` lists resolutions that diverge."""
@@ -118,3 +130,20 @@ def test_without_a_target_or_refinement_the_first_solve_is_only_judged():
     assert control(toy, Resolution(257), None).met
     out = control(toy, Resolution(257), 0.001, refine=False)
     assert not out.met and len(out.steps) == 1 and out.why == ""
+
+
+def test_a_hopeful_step_that_misses_is_not_repeated():
+    """One finer grid is always predicted within 1.5x of the target and two grids meet it; the
+    real error meets it only from 2049 points: one hopeful step, then the meeting one."""
+
+    class Hopeful(Toy):
+        def solve(self, at):
+            self.solved.append(at)
+            return {"at": at, "ok": True, "err": 0.004 if at.points >= 2049 else 0.01}
+
+        def candidates(self, r, at):
+            return [Candidate("points", at.finer(), 1, 0.007),
+                    Candidate("2 points", at.finer().finer(), 2, 0.003)]
+
+    out = control(Hopeful(), Resolution(257), 0.005)
+    assert out.met and [s.points for s in out.steps] == [257, 513, 2049]

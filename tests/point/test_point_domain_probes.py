@@ -45,3 +45,31 @@ def test_a_probe_that_needed_the_coarser_start_passes_it_on_to_the_wider_boxes()
     assert learned_coarse(pb, {wide: retried}, 2049, 24.0) == coarse_intervals(pb.M, 24.0, 2049) // 2 == 128
     failed = SimpleNamespace(success=False, levels=5, actions=retried.actions)
     assert learned_coarse(pb, {wide: failed}, 2049, 24.0) is None
+
+
+def test_a_tighter_probe_starts_from_the_looser_probe_of_its_grid_and_box():
+    """The box series needs its probes tighter than the domain probes on the same grids and
+    boxes: each continues from the looser probe instead of a new FMG, in fewer work units, to
+    the change a probe solved afresh at the tight tolerance gives."""
+    from dataclasses import replace
+
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.problem import problem_from_moes
+    from ehl_multigrid.point.solve import looser_probe, point_domain_change, solve_fas
+
+    pb = problem_from_moes(20.0, 10.0, 1.0, "roelands", "dowson-higginson", None, None, None)
+    sol = solve_fas(pb, PointOptions(points=257, half=True, film_tol=5e-4))
+    cache: dict = {}
+    point_domain_change(pb, sol.options, sol, cache)
+    loose = dict(cache)
+    warm = point_domain_change(pb, sol.options, sol, cache, tight=1e-5)
+    tight = {o: r for o, r in cache.items() if o not in loose}
+    assert len(loose) == len(tight) == 2
+    for o, r in tight.items():
+        start = looser_probe(loose, o)
+        assert start is not None and start.options.film_tol > o.film_tol
+        assert r.success and r.scalars["work_units"] < 0.7 * start.scalars["work_units"]
+        assert looser_probe(tight, replace(o, film_tol=1e-6)) is r  # the tightest so far
+        assert looser_probe(loose, replace(o, xmin=2.0 * o.xmin)) is None  # another box
+    fresh = point_domain_change(pb, sol.options, sol, {}, tight=1e-5)
+    assert warm[0] == pytest.approx(fresh[0], abs=1e-4) and warm[1] == pytest.approx(fresh[1], abs=1e-4)
