@@ -581,6 +581,9 @@ def attach_estimate(result: Any, estimate: ErrorEstimate, accuracy: float | None
 
 #: measured fall of the domain error when the box is doubled (4-7x in the studies; 4 assumed)
 DOMAIN_DECAY = 4.0
+#: how much smaller a box correction leaves the domain part than the fixed factor (circular
+#: (20, 10) and elliptic (50, 10) at 1025 points: 6-12x; docs/accuracy.md)
+CORRECTION_GAIN = 4.0
 #: above this estimated grid error (relative, either film) the grid is not yet in its
 #: asymptotic range and the refinement goes one grid at a time: the predictions of a jump of
 #: two grids rest on an estimate that is itself rough. Measured (point (1000, 10), 5 %): the
@@ -591,7 +594,8 @@ PREASYMPTOTIC_GRID = 0.1
 
 
 def refinement_candidates(budget: dict[str, dict[str, float]], accuracy: float, points: int, box: float,
-                          tol_factor: float, max_points: int, box_limit: float) -> list[Candidate]:
+                          tol_factor: float, max_points: int, box_limit: float,
+                          corrects: bool = False) -> list[Candidate]:
     """The refinements of a steady solve and the larger film error each is predicted to leave:
     one more grid (grid error / 4), a box twice as wide at the same mesh (domain error /
     :data:`DOMAIN_DECAY`) or on the same points (grid error x 4), both, or tolerances ten times
@@ -601,7 +605,11 @@ def refinement_candidates(budget: dict[str, dict[str, float]], accuracy: float, 
     Where the domain part is not known (its probes did not converge) but the grid part is and
     the known parts miss ``accuracy``, the one candidate is the finer grid, its prediction
     unknown: the finer grid's probes run on a finer mesh and may then measure the domain part
-    (Barus (5, 20, theta 4) at 1 %: the 257-point solve's probes failed)."""
+    (Barus (5, 20, theta 4) at 1 %: the 257-point solve's probes failed).
+
+    With ``corrects`` (the solve corrects its films for the box), a finer grid on a wider box
+    also carries the prediction hoped for when its box series allows a correction (the
+    domain part a further :data:`CORRECTION_GAIN` smaller), for the controller's hopeful step."""
     dom_known = all(math.isfinite(budget["domain"][k]) for k in ("Hc", "Hm"))
     grid_known = all(math.isfinite(budget["grid"][k]) for k in ("Hc", "Hm"))
 
@@ -625,7 +633,9 @@ def refinement_candidates(budget: dict[str, dict[str, float]], accuracy: float, 
         out.append(Candidate("points", finer, 1, total(0.25, 1.0, 1.0)))
         if wide:
             out.append(Candidate("points+box", replace(finer, box=2.0 * box), 1,
-                                 total(1.0, 1.0 / DOMAIN_DECAY, 1.0)))
+                                 total(1.0, 1.0 / DOMAIN_DECAY, 1.0),
+                                 total(1.0, 1.0 / (DOMAIN_DECAY * CORRECTION_GAIN), 1.0) if corrects
+                                 else math.nan))
         rough = max(budget["grid"].values()) > PREASYMPTOTIC_GRID
         two = finer.finer()
         if two.points <= max_points and wide and not rough:
@@ -724,7 +734,8 @@ def correction_could_meet(est: ErrorEstimate, accuracy: float) -> bool:
 def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: int, max_points: int,
                       box_limit: float = 4.0, refine: bool = True, time_budget: float = math.inf,
                       decay_probe: Any = None, progress: Any = None, dimensions: int = 2,
-                      correct_box: bool = False, extrapolate: bool = False) -> Any:
+                      correct_box: bool = False, extrapolate: bool = False,
+                      hope_correction: bool = False) -> Any:
     """Solve, estimate, and refine until the estimated errors of Hc and Hm meet ``accuracy``.
 
     ``solve(points, box, tol_factor) -> result`` runs the contact's solver on a grid of
@@ -759,10 +770,13 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     box correction could meet the target (:func:`correction_could_meet`); the returned result's
     films are then corrected for the box (:func:`apply_correction`) and its estimate is theirs.
     With ``extrapolate`` and an ``accuracy``, films whose grid sequence is asymptotic are
-    reported extrapolated (:func:`extrapolated`).
+    reported extrapolated (:func:`extrapolated`). ``hope_correction`` (with ``correct_box``):
+    the contact's box change is expected to decay fast enough for a correction, which the
+    controller's hopeful step may count on (:func:`refinement_candidates`).
     """
     steady = _SteadyControl(solve, probe, decay_probe, accuracy, refine, max_points, box_limit,
-                            dimensions, correct_box, extrapolate and accuracy is not None)
+                            dimensions, correct_box, extrapolate and accuracy is not None,
+                            correct_box and hope_correction)
     t0 = time.perf_counter()
     out = control(steady, Resolution(points), accuracy, refine=refine, time_budget=time_budget,
                   max_points=max_points, progress=progress)
@@ -786,9 +800,10 @@ class _SteadyControl:
 
     def __init__(self, solve: Any, probe: Any, decay_probe: Any, accuracy: float | None, refine: bool,
                  max_points: int, box_limit: float, dimensions: int, correct_box: bool = False,
-                 extrapolate: bool = False) -> None:
+                 extrapolate: bool = False, hope_correction: bool = False) -> None:
         self._solve, self.probe, self.decay_probe = solve, probe, decay_probe
         self.correct_box, self.extrapolate = correct_box, extrapolate
+        self.hope_correction = hope_correction
         self.accuracy, self.refine = accuracy, refine
         self.max_points, self.box_limit, self.dimensions = max_points, box_limit, dimensions
         # per box (and cell aspect): films of the converged solves (the same discrete problem on
@@ -858,7 +873,7 @@ class _SteadyControl:
 
     def candidates(self, res: Any, at: Resolution) -> list[Candidate]:
         return refinement_candidates(res.error.budget, self.accuracy, at.points, at.box, at.tol,
-                                     self.max_points, self.box_limit)
+                                     self.max_points, self.box_limit, self.hope_correction)
 
     def why_short(self, res: Any, at: Resolution) -> str:
         est = res.error

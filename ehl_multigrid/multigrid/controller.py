@@ -54,6 +54,9 @@ class Candidate:
     at: Resolution
     rank: int
     predicted: float
+    #: the prediction if what the finer solve may add works (an extrapolation, a box
+    #: correction): only the hopeful choice reads it (NaN: ``predicted``)
+    hoped: float = math.nan
 
 
 @dataclass(frozen=True)
@@ -111,10 +114,10 @@ class Controlled(Protocol):
 PREDICTION_SHARPNESS = 1.1
 #: a refinement that misses the target must at least lower the error by this factor
 REQUIRED_GAIN = 0.9
-#: a cheaper candidate predicted within this factor of the target is tried before the one
-#: predicted to meet it (once per sequence): the predictions leave out what the finer FMG
-#: sequence adds (an extrapolated film, a box correction), and a cost rank is 4x the work in
-#: two dimensions (docs/accuracy.md)
+#: a cheaper finer grid predicted within this factor of the target is tried before the
+#: refinement predicted to meet it (once per sequence, two-dimensional contacts): the
+#: predictions leave out what the finer FMG sequence adds (an extrapolated film, a box
+#: correction), and a cost rank is 4x the work there (docs/accuracy.md)
 HOPE = 1.5
 
 
@@ -124,27 +127,31 @@ def choose(candidates: list[Candidate], accuracy: float, now: float, hope: float
     by :data:`REQUIRED_GAIN`; else None. A candidate whose prediction is NaN is a refinement
     the estimate itself needs (a part could not be measured at this resolution) and is taken
     first. With ``hope`` > 1, a finer grid (a candidate whose name has ``points``: one more FMG
-    grid, whose extrapolation the prediction leaves out) of a lower cost rank than every meeting
-    candidate and predicted within ``hope`` times ``accuracy`` is taken instead (the lowest
-    prediction of those)."""
+    grid, whose extrapolation the prediction leaves out) of a lower cost rank than that choice
+    and predicted (or ``hoped``) within ``hope`` times ``accuracy`` is taken instead (the lowest
+    of those)."""
     unknown = [c for c in candidates if math.isnan(c.predicted)]
     if unknown:
         return min(unknown, key=lambda c: c.rank)
     ok = [c for c in candidates if math.isfinite(c.predicted)]
-    meeting = [c for c in ok if c.predicted <= accuracy]
-    if meeting:
-        rank = min(c.rank for c in meeting)
-        near = [c for c in ok if c.rank < rank and "points" in c.what and c.predicted <= hope * accuracy]
-        if near:
-            return min(near, key=lambda c: (c.predicted, c.rank))
-        return min(meeting, key=lambda c: (c.rank, c.predicted))
     if not ok:
         return None
-    lowest = min(c.predicted for c in ok)
-    best = min((c for c in ok if c.predicted <= PREDICTION_SHARPNESS * lowest),
-               key=lambda c: (c.rank, c.predicted))
-    # an unknown current error (NaN) is improved by any finite prediction
-    return best if not best.predicted >= REQUIRED_GAIN * now else None
+    meeting = [c for c in ok if c.predicted <= accuracy]
+    if meeting:
+        best = min(meeting, key=lambda c: (c.rank, c.predicted))
+    else:
+        lowest = min(c.predicted for c in ok)
+        best = min((c for c in ok if c.predicted <= PREDICTION_SHARPNESS * lowest),
+                   key=lambda c: (c.rank, c.predicted))
+        # an unknown current error (NaN) is improved by any finite prediction
+        if best.predicted >= REQUIRED_GAIN * now:
+            return None
+
+    def hoped(c: Candidate) -> float:
+        return c.predicted if math.isnan(c.hoped) else min(c.hoped, c.predicted)
+
+    near = [c for c in ok if c.rank < best.rank and "points" in c.what and hoped(c) <= hope * accuracy]
+    return min(near, key=lambda c: (hoped(c), c.rank)) if near else best
 
 
 def predicted_seconds(last_round: float, points: int, to: Resolution, dimensions: int) -> float:
@@ -240,8 +247,11 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
         if met or not refine:
             steps.append(Refinement(at.points, at.box, at.tol, ec, em, time.perf_counter() - ts, nz=at.nz))
             return done(res, worst, met, True)
-        # one hopeful step per sequence: after it missed, the candidate predicted to meet
-        step = choose(physics.candidates(res, at), accuracy, worst, 1.0 if hoped else HOPE)
+        # one hopeful step per sequence (after it missed, the candidate predicted to meet), and
+        # only where a cost rank is 4x the work: in one dimension a missed hope costs half
+        # the step it was to save
+        hope = HOPE if physics.dimensions >= 2 and not hoped else 1.0
+        step = choose(physics.candidates(res, at), accuracy, worst, hope)
         hoped = hoped or (step is not None and step.predicted > accuracy)
         steps.append(Refinement(at.points, at.box, at.tol, ec, em, time.perf_counter() - ts,
                                 nz=at.nz, next=step.what if step else ""))

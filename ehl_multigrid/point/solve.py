@@ -399,10 +399,10 @@ SERIES_FILM_TOL = 1e-4
 
 
 #: the series one box lower is measured only where its widest probe has at most this share of
-#: the solve's intervals (a quarter of its unknowns); where it would be as large as the solve a
-#: failed correction costs more than it saves (elliptic (20, 10, theta 4) at 0.5 %: 1025-point
-#: probes for a 1025-point solve, 41 -> 49 s when the grid part then still missed the target)
-LOWER_WIDEST = 0.5
+#: the solve's intervals: as many as the solve, so that a 513-point solve on twice the default
+#: box can be corrected (circular (20, 10) at 0.5 %: 6.6 -> 4.4 s with the controller's hopeful
+#: step; docs/accuracy.md)
+LOWER_WIDEST = 1.0
 
 
 def decays_below(problem: PointProblem, options: PointOptions, sol: EHLResult,
@@ -463,6 +463,15 @@ def point_box_series(problem: PointProblem, options: PointOptions, sol: EHLResul
         # the decay below the box is too slow for a correction (thick films, L = 0: about 2
         # per doubling): measured beyond the box, where it is faster
     return series((1.0, 2.0, 4.0))
+
+
+def fast_box_decay(problem: PointProblem) -> bool:
+    """Whether the box change of this contact is expected to fall by at least 3 per doubling,
+    enough for a box correction (:func:`point_box_series`): piezoviscous (L >= 5), M >= 10 and
+    no thick-film box. Measured on the probe mesh (129 points per default box, boxes 1x, 2x,
+    4x; Hc and Hm): (10, 5) 13 and 5.3, (20, 5) 5.8 and 3.4, (50, 5) 6.2 and 3.2, (20, 10) 7.3
+    and 5.8; below: (20, 0) 2.5 and 1.7, (20, 2) 3.9 and 2.0, (5, 5) 3.1 and 1.4."""
+    return problem.L >= 5.0 and problem.M >= 10.0 and domain_scale(problem) <= 1.0
 
 
 def thick_film_reason(problem: PointProblem, res: EHLResult, accuracy: float) -> str:
@@ -606,6 +615,7 @@ def solve_point(
                                 refine=accuracy is not None and not (explicit or fixed_box),
                                 decay_probe=decay_probe if domain_scale(pb) <= 1.0 else None,
                                 progress=progress, correct_box=True, extrapolate=True,
+                                hope_correction=fast_box_decay(pb),
                                 time_budget=math.inf if time_budget is None else time_budget)
         why = thick_film_reason(pb, res, accuracy) if res.status_name == "inaccurate" \
             and domain_scale(pb) > 1.0 else ""

@@ -58,6 +58,36 @@ def test_refinement_goes_where_the_error_is():
     assert next_refinement(budget(0.02, 0.001), 0.01, 1025, 4.0, 1e-5, 1025, 4.0) is None
 
 
+def test_a_finer_grid_on_a_wider_box_hopes_for_the_box_correction_only_where_one_is_expected():
+    from ehl_multigrid.multigrid.accuracy import (
+        CORRECTION_GAIN,
+        DOMAIN_DECAY,
+        refinement_candidates,
+    )
+
+    b = _budget(0.003, 0.04)
+    plain = {c.what: c for c in refinement_candidates(b, 0.005, 257, 1.0, 1.0, 4097, 4.0)}
+    hoping = {c.what: c for c in refinement_candidates(b, 0.005, 257, 1.0, 1.0, 4097, 4.0, True)}
+    assert plain["points+box"].predicted == pytest.approx(0.003 + 0.04 / DOMAIN_DECAY + 1e-6)
+    assert math.isnan(plain["points+box"].hoped)
+    assert hoping["points+box"].hoped == pytest.approx(0.003 + 0.04 / (DOMAIN_DECAY * CORRECTION_GAIN) + 1e-6)
+    assert hoping["points+box"].predicted == plain["points+box"].predicted  # the choice proper unchanged
+    assert all(math.isnan(hoping[k].hoped) for k in hoping if k != "points+box")
+
+
+def test_the_box_correction_is_hoped_for_piezoviscous_contacts_whose_box_change_decays_fast():
+    from ehl_multigrid.point.problem import problem_from_moes
+    from ehl_multigrid.point.solve import fast_box_decay
+
+    def contact(M, L):
+        return problem_from_moes(M, L, 1.0, "roelands", "dowson-higginson", None, None, None)
+
+    assert fast_box_decay(contact(20, 10)) and fast_box_decay(contact(10, 5))
+    # isoviscous or nearly (Hm's change falls by 1.7-2 per doubling) and thick films
+    assert not fast_box_decay(contact(20, 0)) and not fast_box_decay(contact(20, 2))
+    assert not fast_box_decay(contact(5, 5)) and not fast_box_decay(contact(1, 10))
+
+
 def test_unknown_domain_part_refines_the_grid_when_the_grid_part_alone_misses():
     nan = math.nan
 
@@ -151,7 +181,7 @@ def test_a_two_grid_refinement_that_fails_falls_back_to_one_grid_finer(monkeypat
 
     monkeypatch.setattr(acc, "attach_estimate", fake_attach)
     # the planner asks for two grids finer on a box twice as wide, once
-    monkeypatch.setattr(acc, "refinement_candidates", lambda b, a, n, box, t, mx, lim:
+    monkeypatch.setattr(acc, "refinement_candidates", lambda b, a, n, box, t, mx, lim, hope=False:
                         [Candidate("2 points+box", Resolution(2049, 2.0), 2, 0.001)] if n == 513 else [])
     runs = {(513, 1.0): _Fake(513, True, 0.03), (2049, 2.0): _Fake(2049, False, math.nan),
             (1025, 1.0): _Fake(1025, True, 0.005)}
@@ -160,7 +190,7 @@ def test_a_two_grid_refinement_that_fails_falls_back_to_one_grid_finer(monkeypat
     assert [(s["points"], s["box"]) for s in out.extra["refinements"]] == [(513, 1.0), (2049, 2.0), (1025, 1.0)]
     # a failed one-grid step has nothing smaller to fall back to
     runs = {(513, 1.0): _Fake(513, True, 0.03), (1025, 1.0): _Fake(1025, False, math.nan)}
-    monkeypatch.setattr(acc, "refinement_candidates", lambda b, a, n, box, t, mx, lim:
+    monkeypatch.setattr(acc, "refinement_candidates", lambda b, a, n, box, t, mx, lim, hope=False:
                         [Candidate("points", Resolution(1025), 1, 0.001)] if n == 513 else [])
     out = solve_to_accuracy(lambda n, b, t: runs[(n, b)], lambda r, b: (0.0, 0.0), 0.01, 513, 2049)
     assert out is runs[(513, 1.0)] and "refinement to 1025 points" in out.message

@@ -41,6 +41,12 @@ def test_choose_tries_a_cheaper_finer_grid_predicted_near_the_target_before_the_
     assert choose([two, tol], 0.005, 0.03, hope=1.5) is two
     far = Candidate("points", Resolution(513), 1, 0.008)  # beyond 1.5 x the target
     assert choose([far, two], 0.005, 0.03, hope=1.5) is two
+    # what the finer solve may add (a box correction) is hoped for only by the hopeful choice,
+    # also where no candidate is predicted to meet and the lowest prediction would be taken
+    corrected = Candidate("points+box", Resolution(513, box=2.0), 1, 0.015, 0.007)
+    lowest = Candidate("2 points+box", Resolution(1025, box=2.0), 2, 0.012)
+    assert choose([corrected, lowest], 0.005, 0.03) is lowest
+    assert choose([corrected, lowest], 0.005, 0.03, hope=1.5) is corrected
 
 
 @dataclass
@@ -134,7 +140,8 @@ def test_without_a_target_or_refinement_the_first_solve_is_only_judged():
 
 def test_a_hopeful_step_that_misses_is_not_repeated():
     """One finer grid is always predicted within 1.5x of the target and two grids meet it; the
-    real error meets it only from 2049 points: one hopeful step, then the meeting one."""
+    real error meets it only from 2049 points: in two dimensions one hopeful step, then the
+    meeting one."""
 
     class Hopeful(Toy):
         def solve(self, at):
@@ -145,5 +152,8 @@ def test_a_hopeful_step_that_misses_is_not_repeated():
             return [Candidate("points", at.finer(), 1, 0.007),
                     Candidate("2 points", at.finer().finer(), 2, 0.003)]
 
-    out = control(Hopeful(), Resolution(257), 0.005)
+    out = control(Hopeful(dimensions=2), Resolution(257), 0.005)
     assert out.met and [s.points for s in out.steps] == [257, 513, 2049]
+    # in one dimension a rank is 2x the work, not 4x: no hopeful step
+    out = control(Hopeful(dimensions=1), Resolution(257), 0.005)
+    assert out.met and [s.points for s in out.steps] == [257, 1025, 4097]
