@@ -136,7 +136,7 @@ def plot_hertz(res: Result, path: Path) -> Path:
     ax2.set_ylim(0, 2 * res.scalars["hc_fit"] * 1e9)
     ax.set_title(f"{sc.name}: pmax = {res.scalars['pmax'] / 1e9:.3g} GPa, hc(fit) = {res.scalars['hc_fit'] * 1e9:.3g} nm")
     fig.legend(loc="upper right", fontsize=8)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.11, right=0.89, bottom=0.14, top=0.9)
     atomic_savefig(fig, path, dpi=110)
     return path
 

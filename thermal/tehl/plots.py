@@ -54,6 +54,6 @@ def plot_tehl(res: Result, path: Path) -> Path:
         ax2.set_xlim(-1.5, 1.5)
         ax2.set_title("temperature across the film", fontsize=9)
     fig.colorbar(m, ax=ax2, label="T [degC]")
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.06, right=0.97, bottom=0.12, top=0.92, wspace=0.3)
     atomic_savefig(fig, path, dpi=DPI)
     return Path(path)
