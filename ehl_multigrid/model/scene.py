@@ -99,8 +99,8 @@ UNIT_KINDS: dict[str, dict[str, str]] = {
     },
     "operating": {
         "load": "force", "pmax": "pressure", "us": "speed", "entrainment_speed": "speed",
-        "slip": "dimensionless", "T_oil": "temperature", "T_surface1": "temperature",
-        "T_surface2": "temperature",
+        "slip": "dimensionless", "srr": "dimensionless", "T_oil": "temperature",
+        "T_surface1": "temperature", "T_surface2": "temperature",
     },
     "roughness": {
         "Rq": "length", "Ra": "length", "sigma_s": "length", "dd": "length",
@@ -688,7 +688,17 @@ def _build_scene(data: dict[str, Any], origin: str, check: bool = True) -> Scene
         plaus.append(("element sum velocity u1 + u2", us, "us"))
     else:
         raise InputError("operating.us (sum velocity u1 + u2, m/s) or operating.entrainment_speed is required")
-    if "slip" in op:
+    if "slip" in op and "srr" in op:
+        raise InputError(f"operating.slip = {op['slip']!r} and operating.srr = {op['srr']!r}: give one "
+                         f"(slip S = 2(u1-u2)/(u1+u2) = 2 SRR)")
+    if "srr" in op:
+        # the literature's slide-to-roll ratio on the sum speed, half the package's slip
+        try:
+            srr = require_range("operating.srr", op["srr"], -1.0, 1.0, "-")
+        except InputError as exc:
+            raise InputError(f"{exc} (SRR = (u1-u2)/(u1+u2); the package's slip S = 2 SRR)") from None
+        slip = 2.0 * srr
+    elif "slip" in op:
         slip = require_slip("operating.slip", op["slip"])
     else:
         slip = require_slip("element slip", element.slip) if element else 0.0

@@ -167,3 +167,27 @@ def test_feature_table_converts_units_and_round_trips_through_toml(tmp_path):
     assert Scene.from_dict(BASE).feature == {} and "feature" not in Scene.from_dict(BASE).to_dict()
     with pytest.raises(InputError, match="feature.width"):
         Scene.from_dict(scene_with("feature", {"kind": "dent", "width": "40 parsecs-per-volt"}))
+
+
+def test_a_slide_to_roll_ratio_on_the_sum_speed_is_read_as_half_the_slip(tmp_path):
+    """``[operating] srr`` = (u1 - u2)/(u1 + u2), the convention of many papers, is the
+    package's slip S = 2(u1 - u2)/(u1 + u2) halved; giving both is refused, as is an SRR
+    outside [-1, 1] (one surface at rest at the ends)."""
+    import tomli_w
+
+    d = load_scene("default").to_dict()
+    d["operating"].pop("slip")
+    d["operating"]["srr"] = -0.25
+    path = tmp_path / "srr.toml"
+    path.write_text(tomli_w.dumps(d))
+    assert load_scene(str(path)).slip == pytest.approx(-0.5)
+    d["operating"]["slip"] = 0.1
+    path.write_text(tomli_w.dumps(d))
+    with pytest.raises(InputError) as both:
+        load_scene(str(path))
+    assert "operating.slip" in str(both.value) and "operating.srr" in str(both.value)
+    d["operating"].pop("slip")
+    d["operating"]["srr"] = 1.5
+    path.write_text(tomli_w.dumps(d))
+    with pytest.raises(InputError, match=r"operating\.srr = 1\.5 .*\[-1, 1\]"):
+        load_scene(str(path))

@@ -57,8 +57,18 @@ def test_transient_command_without_feature_table_names_it(monkeypatch, tmp_path)
         args.func(args)
 
 
+def test_the_run_header_states_both_surface_speeds_and_the_speed_of_the_feature():
+    # us 2 m/s at slip S = -0.5 (SRR -0.25): u1 = 0.75 m/s, u2 = 1.25 m/s
+    note = cli.speeds_note(2.0, -0.5, 2)
+    assert "u1 = 0.75 m/s" in note and "u2 = 1.25 m/s" in note
+    assert "slip S = 2(u1-u2)/(u1+u2) = -0.5" in note and "SRR = (u1-u2)/(u1+u2) = -0.25" in note
+    assert "surface 2 at 1.25 m/s" in note
+    assert "surface 1 at 0.75 m/s" in cli.speeds_note(2.0, -0.5, 1)
+    assert "feature" not in cli.speeds_note(2.0, 0.0, None)
+
+
 @pytest.mark.solver
-def test_transient_command_runs_a_dent_through_a_point_scene(monkeypatch, tmp_path):
+def test_transient_command_runs_a_dent_through_a_point_scene(monkeypatch, tmp_path, capsys):
     from ehl_multigrid.point.problem import problem_from_scene
 
     d = load_scene("series_B_disc1_1GPa").to_dict()
@@ -71,6 +81,7 @@ def test_transient_command_runs_a_dent_through_a_point_scene(monkeypatch, tmp_pa
     args = _parser().parse_args(["transient", "x", "--points", "65", "--steps", "12", "--json",
                                  "--out", str(tmp_path), "--threshold", "1e-7", "--snapshot-every", "4"])
     out = args.func(args)
+    assert "surface speeds u1 = " in capsys.readouterr().err
     assert out["contact"] == "point" and out["points"] == out["points_y"] == 65
     assert out["feature"]["amplitude"] == pytest.approx(-0.1) and out["feature"]["y0"] == 0.3
     assert 0 < out["hm_min"] < out["hc_steady"]
