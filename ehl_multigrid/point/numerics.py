@@ -151,7 +151,8 @@ def scaled_residual(r, H, rho, eps, K00, hx, hy, sym, out, ct=0.0):
     ``|sum of face eps|/h^2 + 1.5 rho K00/hx`` (K00 = cd K[0,0], the film self-response): the
     pressure change (in units of pmax) that one Jacobi step would make. Unlike the raw
     residual it does not give weight to the cavitation front far from the contact, where
-    eps/h^2 is huge but P ~ 0."""
+    eps/h^2 is huge but P ~ 0. Infinite where the diagonal vanishes and the residual does not
+    (rigid surfaces in contact)."""
     ny, nx = r.shape
     hx2, hy2 = hx * hx, hy * hy
     j0 = 0 if sym else 1
@@ -166,7 +167,12 @@ def scaled_residual(r, H, rho, eps, K00, hx, hy, sym, out, ct=0.0):
             d = ((0.5 * (eps[j, i - 1] + e) + 0.5 * (eps[j, i + 1] + e)) / hx2
                  + (0.5 * (eps[jm, i] + e) + 0.5 * (eps[j + 1, i] + e)) / hy2
                  + (1.5 / hx + ct) * rho[j, i] * K00)
-            out[j, i] = r[j, i] / d
+            if d > 0.0:
+                out[j, i] = r[j, i] / d
+            elif r[j, i] != 0.0:
+                # no flow and no film response (rigid surfaces that touch: eps = 0, K00 = 0):
+                # a residual there cannot be relaxed away
+                out[j, i] = np.inf
 
 
 @njit(cache=True)

@@ -209,7 +209,12 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
     sol.extra.update(final_omega=sol.settings.omega, final_omega_jd=sol.settings.omega_jd,
                      final_h00_gain=sol.settings.h00_gain, final_cycle=sol.settings.cycle,
                      final_switch=sol.settings.switch)
-    if not sol.success:
+    if not sol.success and not opt.elastic:
+        sol.message += ("; rigid surfaces (elastic = False): the FMG starts from the elastic fit's "
+                        "film and a Hertzian pressure, far from the rigid solution at low M (circular "
+                        "(20, 0): fitted Hc 1.43, rigid-isoviscous asymptote 0.103, Moes units), and "
+                        "such a start can diverge")
+    elif not sol.success:
         need = min_points(problem.M, problem.b_over_a, cap=None)
         if opt.points < need:
             sol.message += (f"; at M = {problem.M:.4g} a grid of {opt.points} points is too coarse "

@@ -171,3 +171,12 @@ def test_the_fas_solver_takes_the_symmetric_half_domain_unless_told_otherwise():
     from ehl_multigrid.multigrid.options import PointOptions
 
     assert not solve_point(20, 10, options=PointOptions(points=65), estimate=False).half
+
+
+def test_a_rigid_start_that_touches_ends_as_a_named_failure_not_an_exception():
+    """Rigid surfaces (elastic = False) at (20, 0), theta 4: the start's gap closes (no flow, no
+    film response on the diagonal); the solve returns a failure that names the rigid start,
+    where the residual scaling divided by zero before."""
+    res = solve_point(20, 0, theta=4.0, rigid=True, points=129, estimate=False)
+    assert not res.success and res.status_name == "diverged"
+    assert "rigid surfaces" in res.message and "too coarse" not in res.message
