@@ -309,7 +309,7 @@ def looser_probe(cache: dict[PointOptions, EHLResult], options: PointOptions) ->
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
                         cache: dict[PointOptions, EHLResult] | None = None,
                         boxes: tuple[float, ...] = (1.0, 2.0), tight: float | None = None, coarser: int = 0,
-                        used: list[EHLResult] | None = None, widest: float = 1.0
+                        used: list[EHLResult] | None = None
                         ) -> tuple[float, float] | list[tuple[float, float]] | None:
     """Relative change of (Hc, Hm) when the box is doubled in X and Y at equal mesh size,
     measured by two converged solves on a coarse grid of the solve (two grids below the
@@ -319,7 +319,7 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     ``boxes`` (scales of the solve's box, each twice the one before) with more than two entries
     returns the list of the successive changes, each relative to the smaller box; ``tight``
     (a film and load tolerance) replaces the probes' own film tolerance; a series whose widest
-    probe has more than ``widest`` times the solve's intervals is not run. ``coarser`` halves the
+    probe has more intervals than the solve is not run. ``coarser`` halves the
     probe mesh that many times (no finer mesh is then tried when it fails); ``used`` receives
     the probe solves.
 
@@ -342,7 +342,7 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     for _ in range(coarser):
         n_p = (n_p - 1) // 2 + 1
     while True:
-        if len(boxes) > 2 and (n_p - 1) * boxes[-1] > widest * (n_f - 1):
+        if len(boxes) > 2 and (n_p - 1) * boxes[-1] > n_f - 1:
             # the widest box would need more points than the solve itself: such a probe costs more
             # than the refinement it could save (circular (20, 10) at 5 %: a 513-point probe, 16 s,
             # for a 0.3 s solve on 129 points)
@@ -403,13 +403,6 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
 SERIES_FILM_TOL = 1e-4
 
 
-#: the series one box lower is measured only where its widest probe has at most this share of
-#: the solve's intervals: as many as the solve, so that a 513-point solve on twice the default
-#: box can be corrected (circular (20, 10) at 0.5 %: 6.6 -> 4.4 s with the controller's hopeful
-#: step; docs/accuracy.md)
-LOWER_WIDEST = 1.0
-
-
 def decays_below(problem: PointProblem, options: PointOptions, sol: EHLResult,
                  cache: dict[PointOptions, EHLResult] | None = None) -> bool:
     """Whether the box change decays fast enough below the solve's box for a correction
@@ -417,7 +410,7 @@ def decays_below(problem: PointProblem, options: PointOptions, sol: EHLResult,
     domain probes at their own tolerance: the pair around the solve's box is its domain probe,
     the pair below it usually the probe of the solve before (both cached), so that a series
     that cannot correct is not solved ((20, 0): about 2 per doubling)."""
-    pre = point_domain_change(problem, options, sol, cache, boxes=(0.5, 1.0, 2.0), widest=LOWER_WIDEST)
+    pre = point_domain_change(problem, options, sol, cache, boxes=(0.5, 1.0, 2.0))
     if pre is None:
         return False
     (bc, bm), (dc, dm) = pre
@@ -442,7 +435,7 @@ def point_box_series(problem: PointProblem, options: PointOptions, sol: EHLResul
     def series(boxes: tuple[float, float, float]) -> BoxSeries | None:
         used: list[EHLResult] = []
         changes = point_domain_change(problem, options, sol, cache, boxes=boxes, used=used,
-                                      tight=SERIES_FILM_TOL, widest=LOWER_WIDEST if boxes[0] < 1.0 else 1.0)
+                                      tight=SERIES_FILM_TOL)
         if changes is None:
             return None
         if not coarse:  # the mesh dependence, once a series exists to correct with

@@ -128,13 +128,13 @@ def run_transient_point(args: argparse.Namespace, scene: Any, every: float = EVE
                 scene.kind, figures)
 
 
-def speeds_note(us: float, slip: float, body: int | None) -> str:
-    """The surface speeds of the run and the speed of its feature, with both slip conventions:
-    a paper's SRR = (u1 - u2)/(u1 + u2) typed as the package's slip puts the feature at the
-    wrong speed."""
-    u1, u2 = us * (0.5 + 0.25 * slip), us * (0.5 - 0.25 * slip)
-    text = (f"surface speeds u1 = {u1:.4g} m/s, u2 = {u2:.4g} m/s (sum {us:.4g} m/s; slip S = "
-            f"2(u1-u2)/(u1+u2) = {slip:g}, SRR = (u1-u2)/(u1+u2) = {slip / 2:g})")
+def speeds_note(u1: float, u2: float, body: int | None) -> str:
+    """The surface speeds of the run (``Scene.u1``, ``Scene.u2``) and the speed of its feature,
+    with both slip conventions: a paper's SRR = (u1 - u2)/(u1 + u2) typed as the package's slip
+    puts the feature at the wrong speed."""
+    srr = (u1 - u2) / (u1 + u2)
+    text = (f"surface speeds u1 = {u1:.4g} m/s, u2 = {u2:.4g} m/s (sum {u1 + u2:.4g} m/s; slip S = "
+            f"2(u1-u2)/(u1+u2) = {2.0 * srr:g}, SRR = (u1-u2)/(u1+u2) = {srr:g})")
     if body in (1, 2):
         text += f"; the feature moves with surface {body} at {u1 if body == 1 else u2:.4g} m/s"
     return text
@@ -182,7 +182,7 @@ def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes:
     resume = read_checkpoint(h5, run) if args.resume else None
     for text in warnings:
         print(f"ehl transient: warning: {text}", file=sys.stderr)
-    for text in [speeds_note(scene.us, scene.slip, body if feature is not None else None), *notes]:
+    for text in [speeds_note(scene.u1, scene.u2, body if feature is not None else None), *notes]:
         print(f"ehl transient: note: {text}", file=sys.stderr)
     checkpoint = Checkpoint(h5, every_s=every if every > 0 else math.inf, run=run)
     try:

@@ -618,11 +618,9 @@ def test_a_solve_on_twice_the_box_is_corrected_with_the_decay_measured_one_box_l
     domain factor misses (0.8 %): the box series is measured on the default box and twice it
     (half the solve's box), no wider box is solved, and the corrected films move towards the
     wider box and meet the target (estimate 0.40 %, the probes' iteration moving it by 1e-5).
-    (Probes as large as the solve allowed here, to keep the test small.)"""
+    Its widest probe is as large as the solve."""
     from ehl_multigrid.multigrid.accuracy import DOMAIN_SAFETY
-    from ehl_multigrid.point import solve as point_solve
 
-    monkeypatch.setattr(point_solve, "LOWER_WIDEST", 1.0)
     sol = solve_point(20.0, 10.0, points=513, xmin=-9.0, xmax=3.0, ymax=6.0, accuracy=4.5e-3)
     (below_c, below_m), (d2c, d2m) = sol.extra["domain_changes_below"]
     assert DOMAIN_SAFETY * max(abs(d2c), abs(d2m)) > 4.5e-3  # the fixed factor alone misses

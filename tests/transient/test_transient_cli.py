@@ -58,13 +58,16 @@ def test_transient_command_without_feature_table_names_it(monkeypatch, tmp_path)
 
 
 def test_the_run_header_states_both_surface_speeds_and_the_speed_of_the_feature():
-    # us 2 m/s at slip S = -0.5 (SRR -0.25): u1 = 0.75 m/s, u2 = 1.25 m/s
-    note = cli.speeds_note(2.0, -0.5, 2)
-    assert "u1 = 0.75 m/s" in note and "u2 = 1.25 m/s" in note
+    # us 2 m/s at slip S = -0.5 (SRR -0.25): u1 = 0.75 m/s, u2 = 1.25 m/s (the scene's speeds)
+    d = load_scene("page63_line_2000N").to_dict()
+    d["operating"].update(us=2.0, slip=-0.5)
+    sc = Scene.from_dict(d)
+    note = cli.speeds_note(sc.u1, sc.u2, 2)
+    assert "u1 = 0.75 m/s" in note and "u2 = 1.25 m/s" in note and "sum 2 m/s" in note
     assert "slip S = 2(u1-u2)/(u1+u2) = -0.5" in note and "SRR = (u1-u2)/(u1+u2) = -0.25" in note
     assert "surface 2 at 1.25 m/s" in note
-    assert "surface 1 at 0.75 m/s" in cli.speeds_note(2.0, -0.5, 1)
-    assert "feature" not in cli.speeds_note(2.0, 0.0, None)
+    assert "surface 1 at 0.75 m/s" in cli.speeds_note(sc.u1, sc.u2, 1)
+    assert "feature" not in cli.speeds_note(1.0, 1.0, None)
 
 
 @pytest.mark.solver
