@@ -270,7 +270,7 @@ class PointHierarchy:
         nc = opt.n_coarse
         if nc is None:
             nc = coarse_intervals(self.pb.M, self.xmax - self.xmin, n, domain_scale(self.pb),
-                                  rigid_length(self.pb))
+                                  rigid_length(self.pb), self.pb.b_over_a)
         if opt.levels is not None:
             nlev = int(opt.levels)
             if (n - 1) % (2 ** (nlev - 1)) or (n - 1) // 2 ** (nlev - 1) < 4:

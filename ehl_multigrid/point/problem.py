@@ -223,8 +223,14 @@ def resolve_domain(problem: PointProblem, xmin: float | None, xmax: float | None
             dy if ymax is None else float(ymax))
 
 
+#: Contacts at least this wide (b/a; theta <~ 0.12) keep at most :data:`WIDE_COARSE_MAX`
+#: coarse intervals along X (:func:`coarse_intervals`; measurements in docs/performance.md).
+WIDE_CONTACT = 4.0
+WIDE_COARSE_MAX = 64
+
+
 def coarse_intervals(M: float, length: float, points: int, scale: float = 1.0,
-                     inlet: float = 0.0) -> int:
+                     inlet: float = 0.0, b_over_a: float = 1.0) -> int:
     """Intervals of the coarsest grid along X: the smallest ``16 * 2^k`` that gives a coarse
     mesh size <= 0.375 a (M < 200), 0.1875 a (200 <= M < 1000) or 0.094 a (M >= 1000), and no
     more than the finest grid has. The Hertz zone must be resolved on the coarsest grid for
@@ -237,12 +243,18 @@ def coarse_intervals(M: float, length: float, points: int, scale: float = 1.0,
     two or three levels whose far field converges over hundreds of cycles. Measured at
     (M, L) = (1, 0), s = 8 a, 129 points on a box 4x the default: 32 coarse intervals
     converge in 13 cycles to Hc 20.479 (the Newton path: 20.483), 128 intervals stop after 30
-    cycles at 20.275 with the load still 6e-4 off."""
+    cycles at 20.275 with the load still 6e-4 off.
+
+    Wide contacts (``b_over_a >=`` :data:`WIDE_CONTACT`) stop at :data:`WIDE_COARSE_MAX`
+    intervals: their coarsest grid is long in Y too, and with 128 intervals on twice the
+    default box its relaxation no longer balanced the load ((3000, 10, theta 0.05) ran out of
+    cycles at 1025 points in 83 s; with 64 intervals it converged in 4.4 s)."""
     h = (0.375 if M < 200 else (0.1875 if M < 1000 else 0.094)) * scale
     if scale > 1.0:
         h = max(h, inlet)
     n = 16
-    while length / n > h and n < points - 1:
+    top = WIDE_COARSE_MAX if b_over_a >= WIDE_CONTACT else points - 1
+    while length / n > h and n < min(points - 1, top):
         n *= 2
     return min(n, points - 1)
 

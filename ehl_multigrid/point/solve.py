@@ -281,12 +281,13 @@ def learned_coarse(problem: PointProblem, cache: dict[PointOptions, EHLResult] |
     for o, r in (cache or {}).items():
         if r.success and any("retry_coarser_start" in a for a in r.actions) and o.n_coarse is None:
             rule = coarse_intervals(problem.M, o.xmax - o.xmin, o.points, domain_scale(problem),
-                                    rigid_length(problem))
+                                    rigid_length(problem), problem.b_over_a)
             used = (int(o.points) - 1) // 2 ** (r.levels - 1)
             share = min(share, used / rule)
     if share >= 1.0:
         return None
-    rule = coarse_intervals(problem.M, length, points, domain_scale(problem), rigid_length(problem))
+    rule = coarse_intervals(problem.M, length, points, domain_scale(problem), rigid_length(problem),
+                            problem.b_over_a)
     return max(16, int(rule * share))
 
 

@@ -81,6 +81,15 @@ def test_coarse_grid_and_minimum_grid_rules():
     assert min_points(100) == 129 and min_points(500) == 257 and min_points(5000) == 513
 
 
+def test_wide_contacts_keep_at_most_64_coarse_intervals():
+    # twice the default box at M >= 1000: 128 intervals by the mesh-size rule, 64 when b/a >= 4
+    assert coarse_intervals(3000, 12.0, 1025) == 128
+    assert coarse_intervals(3000, 12.0, 1025, b_over_a=2.0) == 128
+    assert coarse_intervals(3000, 12.0, 1025, b_over_a=9.4) == 64
+    assert coarse_intervals(3000, 6.0, 1025, b_over_a=9.4) == 64
+    assert coarse_intervals(20, 6.0, 129, b_over_a=9.4) == 16
+
+
 def test_unconverged_coarse_high_M_solve_names_the_grid_it_needs():
     sol = solve_point(5000, 10, points=65, max_cycles=3)
     assert not sol.converged

@@ -35,3 +35,17 @@ def test_explicit_coarse_grid_is_not_changed(bearing):
     sol = solve_fas(bearing, points=513, half=True, tol_load=1e-4, n_coarse=128, raise_on_failure=False)
     assert sol.status_name == "diverged"
     assert not any("retry_coarser_start" in a for a in sol.actions)
+
+
+def test_wide_contact_on_twice_the_box_converges_without_a_coarser_retry():
+    # (3000, 10, theta 0.05), b/a 6.7: with 128 coarse intervals the 513-point solve on twice
+    # the default box ran out of cycles (934 WU, 26 s); the wide-contact cap gives 64
+    from ehl_multigrid.point.problem import default_domain, problem_from_moes
+
+    pb = problem_from_moes(3000, 10, 0.05)
+    x0, x1, y = default_domain(pb)
+    sol = solve_fas(pb, points=513, xmin=2 * x0, xmax=2 * x1, ymax=2 * y, half=True, film_tol=2.5e-4,
+                    raise_on_failure=False, retry_coarser_start=False)
+    assert sol.status_name == "converged"
+    assert (513 - 1) // 2 ** (sol.levels - 1) == 64
+    assert not any("coarse intervals instead" in a for a in sol.actions)
