@@ -735,7 +735,7 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
                       box_limit: float = 4.0, refine: bool = True, time_budget: float = math.inf,
                       decay_probe: Any = None, progress: Any = None, dimensions: int = 2,
                       correct_box: bool = False, extrapolate: bool = False,
-                      hope_correction: bool = False) -> Any:
+                      hope_correction: bool = False, start: Any = None) -> Any:
     """Solve, estimate, and refine until the estimated errors of Hc and Hm meet ``accuracy``.
 
     ``solve(points, box, tol_factor) -> result`` runs the contact's solver on a grid of
@@ -772,14 +772,18 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     With ``extrapolate`` and an ``accuracy``, films whose grid sequence is asymptotic are
     reported extrapolated (:func:`extrapolated`). ``hope_correction`` (with ``correct_box``):
     the contact's box change is expected to decay fast enough for a correction, which the
-    controller's hopeful step may count on (:func:`refinement_candidates`).
+    controller's hopeful step may count on (:func:`refinement_candidates`). ``start(points) ->
+    (points, box)``, when given, chooses the first solve's grid and box (its time counts in the
+    sequence's).
     """
     steady = _SteadyControl(solve, probe, decay_probe, accuracy, refine, max_points, box_limit,
                             dimensions, correct_box, extrapolate and accuracy is not None,
                             correct_box and hope_correction)
     t0 = time.perf_counter()
-    out = control(steady, Resolution(points), accuracy, refine=refine, time_budget=time_budget,
-                  max_points=max_points, progress=progress)
+    first = Resolution(points) if start is None or not refine else Resolution(*start(points))
+    out = control(steady, first, accuracy, refine=refine, time_budget=time_budget,
+                  max_points=max_points, progress=progress, started=t0,
+                  fallback=Resolution(points) if first != Resolution(points) else None)
     res = out.result
     res.extra["refinements"] = [vars(s) for s in out.steps]
     if out.converged and out.why:

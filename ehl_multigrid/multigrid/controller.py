@@ -184,7 +184,8 @@ class ControlOutcome:
 
 def control(physics: Controlled, start: Resolution, accuracy: float | None, *, refine: bool = True,
             time_budget: float = math.inf, max_points: int | None = None,
-            progress: Callable[[str], None] | None = None) -> ControlOutcome:
+            progress: Callable[[str], None] | None = None, started: float | None = None,
+            fallback: Resolution | None = None) -> ControlOutcome:
     """Solve at ``start``, estimate, and refine until the estimated film errors meet
     ``accuracy`` (relative; None: judge the iteration only) or a budget is spent.
 
@@ -193,9 +194,12 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
     (:func:`predicted_seconds`) exceeds what is left is not started; a solve already running
     is not interrupted. ``max_points`` bounds the fallback of a failed large step (one grid
     finer than the last converged solve). ``progress(text)`` receives one line per solve and,
-    before each refinement, its predicted time.
+    before each refinement, its predicted time. ``started`` (a ``time.perf_counter()``
+    value) is when the sequence began, if before this call (its budget and wall count from it).
+    ``fallback``: where to go on when ``start`` (a chosen start, such as a wider box) fails
+    before any solve converged (the plain start the choice replaced).
     """
-    t0 = time.perf_counter()
+    t0 = time.perf_counter() if started is None else started
     round_t0 = t0
     steps: list[Refinement] = []
     limit = max_points if max_points is not None else 1 << 30
@@ -222,6 +226,10 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
             say(reason.split(":")[0], at)
             steps.append(Refinement(at.points, at.box, at.tol, math.nan, math.nan,
                                     time.perf_counter() - ts, nz=at.nz))
+            if best is None and fallback is not None and fallback != at and fallback not in failed:
+                failed.add(at)
+                at, fallback = fallback, None
+                continue
             fix = physics.remedy(res, at, best is None) if refine and accuracy is not None else None
             if fix is not None and fix.points <= limit and fix not in failed:
                 failed.add(at)

@@ -215,6 +215,40 @@ def load_integral(P: np.ndarray, hx: float, hy: float, half: bool) -> float:
     return hx * hy * P.sum()
 
 
+def grid_layout(problem: PointProblem, opt: PointOptions,
+                domain: tuple[float, float, float]) -> tuple[int, float]:
+    """Number of grid levels and cell aspect ``y_ratio`` of a solve of ``problem`` with the
+    options ``opt`` on ``domain = (xmin, xmax, ymax)``: the coarse intervals of
+    :func:`~.problem.coarse_intervals` (or ``opt.n_coarse``/``opt.levels``), the aspect of
+    :func:`y_ratio` (or ``opt.y_ratio``). Raises :class:`InputError` for a point count that
+    does not coarsen."""
+    xmin, xmax, ymax = domain
+    n = int(opt.points)
+    nc = opt.n_coarse
+    if nc is None:
+        nc = coarse_intervals(problem.M, xmax - xmin, n, domain_scale(problem), rigid_length(problem),
+                              problem.b_over_a)
+    if opt.levels is not None:
+        nlev = int(opt.levels)
+        if (n - 1) % (2 ** (nlev - 1)) or (n - 1) // 2 ** (nlev - 1) < 4:
+            raise InputError(
+                f"points = {n} with levels = {nlev}: points - 1 must be divisible by 2^(levels-1) "
+                f"and leave >= 4 intervals on the coarsest grid")
+    else:
+        if (n - 1) % nc:
+            nc = 16 if (n - 1) % 16 == 0 else 8
+        m = (n - 1) // nc
+        if (n - 1) % nc or m & (m - 1):
+            raise InputError(f"points = {n} must be 2^k * 16 + 1 (for example 65, 129, 257, 513, 1025)")
+        nlev = int(round(math.log2(m))) + 1
+    if (n - 1) % 2 ** (nlev - 1):
+        raise InputError(f"points = {n} must be 2^k + 1")
+    ratio = opt.y_ratio
+    if ratio is None:
+        ratio = y_ratio(xmax - xmin, 2.0 * ymax, (n - 1) // 2 ** (nlev - 1), problem.b_over_a)
+    return nlev, ratio
+
+
 class PointHierarchy:
     """Grids of one point-contact solve, coarsest first (protocol of the multilevel driver)."""
 
@@ -267,28 +301,7 @@ class PointHierarchy:
     def _build_levels(self) -> None:
         opt = self.options
         n = int(opt.points)
-        nc = opt.n_coarse
-        if nc is None:
-            nc = coarse_intervals(self.pb.M, self.xmax - self.xmin, n, domain_scale(self.pb),
-                                  rigid_length(self.pb), self.pb.b_over_a)
-        if opt.levels is not None:
-            nlev = int(opt.levels)
-            if (n - 1) % (2 ** (nlev - 1)) or (n - 1) // 2 ** (nlev - 1) < 4:
-                raise InputError(
-                    f"points = {n} with levels = {nlev}: points - 1 must be divisible by 2^(levels-1) "
-                    f"and leave >= 4 intervals on the coarsest grid")
-        else:
-            if (n - 1) % nc:
-                nc = 16 if (n - 1) % 16 == 0 else 8
-            m = (n - 1) // nc
-            if (n - 1) % nc or m & (m - 1):
-                raise InputError(f"points = {n} must be 2^k * 16 + 1 (for example 65, 129, 257, 513, 1025)")
-            nlev = int(round(math.log2(m))) + 1
-        if (n - 1) % 2 ** (nlev - 1):
-            raise InputError(f"points = {n} must be 2^k + 1")
-        ratio = opt.y_ratio
-        if ratio is None:
-            ratio = y_ratio(self.xmax - self.xmin, 2.0 * self.ymax, (n - 1) // 2 ** (nlev - 1), self.boa)
+        nlev, ratio = grid_layout(self.pb, opt, (self.xmin, self.xmax, self.ymax))
         self.y_ratio = ratio
         self.levels: list[Level] = []
         for k in range(nlev):

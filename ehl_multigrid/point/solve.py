@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -17,6 +17,7 @@ import numpy as np
 from ..model.errors import ConvergenceError, InputError, require_choice, require_range
 from ..multigrid.accuracy import (
     CORRECTION_MIN_DECAY,
+    DOMAIN_SAFETY,
     PROBE_FILM_TOL,
     BoxSeries,
     domain_correction,
@@ -30,7 +31,7 @@ from ..multigrid.options import PointOptions, build_scene_options, scene_solver_
 from ..multigrid.result import EHLResult
 from ..multigrid.rheology import log_viscosity
 from ..multigrid.threads import preserved_threads
-from .fas import ALTERNATE_BELOW, HINT, point_solver, y_ratio
+from .fas import ALTERNATE_BELOW, HINT, grid_layout, point_solver, y_ratio
 from .postprocess import build_result
 from .problem import (
     NARROW_BELOW,
@@ -400,6 +401,39 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
         n_p = 2 * (n_p - 1) + 1  # one grid finer when the coarse probe does not converge
 
 
+@dataclass(frozen=True)
+class PlannedSolve:
+    """A solve not made yet, as :func:`point_domain_change` reads one: its grid levels, X
+    nodes (their count), box and cell aspect (``extra``)."""
+
+    levels: int
+    X: np.ndarray
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+def planned_solve(problem: PointProblem, options: PointOptions) -> PlannedSolve:
+    """The grid layout a :func:`solve_fas` with ``options`` will have (:func:`~.fas.grid_layout`)."""
+    domain = resolve_domain(problem, options.xmin, options.xmax, options.ymax)
+    levels, ratio = grid_layout(problem, options, domain)
+    return PlannedSolve(levels, np.empty(int(options.points)), {"domain": domain, "y_ratio": ratio})
+
+
+def start_box(problem: PointProblem, options: PointOptions, accuracy: float,
+              cache: dict[PointOptions, EHLResult]) -> tuple[float, float] | None:
+    """The box change (Hc, Hm) the domain probes of the planned first solve (``options``, on
+    the default box) measure, when it says that box cannot meet ``accuracy``: its domain part
+    (:data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_SAFETY` times the larger change) exceeds
+    the target, so the controller would refine to twice the box at the same mesh after that
+    solve. None otherwise (also when the probes fail or the contact is a thick film, whose box
+    the domain scale sets). The probes go to ``cache`` and serve the later estimates."""
+    if domain_scale(problem) > 1.0:
+        return None
+    change = point_domain_change(problem, options, planned_solve(problem, options), cache)
+    if change is None or not DOMAIN_SAFETY * max(abs(change[0]), abs(change[1])) > accuracy:
+        return None
+    return change
+
+
 #: film and load tolerance of the box-series probes (:func:`point_box_series`)
 SERIES_FILM_TOL = 1e-4
 
@@ -610,7 +644,24 @@ def solve_point(
         # thick films: the box change falls 1.3-2.2x per doubling (validation/accuracy), where a
         # measured decay bounds the error no better than the fixed factor, and their probes on
         # 4-32x boxes cost minutes (fit map, Roelands (5, 20): 715 s against 31 s)
+        def first(n: int) -> tuple[int, float]:
+            # a box too small for the target is found by the domain probes alone, before its solve
+            wide = 2 * (n - 1) + 1
+            if accuracy is None or explicit or fixed_box or wide > max_points:
+                return n, 1.0
+            o = replace(opts, points=n, raise_on_failure=False, film_tol=film_tol(opts, accuracy))
+            if seq["y_ratio"] is not None:
+                o = replace(o, y_ratio=seq["y_ratio"])
+            change = start_box(pb, o, accuracy, probes)
+            if change is None:
+                return n, 1.0
+            if progress is not None:
+                progress(f"{n} points, box x1: the domain probes change Hc by {change[0]:+.2%} and Hm "
+                         f"by {change[1]:+.2%} on twice the box: starting on box x2")
+            return wide, 2.0
+
         res = solve_to_accuracy(solve, probe, accuracy, points, max_points, box_limit=box_limit,
+                                start=first,
                                 refine=accuracy is not None and not (explicit or fixed_box),
                                 decay_probe=decay_probe if domain_scale(pb) <= 1.0 else None,
                                 progress=progress, correct_box=True, extrapolate=True,
