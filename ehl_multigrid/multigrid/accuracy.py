@@ -607,9 +607,10 @@ def refinement_candidates(budget: dict[str, dict[str, float]], accuracy: float, 
     unknown: the finer grid's probes run on a finer mesh and may then measure the domain part
     (Barus (5, 20, theta 4) at 1 %: the 257-point solve's probes failed).
 
-    With ``corrects`` (the solve corrects its films for the box), a finer grid on a wider box
-    also carries the prediction hoped for when its box series allows a correction (the
-    domain part a further :data:`CORRECTION_GAIN` smaller), for the controller's hopeful step."""
+    With ``corrects`` (the solve corrects its films for the box), a finer grid on a wider box,
+    and on a box at least twice the default a finer grid on the same box, also carries the
+    prediction hoped for when its box series allows a correction (the domain part a further
+    :data:`CORRECTION_GAIN` smaller), for the controller's hopeful step."""
     dom_known = all(math.isfinite(budget["domain"][k]) for k in ("Hc", "Hm"))
     grid_known = all(math.isfinite(budget["grid"][k]) for k in ("Hc", "Hm"))
 
@@ -630,7 +631,11 @@ def refinement_candidates(budget: dict[str, dict[str, float]], accuracy: float, 
         # that pays where the box error dominates and the mesh is fine for the film's scale
         out.append(Candidate("box", replace(here, box=2.0 * box), 0, total(4.0, 1.0 / DOMAIN_DECAY, 1.0)))
     if finer.points <= max_points:
-        out.append(Candidate("points", finer, 1, total(0.25, 1.0, 1.0)))
+        # on a box at least twice the default the correction is measured one box lower
+        # (point_box_series), so the finer grid on the same box may hope for it too
+        out.append(Candidate("points", finer, 1, total(0.25, 1.0, 1.0),
+                             total(0.25, 1.0 / CORRECTION_GAIN, 1.0) if corrects and box >= 2.0
+                             else math.nan))
         if wide:
             out.append(Candidate("points+box", replace(finer, box=2.0 * box), 1,
                                  total(1.0, 1.0 / DOMAIN_DECAY, 1.0),

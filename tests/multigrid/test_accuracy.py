@@ -75,6 +75,18 @@ def test_a_finer_grid_on_a_wider_box_hopes_for_the_box_correction_only_where_one
     assert all(math.isnan(hoping[k].hoped) for k in hoping if k != "points+box")
 
 
+def test_on_twice_the_box_a_finer_grid_on_the_same_box_hopes_for_the_correction_measured_below():
+    from ehl_multigrid.multigrid.accuracy import CORRECTION_GAIN, refinement_candidates
+
+    b = _budget(0.004, 0.02)
+    at2 = {c.what: c for c in refinement_candidates(b, 0.005, 513, 2.0, 1.0, 4097, 4.0, True)}
+    assert at2["points"].hoped == pytest.approx(0.004 / 4 + 0.02 / CORRECTION_GAIN + 1e-6)
+    assert at2["points"].predicted == pytest.approx(0.004 / 4 + 0.02 + 1e-6)
+    # on the default box there is no box below to measure the decay on
+    at1 = {c.what: c for c in refinement_candidates(b, 0.005, 513, 1.0, 1.0, 4097, 4.0, True)}
+    assert math.isnan(at1["points"].hoped)
+
+
 def test_the_box_correction_is_hoped_for_piezoviscous_contacts_whose_box_change_decays_fast():
     from ehl_multigrid.point.problem import problem_from_moes
     from ehl_multigrid.point.solve import fast_box_decay
