@@ -30,7 +30,14 @@ from ..multigrid.policy import PolicyParameters, RobustnessPolicy, Settings
 from ..multigrid.threads import ThreadBudget, resolve_threads
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
-from .problem import PointProblem, coarse_intervals, domain_scale, resolve_domain, rigid_length
+from .problem import (
+    WIDE_CONTACT,
+    PointProblem,
+    coarse_intervals,
+    domain_scale,
+    resolve_domain,
+    rigid_length,
+)
 
 HINT = "raise max_cycles, use W cycles, a longer inlet, more points or fewer levels"
 
@@ -621,12 +628,19 @@ STEADY_CYCLE = "F"
 ALTERNATING_CYCLE = "W"
 
 
-def point_cycle(options: PointOptions, alternating: bool) -> str:
+#: Wide contacts (b/a >= WIDE_CONTACT) run W cycles on finest grids of at least this many points
+#: along X: F cycles there reject cycles and cost 1.2-7x the work (docs/robustness.md)
+WIDE_W_FROM = 513
+
+
+def point_cycle(options: PointOptions, alternating: bool, wide: bool = False) -> str:
     """The cycle type of a steady point solve: the options' own, else :data:`STEADY_CYCLE`
-    when it starts with X lines, :data:`ALTERNATING_CYCLE` when every grid alternates."""
+    when it starts with X lines, :data:`ALTERNATING_CYCLE` when every grid alternates or the
+    contact is wide (``wide``: b/a >= :data:`~.problem.WIDE_CONTACT` on a finest grid of at
+    least :data:`WIDE_W_FROM` points)."""
     if options.cycle is not None:
         return options.cycle
-    return ALTERNATING_CYCLE if alternating else STEADY_CYCLE
+    return ALTERNATING_CYCLE if alternating or wide else STEADY_CYCLE
 
 
 def point_settings(problem: PointProblem, options: PointOptions, cycle: str | None = None) -> Settings:
@@ -654,7 +668,8 @@ def point_solver(problem: PointProblem, options: PointOptions,
     from that solution (:meth:`PointHierarchy.start`)."""
     hz = PointHierarchy(problem, options)
     hz.guess, hz.start_on_guess = guess, guess is not None
-    cycle = point_cycle(options, hz.alternating)
+    cycle = point_cycle(options, hz.alternating,
+                        problem.b_over_a >= WIDE_CONTACT and options.points >= WIDE_W_FROM)
     solver = MultilevelSolver(hz, options, point_settings(problem, options, cycle),
                               RobustnessPolicy(POINT_POLICY, options.adapt), HINT)
     hz.solver = solver

@@ -7,6 +7,7 @@ import pytest
 
 import ehl_multigrid.point.fas as fas
 from ehl_multigrid.model.scene import load_scene
+from ehl_multigrid.multigrid.options import PointOptions
 from ehl_multigrid.point.problem import problem_from_scene
 from ehl_multigrid.point.solve import solve_fas
 
@@ -49,3 +50,19 @@ def test_wide_contact_on_twice_the_box_converges_without_a_coarser_retry():
     assert sol.status_name == "converged"
     assert (513 - 1) // 2 ** (sol.levels - 1) == 64
     assert not any("coarse intervals instead" in a for a in sol.actions)
+
+
+def test_wide_contact_runs_w_cycles_without_rejected_cycles():
+    # (100, 10, theta 0.05), b/a 6.7, 513 points: F cycles rejected two cycles and took 126 WU
+    # (3.7 s); W cycles converge with none in 41 WU
+    from ehl_multigrid.point.fas import point_cycle
+    from ehl_multigrid.point.problem import problem_from_moes
+
+    sol = solve_fas(problem_from_moes(100, 10, 0.05), points=513, half=True, film_tol=2.5e-4,
+                    raise_on_failure=False)
+    assert sol.status_name == "converged"
+    assert sol.settings.cycle == "W" and not sol.actions
+    assert sol.work_units < 80
+    # the options' own cycle, and X-line solves of other contacts, are left as they were
+    assert point_cycle(PointOptions(points=513, cycle="F"), False, wide=True) == "F"
+    assert point_cycle(PointOptions(points=513), False) == "F"
