@@ -165,7 +165,7 @@ def test_sweep_workers_die_when_the_sweep_process_is_killed(tmp_path):
         "from ehl_multigrid.model.scene import load_scene\n"
         "if __name__ == '__main__':\n"
         "    spec = SweepSpec(load_scene('page63_line_500N'), 'fit',\n"
-        "                     {'operating.us': [0.01 + 1e-5 * i for i in range(50000)]})\n"
+        "                     {'operating.us': [0.01 + 1e-5 * i for i in range(5000)]})\n"
         "    run_sweep(spec, sys.argv[1], workers=2, progress=False)\n"
     )
     proc = subprocess.Popen([sys.executable, str(script), str(tmp_path / "sw")],
@@ -177,7 +177,7 @@ def test_sweep_workers_die_when_the_sweep_process_is_killed(tmp_path):
             workers = [c for c in _children(proc.pid)
                        if "spawn_main" in Path(f"/proc/{c}/cmdline").read_bytes().decode(errors="replace")]
             # well under way (a worker still starting up dies with its pipe anyway)
-            if len(workers) == 2 and len(list((tmp_path / "sw" / "cases").glob("case_*.json"))) >= 100:
+            if len(workers) == 2 and len(list((tmp_path / "sw" / "cases").glob("case_*.json"))) >= 10:
                 break
             time.sleep(0.2)
         assert len(workers) == 2, "the sweep did not start its two workers"
