@@ -21,7 +21,6 @@ from __future__ import annotations
 import functools
 
 import numpy as np
-import scipy.fft
 from numba import njit
 
 from ..model.errors import require_choice
@@ -64,6 +63,9 @@ class FFTDeformation:
     method = "fft"
 
     def __init__(self, n: int, h: float) -> None:
+        import scipy.fft  # here, not at import: the default (mlmi) line path never needs it
+
+        self._fft = scipy.fft
         self.n, self.h = n, h
         self.kernel = log_kernel(n, h)
         self.size = scipy.fft.next_fast_len(2 * n - 1, real=True)
@@ -73,8 +75,8 @@ class FFTDeformation:
         self._kf = scipy.fft.rfft(c)
 
     def apply(self, P: np.ndarray) -> np.ndarray:
-        pf = scipy.fft.rfft(np.asarray(P, dtype=float), n=self.size)
-        return scipy.fft.irfft(pf * self._kf, n=self.size)[: self.n]
+        pf = self._fft.rfft(np.asarray(P, dtype=float), n=self.size)
+        return self._fft.irfft(pf * self._kf, n=self.size)[: self.n]
 
 
 # -- multilevel multi-integration -----------------------------------------------------------
