@@ -224,7 +224,7 @@ def resolve_domain(problem: PointProblem, xmin: float | None, xmax: float | None
 
 
 #: Contacts at least this wide (b/a; theta <~ 0.12) keep at most :data:`WIDE_COARSE_MAX`
-#: coarse intervals along X (:func:`coarse_intervals`; measurements in docs/performance.md).
+#: coarse intervals along X (:func:`coarse_intervals`; measurements in docs/robustness.md).
 WIDE_CONTACT = 4.0
 WIDE_COARSE_MAX = 64
 

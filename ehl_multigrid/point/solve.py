@@ -430,8 +430,9 @@ def start_box(problem: PointProblem, options: PointOptions, accuracy: float,
     the default box) measure, when it says that box cannot meet ``accuracy``: its domain part
     (:data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_SAFETY` times the larger change) exceeds
     :data:`START_WIDE` times the target, so the controller would refine to twice the box at
-    the same mesh after that solve. None otherwise (also when the probes fail or the contact is a thick film, whose box
-    the domain scale sets). The probes go to ``cache`` and serve the later estimates."""
+    the same mesh after that solve. None otherwise (also when the probes fail or the contact
+    is a thick film, whose box the domain scale sets). The probes go to ``cache`` and serve the
+    later estimates."""
     if domain_scale(problem) > 1.0:
         return None
     change = point_domain_change(problem, options, planned_solve(problem, options), cache)
