@@ -430,10 +430,12 @@ def start_box(problem: PointProblem, options: PointOptions, accuracy: float,
     the default box) measure, when it says that box cannot meet ``accuracy``: its domain part
     (:data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_SAFETY` times the larger change) exceeds
     :data:`START_WIDE` times the target, so the controller would refine to twice the box at
-    the same mesh after that solve. None otherwise (also when the probes fail or the contact
-    is a thick film, whose box the domain scale sets). The probes go to ``cache`` and serve the
+    the same mesh after that solve. None otherwise: also when the probes fail, and for a
+    contact whose box change does not decay fast (:func:`fast_box_decay`), which meets its
+    target sooner from the default box's own estimate ((20, 0) at 0.5 %: 14 s from 257 points
+    on the default box, 31 s from 513 on twice it). The probes go to ``cache`` and serve the
     later estimates."""
-    if domain_scale(problem) > 1.0:
+    if not fast_box_decay(problem):
         return None
     change = point_domain_change(problem, options, planned_solve(problem, options), cache)
     if change is None or not DOMAIN_SAFETY * max(abs(change[0]), abs(change[1])) > START_WIDE * accuracy:
@@ -648,21 +650,13 @@ def solve_point(
         # thick films (low M) spread over many inlet lengths: their box may grow further, on a
         # mesh that coarsens with it (the coarse grid follows the inlet length)
         box_limit = THICK_FILM_BOX_LIMIT if domain_scale(pb) > 1.0 else 4.0
-        # thick films: the box change falls 1.3-2.2x per doubling (validation/accuracy), where a
-        # measured decay bounds the error no better than the fixed factor, and their probes on
-        # 4-32x boxes cost minutes (fit map, Roelands (5, 20): 715 s against 31 s)
         def first(n: int) -> tuple[int, float]:
-            # a box too small for the target is found by the domain probes alone, before its solve
+            # (called only for a refined sequence) a box too small for the target is found by the
+            # domain probes alone, before its solve
             wide = 2 * (n - 1) + 1
-            # only where the box change decays fast enough for a correction: a slow decay (L = 0)
-            # is met sooner from the default box's own estimate ((20, 0) at 0.5 %: 16 s from
-            # 257 points on box x1, 31 s from 513 on x2)
-            if accuracy is None or explicit or fixed_box or wide > max_points or not fast_box_decay(pb):
-                return n, 1.0
-            o = replace(opts, points=n, raise_on_failure=False, film_tol=film_tol(opts, accuracy))
-            if seq["y_ratio"] is not None:
-                o = replace(o, y_ratio=seq["y_ratio"])
-            change = start_box(pb, o, accuracy, probes)
+            change = None if wide > max_points else start_box(
+                pb, replace(opts, points=n, raise_on_failure=False, film_tol=film_tol(opts, accuracy)),
+                accuracy, probes)
             if change is None:
                 return n, 1.0
             if progress is not None:
@@ -670,6 +664,9 @@ def solve_point(
                          f"by {change[1]:+.2%} on twice the box: starting on box x2")
             return wide, 2.0
 
+        # thick films: the box change falls 1.3-2.2x per doubling (validation/accuracy), where a
+        # measured decay bounds the error no better than the fixed factor, and their probes on
+        # 4-32x boxes cost minutes (fit map, Roelands (5, 20): 715 s against 31 s)
         res = solve_to_accuracy(solve, probe, accuracy, points, max_points, box_limit=box_limit,
                                 start=first,
                                 refine=accuracy is not None and not (explicit or fixed_box),
