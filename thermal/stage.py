@@ -28,10 +28,9 @@ from ehl_multigrid.multigrid.accuracy import GRID_SAFETY
 from .options import ThermalOptions
 from .traction import default_slips, solve_traction, traction_curve, traction_result
 
-#: order of the thermal friction model's grid error assumed by the operating-slip estimate:
-#: the Hertz-input line contact converges at order 2 (appendix C 42400 N: 3.9 %, 0.94 %,
-#: 0.21 % at nx x nz = 20 x 5, 40 x 10, 80 x 20 against 160 x 40), the point slices less
-#: regularly; 1.5 keeps the Richardson estimate on the safe side of both
+#: order of the thermal friction model's grid error assumed by the operating-slip estimate: the
+#: Hertz-input line contact converges at order 2, the point slices less regularly; 1.5 keeps the
+#: Richardson estimate on the safe side of both (docs/thermal.md, "Traction grid per fidelity")
 FRICTION_ORDER = 1.5
 #: relative round-off of a computed friction coefficient (the force is a sum over 1e3-1e5
 #: cells of the shear stress)

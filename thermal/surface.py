@@ -219,10 +219,9 @@ def _cj_linear_integral(a: np.ndarray, b: np.ndarray, alpha: np.ndarray, beta: n
     return 2.0 * alpha * (sb - sa) + (2.0 / 3.0) * beta * (sb**3 - sa**3)
 
 
-# a 21-slip curve needs 41 tables on a line, 410 from Hertz input on a point contact (10
-# slices of different widths) and about 50 from EHL input (one grid): 512 lets a repeated curve
-# find its tables (0.7 ms each: a third of a Hertz point curve's CPU). A table is 2 (2n - 1)
-# floats: 2.5 kB at the default n = 80.
+# 512 tables hold a repeated 21-slip curve's 41 (line), 410 (Hertz point, 10 slices) or about
+# 50 (EHL input), 0.7 ms each to build (a third of a Hertz point curve's CPU); a table is
+# 2 (2n - 1) floats, 2.5 kB at the default n = 80
 @lru_cache(maxsize=512)
 def wall_weights(
     n: int,

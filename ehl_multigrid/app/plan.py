@@ -129,10 +129,8 @@ def fit_deviation_estimate(scene: Scene) -> tuple[float, str]:
 
 
 #: The thermal decision includes the model when ``THERMAL_DECISION_MARGIN * friction_sensitivity``
-#: exceeds the tolerance. validation/plan/REPORT.md: over 616 cases (line, point, elliptic,
-#: steel-glass; slip 0.01-2, us 0.017-36 m/s) the estimate's ratio to the thermal solver's
-#: |f_thermal / f_isothermal - 1| was >= 0.936, so the margin leaves about 17 % for cases
-#: outside that study.
+#: exceeds the tolerance; the estimate is at least 0.936 of the thermal solver's change over 616
+#: cases, leaving about 17 % (docs/thermal.md, "The planner's thermal decision").
 THERMAL_DECISION_MARGIN = 1.25
 #: what the thermal decision covers: the traction stage sweeps slips beyond the operating ones
 #: and decides its own model there

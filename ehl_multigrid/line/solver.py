@@ -57,15 +57,13 @@ MAX_ACCURACY_POINTS = 131073
 HINT = ("more levels or points (finer coarsest grid), W cycles (--cycle W), a smaller "
         "h00_gain, smaller under-relaxation (omega/omega_jd), or a longer inlet (--xmin)")
 
-#: Measured on the line solver's test set of 17 (M, L, N) cases: reject a cycle whose
-#: residual grows 20-fold over the recent best, retry up to 7 times with halved
-#: under-relaxation; after 7 cycles without a 10 % fall switch V -> W, then widen the
-#: Jacobi-distributive zone, then give up (dense Newton finishes grids up to 2049 points).
+#: Cycle acceptance of the line solvers, tuned on a test set of 17 (M, L, N) cases: reject 20x
+#: growth, retry with halved under-relaxation; on a stall V -> W, a wider Jacobi-distributive
+#: zone, give up (docs/robustness.md, "Line solver defaults").
 LINE_POLICY = PolicyParameters()
-#: The steady line solver's stall ladder (validation/line_fine): V -> W, then up to three
-#: hierarchy steps of :meth:`LineHierarchy.raise_switch` in turn (the film-less coarse grids
-#: out of the cycles; the h-scaled switch on the finest grid only; the wider JD zone), then
-#: give up. (The starved and transient solvers keep :data:`LINE_POLICY`.)
+#: The steady line solver's stall ladder: V -> W, then up to three hierarchy steps of
+#: :meth:`LineHierarchy.raise_switch`, then give up (the starved and transient solvers keep
+#: :data:`LINE_POLICY`; docs/robustness.md, "Line solver defaults").
 STEADY_LINE_POLICY = PolicyParameters(
     stall_ladder=(("W",), ("switch",), ("switch",), ("switch",), ("fail",)))
 
@@ -78,18 +76,8 @@ GUESS_PROBE_FILM_TOL = 1e-6
 LOCAL_NEWTON_FACTOR = 20.0
 LOCAL_NEWTON_HALF = 48
 #: ... after the pre-relaxations too (before the FAS restriction) where ``alpha_bar`` exceeds this,
-#: so the coarse problems are built from a settled outlet drop. Measured (validation/line_fine,
-#: REPORT "Barus fine grids"): Barus + incompressible (100, 20) on 16385 points, FMG iterate
-#: (residual 1.6e-3): one pre-relaxation sweep takes the residual to 0.91, half of it on each of
-#: the two points of the drop (X = 0.9502, 0.9507; local residual 20 -> 1e5); full weighting
-#: carries it into the coarse right-hand sides, the 2049- and 1025-point relaxations then diverge
-#: (residual 2e-3 -> 0.8, load error 0.66, negative film) and the cycle is rejected whatever
-#: omega. Even from a window solved to 1e-13 two sweeps take the residual from 7.8e-4 to 0.77.
-#: With the window solve before the restriction (100, 20) at 16385 and (500, 20) at 65537
-#: converge; it helps from alpha_bar = 27 ((20, 15) Barus at 16385: 134 -> 68 WU) up. Below 20 it
-#: only costs a window solve per visit (L <= 5 of iso_sweep.py, alpha_bar 8-20: same cycles,
-#: +3-7 WU), and where the film collapses at alpha_bar 4-5 it lost Roelands (100, 1) at 16385
-#: (converged in 37 cycles without) and doubled (20, 3) at 8193 (171 -> 406 WU).
+#: so the coarse problems are built from a settled outlet drop; below 20 it only costs work or
+#: loses collapsing films (docs/robustness.md, "Line solver defaults").
 LOCAL_NEWTON_PRE_ALPHA = 20.0
 
 
@@ -115,17 +103,12 @@ def default_switch_h(problem: LineProblem) -> float:
 
 
 #: Film-scale switch: Jacobi-distributive wherever ``eps`` is below this multiple of the
-#: contact's film-scale ``eps`` (:func:`default_switch_eps`). Measured by finest-grid relaxation
-#: alone from the interpolated solution of the grid below (isoviscous; M = 5 at 2049 points,
-#: M = 20 at 4097 and 8193, M = 100 at 4097): it diverges when the absolute switch is below
-#: 0.4-1.1 (M = 5), 0.85-1.3 (M = 20, both grids) and 0.6-1.8 (M = 100) times the central
-#: ``eps`` of the solution, and converges above (the Moes-fit ``eps_c`` is 0.9-1.1 times it).
+#: contact's film-scale ``eps`` (:func:`default_switch_eps`); fine-grid relaxation diverges below
+#: 0.4-1.8 times the central ``eps`` (docs/robustness.md, "Line solver defaults").
 JD_FILM_FACTOR = 2.0
 #: ... and at most this: where the flat film's ``eps`` exceeds it the Poiseuille term holds the
-#: contact's smooth modes and Gauss-Seidel is stable. Measured the same way: M = 1 and 2 (``eps``
-#: >= 0.47 and 0.08 in the contact) relax from 1e-5 to 1e-8 in 10 sweeps all Gauss-Seidel,
-#: while a Jacobi-distributive zone of ``eps < 0.1-1`` leaves the residual near 1e-5 after 100
-#: and the cycles of (1, 0) at 8193 and (2, 0) at 16385 points ran out of cycles.
+#: contact's smooth modes and Gauss-Seidel is stable, while a Jacobi-distributive zone there
+#: stalls M = 1 and 2 (docs/robustness.md, "Line solver defaults").
 JD_FILM_MAX = 0.05
 
 
@@ -142,16 +125,10 @@ def default_switch_eps(problem: LineProblem) -> float:
     contact's smooth modes (``k = O(1)`` in units of the Hertzian half-width), which need
     ``eps k^2 >~ 1``, are amplified when Gauss-Seidel points reach the flat film: the threshold
     is on ``eps`` itself, not on ``eps/h^2``. Jacobi-distributive changes act locally on the
-    film, so the band holds their coupling. Measured: isoviscous (20, 0) at 4097 points,
-    ``eps/h`` is 0.6-12 in the contact, so ``switch_h = 1`` leaves its centre Gauss-Seidel and
-    finest-grid relaxation alone from the 2049-point solution takes the residual from 3e-5 to
-    6e-2 in 10 sweeps (Hc negative); on the 257- and 513-point grids the classic switch
-    (``eps/h^2`` about 3 and 11 at the centre) fails the same way (4e-3 -> 2e-2 and
-    1e-3 -> 0.13), which corrupted the cycles' coarse problems (coarse Newton failures, cycles
-    rejected with load errors up to -0.94) and the cycles stalled at 4097 points and more. With
-    this switch (20, 0) converges within FMG (2 V cycles per grid, 28-31 WU) at 4097, 8193 and
-    16385 points, as do (20, 0.5) and (20, 1) (stalled or diverged at 8193 and 16385 before).
-    At high ``alpha_bar`` ``eps_c`` is tiny and the switch changes nothing.
+    film, so the band holds their coupling. With this switch isoviscous (20, 0), (20, 0.5) and
+    (20, 1) converge within FMG at 4097-16385 points, where the ``eps/h^2`` switches stall
+    (docs/robustness.md, "Line solver defaults"). At high ``alpha_bar`` ``eps_c`` is tiny and the
+    switch changes nothing.
     """
     if not problem.elastic:
         return 0.0
@@ -181,10 +158,8 @@ class LineHierarchy:
     #: whose convergence carries more than the films
     grid_stop = True
     #: the film rule stops after at least this many finest-grid cycles, so the iteration
-    #: error is estimated from a measured contraction, not from one change. Measured: Barus
-    #: (1000, 10) at 32769 points, accuracy 0.01: stopped after two cycles (change 1.9e-4,
-    #: stated algebraic error 1.9e-4) at 8.6e-4 from its discrete solution (contraction about
-    #: 0.8 per cycle; validation/extremes/reference_check.py)
+    #: error is estimated from a measured contraction, not from one change (a stop after two
+    #: cycles can leave several times the stated error: docs/robustness.md)
     film_stop_films = 3
 
     def __init__(self, problem: LineProblem, options: LineOptions) -> None:
@@ -264,10 +239,8 @@ class LineHierarchy:
             v.P, v.H0 = P.copy(), H0
         if self.stall_steps and self.floor < self.film_floor and self.solver is not None:
             # a rejected cycle (the driver restores the iterate) also leaves the grids below a
-            # moved FMG start out (raise_switch, step 1). Measured: the domain probe of
-            # isoviscous M = 1000 (box twice as long, 8193 and 16385 points, start moved to
-            # 2049) diverged in its first cycles through the film-less 257-1025-point grids
-            # and converges in 4 and 7 cycles; no solve of validation/line_fine lost
+            # moved FMG start out (raise_switch, step 1): a wide-box probe at M = 1000 diverges
+            # through them otherwise (docs/robustness.md, "Line solver defaults")
             self.floor = self.film_floor
             self.solver.note(f"cycle rejected: grids below the {self.levels[self.floor].n}-point "
                              f"FMG start (no positive film there) left out of the cycles")
@@ -295,13 +268,11 @@ class LineHierarchy:
         """Local Newton at the largest residual when it exceeds LOCAL_NEWTON_FACTOR times the
         mean (judged on the state before the last sweep, which costs nothing extra).
 
-        Measured (validation/line_fine, Barus + incompressible): the relaxation freezes
-        ``eps``, and at the outlet pressure drop of high-``alpha_bar`` oils ``eps/h^2`` jumps
-        from 1e-8 to 1e4 between two points; 96 % of the residual sits there and the cycles
-        diverge or stall at (100, 10) and (100, 20) on 4097 points, (500, 20) on 8193 and
-        (1000, 20) on 16385. With the window solve after every post-relaxation on grids of at
-        least 1025 points all converge; on the finest grid only, (500, 20) still diverged.
-        Where ``alpha_bar > LOCAL_NEWTON_PRE_ALPHA`` it also ends each pre-relaxation, so the
+        The relaxation freezes ``eps``, and at the outlet pressure drop of high-``alpha_bar``
+        oils ``eps/h^2`` jumps from 1e-8 to 1e4 between two points, where 96 % of the residual
+        sits; the window solve after every post-relaxation on grids of at least 1025 points
+        converges the cycles that diverge or stall without it (docs/robustness.md). Where
+        ``alpha_bar > LOCAL_NEWTON_PRE_ALPHA`` it also ends each pre-relaxation, so the
         restricted residual does not carry the drop the sweeps unsettled.
         """
         lv = self.levels[k]
@@ -383,16 +354,9 @@ class LineHierarchy:
         switch on the cycle's coarse grids; (3) widen the Jacobi-distributive zone
         (``switch_h = 1``). Steps (1) and (2) only in the steady solver (``stall_steps``).
 
-        Measured (validation/line_fine): with the grids below the moved start in the cycles,
-        isoviscous M = 100 at 4097 points, M = 500 at 8193 and M = 1000 at 16385 stall in a
-        limit cycle (Hc +-5 % from cycle to cycle); leaving them out converges them in 8-9
-        cycles. Leaving them out from the first cycle loses Barus (500, 10) at 8193 (its
-        257-point grid helps the cycles), so it is a stall step, not the default.
-        (2): Roelands (100, 20) and Barus (20, 10) at 4097 points stall with the residual at
-        the outlet end of the Jacobi-distributive zone (X = 0.975, next to the spike); fine-grid
-        relaxation alone converges there, two-grid cycles converge, three-grid cycles stall; with
-        the classic switch on the coarse grids both converge. As the default from the first
-        cycle it lost Barus (500, 10) at 8193 and (100, 20) at 2049, so it is a stall step."""
+        Steps (1) and (2) each converge stalled cases but lose others when applied from the
+        first cycle, so they are stall steps, not defaults (docs/robustness.md, "Line solver
+        defaults")."""
         if self.stall_steps and self.floor < self.film_floor:
             self.floor = self.film_floor
             s.omega, s.omega_jd = s.defaults[0], s.defaults[1]
@@ -592,12 +556,9 @@ def line_solver(problem: LineProblem, options: LineOptions) -> MultilevelSolver:
     return solver
 
 
-#: A solve whose FMG start grids cannot hold a positive film (the dense Newton start is limited
-#: to MAX_START_POINTS) is started from the solution of the same contact at half the load
-#: parameter M, itself continued from M/4 when its own start fails, and so on up to this many
-#: halvings. Measured: isoviscous (5000, 0) at 16385 points fails its start on every grid up
-#: to 2049 points; (2500, 0) starts on 2049 points, and (5000, 0) from it converges in 8 cycles
-#: (3.7 s, one thread).
+#: A solve whose FMG start grids (up to MAX_START_POINTS) cannot hold a positive film starts from
+#: the same contact at M/2, itself continued from M/4 when its own start fails, and so on up to
+#: this many halvings: isoviscous (5000, 0) needs one (docs/robustness.md, "Line solver defaults").
 CONTINUATION_HALVINGS = 3
 
 
@@ -676,12 +637,9 @@ def line_domain_change(problem: LineProblem, options: LineOptions, sol: EHLResul
     relative to the shorter box (:func:`line_domain_decay`).
 
     Each probe solve starts its cycles on its finest grid from the solution, with a film
-    tolerance of :data:`GUESS_PROBE_FILM_TOL` (FMG at ``PROBE_FILM_TOL`` when that fails).
-    Measured against tol-1e-9 probe pairs (dHc, dHm): Roelands (1000, 10) at 16385 points
-    (5.6e-6, 3.5e-6): FMG at 1e-4 (2.4e-5, 1.7e-5) in 3.1 s, from the solution at 1e-4
-    (7.7e-7, -2.0e-6) -- both solves stay near the same start, so a loose tolerance biases the
-    change to zero -- and at 1e-6 (5.3e-6, 3.3e-6) in 0.6 s; (20, 10) at 4097 and Barus
-    (100, 20) at 8193 within 1 % at 1e-6."""
+    tolerance of :data:`GUESS_PROBE_FILM_TOL` (FMG at ``PROBE_FILM_TOL`` when that fails): both
+    solves stay near the same start, so a loose tolerance biases the change to zero; at 1e-6 the
+    change is close to that of tight probes and cheaper than FMG probes (docs/robustness.md)."""
     top = sol.levels - 1
     k0 = max(top - 2, min(d["level"] for d in sol.fmg))
     length = problem.xmax - problem.xmin

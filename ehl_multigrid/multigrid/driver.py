@@ -78,10 +78,9 @@ class CycleRecord:
 #: still while the residual sits far above it would mean an iteration stuck somewhere the films
 #: do not see
 GRID_STOP_RESIDUAL = 10.0
-#: the grid rule never leaves more than this (relative) iteration error in the films: on coarse
-#: grids, whose grid error is percents, a quarter of it would let solver paths that should agree
-#: (thermal in its isothermal limit, half and full domain) differ by more than the tests allow;
-#: the rule is meant for fine grids, where the residual tolerance costs the extra cycles
+#: the grid rule never leaves more than this (relative) iteration error in the films: a quarter of
+#: a coarse grid's percent-level grid error would let paths that should agree (thermal in its
+#: isothermal limit, half and full domain) differ; the rule is meant for fine grids
 GRID_STOP_CAP = 1e-4
 
 
@@ -302,9 +301,9 @@ class MultilevelSolver:
         """True when a film-stopped solve sits at its relaxation's residual floor: the residual
         is below the policy's ``quiet_below`` and has not fallen by ``stall_factor`` over
         ``stall_window`` finest-grid cycles, and the films' changes over the second half of that
-        window are no smaller than over the first (jitter, not a contraction). Measured: the
-        (5000, 0) decay probe on 2049 points (box x2, film_tol 1e-5) held its residual at
-        7e-7 to 1e-6 while Hc jumped by 4e-6 to 5.6e-5 per cycle, and ran out its 60 cycles
+        window are no smaller than over the first (jitter, not a contraction): the (5000, 0)
+        decay probe on 2049 points (box x2, film_tol 1e-5) holds its residual at 7e-7 to 1e-6
+        while Hc jumps by 4e-6 to 5.6e-5 per cycle, and without this test runs out its 60 cycles
         (5 min) without meeting the film rule."""
         p = self.policy.params
         w = p.stall_window

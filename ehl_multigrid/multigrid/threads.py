@@ -104,9 +104,9 @@ _blas_controller = None
 def serial_blas() -> Iterator[None]:
     """One BLAS/LAPACK thread inside, the caller's setting restored on exit (threadpoolctl).
 
-    For the dense LU factorisations of the line solver's Newton start: measured on this 2-core
-    machine at load 5, one ``scipy.linalg.solve`` took 0.36 s at n = 512 and 0.44 s at 1024
-    with OpenBLAS's two threads against 0.014 s and 0.062 s with one (the threads wait for a
+    For the dense LU factorisations of the line solver's Newton start: on a 2-core machine at
+    load 5, one ``scipy.linalg.solve`` takes 0.36 s at n = 512 and 0.44 s at 1024 with
+    OpenBLAS's two threads against 0.014 s and 0.062 s with one (the threads wait for a
     core). One thread also makes the factorisation's rounding, and so the Newton path, the
     same whatever the load."""
     global _blas_controller

@@ -186,10 +186,8 @@ ROW_BLOCK = 64
 #: unblocked; at 33^2 blocks of 16 cost 101 us against 51 us unblocked)
 COL_BLOCK = 16
 #: columns per block when the FFTs run on several threads: pocketfft splits a block's columns
-#: between its workers, and 16 columns are too few to pay for that. Measured per evaluation
-#: (full domain, 2 workers against 16 columns on 1 worker): 513^2 11.1 ms (16 columns, 2
-#: workers: 19.6 ms; 1 worker 11.0), 1025^2 51 ms (68.8; 57), 2049^2 247 ms (301; 253-289);
-#: unblocked is 5-15 % faster still but holds the whole padded spectrum (134 MB at 2049^2)
+#: between its workers, and 16 columns are too few to pay for that; unblocked is faster still but
+#: holds the whole padded spectrum (docs/performance.md, "FFT deformation: blocks and threads")
 PAR_COL_BLOCK = 256
 
 
@@ -202,10 +200,8 @@ def _split(fn, n: int, parts: int) -> None:
     """``fn(lo, hi)`` over ``[0, n)`` cut into ``parts`` ranges, all but the last on a shared
     pool of Python threads (pocketfft releases the GIL), the last on the calling thread.
 
-    Measured on the 2-core machine, idle (the half domain's row transforms, rfft, 1 against 2):
-    513 rows 4.3 -> 1.5 ms, 1025 10 -> 5.3 ms, 2049 45 -> 23 ms; pocketfft's own ``workers=2``
-    on the same rows gave 4.1, 8.8-13, 35 ms. Waiting threads sleep on a lock (no spinning
-    when the other core is busy)."""
+    Faster than pocketfft's own ``workers`` on the row transforms (docs/performance.md). Waiting
+    threads sleep on a lock (no spinning when the other core is busy)."""
     if parts <= 1 or n < 2 * parts:
         fn(0, n)
         return

@@ -41,16 +41,9 @@ from .problem import (
 
 HINT = "raise max_cycles, use W cycles, a longer inlet, more points or fewer levels"
 
-#: Measured on the point solver's robustness set: reject a cycle whose residual exceeds 3x
-#: the best, NaN, or a load error above 30 %; on a rejection or after three cycles without a
-#: 5 % fall each, alternately raise the switch x4 (up to 64) and halve the under-relaxation
-#: and H00 gain (floors 0.1, 0.05, 1e-3) with V -> W.
-#: ``quiet_below``: circular (20, 10), half domain, residual tolerance 1e-7 at 1025^2: the
-#: residual wandered between 1.1e-7 and 2.7e-7 until a cycle at 6e-7 was rejected as growth;
-#: the stall and reject steps then stirred it for 33 cycles and the solve ended "diverged"
-#: after 1235 WU (three attempts; 513^2 at 1e-9: "diverged" at 4.9e-9). Now it ends
-#: ``residual_floor`` at 1.7e-6 after 81 WU, Hc within 2e-6 of the deepest iterate seen. The
-#: default tolerance (1e-4) and film-stopped (accuracy) solves are not affected.
+#: Cycle acceptance and ladders of the point solver, tuned on its robustness set; ``quiet_below``
+#: ends a residual wandering below 1e-5 as ``residual_floor`` instead of stirring it into a
+#: divergence (docs/robustness.md, "Point solver defaults").
 POINT_POLICY = PolicyParameters(
     growth=3.0, growth_window=None, residual_cap=math.inf, quiet_below=1e-5, load_cap=0.3, load_factor=0.0,
     first_load_error=0.0, max_retries=8, stall_window=4, stall_factor=0.95**3,
@@ -60,57 +53,30 @@ POINT_POLICY = PolicyParameters(
     recover=1.0)
 
 
-#: Contacts with b/a below this relax X lines and Y lines alternately. Measured (half
-#: domain, default options): X lines alone diverge for (M, L, theta) = (20, 25, 10) and
-#: (1, 10, 10) at 513 points and (10, 25, 4) at 257, and stall at max_cycles for (100, 20, 4),
-#: (200, 20, 4), (50, 5, 6) at 257 and (100, 10, 10) at 513; alternation converges all of them.
-#: At theta = 2 (b/a = 0.64) both converge and alternation costs more work (45.7 against
-#: 35.2 WU for (20, 10) at 257), so b/a >= 0.5 keeps the X sweep alone up to 257^2 (below).
+#: Contacts with b/a below this relax X lines and Y lines alternately: X lines alone diverge or
+#: stall on narrow contacts, while at b/a = 0.64 alternation only costs work (docs/robustness.md).
 ALTERNATE_BELOW = 0.5
-#: Wider contacts (b/a >= ALTERNATE_BELOW) alternate in solves whose finest grid has at least
-#: ALTERNATE_FINEST points along X, on their grids of at least ALTERNATE_FROM points. On such
-#: grids the pressure spike is resolved, and where its ridge runs obliquely to the X lines (the
-#: horseshoe's sides) the X sweep leaves an error that the coarse-grid correction brings back
-#: every cycle. Measured on (20, 10), half domain, one W cycle per FMG level, adaptation off:
-#: X lines alone stall at a residual of 8.6e-5 at 1025^2 (load error alternating 8e-6 / 1e-5)
-#: and diverge at 2049^2. Alternating on the grids from 513, 257, 129 or 65 points up, the
-#: 1025^2 floor is 8e-5, 4e-5, 1.6e-7 and 6e-7: the 129^2 grid's correction matters. Solves
-#: up to 257^2 converge to 5e-9 with X lines alone and alternation costs them more work
-#: (45 against 35 - 41 WU with the default options), so they keep the X sweep alone.
+#: Wider contacts alternate in solves of at least ALTERNATE_FINEST points along X, on their grids
+#: of at least ALTERNATE_FROM points, where the resolved spike's oblique ridge couples the X lines;
+#: smaller solves converge with X lines alone at less work (docs/robustness.md).
 ALTERNATE_FROM = 129
 ALTERNATE_FINEST = 513
-#: Grids of at least this many points along X refresh the film between an alternating
-#: sweep's X and Y halves locally: ``H += cd K dP`` with the 3 x 3 nearest cell-kernel weights
-#: (:func:`numerics.local_film_update`) and the lubricant properties, instead of the whole
-#: deformation (one FFT evaluation: 43 ms at 1025^2 half domain, one thread, against 9 ms).
-#: The far part of the X sweep's change is smooth and reaches the film at the full update
-#: after the Y sweep; the discrete solution is the same (at convergence the X sweep changes
-#: nothing). Measured ((20, 10) 513 and 1025, (100, 10), (1000, 10) 513, (20, 10, 4) 257,
-#: (20, 25, 10) 513, half domain): the same statuses and work units within one cycle; with
-#: no refresh at all (20, 10) stalls and (20, 25, 10) diverges. Up to LOCAL_UPDATE_TO points:
-#: on the 2049-point grid the far part left out is too large (the grid's own cells are a
-#: quarter of the 513 grid's): (20, 10) at 2049^2 half stalled at a residual of 1.3e-4 and took
-#: 124 WU and 23 cycles where the full refresh there takes 50 WU and 16 cycles (the coarser
-#: grids of that solve keep the local refresh: the same 50 WU). At 1025 points nine cases
-#: ((20, 10), (100, 10), (1000, 10), (20, 10, 0.25), (200, 20), (100, 0), (20, 0), Barus
-#: (100, 20) and (500, 10)) end with the same status and work units with or without it.
+#: Grids from LOCAL_UPDATE_FROM to LOCAL_UPDATE_TO points along X refresh the film between an
+#: alternating sweep's X and Y halves locally (:func:`numerics.local_film_update`), at the same
+#: statuses and work as a whole deformation; 2049 points stall with it (docs/robustness.md).
 LOCAL_UPDATE_FROM = 257
 LOCAL_UPDATE_TO = 1025
-#: ``Y_OMEGA_JD`` of those fine-grid alternations (narrow contacts keep their tuned value).
-#: Measured at 2049^2 (as above, 16 cycles): 0.75 leaves the residual at 1.3e-5, 0.5 reaches
-#: 1.4e-6; raising the Y sweep's Gauss-Seidel factor instead (Y_OMEGA 1) diverges.
+#: ``Y_OMEGA_JD`` of those fine-grid alternations (narrow contacts keep their tuned value): at
+#: 2049^2 0.75 leaves the residual at 1.3e-5, 0.5 reaches 1.4e-6; raising ``Y_OMEGA`` to 1
+#: instead diverges (docs/robustness.md).
 FINE_Y_OMEGA_JD = 0.5
-#: Y sweep's treatment of the points with ``eps/hx^2 < switch`` (``relax_sweep_y``'s
-#: ``jd_mode``): Gauss-Seidel (0). Measured: leaving them to the X sweep's
-#: Jacobi-distributive changes (1) diverges (20, 25, 10) at 513 and stalls (100, 20, 4) and
-#: (50, 5, 6) at 257; Jacobi-distributive changes along Y (2) diverge (20, 25, 10).
+#: Y sweep's treatment of the points with ``eps/hx^2 < switch`` (``relax_sweep_y``'s ``jd_mode``):
+#: Gauss-Seidel (0); leaving them to the X sweep (1) or Jacobi-distributive changes along Y (2)
+#: diverge or stall narrow contacts (docs/robustness.md).
 Y_JD_MODE = 0
 #: Under-relaxation of the Y sweep's changes: ``Y_OMEGA omega`` where ``eps/hx^2 >= switch``,
-#: ``Y_OMEGA_JD omega_jd`` elsewhere (0.3 and 0.225 by default). Measured on 14 narrow
-#: contacts (theta 3 to 10, M 1 to 1000, L 5 to 25, 257 to 1025 points): with 0.6 and 0.3,
-#: (20, 25, 10) at 513 is rejected on grid 2 and ends at max_cycles; with 0.3 and 0.3,
-#: (300, 10, 10) at 1025 falls into a limit cycle with Hc 1 % off; with 0.3 and 0.15 or 0.18,
-#: (20, 25, 10) fails again; 0.3 and 0.225 converge all 14 (a narrow window: tune with care).
+#: ``Y_OMEGA_JD omega_jd`` elsewhere (0.3 and 0.225 by default), the one pair tried that converges
+#: all 14 narrow test contacts: a narrow window (docs/robustness.md).
 Y_OMEGA = 0.5
 Y_OMEGA_JD = 0.75
 
@@ -155,18 +121,9 @@ class Level:
         return (self.hy, self.hx)
 
 
-#: grids with a mesh size ``hx`` (units of a) no larger than FINE_SWITCH_HX -- the classic X box
-#: [-4.5, 1.5] on 2049 points -- relax with the switch times FINE_SWITCH_FACTOR: the
-#: Jacobi-distributive zone (``eps/hx^2 < switch``) shrinks fourfold per finer mesh. Keyed on the
-#: mesh, not the point count: a box widened for accuracy keeps the switch its mesh was measured
-#: with (2049 points on a box 4x as wide have the mesh of 513 on the classic box).
-#: Measured at 4097^2 (half domain, two threads, idle): (20, 10) converges in FMG alone, 28.4 WU,
-#: 43 s, where the switch 1 let the residual grow from 9.7e-4 to 2.3e-3 over eight cycles until
-#: the policy raised it on every grid (114 WU, 142 s); (20, 10, theta 0.25) and (100, 10) take the
-#: same work as without (39.1 and 85.9 WU). Raised on every grid instead, it stalled the load
-#: balance of (20, 10, theta 0.25) (380 WU): the coarse grids keep their switch. At 2049^2:
-#: (20, 10) 28.4 WU, 9.0 s instead of 49.7 WU, 14.3 s; (100, 10), (1000, 10), theta 0.25 and 4
-#: and (1000, 10, theta 10) (film not positive either way) take the same work as without.
+#: Grids with a mesh ``hx`` (units of a) no larger than FINE_SWITCH_HX (the box [-4.5, 1.5] on 2049
+#: points) relax with the switch times FINE_SWITCH_FACTOR; keyed on the mesh, so a widened box
+#: keeps the switch its mesh was tuned with (docs/robustness.md, "Point solver defaults").
 FINE_SWITCH_HX = 6.0 / 2048
 FINE_SWITCH_FACTOR = 4.0
 
@@ -180,11 +137,8 @@ def default_switch(visc: int, alpha_bar: float, elastic: bool = True) -> float:
     """GS/Jacobi-distributive switch ``eps/hx^2``: 1 by default, 10 for strong pressure spikes
     (Barus alpha_bar >= 8, Roelands >= 20), 40 for Roelands alpha_bar >= 30.
 
-    Measured: Barus (alpha_bar >= 8) converges (20, 10) at 513^2 in 9 W cycles with 10 where
-    1 diverges; at low alpha_bar 1 is better (Barus (50, 2.5) at 129^2: 1 converges, 10
-    stalls). Roelands converges equally well with 1 and 10 at (20, 10) (alpha_bar 10); (200, 20)
-    (alpha_bar 43) converges at 257^2 with 10 (1 does not) and at 513^2 only with 40;
-    (100, 20) (34) at 257^2 only with 40."""
+    Each threshold is where the smaller switch stops converging (docs/robustness.md, "Point solver
+    defaults")."""
     if not elastic:
         return 1.0
     if visc == 1:
@@ -199,17 +153,11 @@ def y_ratio(length_x: float, length_y: float, coarse_x: int, b_over_a: float = 1
     ``hy/hx ~ b/a``, since the film varies over ``a`` along X but over ``b`` along Y (on the
     default box, as many points along Y as along X).
 
-    Contacts longer across than along the rolling direction (``b/a > 1``: the ball-bearing
-    ellipses): measured on a 6205 inner-race contact (theta = 0.031, b/a = 9.4, M = 3620): Hc
-    4.5816 with ``hy/hx = 1.2`` and 4.5811 with square cells' 8x more points at 257, 4.6745
-    for both 1x and 2x at 513 (Y points do not move Hc in the fourth digit), at an eighth of
-    the cost. Contacts long in the rolling direction (``b/a < 1``, theta > 1), whose minimum
-    film sits in the side lobes near ``|Y| = b``: with square cells Hm converges with the
-    cells across b, so these cells give Hm of the next finer square grid at half its cost
-    (validation/point/y_cells.py, Barus theta = 4: (500, 10) Hm 0.2800, 0.3769, 0.3977 square
-    against 0.3732, 0.3971, 0.4022 stretched on 513-2049 points, Hc within 0.1 %; Roelands
-    (1000, 10, theta 10): film not positive on square cells up to 2049 points, converged on
-    stretched ones from 1025)."""
+    Contacts wider than long (``b/a > 1``, the ball-bearing ellipses): Y points do not move Hc in
+    the fourth digit, at an eighth of the cost of square cells. Contacts long in the rolling
+    direction (``b/a < 1``), whose minimum film sits in the side lobes near ``|Y| = b``: Hm
+    converges with the cells across b, so these cells give the Hm of the next finer square grid
+    at half its cost (docs/robustness.md, "Point solver defaults")."""
     r = 2.0 ** round(math.log2(length_y / length_x / b_over_a))
     r = min(max(r, 0.125, 4.0 / coarse_x), 8.0)
     return 2.0 ** math.ceil(math.log2(r) - 1e-12)
@@ -613,14 +561,9 @@ class PointHierarchy:
         return 0
 
 
-#: Cycle type of a steady point solve that starts with X-line relaxation (``cycle=None``).
-#: Measured on every point case of the extremes matrix and the fit-check map at 257 or 513
-#: points, half domain (validation/bench/cycle_screen.py, 108 cases): W and F both converge 98
-#: (F also (1000, 25, 0.1), W also Barus (20, 20, 4), which alternates from the start); where
-#: both converge F takes 0.95 of the work units and 0.89 of the wall time. Circular (20, 10):
-#: FMG with one F(2,1) cycle per level leaves Hc within 0.42 (513^2) and 0.52 (1025^2) of its
-#: discretisation error from the converged solution in 13.7-14.1 WU; to the residual
-#: tolerance 27 against 41 WU at 513^2.
+#: Cycle type of a steady point solve that starts with X-line relaxation (``cycle=None``): on 108
+#: cases F converges as many as W at 0.95 of its work units and 0.89 of its wall time
+#: (docs/robustness.md).
 STEADY_CYCLE = "F"
 #: Cycle type where every grid alternates from the start (narrow contacts, ``alternating=True``,
 #: the retry of a failed X-line solve) and of the solvers built on the point hierarchy whose

@@ -206,10 +206,8 @@ def default_domain(problem: PointProblem) -> tuple[float, float, float]:
     """Default ``(xmin, xmax, ymax)`` in units of a: the classic X in [-4.5, 1.5],
     Y in [-3, 3] b/a, scaled by :func:`domain_scale` at low M.
 
-    Measured (validation/point/REPORT.md): doubling the [-4.5, 1.5] x 3 domain at equal mesh
-    size raises Hc by 1.2 % at (M, L) = (20, 10), 5.6 % at (5, 0) and 0.6 % at (5, 10); at
-    M = 1 the rigid-isoviscous pressure spreads over tens of a and Hc keeps rising with the
-    domain (12.9, 19.4, 25.2 for inlets of 17, 33, 65 a).
+    Doubling this box at equal mesh size raises Hc by 1.2 % at (M, L) = (20, 10) and more at
+    lighter loads (docs/accuracy.md, "Domain error").
     """
     f = domain_scale(problem)
     return -4.5 * f, 1.5 * f, 3.0 * f * problem.b_over_a
@@ -235,20 +233,17 @@ def coarse_intervals(M: float, length: float, points: int, scale: float = 1.0,
     mesh size <= 0.375 a (M < 200), 0.1875 a (200 <= M < 1000) or 0.094 a (M >= 1000), and no
     more than the finest grid has. The Hertz zone must be resolved on the coarsest grid for
     the load balance to steer H00 (a [-13.5, 3.5] domain with 16 coarse intervals diverges at
-    (20, 10); see REPORT.md).
+    (20, 10); validation/point/REPORT.md).
 
     In the thick-film regime (``scale > 1``, :func:`domain_scale`) the pressure spreads over
     the inlet length ``inlet`` = s (:func:`rigid_length`) instead of the Hertz circle, and the
     coarse mesh may be as coarse as s: a coarse mesh tied to a instead leaves a wide box with
-    two or three levels whose far field converges over hundreds of cycles. Measured at
-    (M, L) = (1, 0), s = 8 a, 129 points on a box 4x the default: 32 coarse intervals
-    converge in 13 cycles to Hc 20.479 (the Newton path: 20.483), 128 intervals stop after 30
-    cycles at 20.275 with the load still 6e-4 off.
+    two or three levels whose far field converges over hundreds of cycles.
 
     Wide contacts (``b_over_a >=`` :data:`WIDE_CONTACT`) stop at :data:`WIDE_COARSE_MAX`
     intervals: their coarsest grid is long in Y too, and with 128 intervals on twice the
-    default box its relaxation no longer balanced the load ((3000, 10, theta 0.05) ran out of
-    cycles at 1025 points in 83 s; with 64 intervals it converged in 4.4 s)."""
+    default box its relaxation does not balance the load (docs/robustness.md, "Point solver
+    defaults")."""
     h = (0.375 if M < 200 else (0.1875 if M < 1000 else 0.094)) * scale
     if scale > 1.0:
         h = max(h, inlet)
@@ -261,10 +256,7 @@ def coarse_intervals(M: float, length: float, points: int, scale: float = 1.0,
 
 #: Contacts narrower than this (b/a; theta >~ 6) at M >= 1000 need more cells across b than
 #: min_points' b/a scaling gives: their side constriction at |Y| = b is thinner relative to b
-#: than a circular contact's outlet constriction is to a. Measured at theta = 10 (b/a = 0.22),
-#: coarse grid 256 intervals: (1000, 10) Hc 1.830 / 1.848, Hm 0.0037 / 0.073 at 2049 / 4097
-#: points (Hm 20x apart); (1000, 0) film not positive at 2049, converged at 4097; (5000, 10)
-#: film not positive and (5000, 0) diverged at 4097 points.
+#: than a circular contact's outlet constriction is to a (docs/robustness.md).
 NARROW_BELOW = 0.3
 
 
@@ -275,10 +267,8 @@ def min_points(M: float, b_over_a: float = 1.0, cap: int | None = 2049) -> int:
     semi-axis b keeps about as many cells as a circular contact has across a; contacts with
     b/a < :data:`NARROW_BELOW` need twice that from M = 1000 and four times from M = 3000 (a
     lower bound there: 4097 points fail at (5000, theta 10), 8193 were not tried). Capped at
-    ``cap`` (None: uncapped, the grid a failure message asks for).
-    Measured (validation/point/REPORT.md, extremes): (1000, 10) converges at 257 but (1000, 0)
-    and (1000, 25) need 513; (5000, 10) converges at 513 (2.3 s) and 1025 (6.6 s); theta = 10
-    (b/a = 0.22) at M = 10 stalls at 257 and converges at 513."""
+    ``cap`` (None: uncapped, the grid a failure message asks for). The measured limits are in
+    docs/robustness.md, "Point solver defaults"."""
     n = 129 if M < 200 else (257 if M < 1000 else 513)
     if b_over_a < 0.75:
         n = (n - 1) * 2 ** math.ceil(math.log2(0.75 / b_over_a)) + 1

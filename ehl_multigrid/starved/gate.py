@@ -19,14 +19,13 @@ import math
 
 from ..multigrid.result import STATUS, EHLResult
 
-#: largest relative imbalance of the boundary flows (|in - out - side| / in, line: also the
-#: supply mismatch |F - Hoil| / Hoil) a starved result may have. The solvers aim at 1e-6 (point,
-#: ``MASS_TOL``) and 1e-7 (line tolerances); converged results on the validation maps stay
-#: below 1e-4. 1e-3 of the flow is 1e-3 of the film in the starved limit.
+#: largest relative imbalance of the boundary flows (|in - out - side| / in, line: also the supply
+#: mismatch |F - Hoil| / Hoil) a starved result may have: 1e-3 of the film in the starved limit,
+#: far above what the solvers reach (docs/starvation.md, "The mass gate").
 MASS_GATE = 1e-3
 #: largest ``rho_c Hc / Hoil - 1``: the central film carrying more oil than the supplied layer
-#: (an oil source at the meniscus). Measured on converged solves: line 1 + 1e-8, point 0.996 ...
-#: 0.9999 at 257^2 (below 1 where the side flow takes oil away).
+#: (an oil source at the meniscus). Converged solves give line 1 + 1e-8, point 0.996 ... 0.9999
+#: at 257^2 (below 1 where the side flow takes oil away).
 SUPPLY_GATE = 0.05
 
 #: status of a result that fails the gate

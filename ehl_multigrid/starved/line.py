@@ -78,10 +78,9 @@ COARSE_SWEEPS = 30
 #: per sweep drives the film through zero, a tenth of it settles in 500 sweeps)
 START_SWEEPS = 4000
 START_GAIN = 0.1
-#: start-grid resolution of the starved inlet: mesh size at most this fraction of the rigid
-#: inlet length sqrt(2 Hc) of the starved film (Hc ~ Hoil/rho_c); measured at M = 20,
-#: L = 10: Hoil = 0.02 on h = 0.045 (0.25) converges, Hoil = 0.002 on the same grid (0.78)
-#: leaves a negative film at the meniscus
+#: start-grid resolution of the starved inlet: mesh at most this fraction of the rigid inlet length
+#: sqrt(2 Hc) of the starved film (Hc ~ Hoil/rho_c); at (20, 10) h = 0.045 converges Hoil = 0.02
+#: (0.25) and leaves a negative film at the meniscus for Hoil = 0.002 (0.78)
 START_RESOLUTION = 0.25
 #: smallest FMG start grid (the flooded solver's coarse-grid rule applies above it)
 MIN_START_POINTS = 129

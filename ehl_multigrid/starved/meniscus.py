@@ -55,10 +55,9 @@ from .supply import check_hoil
 #: L = 10: X_m = -1.0 fails, -1.05 converges), so the scan starts just upstream of it
 MENISCUS_SCAN = (-1.003, -1.006, -1.01, -1.02, -1.03, -1.05, -1.08, -1.12, -1.2, -1.35, -1.6, -2.0, -2.6, -3.5, -5.0,
                  -7.0, -10.0, -15.0, -25.0, -50.0)
-#: tried only when the supply is below the flux at MENISCUS_SCAN[0] (severe starvation): box
-#: solves this close to the Hertzian edge converge on a first-cycle failure through the dense
-#: Newton last resort (measured at 513 points: (20, 10) reaches 1.5 % of the flooded flux at
-#: X_m = -1.002, (100, 10) 7.6 % at -1.003; -1.0 has no positive film on the start grid)
+#: tried only when the supply is below the flux at MENISCUS_SCAN[0]: box solves this close to the
+#: Hertzian edge converge through the dense Newton last resort (513 points: (20, 10) 1.5 % of the
+#: flooded flux at -1.002, (100, 10) 7.6 % at -1.003; -1.0 has no positive film on the start grid)
 EDGE_SCAN = (-1.002, -1.0015, -1.001)
 #: positions tried between the last one that carries too much and the edge
 EDGE_TRIES = 4

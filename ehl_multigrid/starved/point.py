@@ -31,13 +31,11 @@ mass imbalance exceeds :data:`MASS_TOL`, or one that still did not converge, is 
 an exact solve of the Poiseuille-dominated zone after every finest-grid cycle
 (:mod:`.point_mass`: sparse primal-dual active set on P and theta; :data:`EXACT_EPS`,
 ``PointOptions.exact_rules``), and as a last resort at a tighter tolerance. A result whose
-boundary flows do not balance fails (:mod:`.gate`), whatever its iteration said. Measured on
-the 55-supply map: every supply converges and conserves mass to 1e-6 with either wedge order
-(largest imbalance 9.7e-7 first order, 9.4e-7 second order; before the exact solve 5.5e-5
-and 8.3e-5 where the meniscus lies far upstream in thick-film contacts). First order: the
-flooded Hc 2-8 % above the core's second-order film; second order: the core's flooded film
-(within 6e-8), Hc converging at second order, on the map as robust and as conservative as
-first order at 1.8x its wall time, not the default.
+boundary flows do not balance fails (:mod:`.gate`), whatever its iteration said. On the
+55-supply map every supply converges and conserves mass to 1e-6 with either wedge order. First
+order: the flooded Hc 2-8 % above the core's second-order film; second order: the core's
+flooded film, Hc converging at second order, as robust and as conservative as first order at
+1.8x its wall time, not the default (docs/starvation.md, "Solver defaults").
 
 The supply may vary across the track (one layer per finest-grid row, e.g. side ridges).
 """
@@ -76,69 +74,34 @@ from .point_wedge import face_value, flux_operator, march_theta, wedge_correctio
 from .supply import check_hoil, check_profile
 
 #: default tolerance of the starved solve on the core's scaled residual (a pressure change
-#: relative to max P). The mass imbalance is far more sensitive in the inlet, where eps/h^2 ~
-#: 1e6 turns a pressure error of 1e-10 into 1e-4 of the flow, hence the tight default.
-#: Measured at (M, L) = (20, 10), 129^2 half domain: the cycles reach it for Hoil = 0.003 ... 10;
-#: with the mass residual (:meth:`StarvedPointHierarchy.mass_residual`) in the driver's residual
-#: instead, the robustness policy rejected cycles and the solves at Hoil = 1 and 3 stalled.
+#: relative to max P): tight, since in the inlet eps/h^2 ~ 1e6 turns a pressure error of 1e-10
+#: into 1e-4 of the flow (docs/starvation.md, "Solver defaults").
 STARVED_TOL = 1e-8
 
-#: The film content moves (FAS in P and theta) on the grid below the current one, and on
-#: coarser grids whose mesh is at most this fraction of ``sqrt(2 Hoil)`` (the length over
-#: which the gap of a starved inlet doubles the supplied layer); below them it is frozen
-#: (injected). Measured at (20, 10), 129^2: theta free on all grids converges at mild
-#: starvation (Hoil/Hc_ff = 2: residual factor ~0.4 per cycle) but stalls or diverges at
-#: severe starvation (Hoil/Hc_ff <= 0.7); free on one grid only converges at mild
-#: starvation, slowly (factor ~0.87); frozen on all coarse grids stalls
-#: at mild starvation. Frozen below the current grid unless the mesh resolves the inlet
-#: converges (20, 10) at Hoil/Hc_ff = 0.1 and 0.03 (129^2), but diverges (100, 10) at 257^2.
+#: The film content moves (FAS in P and theta) on the grid below the current one and on coarser
+#: grids whose mesh is at most this fraction of ``sqrt(2 Hoil)`` (over which a starved inlet's gap
+#: doubles the supplied layer); frozen (injected) below them (docs/starvation.md).
 COARSE_THETA_MESH = 0.2
 
 #: Second coarse-grid rule of a solve that the default rule does not converge: theta frozen
-#: (injected) on every grid below the current one (``coarse_theta = 0``). Measured at 257^2
-#: (129^2 for (20, 10)), max_cycles 100: the default rule stops at a residual floor of
-#: 2e-8 ... 7e-8 (slow smooth error in the thin outlet) at Hoil = 0.1 Hc_ff for (179, 4.17),
-#: (100, 5), (20, 10) and at 0.25 for (20, 10) 129^2; this rule converges all of them (30-98
-#: cycles, mass imbalance 7e-10 ... 1.8e-7) but stalls at (179, 4.17), Hoil = 0.25 Hc_ff
-#: (residual 8.9e-6), where the default rule converges: so it is the fallback, not the default.
+#: (injected) on every grid below the current one (``coarse_theta = 0``); it converges the
+#: default rule's residual floors but stalls a case the default converges (docs/starvation.md).
 FALLBACK_COARSE_THETA = 0
 
-#: relative mass imbalance a starved solve aims for. A solve that converges to its residual
-#: tolerance with a larger imbalance is solved again with the exact solve of the
-#: Poiseuille-dominated zone (:data:`EXACT_EPS`, ``PointOptions.exact_rules``), and, if that
-#: does not meet MASS_TOL either, with the tolerance times MASS_TOL_FACTOR (at most twice its
-#: cycles + 10); a repeated solve is kept when it converges with a smaller imbalance. Measured
-#: on the 55-supply map (validation/starved/study_mass.py): 55/55 below 1e-6 (largest 9.7e-7), the
-#: tighter tolerance no longer needed. Measured before the exact solve at 257^2 (imbalance at tol 1e-8 -> 1e-10): (179, 4.17)
-#: Hoil = 4 ... 0.8 Hc_ff 7.7e-5 ... 8e-7 -> 1.7e-6 ... 6.9e-9 (4 and 2 Hc_ff: 8.8e-7 and
-#: 1.1e-6 at 1e-11); (100, 5) 4 ... 0.8 Hc_ff 3.5e-5 ... 2.2e-6 -> 8.3e-7 ... 3.0e-8; but
-#: (20, 10) at 2 ... 1.2 Hc_ff keeps 2e-5 ... 6e-5 (a fixed point of the cycle, the
-#: residual stops at 2e-10 ... 6e-10).
+#: relative mass imbalance a starved solve aims for: a larger one is solved again with the exact
+#: zone solve (:data:`EXACT_EPS`), then at the tolerance times MASS_TOL_FACTOR (at most twice its
+#: cycles + 10), keeping a smaller converged imbalance (docs/starvation.md, "Solver defaults").
 MASS_TOL = 1e-6
 MASS_TOL_FACTOR = 0.01
 
-#: exact solve of the Poiseuille-dominated zone (:func:`.point_mass.inlet_solve`): after the
-#: post-relaxation of every finest-grid cycle, the discrete balance is solved exactly (sparse
-#: primal-dual active set at the frozen film) on the pressurised points with ``eps/hx^2 >=
-#: EXACT_EPS`` and the unpressurised points within EXACT_MARGIN points of them
-#: (:meth:`StarvedPointHierarchy.exact_zone_mask`), MASS_PASSES times with the film and the
-#: lubricant properties updated in between. Used by the mass re-solve of a solve that
-#: converged with an imbalance above MASS_TOL (the first solve is unchanged). Measured at
-#: (20, 10), 129^2, Hoil = 2 Hc_ff: the imbalance 3.6e-5 of the cycles alone is a residual of
-#: one sign on the pressurised inlet (46 % on the first pressurised point of each row), a fixed
-#: point of the cycle; with the exact solve (zone: all points with eps/hx^2 >= 10 and the
-#: unpressurised inlet) 1.2e-8 in 53 cycles with two passes, 4.7e-8 with one (EXACT_EPS = 30:
-#: 8.6e-9; the zone cut at X = 0: 2.2e-6, the rest on the side rows at Y = 2.3, X >= 0). Once
-#: after the converged cycles it is undone by the next cycles (10 cycles return to the
-#: imbalance 2.2e-5 at 1.2 Hc_ff), hence inside every cycle. One pass and EXACT_MARGIN = 4
-#: (measured, (20, 10) 513^2, 2 Hc_ff: the solve 237 -> 37 s, imbalance 3.3e-10 -> 2.9e-7):
-#: the 55-supply maps (validation/starved/study_mass.py) meet MASS_TOL on 55/55 either way.
+#: exact solve of the Poiseuille-dominated zone (:func:`.point_mass.inlet_solve`, points with
+#: ``eps/hx^2 >= EXACT_EPS``) MASS_PASSES times after every finest-grid cycle of a mass re-solve:
+#: it removes the cycles' fixed-point imbalance (docs/starvation.md, "Solver defaults").
 EXACT_EPS = 10.0
 MASS_PASSES = 1
 #: unpressurised points of the exact solve's zone: those within this many points (4-neighbour
-#: steps) of its pressurised points. With all the unpressurised inlet in the zone (~95 % of
-#: the grid) a call took 1.8 s at 513^2 ((20, 10), 2 Hc_ff), with the margin 1.3 s with two
-#: passes; the zone is then 29-32 % of the grid at 2 Hc_ff and 0-2 % at 0.25 Hc_ff.
+#: steps) of its pressurised points (:meth:`StarvedPointHierarchy.exact_zone_mask`): 29-32 % of
+#: the grid at 2 Hc_ff instead of about 95 % (docs/starvation.md, "Solver defaults").
 EXACT_MARGIN = 4
 #: extra finest-grid cycles of a starved solve: measured at (179, 4.17) 257^2 the moderate
 #: supplies (Hoil = 1.5 ... 0.4 Hc_ff) converge in 62-94 cycles.
@@ -152,32 +115,18 @@ STARVED_MAX_CYCLES_2 = 150
 #: flooded FMG state to its starved place the residual rises for several cycles.
 STARVED_POLICY = replace(POINT_POLICY, growth=30.0, growth_window=4)
 
-#: default upwind order of the wedge term ``d(theta rho H)/dX`` (``wedge_order`` option; 2:
-#: the per-face second-order flux of :mod:`.point_wedge`). Measured on the 55-supply map
-#: (validation/starved/study_order.py; (20, 10) 129^2 and 257^2, (100, 10), (100, 5),
-#: (179, 4.17) 257^2, Hoil = 4 ... 0.03 Hc_ff): both orders converge 55/55; second order
-#: reproduces the core's second-order flooded film (Hc within 2e-8) and its Hc converges at
-#: order 2.0 ((20, 10), Hoil = Hc_ff: 129 -> 513 error 6.2e-3 -> 3.9e-4; first order 0.65,
-#: 1.9e-2 -> 7.6e-3), but its mass imbalance was a little worse (largest 8.3e-5 against
-#: 5.5e-5) at 1.9x the wall time: first order stays the default (the rule of the project: only
-#: as robust and as conservative). With the exact zone solve of the mass re-solve
-#: (validation/starved/study_mass.py) both orders meet MASS_TOL on 55/55 (largest 9.4e-7
-#: second order, 9.7e-7 first order; map wall 421 s against 239 s): a change of the default
-#: is the lead's decision (it changes every result).
+#: default upwind order of the wedge term ``d(theta rho H)/dX`` (``wedge_order`` option; 2: the
+#: per-face second-order flux of :mod:`.point_wedge`, as robust but 1.8x the wall time); changing
+#: it changes every starved result (docs/starvation.md, "Solver defaults").
 STARVED_WEDGE_ORDER = 1
 
 #: upwind order of the film-response Jacobian in the point core's line kernel when the wedge
 #: is the per-face second-order one (the right-hand side carries the defect correction)
 KERNEL_ORDER = 1
 
-#: second-order wedge: extra finest-grid sweeps per relaxation once the cycles stall below
-#: POLISH_BELOW (the residual falling less than to POLISH_RATE over two cycles), and every
-#: second cycle without the coarse-grid correction once they are stuck (less than to
-#: POLISH_STUCK). At the meniscus the FAS coarse-grid correction undoes what the fine sweeps
-#: gain: a fixed point of the cycle at a residual of 2e-8 ... 9e-8 (measured: (179, 4.17)
-#: 257^2, Hoil = 0.25 Hc_ff, on the first pressurised points behind the meniscus; the extra
-#: sweeps alone lower it to 2e-8, the skipped corrections converge it in 3 cycles), while fine
-#: sweeps alone reduce it ~7 % each.
+#: second-order wedge: extra finest-grid sweeps once the cycles stall below POLISH_BELOW (less
+#: than a fall to POLISH_RATE over two cycles); once stuck (POLISH_STUCK) every second cycle skips
+#: the coarse-grid correction, which undoes their gain at the meniscus (docs/starvation.md).
 POLISH_SWEEPS = 8
 POLISH_BELOW = 1e-6
 POLISH_RATE = 0.7
@@ -335,8 +284,8 @@ class StarvedPointHierarchy(PointHierarchy):
         (``0 < P <= (f - L)/diag``): the line kernel holds a point at P = 0 where it wants to
         fall, but the Jacobi-distributive changes of its neighbours lift it to a tiny P
         again, where it then counts in the residual and in the mass balance as a full
-        pressurised point (measured: one such point at the side of the pressurised zone held
-        (179, 4.17) at 257^2, Hoil = 0.25 Hc_ff, at a residual of 2.3e-5)."""
+        pressurised point (one such point at the side of the pressurised zone holds (179, 4.17) at
+        257^2, Hoil = 0.25 Hc_ff, at a residual of 2.3e-5 without this)."""
         self._operator(lev, lev.r)
         r = np.subtract(lev.f, lev.r, out=lev.r)  # in place: lev.r is the grids' shared buffer
         sr = np.empty_like(r)
@@ -617,10 +566,9 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
     number (uniform) or a profile across the track: one layer per row of the finest grid
     (``Y`` of the result; e.g. the side ridges left by the previous over-rolling).
 
-    A continuation in the supply (the flooded solution first, the supply halved from twice
-    its central film, each solve cycling on the finest grid from the previous one) was
-    measured and dropped: at (100, 5) 257^2 and (179, 4.17) 129^2 it reached the same or worse
-    residuals at 3-6 times the cost.
+    No continuation in the supply (the flooded solution first, the supply halved from twice its
+    central film, each solve cycling on the finest grid from the previous one): at (100, 5)
+    257^2 and (179, 4.17) 129^2 it reaches the same or worse residuals at 3-6 times the cost.
 
     The result carries ``theta`` (``sol.extra["theta"]``), ``meniscus_x`` (centre line),
     ``mass_balance_error`` (relative imbalance of the boundary flows), ``outlet_layer`` (mean
@@ -760,13 +708,8 @@ ORDER_NOTE_2 = ("the starved point solver's wedge term is second order where the
                 "second-order film; Hc_flooded and the ratios use it")
 
 #: grid order (Hc, Hm) per wedge order assumed by the two-grid Richardson estimate of
-#: :func:`starved_point_error`: first order for both wedges. Measured (study_order.py, grid
-#: and scene parts), second-order wedge: Hc converges at order 2.00 where the film is full
-#: ((20, 10), Hoil = Hc_ff, 129/257/513), but on the chapter-6 scene (20 nm) its changes
-#: 257 -> 513 -> 1025 -> 2049 are 4.4e-5, 3.6e-5, 9.2e-6 (ratios 1.2 and 3.95): a
-#: second-order estimate at 513 (0.064 %) missed the error (0.14 % against the 2049
-#: Richardson value), the first-order one (0.19 %) covers it. Hm is non-monotone at
-#: (20, 10), 0.4 Hc_ff (-8.5e-5, +9.2e-5): a second-order Hm estimate missed there too.
+#: :func:`starved_point_error`: first order for both wedges, since a second-order estimate
+#: misses the error on the chapter-6 scene and in Hm (docs/starvation.md, "Solver defaults").
 GRID_ORDER = {1: (1.0, 1.0), 2: (1.0, 1.0)}
 
 
@@ -868,11 +811,9 @@ def _scene_solve(pb: PointProblem, Hoil: float, options: PointOptions | None, po
     (its coarse-grid theta rule, cycles from its solution) when given.
 
     A refinement starts from the previous grid's film when the FMG fails on the finer grid, or
-    failed on the previous one (the exact zone solve rescued it there). Measured: M = 741,
-    L = 6.34, Hoil = 0.0023 (0.09 Hc_ff): 257^2 converges only with the exact solve; at 513^2
-    the FMG with it diverges (the inlet jumps from the flooded to the starved film at frozen
-    film and the load balance runs away); from the 257^2 film the rule 0 converges in 67
-    cycles (Hc within 1e-7 of 257^2, imbalance 3.5e-8). Where the FMG converges nothing changes."""
+    failed on the previous one (the exact zone solve rescued it there): there the finer FMG can
+    diverge while the start from the coarser film converges; where the FMG converges nothing
+    changes (docs/starvation.md, "Solver defaults")."""
     if start is None:
         return solve_starved_point(pb, Hoil, options, points=points, **kw)
     return solve_starved_point(pb, Hoil, options, start.extra["coarse_theta"], points=points,

@@ -46,12 +46,9 @@ from ..traction import wall_speeds
 from .line import TEHLOptions
 from .point import require_flooded_point
 
-#: orders (along X, across the film) of the TEHL discretisation in the estimate. Line contacts:
-#: 2 and 2, observed on appendix C 4240 N and 42400 N at S = 0.5 (X: 257-4097 points, Hc 1.99-2.00,
-#: Hm 2.01-2.37; Z: nz 5-80, 1.93-2.07). Point contacts, appendix D (1 GPa), from 129/257/513
-#: points at S = 0.5 and 1: Hc 1.96, Hm 1.62-1.64, friction 2.2-2.5, T_max 1.8-1.9 along X; from
-#: nz 5-40 at S = 0.5: 1.8-2.3 across the film. Along X the point estimate takes 1.5, below the
-#: minimum film's order (the core caps Hm's order at 1.5 too)
+#: orders (along X, across the film) of the TEHL discretisation in the estimate: the observed
+#: orders, except 1.5 along X for point contacts, below the minimum film's (the core caps Hm's
+#: order at 1.5 too; docs/thermal.md, "Orders of the TEHL error estimate")
 ORDERS = {"line": (2.0, 2.0), "point": (1.5, 2.0)}
 #: quantities of the budget; the accuracy target applies to the films
 QUANTITIES = ("Hc", "Hm", "friction_coefficient", "T_max")

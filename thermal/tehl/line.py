@@ -428,10 +428,9 @@ def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: _State |
         hz.solver = None
         noise = film_noise(res)
         if not res.success and res.status == 1 and res.residual_history[-1] < lopts.tol and noise < 10.0 * opts.tol_H:
-            # the cycles reached the residual tolerance but the films keep alternating between
-            # two states (the outlet free boundary flips between neighbouring nodes; Hm by up
-            # to 6e-4 at residual 2.5e-6, measured): accepted, and the alternation is carried
-            # into the outer iteration as the films' algebraic uncertainty
+            # the residual tolerance is met but the films alternate between two states (the
+            # outlet free boundary flips between nodes; Hm by up to 6e-4 at residual 2.5e-6):
+            # accepted, the alternation carried into the outer iteration as their uncertainty
             notes.append(f"outer iteration {it}: films alternate by {noise:.2g} between cycles at residual "
                          f"{res.residual_history[-1]:.3g}; accepted as their uncertainty")
         elif not res.success:
