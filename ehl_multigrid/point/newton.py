@@ -22,10 +22,9 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from ..model.convergence import ConvergenceReport
 from ..model.errors import ConvergenceError, InputError
@@ -35,6 +34,9 @@ from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
 from .fas import load_integral
 from .problem import PointProblem, resolve_domain
+
+if TYPE_CHECKING:
+    import scipy.sparse as sp
 
 
 @dataclass
@@ -88,6 +90,8 @@ class _Grid:
 
 def _jacobian(g: _Grid, P, H, rho, eps, m: int, order: int, active: np.ndarray,
               deps: np.ndarray | None = None, drho: np.ndarray | None = None) -> sp.csr_matrix:
+    import scipy.sparse as sp  # the Newton path only: not paid by every point solve's import
+
     n = g.n
     hx2, hy2 = g.hx**2, g.hy**2
     idx = np.arange(n * n).reshape(n, n)
@@ -170,6 +174,7 @@ def _jacobian(g: _Grid, P, H, rho, eps, m: int, order: int, active: np.ndarray,
 def solve_newton_amg(problem: PointProblem, options: NewtonOptions | None = None, **kw) -> EHLResult:
     """Newton semi-system solve with AMG-preconditioned GMRES (see module docstring)."""
     import pyamg
+    import scipy.sparse.linalg as spla
 
     opt = NewtonOptions(**{**(vars(options) if options else {}), **kw})
     if opt.half:
