@@ -473,6 +473,9 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
                          not (rc.regular and rm.regular), correction)
 
 
+#: a box change whose domain part (:data:`DOMAIN_SAFETY` times it) is below this fraction of
+#: the target is not measured again on finer grids of the same box (docs/accuracy.md)
+DOMAIN_REUSE_BELOW = 0.1
 #: with an accuracy target the cycles stop when the films change by less than this fraction of it
 FILM_TOL_FRACTION = 0.05
 #: the domain probes' two solves stop when the films change by less than this per cycle: their
@@ -819,6 +822,8 @@ class _SteadyControl:
         # each grid; a point solve that fell back to square cells is another problem)
         self.finals: dict[tuple[float, Any], dict[int, tuple[float, float]]] = {}
         self.last_domain: tuple[float, float] | None = None
+        # per box: (points, change) of a box change measured far below the target
+        self.small_domain: dict[tuple[float, Any], tuple[int, tuple[float, float]]] = {}
 
     def solve(self, at: Resolution) -> Any:
         return self._solve(at.points, at.box, at.tol)
@@ -836,7 +841,19 @@ class _SteadyControl:
     def estimate(self, res: Any, at: Resolution, record: Any) -> tuple[float, float]:
         box, tol = at.box, at.tol
         key = (box, getattr(res, "extra", {}).get("y_ratio"))
-        dom = self.probe(res, box)
+        small = self.small_domain.get(key)
+        if small is not None and self.accuracy is not None and small[0] < at.points:
+            # measured on a coarser grid of this box, far below the target: the finer grid's
+            # probes would cost more than the refinement and change only a negligible part
+            dom = small[1]
+            res.extra["domain_note"] = (f"domain error from the box change measured with the "
+                                        f"{small[0]}-point solve of this box (below "
+                                        f"{DOMAIN_REUSE_BELOW:g} of the target)")
+        else:
+            dom = self.probe(res, box)
+        if (dom is not None and self.accuracy is not None
+                and DOMAIN_SAFETY * max(abs(dom[0]), abs(dom[1])) < DOMAIN_REUSE_BELOW * self.accuracy):
+            self.small_domain.setdefault(key, (at.points, dom))
         if dom is None and self.last_domain is not None:
             # the change measured around a smaller box bounds the one around a wider box
             dom = self.last_domain
