@@ -202,13 +202,11 @@ def test_every_writing_command_keeps_a_hostile_scene_name_inside_out(command, tm
 
 
 @pytest.mark.solver
-def test_a_new_result_leaves_no_figure_of_the_previous_run_beside_it(tmp_path):
+def test_a_new_result_leaves_no_figure_of_the_previous_run_beside_it(tmp_path, capsys):
     """``ehl solve --out o`` with plots, then again with ``--no-plots``: the earlier figures
-    of that result are gone (two processes, as a user runs them); files the runs did not
-    write stay, even when their names start with the result's."""
-    import subprocess
-    import sys
-
+    of that result are gone (two runs, as a user runs them; what the first run wrote is known
+    to the second only through the folder); files the runs did not write stay, even when their
+    names start with the result's."""
     out = tmp_path / "o"
     out.mkdir()
     other = out / "point_M20_L10_th1_tehl.h5"
@@ -216,14 +214,12 @@ def test_a_new_result_leaves_no_figure_of_the_previous_run_beside_it(tmp_path):
     keep = [out / "point_M20_L10_th1_tehl_maps.png", out / "notes.png"]
     for p in keep:
         p.write_bytes(b"png")
-    cmd = [sys.executable, "-m", "ehl_multigrid", "solve", "--contact", "point", "--M", "20",
-           "--L", "10", "--points", "65", "--accuracy", "none", "--out", str(out)]
-    first = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
-    assert first.returncode == 0, first.stderr
+    argv = ["solve", "--contact", "point", "--M", "20", "--L", "10", "--points", "65", "--accuracy", "none",
+            "--out", str(out)]
+    assert main(argv) == 0, capsys.readouterr().err
     figures = sorted(p.name for p in out.glob("point_M20_L10_th1_*.png") if "tehl" not in p.name)
     assert figures  # the first run wrote its figures
-    second = subprocess.run(cmd + ["--no-plots"], capture_output=True, text=True, timeout=300)
-    assert second.returncode == 0, second.stderr
+    assert main([*argv, "--no-plots"]) == 0, capsys.readouterr().err
     assert not [p.name for p in out.glob("point_M20_L10_th1_*.png") if "tehl" not in p.name]
     assert all(p.exists() for p in keep) and (out / "point_M20_L10_th1.h5").exists()
 

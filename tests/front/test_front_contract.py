@@ -27,6 +27,10 @@ from ehl_multigrid.solution import (
 
 ACC = 0.005
 
+# the tests read the module's solves (one per physics, the starved one about 3 s): one worker
+# builds each of them once
+pytestmark = pytest.mark.xdist_group("front_contract_physics")
+
 
 def same(a, b) -> bool:
     """Equal, or both NaN (an estimate that was not measured)."""

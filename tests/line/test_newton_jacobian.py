@@ -42,18 +42,18 @@ def test_newton_jacobian_matches_finite_differences(M, L, elastic, order):
     assert np.abs(J - fd).max() < 1e-6 * scale
 
 
-@pytest.mark.solver
 def test_a_start_from_another_box_solution_gives_the_same_film_in_fewer_newton_steps():
     import dataclasses
 
     from ehl_multigrid.line.solver import solve_line_problem
 
-    pb = LineProblem.from_moes(1000.0, 10.0)
-    opts = LineOptions(points=2049)
+    # (100, 10): the dense Newton start on 257 points (129 hold no film), as (1000, 10) on 2049
+    pb = LineProblem.from_moes(100.0, 10.0)
+    opts = LineOptions(points=513)
     sol = solve_line_problem(pb, opts)
     wide = dataclasses.replace(pb, xmin=pb.xmin - (pb.xmax - pb.xmin))
-    cold = solve_line_problem(wide, opts, points=4097)
-    warm = solve_line_problem(wide, opts, points=4097, guess=(sol.X, sol.P, sol.H0))
+    cold = solve_line_problem(wide, opts, points=1025)
+    warm = solve_line_problem(wide, opts, points=1025, guess=(sol.X, sol.P, sol.H0))
     assert cold.success and warm.success
     assert warm.scalars["Hc_venner"] == pytest.approx(cold.scalars["Hc_venner"], rel=1e-6)
     assert warm.scalars["Hm_venner"] == pytest.approx(cold.scalars["Hm_venner"], rel=1e-6)
@@ -74,17 +74,16 @@ def test_serial_blas_restores_the_callers_thread_count():
     assert blas_threads() == before
 
 
-@pytest.mark.solver
 def test_a_guess_replaces_a_start_grid_too_coarse_for_the_dense_newton(monkeypatch):
-    # M = 1000 needs a 1025-point start grid; with the dense start capped at 513 points the
+    # M = 500 needs a 513-point start grid; with the dense start capped at 257 points the
     # given solution starts the cycles on the finest grid and they reach the same films
     from ehl_multigrid.line import solver as ls
 
-    pb = LineProblem.from_moes(1000.0, 10.0)
-    tight = dict(points=4097, film_tol=1e-7, tol_load=1e-9, max_cycles=60, raise_on_failure=False)
+    pb = LineProblem.from_moes(500.0, 10.0)
+    tight = dict(points=2049, film_tol=1e-7, tol_load=1e-9, max_cycles=60, raise_on_failure=False)
     ref = ls.solve_line_problem(pb, LineOptions(), **tight)
-    coarse = ls.solve_line_problem(pb, LineOptions(points=2049))
-    monkeypatch.setattr(ls, "MAX_START_POINTS", 513)
+    coarse = ls.solve_line_problem(pb, LineOptions(points=1025))
+    monkeypatch.setattr(ls, "MAX_START_POINTS", 257)
     with pytest.raises(Exception, match="not positive"):
         ls.solve_line_problem(pb, LineOptions(), **{**tight, "raise_on_failure": True})
     warm = ls.solve_line_problem(pb, LineOptions(), guess=(coarse.X, coarse.P, coarse.H0), **tight)

@@ -3,12 +3,11 @@ transient solver through the ``ehl.height_maps`` entry point (formats, units, le
 filters, the rolling axis), and a short transient run of a synthetic surface from a scene."""
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
+from ehl_multigrid.app.cli import main
 from ehl_multigrid.line.problem import LineProblem
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.scene import Scene, load_scene
@@ -99,7 +98,7 @@ def test_the_scene_keys_of_the_solver_stay_its_own(tmp_path, scene_with_feature)
 
 
 @pytest.mark.solver
-def test_a_synthetic_surface_passes_through_a_line_contact_from_a_scene_file(tmp_path):
+def test_a_synthetic_surface_passes_through_a_line_contact_from_a_scene_file(tmp_path, monkeypatch, capsys):
     """``ehl transient`` on a scene whose [feature] is a synthetic height map written as text with
     a unit header (nanometres, 1.5 nm Rq under a 6 nm film): it runs, and the central film
     moves with the surface."""
@@ -110,9 +109,10 @@ def test_a_synthetic_surface_passes_through_a_line_contact_from_a_scene_file(tmp
     d["feature"] = {"kind": "map", "file": str(f), "units": "nm", "row": 3, "x0": -1.0}
     path = tmp_path / "rough.toml"
     path.write_text(Scene.from_dict(d).to_toml())
-    out = subprocess.run([sys.executable, "-m", "ehl_multigrid", "transient", str(path), "--points",
-                          "129", "--steps", "60", "--json", "--out", str(tmp_path / "o"), "--no-plots"],
-                         capture_output=True, text=True, cwd=tmp_path, timeout=300)
-    assert out.returncode == 0, out.stderr
-    payload = json.loads(out.stdout[out.stdout.index("{"):])
+    monkeypatch.chdir(tmp_path)
+    rc = main(["transient", str(path), "--points", "129", "--steps", "60", "--json", "--out", str(tmp_path / "o"),
+               "--no-plots"])
+    out = capsys.readouterr()
+    assert rc == 0, out.err
+    payload = json.loads(out.out[out.out.index("{"):])
     assert payload["converged"] and payload["hc_max"] > 1.005 * payload["hc_min"]
