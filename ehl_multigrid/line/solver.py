@@ -617,10 +617,28 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     from .solution import finish_line_result
 
     opts = LineOptions.build(options, **kw)
-    solver = line_solver(problem, opts)
-    solver.hierarchy.guess = guess
-    solver.hierarchy.start_on_guess = from_guess
-    res = solver.solve(callback=callback)
+
+    def attempt(o: LineOptions) -> tuple[MultilevelSolver, EHLResult]:
+        s = line_solver(problem, o)
+        s.hierarchy.guess = guess
+        s.hierarchy.start_on_guess = from_guess
+        return s, s.solve(callback=callback)
+
+    solver, res = attempt(opts)
+    levels = len(solver.hierarchy.levels)
+    while (opts.retry_finer_start and opts.adapt and opts.levels is None and not from_guess
+           and res.status_name == "diverged" and res.history and levels > 2
+           and res.history[-1].level < levels - 1):
+        # a coarse grid whose correction cannot carry this film ((300, 10) on 257 -> 513 points):
+        # FMG from a start grid twice as fine
+        levels -= 1
+        solver.hierarchy.solver = None  # frees the failed attempt's grids
+        first, (solver, res) = res, attempt(dataclasses.replace(opts, levels=levels))
+        res.work_units += first.work_units
+        res.wall_s += first.wall_s
+        res.actions.append(f"diverged on grid {first.history[-1].level} of {levels + 1}; solved "
+                           f"again on {levels} grids (coarsest twice as fine; retry_finer_start): "
+                           f"{res.status_name}")
     out = finish_line_result(res, solver, scene)
     solver.hierarchy.solver = None  # break the solver <-> hierarchy cycle (frees the grids)
     return out

@@ -186,7 +186,10 @@ class LineOptions(MultigridOptions):
     ``local_newton`` -- grids of at least this many points finish each post-relaxation (and,
     where ``alpha_bar > line.solver.LOCAL_NEWTON_PRE_ALPHA``, each pre-relaxation) with a
     windowed Newton solve where the residual concentrates on a few points (None: never; the
-    steady solver only, see ``line.solver.LineHierarchy.relax``).
+    steady solver only, see ``line.solver.LineHierarchy.relax``); ``retry_finer_start`` -- a
+    solve whose FMG diverges below its finest grid is solved again with the coarsest grid
+    twice as fine (one level fewer), while at least two levels remain (``adapt`` and the
+    automatic levels only).
     """
 
     points: int = 1025
@@ -208,6 +211,7 @@ class LineOptions(MultigridOptions):
     fmg_start_points: int | None = None
     fmg_match_film: bool = True
     local_newton: int | None = 1025
+    retry_finer_start: bool = True
 
     ALIASES: ClassVar[dict[str, str]] = {**MultigridOptions.ALIASES, "threshold_h": "switch_h"}
 
