@@ -235,6 +235,7 @@ def line_reference():
 
 
 @pytest.mark.parametrize("points", [513, 1025, 2049])
+@pytest.mark.xdist_group("accuracy_line_reference")
 def test_line_estimate_bounds_the_true_error_without_being_wildly_pessimistic(line_reference, points):
     sol = solve_line(20.0, 10.0, points=points)
     Hc_ref, Hm_ref = line_reference
@@ -244,6 +245,7 @@ def test_line_estimate_bounds_the_true_error_without_being_wildly_pessimistic(li
     assert true_m <= sol.Hm_error <= 10.0 * true_m
 
 
+@pytest.mark.xdist_group("accuracy_line_reference")
 def test_line_accuracy_target_is_met_against_the_independent_reference(line_reference):
     sol = solve_line(20.0, 10.0, accuracy=0.002)
     assert sol.success and sol.status_name == "converged"
@@ -751,6 +753,7 @@ def test_a_box_corrected_film_is_honest_against_wider_boxes():
 
 
 @pytest.mark.solver
+@pytest.mark.xdist_group("accuracy_line_reference")
 def test_line_target_missed_only_by_the_fixed_domain_factor_is_met_by_the_measured_decay(line_reference):
     fixed = solve_line(20.0, 10.0, points=2049)
     b = fixed.error.budget

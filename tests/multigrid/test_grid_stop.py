@@ -24,6 +24,7 @@ def line_pair():
     return solve_line(500.0, 0.0, **kw), solve_line(500.0, 0.0, grid_stop=None, **kw)
 
 
+@pytest.mark.xdist_group("grid_stop_line_pair")
 def test_early_stop_of_a_v_cycle_solve_is_confirmed_by_a_w_cycle(line_pair):
     seen = []
     sol = solve_line(500.0, 0.0, points=4097, estimate=False, local_newton=None, callback=seen.append)
@@ -35,6 +36,7 @@ def test_early_stop_of_a_v_cycle_solve_is_confirmed_by_a_w_cycle(line_pair):
     assert sol.cycles == line_pair[0].cycles + 1
 
 
+@pytest.mark.xdist_group("grid_stop_line_pair")
 def test_grid_rule_stops_before_the_residual_rule(line_pair):
     grid, residual = line_pair
     assert grid.success and residual.success
@@ -47,6 +49,7 @@ def test_grid_rule_stops_before_the_residual_rule(line_pair):
     assert abs(grid.load_error_history[-1]) < grid.tolerances["load"]
 
 
+@pytest.mark.xdist_group("grid_stop_line_pair")
 def test_grid_rule_films_lie_within_their_stated_iteration_error(line_pair):
     grid, residual = line_pair
     est = estimate_error(grid)
@@ -59,6 +62,7 @@ def test_grid_rule_films_lie_within_their_stated_iteration_error(line_pair):
         assert stated <= min(grid.options.grid_stop * max(est.budget["grid"].values()), GRID_STOP_CAP) + 1e-15
 
 
+@pytest.mark.xdist_group("grid_stop_line_pair")
 def test_grid_rule_off_keeps_the_residual_tolerance(line_pair):
     _, residual = line_pair
     assert residual.residual_history[-1] < residual.tolerances["residual"]

@@ -58,16 +58,19 @@ def imported():
     return json.loads(run.stdout.strip().splitlines()[-1])
 
 
+@pytest.mark.xdist_group("import_side_effects_imported")
 def test_the_probe_imports_this_checkout(imported):
     for f in imported["packages"]["files"]:
         assert Path(f).resolve().is_relative_to(ROOT), f
 
 
+@pytest.mark.xdist_group("import_side_effects_imported")
 def test_importing_the_packages_leaves_the_environment_unchanged(imported):
     for phase in ("packages", "modules"):
         assert imported[phase]["set"] == {} and imported[phase]["removed"] == [], phase
 
 
+@pytest.mark.xdist_group("import_side_effects_imported")
 def test_importing_the_packages_installs_no_import_hook(imported):
     assert imported["packages"]["finders"] == []
     # every module: none of ours (a third-party library they load may bring its own: six's)

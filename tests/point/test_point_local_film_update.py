@@ -41,24 +41,50 @@ def test_the_local_update_mirrors_rows_at_the_symmetry_line():
     assert np.allclose(H, expect, rtol=1e-12, atol=1e-15)
 
 
+def _count_local_updates(monkeypatch):
+    """Count the calls of the local refresh (``numerics.local_film_update``)."""
+    calls = []
+    real = nm.local_film_update
+
+    def counted(*args):
+        calls.append(1)
+        return real(*args)
+
+    monkeypatch.setattr(nm, "local_film_update", counted)
+    return calls
+
+
+#: 257 points alternating on every grid: the finest grid (LOCAL_UPDATE_FROM) refreshes locally,
+#: as 513 points do with the default alternation on the fine grids, at a third of the cost
+CHEAP = dict(points=257, half=True, alternating=True)
+
+
 @pytest.mark.solver
 def test_a_solve_with_the_local_refresh_reaches_the_same_films(monkeypatch):
-    kw = dict(points=513, half=True, estimate=False, tol=1e-7, max_cycles=40)
+    kw = dict(CHEAP, estimate=False, tol=1e-7, max_cycles=40)
+    calls = _count_local_updates(monkeypatch)
     local = solve_point(20.0, 10.0, **kw)
+    assert calls  # the path under test was taken
+    calls.clear()
     monkeypatch.setattr(fas.PointHierarchy, "local_update", False)
     full = solve_point(20.0, 10.0, **kw)
+    assert not calls
     assert local.success and full.success
     assert abs(local.Hc / full.Hc - 1.0) < 1e-6 and abs(local.Hm / full.Hm - 1.0) < 1e-6
 
 
 @pytest.mark.solver
-def test_whole_refresh_option_gives_the_same_discrete_film():
+def test_whole_refresh_option_gives_the_same_discrete_film(monkeypatch):
     """``local_film_update=False`` refreshes the film between the X and Y halves by a whole
     deformation evaluation: another iteration of the same discrete problem."""
 
-    kw = dict(points=513, half=True, threads=1, accuracy=None, tol=1e-6, tol_load=1e-7, grid_stop=None)
+    kw = dict(CHEAP, threads=1, accuracy=None, tol=1e-6, tol_load=1e-7, grid_stop=None)
+    calls = _count_local_updates(monkeypatch)
     local = solve_point(20.0, 10.0, **kw)
+    assert calls
+    calls.clear()
     whole = solve_point(20.0, 10.0, local_film_update=False, **kw)
+    assert not calls  # whole deformations between the halves
     assert local.success and whole.success
     for f in ("Hc_venner", "Hm_venner"):
         assert whole.scalars[f] == pytest.approx(local.scalars[f], rel=2e-5)
