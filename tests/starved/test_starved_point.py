@@ -92,20 +92,22 @@ def test_bad_supply_is_a_clear_error(problem, hoil):
         solve_starved_point(problem, hoil, **KW)
 
 
-@pytest.mark.solver
 def test_point_scene_supply_in_metres_gives_films_in_metres():
     from ehl_multigrid.model.scene import load_scene
     from ehl_multigrid.point.problem import problem_from_scene
     from ehl_multigrid.starved import solve_starved_point_scene
 
-    scene = load_scene("ehl_multigrid/scenes/chapter6_starved_0.5GPa.toml")  # flooded hc ~ 30 nm
+    scene = load_scene("ehl_multigrid/scenes/chapter6_starved_0.5GPa.toml")
+    # an eighth of the load (pmax 0.25 GPa, M = 22; flooded hc ~ 34 nm): 65^2 converges (at
+    # 0.5 GPa, flooded hc ~ 30 nm, M = 179 needs 129^2)
+    scene = scene.with_operating(pmax=2.5e8)
     pb = problem_from_scene(scene)
-    sol = solve_starved_point_scene(scene, hoil=5e-9, points=129, raise_on_failure=False)
+    sol = solve_starved_point_scene(scene, hoil=5e-9, points=65, raise_on_failure=False)
     sc = sol.scalars
     assert sc["hoil_venner"] == pytest.approx(5e-9 * pb.Rx / pb.a**2, rel=1e-12)
     assert sc["hc"] == pytest.approx(sc["Hc_venner"] * pb.a**2 / pb.Rx, rel=1e-12)
     assert sc["flooded_status"] == "converged"
-    assert 0.1 < sc["Hc_ratio"] < 0.2  # a 5 nm layer against a flooded film of about 30 nm
+    assert 0.1 < sc["Hc_ratio"] < 0.2  # a 5 nm layer against a flooded film of about 34 nm
     assert sc["mass_balance_error"] < 1e-5
     with pytest.raises(InputError, match="supply.hoil"):
         solve_starved_point_scene(scene, hoil=-1e-9, points=129)

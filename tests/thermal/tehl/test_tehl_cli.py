@@ -140,7 +140,8 @@ def test_a_point_thermal_solve_whose_error_cannot_be_estimated_is_not_called_con
         return solve(scene, slip, options, **kw)
 
     monkeypatch.setattr(point, "solve_tehl_point", failing_below_129)
-    base = ["solve", "default", "--thermal", "--slip", "0.5", "--points", "129", "--nz", "10",
+    # S = 0.1 and nz = 8 (the fewest the estimate accepts): fewer thermal iterations than S = 0.5
+    base = ["solve", "default", "--thermal", "--slip", "0.1", "--points", "129", "--nz", "8",
             "--json", "--no-plots", "--out", str(tmp_path)]
     rc = main(base)
     out = json.loads(capsys.readouterr().out)
