@@ -3,7 +3,8 @@ Dowson-Higginson, residual stop, after a 129^2 warm-up (numba compilation). Prin
 (wall and CPU time, work units, cycles, peak RSS, Hc, the policy's actions).
 
 Usage: ``python validation/bench/big_grid.py POINTS half|full`` (the thread count is numba's:
-``NUMBA_NUM_THREADS``). The 2026-11-26 run is ``build/validation/bench/session4_4097.json``.
+``NUMBA_NUM_THREADS``). To keep the line, redirect it to the study's folder, e.g.
+``python validation/bench/big_grid.py 4097 half > build/validation/bench/big_grid_4097.json``.
 """
 
 import json

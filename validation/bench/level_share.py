@@ -14,7 +14,7 @@ threads (1.9: what a kernel with nothing serial gains on this machine, ``thread_
 and the rest as on one thread, the solve would gain ``1 / (s + (1 - s) / ceiling)``, where s
 is the serial share of the one-thread time (those grids plus the driver).
 
-    python validation/bench/level_share.py --points 513 1025 --rounds 3 --label session19
+    python validation/bench/level_share.py --points 513 1025 --rounds 3 [--label LABEL]
 
 writes ``build/validation/bench/level_share_<label>.json`` and ``.md``.
 """

@@ -6,12 +6,13 @@ thread's stack at each new peak, so the peak is attributed to the line of code t
 allocates lazily and glibc keeps). Circular (20, 10), Roelands + Dowson-Higginson, residual stop,
 after a 129^2 warm-up.
 
-    NUMBA_NUM_THREADS=1 python validation/bench/peak_memory.py 2049 full [--label session14]
+    NUMBA_NUM_THREADS=1 python validation/bench/peak_memory.py 2049 full [--label LABEL]
 
 appends one record (commit, points, domain, baseline and peak MB, the stack at the peak, work
 units) to ``build/validation/bench/peak_memory_<label>.json``; a record of another commit under the same label is
-dropped (a label holds the runs of one code version). Session 14 (commit 365a12c): 2049^2 full 833 -> 727 MB, half
-636 -> 484 MB, 4097^2 half 1308 MB (validation/bench/REPORT.md).
+dropped (a label holds the runs of one code version). The measured peaks (per-grid against
+shared arrays: 2049^2 full 833 -> 727 MB, half 636 -> 484 MB; 4097^2 half 1308 MB) are in
+validation/bench/REPORT.md, section "Memory".
 """
 
 from __future__ import annotations

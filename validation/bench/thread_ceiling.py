@@ -13,7 +13,7 @@ Each kernel runs on one and on two threads (``numba.set_num_threads``) alternate
 ``--repeat`` runs each. The load average before and after is recorded: on a busy machine the
 gains mean nothing.
 
-    python validation/bench/thread_ceiling.py --label session18
+    python validation/bench/thread_ceiling.py --label LABEL
 
 writes ``build/validation/bench/thread_ceiling_<label>.json`` and ``.md``.
 """

@@ -1,4 +1,4 @@
-"""The fit map's 15 failing line cases (build/validation/extremes/fit_map_0.01_line2026.json,
+"""The fit map's 15 failing line cases (build/validation/extremes/fit_map_0.01_line.json,
 accuracy 0.01) re-run with ``solve_line(M, L, accuracy=0.01)`` on the current code.
 Writes ``build/validation/line_fine/fitmap_failures.json`` (status, points, Hc, Hm, estimated errors, the map's
 status before)."""
@@ -17,8 +17,8 @@ from ehl_multigrid.line import solve_line
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _paths import BUILD, out_dir, require  # noqa: E402
 
-MAP = BUILD / "extremes" / "fit_map_0.01_line2026.json"
-MAP_COMMAND = "python validation/extremes/accuracy_map.py --map fits --contact line --accuracy 0.01 --tag line2026"
+MAP = BUILD / "extremes" / "fit_map_0.01_line.json"
+MAP_COMMAND = "python validation/extremes/accuracy_map.py --map fits --contact line --accuracy 0.01 --tag line"
 
 
 def main() -> None:

@@ -1,8 +1,8 @@
 """Is the grid floor of contacts long in the rolling direction still needed on stretched cells?
 
 :func:`~ehl_multigrid.point.problem.min_points` multiplies the floor (129 / 257 / 513 points by
-M) by ``2^ceil(log2(0.75 a/b))`` for b/a < 0.75, measured when the cells were square (b then had
-b/a times the cells of a). Since session 11 the cells stretch with the ellipse, so b has as many
+M) by ``2^ceil(log2(0.75 a/b))`` for b/a < 0.75, a rule measured on square cells (on which b has
+b/a times the cells of a). The point solver's cells stretch with the ellipse, so b has as many
 cells as a on every grid. This study solves Roelands + Dowson-Higginson contacts at theta 4 and
 10 (b/a 0.40 and 0.22) plainly (``estimate=False``, default box and cells) on the floor without
 the multiplier, twice that, and the floor with it, and records status, films, work units and

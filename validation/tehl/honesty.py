@@ -198,7 +198,7 @@ def chapter5(default_tol: bool = False) -> None:
     """The estimate on the chapter 5 point condition (series D, disc 3, M = 1595) at 513 points
     with the loosened outer tolerances that converge there (study.py part chapter5): what it
     can say about the accuracy of that answer. ``default_tol``: the default outer tolerances
-    instead (they converge since the point core's fine-grid alternation, 2026-11-26), at
+    instead (they converge with the point core's fine-grid alternation), at
     S = 0.05 and 0.5, written to ``honesty_chapter5_default.json``."""
     sc = load_scene("series_D_disc3_1.93GPa")
     tol = {} if default_tol else {"tol_H": 5e-3, "tol_P": 5e-4, "tol_T": 0.1}
