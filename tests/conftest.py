@@ -6,6 +6,9 @@ import pytest
 # Tests never open windows; numba uses its on-disk cache (cache=True kernels).
 matplotlib.use("Agg")
 os.environ.setdefault("MPLBACKEND", "Agg")
+# Two xdist workers share two cores: waiting OpenMP threads sleep instead of spinning, as the
+# `ehl` command sets them (multigrid.threads.passive_openmp_wait); before numba is imported
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 #: per-test timeout [s] of a `slow` study without its own @pytest.mark.timeout (the default run's
 #: is `timeout` in pyproject's [tool.pytest.ini_options])
