@@ -71,11 +71,11 @@ def _start_on_129(*args, **kw):
     return SimpleNamespace(points=129)
 
 
-def _fail_first_257(monkeypatch):
+def _fail_first_257(monkeypatch, probing):
     """Make the sequence's first 257-point solve (not a domain probe's) fail as diverged;
     returns the list of calls (points, xmin, from a guess, inside a probe)."""
-    real, real_probe = solve_mod.solve_fas, solve_mod.point_domain_change
-    calls, probing = [], [False]
+    real = solve_mod.solve_fas
+    calls = []
 
     def solve_fas(problem, options=None, callback=None, scene=None, guess=None, **kw):
         res = real(problem, options, callback=callback, scene=scene, guess=guess, **kw)
@@ -84,15 +84,7 @@ def _fail_first_257(monkeypatch):
             res.set_status(3, "diverged on grid 5 (made to fail by the test)")
         return res
 
-    def probe(*args, **kw):
-        probing[0] = True
-        try:
-            return real_probe(*args, **kw)
-        finally:
-            probing[0] = False
-
     monkeypatch.setattr(solve_mod, "solve_fas", solve_fas)
-    monkeypatch.setattr(solve_mod, "point_domain_change", probe)
     monkeypatch.setattr(solve_mod, "solver_grid", _start_on_129)
     # the sequence starts on the default box (no start-box choice): the refinement follows a
     # converged solve, the neighbour of the retry
@@ -100,10 +92,10 @@ def _fail_first_257(monkeypatch):
     return calls
 
 
-def test_failed_refinement_is_solved_again_from_the_converged_neighbour(monkeypatch):
+def test_failed_refinement_is_solved_again_from_the_converged_neighbour(monkeypatch, probing):
     """The refinement of the sequence is made to fail from its FMG start: the sequence solves
     it again from the 129-point solution and goes on, instead of stopping there."""
-    calls = _fail_first_257(monkeypatch)
+    calls = _fail_first_257(monkeypatch, probing)
     res = solve_point(20.0, 10.0, accuracy=0.003, max_points=257, half=True, raise_on_failure=False)
     i = calls.index((257, -9.0, False, False))
     assert calls[i + 1] == (257, -9.0, True, False)  # the same grid and box, from the neighbour
@@ -121,8 +113,8 @@ def test_failed_refinement_is_solved_again_from_the_converged_neighbour(monkeypa
         assert _rel(res.scalars[key], fmg.scalars[key]) <= max(res.error.budget["algebraic"][part], 1e-6)
 
 
-def test_without_the_neighbour_retry_the_sequence_falls_back_to_the_smaller_step(monkeypatch):
-    calls = _fail_first_257(monkeypatch)
+def test_without_the_neighbour_retry_the_sequence_falls_back_to_the_smaller_step(monkeypatch, probing):
+    calls = _fail_first_257(monkeypatch, probing)
     res = solve_point(20.0, 10.0, accuracy=0.003, max_points=257, half=True, raise_on_failure=False,
                       retry_from_neighbour=False)
     assert (257, -9.0, True, False) not in calls

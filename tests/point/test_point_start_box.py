@@ -43,9 +43,9 @@ def test_a_default_box_too_small_for_the_target_is_skipped_with_the_same_answer(
         assert getattr(res.error, key) == pytest.approx(getattr(plain.error, key), rel=1e-6)
 
 
-def test_a_failed_start_on_twice_the_box_falls_back_to_the_default_box(monkeypatch):
-    real, real_probe = solve_mod.solve_fas, solve_mod.point_domain_change
-    failed, probing = [], [False]
+def test_a_failed_start_on_twice_the_box_falls_back_to_the_default_box(monkeypatch, probing):
+    real = solve_mod.solve_fas
+    failed = []
 
     def solve_fas(problem, options=None, callback=None, scene=None, guess=None, **kw):
         res = real(problem, options, callback=callback, scene=scene, guess=guess, **kw)
@@ -55,15 +55,7 @@ def test_a_failed_start_on_twice_the_box_falls_back_to_the_default_box(monkeypat
             res.set_status(3, "diverged on grid 4 (made to fail by the test)")
         return res
 
-    def probe(*args, **kw):
-        probing[0] = True
-        try:
-            return real_probe(*args, **kw)
-        finally:
-            probing[0] = False
-
     monkeypatch.setattr(solve_mod, "solve_fas", solve_fas)
-    monkeypatch.setattr(solve_mod, "point_domain_change", probe)
     res = solve_point(20.0, 10.0, accuracy=TARGET, half=True, raise_on_failure=False)
     assert failed  # the wide start was tried
     steps = _solves(res)
