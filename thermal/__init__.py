@@ -9,8 +9,6 @@ lubrication layer), :func:`film_frictions` (many such points at once) and
 a thread pool).
 """
 
-import warnings
-
 from ehl_multigrid.lazy import lazy_exports
 
 #: public name -> submodule; loaded on first use so that the command line (which registers the
@@ -24,8 +22,6 @@ _LAZY = {
     "TractionPoint": "traction", "solve_traction": "traction", "traction_curve": "traction",
     "traction_result": "traction",
 }
-#: names of the previous release (thermal.solve_line, thermal.LineSolution)
-_RENAMED = {"solve_line": "solve_thermal_line", "LineSolution": "ThermalLineSolution"}
 
 __all__ = list(_LAZY)
 
@@ -34,9 +30,4 @@ _load, __dir__ = lazy_exports(__name__, _LAZY, globals())
 
 
 def __getattr__(name: str):
-    if name in _RENAMED:
-        new = _RENAMED[name]
-        warnings.warn(f"thermal.{name} is deprecated: use thermal.{new} (the old name will be "
-                      "removed in the next release)", DeprecationWarning, stacklevel=2)
-        return _load(new)
     return _load(name)

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -331,16 +330,3 @@ def heat_budget(
         "enthalpy_flux": enth, "balance": bal,
     }
 
-
-#: names of the previous release -> current names (``thermal.line.solve_line`` clashed with the
-#: EHL solver ``ehl_multigrid.line.solve_line``)
-_RENAMED = {"solve_line": "solve_thermal_line", "LineSolution": "ThermalLineSolution"}
-
-
-def __getattr__(name: str):
-    if name in _RENAMED:
-        new = _RENAMED[name]
-        warnings.warn(f"thermal.line.{name} is deprecated: use {new} (the old name will be removed "
-                      "in the next release)", DeprecationWarning, stacklevel=2)
-        return globals()[new]
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -13,8 +13,6 @@ The cycles, FMG and robustness policy are the shared ones of :mod:`ehl_multigrid
 this package holds the line discretisation (:class:`LineHierarchy`).
 """
 
-import warnings
-
 from ..multigrid.options import LineOptions
 from .deformation import DirectDeformation, FFTDeformation, MLMIDeformation, make_deformation
 from .kernel import log_kernel
@@ -28,25 +26,3 @@ __all__ = [
     "solve_line_problem",
 ]
 
-
-class _DeprecatedLineSolver:
-    """``MultilevelLineSolver(problem, **options).solve()`` of the previous release."""
-
-    def __init__(self, problem: LineProblem, options: LineOptions | None = None, **kw) -> None:
-        self.problem = problem
-        self.options = LineOptions.build(options, **kw)
-
-    def solve(self, callback=None):
-        return solve_line_problem(self.problem, self.options, callback=callback)
-
-
-def __getattr__(name: str):
-    if name == "MultilevelLineSolver":
-        warnings.warn("MultilevelLineSolver is deprecated: use solve_line_problem(problem, options) "
-                      "or line_solver(problem, options)", DeprecationWarning, stacklevel=2)
-        return _DeprecatedLineSolver
-    if name == "LineSolverOptions":
-        warnings.warn("LineSolverOptions is deprecated: use ehl_multigrid.multigrid.LineOptions",
-                      DeprecationWarning, stacklevel=2)
-        return LineOptions
-    raise AttributeError(name)

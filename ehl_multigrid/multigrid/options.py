@@ -6,16 +6,11 @@ constant, tolerances, threads); :class:`LineOptions` and :class:`PointOptions` a
 one discretisation has and carry that contact's measured defaults. Options never change during
 a solve: the adaptive choices of a solve (under-relaxation, cycle type, switch) live in its
 :class:`~ehl_multigrid.multigrid.policy.Settings`.
-
-Old option names (``omega_gs``, ``w_gs``, ``thr``, ``threshold``, ``c_h00``, ``h0_factor``,
-``order`` ...) are accepted by :meth:`MultigridOptions.build` for one release with a
-:class:`DeprecationWarning`.
 """
 
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import asdict, dataclass, fields, replace
 from numbers import Integral
 from typing import Any, ClassVar
@@ -97,12 +92,6 @@ class MultigridOptions:
 
     #: the contact chooses the cycle type when ``cycle`` is None
     CYCLE_OPTIONAL: ClassVar[bool] = False
-    #: deprecated name -> current name
-    ALIASES: ClassVar[dict[str, str]] = {
-        "omega_gs": "omega", "w_gs": "omega", "omega_jac": "omega_jd", "w_jd": "omega_jd",
-        "threshold": "switch", "thr": "switch", "h0_factor": "h00_gain", "c_h00": "h00_gain",
-        "order": "wedge_order",
-    }
 
     def __post_init__(self) -> None:
         require_range("points", self.points, 9, 2**20 + 1, "grid points")
@@ -141,16 +130,11 @@ class MultigridOptions:
 
     @classmethod
     def build(cls, options: MultigridOptions | None = None, **kw: Any):
-        """Options of this type from ``options`` with keyword overrides; deprecated names
-        are translated with a warning, unknown names raise :class:`InputError`."""
+        """Options of this type from ``options`` with keyword overrides; unknown names raise
+        :class:`InputError`."""
         names = {f.name for f in fields(cls)}
         out: dict[str, Any] = {}
         for key, value in kw.items():
-            new = cls.ALIASES.get(key)
-            if new is not None and key not in names:
-                warnings.warn(f"option {key!r} is deprecated: use {new!r}", DeprecationWarning,
-                              stacklevel=3)
-                key = new
             if key not in names:
                 raise InputError(f"unknown solver option {key!r}; known: {sorted(names)}")
             out[key] = value
@@ -212,8 +196,6 @@ class LineOptions(MultigridOptions):
     fmg_match_film: bool = True
     local_newton: int | None = 1025
     retry_finer_start: bool = True
-
-    ALIASES: ClassVar[dict[str, str]] = {**MultigridOptions.ALIASES, "threshold_h": "switch_h"}
 
     def __post_init__(self) -> None:
         super().__post_init__()

@@ -14,8 +14,6 @@ driver over :class:`PointHierarchy`), :func:`solve_newton_amg` (second path),
 :func:`problem_from_moes`, :func:`problem_from_scene`, :func:`build_result`.
 """
 
-import warnings
-
 from ..multigrid.options import PointOptions
 from .fas import PointHierarchy, point_solver
 from .newton import NewtonOptions, solve_newton_amg
@@ -27,16 +25,3 @@ __all__ = ["NewtonOptions", "PointHierarchy", "PointOptions", "PointProblem", "P
            "build_result", "default_domain", "film_metrics", "point_solver", "problem_from_moes",
            "problem_from_scene", "solve_fas", "solve_newton_amg", "solve_point"]
 
-
-def __getattr__(name: str):
-    if name == "SolverOptions":
-        warnings.warn("SolverOptions is deprecated: use ehl_multigrid.multigrid.PointOptions",
-                      DeprecationWarning, stacklevel=2)
-        return PointOptions
-    if name == "FASOutput":
-        warnings.warn("FASOutput is deprecated: every solve returns an EHLResult",
-                      DeprecationWarning, stacklevel=2)
-        from ..multigrid.result import EHLResult
-
-        return EHLResult
-    raise AttributeError(name)

@@ -184,14 +184,16 @@ def test_cli_traction_reads_ehl_result_file(tmp_path, capsys, line_lo):
     assert out["friction_force"][0] == pytest.approx(ref.force, rel=2e-3)
 
 
-def test_renamed_line_solver_old_names_warn_and_give_the_new_objects():
+def test_the_thermal_line_solver_has_only_its_current_names():
+    """The first version was never released: its names (``solve_line``, ``LineSolution``, which
+    clashed with the EHL line solver's) are gone, not deprecated."""
     import thermal
     import thermal.line
 
+    assert thermal.solve_thermal_line is thermal.line.solve_thermal_line
     for mod in (thermal, thermal.line):
-        with pytest.warns(DeprecationWarning, match="solve_thermal_line"):
-            assert mod.solve_line is thermal.line.solve_thermal_line
-        with pytest.warns(DeprecationWarning, match="ThermalLineSolution"):
-            assert mod.LineSolution is thermal.line.ThermalLineSolution
+        for old in ("solve_line", "LineSolution"):
+            with pytest.raises(AttributeError):
+                getattr(mod, old)
     with pytest.raises(AttributeError):
         thermal.line.no_such_name  # noqa: B018

@@ -11,7 +11,7 @@ import argparse
 from common import Store, solve_case
 from tqdm import tqdm
 
-CLASSIC = {"cycle": "V", "thr": 0.3, "w_gs": 0.4, "w_jd": 0.2, "n_coarse": 16, "adapt": False}
+CLASSIC = {"cycle": "V", "switch": 0.3, "omega": 0.4, "omega_jd": 0.2, "n_coarse": 16, "adapt": False}
 
 
 def main() -> None:
