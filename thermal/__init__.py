@@ -26,8 +26,4 @@ _LAZY = {
 __all__ = list(_LAZY)
 
 
-_load, __dir__ = lazy_exports(__name__, _LAZY, globals())
-
-
-def __getattr__(name: str):
-    return _load(name)
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())

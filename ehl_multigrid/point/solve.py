@@ -48,43 +48,19 @@ from .problem import (
 
 SOLVERS = ("fas", "newton")
 #: A solve of a wider contact (b/a >= ALTERNATE_BELOW) that ends so with the default
-#: relaxation is solved again with X and Y lines alternating on every grid. Measured (circular,
-#: Barus + incompressible, L = 20, the fit-check map's row that failed at every M): X lines
-#: alone end at max_cycles for (M, L) = (5, 20) and (100, 20) at 129^2; with the policy's
-#: mid-solve "alternate" step these converge at 129^2 but (5, 20) still diverges and (100, 20)
-#: ends at max_cycles at 257^2; alternating from the start converges both at 257^2 (and
-#: M = 20, 500, 1000 at 129^2 and 257^2).
+#: relaxation is solved again with X and Y lines alternating on every grid (docs/robustness.md,
+#: "Point solver defaults").
 RETRY_ALTERNATING = ("max_cycles", "stalled", "diverged")
-#: Largest grid an accuracy target may refine to. 2049^2 (half domain, as accuracy-driven
-#: solves run) converges since the fine-grid alternation: circular (20, 10) 19 s on two cores,
-#: 720 MB (validation/bench, session4). On the fit-check map at 1 % (validation/extremes,
-#: fit_map_0.01_retry2049) the circular Barus row converges at 2049 points for (M, L) = (100, 0),
-#: (100, 10), (100, 20), (500, 10), (1000, 10), each a grid-budget failure at 1025 (25-50 s each,
-#: one thread, loaded machine).
-#: Raised to 4097 (session 15; validation/accuracy/builtin_scenes.py, one thread, the other
-#: core busy): the tribometer scenes series A at 1 GPa (M 850, L 4.95) and series D at 1.93 GPa
-#: missed the default 0.5 % at 2049 points (Hm 0.75 % and 1.4 %, grid error; 36-44 s) and
-#: converge at 4097 (Hc 0.11 % / 0.19 %, Hm 0.18 % / 0.35 %) in 161-182 s, peak 1.41 GB (the
-#: 4097-point solve 61 s, 28.4 WU). Series C at 1.93 GPa, which needs about 16385 points, now
-#: ends on 4097 with Hc 0.50 %, Hm 2.0 % (2049: 4.7 %, 11 %) in 214 s instead of 51 s.
+#: Largest grid an accuracy target may refine to: the tribometer scenes at 1-1.93 GPa need 4097
+#: points for 0.5 % (docs/robustness.md, "Point solver defaults").
 MAX_ACCURACY_POINTS = 4097
 
-#: Barus solves that diverge at alpha_bar >= this get the reason in their message. Measured
-#: (half domain, fit-check map at 1 %, validation/extremes): the refinements of Barus
-#: (1000, 20, theta 1) (alpha_bar 72.9) to 2049 points and (20, 20, theta 4) (33.0) to 1025
-#: diverged, their Roelands twins converged; traced at (20, 20, 4) on 513 points, the first
-#: blow-up is an X-line change at the outlet (X = 0.56) of a cavitated point whose Y
-#: neighbours carry P = 1.9 and 1.1 (rows alternating between 0 and the film pressure),
-#: 0.0003 -> 13.5 in one sweep. Capping each change (ln viscosity rise <= 3 or 10 per sweep)
-#: stops the NaN but not the oscillation: the iteration then settles on wrong films
-#: (Hc 1.7 or 20 instead of 4.86). Barus up to alpha_bar 57.8 converges on that map.
+#: Barus solves that diverge at alpha_bar >= this get the reason in their message: there the
+#: X-line relaxation oscillates row to row at the outlet (docs/robustness.md).
 BARUS_STEEP = 30.0
 
 #: A failed solve whose iterate's pressure peaks above this many times the Hertzian maximum
-#: says why: a piezoviscous rise that the elastic deformation hardly limits. Measured on
-#: Roelands (1, theta 10): the converged peak grows from P = 0.77 at L = 0 to 6.4 at L = 10
-#: (2.6 GPa); at L = 25 the iterate stalls and diverges with its peak at P = 13-14 (14 GPa,
-#: viscosity 10^47 times the inlet's) on 257 and 513 points.
+#: says why: a piezoviscous rise that the elastic deformation hardly limits (docs/robustness.md).
 PIEZOVISCOUS_PEAK = 3.0
 #: ... and only at loads this light (Moes M), where the deformation is small against the film:
 #: at high M a peak of that size in a failed iterate is the divergence itself (EHL pressure

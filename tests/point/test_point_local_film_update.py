@@ -93,7 +93,7 @@ def test_whole_refresh_option_gives_the_same_discrete_film(monkeypatch):
 @pytest.mark.slow
 def test_a_solve_the_local_refresh_breaks_is_retried_with_whole_refreshes():
     """Circular Barus (500, 20, theta 0.25) at 1025 points with the 1 % target (the fit map's
-    case) diverged in its FMG after the local refresh came in (bisected to commit c64ae80); the
+    case) diverges in its FMG with the local refresh; the
     steady solve's last retry refreshes the film by whole deformations and its iteration
     converges (about 40 s). With the residual rule (accuracy=None) every attempt still diverges."""
 

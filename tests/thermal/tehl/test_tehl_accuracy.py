@@ -18,7 +18,7 @@ from thermal.tehl.point import solve_tehl_point
 #: appendix D ball on flat (T9, 8 m/s, 60 degC) at 5 N: resolved from 65 points
 POINT_LOAD = 5.0
 #: the same at S = 0.5 on 257 points, nz = 20 (one grid finer along X and across the film
-#: than the case below), computed once with this solver (2026-11-23)
+#: than the case below), a stored solve of this solver
 POINT_FINE = {"Hc": 3.924134836115908, "Hm": 2.5763119913152797}
 
 
