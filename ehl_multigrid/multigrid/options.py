@@ -173,7 +173,7 @@ class LineOptions(MultigridOptions):
     steady solver only, see ``line.solver.LineHierarchy.relax``); ``retry_finer_start`` -- a
     solve whose FMG diverges below its finest grid is solved again with the coarsest grid
     twice as fine (one level fewer), while at least two levels remain (``adapt`` and the
-    automatic levels only).
+    automatic levels only; the steady solver, ``line.solver.solve_line_problem``).
     """
 
     points: int = 1025
