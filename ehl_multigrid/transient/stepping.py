@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from ..model.atomic import deferred_signals
 from ..model.errors import ConvergenceError, InputError, Terminated, require_range, signal_cause
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.policy import RobustnessPolicy
@@ -274,11 +275,12 @@ def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, sc
                     f"transient {name} solver: time step {n} (T = {T:.5g}): the film collapsed "
                     f"(min H = {float(H[wet].min()):.3g} where P > 0); the feature cuts through the "
                     f"film, which needs a mixed-lubrication model", None, "a smaller feature amplitude")
-            out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
-            out.series["stalled"].append(0.0 if res.success else 1.0)
-            out.series["substeps"].append(float(solves))
-            out.state = {"step": n, "T": T, "P": nxt["P"], "H0": nxt["H0"], "P_prev": last["P"],
-                         "H0_prev": last["H0"], "q": q, "q_prev": last["q"]}
+            with deferred_signals():  # a stop never records a step without its state
+                out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
+                out.series["stalled"].append(0.0 if res.success else 1.0)
+                out.series["substeps"].append(float(solves))
+                out.state = {"step": n, "T": T, "P": nxt["P"], "H0": nxt["H0"], "P_prev": last["P"],
+                             "H0_prev": last["H0"], "q": q, "q_prev": last["q"]}
             if checkpoint is not None:
                 checkpoint.step(out)
             if callback is not None:

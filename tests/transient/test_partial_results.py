@@ -112,6 +112,27 @@ def test_a_signal_surfacing_from_a_compiled_kernel_stops_the_run_as_a_signal(
     assert "Traceback" not in capsys.readouterr().err
 
 
+def test_a_signal_while_a_step_is_recorded_keeps_the_series_and_the_state_together(
+        dent_scene, tmp_path, monkeypatch):
+    # SIGTERM lands between the step's series entry and its state (the race CI once hit)
+    from ehl_multigrid.transient.result import TransientResult
+    original = TransientResult.record
+
+    def record(self, n, *args, **kwargs):
+        original(self, n, *args, **kwargs)
+        if n == 3:
+            os.kill(os.getpid(), signal.SIGTERM)
+
+    monkeypatch.setattr(TransientResult, "record", record)
+    out = tmp_path / "out"
+    assert main(["transient", dent_scene, "--points", "129", "--steps", "10", "--no-plots",
+                 "--out", str(out)]) == 143
+    f = load_series(out / H5)
+    assert not f["complete"] and "terminated (SIGTERM)" in f["stop_reason"]
+    assert f["state"]["step"] == 3
+    assert {len(v) for v in f["series"].values()} == {4}
+
+
 def test_resume_refuses_a_complete_file_and_other_options(dent_scene, tmp_path, capsys):
     args = ["transient", dent_scene, "--points", "129", "--steps", "2", "--no-plots", "--out", str(tmp_path)]
     assert main([*args, "--resume"]) == 2
