@@ -64,7 +64,7 @@ PHYSICS_GROUP = "ehl.physics"
 PART_NAMES = {"algebraic": "iteration"}
 #: options of a transient run besides the multigrid options of its time steps
 TRANSIENT_RUN_KEYS = ("dt", "steps", "t_end", "scheme", "snapshot_every", "accept_stall", "xmin",
-                      "xmax", "time_error", "checkpoint", "resume")
+                      "xmax", "time_error", "checkpoint", "resume", "cavitation")
 #: options of a scene's steady or starved solve that choose the model rather than the numerics
 #: (the scene's ``[solver.ehl]`` table applies below them; a MoesProblem carries its own)
 MODEL_KEYS = ("viscosity", "density")
@@ -405,6 +405,12 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
     else:
         from .point.problem import problem_from_scene, resolve_domain
         from .transient.point_solve import solve_transient_point as solver
+
+        cav = runkw.pop("cavitation", "projection")
+        if cav != "projection":
+            raise InputError(f"cavitation = {cav!r}: the transient point solver has the projection "
+                             f"P >= 0 only (allowed: 'projection'); mass-conserving cavitation is "
+                             f"implemented for line contacts")
         from .transient.scene_feature import point_feature_from_scene_table
 
         pb = problem_from_scene(scene)

@@ -162,16 +162,19 @@ class LineHierarchy:
     #: cycles can leave several times the stated error: docs/robustness.md)
     film_stop_films = 3
 
+    #: the grid type (subclasses add unknowns or terms to a grid)
+    level_type = LineLevel
+
     def __init__(self, problem: LineProblem, options: LineOptions) -> None:
         self.problem = problem
         self.options = options
         par = problem.rheology()
-        nlev = line_levels(options, problem.M)
+        nlev = self.grid_count()
         n_f = options.points
         self.levels = [
-            LineLevel((n_f - 1) // 2 ** (nlev - 1 - k) + 1, problem.xmin, problem.xmax, par,
-                      problem.lam, problem.elastic, options.deformation, options.wedge_order,
-                      options.mlmi_order, options.mlmi_radius)
+            self.level_type((n_f - 1) // 2 ** (nlev - 1 - k) + 1, problem.xmin, problem.xmax, par,
+                            problem.lam, problem.elastic, options.deformation, options.wedge_order,
+                            options.mlmi_order, options.mlmi_radius)
             for k in range(nlev)
         ]
         self.newton_iterations = 0
@@ -201,6 +204,10 @@ class LineHierarchy:
         self.guess: tuple[np.ndarray, np.ndarray, float] | None = None
         #: start the cycles on the finest grid from ``guess`` instead of FMG
         self.start_on_guess = False
+
+    def grid_count(self) -> int:
+        """Number of grids (:func:`line_levels`)."""
+        return line_levels(self.options, self.problem.M)
 
     # -- observables ----------------------------------------------------------------------
     def work(self, k: int) -> float:

@@ -80,6 +80,11 @@ class StarvedLevel(LineLevel):
         """Mass flux through every face (:func:`face_fluxes`)."""
         return face_fluxes(self.P, st.theta, st.q, st.eps, self.h, self.order, bool(st.theta[0] < 1.0))
 
+    def jacobian(self, st: StarvedState, q0_fixed: bool, band: int) -> tuple[np.ndarray, np.ndarray]:
+        """Band parts ``(AP, AT)`` of the Jacobian of the sweep (:func:`band_jacobian`)."""
+        return band_jacobian(self.P, st.theta, q0_fixed, st.H, st.rho, st.drho, st.eps,
+                             self.kernel, self.h, self.order, self.elastic, band)
+
     def relax(self, switch: float, omega: float, omega_jd: float, band: int = 4,
               st: State | None = None, switch_h: float = 0.0, omega_theta: float = 1.0,
               active_set_steps: int = ACTIVE_SET_STEPS) -> StarvedState:
@@ -93,8 +98,7 @@ class StarvedLevel(LineLevel):
         self.theta[0] = st.theta[0]
         cav = cavitated(self.P, self.theta, st.r, self.frozen, st.H)
         q0_fixed = bool(st.theta[0] < 1.0)
-        AP, AT = band_jacobian(self.P, st.theta, q0_fixed, st.H, st.rho, st.drho, st.eps,
-                               self.kernel, self.h, self.order, self.elastic, band)
+        AP, AT = self.jacobian(st, q0_fixed, band)
         for step in range(active_set_steps):
             ab, rhs, jac = line_system(AP, AT, st.r, self.P, self.theta, cav, self.frozen, st.eps,
                                        self.h, switch, switch_h, band)

@@ -95,36 +95,32 @@ class StarvedLineHierarchy(LineHierarchy):
 
     name = "starved line"
     grid_stop = False  # the mass balance needs the residual, not only the films
+    level_type = StarvedLevel
 
     def __init__(self, problem: LineProblem, options: LineOptions, hoil: float,
                  flooded: EHLResult) -> None:
-        self.problem = problem
-        self.options = options
         self.hoil = hoil
         self.flooded = flooded
-        par = problem.rheology()
-        n_f = options.points
         self.n_start = start_points(problem, options, hoil, flooded)
-        if options.levels is None and self.n_start == n_f:
-            nlev = line_levels(options, problem.M)  # the flooded solver's grids
-        else:
-            nlev = int(options.levels) if options.levels is not None else \
-                int(round(math.log2((n_f - 1) / (self.n_start - 1)))) + 1
-            line_levels(dataclasses.replace(options, levels=nlev), problem.M)  # validates the grid
-        self.levels = [
-            StarvedLevel((n_f - 1) // 2 ** (nlev - 1 - k) + 1, problem.xmin, problem.xmax, par,
-                         problem.lam, problem.elastic, options.deformation, options.wedge_order,
-                         options.mlmi_order, options.mlmi_radius, hoil=hoil)
-            for k in range(nlev)
-        ]
+        super().__init__(problem, options)
         self.flux_flooded = flooded_flux(self.levels[-1], flooded)
         #: a starved inlet lets in exactly Hoil; a supply above what the flooded contact takes
         #: floods it (the excess flows back: the meniscus lies beyond any inlet)
         self.starved_inlet = bool(hoil < self.flux_flooded)
         for lv in self.levels:
+            lv.hoil = hoil
             lv.starved_inlet = self.starved_inlet
-        self.newton_iterations = 0
-        self.solver: MultilevelSolver | None = None
+
+    def grid_count(self) -> int:
+        """The flooded solver's grids, or down to the starved FMG start grid when it differs
+        (:func:`start_points`)."""
+        options, n_f = self.options, self.options.points
+        if options.levels is None and self.n_start == n_f:
+            return line_levels(options, self.problem.M)
+        nlev = int(options.levels) if options.levels is not None else \
+            int(round(math.log2((n_f - 1) / (self.n_start - 1)))) + 1
+        line_levels(dataclasses.replace(options, levels=nlev), self.problem.M)  # validates the grid
+        return nlev
 
     # -- observables ----------------------------------------------------------------------
     def measure(self, k: int) -> Measurement:

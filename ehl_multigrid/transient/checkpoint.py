@@ -141,7 +141,7 @@ def restore(out: Any, saved: dict[str, Any], snapshot_every: int) -> None:
     out.series = {k: [int(x) if k in ("step", "cycles") else float(x) for x in v]
                   for k, v in saved["series"].items()}
     snaps = saved["snapshots"]
-    out.snapshots = {int(n): {k: snaps[k][i] for k in ("P", "H", "rho") if k in snaps}
+    out.snapshots = {int(n): {k: snaps[k][i] for k in ("P", "H", "rho", "theta") if k in snaps}
                      for i, n in enumerate(snaps["step"])}
     last = int(state["step"])
     # the last step is among the snapshots whether or not it is a kept one

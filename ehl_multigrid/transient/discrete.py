@@ -24,6 +24,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..line.discrete import add_wedge_band
+
 
 @njit(cache=True)
 def add_squeeze_band(ab, P, H, rho, drho, r, K, ct, q, jac, frozen, elastic):
@@ -82,3 +84,17 @@ def flux_balance(P, H, rho, eps, h, dq_dt, i0, i1):
         storage += h * dq_dt[i]
     # inflow of rho H u: Couette in minus Poiseuille in (flux = -eps dP/dX + rho H)
     return storage - ((fin_c - fin_p) - (fout_c - fout_p))
+
+
+@njit(cache=True)
+def add_content_squeeze(AP, AT, theta, H, rho, drho, K, h, ct, elastic, band):
+    """Add the squeeze term ``-c_t theta_i (rho H)_i`` of the mass-conserving (Elrod-Adams)
+    time step to the band parts of a sweep's Jacobian (``starved.discrete.band_jacobian``):
+    ``dL_i/dtheta_i -= c_t (rho H)_i`` and, through the film's elastic dependence on ``P``
+    within the band, ``dL_i/dP_j -= c_t theta_i d(rho H)_i/dP_j``."""
+    n = H.shape[0]
+    wq = band + 1
+    for i in range(1, n - 1):
+        AT[i, 0] -= ct * rho[i] * H[i]
+        # the wedge-term helper subtracts c q_i/h: c = c_t h theta_i gives the squeeze term
+        add_wedge_band(AP, i, i, ct * h * theta[i], H, rho, drho, K, h, elastic, wq)

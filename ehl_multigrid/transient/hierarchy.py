@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -84,25 +85,17 @@ class TransientLineLevel(LineLevel):
         return st
 
 
-class TransientLineHierarchy(LineHierarchy):
-    """Grids of one time step, coarsest first (driver protocol). The finest grid holds the
-    start iterate when the driver starts (:meth:`start` returns the finest level: no FMG)."""
+class TimeStepGrids:
+    """What a time step's hierarchy adds to a steady line hierarchy (mixed in before it):
+    the moving geometry and the squeeze term on every grid (:meth:`set_step`), the start on
+    the finest grid (no FMG), the coarsest grid relaxed, no dense-Newton last resort. The
+    grids' levels carry ``R``, ``ct`` and ``hist``."""
 
-    name = "transient line"
     grid_stop = False  # a time step converges on its residual (no FMG grids to estimate from)
-
-    def __init__(self, problem: LineProblem, options: LineOptions,
-                 geometry: Callable[[np.ndarray], np.ndarray]) -> None:
-        super().__init__(problem, options)
-        self.levels = [
-            TransientLineLevel(lv.n, lv.xmin, lv.xmax, lv.par, lv.lam, True, options.deformation,
-                               lv.order, lv.mlmi_order, lv.mlmi_radius)
-            for lv in self.levels
-        ]
-        self.geometry = geometry
+    geometry: Callable[[np.ndarray], np.ndarray]
 
     @property
-    def fine(self) -> TransientLineLevel:
+    def fine(self) -> Any:
         return self.levels[-1]
 
     def set_step(self, shift: float, ct: float, hist: np.ndarray) -> None:
@@ -127,3 +120,16 @@ class TransientLineHierarchy(LineHierarchy):
     def last_resort(self, k: int, solver: MultilevelSolver) -> bool:
         # the dense Newton finish of the steady path has no squeeze term
         return False
+
+
+class TransientLineHierarchy(TimeStepGrids, LineHierarchy):
+    """Grids of one time step, coarsest first (driver protocol). The finest grid holds the
+    start iterate when the driver starts (:meth:`start` returns the finest level: no FMG)."""
+
+    name = "transient line"
+    level_type = TransientLineLevel
+
+    def __init__(self, problem: LineProblem, options: LineOptions,
+                 geometry: Callable[[np.ndarray], np.ndarray]) -> None:
+        super().__init__(problem, options)
+        self.geometry = geometry

@@ -14,7 +14,11 @@ Definitions (Venner units: ``X = x/b``, ``H = h R/b^2``, ``P = p/pmax``, ``T = t
 * ``stalled(T)`` -- 1 for a step accepted with a stalled residual (below ``accept_stall``);
 * ``substeps(T)`` -- the solves a step took: 1, or more where a failed solve was halved;
 * ``mass_balance(T)`` -- the discrete flux balance of the pressurised (wetted) zone of the
-  converged step (discrete.flux_balance) over the total flux through it.
+  converged step (discrete.flux_balance) over the total flux through it;
+* ``mass_error(T)`` (line, mass-conserving cavitation) -- the oil the whole grid gained in the
+  step beyond what flowed in and out, over the inflow (:func:`.cavitated.domain_mass_error`):
+  zero to the step tolerance. NaN with the projection, which counts every gap behind a
+  rupture as full of oil.
 
 A run that ends early (a step fails, the film closes, the process is stopped) keeps every
 completed step: ``complete`` is False and ``stop_reason`` says why. The last completed step is
@@ -37,12 +41,13 @@ from ..line.problem import LineProblem
 from ..model.results import COMPRESSION, _write_atomic, package_version
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
+from .cavitated import domain_mass_error
 from .discrete import flux_balance
 
 SERIES = ("step", "T", "Hc", "Hm", "H0", "Pmax", "dP", "xf", "dH", "residual", "load_error",
           "cycles", "work_units", "wall_s", "mass_balance", "stalled", "substeps")
 #: arrays of :attr:`TransientResult.state` (the next step's inputs), besides its scalars
-STATE_ARRAYS = ("P", "P_prev", "q", "q_prev")
+STATE_ARRAYS = ("P", "P_prev", "q", "q_prev", "theta")
 STATE_SCALARS = ("step", "T", "H0", "H0_prev")
 
 
@@ -77,8 +82,11 @@ class TransientResult:
     run: dict[str, Any] = field(default_factory=dict)
     #: the inputs of the next step after the last completed one: ``step``, ``T``, the
     #: unknowns ``P``, ``H0`` and ``P_prev``, ``H0_prev`` of the step before, the films
-    #: ``q = rho H`` of both (``q_prev`` None after the start)
+    #: ``q = rho H`` of both (``q_prev`` None after the start; ``theta rho H`` and the film
+    #: content ``theta`` with mass-conserving cavitation)
     state: dict[str, Any] | None = field(default=None, repr=False)
+    #: the cavitation model of the steps: ``"projection"`` (``P >= 0``) or ``"mass-conserving"``
+    cavitation: str = "projection"
     _unkept: int | None = field(default=None, repr=False)
 
     def __getattr__(self, name: str) -> Any:
@@ -134,6 +142,8 @@ class TransientResult:
             self.snapshots.pop(self._unkept, None)
         self._unkept = None if keep else n
         self.snapshots[n] = {"P": P.copy(), "H": H.copy(), "rho": st.rho.copy()}
+        if getattr(st, "theta", None) is not None:  # the mass-conserving model's film content
+            self.snapshots[n]["theta"] = st.theta.copy()
 
     def mark_incomplete(self, reason: str) -> None:
         """Flag the run as ended before its last planned step, for ``reason`` (the first
@@ -177,6 +187,21 @@ class TransientResult:
 
     def _record_mass_balance(self, hz: Any, st: Any, n: int) -> None:
         self.series["mass_balance"].append(self._mass_balance(hz.fine, st) if n > 0 else math.nan)
+        # a run continued from a file written before the series existed: NaN before it
+        err = self.series.setdefault("mass_error", [math.nan] * (len(self.series["step"]) - 1))
+        err.append(self._domain_mass_error(hz.fine, st) if n > 0 else math.nan)
+
+    @staticmethod
+    def _domain_mass_error(lv: Any, st: Any) -> float:
+        """Oil gained by the whole grid in the step over the inflow
+        (:func:`.cavitated.domain_mass_error`) with mass-conserving cavitation (its residual);
+        NaN for the projection."""
+        theta = getattr(st, "theta", None)
+        if theta is None:
+            # the projection counts every gap as full, so its balance over the grid measures
+            # the gap behind each rupture, not the oil that changes the film: not recorded
+            return math.nan
+        return domain_mass_error(lv.P, theta, st.q, st.eps, lv.squeeze(st), lv.h, lv.order)
 
     @staticmethod
     def _mass_balance(lv: Any, st: Any) -> float:
@@ -258,6 +283,9 @@ class TransientResult:
             "load_error_max": float(np.max(np.abs(self.load_error[1:]))) if cyc.size else math.nan,
             "mass_balance_max": float(np.nanmax(np.abs(self.mass_balance[1:])))
             if cyc.size and np.any(np.isfinite(self.mass_balance[1:])) else math.nan,
+            "cavitation": self.cavitation,
+            "mass_error_max": _nanmax_abs(self.series.get("mass_error", [])[1:]),
+            "mass_error_mean": _nanmean(self.series.get("mass_error", [])[1:]),
             "wall_per_step_s": float(np.mean(wall)) if wall.size else math.nan,
             "work_units_per_step": float(np.mean(self.work_units[1:])) if cyc.size else math.nan,
             "setup_s": self.setup_s, "wall_s": self.wall_s,
@@ -313,9 +341,10 @@ class TransientResult:
             s = f.create_group("snapshots")
             s.create_dataset("step", data=np.asarray(steps, dtype=np.int64))
             s.create_dataset("T", data=np.asarray([self.series["T"][i] for i in steps]))
-            for name in ("P", "H", "rho"):
-                s.create_dataset(name, data=np.array([self.snapshots[i][name] for i in steps]),
-                                 **COMPRESSION)
+            for name in ("P", "H", "rho", "theta"):
+                if name in self.snapshots[steps[-1]]:
+                    s.create_dataset(name, data=np.array([self.snapshots[i][name] for i in steps]),
+                                     **COMPRESSION)
             st = f.create_group("steady")
             st.create_dataset("P", data=self.steady.P)
             st.create_dataset("H", data=self.steady.H)
@@ -324,10 +353,20 @@ class TransientResult:
                 for k in STATE_SCALARS:
                     g.attrs[k] = self.state[k]
                 for k in STATE_ARRAYS:
-                    if self.state[k] is not None:
+                    if self.state.get(k) is not None:
                         g.create_dataset(k, data=self.state[k])
 
         return str(_write_atomic(path, write))
+
+
+def _nanmax_abs(v: Any) -> float:
+    a = np.abs(np.asarray(v, dtype=float))
+    return float(np.nanmax(a)) if np.any(np.isfinite(a)) else math.nan
+
+
+def _nanmean(v: Any) -> float:
+    a = np.asarray(v, dtype=float)
+    return float(np.nanmean(a)) if np.any(np.isfinite(a)) else math.nan
 
 
 def _jsonable(v: Any) -> Any:

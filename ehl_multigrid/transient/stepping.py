@@ -72,6 +72,17 @@ class Stepper:
         """Whether an unsuccessful, finite step is accepted as stalled below ``accept_stall``."""
         raise NotImplementedError
 
+    def content(self) -> np.ndarray | None:
+        """A copy of the finest grid's film content ``theta`` (mass-conserving cavitation), or
+        None (the projection ``P >= 0``)."""
+        theta = getattr(self.hz.fine, "theta", None)
+        return None if theta is None else theta.copy()
+
+    def set_content(self, theta: np.ndarray | None) -> None:
+        """Set the finest grid's film content (ignored without one)."""
+        if theta is not None and hasattr(self.hz.fine, "theta"):
+            self.hz.fine.theta = np.array(theta, dtype=float)
+
     def unknowns(self) -> tuple[np.ndarray, float]:
         """A copy of the finest grid's pressure and its film constant."""
         return self.hz.fine.P.copy(), self.H0
@@ -195,6 +206,7 @@ def _advance(stepper: Stepper, speed: float, scheme: str, n: int, T0: float, h: 
                              last["H0"] + w * (last["H0"] - last["H0_prev"]))
     else:
         stepper.set_unknowns(last["P"].copy(), last["H0"])
+    stepper.set_content(last.get("theta"))
     stepper.hz.set_step(speed * (T0 + h), ct, hist)
     res = stepper.solve_step()
     finite = bool(np.all(np.isfinite(fine.P)) and math.isfinite(stepper.H0))
@@ -202,7 +214,8 @@ def _advance(stepper: Stepper, speed: float, scheme: str, n: int, T0: float, h: 
     if (res.success or stalled_ok) and finite or halvings <= 0 or res.status == 7:
         P, H0 = stepper.unknowns()
         state = {"P": P, "H0": H0, "q": stepper.film()[1].copy(), "P_prev": last["P"],
-                 "H0_prev": last["H0"], "q_prev": last["q"], "dt_prev": h}
+                 "H0_prev": last["H0"], "q_prev": last["q"], "dt_prev": h,
+                 "theta": stepper.content()}
         return res, state, 1, bool(stalled_ok and finite)
     half = 0.5 * h
     res1, mid, k1, _ = _advance(stepper, speed, scheme, n, T0, half, last, accept_stall, halvings - 1)
@@ -234,11 +247,12 @@ def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, sc
     if out.state is None:  # a fresh run: the start is step 0
         P, H0 = stepper.unknowns()
         out.state = {"step": 0, "T": 0.0, "P": P, "H0": H0, "P_prev": P, "H0_prev": H0,
-                     "q": stepper.film()[1].copy(), "q_prev": None}
+                     "q": stepper.film()[1].copy(), "q_prev": None, "theta": stepper.content()}
         if checkpoint is not None:
             checkpoint.step(out)
     else:
         stepper.set_unknowns(np.array(out.state["P"], dtype=float), float(out.state["H0"]))
+        stepper.set_content(out.state.get("theta"))
     n = T = 0
     # a run continued from a file of an earlier version has no substep series
     out.series.setdefault("substeps", [1.0] * len(out.series["T"]))
@@ -280,7 +294,8 @@ def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, sc
                 out.series["stalled"].append(0.0 if res.success else 1.0)
                 out.series["substeps"].append(float(solves))
                 out.state = {"step": n, "T": T, "P": nxt["P"], "H0": nxt["H0"], "P_prev": last["P"],
-                             "H0_prev": last["H0"], "q": q, "q_prev": last["q"]}
+                             "H0_prev": last["H0"], "q": q, "q_prev": last["q"],
+                             "theta": nxt["theta"]}
             if checkpoint is not None:
                 checkpoint.step(out)
             if callback is not None:
