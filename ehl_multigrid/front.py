@@ -402,10 +402,16 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
         pb = LineProblem.from_scene(scene, **{"xmin": DEFAULT_XMIN, **box_keys})
         feature, body = feature_from_scene_table(scene.feature, pb)
         scale = pb.b**2 / pb.R
+        starved_ok = runkw.get("cavitation") == "mass-conserving"
+        if starved_ok and not scene.supply.hoil_profile and math.isfinite(scene.supply.hoil):
+            from .starved.supply import hoil_venner
+
+            runkw["hoil"] = hoil_venner(scene.supply.hoil, pb.b, pb.R)
     else:
         from .point.problem import problem_from_scene, resolve_domain
         from .transient.point_solve import solve_transient_point as solver
 
+        starved_ok = False
         cav = runkw.pop("cavitation", "projection")
         if cav != "projection":
             raise InputError(f"cavitation = {cav!r}: the transient point solver has the projection "
@@ -423,8 +429,8 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
         box = resolve_domain(pb, src.get("xmin"), src.get("xmax"), src.get("ymax"))
         feature, body = point_feature_from_scene_table(scene.feature, pb, box, warn)
         scale = pb.a**2 / pb.Rx
-    # the solvers model a flooded inlet: a starving supply is refused (as 'ehl transient')
-    notes = warn + supply_notes(scene, feature, scale)
+    # the projection models a flooded inlet: a starving supply is refused (as 'ehl transient')
+    notes = warn + supply_notes(scene, feature, scale, line and starved_ok)
 
     def run(call: Any = callback, **step: Any) -> Any:
         return solver(pb, feature, body=body, slide_roll=scene.slip, options=dc, callback=call,

@@ -91,7 +91,7 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
     pb = LineProblem.from_scene(scene, xmin=args.xmin)
     feature, body = feature_from_scene_table(scene.feature, pb)
     scale = pb.b**2 / pb.R
-    notes = supply_notes(scene, feature, scale)
+    notes = supply_notes(scene, feature, scale, args.cavitation == "mass-conserving")
 
     def solve(checkpoint: Checkpoint, resume: dict[str, Any] | None) -> Any:
         return _front_door(scene, args, args.points, checkpoint, resume)

@@ -87,6 +87,8 @@ class TransientResult:
     state: dict[str, Any] | None = field(default=None, repr=False)
     #: the cavitation model of the steps: ``"projection"`` (``P >= 0``) or ``"mass-conserving"``
     cavitation: str = "projection"
+    #: the supplied oil layer (Venner units; inf: flooded inlet)
+    hoil: float = math.inf
     _unkept: int | None = field(default=None, repr=False)
 
     def __getattr__(self, name: str) -> Any:
@@ -283,7 +285,7 @@ class TransientResult:
             "load_error_max": float(np.max(np.abs(self.load_error[1:]))) if cyc.size else math.nan,
             "mass_balance_max": float(np.nanmax(np.abs(self.mass_balance[1:])))
             if cyc.size and np.any(np.isfinite(self.mass_balance[1:])) else math.nan,
-            "cavitation": self.cavitation,
+            "cavitation": self.cavitation, "hoil": self.hoil,
             "mass_error_max": _nanmax_abs(self.series.get("mass_error", [])[1:]),
             "mass_error_mean": _nanmean(self.series.get("mass_error", [])[1:]),
             "wall_per_step_s": float(np.mean(wall)) if wall.size else math.nan,

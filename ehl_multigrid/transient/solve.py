@@ -20,6 +20,8 @@ higher than the film) is mixed lubrication, which this solver does not model.
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -31,6 +33,7 @@ from ..line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
 from ..model.errors import InputError, require_choice
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
+from ..starved.line import STARVED_TOL, STARVED_TOL_LOAD, solve_starved_problem
 from .cavitated import CavitatedStepHierarchy
 from .checkpoint import Checkpoint, restore
 from .features import Feature, Smooth, feature_speed
@@ -62,7 +65,8 @@ def solve_transient_line(
     options: LineOptions | None = None, scheme: str = "bdf2", snapshot_every: int = 10,
     initial: tuple[np.ndarray, float] | None = None, accept_stall: float = 1e-3,
     callback: Callable[[dict[str, Any]], None] | None = None, checkpoint: Checkpoint | None = None,
-    resume: dict[str, Any] | None = None, cavitation: str = "projection", **kw: Any,
+    resume: dict[str, Any] | None = None, cavitation: str = "projection",
+    hoil: float | Callable[[float], float] = math.inf, **kw: Any,
 ) -> TransientResult:
     """Run a surface feature through an EHL line contact at constant load.
 
@@ -96,7 +100,14 @@ def solve_transient_line(
         the steady start is solved again, the feature is not pre-solved).
     cavitation : ``"projection"`` (``P >= 0``: oil is created and lost where the film
         ruptures and reforms) or ``"mass-conserving"`` (Elrod-Adams film content, the
-        starved solver's discretisation: :mod:`.cavitated`; about twice the cost per step).
+        starved solver's discretisation: :mod:`.cavitated`; 1.0-1.3x the cost per step).
+    hoil : the oil layer supplied ahead of the contact (Venner units ``hoil R/b^2``, both
+        surfaces, ambient density; :func:`~ehl_multigrid.starved.supply.hoil_venner` converts
+        metres); ``inf``: a flooded inlet; or a function of ``T`` (a supply that changes in
+        time, e.g. a step). A finite layer needs mass-conserving cavitation: the start is the
+        starved steady solution of ``hoil(0)`` on the run's grid (the coupled Elrod-Adams
+        solve), and every step lets in exactly the layer of its time (the meniscus moves with
+        the film; a layer above the flooded contact's flux floods the inlet).
 
     Returns
     -------
@@ -118,6 +129,12 @@ def solve_transient_line(
         raise InputError("problem.elastic = False: the transient solver needs elastic surfaces")
     require_choice("scheme", scheme, SCHEMES)
     require_choice("cavitation", cavitation, CAVITATION_MODELS)
+    supply = hoil if callable(hoil) else None
+    hoil = float(supply(0.0)) if supply is not None else float(hoil)
+    _require_hoil(hoil, 0.0)
+    if (supply is not None or math.isfinite(hoil)) and cavitation != "mass-conserving":
+        raise InputError(f"hoil = {hoil:g} (a starved inlet) needs cavitation = 'mass-conserving' "
+                         f"(the projection has no oil layer to starve); got {cavitation!r}")
     feature = Smooth() if feature is None else feature
     feature.check_domain(problem.xmin, problem.xmax)
     speed = feature_speed(body, slide_roll)
@@ -128,16 +145,23 @@ def solve_transient_line(
         lambda: default_end_time(problem, feature, speed))
 
     t0 = time.perf_counter()
-    steady = solve_line_problem(problem, opts)
+    steady = flooded = solve_line_problem(problem, opts)
     require_steady_start("line", steady, initial, HINT)
     if cavitation == "projection":
         stepper = _LineStepper(TransientLineHierarchy(problem, opts, feature.height), problem, opts)
     else:
-        stepper = _CavitatedLineStepper(CavitatedStepHierarchy(problem, opts, feature.height, steady),
-                                        problem, opts)
+        hz = CavitatedStepHierarchy(problem, opts, feature.height, flooded, hoil)
+        stepper = _CavitatedLineStepper(hz, problem, opts)
+        stepper.supply = supply
+        if hz.starved_inlet:
+            steady = solve_starved_problem(problem, hoil, dataclasses.replace(
+                opts, tol=min(opts.tol, STARVED_TOL), tol_load=min(opts.tol_load, STARVED_TOL_LOAD)),
+                flooded)
+            require_steady_start("line (starved)", steady, initial, HINT)
+            stepper.set_content(steady.extra["theta"])
     out = TransientResult(problem=problem, feature=feature, body=body, slide_roll=slide_roll,
                           speed=speed, dt=float(dt), scheme=scheme, options=opts, steady=steady,
-                          X=stepper.hz.fine.X.copy(), cavitation=cavitation)
+                          X=stepper.hz.fine.X.copy(), cavitation=cavitation, hoil=hoil)
     if resume is None:
         start(stepper, out, steady.P.copy(), steady.H0, initial, True, t0)
     else:
@@ -194,8 +218,27 @@ class _LineStepper(Stepper):
 
 class _CavitatedLineStepper(_LineStepper):
     """The mass-conserving line contact's side of the time loop: the oil carried is
-    ``theta rho H``."""
+    ``theta rho H``; ``supply`` (optional): the supplied layer as a function of time."""
+
+    supply: Callable[[float], float] | None = None
 
     def film(self) -> tuple[np.ndarray, np.ndarray]:
         st = self.hz.fine.state()
         return st.H, st.q
+
+    def set_time(self, T: float) -> None:
+        if self.supply is None:
+            return
+        hoil = float(self.supply(T))
+        _require_hoil(hoil, T)
+        hz = self.hz
+        hz.hoil = hoil
+        hz.starved_inlet = bool(hoil < hz.flux_flooded)
+        for lv in hz.levels:
+            lv.hoil, lv.starved_inlet = hoil, hz.starved_inlet
+
+
+def _require_hoil(hoil: float, T: float) -> None:
+    if not hoil > 0.0:
+        raise InputError(f"hoil = {hoil!r} at T = {T:g} is outside the allowed range (0, inf] "
+                         f"(Venner units: the oil layer ahead of the contact)")

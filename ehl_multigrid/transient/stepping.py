@@ -83,6 +83,10 @@ class Stepper:
         if theta is not None and hasattr(self.hz.fine, "theta"):
             self.hz.fine.theta = np.array(theta, dtype=float)
 
+    def set_time(self, T: float) -> None:
+        """Set what depends on the time ``T`` of the step about to be solved besides the
+        geometry (the supplied oil layer of a starved contact); nothing by default."""
+
     def unknowns(self) -> tuple[np.ndarray, float]:
         """A copy of the finest grid's pressure and its film constant."""
         return self.hz.fine.P.copy(), self.H0
@@ -207,6 +211,7 @@ def _advance(stepper: Stepper, speed: float, scheme: str, n: int, T0: float, h: 
     else:
         stepper.set_unknowns(last["P"].copy(), last["H0"])
     stepper.set_content(last.get("theta"))
+    stepper.set_time(T0 + h)
     stepper.hz.set_step(speed * (T0 + h), ct, hist)
     res = stepper.solve_step()
     finite = bool(np.all(np.isfinite(fine.P)) and math.isfinite(stepper.H0))

@@ -66,9 +66,11 @@ def check_flooded_supply(scene: Any, feature_height: float = 0.0,
         film = float(chevalier_reduction(hoil / need, delta))
         raise InputError(
             f"{name} = {hoil:.4g} m is outside the range the transient solver can take, "
-            f"[{least:.4g}, inf] m: it models flooded inlets only, and this layer starves the "
+            f"[{least:.4g}, inf] m with the projection cavitation model: it models flooded inlets, "
+            f"and this layer starves the "
             f"contact (Chevalier's reduction (6.1) with delta = {delta:g}: about {film:.0%} of the "
-            f"flooded central film {hc:.4g} m); remove hoil or set it to inf for a flooded run")
+            f"flooded central film {hc:.4g} m); a line contact takes it with mass-conserving "
+            f"cavitation (--cavitation mass-conserving), or remove hoil for a flooded run")
     return (f"{name} = {hoil:.4g} m is {hoil / need:.3g} times the flooded contact's inlet "
             f"requirement rho h = {need:.4g} m (at least {r_flooded:.3g} times counts as flooded: "
             f"Chevalier's film reduction (6.1) below {FLOODED_REDUCTION:.0%}); solved as a "
@@ -86,10 +88,15 @@ def feature_height(feature: Any, scale: float) -> float:
     return abs(float(feature.amplitude)) * scale
 
 
-def supply_notes(scene: Any, feature: Any, scale: float) -> list[str]:
-    """The scene's supply checked against the flooded inlet the transient solvers model
+def supply_notes(scene: Any, feature: Any, scale: float, starved_ok: bool = False) -> list[str]:
+    """The scene's supply checked against the flooded inlet of the projection model
     (:func:`check_flooded_supply`: raises for a starving supply); the note of a finite supply
-    that counts as flooded."""
+    that counts as flooded. ``starved_ok`` (a line contact with mass-conserving cavitation):
+    a finite ``[supply] hoil`` is solved as given, and the note says so."""
+    sup = scene.supply
+    if starved_ok and not sup.hoil_profile and math.isfinite(sup.hoil):
+        return [f"[supply] hoil = {sup.hoil:.4g} m: the inlet is fed this layer (mass-conserving "
+                f"cavitation; a layer above the flooded contact's flux floods it)"]
     note = check_flooded_supply(scene, feature_height(feature, scale))
     return [] if note is None else [note]
 

@@ -66,3 +66,19 @@ def test_without_a_rupture_in_the_contact_both_models_give_the_same_film():
 def test_an_unknown_cavitation_model_is_refused_naming_the_choices():
     with pytest.raises(InputError, match="cavitation.*projection.*mass-conserving"):
         _run("reynolds", None, 1)
+
+
+def test_a_starved_inlet_holds_the_starved_steady_film_and_its_supply():
+    # Hoil = 0.05: about half the flooded flux, the meniscus near X = -1.1
+    res = _run("mass-conserving", None, 8, points=257, dt=0.05, hoil=0.05)
+    ref = solve_starved_line(PB, 0.05, points=257, estimate=False)  # the meniscus search
+    assert ref.success
+    Hc_ref = float(np.interp(0.0, ref.X, ref.H))
+    assert abs(res.Hc[-1] / res.Hc[0] - 1.0) < 1e-6  # a steady start stays steady
+    assert abs(res.Hc[-1] / Hc_ref - 1.0) < 1e-3  # two discretisations of the meniscus
+    assert np.max(np.abs(res.series["mass_error"][1:])) < 1e-8
+
+
+def test_a_starved_inlet_needs_the_mass_conserving_model():
+    with pytest.raises(InputError, match="hoil.*mass-conserving"):
+        _run("projection", None, 1, hoil=0.05)
