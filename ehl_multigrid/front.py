@@ -64,7 +64,7 @@ PHYSICS_GROUP = "ehl.physics"
 PART_NAMES = {"algebraic": "iteration"}
 #: options of a transient run besides the multigrid options of its time steps
 TRANSIENT_RUN_KEYS = ("dt", "steps", "t_end", "scheme", "snapshot_every", "accept_stall", "xmin",
-                      "xmax", "time_error", "checkpoint", "resume", "cavitation")
+                      "xmax", "time_error", "checkpoint", "resume", "cavitation", "time_tol")
 #: options of a scene's steady or starved solve that choose the model rather than the numerics
 #: (the scene's ``[solver.ehl]`` table applies below them; a MoesProblem carries its own)
 MODEL_KEYS = ("viscosity", "density")
@@ -410,16 +410,15 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
     else:
         from .point.problem import problem_from_scene, resolve_domain
         from .transient.point_solve import solve_transient_point as solver
-
-        starved_ok = False
-        cav = runkw.pop("cavitation", "projection")
-        if cav != "projection":
-            raise InputError(f"cavitation = {cav!r}: the transient point solver has the projection "
-                             f"P >= 0 only (allowed: 'projection'); mass-conserving cavitation is "
-                             f"implemented for line contacts")
         from .transient.scene_feature import point_feature_from_scene_table
 
         pb = problem_from_scene(scene)
+        starved_ok = runkw.get("cavitation") == "mass-conserving"
+        if starved_ok and not scene.supply.hoil_profile and math.isfinite(scene.supply.hoil):
+            from .starved.supply import hoil_venner
+
+            # Venner units of the point contact: hoil Rx/a^2 (as solve_starved_point_scene)
+            runkw["hoil"] = hoil_venner(scene.supply.hoil, pb.a, pb.Rx)
         if dc is not None and box_keys:
             raise InputError(f"options {sorted(box_keys)} with a PointOptions object: give the box "
                              f"(xmin, xmax, ymax) in the PointOptions")
@@ -430,7 +429,7 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
         feature, body = point_feature_from_scene_table(scene.feature, pb, box, warn)
         scale = pb.a**2 / pb.Rx
     # the projection models a flooded inlet: a starving supply is refused (as 'ehl transient')
-    notes = warn + supply_notes(scene, feature, scale, line and starved_ok)
+    notes = warn + supply_notes(scene, feature, scale, starved_ok)
 
     def run(call: Any = callback, **step: Any) -> Any:
         return solver(pb, feature, body=body, slide_roll=scene.slip, options=dc, callback=call,

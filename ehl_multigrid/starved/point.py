@@ -197,7 +197,12 @@ def mean_layer(rows: np.ndarray, half: bool) -> float:
 class StarvedPointHierarchy(PointHierarchy):
     """Point hierarchy with an Elrod-Adams film content ``theta`` and a supplied layer ``hoil``
     (Venner units ``h R/a^2``; ``inf``: flooded): a number, or one layer per row of the finest
-    grid across the track (a profile over Y, :func:`~.supply.check_profile`)."""
+    grid across the track (a profile over Y, :func:`~.supply.check_profile`).
+
+    Its operator, relaxation, theta march and exact zone solve carry the core's squeeze
+    coefficient :attr:`~ehl_multigrid.point.fas.PointHierarchy.ct` (the new-time part
+    ``ct theta rho H`` of a BDF time step's ``d(theta rho H)/dT``): 0 in a steady solve, set by
+    the time-step hierarchy of :mod:`ehl_multigrid.transient.point_cavitated`."""
 
     name = "starved point"
     can_alternate = False  # its own sweep relaxes X lines only
@@ -240,17 +245,22 @@ class StarvedPointHierarchy(PointHierarchy):
     def _operator(self, lev: Level, out: np.ndarray) -> None:
         """``L(P, theta)`` into ``out``: the core's first-order operator (``order = 1``) or the
         conservative per-face second-order wedge (:func:`.point_wedge.flux_operator`)."""
-        rq = self._q_density(lev)
+        self._apply(lev, lev.P, lev.theta, out)
+
+    def _apply(self, lev: Level, P: np.ndarray, theta: np.ndarray, out: np.ndarray) -> None:
+        """``L(P, theta)`` at the level's frozen film into ``out``, with the new-time part
+        ``ct theta rho H`` of a time step's squeeze term (the core's :attr:`ct`; 0 steady)."""
+        rq = np.ascontiguousarray(theta * lev.rho)
         if lev.order == 1:
-            nm.operator(lev.P, lev.H, rq, lev.eps, lev.hx, lev.hy, self.options.half, 1, out, 0.0)
+            nm.operator(P, lev.H, rq, lev.eps, lev.hx, lev.hy, self.options.half, 1, out, self.ct)
         else:
-            flux_operator(lev.P, lev.H, rq, lev.eps, lev.theta, lev.hx, lev.hy, self.options.half,
-                          lev.order, out)
+            flux_operator(P, lev.H, rq, lev.eps, theta, lev.hx, lev.hy, self.options.half,
+                          lev.order, out, self.ct)
 
     def _march(self, lev: Level) -> None:
         nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
         march_theta(lev.P, lev.H, lev.rho, lev.eps, lev.theta, lev.f, lev.hx, lev.hy,
-                    self.options.half, lev.hoil_rows, lev.order)
+                    self.options.half, lev.hoil_rows, lev.order, self.ct)
 
     def _sweep_free(self, lev: Level, s: Settings, free: bool) -> None:
         """One X-line sweep on P (density ``theta rho``; P stays 0 where ``theta < 1``), then,
@@ -272,7 +282,7 @@ class StarvedPointHierarchy(PointHierarchy):
             fr = np.where(dry, 1e300, lev.f + corr)
         nm.relax_sweep(lev.P, lev.H, rq, lev.eps, fr, lev.D, lev.Kc, lev.hx, lev.hy,
                        self.options.half, s.switch, s.omega, s.omega_jd,
-                       1 if lev.order == 1 else KERNEL_ORDER, 0.0)
+                       1 if lev.order == 1 else KERNEL_ORDER, self.ct)
         lev.P[dry] = 0.0
         self.update_film(lev)
         if free:
@@ -290,7 +300,7 @@ class StarvedPointHierarchy(PointHierarchy):
         r = np.subtract(lev.f, lev.r, out=lev.r)  # in place: lev.r is the grids' shared buffer
         sr = np.empty_like(r)
         nm.scaled_residual(r, lev.H, lev.rho, lev.eps, float(lev.Kc[0, 0]), lev.hx, lev.hy,
-                           self.options.half, sr, 0.0)
+                           self.options.half, sr, self.ct)
         ny, nx = r.shape
         j0 = 0 if self.options.half else 1
         inner = np.zeros(r.shape, dtype=bool)
@@ -385,13 +395,8 @@ class StarvedPointHierarchy(PointHierarchy):
 
     def _raw_residual(self, lev: Level, P: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """``f - L(P, theta)`` at the level's frozen film (0 on the boundary)."""
-        rq = np.ascontiguousarray(theta * lev.rho)
         out = np.empty_like(P)
-        if lev.order == 1:
-            nm.operator(P, lev.H, rq, lev.eps, lev.hx, lev.hy, self.options.half, 1, out, 0.0)
-        else:
-            flux_operator(P, lev.H, rq, lev.eps, theta, lev.hx, lev.hy, self.options.half,
-                          lev.order, out)
+        self._apply(lev, P, theta, out)
         r = lev.f - out
         ny, nx = r.shape
         j0 = 0 if self.options.half else 1
@@ -411,7 +416,7 @@ class StarvedPointHierarchy(PointHierarchy):
             zone = self.exact_zone_mask(lev)
             ok, _it, note = inlet_solve(lev.P, lev.H, lev.rho, lev.eps, lev.theta, lev.f, lev.hx,
                                         lev.hy, self.options.half, lev.order, zone,
-                                        lambda P, t: self._raw_residual(lev, P, t))
+                                        lambda P, t: self._raw_residual(lev, P, t), self.ct)
             self.update_film(lev)
             if not ok:
                 if note != "empty region" and len(self.exact_notes) < 3:

@@ -54,10 +54,13 @@ def _coefficient_of_theta(rho: np.ndarray, H: np.ndarray, theta: np.ndarray, ord
 
 def inlet_solve(P: np.ndarray, H: np.ndarray, rho: np.ndarray, eps: np.ndarray, theta: np.ndarray,
                 f: np.ndarray, hx: float, hy: float, half: bool, order: int, region: np.ndarray,
-                residual: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> tuple[bool, int, str]:
+                residual: Callable[[np.ndarray, np.ndarray], np.ndarray],
+                ct: float = 0.0) -> tuple[bool, int, str]:
     """Solve the discrete Elrod-Adams balance exactly on the interior points of ``region``
     (P and theta outside held), in place in ``P`` and ``theta``; ``order`` is the wedge's
-    (1, or 2: the per-face order of :func:`.point_wedge.face_value`).
+    (1, or 2: the per-face order of :func:`.point_wedge.face_value`); ``ct``: the squeeze
+    coefficient of a BDF time step (``d(theta rho H)/dT = ct theta rho H - s``, ``s`` in the
+    residual's right-hand side; 0: steady).
 
     ``residual(P, theta) -> r`` is the operator's residual ``f - L(P, theta)`` at the frozen
     film (0 on the boundary). Returns (done, active-set iterations, note)."""
@@ -110,7 +113,8 @@ def inlet_solve(P: np.ndarray, H: np.ndarray, rho: np.ndarray, eps: np.ndarray, 
         cu = c[J[un], I[un]] / hx
         ri.append(k[un])
         ci.append(k[un])
-        vi.append(cu)
+        # the squeeze term ct theta_i rho_i H_i of a time step adds to the diagonal only
+        vi.append(cu + ct * rho[J[un], I[un]] * H[J[un], I[un]])
         kd = idx[J[un], I[un] + 1]
         m = kd >= 0
         ri.append(kd[m])

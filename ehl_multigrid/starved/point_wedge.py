@@ -70,9 +70,11 @@ def _limited_wedge_row(rq, H, theta, j, hx, order, out):
 
 
 @njit(cache=True, parallel=True)
-def flux_operator(P, H, rq, eps, theta, hx, hy, sym, order, out):
-    """Discrete Elrod-Adams operator ``L = Poiseuille - (Q_{i+1/2} - Q_{i-1/2})/hx`` at the
-    interior points (0 on the boundary), with the face values of :func:`face_value`."""
+def flux_operator(P, H, rq, eps, theta, hx, hy, sym, order, out, ct=0.0):
+    """Discrete Elrod-Adams operator ``L = Poiseuille - (Q_{i+1/2} - Q_{i-1/2})/hx - ct q_i``
+    at the interior points (0 on the boundary), with the face values of :func:`face_value`;
+    ``ct q_i`` (``q = rq H``) is the new-time part of a BDF squeeze term ``d(theta rho H)/dT``
+    (``ct = 0``: steady)."""
     ny, nx = P.shape
     hx2, hy2 = hx * hx, hy * hy
     j0 = 0 if sym else 1
@@ -84,7 +86,8 @@ def flux_operator(P, H, rq, eps, theta, hx, hy, sym, order, out):
         jm = 1 if (sym and j == 0) else j - 1
         _limited_wedge_row(rq, H, theta, j, hx, order, out)
         for i in range(1, nx - 1):
-            out[j, i] = nm._poiseuille(P, eps, j, jm, j + 1, i, hx2, hy2) - out[j, i]
+            out[j, i] = (nm._poiseuille(P, eps, j, jm, j + 1, i, hx2, hy2) - out[j, i]
+                         - ct * rq[j, i] * H[j, i])
 
 
 @njit(cache=True, parallel=True)
@@ -105,12 +108,13 @@ def wedge_correction(rq, H, theta, hx, sym, order, core_order, out):
 
 
 @njit(cache=True)
-def march_theta(P, H, rho, eps, theta, f, hx, hy, sym, hoil_rows, order=1):
+def march_theta(P, H, rho, eps, theta, f, hx, hy, sym, hoil_rows, order=1, ct=0.0):
     """Solve each unpressurised point's discrete mass balance
-    ``Q_{i+1/2} - Q_{i-1/2} = hx (Poiseuille_i - f_i)`` for ``theta_i`` (marching along X with
-    the face values of :func:`face_value`, linear in ``theta_i``); ``theta = 1`` where
-    ``P > 0``; clipped to ``[0, 1]``. Column 0 of row ``j`` carries the supply
-    ``q = hoil_rows[j]`` (``theta <= 1``)."""
+    ``Q_{i+1/2} - Q_{i-1/2} + hx ct q_i = hx (Poiseuille_i - f_i)`` for ``theta_i`` (marching
+    along X with the face values of :func:`face_value`, linear in ``theta_i``); ``theta = 1``
+    where ``P > 0``; clipped to ``[0, 1]``. Column 0 of row ``j`` carries the supply
+    ``q = hoil_rows[j]`` (``theta <= 1``). ``ct q_i`` is the new-time part of a BDF squeeze
+    term ``d(theta rho H)/dT`` (its history part is in ``f``; ``ct = 0``: steady)."""
     ny, nx = P.shape
     hx2, hy2 = hx * hx, hy * hy
     j0 = 0 if sym else 1
@@ -136,13 +140,13 @@ def march_theta(P, H, rho, eps, theta, f, hx, hy, sym, hoil_rows, order=1):
                 if theta[j, i - 2] >= 1.0:
                     qin = 1.5 * qm - 0.5 * theta[j, i - 2] * rho[j, i - 2] * H[j, i - 2]
                 if theta[j, i - 1] >= 1.0:
-                    q = (qin + src + 0.5 * qm) / 1.5
+                    q = (qin + src + 0.5 * qm) / (1.5 + hx * ct)
                 else:
-                    q = qin + src
+                    q = (qin + src) / (1.0 + hx * ct)
             else:
                 # first order; at i = 1 also the second-order scheme's balance (the central
                 # first face and the second-order second face differ by q_1 - q_0)
-                q = qm + src
+                q = (qm + src) / (1.0 + hx * ct)
             t = q / d if d > 0.0 else 1.0
             theta[j, i] = 1.0 if t > 1.0 else (0.0 if t < 0.0 else t)
         theta[j, nx - 1] = theta[j, nx - 2]

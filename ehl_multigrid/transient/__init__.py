@@ -11,8 +11,10 @@ semi-axis along the rolling direction), ``u_m = (u1 + u2)/2``.
 Runs keep what they computed: a :class:`Checkpoint` writes the completed steps while a run
 goes on and when it ends early (a failed step, an interrupt, a signal), marked
 ``complete = False``; :func:`read_checkpoint` reads such a file back for the ``resume``
-argument of the solvers. The solvers model a flooded inlet only
-(:func:`check_flooded_supply` refuses a scene whose oil supply starves the contact).
+argument of the solvers. Cavitation is the projection ``P >= 0`` (a flooded inlet only:
+:func:`check_flooded_supply` refuses a scene whose oil supply starves the contact) or, with
+``cavitation="mass-conserving"``, Elrod-Adams film content, which also takes a starved inlet
+(``hoil``).
 """
 
 from ..lazy import lazy_exports

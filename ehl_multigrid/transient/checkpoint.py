@@ -123,8 +123,9 @@ def same_run(saved: dict[str, Any], run: dict[str, Any]) -> list[str]:
     def norm(v: Any) -> str:
         return json.dumps(v, sort_keys=True, default=str)
 
-    if "cavitation" in run:  # files written before the option existed ran the projection
-        saved = {"cavitation": "projection", **saved}
+    # files written before these options existed ran the projection at fixed steps
+    saved = {**{k: v for k, v in (("cavitation", "projection"), ("time_tol", None)) if k in run},
+             **saved}
     out = []
     for key in sorted(set(saved) | set(run)):
         a, b = saved.get(key), json.loads(norm(run.get(key)))

@@ -12,6 +12,9 @@ line relaxation, transfers, H00 on the coarsest grid) with two changes on every 
   ``d(rho H)/dT = ct rho H - s`` is a constant of the step: the finest grid's right-hand
   side is ``f = -s`` and the FAS coarse-grid equations inherit it through the residual.
 
+Both are :class:`PointTimeStepGrids`, mixed into the steady hierarchy here and into the
+starved (mass-conserving) one in :mod:`.point_cavitated`.
+
 The load ``int int P = 2 pi b/(3a)`` holds at every step (constant load; H00 free).
 """
 
@@ -28,19 +31,18 @@ from ..point.fas import Level, PointHierarchy
 from ..point.problem import PointProblem
 
 
-class TransientPointHierarchy(PointHierarchy):
-    """Grids of one time step, coarsest first (driver protocol). The finest grid holds the
-    start iterate when the driver starts (:meth:`start` returns the finest level: no FMG)."""
+class PointTimeStepGrids:
+    """What a time step's hierarchy adds to a steady point hierarchy (mixed in before it):
+    the moving geometry ``R`` on every grid and the squeeze term (:meth:`set_step`), the start
+    on the finest grid (no FMG). Call :meth:`_init_step_grids` after the steady hierarchy's
+    ``__init__``."""
 
-    name = "transient point"
     grid_stop = False  # a time step converges on its residual (no FMG grids to estimate from)
     local_update = False  # its time steps were measured with the full refresh after every sweep
+    geometry: Callable[[np.ndarray, np.ndarray], np.ndarray]
+    levels: list[Level]
 
-    def __init__(self, problem: PointProblem, options: PointOptions,
-                 geometry: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> None:
-        if not options.elastic or problem.cd == 0.0:
-            raise ValueError("the transient point hierarchy needs elastic surfaces")
-        super().__init__(problem, options)
+    def _init_step_grids(self, geometry: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> None:
         self.geometry = geometry
         for lev in self.levels:
             lev.R = np.zeros_like(lev.P)
@@ -81,3 +83,17 @@ class TransientPointHierarchy(PointHierarchy):
         self.solver = solver
         self.gain = solver.settings.h00_gain
         return len(self.levels) - 1
+
+
+class TransientPointHierarchy(PointTimeStepGrids, PointHierarchy):
+    """Grids of one time step, coarsest first (driver protocol). The finest grid holds the
+    start iterate when the driver starts (:meth:`start` returns the finest level: no FMG)."""
+
+    name = "transient point"
+
+    def __init__(self, problem: PointProblem, options: PointOptions,
+                 geometry: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> None:
+        if not options.elastic or problem.cd == 0.0:
+            raise ValueError("the transient point hierarchy needs elastic surfaces")
+        super().__init__(problem, options)
+        self._init_step_grids(geometry)

@@ -12,7 +12,11 @@ Definitions (Venner units: ``X = x/b``, ``H = h R/b^2``, ``P = p/pmax``, ``T = t
   (:meth:`TransientResult.bump_amplitude_at_centre`); waviness: half the peak-to-peak of
   ``Hc(T)`` over the last full period (:meth:`TransientResult.waviness_amplitude`);
 * ``stalled(T)`` -- 1 for a step accepted with a stalled residual (below ``accept_stall``);
-* ``substeps(T)`` -- the solves a step took: 1, or more where a failed solve was halved;
+* ``substeps(T)`` -- the solves a step took: 1, or more where a failed solve was halved (or,
+  with a time tolerance, the adaptive steps and their rejected attempts);
+* ``time_error(T)``, ``rejected(T)`` (adaptive runs) -- the largest accepted local film error
+  of BDF2 in the output step (relative to the smallest film of the contact zone) and the steps
+  solved again smaller;
 * ``mass_balance(T)`` -- the discrete flux balance of the pressurised (wetted) zone of the
   converged step (discrete.flux_balance) over the total flux through it;
 * ``mass_error(T)`` (line, mass-conserving cavitation) -- the oil the whole grid gained in the
@@ -47,8 +51,10 @@ from .discrete import flux_balance
 SERIES = ("step", "T", "Hc", "Hm", "H0", "Pmax", "dP", "xf", "dH", "residual", "load_error",
           "cycles", "work_units", "wall_s", "mass_balance", "stalled", "substeps")
 #: arrays of :attr:`TransientResult.state` (the next step's inputs), besides its scalars
-STATE_ARRAYS = ("P", "P_prev", "q", "q_prev", "theta")
+STATE_ARRAYS = ("P", "P_prev", "q", "q_prev", "theta", "q_prev2")
 STATE_SCALARS = ("step", "T", "H0", "H0_prev")
+#: scalars of an adaptive run's state (its last steps' sizes and the next step's)
+STATE_STEP_SIZES = ("dt_prev", "dt_prev2", "h_next")
 
 
 @dataclass
@@ -286,6 +292,8 @@ class TransientResult:
             "mass_balance_max": float(np.nanmax(np.abs(self.mass_balance[1:])))
             if cyc.size and np.any(np.isfinite(self.mass_balance[1:])) else math.nan,
             "cavitation": self.cavitation, "hoil": self.hoil,
+            "time_error_max": _nanmax_abs(self.series.get("time_error", [])[1:]),
+            "rejected_steps": int(np.sum(self.series.get("rejected", [0.0]))),
             "mass_error_max": _nanmax_abs(self.series.get("mass_error", [])[1:]),
             "mass_error_mean": _nanmean(self.series.get("mass_error", [])[1:]),
             "wall_per_step_s": float(np.mean(wall)) if wall.size else math.nan,
@@ -354,6 +362,9 @@ class TransientResult:
                 g = f.create_group("state")
                 for k in STATE_SCALARS:
                     g.attrs[k] = self.state[k]
+                for k in STATE_STEP_SIZES:
+                    if self.state.get(k) is not None:
+                        g.attrs[k] = float(self.state[k])
                 for k in STATE_ARRAYS:
                     if self.state.get(k) is not None:
                         g.create_dataset(k, data=self.state[k])
@@ -398,5 +409,6 @@ def load_series(path: str | os.PathLike) -> dict[str, Any]:
         if "state" in f:
             g = f["state"]
             out["state"] = {**{k: g.attrs[k].item() for k in STATE_SCALARS},
+                            **{k: g.attrs[k].item() for k in STATE_STEP_SIZES if k in g.attrs},
                             **{k: g[k][()] if k in g else None for k in STATE_ARRAYS}}
     return out

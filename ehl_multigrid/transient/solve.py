@@ -30,7 +30,7 @@ import numpy as np
 
 from ..line.problem import LineProblem
 from ..line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
-from ..model.errors import InputError, require_choice
+from ..model.errors import InputError, require_choice, require_range
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
 from ..starved.line import STARVED_TOL, STARVED_TOL_LOAD, solve_starved_problem
@@ -66,7 +66,7 @@ def solve_transient_line(
     initial: tuple[np.ndarray, float] | None = None, accept_stall: float = 1e-3,
     callback: Callable[[dict[str, Any]], None] | None = None, checkpoint: Checkpoint | None = None,
     resume: dict[str, Any] | None = None, cavitation: str = "projection",
-    hoil: float | Callable[[float], float] = math.inf, **kw: Any,
+    hoil: float | Callable[[float], float] = math.inf, time_tol: float | None = None, **kw: Any,
 ) -> TransientResult:
     """Run a surface feature through an EHL line contact at constant load.
 
@@ -101,6 +101,10 @@ def solve_transient_line(
     cavitation : ``"projection"`` (``P >= 0``: oil is created and lost where the film
         ruptures and reforms) or ``"mass-conserving"`` (Elrod-Adams film content, the
         starved solver's discretisation: :mod:`.cavitated`; 1.0-1.3x the cost per step).
+    time_tol : local time error per step (relative film error, e.g. 1e-3): each output step
+        ``dt`` is covered by BDF2 steps sized to it (Milne's device; :func:`.stepping.
+        _advance_adaptive`), so ``dt`` is the output sampling only. None: one step per ``dt``.
+        Allowed: [1e-8, 0.1].
     hoil : the oil layer supplied ahead of the contact (Venner units ``hoil R/b^2``, both
         surfaces, ambient density; :func:`~ehl_multigrid.starved.supply.hoil_venner` converts
         metres); ``inf``: a flooded inlet; or a function of ``T`` (a supply that changes in
@@ -129,6 +133,8 @@ def solve_transient_line(
         raise InputError("problem.elastic = False: the transient solver needs elastic surfaces")
     require_choice("scheme", scheme, SCHEMES)
     require_choice("cavitation", cavitation, CAVITATION_MODELS)
+    if time_tol is not None:
+        require_range("time_tol", time_tol, 1e-8, 0.1, "- (relative film error per step)")
     supply = hoil if callable(hoil) else None
     hoil = float(supply(0.0)) if supply is not None else float(hoil)
     _require_hoil(hoil, 0.0)
@@ -168,7 +174,7 @@ def solve_transient_line(
         restore(out, resume, snapshot_every)
     march(stepper, out, speed=speed, dt=dt, steps=steps, scheme=scheme, snapshot_every=snapshot_every,
           accept_stall=accept_stall, on_film_collapse="raise", callback=callback, t0=t0,
-          checkpoint=checkpoint)
+          checkpoint=checkpoint, time_tol=time_tol)
     return out
 
 

@@ -1,4 +1,5 @@
-"""The oil supply of a transient scene: the transient solvers model a flooded inlet only.
+"""The oil supply of a transient scene: the projection cavitation models a flooded inlet
+only (mass-conserving cavitation takes a finite layer, :func:`supply_notes`).
 
 A scene's ``[supply] hoil`` (the oil layer ahead of the contact, both surfaces together, at
 ambient density) starves the contact when it is not well above what the flooded contact lets
@@ -69,8 +70,8 @@ def check_flooded_supply(scene: Any, feature_height: float = 0.0,
             f"[{least:.4g}, inf] m with the projection cavitation model: it models flooded inlets, "
             f"and this layer starves the "
             f"contact (Chevalier's reduction (6.1) with delta = {delta:g}: about {film:.0%} of the "
-            f"flooded central film {hc:.4g} m); a line contact takes it with mass-conserving "
-            f"cavitation (--cavitation mass-conserving), or remove hoil for a flooded run")
+            f"flooded central film {hc:.4g} m); mass-conserving cavitation takes it "
+            f"(--cavitation mass-conserving), or remove hoil for a flooded run")
     return (f"{name} = {hoil:.4g} m is {hoil / need:.3g} times the flooded contact's inlet "
             f"requirement rho h = {need:.4g} m (at least {r_flooded:.3g} times counts as flooded: "
             f"Chevalier's film reduction (6.1) below {FLOODED_REDUCTION:.0%}); solved as a "
@@ -91,8 +92,9 @@ def feature_height(feature: Any, scale: float) -> float:
 def supply_notes(scene: Any, feature: Any, scale: float, starved_ok: bool = False) -> list[str]:
     """The scene's supply checked against the flooded inlet of the projection model
     (:func:`check_flooded_supply`: raises for a starving supply); the note of a finite supply
-    that counts as flooded. ``starved_ok`` (a line contact with mass-conserving cavitation):
-    a finite ``[supply] hoil`` is solved as given, and the note says so."""
+    that counts as flooded. ``starved_ok`` (a line or point contact with mass-conserving
+    cavitation): a finite ``[supply] hoil`` is solved as given, and the note says so (a
+    ``hoil_profile`` across the track is still checked as a flooded supply)."""
     sup = scene.supply
     if starved_ok and not sup.hoil_profile and math.isfinite(sup.hoil):
         return [f"[supply] hoil = {sup.hoil:.4g} m: the inlet is fed this layer (mass-conserving "

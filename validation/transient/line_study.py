@@ -4,7 +4,9 @@ Parts (``--part``): ``steady`` (zero feature against the core steady solution; s
 another speed), ``time`` (BDF2/Euler time-step refinement at a fixed grid), ``grid`` (grid
 refinement at Courant number 1), ``waviness`` (amplitude reduction Ad/Ai against Venner &
 Lubrecht's wavelength parameter, pure rolling), ``bump`` (dent and bump passing under rolling
-and with slip: profiles at several positions), ``cost`` (time per step against grid size).
+and with slip: profiles at several positions), ``cost`` (time per step against grid size),
+``cavitation`` (a deep dent under rolling and SRR -+0.5: projection against mass-conserving
+cavitation).
 Each part writes ``build/validation/transient/<part>.json`` and a PNG; ``--quick`` runs a smaller set into ``build/validation/transient/quick/``.
 
 Moes-only problems (default oil of the core), Roelands + Dowson-Higginson, domain
@@ -297,8 +299,85 @@ def part_cost(quick: bool) -> None:
     save("cost", {"M": 20, "L": 10, "rows": rows})
 
 
+def _dent_profiles(res, W: float, Hs: np.ndarray) -> list[dict]:
+    """Per kept step with the dent inside ``|X| <= 1``: the film's largest rise (the bump) and
+    fall (the reduction) over the smooth film ``Hs`` in ``|X| <= 1`` away from the dent
+    (``|X - xf| > 0.6 W``), and the minimum film there."""
+    X, rows = res.X, []
+    for k in sorted(res.snapshots):
+        xf = float(res.xf[k])
+        if not -1.0 <= xf <= 1.0:
+            continue
+        m = (np.abs(X) <= 1.0) & (np.abs(X - xf) > 0.6 * W)
+        d = (res.snapshots[k]["H"] - Hs)[m]
+        rows.append({"step": int(k), "xf": xf, "bump": float(d.max()), "reduction": float(d.min()),
+                     "Hmin": float(res.snapshots[k]["H"][np.abs(X) <= 1.0].min())})
+    return rows
+
+
+def part_cavitation(quick: bool) -> None:
+    """A dent 5.3x the central film deep through the contact under pure rolling and SRR -0.5 /
+    +0.5 (S = -1 / +1), projection against mass-conserving cavitation, at the step tolerance
+    1e-6 (the default) and 1e-8: the film bump behind the dent and the reduction after it,
+    Hm, the mass error per step, stalled steps and wall time; profiles at four positions."""
+    pb = problem(20, 10)
+    n = 129 if quick else 257
+    A, W = -0.45, 0.5
+    runs, fig_rows = [], []
+    for S in (0.0, -1.0, 1.0):
+        for tol in ((1e-6,) if quick else (1e-6, 1e-8)):
+            pair = {}
+            for cav in ("projection", "mass-conserving"):
+                speed = 1.0 + 0.5 * S
+                x0 = -1.6
+                steps = int(round((1.1 - x0) / speed / (6.0 / (n - 1) / max(speed, 1.0))))
+                t = time.perf_counter()
+                try:
+                    res = solve_transient_line(pb, Bump(A, W, x0=x0), slide_roll=S, points=n, steps=steps,
+                                               cavitation=cav, tol=tol, snapshot_every=4)
+                except Exception as exc:  # a failed run is a result of the study
+                    part = getattr(exc, "partial", None)
+                    runs.append({"S": S, "tol": tol, "cavitation": cav, "failed": str(exc).splitlines()[0],
+                                 "steps_done": part.steps if part is not None else 0})
+                    print(runs[-1])
+                    continue
+                wall = time.perf_counter() - t
+                err = np.asarray(res.series["mass_error"][1:])
+                prof = _dent_profiles(res, W, res.snapshots[0]["H"])
+                row = {"S": S, "SRR": S / 2, "tol": tol, "cavitation": cav, "points": n, "steps": steps,
+                       "dt": res.dt, "wall_s": wall, "stalled": int(np.sum(res.stalled)),
+                       "substeps_gt1": int(np.sum(np.asarray(res.series["substeps"]) > 1)),
+                       "Hm_min": float(res.Hm.min()), "Hc_min": float(res.Hc.min()),
+                       "bump_max": max(r["bump"] for r in prof), "reduction_min": min(r["reduction"] for r in prof),
+                       "mass_error_max": float(np.nanmax(np.abs(err))) if np.any(np.isfinite(err)) else None,
+                       "mass_error_mean": float(np.nanmean(err)) if np.any(np.isfinite(err)) else None,
+                       "profiles": prof}
+                runs.append(row)
+                pair[cav] = res
+                print({k: v for k, v in row.items() if k != "profiles"})
+            if len(pair) == 2 and tol == 1e-6:
+                fig_rows.append((S, pair))
+    save("cavitation", {"M": 20, "L": 10, "dent": {"amplitude": A, "width": W}, "runs": runs})
+    if fig_rows:
+        fig, axes = plt.subplots(len(fig_rows), 4, figsize=(16, 3.2 * len(fig_rows)), squeeze=False)
+        for row, (S, pair) in zip(axes, fig_rows, strict=False):
+            pr, mc = pair["projection"], pair["mass-conserving"]
+            keys = [k for k in sorted(pr.snapshots) if -1.0 <= pr.xf[k] <= 1.0]
+            for ax, k in zip(row, keys[:: max(1, len(keys) // 4)][:4], strict=False):
+                ax.plot(pr.X, pr.snapshots[k]["H"], label="projection")
+                ax.plot(mc.X, mc.snapshots[k]["H"], "--", label="mass-conserving")
+                ax.plot(mc.X, mc.snapshots[k]["P"] * 0.1, ":", label="P/10 (m.-c.)")
+                ax.set_xlim(-1.5, 1.5)
+                ax.set_ylim(0.0, 0.2)
+                ax.set_title(f"S = {S:g}, dent at X = {pr.xf[k]:.2f}")
+            row[0].legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(OUT / "cavitation_profiles.png", dpi=110)
+        plt.close(fig)
+
+
 PARTS = {"steady": part_steady, "time": part_time, "grid": part_grid, "waviness": part_waviness,
-         "bump": part_bump, "cost": part_cost}
+         "bump": part_bump, "cost": part_cost, "cavitation": part_cavitation}
 
 if __name__ == "__main__":
     common.main(__doc__, PARTS, sys.modules[__name__])
