@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ..model.errors import InputError, require_choice
+from ..model.errors import InputError, require_choice, require_range
 from ..multigrid.options import PointOptions
 from ..multigrid.result import EHLResult
 from ..multigrid.threads import preserved_threads
@@ -205,7 +205,7 @@ def solve_transient_point(
     on_film_collapse: str = "raise",
     callback: Callable[[dict[str, Any]], None] | None = None, checkpoint: Checkpoint | None = None,
     resume: dict[str, Any] | None = None, cavitation: str = "projection",
-    hoil: float | Callable[[float], float] = math.inf, **kw: Any,
+    hoil: float | Callable[[float], float] = math.inf, time_tol: float | None = None, **kw: Any,
 ) -> PointTransientResult:
     """Run a surface feature through an EHL point contact at constant load.
 
@@ -240,6 +240,9 @@ def solve_transient_point(
         ``d(theta rho H)/dT``: :mod:`.point_cavitated`). The result's ``mass_error`` series
         (mass-conserving only) is the oil the whole grid gained in a step over the inflow;
         snapshots carry ``theta``.
+    time_tol : local time error per step (relative film error): BDF2 steps sized to it
+        inside each output step ``dt`` (as :func:`~.solve.solve_transient_line`); None: one
+        step per ``dt``. Allowed: [1e-8, 0.1].
     hoil : the oil layer supplied ahead of the contact (Venner units ``hoil Rx/a^2``, both
         surfaces, ambient density: :func:`~ehl_multigrid.starved.supply.hoil_venner` with
         ``a``, ``Rx`` converts metres); ``inf``: a flooded inlet; or a function of ``T``. A
@@ -262,6 +265,8 @@ def solve_transient_point(
     require_choice("scheme", scheme, SCHEMES)
     require_choice("on_film_collapse", on_film_collapse, ("raise", "stop"))
     require_choice("cavitation", cavitation, CAVITATION_MODELS)
+    if time_tol is not None:
+        require_range("time_tol", time_tol, 1e-8, 0.1, "- (relative film error per step)")
     supply = hoil if callable(hoil) else None
     hoil = float(supply(0.0)) if supply is not None else float(hoil)
     _require_hoil(hoil, 0.0)
@@ -322,7 +327,8 @@ def solve_transient_point(
             restore(out, resume, snapshot_every)
         march(stepper, out, speed=speed, dt=dt, steps=steps, scheme=scheme,
               snapshot_every=snapshot_every, accept_stall=accept_stall,
-              on_film_collapse=on_film_collapse, callback=callback, t0=t0, checkpoint=checkpoint)
+              on_film_collapse=on_film_collapse, callback=callback, t0=t0, checkpoint=checkpoint,
+              time_tol=time_tol)
     return out
 
 

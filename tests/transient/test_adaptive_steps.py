@@ -60,3 +60,16 @@ def test_the_film_error_falls_with_the_time_tolerance():
     # measured 1.6 % and 0.53 % (reference at dt/64); global error a few times the local one
     assert err[1e-3] < 0.5 * err[1e-2]
     assert err[1e-3] < 10 * 1e-3
+
+
+def test_a_point_contact_takes_adaptive_steps_within_the_tolerance():
+    from ehl_multigrid.point.problem import problem_from_moes
+    from ehl_multigrid.transient import Dent2D, solve_transient_point
+
+    res = solve_transient_point(problem_from_moes(20, 10), Dent2D(-0.5, 0.6, x0=-1.4), points=65,
+                                steps=6, dt=0.045, slide_roll=1.0, cavitation="mass-conserving",
+                                time_tol=1e-3, snapshot_every=100000)
+    s = res.summary()
+    assert s["complete"] and s["rejected_steps"] > 0
+    assert s["time_error_max"] <= 1e-3 * (1 + 1e-9)
+    assert np.all(np.asarray(res.series["substeps"][2:]) > 1)
