@@ -51,7 +51,7 @@ def register(subparsers: Any) -> None:
     p.add_argument("--scheme", choices=list(SCHEMES), default="bdf2")
     p.add_argument("--snapshot-every", type=int, default=10, help="keep P and H every N steps")
     p.add_argument("--time-tol", type=float, default=None, metavar="TOL",
-                   help="line contacts: size the time steps by BDF2's local film error (relative, "
+                   help="size the time steps by BDF2's local film error (relative to the minimum film, "
                         "e.g. 1e-3); --dt is then the output interval only (default: one step "
                         "per --dt)")
     p.add_argument("--cavitation", choices=["projection", "mass-conserving"], default="projection",
