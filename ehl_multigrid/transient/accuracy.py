@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from ..line.problem import LineProblem
+from ..model.errors import InputError
 from .result import TransientResult
 from .solve import solve_transient_line
 
@@ -41,6 +42,9 @@ def solve_with_time_error(problem: Any, feature: Any, *, dt: float,
     """Run at ``dt`` and at ``2 dt`` (``steps // 2`` steps) and return the fine run with its
     estimated relative time errors of Hc and Hm (costs about 1.5 runs). ``problem`` is a
     :class:`LineProblem` or a point problem (then :func:`~.point_solve.solve_transient_point`)."""
+    if kw.get("time_tol") is not None:  # both runs would size their steps to the same error
+        raise InputError("solve_with_time_error measures the time error of fixed steps: time_tol "
+                         f"= {kw['time_tol']!r} is not allowed with it")
     run = solve_transient_line
     if not isinstance(problem, LineProblem):
         from .point_solve import solve_transient_point as run

@@ -73,3 +73,16 @@ def test_a_point_contact_takes_adaptive_steps_within_the_tolerance():
     assert s["complete"] and s["rejected_steps"] > 0
     assert s["time_error_max"] <= 1e-3 * (1 + 1e-9)
     assert np.all(np.asarray(res.series["substeps"][2:]) > 1)
+
+
+def test_the_front_door_refuses_a_time_error_of_adaptive_steps():
+    # the run at "twice the step" would size its steps to the same tolerance: it would agree
+    # with the run whatever its time error
+    import ehl_multigrid as ehl
+    from ehl_multigrid import Scene, load_scene
+
+    d = load_scene("page63_line_2000N").to_dict()
+    d["feature"] = {"kind": "bump", "amplitude": 1e-8, "width": 1e-5, "x0": -3.0}
+    with pytest.raises(InputError, match="time_error.*time_tol"):
+        ehl.solve(Scene.from_dict(d), physics="transient", accuracy=None,
+                  options={"points": 65, "steps": 2, "time_tol": 1e-3, "time_error": True})
