@@ -97,6 +97,14 @@ class CavitatedStepHierarchy(TimeStepGrids, StarvedLineHierarchy):
                          hoil, steady)
         self.geometry = geometry
 
+    def set_hoil(self, hoil: float) -> None:
+        """Feed the inlet the layer ``hoil`` (Venner units; ``inf``: flooded) on every grid; a
+        layer above the flooded contact's flux floods the inlet."""
+        self.hoil = float(hoil)
+        self.starved_inlet = bool(self.hoil < self.flux_flooded)
+        for lv in self.levels:
+            lv.hoil, lv.starved_inlet = self.hoil, self.starved_inlet
+
     def last_resort(self, k: int, solver: Any) -> bool:
         """A stalled step (the free boundary in a dent flips between regimes from cycle to
         cycle, so the coarse-grid corrections undo each other): finish it by fine-grid

@@ -60,9 +60,7 @@ class CavitatedPointStepHierarchy(PointTimeStepGrids, StarvedPointHierarchy):
 
     name = "transient point (mass-conserving)"
     #: the policy's "alternate" step may add Y-line sweeps (:meth:`_sweep_free`): with X lines
-    #: alone the cycles stall while a deep dent crosses the contact (measured at (20, 10),
-    #: 65^2, a dent 2.4 Hc deep at S = 1: the first sweep leaves a residual of 1.7e-2 where the
-    #: projection's alternating sweep leaves 1.2e-2, and the cycles stop falling at 1e-2)
+    #: alone the cycles stall while a deep dent crosses the contact (docs/transient.md)
     can_alternate = True
 
     def __init__(self, problem: PointProblem, options: PointOptions,

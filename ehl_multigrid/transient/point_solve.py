@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ..model.errors import InputError, require_choice, require_range
+from ..model.errors import InputError, require_choice
 from ..multigrid.options import PointOptions
 from ..multigrid.result import EHLResult
 from ..multigrid.threads import preserved_threads
@@ -48,12 +48,12 @@ from .point_cavitated import CavitatedPointStepHierarchy, cavitated_film, point_
 from .point_features import PointFeature, Smooth2D
 from .point_hierarchy import TransientPointHierarchy
 from .result import TransientResult
-from .solve import CAVITATION_MODELS
 from .stepping import (
     SCHEMES,
     Stepper,
     march,
     max_time_step,
+    model_inputs,
     require_steady_start,
     start,
     time_steps,
@@ -264,15 +264,7 @@ def solve_transient_point(
     """
     require_choice("scheme", scheme, SCHEMES)
     require_choice("on_film_collapse", on_film_collapse, ("raise", "stop"))
-    require_choice("cavitation", cavitation, CAVITATION_MODELS)
-    if time_tol is not None:
-        require_range("time_tol", time_tol, 1e-8, 0.1, "- (relative film error per step)")
-    supply = hoil if callable(hoil) else None
-    hoil = float(supply(0.0)) if supply is not None else float(hoil)
-    _require_hoil(hoil, 0.0)
-    if (supply is not None or math.isfinite(hoil)) and cavitation != "mass-conserving":
-        raise InputError(f"hoil = {hoil:g} (a starved inlet) needs cavitation = 'mass-conserving' "
-                         f"(the projection has no oil layer to starve); got {cavitation!r}")
+    supply, hoil = model_inputs(cavitation, hoil, time_tol)
     feature = Smooth2D() if feature is None else feature
     speed = feature_speed(body, slide_roll)
     opts = point_transient_options(options, **kw)
@@ -355,9 +347,6 @@ class _PointStepper(Stepper):
     hint = HINT
     policy = POINT_POLICY
     settings = staticmethod(point_settings)
-    #: the supplied layer as a function of time (mass-conserving cavitation), or None
-    supply: Callable[[float], float] | None = None
-
     @property
     def grid_text(self) -> str:
         return f"{self.hz.fine.P.shape}"
@@ -382,14 +371,9 @@ class _PointStepper(Stepper):
         return bool(m.ok and m.residual < accept_stall and m.load_error < accept_stall)
 
 
-#: Cycle acceptance of a mass-conserving step: the point core's, but a stall, at any residual
-#: (no quiet floor), turns on X/Y alternating line relaxation on every grid (for the rest of the
-#: run, as the projection's ladder does), then halves the under-relaxations, then ends the
-#: cycles so that the step is finished by fine-grid relaxation
-#: (:meth:`~.point_cavitated.CavitatedPointStepHierarchy.last_resort`). Measured at (100, 10),
-#: 129^2, a dent 5.3 Hc deep at S = 1, 71 steps: 0.34 s per step and no finish; without the
-#: halving 16 steps went to the finish (8 of them failed and were halved) at 1.1 s per step;
-#: the core's cyclic ladder (a wider Jacobi zone) keeps such cycles stalled
+#: A mass-conserving step's stall (at any residual) turns on X/Y alternating lines, then halves
+#: the under-relaxations, then ends the cycles for the fine-grid finish
+#: (:meth:`~.point_cavitated.CavitatedPointStepHierarchy.last_resort`; docs/transient.md)
 CAVITATED_POINT_POLICY = replace(POINT_POLICY, stall_ladder=(("alternate",), ("halve", "W"), ("fail",)),
                                  cyclic_stall=False, shared_ladder=False, quiet_below=0.0)
 
@@ -403,13 +387,6 @@ class _CavitatedPointStepper(_PointStepper):
     def film(self) -> tuple[np.ndarray, np.ndarray]:
         return cavitated_film(self.hz)
 
-    def set_time(self, T: float) -> None:
-        if self.supply is None:
-            return
-        hoil = float(self.supply(T))
-        _require_hoil(hoil, T)
-        self.hz.set_hoil(hoil)
-
 
 def _within_step_tolerance(res: EHLResult, opts: PointOptions) -> bool:
     """Whether a steady start that missed its own (starved) tolerance still meets the steps'
@@ -421,9 +398,3 @@ def _within_step_tolerance(res: EHLResult, opts: PointOptions) -> bool:
     r, le = res.residual_history, res.load_error_history
     return bool(r.size and np.all(np.isfinite(res.P)) and r[-1] < opts.tol
                 and abs(le[-1]) < opts.tol_load)
-
-
-def _require_hoil(hoil: float, T: float) -> None:
-    if not hoil > 0.0:
-        raise InputError(f"hoil = {hoil!r} at T = {T:g} is outside the allowed range (0, inf] "
-                         f"(Venner units hoil Rx/a^2: the oil layer ahead of the contact)")

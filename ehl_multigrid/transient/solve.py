@@ -30,7 +30,7 @@ import numpy as np
 
 from ..line.problem import LineProblem
 from ..line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
-from ..model.errors import InputError, require_choice, require_range
+from ..model.errors import InputError, require_choice
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
 from ..starved.line import STARVED_TOL, STARVED_TOL_LOAD, solve_starved_problem
@@ -39,16 +39,20 @@ from .checkpoint import Checkpoint, restore
 from .features import Feature, Smooth, feature_speed
 from .hierarchy import TransientLineHierarchy
 from .result import TransientResult
-from .stepping import SCHEMES, Stepper, march, require_steady_start, start, time_steps
+from .stepping import (
+    SCHEMES,
+    Stepper,
+    march,
+    model_inputs,
+    require_steady_start,
+    start,
+    time_steps,
+)
 
 #: Default numerics of a time step: FFT deformation (exact), a tighter residual than the
 #: steady default so the algebraic error of a step stays below its time error.
 TRANSIENT_DEFAULTS = {"points": 257, "deformation": "fft", "tol": 1e-6, "tol_load": 1e-8,
                       "max_cycles": 40, "raise_on_failure": False}
-
-
-#: cavitation models of the line contact's time steps
-CAVITATION_MODELS = ("projection", "mass-conserving")
 
 
 def transient_options(options: LineOptions | None = None, **kw: Any) -> LineOptions:
@@ -132,15 +136,7 @@ def solve_transient_line(
     if not problem.elastic:
         raise InputError("problem.elastic = False: the transient solver needs elastic surfaces")
     require_choice("scheme", scheme, SCHEMES)
-    require_choice("cavitation", cavitation, CAVITATION_MODELS)
-    if time_tol is not None:
-        require_range("time_tol", time_tol, 1e-8, 0.1, "- (relative film error per step)")
-    supply = hoil if callable(hoil) else None
-    hoil = float(supply(0.0)) if supply is not None else float(hoil)
-    _require_hoil(hoil, 0.0)
-    if (supply is not None or math.isfinite(hoil)) and cavitation != "mass-conserving":
-        raise InputError(f"hoil = {hoil:g} (a starved inlet) needs cavitation = 'mass-conserving' "
-                         f"(the projection has no oil layer to starve); got {cavitation!r}")
+    supply, hoil = model_inputs(cavitation, hoil, time_tol)
     feature = Smooth() if feature is None else feature
     feature.check_domain(problem.xmin, problem.xmax)
     speed = feature_speed(body, slide_roll)
@@ -226,25 +222,6 @@ class _CavitatedLineStepper(_LineStepper):
     """The mass-conserving line contact's side of the time loop: the oil carried is
     ``theta rho H``; ``supply`` (optional): the supplied layer as a function of time."""
 
-    supply: Callable[[float], float] | None = None
-
     def film(self) -> tuple[np.ndarray, np.ndarray]:
         st = self.hz.fine.state()
         return st.H, st.q
-
-    def set_time(self, T: float) -> None:
-        if self.supply is None:
-            return
-        hoil = float(self.supply(T))
-        _require_hoil(hoil, T)
-        hz = self.hz
-        hz.hoil = hoil
-        hz.starved_inlet = bool(hoil < hz.flux_flooded)
-        for lv in hz.levels:
-            lv.hoil, lv.starved_inlet = hoil, hz.starved_inlet
-
-
-def _require_hoil(hoil: float, T: float) -> None:
-    if not hoil > 0.0:
-        raise InputError(f"hoil = {hoil!r} at T = {T:g} is outside the allowed range (0, inf] "
-                         f"(Venner units: the oil layer ahead of the contact)")

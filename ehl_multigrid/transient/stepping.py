@@ -22,13 +22,22 @@ from typing import Any
 import numpy as np
 
 from ..model.atomic import deferred_signals
-from ..model.errors import ConvergenceError, InputError, Terminated, require_range, signal_cause
+from ..model.errors import (
+    ConvergenceError,
+    InputError,
+    Terminated,
+    require_choice,
+    require_range,
+    signal_cause,
+)
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.policy import RobustnessPolicy
 from ..multigrid.result import EHLResult
 from .features import require_in
 
 SCHEMES = ("bdf2", "euler")
+#: cavitation models of the time steps
+CAVITATION_MODELS = ("projection", "mass-conserving")
 #: A step may move the feature at most this fraction of its length scale (wavelength, width):
 #: beyond it a step cannot resolve the feature's passage (the implicit scheme stays stable
 #: but damps and delays it, and the per-step nonlinear solve loses its good start).
@@ -93,9 +102,17 @@ class Stepper:
         boa = float(getattr(self.hz, "boa", 1.0))
         return (np.abs(fine.X)[None, :] <= 1.5) & (np.abs(fine.Y)[:, None] <= 1.5 * boa)
 
+    #: the supplied layer as a function of time (mass-conserving cavitation), or None
+    supply: Callable[[float], float] | None = None
+
     def set_time(self, T: float) -> None:
         """Set what depends on the time ``T`` of the step about to be solved besides the
-        geometry (the supplied oil layer of a starved contact); nothing by default."""
+        geometry: the supplied oil layer ``supply(T)`` (``hz.set_hoil``), when there is one."""
+        if self.supply is None:
+            return
+        hoil = float(self.supply(T))
+        require_hoil(hoil, T)
+        self.hz.set_hoil(hoil)
 
     def unknowns(self) -> tuple[np.ndarray, float]:
         """A copy of the finest grid's pressure and its film constant."""
@@ -106,6 +123,30 @@ class Stepper:
         solver = MultilevelSolver(self.hz, self.opts, type(self).settings(self.problem, self.opts),
                                   RobustnessPolicy(self.policy, self.opts.adapt), self.hint)
         return solver.solve()
+
+
+def require_hoil(hoil: float, T: float) -> None:
+    """Refuse a supplied layer that is not positive (at time ``T``)."""
+    if not hoil > 0.0:
+        raise InputError(f"hoil = {hoil!r} at T = {T:g} is outside the allowed range (0, inf] "
+                         f"(Venner units: the oil layer ahead of the contact)")
+
+
+def model_inputs(cavitation: str, hoil: float | Callable[[float], float],
+                 time_tol: float | None) -> tuple[Callable[[float], float] | None, float]:
+    """Checked cavitation model, supply and time tolerance of a run: returns the supply as a
+    function of time (None for a constant layer) and the layer at ``T = 0``. A finite or
+    time-varying layer needs mass-conserving cavitation."""
+    require_choice("cavitation", cavitation, CAVITATION_MODELS)
+    if time_tol is not None:
+        require_range("time_tol", time_tol, 1e-8, 0.1, "- (relative film error per step)")
+    supply = hoil if callable(hoil) else None
+    hoil0 = float(supply(0.0)) if supply is not None else float(hoil)
+    require_hoil(hoil0, 0.0)
+    if (supply is not None or math.isfinite(hoil0)) and cavitation != "mass-conserving":
+        raise InputError(f"hoil = {hoil0:g} (a starved inlet) needs cavitation = 'mass-conserving' "
+                         f"(the projection has no oil layer to starve); got {cavitation!r}")
+    return supply, hoil0
 
 
 def step_coefficients(scheme: str, n: int, dt: float, q1: np.ndarray,

@@ -82,3 +82,14 @@ def test_a_starved_inlet_holds_the_starved_steady_film_and_its_supply():
 def test_a_starved_inlet_needs_the_mass_conserving_model():
     with pytest.raises(InputError, match="hoil.*mass-conserving"):
         _run("projection", None, 1, hoil=0.05)
+
+
+def test_a_thinner_supply_reaches_the_contact_at_the_mean_speed_and_thins_the_film():
+    # the layer drops from 0.05 to 0.035 at T = 0 at the inlet X = -4.5; carried at the mean
+    # speed it reaches the meniscus (X ~ -1.1) near T = 3.4, then the film thins towards the
+    # new steady film (later steps stall with the meniscus at the Hertzian edge: docs)
+    res = _run("mass-conserving", None, 50, dt=0.1, hoil=lambda T: 0.05 if T < 0.05 else 0.035)
+    new = _run("mass-conserving", None, 1, dt=0.1, hoil=0.035).Hc[0]
+    assert abs(res.Hc[30] / res.Hc[0] - 1.0) < 1e-3  # T = 3: not arrived yet
+    assert (res.Hc[0] - res.Hc[-1]) > 0.5 * (res.Hc[0] - new)  # T = 5: most of the way
+    assert np.max(np.abs(res.series["mass_error"][1:])) < 1e-5
