@@ -388,12 +388,6 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
     dc, kw = solver_keywords(options, accepted, cls, f"the transient {'line' if line else 'point'} solver")
     runkw = {k: kw.pop(k) for k in TRANSIENT_RUN_KEYS if k in kw}
     want_time_error = bool(runkw.pop("time_error", False))
-    if want_time_error and runkw.get("time_tol") is not None:
-        # the run "at twice the step" would size its own steps to the same tolerance, so the
-        # two runs would agree whatever the time error: a falsely small estimate
-        raise InputError(f"options time_error=True and time_tol={runkw['time_tol']!r}: the time "
-                         f"error is measured for fixed steps only (a second run at twice the step); "
-                         f"give one of the two")
     require_slip("operating.slip", scene.slip)
     if dc is None:
         kw.setdefault("points", DEFAULT_POINTS["line" if line else "point"])
@@ -451,18 +445,29 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
                                    (status_of_error(exc), str(exc)))
     terr = None
     if want_time_error:
-        from .transient.accuracy import time_error
+        from .transient.accuracy import (
+            TIGHTER_TOL,
+            adaptive_time_error,
+            tighter_run_options,
+            time_error,
+        )
 
+        adaptive = runkw.get("time_tol") is not None
+        second = (f"the run at {TIGHTER_TOL:g} of the time tolerance and half the step" if adaptive
+                  else "the run at twice the time step")
         try:
             # (a run of its own: it neither writes the run's checkpoint nor continues it)
-            coarse = run(None, dt=2.0 * res.dt, steps=max(res.planned_steps // 2, 1), t_end=None,
-                         checkpoint=None, resume=None)
-            terr = time_error(res, coarse)
+            if adaptive:
+                terr = adaptive_time_error(res, run(None, **tighter_run_options(res, runkw["time_tol"]),
+                                                    checkpoint=None, resume=None))
+            else:
+                terr = time_error(res, run(None, dt=2.0 * res.dt, steps=max(res.planned_steps // 2, 1),
+                                           t_end=None, checkpoint=None, resume=None))
         except ConvergenceError as exc:
-            notes.append(f"the run at twice the time step for the time error failed: {str(exc).splitlines()[0]}")
-        except InputError as exc:  # twice the step is beyond what the feature allows
-            notes.append(f"time error not measured: the run at twice the time step is refused ({exc}); "
-                         f"a smaller dt allows it")
+            notes.append(f"{second} for the time error failed: {str(exc).splitlines()[0]}")
+        except InputError as exc:  # beyond what the feature or the tolerance's range allows
+            notes.append(f"time error not measured: {second} is refused ({exc})"
+                         + ("" if adaptive else "; a smaller dt allows it"))
     return _transient_solution(res, pb, line, scale, accuracy, t0, scene, notes, terr, None)
 
 
@@ -497,19 +502,25 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
     measured = terr is not None
     parts = {"grid": PartError(math.nan, math.nan),
              "time": PartError(terr["Hc"], terr["Hm"]) if measured else PartError(math.nan, math.nan)}
-    enotes = ("the transient solver has no accuracy control: it estimates no grid (space) error, and "
-              "each time step is converged to its residual tolerance",
-              "time part: Richardson in the time step from a run at twice the step (max over the run, "
-              "relative to the smooth steady film)" if measured else
-              "time part not measured (options time_error=True measures it: a second run at twice the "
-              "time step, about 1.5 times the cost)")
     local = s.get("time_error_max", math.nan)
-    if math.isfinite(local):
-        # the local error bounds one step; the global film error was 1.6-5 times the local
-        # tolerance in docs/transient.md's measurements, so it is not the time part
+    adaptive = math.isfinite(local)
+    enotes = ("the transient solver has no accuracy control: it estimates no grid (space) error, and "
+              "each time step is converged to its residual tolerance",)
+    if measured:
+        enotes += ("time part: twice the largest film difference from a run at an eighth of the time "
+                   "tolerance and half the output step (max over the run, relative to the smooth "
+                   "steady film)" if adaptive else
+                   "time part: Richardson in the time step from a run at twice the step (max over the "
+                   "run, relative to the smooth steady film)",)
+    else:
+        enotes += ("time part not measured (options time_error=True measures it: a second run at "
+                   + ("an eighth of the time tolerance and half the output step, about three times the "
+                      "cost)" if adaptive else
+                      "twice the time step, about 1.5 times the cost)"),)
+    if adaptive:
+        # the local error bounds one step, not the film's error over the run (docs/transient.md)
         enotes += (f"time steps sized by time_tol: largest local film error per step {local:.2g} "
-                   f"({s['rejected_steps']} steps solved again smaller); the time part still needs "
-                   f"time_error=True",)
+                   f"({s['rejected_steps']} steps solved again smaller)",)
     error = ErrorEstimate(math.nan, math.nan, parts, accuracy, enotes)
     if failure is not None:
         status, message = failure

@@ -24,7 +24,7 @@ from ..lazy import lazy_exports
 _LAZY = {
     "Checkpoint": "checkpoint", "read_checkpoint": "checkpoint",
     "check_flooded_supply": "supply",
-    "solve_with_time_error": "accuracy", "time_error": "accuracy",
+    "solve_with_time_error": "accuracy", "time_error": "accuracy", "adaptive_time_error": "accuracy",
     "Bump": "features", "Profile": "features", "Smooth": "features", "Waviness": "features",
     "feature_from_table": "features", "feature_speed": "features",
     "Dent2D": "point_features", "HeightMap": "point_features", "Smooth2D": "point_features",
@@ -40,7 +40,7 @@ _LAZY = {
 
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())
 
-__all__ = ["Bump", "Checkpoint", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth",
+__all__ = ["Bump", "adaptive_time_error", "Checkpoint", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth",
            "Smooth2D", "TransientResult", "Waviness", "Waviness2D", "check_flooded_supply",
            "feature_from_table", "feature_speed",
            "load_series", "max_point_time_step", "max_time_step", "point_feature_from_table",

@@ -5,9 +5,15 @@ from the run at ``dT`` by about ``(2^2 - 1)`` times the time error of the finer 
 
 ``e_T(dT) ~ max_T |H(dT) - H(2 dT)| / 3``
 
-over the common time levels (``/1`` for backward Euler). The spatial error is that of the
-grid: the steady core's grid error constants (``ehl_multigrid.multigrid.accuracy``) or a
-grid-refinement pair measure it (validation/transient).
+over the common time levels (``/1`` for backward Euler). A run whose steps are sized by a
+local error tolerance (``time_tol``) is compared instead with a run at
+:data:`TIGHTER_TOL` of its tolerance (steps about half as long):
+``e_T(tol) ~ ADAPTIVE_FACTOR max_T |H(tol) - H(tol/8)|`` (:func:`adaptive_time_error`); that
+run's output step is half the run's, so that where both would take their largest step (a film
+that changes slowly) the two still differ by the time error of that step. The
+spatial error is that of the grid: the steady core's grid error constants
+(``ehl_multigrid.multigrid.accuracy``) or a grid-refinement pair measure it
+(validation/transient).
 """
 
 from __future__ import annotations
@@ -18,7 +24,6 @@ from typing import Any
 import numpy as np
 
 from ..line.problem import LineProblem
-from ..model.errors import InputError
 from .result import TransientResult
 from .solve import solve_transient_line
 
@@ -37,19 +42,51 @@ def time_error(fine: TransientResult, coarse: TransientResult) -> dict[str, floa
     return out
 
 
+#: the time tolerance of the second run of an adaptive run's time error, as a fraction of the
+#: run's: BDF2's steps scale as tol^(1/3), so this halves them
+TIGHTER_TOL = 1.0 / 8.0
+#: the time error of an adaptive run over its largest difference from the run at
+#: :data:`TIGHTER_TOL` of its tolerance; with the error falling 4x per halved step it would be
+#: 4/3. Measured (docs/transient.md, validation/transient/line_study.py --part adaptive): the
+#: true error is 1.2-1.6 times the difference, the error falling only 1.7-3.7x per eighth of
+#: the tolerance
+ADAPTIVE_FACTOR = 2.0
+
+
+def adaptive_time_error(run: TransientResult, tight: TransientResult) -> dict[str, float]:
+    """Relative time errors of Hc(T) and Hm(T) of ``run`` (steps sized by ``time_tol``) from
+    ``tight`` (the same run at :data:`TIGHTER_TOL` of that tolerance and half the output step,
+    same grid, feature and start): :data:`ADAPTIVE_FACTOR` times the largest difference over
+    the common output times, over the smooth steady film (as :func:`time_error`)."""
+    if not math.isclose(tight.dt, 0.5 * run.dt, rel_tol=1e-9) or tight.X.size != run.X.size:
+        raise ValueError("adaptive_time_error needs the same grid and a second run at half the output step")
+    m = min(run.Hc.size, (tight.Hc.size + 1) // 2)
+    return {name: float(ADAPTIVE_FACTOR * np.max(np.abs(getattr(run, name)[:m] - getattr(tight, name)[::2][:m]))
+                        / run.steady_film(name)) for name in ("Hc", "Hm")}
+
+
+def tighter_run_options(run: TransientResult, time_tol: float) -> dict[str, Any]:
+    """The step options of the second run of :func:`adaptive_time_error` for ``run`` (made
+    with ``time_tol``)."""
+    return {"dt": 0.5 * run.dt, "steps": 2 * run.planned_steps, "t_end": None,
+            "time_tol": time_tol * TIGHTER_TOL}
+
+
 def solve_with_time_error(problem: Any, feature: Any, *, dt: float,
                           steps: int, **kw: Any) -> tuple[TransientResult, dict[str, float]]:
     """Run at ``dt`` and at ``2 dt`` (``steps // 2`` steps) and return the fine run with its
-    estimated relative time errors of Hc and Hm (costs about 1.5 runs). ``problem`` is a
+    estimated relative time errors of Hc and Hm (costs about 1.5 runs). With a ``time_tol``
+    (adaptive steps) the second run is at :data:`TIGHTER_TOL` of that tolerance and half the
+    output step instead (:func:`adaptive_time_error`; it costs about 2 runs). ``problem`` is a
     :class:`LineProblem` or a point problem (then :func:`~.point_solve.solve_transient_point`)."""
-    if kw.get("time_tol") is not None:  # both runs would size their steps to the same error
-        raise InputError("solve_with_time_error measures the time error of fixed steps: time_tol "
-                         f"= {kw['time_tol']!r} is not allowed with it")
     run = solve_transient_line
     if not isinstance(problem, LineProblem):
         from .point_solve import solve_transient_point as run
     fine = run(problem, feature, dt=dt, steps=steps, **kw)
-    # the run at twice the step keeps no checkpoint: it must not overwrite the fine run's
+    # the second run keeps no checkpoint: it must not overwrite the first run's
     own = {k: v for k, v in kw.items() if k not in ("checkpoint", "resume")}
+    if kw.get("time_tol") is not None:
+        tight = run(problem, feature, **{**own, **tighter_run_options(fine, kw["time_tol"])})
+        return fine, adaptive_time_error(fine, tight)
     coarse = run(problem, feature, dt=2.0 * dt, steps=max(steps // 2, 1), **own)
     return fine, time_error(fine, coarse)

@@ -75,14 +75,32 @@ def test_a_point_contact_takes_adaptive_steps_within_the_tolerance():
     assert np.all(np.asarray(res.series["substeps"][2:]) > 1)
 
 
-def test_the_front_door_refuses_a_time_error_of_adaptive_steps():
-    # the run at "twice the step" would size its steps to the same tolerance: it would agree
-    # with the run whatever its time error
+def test_the_time_error_of_adaptive_steps_comes_from_a_run_at_an_eighth_of_the_tolerance():
+    from ehl_multigrid.transient import adaptive_time_error, solve_with_time_error
+    from ehl_multigrid.transient.accuracy import ADAPTIVE_FACTOR, TIGHTER_TOL
+
+    run, est = solve_with_time_error(PB, DENT, dt=0.04, steps=6, points=65, slide_roll=1.0,
+                                     cavitation="mass-conserving", time_tol=1e-2,
+                                     snapshot_every=100000)
+    tight = _run(DENT, 12, 1e-2 * TIGHTER_TOL, dt=0.02)
+    # the second run: half the output step, smaller inner steps
+    assert np.sum(tight.series["substeps"][1:]) > np.sum(run.series["substeps"][1:])
+    for k in ("Hc", "Hm"):
+        diff = np.max(np.abs(getattr(run, k) - getattr(tight, k)[::2])) / run.steady_film(k)
+        assert diff > 0.0 and est[k] == pytest.approx(ADAPTIVE_FACTOR * diff, rel=1e-12)
+    assert adaptive_time_error(run, tight) == est
+    with pytest.raises(ValueError, match="half the output step"):
+        adaptive_time_error(run, _run(DENT, 6, 1e-2 * TIGHTER_TOL))
+
+
+def test_the_front_door_states_the_time_part_of_an_adaptive_run():
     import ehl_multigrid as ehl
     from ehl_multigrid import Scene, load_scene
 
     d = load_scene("page63_line_2000N").to_dict()
-    d["feature"] = {"kind": "bump", "amplitude": 1e-8, "width": 1e-5, "x0": -3.0}
-    with pytest.raises(InputError, match="time_error.*time_tol"):
-        ehl.solve(Scene.from_dict(d), physics="transient", accuracy=None,
-                  options={"points": 65, "steps": 2, "time_tol": 1e-3, "time_error": True})
+    d["feature"] = {"kind": "dent", "amplitude": 2e-8, "width": 5e-5, "x0": -1.5e-4}
+    sol = ehl.solve(Scene.from_dict(d), physics="transient", accuracy=None,
+                    options={"points": 129, "steps": 4, "time_tol": 1e-2, "time_error": True})
+    t = sol.error.parts["time"]
+    assert sol.success and np.isfinite(t.Hc) and np.isfinite(t.Hm) and t.Hm > 0.0
+    assert any("eighth of the time tolerance" in n for n in sol.error.notes)

@@ -53,6 +53,18 @@ def test_transient_command_writes_series_plots_and_summary(monkeypatch, tmp_path
     json.dumps(out)
 
 
+def test_time_error_flag_reports_the_measured_time_part_of_an_adaptive_run(monkeypatch, tmp_path, capsys):
+    sc = _scene_with({"kind": "dent", "amplitude": "20 nm", "width": 5e-5, "x0": -1.5e-4})
+    monkeypatch.setattr(cli, "load_scene", lambda name: sc)
+    args = _parser().parse_args(["transient", "x", "--points", "129", "--steps", "4", "--time-tol", "1e-2",
+                                 "--time-error", "--no-plots", "--out", str(tmp_path),
+                                 "--checkpoint-every", "0"])
+    out = args.func(args)
+    assert out["converged"] and set(out["time_error"]) == {"Hc", "Hm"}
+    assert all(0.0 < v < 0.1 for v in out["time_error"].values())
+    assert "time error (relative to the smooth film)" in capsys.readouterr().out
+
+
 def test_transient_command_without_feature_table_names_it(monkeypatch, tmp_path):
     monkeypatch.setattr(cli, "load_scene", lambda name: _scene_with(None))
     args = _parser().parse_args(["transient", "x", "--out", str(tmp_path)])

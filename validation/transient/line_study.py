@@ -6,7 +6,8 @@ refinement at Courant number 1), ``waviness`` (amplitude reduction Ad/Ai against
 Lubrecht's wavelength parameter, pure rolling), ``bump`` (dent and bump passing under rolling
 and with slip: profiles at several positions), ``cost`` (time per step against grid size),
 ``cavitation`` (a deep dent under rolling and SRR -+0.5: projection against mass-conserving
-cavitation).
+cavitation), ``adaptive`` (adaptive time steps: the film error over a dent passage against a
+run at a 64 times smaller fixed step, and the time error the front door states for it).
 Each part writes ``build/validation/transient/<part>.json`` and a PNG; ``--quick`` runs a smaller set into ``build/validation/transient/quick/``.
 
 Moes-only problems (default oil of the core), Roelands + Dowson-Higginson, domain
@@ -31,7 +32,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 from ehl_multigrid.line.problem import LineProblem  # noqa: E402
 from ehl_multigrid.line.solver import solve_line_problem  # noqa: E402
 from ehl_multigrid.model.fits import moes_line_central  # noqa: E402
-from ehl_multigrid.transient import Bump, Waviness, solve_transient_line, transient_options  # noqa: E402
+from ehl_multigrid.transient import (  # noqa: E402
+    Bump,
+    Waviness,
+    adaptive_time_error,
+    solve_transient_line,
+    transient_options,
+)
+from ehl_multigrid.transient.accuracy import tighter_run_options  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _paths import out_dir  # noqa: E402
@@ -376,8 +384,44 @@ def part_cavitation(quick: bool) -> None:
         plt.close(fig)
 
 
+#: the adaptive part's dents: (amplitude, slip S, start X, output steps of 0.04)
+ADAPTIVE_CASES = ((-0.1, 1.0, -1.2, 30), (-0.12, 0.0, -1.6, 45))
+
+
+def part_adaptive(quick: bool) -> None:
+    """Adaptive steps (``time_tol``) through a dent passage, 65 points, mass-conserving, step
+    tolerance 1e-9: the largest error of Hc(T) and Hm(T) over the run against fixed steps 64
+    times smaller, relative to the smooth film, and the time error :func:`adaptive_time_error`
+    states for it (a second run at an eighth of the tolerance and half the output step)."""
+    pb = problem(20, 10)
+    rows = []
+    for amp, S, x0, n_out in ADAPTIVE_CASES[:1] if quick else ADAPTIVE_CASES:
+        def run(steps: int, tt: float | None, dt: float = 0.04, amp=amp, S=S, x0=x0):
+            return solve_transient_line(pb, Bump(amp, 0.5, x0=x0), points=65, dt=dt, steps=steps,
+                                        slide_roll=S, cavitation="mass-conserving", time_tol=tt,
+                                        snapshot_every=10**5, tol=1e-9, tol_load=1e-10)
+
+        ref = run(n_out * 64, None, 0.04 / 64)
+        refs = {"Hc": ref.Hc[::64], "Hm": ref.Hm[::64]}
+        for tt in ((1e-2,) if quick else (3e-2, 1e-2, 1e-3, 1e-4)):
+            t = time.perf_counter()
+            a = run(n_out, tt)
+            wall = time.perf_counter() - t
+            o = tighter_run_options(a, tt)
+            b = run(o["steps"], o["time_tol"], o["dt"])
+            est = adaptive_time_error(a, b)
+            true = {k: float(np.max(np.abs(getattr(a, k) - refs[k])) / ref.steady_film(k)) for k in refs}
+            rows.append({"amplitude": amp, "S": S, "x0": x0, "output_steps": n_out, "time_tol": tt,
+                         "solves": int(np.sum(a.series["substeps"][1:])),
+                         "solves_second_run": int(np.sum(b.series["substeps"][1:])), "wall_s": wall,
+                         "true_Hc": true["Hc"], "true_Hm": true["Hm"], "est_Hc": est["Hc"], "est_Hm": est["Hm"],
+                         "true_over_est_Hc": true["Hc"] / est["Hc"], "true_over_est_Hm": true["Hm"] / est["Hm"]})
+            print(rows[-1])
+    save("adaptive" + ("_quick" if quick else ""), {"M": 20, "L": 10, "points": 65, "rows": rows})
+
+
 PARTS = {"steady": part_steady, "time": part_time, "grid": part_grid, "waviness": part_waviness,
-         "bump": part_bump, "cost": part_cost, "cavitation": part_cavitation}
+         "bump": part_bump, "cost": part_cost, "cavitation": part_cavitation, "adaptive": part_adaptive}
 
 if __name__ == "__main__":
     common.main(__doc__, PARTS, sys.modules[__name__])
