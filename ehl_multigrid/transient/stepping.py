@@ -320,6 +320,21 @@ def local_time_error(stepper: Stepper, q: np.ndarray, q_pred: np.ndarray) -> flo
     return MILNE_FACTOR * float(np.max(np.abs(q - q_pred)[zone])) / max(scale, 1e-300)
 
 
+#: a step that fails with its thinnest film below this fraction of the smooth film's minimum
+#: is reported as a feature nearly cutting through the film
+THIN_FILM_FRACTION = 0.2
+
+
+def closure_site(fine: Any, H: np.ndarray, wet: np.ndarray) -> str:
+    """`` at X = .. (, Y = ..)``: the node of the thinnest film on the finest grid ``fine``,
+    among the pressurised nodes ``wet`` where one of them is closed, else anywhere."""
+    where = wet if wet.any() and float(H[wet].min()) <= 0.0 else np.ones(H.shape, dtype=bool)
+    k = np.unravel_index(int(np.argmin(np.where(where, H, np.inf))), H.shape)
+    if H.ndim == 1:
+        return f" at X = {float(fine.X[k[0]]):.4g}"
+    return f" at X = {float(fine.X[k[1]]):.4g}, Y = {float(fine.Y[k[0]]):.4g}"
+
+
 def _advance_adaptive(stepper: Stepper, speed: float, scheme: str, n: int, T0: float, dt: float,
                       last: dict[str, Any], accept_stall: float, tol: float
                       ) -> tuple[EHLResult, dict[str, Any], int, bool, float, int]:
@@ -423,23 +438,37 @@ def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, sc
             closed = res.status == 7 or (finite and wet.any() and float(H[wet].min()) <= 0.0)
             if closed and on_film_collapse == "stop":
                 out.failed_step = n
-                out.mark_incomplete(f"the film closed at step {n} (T = {T:.5g}): min H = "
-                                    f"{float(H[wet].min()) if wet.any() else math.nan:.3g}")
+                out.mark_incomplete(f"the film closed at step {n} (T = {T:.5g}){closure_site(fine, H, wet)}: "
+                                    f"min H = {float(H[wet].min()) if wet.any() else math.nan:.3g}")
                 break
+            if closed and finite:
+                # before the step's own failure: "not positive on this grid" would only say
+                # "more points", where a feature cutting through the film is the usual cause
+                out.failed_step = n
+                low = float(H[wet].min()) if wet.any() else float(np.min(H))
+                raise ConvergenceError(
+                    f"transient {name} solver: time step {n} (T = {T:.5g}): the film collapsed"
+                    f"{closure_site(fine, H, wet)} (min H = {low:.3g} where P > 0): the feature cuts "
+                    f"through the film, which needs a mixed-lubrication model the transient solvers "
+                    f"do not have, or the grid is too coarse to carry the film there", res.report,
+                    "a smaller feature amplitude, or more points")
             if not (res.success or stalled_ok) or not finite:
                 out.failed_step = n
                 why = (res.message if finite else
                        f"the pressure or film constant is not finite ({res.message})")
+                if finite:
+                    # where and how thin the film was: a feature that nearly cuts through it is
+                    # the usual cause of a stalled step
+                    low, smooth = float(np.min(H)), float(out.steady_film("Hm"))
+                    why += f"; thinnest film H = {low:.3g}{closure_site(fine, H, wet)}"
+                    if low < THIN_FILM_FRACTION * smooth:
+                        why += (f", below {THIN_FILM_FRACTION:g} of the smooth film's minimum "
+                                f"{smooth:.3g}: the feature nearly cuts through the film (mixed "
+                                f"lubrication, which the transient solvers do not model)")
                 raise ConvergenceError(
                     f"transient {name} solver: time step {n} (T = {T:.5g}, dT = {dt:.4g}) failed: "
                     f"{why}", res.report,
                     "a smaller time step (dt), more points, or a smaller feature amplitude")
-            if closed:
-                out.failed_step = n
-                raise ConvergenceError(
-                    f"transient {name} solver: time step {n} (T = {T:.5g}): the film collapsed "
-                    f"(min H = {float(H[wet].min()):.3g} where P > 0); the feature cuts through the "
-                    f"film, which needs a mixed-lubrication model", None, "a smaller feature amplitude")
             with deferred_signals():  # a stop never records a step without its state
                 out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
                 out.series["stalled"].append(0.0 if res.success else 1.0)

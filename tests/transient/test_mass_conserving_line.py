@@ -93,3 +93,15 @@ def test_a_thinner_supply_reaches_the_contact_at_the_mean_speed_and_thins_the_fi
     assert abs(res.Hc[30] / res.Hc[0] - 1.0) < 1e-3  # T = 3: not arrived yet
     assert (res.Hc[0] - res.Hc[-1]) > 0.5 * (res.Hc[0] - new)  # T = 5: most of the way
     assert np.max(np.abs(res.series["mass_error"][1:])) < 1e-5
+
+
+def test_a_dent_that_nearly_cuts_through_the_film_fails_naming_the_time_and_the_place():
+    from ehl_multigrid.model.errors import ConvergenceError
+
+    # 0.3 deep (3.5 Hc) under pure rolling on 65 points: the film over the dent's edge thins to
+    # 0.0014 (a fortieth of the smooth Hm) and the step stalls at T = 0.7
+    with pytest.raises(ConvergenceError) as err:
+        _run("mass-conserving", Bump(-0.3, 0.5, x0=-1.8), 100, points=65, dt=0.02, slide_roll=0.0)
+    msg = str(err.value)
+    assert "T = 0.7" in msg and "at X = -0.84" in msg and "cuts through the film" in msg
+    assert err.value.partial.steps == 34
