@@ -7,7 +7,9 @@ Lubrecht's wavelength parameter, pure rolling), ``bump`` (dent and bump passing 
 and with slip: profiles at several positions), ``cost`` (time per step against grid size),
 ``cavitation`` (a deep dent under rolling and SRR -+0.5: projection against mass-conserving
 cavitation), ``adaptive`` (adaptive time steps: the film error over a dent passage against a
-run at a 64 times smaller fixed step, and the time error the front door states for it).
+run at a 64 times smaller fixed step, and the time error the front door states for it),
+``starved`` (a starved inlet in time: dents through a starved contact, and the film's response
+to a step in the supplied layer).
 Each part writes ``build/validation/transient/<part>.json`` and a PNG; ``--quick`` runs a smaller set into ``build/validation/transient/quick/``.
 
 Moes-only problems (default oil of the core), Roelands + Dowson-Higginson, domain
@@ -420,8 +422,73 @@ def part_adaptive(quick: bool) -> None:
     save("adaptive" + ("_quick" if quick else ""), {"M": 20, "L": 10, "points": 65, "rows": rows})
 
 
+#: the starved part: the supplied layer (Venner units; the flooded contact carries about 0.09)
+STARVED_HOIL = 0.05
+#: dents through the starved contact: (depth, slip S)
+STARVED_DENTS = ((0.1, 0.0), (0.1, 1.0), (0.2, 0.0), (0.2, 1.0))
+#: supply steps: (layer after the step, end time)
+SUPPLY_STEPS = ((0.025, 6.0), (0.075, 8.0))
+
+
+def part_starved(quick: bool) -> None:
+    """Mass-conserving runs fed a layer ``STARVED_HOIL`` at the inlet, 257 points (129 quick),
+    default steps and tolerances: (1) dents from X = -1.6 to 1.1 through the starved contact,
+    the film's extremes, the mass error and stalls; (2) the supply stepped at T = 0.05 to a
+    thinner and a thicker layer, Hc(T) against the new starved steady film."""
+    pb = problem(20, 10)
+    n = 129 if quick else 257
+    smooth = solve_transient_line(pb, None, points=n, steps=1, dt=0.05, cavitation="mass-conserving",
+                                  hoil=STARVED_HOIL, snapshot_every=10**5)
+    Hc0, Hm0 = float(smooth.Hc[0]), float(smooth.Hm[0])
+    dents = []
+    for depth, S in STARVED_DENTS[:1] if quick else STARVED_DENTS:
+        speed = 1.0 + 0.5 * S
+        t = time.perf_counter()
+        row = {"depth": depth, "depth_over_Hc": depth / Hc0, "S": S, "points": n}
+        try:
+            res = solve_transient_line(pb, Bump(-depth, 0.5, x0=-1.6), slide_roll=S, points=n,
+                                       t_end=2.7 / speed, cavitation="mass-conserving",
+                                       hoil=STARVED_HOIL, snapshot_every=10**5)
+        except Exception as exc:  # a failed run is a result of the study
+            part = getattr(exc, "partial", None)
+            row.update({"failed": str(exc).splitlines()[0], "steps_done": part.steps if part is not None else 0})
+            dents.append(row)
+            print(row)
+            continue
+        err = np.asarray(res.series["mass_error"][1:])
+        row.update({"steps": res.steps, "wall_s": time.perf_counter() - t, "stalled": int(np.sum(res.stalled)),
+                    "Hc_min": float(res.Hc.min()), "Hc_max": float(res.Hc.max()), "Hm_min": float(res.Hm.min()),
+                    "mass_error_max": float(np.max(np.abs(err))), "mass_error_mean": float(np.mean(err)),
+                    "mass_error_sum": float(np.sum(err))})
+        dents.append(row)
+        print(row)
+    steps = []
+    for after, t_end in SUPPLY_STEPS[:1] if quick else SUPPLY_STEPS:
+        new = solve_transient_line(pb, None, points=n, steps=1, dt=0.05, cavitation="mass-conserving",
+                                   hoil=after, snapshot_every=10**5)
+        row = {"from": STARVED_HOIL, "to": after, "points": n, "Hc_before": Hc0, "Hc_new_steady": float(new.Hc[0])}
+        try:
+            res = solve_transient_line(pb, None, points=n, dt=0.1, t_end=t_end, cavitation="mass-conserving",
+                                       hoil=lambda T, a=after: STARVED_HOIL if T < 0.05 else a,
+                                       snapshot_every=10**5)
+            row["completed"] = True
+        except Exception as exc:
+            res = getattr(exc, "partial", None)
+            row.update({"completed": False, "failed": str(exc).splitlines()[0]})
+        if res is not None and res.steps:
+            row.update({"T": res.T.tolist(), "Hc": res.Hc.tolist(),
+                        "mass_error_max": float(np.max(np.abs(res.series["mass_error"][1:]))),
+                        "Hc_at": {f"{T:g}": float(np.interp(T, res.T, res.Hc)) for T in (3.0, 4.0, 5.0, 5.5, 6.0, 8.0)
+                                  if T <= res.T[-1]}})
+        steps.append(row)
+        print({k: v for k, v in row.items() if k not in ("T", "Hc")})
+    save("starved" + ("_quick" if quick else ""), {"M": 20, "L": 10, "hoil": STARVED_HOIL, "Hc_starved": Hc0,
+                                                   "Hm_starved": Hm0, "dents": dents, "supply_steps": steps})
+
+
 PARTS = {"steady": part_steady, "time": part_time, "grid": part_grid, "waviness": part_waviness,
-         "bump": part_bump, "cost": part_cost, "cavitation": part_cavitation, "adaptive": part_adaptive}
+         "bump": part_bump, "cost": part_cost, "cavitation": part_cavitation, "adaptive": part_adaptive,
+         "starved": part_starved}
 
 if __name__ == "__main__":
     common.main(__doc__, PARTS, sys.modules[__name__])

@@ -8,7 +8,8 @@ per step at 257^2 and 513^2), ``rough`` (a synthetic surface with the statistics
 disc through the contact: the load carried where the film is thin, against the mixed layer's
 Greenwood-Williamson asperity share), ``cavitation`` (dents through the contact, projection
 against mass-conserving cavitation: films, mass error, stalls, and the cost per step at 129^2,
-257^2 and 513^2). Each part writes ``build/validation/transient/point_<part>.json`` and a PNG.
+257^2 and 513^2), ``starved`` (dents through a starved circular contact, mass-conserving
+cavitation). Each part writes ``build/validation/transient/point_<part>.json`` and a PNG.
 
 Moes-only circular problems (default oil of the core), Roelands + Dowson-Higginson, domain
 X in [-4.5, 1.5], |Y| <= 3 (the core's default box) unless stated.
@@ -462,8 +463,51 @@ def part_cavitation(quick: bool) -> None:
     save("point_cavitation" + ("_quick" if quick else ""), {"rows": rows})
 
 
+#: the starved part: the supplied layer (point units H = h Rx/a^2; the flooded (20, 10) contact
+#: carries about 0.5) and the dents through it: (depth, slip S)
+STARVED_HOIL = 0.1
+STARVED_DENTS = ((0.2, 0.0), (0.2, 1.0), (0.4, 1.0))
+
+
+def part_starved(quick: bool) -> None:
+    """(20, 10) fed a layer ``STARVED_HOIL`` at the inlet, mass-conserving, 129^2 (65^2 quick),
+    default steps and tolerances: dents of width 0.5 from X = -1.6 until they are at X = 1.1,
+    the film's extremes against the starved steady film, the mass error and stalls."""
+    pb = problem_from_moes(20, 10)
+    n = 65 if quick else 129
+    smooth = solve_transient_point(pb, None, points=n, steps=1, dt=0.05, cavitation="mass-conserving",
+                                   hoil=STARVED_HOIL, snapshot_every=10**5)
+    Hc0, Hm0 = float(smooth.Hc[0]), float(smooth.Hm[0])
+    rows = []
+    for depth, S in STARVED_DENTS[:1] if quick else STARVED_DENTS:
+        speed = 1.0 + 0.5 * S
+        t = time.perf_counter()
+        row = {"depth": depth, "depth_over_Hc": depth / Hc0, "S": S, "points": n}
+        try:
+            res = solve_transient_point(pb, Dent2D(-depth, 0.5, x0=-1.6), slide_roll=S, points=n,
+                                        t_end=2.7 / speed, cavitation="mass-conserving", hoil=STARVED_HOIL,
+                                        snapshot_every=10**5)
+        except Exception as exc:  # a failed run is a result of the study
+            part = getattr(exc, "partial", None)
+            row.update({"failed": str(exc).splitlines()[0], "steps_done": part.steps if part is not None else 0})
+            rows.append(row)
+            print(row)
+            continue
+        err = np.asarray(res.series["mass_error"][1:], dtype=float)
+        s = res.summary()
+        row.update({"steps": s["steps"], "wall_s": time.perf_counter() - t, "stalled": s["stalled_steps"],
+                    "Hc_min": s["Hc_min"], "Hc_max": s["Hc_max"], "Hm_min": s["Hm_min"],
+                    "mass_error_max": float(np.max(np.abs(err))), "mass_error_mean": float(np.mean(err)),
+                    "mass_error_sum": float(np.sum(err))})
+        rows.append(row)
+        print(row)
+    save("point_starved" + ("_quick" if quick else ""), {"M": 20, "L": 10, "hoil": STARVED_HOIL,
+                                                         "Hc_starved": Hc0, "Hm_starved": Hm0, "rows": rows})
+
+
 PARTS = {"steady": part_steady, "time": part_time, "waviness": part_waviness, "dent": part_dent,
-         "cost": part_cost, "rough": part_rough, "collapse": part_collapse, "cavitation": part_cavitation}
+         "cost": part_cost, "rough": part_rough, "collapse": part_collapse, "cavitation": part_cavitation,
+         "starved": part_starved}
 
 if __name__ == "__main__":
     common.main(__doc__, PARTS, sys.modules[__name__])
