@@ -281,13 +281,21 @@ def part_dent(quick: bool) -> None:
             axes[1, c].plot(X, sn["P"], lw=1)
         axes[0, c].set_ylim(0, 3 * rows[0]["Hc_steady"])
         axes[0, c].set_title(key)
-        axes[1, c].set_xlim(-2, 1.5)
-        axes[1, c].set_xlabel("X = x/a (Y = 0)")
+    _save_profiles(fig, axes, "point_dent_profiles", quick)
+
+
+def _save_profiles(fig, axes, name: str, quick: bool) -> None:
+    """Axes labels and limits of a figure of centre-line films (top row) and pressures (bottom
+    row) against X, written as ``name[_quick].png``."""
+    for ax in axes[1]:
+        ax.set_xlim(-2, 1.5)
+        ax.set_xlabel("X = x/a (Y = 0)")
     axes[0, 0].set_ylabel("H")
     axes[1, 0].set_ylabel("P")
     axes[0, 0].legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(OUT / ("point_dent_profiles" + ("_quick" if quick else "") + ".png"), dpi=110)
+    fig.savefig(OUT / (name + ("_quick" if quick else "") + ".png"), dpi=110)
+    plt.close(fig)
 
 
 # -- cost ----------------------------------------------------------------------------------
@@ -414,6 +422,7 @@ CAVITATION_CASES = (
     ("(100, 10) dent 0.7 (5.3 Hc), S = +1", 100.0, 0.7, 0.5, 1.0, 129, -1.6, 1.1, None),
     ("(100, 10) dent 0.7 (5.3 Hc), S = -1", 100.0, 0.7, 0.5, -1.0, 129, -1.6, 1.1, None),
     ("(100, 10) dent 0.7 (5.3 Hc), S = 0", 100.0, 0.7, 0.5, 0.0, 129, -1.6, 1.1, None),
+    ("(100, 10) dent 0.7 (5.3 Hc), S = 0, step tolerance 1e-7", 100.0, 0.7, 0.5, 0.0, 129, -1.6, 1.1, None),
     ("cost: (100, 10) dent 0.7 entering, S = +1", 100.0, 0.7, 0.5, 1.0, 257, -1.6, None, 20),
     ("cost: (100, 10) dent 0.7 entering, S = +1", 100.0, 0.7, 0.5, 1.0, 513, -1.6, None, 8),
 )
@@ -423,8 +432,9 @@ def part_cavitation(quick: bool) -> None:
     """Each case twice, with the projection ``P >= 0`` and with mass-conserving cavitation, at
     the default step and step tolerance: wall time per step, stalled steps, the mass error of
     the mass-conserving run (oil gained per step over the inflow), Hm min of both, and the
-    largest differences of Hm and Hc between the two runs over the steps."""
-    rows = []
+    largest differences of Hm and Hc between the two runs over the steps, with both models'
+    centre-line film and pressure at the step of the largest Hc difference."""
+    rows, prof = [], {}
     for name, M, depth, W, S, n, x0, x1, steps in CAVITATION_CASES[:1] if quick else CAVITATION_CASES:
         pb = problem_from_moes(M, 10.0)
         speed = 1.0 + 0.5 * S
@@ -433,8 +443,10 @@ def part_cavitation(quick: bool) -> None:
             kw = {"steps": steps} if x1 is None else {"t_end": (x1 - x0) / speed}
             t = time.perf_counter()
             try:
+                if "tolerance 1e-7" in name:
+                    kw["tol"] = 1e-7
                 runs[cav] = solve_transient_point(pb, Dent2D(-depth, W, x0=x0), slide_roll=S, points=n,
-                                                  cavitation=cav, snapshot_every=10**5, **kw)
+                                                  cavitation=cav, snapshot_every=1, **kw)
             except Exception as exc:  # a failed run is a result of the study
                 runs[cav] = str(exc).splitlines()[0]
             print(name, n, cav, f"{time.perf_counter() - t:.1f} s", flush=True)
@@ -448,6 +460,7 @@ def part_cavitation(quick: bool) -> None:
             s = r.summary()
             row.update({f"steps_{key}": s["steps"], f"wall_per_step_{key}": s["wall_per_step_s"],
                         f"stalled_{key}": s["stalled_steps"], f"Hm_min_{key}": s["Hm_min"],
+                        f"Hc_min_{key}": s["Hc_min"], f"Hc_max_{key}": s["Hc_max"],
                         f"Hc_steady_{key}": s["Hc_steady"]})
             if key == "mc":
                 err = np.asarray(r.series["mass_error"][1:], dtype=float)
@@ -456,11 +469,31 @@ def part_cavitation(quick: bool) -> None:
         if len(ok) == 2:
             a, b = ok["projection"], ok["mass-conserving"]
             m = min(a.Hc.size, b.Hc.size)
+            kc = int(np.argmax(np.abs(a.Hc[:m] - b.Hc[:m])))
             row.update({"max_abs_dHm": float(np.max(np.abs(a.Hm[:m] - b.Hm[:m]))),
-                        "max_abs_dHc": float(np.max(np.abs(a.Hc[:m] - b.Hc[:m])))})
-        print(row, flush=True)
+                        "max_abs_dHc": float(np.abs(a.Hc[kc] - b.Hc[kc])), "T_max_dHc": float(a.T[kc]),
+                        "feature_x_at_max_dHc": float(a.xf[kc]),
+                        "Hc_at_max_dHc": {"pr": float(a.Hc[kc]), "mc": float(b.Hc[kc])}})
+            # centre-line film and pressure of both models where their central films differ most
+            j = int(np.argmin(np.abs(a.Y)))
+            if kc in a.snapshots and kc in b.snapshots:
+                prof[name + f", {n} points"] = {
+                    "X": a.X.tolist(), "T": float(a.T[kc]), "xf": float(a.xf[kc]),
+                    **{f"{c}_{q}": r.snapshots[kc][q][j].tolist() for c, r in (("pr", a), ("mc", b))
+                       for q in ("H", "P")}}
+        print({k: v for k, v in row.items()}, flush=True)
         rows.append(row)
-    save("point_cavitation" + ("_quick" if quick else ""), {"rows": rows})
+    save("point_cavitation" + ("_quick" if quick else ""), {"rows": rows, "profiles": prof})
+    if prof:
+        fig, axes = plt.subplots(2, len(prof), figsize=(4.2 * len(prof), 6), squeeze=False, sharex=True)
+        for c, (key, d) in enumerate(prof.items()):
+            X = np.array(d["X"])
+            for m_, style in (("pr", "-"), ("mc", "--")):
+                axes[0, c].plot(X, d[f"{m_}_H"], style, lw=1, label={"pr": "projection", "mc": "mass-conserving"}[m_])
+                axes[1, c].plot(X, d[f"{m_}_P"], style, lw=1)
+            axes[0, c].set_title(f"{key}\nT = {d['T']:.3g}, dent at X = {d['xf']:.2f}", fontsize=7)
+            axes[0, c].set_ylim(0.0, 0.5)
+        _save_profiles(fig, axes, "point_cavitation_profiles", quick)
 
 
 #: the starved part: the supplied layer (point units H = h Rx/a^2; the flooded (20, 10) contact
