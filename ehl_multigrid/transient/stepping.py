@@ -445,10 +445,12 @@ def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, sc
                 # before the step's own failure: "not positive on this grid" would only say
                 # "more points", where a feature cutting through the film is the usual cause
                 out.failed_step = n
-                low = float(H[wet].min()) if wet.any() else float(np.min(H))
+                wet_low = float(H[wet].min()) if wet.any() else math.inf
+                low, where = (wet_low, "where P > 0") if wet_low <= 0.0 else (float(np.min(H)), "")
                 raise ConvergenceError(
                     f"transient {name} solver: time step {n} (T = {T:.5g}): the film collapsed"
-                    f"{closure_site(fine, H, wet)} (min H = {low:.3g} where P > 0): the feature cuts "
+                    f"{closure_site(fine, H, wet)} (min H = {low:.3g}{' ' + where if where else ''}): "
+                    f"the feature cuts "
                     f"through the film, which needs a mixed-lubrication model the transient solvers "
                     f"do not have, or the grid is too coarse to carry the film there", res.report,
                     "a smaller feature amplitude, or more points")
