@@ -113,3 +113,31 @@ def main(doc: str, parts: dict[str, Callable[[bool], None]], study: Any) -> None
         study.OUT = study.OUT / "quick"
     for p in args.part:
         parts[p](args.quick)
+
+
+def dent_rows(run: Callable[[float, float], Any], dents: Sequence[tuple[float, float]], Hc: float,
+              points: int) -> list[dict[str, Any]]:
+    """One row per dent ``(depth, slip S)`` of ``run(depth, S)`` (a mass-conserving transient
+    run): the film's extremes (over the smooth film ``Hc``), the mass error per step, stalls and
+    wall time; a run that fails is a row with the failure and the steps it completed."""
+    import time
+
+    rows = []
+    for depth, S in dents:
+        t = time.perf_counter()
+        row: dict[str, Any] = {"depth": depth, "depth_over_Hc": depth / Hc, "S": S, "points": points}
+        try:
+            res = run(depth, S)
+        except Exception as exc:  # a failed run is a result of the study
+            part = getattr(exc, "partial", None)
+            row.update({"failed": str(exc).splitlines()[0], "steps_done": part.steps if part is not None else 0})
+        else:
+            err = np.asarray(res.series["mass_error"][1:], dtype=float)
+            s = res.summary()
+            row.update({"steps": s["steps"], "wall_s": time.perf_counter() - t, "stalled": s["stalled_steps"],
+                        "Hc_min": s["Hc_min"], "Hc_max": s["Hc_max"], "Hm_min": s["Hm_min"],
+                        "mass_error_max": float(np.max(np.abs(err))), "mass_error_mean": float(np.mean(err)),
+                        "mass_error_sum": float(np.sum(err))})
+        print(row)
+        rows.append(row)
+    return rows

@@ -440,28 +440,11 @@ def part_starved(quick: bool) -> None:
     smooth = solve_transient_line(pb, None, points=n, steps=1, dt=0.05, cavitation="mass-conserving",
                                   hoil=STARVED_HOIL, snapshot_every=10**5)
     Hc0, Hm0 = float(smooth.Hc[0]), float(smooth.Hm[0])
-    dents = []
-    for depth, S in STARVED_DENTS[:1] if quick else STARVED_DENTS:
-        speed = 1.0 + 0.5 * S
-        t = time.perf_counter()
-        row = {"depth": depth, "depth_over_Hc": depth / Hc0, "S": S, "points": n}
-        try:
-            res = solve_transient_line(pb, Bump(-depth, 0.5, x0=-1.6), slide_roll=S, points=n,
-                                       t_end=2.7 / speed, cavitation="mass-conserving",
-                                       hoil=STARVED_HOIL, snapshot_every=10**5)
-        except Exception as exc:  # a failed run is a result of the study
-            part = getattr(exc, "partial", None)
-            row.update({"failed": str(exc).splitlines()[0], "steps_done": part.steps if part is not None else 0})
-            dents.append(row)
-            print(row)
-            continue
-        err = np.asarray(res.series["mass_error"][1:])
-        row.update({"steps": res.steps, "wall_s": time.perf_counter() - t, "stalled": int(np.sum(res.stalled)),
-                    "Hc_min": float(res.Hc.min()), "Hc_max": float(res.Hc.max()), "Hm_min": float(res.Hm.min()),
-                    "mass_error_max": float(np.max(np.abs(err))), "mass_error_mean": float(np.mean(err)),
-                    "mass_error_sum": float(np.sum(err))})
-        dents.append(row)
-        print(row)
+    dents = common.dent_rows(
+        lambda depth, S: solve_transient_line(pb, Bump(-depth, 0.5, x0=-1.6), slide_roll=S, points=n,
+                                              t_end=2.7 / (1.0 + 0.5 * S), cavitation="mass-conserving",
+                                              hoil=STARVED_HOIL, snapshot_every=10**5),
+        STARVED_DENTS[:1] if quick else STARVED_DENTS, Hc0, n)
     steps = []
     for after, t_end in SUPPLY_STEPS[:1] if quick else SUPPLY_STEPS:
         new = solve_transient_line(pb, None, points=n, steps=1, dt=0.05, cavitation="mass-conserving",

@@ -511,29 +511,11 @@ def part_starved(quick: bool) -> None:
     smooth = solve_transient_point(pb, None, points=n, steps=1, dt=0.05, cavitation="mass-conserving",
                                    hoil=STARVED_HOIL, snapshot_every=10**5)
     Hc0, Hm0 = float(smooth.Hc[0]), float(smooth.Hm[0])
-    rows = []
-    for depth, S in STARVED_DENTS[:1] if quick else STARVED_DENTS:
-        speed = 1.0 + 0.5 * S
-        t = time.perf_counter()
-        row = {"depth": depth, "depth_over_Hc": depth / Hc0, "S": S, "points": n}
-        try:
-            res = solve_transient_point(pb, Dent2D(-depth, 0.5, x0=-1.6), slide_roll=S, points=n,
-                                        t_end=2.7 / speed, cavitation="mass-conserving", hoil=STARVED_HOIL,
-                                        snapshot_every=10**5)
-        except Exception as exc:  # a failed run is a result of the study
-            part = getattr(exc, "partial", None)
-            row.update({"failed": str(exc).splitlines()[0], "steps_done": part.steps if part is not None else 0})
-            rows.append(row)
-            print(row)
-            continue
-        err = np.asarray(res.series["mass_error"][1:], dtype=float)
-        s = res.summary()
-        row.update({"steps": s["steps"], "wall_s": time.perf_counter() - t, "stalled": s["stalled_steps"],
-                    "Hc_min": s["Hc_min"], "Hc_max": s["Hc_max"], "Hm_min": s["Hm_min"],
-                    "mass_error_max": float(np.max(np.abs(err))), "mass_error_mean": float(np.mean(err)),
-                    "mass_error_sum": float(np.sum(err))})
-        rows.append(row)
-        print(row)
+    rows = common.dent_rows(
+        lambda depth, S: solve_transient_point(pb, Dent2D(-depth, 0.5, x0=-1.6), slide_roll=S, points=n,
+                                               t_end=2.7 / (1.0 + 0.5 * S), cavitation="mass-conserving",
+                                               hoil=STARVED_HOIL, snapshot_every=10**5),
+        STARVED_DENTS[:1] if quick else STARVED_DENTS, Hc0, n)
     save("point_starved" + ("_quick" if quick else ""), {"M": 20, "L": 10, "hoil": STARVED_HOIL,
                                                          "Hc_starved": Hc0, "Hm_starved": Hm0, "rows": rows})
 
