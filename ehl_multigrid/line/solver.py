@@ -422,13 +422,23 @@ class LineHierarchy:
             solver.note(f"started on the {self.levels[top].n}-point grid from the given solution (no FMG)")
             return top
         k = k_want = self._start_level()
+        from_coarser = False
         while True:
             lv = self.levels[k]
-            self._initial_guess(lv)
+            if from_coarser:
+                # the coarser start grid's converged Newton solution (its film not positive
+                # somewhere) is a closer start than the Hertzian guess: (3000, 6) at 2049
+                # points, 5 Newton iterations instead of 7 (0.4 s each)
+                self.fmg_interpolate(k, solver.settings)
+            else:
+                self._initial_guess(lv)
             last = k == top or self.levels[k + 1].n > MAX_START_POINTS
             try:
                 its = newton_solve(lv, max_iter=120)
             except NewtonFailure as exc:
+                if from_coarser:  # the Hertzian start before giving up on this grid
+                    from_coarser = False
+                    continue
                 if not last:
                     solver.note(f"FMG start on {lv.n} points: Newton failed ({exc}); "
                                 f"start moved to {self.levels[k + 1].n} points")
@@ -444,6 +454,7 @@ class LineHierarchy:
             solver.note(f"the {lv.n}-point grid gives a non-positive film at M = "
                         f"{self.problem.M:.4g}: FMG start moved to {self.levels[k + 1].n} points")
             k += 1
+            from_coarser = True
         if not self._film_ok(lv):
             capped = k < top and self.levels[k + 1].n > MAX_START_POINTS
             if capped and self.guess is not None:
