@@ -141,3 +141,16 @@ def dent_rows(run: Callable[[float, float], Any], dents: Sequence[tuple[float, f
         print(row)
         rows.append(row)
     return rows
+
+
+def starved_dents(solve: Callable[..., Any], problem: Any, feature: Callable[..., Any], hoil: float,
+                  points: int, dents: Sequence[tuple[float, float]]) -> tuple[float, float, list[dict[str, Any]]]:
+    """The starved steady films ``(Hc, Hm)`` of ``problem`` fed ``hoil`` and :func:`dent_rows`
+    of dents of width 0.5 (``feature(amplitude, width, x0=...)``) from X = -1.6 until they are
+    at X = 1.1, mass-conserving runs of ``solve`` (the line or point transient solver)."""
+    kw = {"points": points, "cavitation": "mass-conserving", "hoil": hoil, "snapshot_every": 10**5}
+    smooth = solve(problem, None, steps=1, dt=0.05, **kw)
+    Hc, Hm = float(smooth.Hc[0]), float(smooth.Hm[0])
+    rows = dent_rows(lambda depth, S: solve(problem, feature(-depth, 0.5, x0=-1.6), slide_roll=S,
+                                            t_end=2.7 / (1.0 + 0.5 * S), **kw), dents, Hc, points)
+    return Hc, Hm, rows

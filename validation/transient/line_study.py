@@ -437,14 +437,8 @@ def part_starved(quick: bool) -> None:
     thinner and a thicker layer, Hc(T) against the new starved steady film."""
     pb = problem(20, 10)
     n = 129 if quick else 257
-    smooth = solve_transient_line(pb, None, points=n, steps=1, dt=0.05, cavitation="mass-conserving",
-                                  hoil=STARVED_HOIL, snapshot_every=10**5)
-    Hc0, Hm0 = float(smooth.Hc[0]), float(smooth.Hm[0])
-    dents = common.dent_rows(
-        lambda depth, S: solve_transient_line(pb, Bump(-depth, 0.5, x0=-1.6), slide_roll=S, points=n,
-                                              t_end=2.7 / (1.0 + 0.5 * S), cavitation="mass-conserving",
-                                              hoil=STARVED_HOIL, snapshot_every=10**5),
-        STARVED_DENTS[:1] if quick else STARVED_DENTS, Hc0, n)
+    Hc0, Hm0, dents = common.starved_dents(solve_transient_line, pb, Bump, STARVED_HOIL, n,
+                                           STARVED_DENTS[:1] if quick else STARVED_DENTS)
     steps = []
     for after, t_end in SUPPLY_STEPS[:1] if quick else SUPPLY_STEPS:
         row = {"from": STARVED_HOIL, "to": after, "points": n, "Hc_before": Hc0}

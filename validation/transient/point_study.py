@@ -508,14 +508,8 @@ def part_starved(quick: bool) -> None:
     the film's extremes against the starved steady film, the mass error and stalls."""
     pb = problem_from_moes(20, 10)
     n = 65 if quick else 129
-    smooth = solve_transient_point(pb, None, points=n, steps=1, dt=0.05, cavitation="mass-conserving",
-                                   hoil=STARVED_HOIL, snapshot_every=10**5)
-    Hc0, Hm0 = float(smooth.Hc[0]), float(smooth.Hm[0])
-    rows = common.dent_rows(
-        lambda depth, S: solve_transient_point(pb, Dent2D(-depth, 0.5, x0=-1.6), slide_roll=S, points=n,
-                                               t_end=2.7 / (1.0 + 0.5 * S), cavitation="mass-conserving",
-                                               hoil=STARVED_HOIL, snapshot_every=10**5),
-        STARVED_DENTS[:1] if quick else STARVED_DENTS, Hc0, n)
+    Hc0, Hm0, rows = common.starved_dents(solve_transient_point, pb, Dent2D, STARVED_HOIL, n,
+                                          STARVED_DENTS[:1] if quick else STARVED_DENTS)
     save("point_starved" + ("_quick" if quick else ""), {"M": 20, "L": 10, "hoil": STARVED_HOIL,
                                                          "Hc_starved": Hc0, "Hm_starved": Hm0, "rows": rows})
 
