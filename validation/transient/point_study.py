@@ -9,7 +9,8 @@ disc through the contact: the load carried where the film is thin, against the m
 Greenwood-Williamson asperity share), ``cavitation`` (dents through the contact, projection
 against mass-conserving cavitation: films, mass error, stalls, and the cost per step at 129^2,
 257^2 and 513^2), ``starved`` (dents through a starved circular contact, mass-conserving
-cavitation). Each part writes ``build/validation/transient/point_<part>.json`` and a PNG.
+cavitation), ``adaptive`` (adaptive time steps against a 32 times smaller fixed step, and the
+time error stated for them). Each part writes ``build/validation/transient/point_<part>.json`` and a PNG.
 
 Moes-only circular problems (default oil of the core), Roelands + Dowson-Higginson, domain
 X in [-4.5, 1.5], |Y| <= 3 (the core's default box) unless stated.
@@ -514,9 +515,42 @@ def part_starved(quick: bool) -> None:
                                                          "Hc_starved": Hc0, "Hm_starved": Hm0, "rows": rows})
 
 
+def part_adaptive(quick: bool) -> None:
+    """Adaptive steps (``time_tol``) through a dent passage, (20, 10), 65^2, a dent 1.0 deep
+    (2.4 Hc) of width 1 from X = -2 at S = 1, mass-conserving, step tolerance 1e-8, 30 output
+    steps of 0.06: the largest error of Hc(T) and Hm(T) against fixed steps 32 times smaller,
+    relative to the smooth film, and the time error :func:`adaptive_time_error` states."""
+    from ehl_multigrid.transient import adaptive_time_error
+    from ehl_multigrid.transient.accuracy import tighter_run_options
+
+    pb = problem_from_moes(20, 10)
+    dt, n_out = 0.06, 10 if quick else 30
+
+    def run(steps: int, tt: float | None, step: float = dt):
+        return solve_transient_point(pb, Dent2D(-1.0, 1.0, x0=-2.0), points=65, dt=step, steps=steps,
+                                     slide_roll=1.0, cavitation="mass-conserving", time_tol=tt,
+                                     snapshot_every=10**5, tol=1e-8, tol_load=1e-9)
+
+    ref = run(n_out * 32, None, dt / 32)
+    refs = {"Hc": ref.Hc[::32], "Hm": ref.Hm[::32]}
+    rows = []
+    for tt in ((1e-2,) if quick else (1e-2, 1e-3)):
+        a = run(n_out, tt)
+        o = tighter_run_options(a, tt)
+        b = run(o["steps"], o["time_tol"], o["dt"])
+        est = adaptive_time_error(a, b)
+        true = {k: float(np.max(np.abs(getattr(a, k) - refs[k])) / a.steady_film(k)) for k in refs}
+        rows.append({"time_tol": tt, "solves": int(np.sum(a.series["substeps"][1:])),
+                     "solves_second_run": int(np.sum(b.series["substeps"][1:])),
+                     **{f"true_{k}": true[k] for k in refs}, **{f"est_{k}": est[k] for k in refs},
+                     **{f"true_over_est_{k}": true[k] / est[k] for k in refs}})
+        print(rows[-1])
+    save("point_adaptive" + ("_quick" if quick else ""), {"M": 20, "L": 10, "points": 65, "rows": rows})
+
+
 PARTS = {"steady": part_steady, "time": part_time, "waviness": part_waviness, "dent": part_dent,
          "cost": part_cost, "rough": part_rough, "collapse": part_collapse, "cavitation": part_cavitation,
-         "starved": part_starved}
+         "starved": part_starved, "adaptive": part_adaptive}
 
 if __name__ == "__main__":
     common.main(__doc__, PARTS, sys.modules[__name__])
