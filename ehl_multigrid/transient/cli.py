@@ -299,9 +299,12 @@ def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: 
               f"..{payload['hc_max']:.4g} m (smooth {payload['hc_steady']:.4g} m), hm min "
               f"{payload['hm_min']:.4g} m; written {h5}"
               f"{'' if res.complete else ' (complete = False)'}")
-        if time_part is not None:
+        if time_part is not None and all(math.isfinite(v) for v in time_part.values()):
             print(f"  time error (relative to the smooth film): Hc {time_part['Hc']:.2g}, "
                   f"Hm {time_part['Hm']:.2g}")
+        elif time_part is not None:
+            why = [n for n in notes if "time error" in n]
+            print(f"  {why[0] if why else 'time error not measured'}")
     if time_part is None and failure is None and res.complete:
         # a dent passing with the default fixed step can leave several per cent in Hm
         # (docs/transient.md): the run's error is not known unless measured

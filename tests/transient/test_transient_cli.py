@@ -66,6 +66,17 @@ def test_time_error_flag_reports_the_measured_time_part_of_an_adaptive_run(monke
     assert "time error (relative to the smooth film)" in shown.out and "not measured" not in shown.err
 
 
+def test_time_error_flag_says_why_a_fixed_step_run_is_not_measured(monkeypatch, tmp_path, capsys):
+    # the default step is the largest the dent allows: twice it is refused, and the line says so
+    sc = _scene_with({"kind": "dent", "amplitude": "20 nm", "width": 5e-5, "x0": -3.0e-4})
+    monkeypatch.setattr(cli, "load_scene", lambda name: sc)
+    args = _parser().parse_args(["transient", "x", "--points", "129", "--steps", "6", "--time-error",
+                                 "--no-plots", "--out", str(tmp_path), "--checkpoint-every", "0"])
+    out = args.func(args)
+    assert out["converged"] and all(v != v for v in out["time_error"].values())  # NaN: not measured
+    assert "time error not measured: the run at twice the time step is refused" in capsys.readouterr().out
+
+
 def test_transient_command_without_feature_table_names_it(monkeypatch, tmp_path):
     monkeypatch.setattr(cli, "load_scene", lambda name: _scene_with(None))
     args = _parser().parse_args(["transient", "x", "--out", str(tmp_path)])
