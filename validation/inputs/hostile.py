@@ -872,6 +872,16 @@ def _hoil_of(c: Case) -> float:
     return float(d["supply"]["hoil"]) if isinstance(d, dict) and "supply" in d else math.inf
 
 
+def package_version() -> str:
+    """The installed package's version (the report block says what it measured, not when)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("ehl-multigrid")
+    except PackageNotFoundError:
+        return "not installed"
+
+
 def write_report(results: list[dict[str, Any]], label: str) -> str:
     counts = {k: 0 for k in CLASSES}
     for r in results:
@@ -881,7 +891,7 @@ def write_report(results: list[dict[str, Any]], label: str) -> str:
         g = groups.setdefault(r["group"], {k: 0 for k in CLASSES})
         g[r["class"]] += 1
     lines = [f"<!-- counts:{label} -->", "",
-             f"**{label}** ({len(results)} inputs, {time.strftime('%Y-%m-%d')}): "
+             f"**{label}** ({len(results)} inputs, package {package_version()}): "
              + ", ".join(f"{k} {v}" for k, v in counts.items()), "",
              "| group | " + " | ".join(CLASSES) + " |", "|---|" + "---|" * len(CLASSES)]
     for g, cnt in groups.items():
