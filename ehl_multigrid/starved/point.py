@@ -262,6 +262,19 @@ class StarvedPointHierarchy(PointHierarchy):
         march_theta(lev.P, lev.H, lev.rho, lev.eps, lev.theta, lev.f, lev.hx, lev.hy,
                     self.options.half, lev.hoil_rows, lev.order, self.ct)
 
+    def _sweep_rhs(self, lev: Level, rq: np.ndarray, dry: np.ndarray) -> np.ndarray:
+        """Right-hand side of a line sweep on P: ``f`` with the wedge's defect correction
+        (order 2), and a value the kernel reads as "cavitated, stays at zero" at the
+        unpressurised points ``dry`` (the line systems hold them fixed instead of solving for
+        them and resetting them)."""
+        if lev.order == 1:
+            return np.where(dry, 1e300, lev.f)
+        # defect correction: the kernel's wedge (core second order) replaced by the per-face
+        # limited one at the sweep's frozen film (see point_wedge)
+        corr = np.empty_like(lev.f)
+        wedge_correction(rq, lev.H, lev.theta, lev.hx, self.options.half, lev.order, KERNEL_ORDER, corr)
+        return np.where(dry, 1e300, lev.f + corr)
+
     def _sweep_free(self, lev: Level, s: Settings, free: bool) -> None:
         """One X-line sweep on P (density ``theta rho``; P stays 0 where ``theta < 1``), then,
         when the free boundaries move on this grid, the ``theta`` march."""
@@ -269,17 +282,7 @@ class StarvedPointHierarchy(PointHierarchy):
         rq = self._q_density(lev)
         dry = lev.theta < 1.0
         lev.P[dry] = 0.0
-        # a right-hand side the kernel reads as "cavitated, stays at zero": the line systems
-        # hold the unpressurised points fixed instead of solving for them and resetting them
-        if lev.order == 1:
-            fr = np.where(dry, 1e300, lev.f)
-        else:
-            # defect correction: the kernel's wedge (core second order) replaced by the
-            # per-face limited one at the sweep's frozen film (see point_wedge)
-            corr = np.empty_like(lev.f)
-            wedge_correction(rq, lev.H, lev.theta, lev.hx, self.options.half, lev.order,
-                             KERNEL_ORDER, corr)
-            fr = np.where(dry, 1e300, lev.f + corr)
+        fr = self._sweep_rhs(lev, rq, dry)
         nm.relax_sweep(lev.P, lev.H, rq, lev.eps, fr, lev.D, lev.Kc, lev.hx, lev.hy,
                        self.options.half, s.switch, s.omega, s.omega_jd,
                        1 if lev.order == 1 else KERNEL_ORDER, self.ct)

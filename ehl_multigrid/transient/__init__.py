@@ -40,9 +40,9 @@ _LAZY = {
 
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())
 
-__all__ = ["Bump", "adaptive_time_error", "Checkpoint", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth",
-           "Smooth2D", "TransientResult", "Waviness", "Waviness2D", "check_flooded_supply",
-           "feature_from_table", "feature_speed",
+__all__ = ["Bump", "Checkpoint", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth",
+           "Smooth2D", "TransientResult", "Waviness", "Waviness2D", "adaptive_time_error",
+           "check_flooded_supply", "feature_from_table", "feature_speed",
            "load_series", "max_point_time_step", "max_time_step", "point_feature_from_table",
            "point_mass_balance", "point_transient_options", "read_checkpoint", "solve_transient_line",
            "solve_transient_point", "solve_with_time_error", "time_error", "transient_options"]

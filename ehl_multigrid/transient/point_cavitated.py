@@ -43,7 +43,6 @@ from ..point.fas import Y_JD_MODE, Y_OMEGA, Y_OMEGA_JD, Level, sweep_switch
 from ..point.problem import PointProblem
 from ..starved import point as starved_point
 from ..starved.point import COARSE_THETA_MESH, StarvedPointHierarchy, face_fluxes
-from ..starved.point_wedge import wedge_correction
 from .point_hierarchy import PointTimeStepGrids
 
 #: most fine-grid relaxation sweeps that finish a stalled step (:meth:`CavitatedPointStepHierarchy.last_resort`)
@@ -95,12 +94,7 @@ class CavitatedPointStepHierarchy(PointTimeStepGrids, StarvedPointHierarchy):
         rq = self._q_density(lev)
         dry = lev.theta < 1.0
         order = 1 if lev.order == 1 else starved_point.KERNEL_ORDER
-        if lev.order == 1:
-            fr = np.where(dry, 1e300, lev.f)
-        else:
-            corr = np.empty_like(lev.f)
-            wedge_correction(rq, lev.H, lev.theta, lev.hx, self.options.half, lev.order, order, corr)
-            fr = np.where(dry, 1e300, lev.f + corr)
+        fr = self._sweep_rhs(lev, rq, dry)
         nm.relax_sweep_y(lev.P, lev.H, rq, lev.eps, fr, lev.D, lev.Ky, lev.hx, lev.hy,
                          self.options.half, sweep_switch(s.switch, lev.hx), s.omega * Y_OMEGA,
                          s.omega_jd * Y_OMEGA_JD, order, Y_JD_MODE, self.ct)

@@ -287,11 +287,13 @@ def solve_transient_point(
         _PointStepper(hz, problem, opts)
     stepper.supply = supply
     with preserved_threads():
-        steady = solve_fas(problem, opts)
-        require_steady_start("point", steady, initial, HINT)
         theta0 = None
-        if math.isfinite(hoil):
-            # the starved steady solution of the run's grid (its discretisation and supply)
+        if not math.isfinite(hoil):
+            steady = solve_fas(problem, opts)
+            require_steady_start("point", steady, initial, HINT)
+        else:
+            # the starved steady solution of the run's grid (its discretisation and supply;
+            # it solves its own flooded start, so the core's flooded solve is not made)
             steady = solve_starved_point(problem, hoil, replace(
                 opts, tol=min(opts.tol, STARVED_TOL), tol_load=min(opts.tol_load, STARVED_TOL),
                 max_cycles=max(opts.max_cycles, STARVED_MAX_CYCLES_2)))
@@ -347,6 +349,7 @@ class _PointStepper(Stepper):
     hint = HINT
     policy = POINT_POLICY
     settings = staticmethod(point_settings)
+
     @property
     def grid_text(self) -> str:
         return f"{self.hz.fine.P.shape}"

@@ -335,6 +335,14 @@ def closure_site(fine: Any, H: np.ndarray, wet: np.ndarray) -> str:
     return f" at X = {float(fine.X[k[1]]):.4g}, Y = {float(fine.Y[k[0]]):.4g}"
 
 
+def closed_film(fine: Any, H: np.ndarray, wet: np.ndarray) -> str:
+    """`` at X = .. (min H = ..)``: where and how thin a closed film is, the smallest film where
+    ``P > 0`` when one there is closed, else the smallest anywhere (:func:`closure_site`)."""
+    wet_low = float(H[wet].min()) if wet.any() else math.inf
+    low, where = (wet_low, " where P > 0") if wet_low <= 0.0 else (float(np.min(H)), "")
+    return f"{closure_site(fine, H, wet)} (min H = {low:.3g}{where})"
+
+
 def _advance_adaptive(stepper: Stepper, speed: float, scheme: str, n: int, T0: float, dt: float,
                       last: dict[str, Any], accept_stall: float, tol: float
                       ) -> tuple[EHLResult, dict[str, Any], int, bool, float, int]:
@@ -438,21 +446,17 @@ def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, sc
             closed = res.status == 7 or (finite and wet.any() and float(H[wet].min()) <= 0.0)
             if closed and on_film_collapse == "stop":
                 out.failed_step = n
-                out.mark_incomplete(f"the film closed at step {n} (T = {T:.5g}){closure_site(fine, H, wet)}: "
-                                    f"min H = {float(H[wet].min()) if wet.any() else math.nan:.3g}")
+                out.mark_incomplete(f"the film closed at step {n} (T = {T:.5g}){closed_film(fine, H, wet)}")
                 break
             if closed and finite:
                 # before the step's own failure: "not positive on this grid" would only say
                 # "more points", where a feature cutting through the film is the usual cause
                 out.failed_step = n
-                wet_low = float(H[wet].min()) if wet.any() else math.inf
-                low, where = (wet_low, "where P > 0") if wet_low <= 0.0 else (float(np.min(H)), "")
                 raise ConvergenceError(
                     f"transient {name} solver: time step {n} (T = {T:.5g}): the film collapsed"
-                    f"{closure_site(fine, H, wet)} (min H = {low:.3g}{' ' + where if where else ''}): "
-                    f"the feature cuts "
-                    f"through the film, which needs a mixed-lubrication model the transient solvers "
-                    f"do not have, or the grid is too coarse to carry the film there", res.report,
+                    f"{closed_film(fine, H, wet)}: the feature cuts through the film, which needs a "
+                    f"mixed-lubrication model the transient solvers do not have, or the grid is too "
+                    f"coarse to carry the film there", res.report,
                     "a smaller feature amplitude, or more points")
             if not (res.success or stalled_ok) or not finite:
                 out.failed_step = n
