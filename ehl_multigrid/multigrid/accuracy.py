@@ -330,8 +330,22 @@ def _finest_points(result: Any) -> int | None:
     return None if X is None else len(X)
 
 
+def _converged_films(films: tuple[float, ...]) -> dict[str, float]:
+    """The FMG-record films of a converged solve's ``(Hc, Hm[, Hm_sub])``."""
+    return {"Hc": films[0], "Hm": films[1], "Hm_sub": films[2] if len(films) > 2 else math.nan}
+
+
+def final_films(result: Any) -> tuple[float, float, float]:
+    """``(Hc, Hm, Hm_sub)`` of a converged result (Venner units): its films and the sub-grid
+    minimum film of its last finest-grid cycle (NaN where not measured)."""
+    top = getattr(result, "levels", 0) - 1
+    fin = [h for h in getattr(result, "history", ()) if h.level == top]
+    return (float(result.scalars["Hc_venner"]), float(result.scalars["Hm_venner"]),
+            float(getattr(fin[-1], "Hm_sub", math.nan)) if fin else math.nan)
+
+
 def estimate_error(result: Any, domain: tuple[float, float] | None = None,
-                   converged: dict[int, tuple[float, float]] | None = None,
+                   converged: dict[int, tuple[float, ...]] | None = None,
                    decay: tuple[tuple[float, float], tuple[float, float]] | BoxSeries | None = None,
                    extrapolate: bool = False) -> ErrorEstimate:
     """Error estimate of a converged multilevel result (films in Venner units).
@@ -361,7 +375,7 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
     notes = []
     if converged:
         used = [d["points"] for d in fmg if d.get("points") in converged]
-        fmg = [{**d, "Hc": converged[d["points"]][0], "Hm": converged[d["points"]][1]}
+        fmg = [{**d, **_converged_films(converged[d["points"]])}
                if d.get("points") in converged else d for d in fmg]
         n_top = _finest_points(result)
         # grids the FMG did not visit (a solve started on its finest grid from a given
@@ -373,7 +387,7 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
             n = (n - 1) // 2 + 1
             if n in have or n not in converged:
                 break
-            extra.append({"points": n, "Hc": converged[n][0], "Hm": converged[n][1]})
+            extra.append({"points": n, **_converged_films(converged[n])})
         if extra:
             below = [d for d in fmg if d.get("points", 0) <= n] if n in have else []
             fmg = sorted(below + extra, key=lambda d: d["points"])
@@ -456,8 +470,15 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
         dom = {"Hc": DOMAIN_SAFETY * abs(domain[0]), "Hm": DOMAIN_SAFETY * abs(domain[1])}
     if extrapolate:
         fix = {}
-        for k, films, F in (("Hc", [d["Hc"] for d in fmg] + [Hc], Hc), ("Hm", [d["Hm"] for d in fmg] + [Hm], Hm)):
-            x = extrapolated(films)
+        sub = [d.get("Hm_sub", math.nan) for d in fmg] + [getattr(fin[-1], "Hm_sub", math.nan) if fin else math.nan]
+        sequences = [("Hc", [d["Hc"] for d in fmg] + [Hc], Hc)]
+        if all(math.isfinite(v) for v in sub):
+            # the minimum between the nodes converges regularly where the nodal one jumps
+            # from node to node (subgrid_min_film); both tend to the same minimum film
+            sequences.append(("Hm", sub, Hm))
+        sequences.append(("Hm", [d["Hm"] for d in fmg] + [Hm], Hm))
+        for k, films, F in sequences:
+            x = extrapolated(films) if k not in fix else None
             if x is not None:
                 fix[k] = x[0] / F - 1.0
                 grid[k] = x[1] / abs(F)
@@ -820,7 +841,7 @@ class _SteadyControl:
         self.max_points, self.box_limit, self.dimensions = max_points, box_limit, dimensions
         # per box (and cell aspect): films of the converged solves (the same discrete problem on
         # each grid; a point solve that fell back to square cells is another problem)
-        self.finals: dict[tuple[float, Any], dict[int, tuple[float, float]]] = {}
+        self.finals: dict[tuple[float, Any], dict[int, tuple[float, ...]]] = {}
         self.last_domain: tuple[float, float] | None = None
         # per box: (points, change) of a box change measured far below the target
         self.small_domain: dict[tuple[float, Any], tuple[int, tuple[float, float]]] = {}
@@ -876,12 +897,17 @@ class _SteadyControl:
                 record(Refinement(n, box, 0.1 * tol, math.nan, math.nan, rc.wall_s, "levels"))
                 if rc.success:
                     key_c = (box, getattr(rc, "extra", {}).get("y_ratio"))
-                    self.finals.setdefault(key_c, {})[n] = (float(rc.scalars["Hc_venner"]),
-                                                            float(rc.scalars["Hm_venner"]))
+                    self.finals.setdefault(key_c, {})[n] = final_films(rc)
             est = estimate_error(res, dom, known, extrapolate=self.extrapolate)
         could = correction_could_meet if self.correct_box else decay_could_meet
         if self.accuracy is not None and self.decay_probe is not None and could(est, self.accuracy):
-            changes = self.decay_probe(res, box)
+            if self.correct_box:
+                # what the grid and iteration parts leave of the target to the corrected box
+                b = est.budget
+                left = tuple(self.accuracy - b["grid"][k] - b["algebraic"][k] for k in ("Hc", "Hm"))
+                changes = self.decay_probe(res, box, left)
+            else:
+                changes = self.decay_probe(res, box)
             if changes is not None:
                 if not isinstance(changes, BoxSeries):
                     res.extra["domain_changes"] = [list(changes[0]), list(changes[1])]
@@ -891,9 +917,8 @@ class _SteadyControl:
                     res.extra["domain_changes_below"] = [list(changes.below), list(changes.d2)]
                 est = estimate_error(res, dom, self.finals.get(key), decay=changes,
                                      extrapolate=self.extrapolate)
-        films = (res.scalars.get("Hc_venner"), res.scalars.get("Hm_venner"))
-        if None not in films:
-            self.finals.setdefault(key, {})[at.points] = (float(films[0]), float(films[1]))
+        if None not in (res.scalars.get("Hc_venner"), res.scalars.get("Hm_venner")):
+            self.finals.setdefault(key, {})[at.points] = final_films(res)
         attach_estimate(res, est, self.accuracy)
         return est.Hc, est.Hm
 

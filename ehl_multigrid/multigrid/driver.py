@@ -58,6 +58,8 @@ class Measurement:
     Hc: float
     ok: bool
     Hm: float = math.nan
+    #: minimum film between the nodes (point contacts; NaN where not measured)
+    Hm_sub: float = math.nan
 
 
 @dataclass
@@ -72,6 +74,7 @@ class CycleRecord:
     work_units: float
     level_residuals: list[float] = field(default_factory=list)
     Hm: float = math.nan
+    Hm_sub: float = math.nan
 
 
 #: the grid rule stops only while the residual is within this factor of the tolerance: films
@@ -221,7 +224,8 @@ class MultilevelSolver:
     def record(self, k: int, c: int, m: Measurement) -> None:
         """Append an accepted cycle (or a last-resort solve, ``c = -1``) to the histories and
         call the callback."""
-        rec = CycleRecord(k, c, m.residual, m.load_error, m.Hc, self.work_units, list(self._level_res), m.Hm)
+        rec = CycleRecord(k, c, m.residual, m.load_error, m.Hc, self.work_units, list(self._level_res), m.Hm,
+                          m.Hm_sub)
         self.history.append(rec)
         if k == len(self.hierarchy.levels) - 1:
             self.residuals.append(m.residual)
@@ -380,13 +384,13 @@ class MultilevelSolver:
                 m0 = hz.measure(k0)
                 Hc_prev = m0.Hc
                 self.fmg.append({"level": k0, "points": hz.levels[k0].shape[-1], "Hc": m0.Hc,
-                                 "Hm": m0.Hm, "dHc": math.nan})
+                                 "Hm": m0.Hm, "Hm_sub": m0.Hm_sub, "dHc": math.nan})
                 for k in range(k0 + 1, top + 1):
                     self._add(hz.fmg_interpolate(k, self.settings))
                     for c in range(o.cycles):
                         m = self.run_cycle(k, c)
                     self.fmg.append({"level": k, "points": hz.levels[k].shape[-1], "Hc": m.Hc,
-                                     "Hm": m.Hm, "dHc": m.Hc - Hc_prev})
+                                     "Hm": m.Hm, "Hm_sub": m.Hm_sub, "dHc": m.Hc - Hc_prev})
                     Hc_prev = m.Hc
                 if top == k0 and top > 0:
                     # started on the finest grid: a failure of this first cycle may also be

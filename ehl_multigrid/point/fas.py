@@ -30,6 +30,7 @@ from ..multigrid.policy import PolicyParameters, RobustnessPolicy, Settings
 from ..multigrid.threads import ThreadBudget, resolve_threads
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
+from .postprocess import subgrid_min_film
 from .problem import (
     WIDE_CONTACT,
     PointProblem,
@@ -462,8 +463,9 @@ class PointHierarchy:
         # a coarse FMG grid may not hold a positive central film at high load (M >= 1000); the
         # finer grids make it positive, so only the finest grid must have one
         positive = Hc > 0.0 or k < len(self.levels) - 1
-        return Measurement(res, lerr, Hc, ok and bool(np.all(np.isfinite(lev.H))) and positive,
-                           float(lev.H.min()))
+        finite = ok and bool(np.all(np.isfinite(lev.H)))
+        return Measurement(res, lerr, Hc, finite and positive, float(lev.H.min()),
+                           subgrid_min_film(lev.X, lev.Y, lev.H, self.options.half) if finite else math.nan)
 
     def finite(self) -> bool:
         lev = self.levels[-1]

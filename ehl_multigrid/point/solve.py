@@ -17,7 +17,9 @@ import numpy as np
 from ..model.errors import ConvergenceError, InputError, require_choice, require_range
 from ..multigrid.accuracy import (
     CORRECTION_MIN_DECAY,
+    DECAY_SAFETY,
     DOMAIN_SAFETY,
+    MESH_SAFETY,
     PROBE_FILM_TOL,
     BoxSeries,
     domain_correction,
@@ -239,11 +241,9 @@ def solve_from_neighbour(problem: PointProblem, options: PointOptions, failed: E
     return keep
 
 
-#: the probes' residual tolerance is no tighter than this: they stop on their films, and a
-#: tolerance step of the solve (x0.1, x0.01) need not repeat them. Measured: circular (5000, 0)
-#: at 2 %, the second tolerance step re-ran its 1025/2049-point probes (56 s) for nothing but
-#: the residual tolerance
-PROBE_RESIDUAL_TOL = 1e-5
+#: the probes' residual tolerance, whatever the solve's: they stop on their films, so a
+#: tolerance step of the solve reuses them (docs/accuracy.md, "Domain error")
+PROBE_RESIDUAL_TOL = 1e-4
 
 
 def learned_coarse(problem: PointProblem, cache: dict[PointOptions, EHLResult] | None, points: int,
@@ -339,13 +339,13 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
                 ftol = ltol = tight
             else:
                 ftol, ltol = max(PROBE_FILM_TOL, options.film_tol or 0.0), max(options.tol_load, 1e-4)
-            # the films stop the probes; a residual tolerance no tighter than PROBE_RESIDUAL_TOL
+            # the films stop the probes; one residual tolerance for every step of the sequence
             # lets a tolerance step of the solve reuse the probes of the step before
             points = int(round((n - 1) * f)) + 1
             o = replace(options, points=points, levels=None,
                         n_coarse=learned_coarse(problem, cache, points, f * (xmax - xmin)),
                         xmin=f * xmin, xmax=f * xmax, ymax=f * ymax, y_ratio=sol.extra["y_ratio"],
-                        raise_on_failure=False, tol=max(options.tol, PROBE_RESIDUAL_TOL),
+                        raise_on_failure=False, tol=PROBE_RESIDUAL_TOL,
                         tol_load=ltol, film_tol=ftol)
             if cache is None:
                 r = solve_fas(problem, o)
@@ -438,7 +438,8 @@ def decays_below(problem: PointProblem, options: PointOptions, sol: EHLResult,
 
 
 def point_box_series(problem: PointProblem, options: PointOptions, sol: EHLResult,
-                     cache: dict[PointOptions, EHLResult] | None = None) -> BoxSeries | None:
+                     cache: dict[PointOptions, EHLResult] | None = None,
+                     left: tuple[float, float] | None = None) -> BoxSeries | None:
     """The box series of a box correction (:func:`~ehl_multigrid.multigrid.accuracy.domain_correction`)
     on the probe mesh of :func:`point_domain_change` (film-stopped probes): the change of (Hc,
     Hm) from the solve's box to twice it and, where the solve's box is at least twice the
@@ -447,10 +448,28 @@ def point_box_series(problem: PointProblem, options: PointOptions, sol: EHLResul
     (a box below the default would cut the Hertz contact). Also the first change again on a
     mesh twice as coarse, and the probes' iteration errors. None when the series on the probe
     mesh fails. One box lower costs an eighth of one box further: circular (20, 10) at 0.5 % on
-    1025 points and twice the box, 0.1 s against 5.2 s."""
+    1025 points and twice the box, 0.1 s against 5.2 s.
+
+    ``left`` (per film, Hc and Hm: the part of the target the grid and iteration parts leave)
+    skips the series, returning None, where the mesh dependence of the first change alone
+    (the part of the correction's error that two cheap pairs measure, a lower bound of what it
+    leaves) exceeds it for either film: the wider probes would be solved for a correction that
+    cannot meet the target (circular (100, 10) at 0.5 % on 513 points: a 513-point probe on
+    four times the box, 1.6 s). ``sol.extra["box_series_skipped"]`` then says so."""
     xmin, xmax, _ = sol.extra["domain"]
     d0 = default_domain(problem)
     coarse: list[tuple[float, float] | None] = []
+    if left is not None:
+        fine = point_domain_change(problem, options, sol, cache, tight=SERIES_FILM_TOL)
+        rough = point_domain_change(problem, options, sol, cache, coarser=1, tight=SERIES_FILM_TOL)
+        if fine is not None and rough is not None:
+            least = [DECAY_SAFETY * MESH_SAFETY * abs(f - r) for f, r in zip(fine, rough, strict=True)]
+            if any(a > b for a, b in zip(least, left, strict=True)):
+                sol.extra["box_series_skipped"] = (
+                    f"box correction not measured: the mesh dependence of the box change alone "
+                    f"(Hc {least[0]:.2%}, Hm {least[1]:.2%}) leaves more than the target allows "
+                    f"after the grid and iteration parts (Hc {left[0]:.2%}, Hm {left[1]:.2%})")
+                return None
 
     def series(boxes: tuple[float, float, float]) -> BoxSeries | None:
         used: list[EHLResult] = []
@@ -620,8 +639,8 @@ def solve_point(
         def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
             return point_domain_change(pb, res.options, res, probes)
 
-        def decay_probe(res: EHLResult, box: float) -> BoxSeries | None:
-            return point_box_series(pb, res.options, res, probes)
+        def decay_probe(res: EHLResult, box: float, left: tuple[float, float] | None = None) -> BoxSeries | None:
+            return point_box_series(pb, res.options, res, probes, left)
 
         # thick films (low M) spread over many inlet lengths: their box may grow further, on a
         # mesh that coarsens with it (the coarse grid follows the inlet length)

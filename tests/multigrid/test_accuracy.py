@@ -810,3 +810,52 @@ def test_a_probe_at_its_residual_floor_counts_with_its_jitter_added_to_the_box_c
     assert dc == pytest.approx(1e-3 + 2e-4, rel=1e-3) and dm == pytest.approx(-(1e-3 + 4e-4), rel=1e-3)
     diverged = SimpleNamespace(success=False, status_name="diverged", scalars={}, history=[])
     assert film_change(lambda: narrow, lambda: diverged, floor_ok=True) is None
+
+
+def _sequence_result(hm_nodal, hm_sub):
+    """A converged point result whose FMG and finest films are given (Venner units)."""
+    from types import SimpleNamespace
+
+    hc = [0.4 - 0.01 / 4**k for k in range(len(hm_nodal))]
+    top = len(hm_nodal) - 1
+    return SimpleNamespace(
+        scalars={"Hc_venner": hc[-1], "Hm_venner": hm_nodal[-1]}, levels=top + 1, contact="point",
+        fmg=[{"level": k, "points": 2**(k + 5) + 1, "Hc": hc[k], "Hm": hm_nodal[k], "Hm_sub": hm_sub[k]}
+             for k in range(top)],
+        history=[SimpleNamespace(level=top, cycle=c, Hc=hc[-1], Hm=hm_nodal[-1], Hm_sub=hm_sub[-1])
+                 for c in range(2)],
+        load_error_history=np.array([1e-7]))
+
+
+def test_hm_is_extrapolated_from_the_subgrid_minimum_where_the_nodal_minimum_jumps():
+    from ehl_multigrid.multigrid.accuracy import estimate_error
+
+    hs = [0.25 / 2**k for k in range(5)]
+    sub = [0.3 - h**2 for h in hs]  # second order: ratios 4
+    # the nodal minimum: the same limit, jumping between nodes (ratios 7 and 2.3)
+    nodal = [sub[0], sub[1], 0.3 - 0.0035, 0.3 - 0.0035 + 0.0031, 0.3 - 0.0004 + 0.00027]
+    est = estimate_error(_sequence_result(nodal, sub), (1e-4, 1e-4), extrapolate=True)
+    fixed = nodal[-1] * (1.0 + est.correction["grid"]["Hm"])
+    assert abs(fixed - 0.3) < abs(nodal[-1] - 0.3) / 5.0
+    assert abs(fixed / 0.3 - 1.0) <= est.budget["grid"]["Hm"]
+    assert any("Hm extrapolated" in n for n in est.notes)
+    # a grid without its sub-grid film: the nodal sequence decides, and it is not asymptotic
+    sub[2] = math.nan
+    est = estimate_error(_sequence_result(nodal, sub), (1e-4, 1e-4), extrapolate=True)
+    assert est.correction.get("grid", {}).get("Hm", 0.0) == 0.0
+
+
+def test_subgrid_minimum_film_is_exact_for_a_quadratic_film_between_the_nodes():
+    from ehl_multigrid.point.postprocess import subgrid_min_film
+
+    X, Y = np.linspace(-2.0, 1.0, 31), np.linspace(-1.0, 1.0, 41)
+    H = 0.2 + 1.5 * (X[None, :] + 0.33) ** 2 + 0.8 * (Y[:, None] - 0.47) ** 2 \
+        + 0.3 * (X[None, :] + 0.33) * (Y[:, None] - 0.47)
+    assert H.min() > 0.2 + 1e-4  # no node at the minimum
+    assert subgrid_min_film(X, Y, H, half=False) == pytest.approx(0.2, abs=1e-12)
+    # a half domain (Y >= 0, mirrored below) gives the full domain's film, also at Y = 0
+    full = 0.2 + 1.5 * (X[None, :] + 0.33) ** 2 + 0.8 * (np.abs(Y[:, None]) - 0.01) ** 2
+    assert subgrid_min_film(X, Y[20:], full[20:], half=True) == pytest.approx(
+        subgrid_min_film(X, Y, full, half=False), rel=1e-12)
+    # a minimum on the boundary has no sub-grid fit: the nodal value
+    assert subgrid_min_film(X, Y, np.broadcast_to(X, (41, 31)), half=False) == -2.0

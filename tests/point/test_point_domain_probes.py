@@ -73,3 +73,57 @@ def test_a_tighter_probe_starts_from_the_looser_probe_of_its_grid_and_box():
         assert looser_probe(loose, replace(o, xmin=2.0 * o.xmin)) is None  # another box
     fresh = point_domain_change(pb, sol.options, sol, {}, tight=1e-5)
     assert warm[0] == pytest.approx(fresh[0], abs=1e-4) and warm[1] == pytest.approx(fresh[1], abs=1e-4)
+
+
+def test_a_tolerance_step_of_the_solve_reuses_its_domain_probes(monkeypatch):
+    from dataclasses import replace
+
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.problem import problem_from_moes
+
+    pb = problem_from_moes(20.0, 10.0, 1.0)
+    opts = PointOptions(points=129, half=True, film_tol=1e-4, raise_on_failure=False)
+    sol = point_solve.solve_fas(pb, opts)
+    cache = {}
+    first = point_solve.point_domain_change(pb, opts, sol, cache)
+    seen = []
+    original = point_solve.solve_fas
+    monkeypatch.setattr(point_solve, "solve_fas",
+                        lambda problem, options, **kw: seen.append(options) or original(problem, options, **kw))
+    # the solve's tolerances ten times tighter: the probes stop on their own film tolerance
+    # (PROBE_FILM_TOL), so they are the same and none is solved again
+    tighter = replace(opts, tol=0.1 * opts.tol, tol_load=0.1 * opts.tol_load, film_tol=1e-5)
+    again = point_solve.point_domain_change(pb, tighter, sol, cache)
+    assert first is not None and again == first and seen == []
+
+
+@pytest.mark.solver
+def test_a_box_series_that_cannot_meet_the_target_solves_no_wider_probe(monkeypatch):
+    from ehl_multigrid.multigrid.accuracy import DECAY_SAFETY, MESH_SAFETY
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.problem import default_domain, problem_from_moes
+
+    pb = problem_from_moes(20.0, 10.0, 1.0)
+    opts = PointOptions(points=513, half=True, film_tol=1e-4, raise_on_failure=False)
+    sol = point_solve.solve_fas(pb, opts)
+    seen = []
+    original = point_solve.solve_fas
+    monkeypatch.setattr(point_solve, "solve_fas",
+                        lambda problem, options, **kw: seen.append(options) or original(problem, options, **kw))
+    cache = {}
+    # no room left by the grid and iteration parts: the two cheap pairs decide, nothing wider
+    assert point_solve.point_box_series(pb, opts, sol, cache, left=(1e-6, 1e-6)) is None
+    x0 = default_domain(pb)[0]
+    assert seen and max(o.xmin / x0 for o in seen) == pytest.approx(2.0)
+    assert "mesh dependence" in sol.extra["box_series_skipped"]
+    # the bound it used is the part of the correction's error those pairs measure
+    fine = point_solve.point_domain_change(pb, opts, sol, cache, tight=point_solve.SERIES_FILM_TOL)
+    rough = point_solve.point_domain_change(pb, opts, sol, cache, coarser=1, tight=point_solve.SERIES_FILM_TOL)
+    least = max(DECAY_SAFETY * MESH_SAFETY * abs(f - r) for f, r in zip(fine, rough, strict=True))
+    assert least > 1e-6
+    # room enough: the series goes on to four times the box, reusing the pairs already solved
+    n = len(seen)
+    series = point_solve.point_box_series(pb, opts, sol, cache, left=(1.0, 1.0))
+    assert series is not None and series.d4 is not None
+    assert max(o.xmin / x0 for o in seen[n:]) == pytest.approx(4.0)
+    assert len(seen) == len(set(seen))
