@@ -2,9 +2,9 @@
 films"): does the sub-grid minimum converge more regularly than the nodal one?
 
 For each case, converged full-domain solves on the default box at successive grids (tolerance
-1e-7, load 1e-8): Hm as the smallest nodal film where P > 0, and as the minimum of the quadratic
-``a + b x + c y + d x^2 + e y^2 + f x y`` fitted (least squares) to the 3 x 3 nodes around it,
-taken when that quadratic has a minimum within one cell of the node (else the nodal value).
+1e-7, load 1e-8): Hm as the smallest nodal film, and as the package's sub-grid minimum
+(``point.postprocess.subgrid_min_film``: the minimum of the quadratic fitted to the 3 x 3 nodes
+around it, where it lies within one cell of the node).
 Reported per definition: the films, the ratios of successive differences and whether the
 package's second-order extrapolation test (``multigrid.accuracy.extrapolated``: the last two
 ratios in [2^1.5, 2^2.5]) passes on the finest four grids.
@@ -28,6 +28,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _paths import out_dir  # noqa: E402
 
 from ehl_multigrid.multigrid.accuracy import extrapolated  # noqa: E402
+from ehl_multigrid.point.postprocess import subgrid_min_film  # noqa: E402
 from ehl_multigrid.point.problem import problem_from_moes  # noqa: E402
 from ehl_multigrid.point.solve import solve_fas  # noqa: E402
 
@@ -36,28 +37,6 @@ OUT = out_dir("accuracy")
 CASES = ((20.0, 10.0, 1.0, (129, 257, 513, 1025)), (100.0, 10.0, 1.0, (129, 257, 513, 1025)),
          (20.0, 0.0, 1.0, (129, 257, 513, 1025)), (100.0, 20.0, 1.0, (129, 257, 513, 1025)),
          (20.0, 10.0, 4.0, (257, 513, 1025, 2049)), (20.0, 10.0, 0.25, (129, 257, 513, 1025)))
-
-
-def subgrid_minimum(X: np.ndarray, Y: np.ndarray, H: np.ndarray, P: np.ndarray) -> tuple[float, float]:
-    """(nodal, sub-grid) minimum film where ``P > 0`` (see the module docstring)."""
-    j, i = np.unravel_index(int(np.argmin(np.where(P > 0.0, H, np.inf))), H.shape)
-    if not (0 < i < H.shape[1] - 1 and 0 < j < H.shape[0] - 1):
-        return float(H[j, i]), float(H[j, i])
-    hx, hy = X[1] - X[0], Y[1] - Y[0]
-    rows, vals = [], []
-    for a in (j - 1, j, j + 1):
-        for c in (i - 1, i, i + 1):
-            x, y = (X[c] - X[i]) / hx, (Y[a] - Y[j]) / hy
-            rows.append([1.0, x, y, x * x, y * y, x * y])
-            vals.append(H[a, c])
-    a0, bx, by, cxx, cyy, cxy = np.linalg.lstsq(np.array(rows), np.array(vals), rcond=None)[0]
-    hess = np.array([[2.0 * cxx, cxy], [cxy, 2.0 * cyy]])
-    if np.any(np.linalg.eigvalsh(hess) <= 0.0):
-        return float(H[j, i]), float(H[j, i])
-    x, y = np.linalg.solve(hess, -np.array([bx, by]))
-    if max(abs(x), abs(y)) > 1.0:
-        return float(H[j, i]), float(H[j, i])
-    return float(H[j, i]), float(a0 + bx * x + by * y + cxx * x * x + cyy * y * y + cxy * x * y)
 
 
 def ratios(v: list[float]) -> list[float]:
@@ -78,7 +57,7 @@ def main(argv: list[str] | None = None) -> int:
             r = solve_fas(pb, points=n, half=False, tol=1e-7, tol_load=1e-8, max_cycles=60,
                           raise_on_failure=False)
             status.append(r.status_name)
-            h_node, h_sub = subgrid_minimum(r.X, r.Y, r.H, r.P)
+            h_node, h_sub = float(r.H.min()), subgrid_min_film(r.X, r.Y, r.H, half=False)
             nodal.append(h_node)
             sub.append(h_sub)
         row = {"M": M, "L": L, "theta": theta, "grids": list(grids), "status": status,
