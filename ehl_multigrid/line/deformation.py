@@ -63,7 +63,7 @@ class FFTDeformation:
     method = "fft"
 
     def __init__(self, n: int, h: float) -> None:
-        import scipy.fft  # here, not at import: the default (mlmi) line path never needs it
+        import scipy.fft  # here, not at import: a solve on MLMI never needs it
 
         self._fft = scipy.fft
         self.n, self.h = n, h

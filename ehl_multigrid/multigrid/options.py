@@ -179,7 +179,7 @@ class LineOptions(MultigridOptions):
     points: int = 1025
     cycle: str = "V"
     max_cycles: int = 60
-    deformation: str = "mlmi"
+    deformation: str = "fft"
     switch: float | None = 0.3
     omega: float = 0.5
     omega_jd: float = 0.3
