@@ -133,7 +133,9 @@ def _phi(level: LineLevel, P: np.ndarray, r: np.ndarray, s: np.ndarray, P_frozen
 
 
 def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10) -> int:
-    """Solve the level's problem in place (``level.P``, ``level.H0``); return iterations.
+    """Solve the level's problem in place (``level.P``, ``level.H0``); return the number of
+    Jacobian factorisations (Newton steps; the chord steps that reuse a factorisation while it
+    contracts by :data:`CHORD_CONTRACTION` per step are not counted, ``max_iter`` counts all).
 
     Raises :class:`NewtonFailure` when the damped iteration stalls or the film collapses.
     The dense factorisations run on one BLAS thread (:func:`serial_blas`).
@@ -142,39 +144,72 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10) -> in
         return _newton_solve(level, max_iter, tol)
 
 
+#: a factorised Jacobian is reused (chord steps) while each step lowers the merit |phi| by at
+#: least this factor; a slower step, or a failed line search, refreshes it. A dense LU costs
+#: O(n^3) (0.37 s at 2049 points), a chord step O(n^2) (a few ms): the FMG start of line
+#: (3000, 6) on 2049 points, 5 factorisations -> 2 (docs/performance.md)
+CHORD_CONTRACTION = 0.2
+
+
+def _jacobian(level: LineLevel, P: np.ndarray, H0: float, r: np.ndarray, dL: np.ndarray,
+              s: np.ndarray, frozen: np.ndarray) -> np.ndarray:
+    """The semismooth Jacobian of ``phi`` at ``P``: ``d(s r)/dx`` on the inactive rows, the
+    identity on the active (cavitated or frozen) ones, the load row."""
+    n = level.n
+    inner = np.arange(1, n - 1)
+    J = np.empty((n - 1, n - 1))
+    active = (P[inner] <= s * r[inner]) | frozen
+    np.multiply(dL, -s[:, None], out=J[:-1])  # d(s r)/dx = -s dL/dx
+    J[:-1][active] = 0.0
+    J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
+    J[-1, :-1] = level.h
+    J[-1, -1] = 0.0  # the load does not depend on H0
+    return J
+
+
 def _newton_solve(level: LineLevel, max_iter: int, tol: float) -> int:
     n = level.n
     P, H0 = level.P.copy(), float(level.H0)
     P_frozen = level.P.copy()
     inner = np.arange(1, n - 1)
     frozen = level.frozen[1:-1]
+    lu, s = None, None
+    # the iterate of the last factorisation: chord steps that lead where the fresh scaling is
+    # not finite are undone, and the solve goes on with plain Newton steps
+    chord, last_fresh, chorded = True, (P, H0), False
+    factorised = 0
     for it in range(1, max_iter + 1):
-        r, dL = _system(level, P, H0, True)
-        diag = np.abs(np.diagonal(dL))
-        s = 1.0 / np.maximum(diag, 1e-300)
+        fresh = lu is None
+        r, dL = _system(level, P, H0, fresh)
+        if fresh:
+            s = 1.0 / np.maximum(np.abs(np.diagonal(dL)), 1e-300)
         phi = _phi(level, P, r, s, P_frozen)
         with np.errstate(all="ignore"):
             norm0 = float(np.linalg.norm(phi))
         if not np.isfinite(norm0):
+            if chorded:
+                (P, H0), chord, chorded = last_fresh, False, False
+                continue
             raise NewtonFailure("non-finite residual in the coarse Newton iteration")
+        if fresh:
+            last_fresh, chorded = (P, H0), False
         if np.max(np.abs(phi)) < tol:
             level.P, level.H0 = P, H0
-            return it - 1
-        J = np.empty((n - 1, n - 1))
-        active = (P[inner] <= s * r[inner]) | frozen
-        np.multiply(dL, -s[:, None], out=J[:-1])  # d(s r)/dx = -s dL/dx
-        J[:-1][active] = 0.0
-        J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
-        J[-1, :-1] = level.h
-        J[-1, -1] = 0.0  # the load does not depend on H0
-        try:
-            # scipy's LAPACK on one thread: threaded OpenBLAS is 25-700x slower on a busy
-            # 2-core box
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-                step = scipy.linalg.solve(J, -phi, check_finite=False)
-        except (np.linalg.LinAlgError, scipy.linalg.LinAlgError, ValueError) as exc:
-            raise NewtonFailure(f"singular coarse Jacobian: {exc}") from None
+            return factorised
+        if fresh:
+            try:
+                # scipy's LAPACK on one thread: threaded OpenBLAS is 25-700x slower on a busy
+                # 2-core box
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+                    lu = scipy.linalg.lu_factor(_jacobian(level, P, H0, r, dL, s, frozen),
+                                                check_finite=False)
+            except (np.linalg.LinAlgError, scipy.linalg.LinAlgError, ValueError) as exc:
+                raise NewtonFailure(f"singular coarse Jacobian: {exc}") from None
+            if not np.all(np.isfinite(lu[0])):
+                raise NewtonFailure("singular coarse Jacobian: non-finite factor")
+            factorised += 1
+        step = scipy.linalg.lu_solve(lu, -phi, check_finite=False)
         t = 1.0
         while True:
             Pt = P.copy()
@@ -186,12 +221,20 @@ def _newton_solve(level: LineLevel, max_iter: int, tol: float) -> int:
             if np.isfinite(norm) and norm <= (1.0 - 1e-4 * t) * norm0:
                 break
             t *= 0.5
-            if t < 1e-6:
-                if np.max(np.abs(phi)) < 1e3 * tol:  # round-off floor reached: accept
-                    level.P, level.H0 = P, H0
-                    return it - 1
-                raise NewtonFailure(f"coarse Newton line search failed at iteration {it} "
-                                    f"(|phi| = {norm0:.3g})")
+            if t < 1e-6 or (not fresh and t < 0.5):
+                break
+        if not (np.isfinite(norm) and norm <= (1.0 - 1e-4 * t) * norm0):
+            if not fresh:  # the reused factor no longer points downhill: a fresh Jacobian
+                lu = None
+                continue
+            if np.max(np.abs(phi)) < 1e3 * tol:  # round-off floor reached: accept
+                level.P, level.H0 = P, H0
+                return factorised
+            raise NewtonFailure(f"coarse Newton line search failed at iteration {it} "
+                                f"(|phi| = {norm0:.3g})")
+        if not chord or (not fresh and norm > CHORD_CONTRACTION * norm0):
+            lu = None
+        chorded = chorded or not fresh
         P, H0 = Pt, H0t
     raise NewtonFailure(f"coarse Newton did not converge in {max_iter} iterations")
 
