@@ -172,6 +172,8 @@ class ErrorEstimate:
     #: extrapolated films, :func:`extrapolated`), ``"box"`` (:func:`domain_correction`); empty
     #: when the films are the grid's own on its box
     correction: dict[str, dict[str, float]] = field(default_factory=dict)
+    #: the films reported as their extrapolation over the grids (``"Hc"``, ``"Hm"``)
+    extrapolated: tuple[str, ...] = ()
 
     def as_dict(self) -> dict[str, Any]:
         return {"Hc_error": self.Hc, "Hm_error": self.Hm, "error_budget": self.budget,
@@ -491,7 +493,8 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
     if domain is None:
         tot = {k: math.nan for k in tot}
     return ErrorEstimate(tot["Hc"], tot["Hm"], budget, rc.order, rm.order, rc.extrapolated, notes,
-                         not (rc.regular and rm.regular), correction)
+                         not (rc.regular and rm.regular), correction,
+                         tuple(fix) if extrapolate else ())
 
 
 #: a box change whose domain part (:data:`DOMAIN_SAFETY` times it) is below this fraction of
@@ -730,7 +733,8 @@ def _why_short(est: ErrorEstimate, accuracy: float, points: int, max_points: int
 #: few cycles leave algebraic errors that can exceed the grid differences (line (21.9, 3.25),
 #: Roelands, the page-63 scene at 500 N: FMG films 0.2-0.4 % off on 513-2049 points, estimate
 #: 1.2 % by the first-order bound for a true 0.07 %; the refinements it then chose ran 56 s and
-#: diverged at 32769 points). Costs about 5/16 of the finest solve.
+#: diverged at 32769 points). Costs about 5/16 of the finest solve. A point film that could
+#: not be extrapolated (:func:`extrapolated` needs four grids) is repaired one grid further down.
 REPAIR_LEVELS = 2
 #: smallest grid solved for the repair
 REPAIR_MIN_POINTS = 65
@@ -882,14 +886,17 @@ class _SteadyControl:
         self.last_domain = dom if dom is not None else self.last_domain
         est = estimate_error(res, dom, self.finals.get(key), extrapolate=self.extrapolate)
         grid_unknown = not all(math.isfinite(v) for v in est.budget["grid"].values())
-        if est.irregular and (grid_unknown or (self.refine and self.accuracy is not None
-                                               and max(est.Hc, est.Hm) > self.accuracy)):
+        missed = self.refine and self.accuracy is not None and max(est.Hc, est.Hm) > self.accuracy
+        # a film not extrapolated may be held back by the FMG films alone (the default scene,
+        # (216, 8.9) on 513 points: FMG Hm ratios 2.0, 2.5; converged 5.5, 3.1)
+        short = self.extrapolate and len(est.extrapolated) < 2
+        if (est.irregular or short) and (grid_unknown or missed):
             # the FMG films may be what is irregular: the coarser grids solved to convergence;
             # also where the FMG left no films below the finest grid (a start from a given
             # solution), so that every result states its grid error, explicit grids too
             known = self.finals.setdefault(key, {})
             n = at.points
-            for _ in range(REPAIR_LEVELS):
+            for _ in range(REPAIR_LEVELS + int(short)):
                 n = (n - 1) // 2 + 1
                 if n < REPAIR_MIN_POINTS or n in known:
                     continue
