@@ -110,12 +110,14 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
                               options={**changes, "compressive_heating": opts.compressive_heating,
                                        "slip": slips[0]})
             done = require_computed(sol)
-            r, estimate = done.result, done.estimate.payload()
+            r, estimate, status = done.result, done.estimate.payload(), sol.status.label
         else:
-            # (the front door always estimates the error: --no-estimate solves the film alone)
-            r, estimate = solve_tehl_line(scene, slips[0], opts), {}
+            # (the front door always estimates the error: --no-estimate solves the film alone;
+            # a thermal solve that does not converge raises)
+            r, estimate, status = solve_tehl_line(scene, slips[0], opts), {}, "converged"
         payload = {"scene": scene.name, **solve_payload(r), **{"properties": thermal_properties(scene)}}
         payload.update(estimate)
+        payload["status"] = status
         if not args.json:  # with --json the ehl command prints the returned payload
             print_table({k: v for k, v in payload.items() if k not in ("outer", "properties")})
         return payload
@@ -216,6 +218,8 @@ def _solve_mode(args: argparse.Namespace, scene: Scene, point: bool, slip: float
         payload["message"] = "iteration converged but " + done.message
     else:
         payload["message"] = done.message
+    # the status word every solve's --json carries (ehl solve: "converged", "inaccurate", ...)
+    payload.setdefault("status", sol.status.label)
     out = getattr(args, "out", None)
     if out is not None:
         from pathlib import Path

@@ -29,6 +29,7 @@ def test_tehl_json_has_the_documented_keys(capsys):
     for key in ("Hc", "Hm", "Hc_isothermal", "friction", "T_max", "heat_balance_error"):
         assert key in out
     assert out["converged"] and out["friction"] > 0
+    assert out["status"] == "converged"  # the status word of every solve's --json
 
 
 def test_tehl_no_compression_flag_solves_the_thesis_energy_equation(capsys):
