@@ -306,10 +306,17 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     top = sol.levels - 1
     n_f = sol.X.shape[0]
     xmin, xmax, ymax = sol.extra["domain"]
-    # the probe's mesh is no coarser than the solver's minimum grid on the default box
+    # the probe's mesh is no coarser than the solver's minimum grid on the default box; for the
+    # plain probes (the fixed factor's change) that of a circular contact: a narrow contact's
+    # extra cells across a do not make its first box change more accurate ((50, 10, theta 3):
+    # d2 of Hc 0.265, 0.251, 0.247 % and of Hm 0.377, 0.326, 0.408 % on 129, 257, 513 points per
+    # default box; validation/accuracy/probe_mesh.py) and cost 3-4 times as much. The tight
+    # series of a box correction keeps the contact's own: its coarse-mesh pair, one mesh lower,
+    # would fall where Hm's second change is off ((20, 10, theta 4): 0.027 % on 65 points per
+    # default box against 0.17 % on 129-257)
     d0 = default_domain(problem)
     scale = 2 ** max(0, round(math.log2((xmax - xmin) / (d0[1] - d0[0]))))
-    n_min = (min_points(problem.M, problem.b_over_a) - 1) * scale + 1
+    n_min = (min_points(problem.M, 1.0 if tight is None else problem.b_over_a) - 1) * scale + 1
     if domain_scale(problem) > 1.0:
         # thick film: the film varies over the inlet length s, not a; a quarter of s per cell
         s = rigid_length(problem)

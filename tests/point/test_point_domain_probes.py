@@ -127,3 +127,27 @@ def test_a_box_series_that_cannot_meet_the_target_solves_no_wider_probe(monkeypa
     assert series is not None and series.d4 is not None
     assert max(o.xmin / x0 for o in seen[n:]) == pytest.approx(4.0)
     assert len(seen) == len(set(seen))
+
+
+def test_plain_probes_of_a_narrow_contact_run_on_the_circular_minimum_mesh(monkeypatch):
+    from types import SimpleNamespace
+
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.problem import min_points, problem_from_moes
+
+    pb = problem_from_moes(50.0, 10.0, 3.0)  # b/a 0.48: min_points 257, a circular contact's 129
+    assert (min_points(pb.M, pb.b_over_a), min_points(pb.M)) == (257, 129)
+    opts = PointOptions(points=513, half=True, raise_on_failure=False)
+    planned = point_solve.planned_solve(pb, opts)
+    seen = []
+
+    def failing(problem, options, **kw):
+        seen.append(int(options.points))
+        return SimpleNamespace(success=False, status_name="diverged", actions=[], levels=1)
+
+    monkeypatch.setattr(point_solve, "solve_fas", failing)
+    assert point_solve.point_domain_change(pb, opts, planned, {}) is None
+    assert seen[0] == 129  # a quarter of the solve's points: the circular floor allows it
+    seen.clear()
+    point_solve.point_domain_change(pb, opts, planned, {}, tight=point_solve.SERIES_FILM_TOL)
+    assert seen[0] == 257  # the box series keeps the contact's own floor
