@@ -846,6 +846,17 @@ def test_a_point_film_not_extrapolated_is_tried_again_on_converged_coarser_films
         assert abs(r.scalars[k] / fine.scalars[k] - 1.0) <= getattr(r, e) + getattr(fine, e)
 
 
+@pytest.mark.solver
+def test_a_miss_decided_by_the_domain_part_is_corrected_for_the_box_before_coarser_grids_are_solved():
+    """Circular (20, 10) at 0.5 % (513 points on twice the box): Hc is not extrapolated (its
+    65-point FMG film is off the sequence), but the domain part decides the miss; the box
+    series alone meets the target, so no coarser grid is solved to convergence."""
+    r = solve_point(20.0, 10.0, accuracy=0.005)
+    assert r.success and r.X.shape[0] == 513
+    assert "box" in r.error.correction
+    assert not [s for s in r.extra["refinements"] if s["purpose"] == "levels"]
+
+
 def test_hm_is_extrapolated_from_the_subgrid_minimum_where_the_nodal_minimum_jumps():
     from ehl_multigrid.multigrid.accuracy import estimate_error
 
