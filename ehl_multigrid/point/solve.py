@@ -33,7 +33,7 @@ from ..multigrid.options import PointOptions, build_scene_options, scene_solver_
 from ..multigrid.result import EHLResult
 from ..multigrid.rheology import log_viscosity
 from ..multigrid.threads import preserved_threads
-from .fas import ALTERNATE_BELOW, HINT, grid_layout, point_solver, y_ratio
+from .fas import ALTERNATE_BELOW, ALTERNATING_CYCLE, HINT, grid_layout, point_solver, y_ratio
 from .postprocess import build_result
 from .problem import (
     NARROW_BELOW,
@@ -162,7 +162,10 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
                                  sol, callback, "X and Y lines alternating on every grid", guess)
         if (retry and opt.retry_full_refresh and sol.status_name in RETRY_ALTERNATING
                 and opt.local_film_update):
-            solver, sol = _again(problem, replace(base, local_film_update=False, raise_on_failure=False),
+            # W cycles unless the options name one, as before the steady default became F: with
+            # F cycles circular Barus (500, 20, theta 0.25) at 1025 points diverged here too
+            solver, sol = _again(problem, replace(base, local_film_update=False, raise_on_failure=False,
+                                                  cycle=base.cycle or ALTERNATING_CYCLE),
                                  solver, sol, callback, "the film refreshed by whole deformations "
                                  "between the X and Y halves (retry_full_refresh)", guess)
         if finer and sol.status_name == "diverged" and 4 * n_coarse <= (opt.points - 1) // 4:
