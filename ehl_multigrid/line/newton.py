@@ -147,12 +147,12 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10) -> in
 #: a factorised Jacobian is reused (chord steps) while each step lowers the merit |phi| by at
 #: least this factor; a slower step, or a failed line search, refreshes it. A dense LU costs
 #: O(n^3) (0.37 s at 2049 points), a chord step O(n^2) (a few ms): the FMG start of line
-#: (3000, 6) on 2049 points, 5 factorisations -> 2 (docs/performance.md)
+#: (3000, 6) on 2049 points takes 3 factorisations instead of 5 (docs/accuracy.md)
 CHORD_CONTRACTION = 0.2
 
 
-def _jacobian(level: LineLevel, P: np.ndarray, H0: float, r: np.ndarray, dL: np.ndarray,
-              s: np.ndarray, frozen: np.ndarray) -> np.ndarray:
+def _jacobian(level: LineLevel, P: np.ndarray, r: np.ndarray, dL: np.ndarray, s: np.ndarray,
+              frozen: np.ndarray) -> np.ndarray:
     """The semismooth Jacobian of ``phi`` at ``P``: ``d(s r)/dx`` on the inactive rows, the
     identity on the active (cavitated or frozen) ones, the load row."""
     n = level.n
@@ -202,7 +202,7 @@ def _newton_solve(level: LineLevel, max_iter: int, tol: float) -> int:
                 # 2-core box
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-                    lu = scipy.linalg.lu_factor(_jacobian(level, P, H0, r, dL, s, frozen),
+                    lu = scipy.linalg.lu_factor(_jacobian(level, P, r, dL, s, frozen),
                                                 check_finite=False)
             except (np.linalg.LinAlgError, scipy.linalg.LinAlgError, ValueError) as exc:
                 raise NewtonFailure(f"singular coarse Jacobian: {exc}") from None

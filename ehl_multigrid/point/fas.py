@@ -465,7 +465,7 @@ class PointHierarchy:
         positive = Hc > 0.0 or k < len(self.levels) - 1
         finite = ok and bool(np.all(np.isfinite(lev.H)))
         return Measurement(res, lerr, Hc, finite and positive, float(lev.H.min()),
-                           subgrid_min_film(lev.X, lev.Y, lev.H, self.options.half) if finite else math.nan)
+                           subgrid_min_film(lev.H, self.options.half) if finite else math.nan)
 
     def finite(self) -> bool:
         lev = self.levels[-1]

@@ -23,11 +23,17 @@ def _interp_at(x, xs, ys) -> float:
     return float(np.interp(x, xs, ys))
 
 
-def subgrid_min_film(X: np.ndarray, Y: np.ndarray, H: np.ndarray, half: bool) -> float:
-    """Minimum film between the nodes: the minimum of the quadratic
-    ``a + b x + c y + d x^2 + e y^2 + f x y`` fitted (least squares) to the 3 x 3 nodes around
-    the smallest nodal film, where that quadratic has a minimum within one cell of the node;
-    else the nodal minimum. ``half``: ``Y`` from 0 up, mirrored below.
+#: least-squares fit of ``a + b x + c y + d x^2 + e y^2 + f x y`` to a 3 x 3 stencil (node
+#: offsets -1, 0, 1; rows Y, columns X): the coefficients are this matrix times the 9 values
+_xs, _ys = (g.ravel() for g in np.meshgrid([-1.0, 0.0, 1.0], [-1.0, 0.0, 1.0]))
+_QUADRATIC_FIT = np.linalg.pinv(np.stack([np.ones(9), _xs, _ys, _xs**2, _ys**2, _xs * _ys], axis=1))
+
+
+def subgrid_min_film(H: np.ndarray, half: bool) -> float:
+    """Minimum film between the nodes of a uniform grid (``H[j, i]``, Y rows): the minimum of
+    the quadratic ``a + b x + c y + d x^2 + e y^2 + f x y`` fitted (least squares) to the 3 x 3
+    nodes around the smallest nodal film, where that quadratic has a minimum within one cell of
+    the node; else the nodal minimum. ``half``: rows from Y = 0 up, mirrored below.
 
     The nodal minimum jumps from node to node in the narrow side constriction and converges
     irregularly; the sub-grid one converges at second order (successive-difference ratios
@@ -36,23 +42,16 @@ def subgrid_min_film(X: np.ndarray, Y: np.ndarray, H: np.ndarray, half: bool) ->
     """
     j, i = np.unravel_index(int(np.argmin(H)), H.shape)
     h0 = float(H[j, i])
-    ny = H.shape[0]
     rows = [abs(j - 1) if half else j - 1, j, j + 1]
-    if not (0 < i < H.shape[1] - 1) or min(rows) < 0 or max(rows) >= ny:
+    if not (0 < i < H.shape[1] - 1) or min(rows) < 0 or max(rows) >= H.shape[0]:
         return h0
-    hx, hy = float(X[1] - X[0]), float(Y[1] - Y[0])
-    dx = np.array([-1.0, 0.0, 1.0])
-    xx, yy = np.meshgrid(dx, dx)
-    A = np.stack([np.ones(9), xx.ravel(), yy.ravel(), xx.ravel() ** 2, yy.ravel() ** 2,
-                  (xx * yy).ravel()], axis=1)
-    v = H[np.ix_(rows, [i - 1, i, i + 1])].ravel()
-    a0, bx, by, cxx, cyy, cxy = np.linalg.lstsq(A, v, rcond=None)[0]
+    a0, bx, by, cxx, cyy, cxy = _QUADRATIC_FIT @ H[np.ix_(rows, [i - 1, i, i + 1])].ravel()
     det = 4.0 * cxx * cyy - cxy * cxy
     if not (cxx > 0.0 and det > 0.0):
         return h0
     x = (-2.0 * cyy * bx + cxy * by) / det
     y = (cxy * bx - 2.0 * cxx * by) / det
-    if max(abs(x), abs(y)) > 1.0 or not (hx > 0.0 and hy > 0.0):
+    if max(abs(x), abs(y)) > 1.0:
         return h0
     return float(a0 + bx * x + by * y + cxx * x * x + cyy * y * y + cxy * x * y)
 

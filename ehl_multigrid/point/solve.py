@@ -162,8 +162,8 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
                                  sol, callback, "X and Y lines alternating on every grid", guess)
         if (retry and opt.retry_full_refresh and sol.status_name in RETRY_ALTERNATING
                 and opt.local_film_update):
-            # W cycles unless the options name one, as before the steady default became F: with
-            # F cycles circular Barus (500, 20, theta 0.25) at 1025 points diverged here too
+            # W cycles unless the options name one: with the steady default's F cycles circular
+            # Barus (500, 20, theta 0.25) at 1025 points diverges in this retry too
             solver, sol = _again(problem, replace(base, local_film_update=False, raise_on_failure=False,
                                                   cycle=base.cycle or ALTERNATING_CYCLE),
                                  solver, sol, callback, "the film refreshed by whole deformations "

@@ -882,10 +882,10 @@ def test_subgrid_minimum_film_is_exact_for_a_quadratic_film_between_the_nodes():
     H = 0.2 + 1.5 * (X[None, :] + 0.33) ** 2 + 0.8 * (Y[:, None] - 0.47) ** 2 \
         + 0.3 * (X[None, :] + 0.33) * (Y[:, None] - 0.47)
     assert H.min() > 0.2 + 1e-4  # no node at the minimum
-    assert subgrid_min_film(X, Y, H, half=False) == pytest.approx(0.2, abs=1e-12)
+    assert subgrid_min_film(H, half=False) == pytest.approx(0.2, abs=1e-12)
     # a half domain (Y >= 0, mirrored below) gives the full domain's film, also at Y = 0
     full = 0.2 + 1.5 * (X[None, :] + 0.33) ** 2 + 0.8 * (np.abs(Y[:, None]) - 0.01) ** 2
-    assert subgrid_min_film(X, Y[20:], full[20:], half=True) == pytest.approx(
-        subgrid_min_film(X, Y, full, half=False), rel=1e-12)
+    assert subgrid_min_film(full[20:], half=True) == pytest.approx(
+        subgrid_min_film(full, half=False), rel=1e-12)
     # a minimum on the boundary has no sub-grid fit: the nodal value
-    assert subgrid_min_film(X, Y, np.broadcast_to(X, (41, 31)), half=False) == -2.0
+    assert subgrid_min_film(np.broadcast_to(X, (41, 31)), half=False) == -2.0

@@ -57,7 +57,7 @@ def main(argv: list[str] | None = None) -> int:
             r = solve_fas(pb, points=n, half=False, tol=1e-7, tol_load=1e-8, max_cycles=60,
                           raise_on_failure=False)
             status.append(r.status_name)
-            h_node, h_sub = float(r.H.min()), subgrid_min_film(r.X, r.Y, r.H, half=False)
+            h_node, h_sub = float(r.H.min()), subgrid_min_film(r.H, half=False)
             nodal.append(h_node)
             sub.append(h_sub)
         row = {"M": M, "L": L, "theta": theta, "grids": list(grids), "status": status,
