@@ -850,7 +850,7 @@ def solve_line(
 
     res = solve_to_accuracy(solve, probe, accuracy, points, max_points,
                             refine=accuracy is not None and not (explicit or fixed_box),
-                            decay_probe=decay_probe, progress=progress, dimensions=1,
+                            decay_probe=decay_probe, progress=progress, dimensions=1, extrapolate=True,
                             time_budget=math.inf if time_budget is None else time_budget)
     if not res.success and opts.raise_on_failure:
         raise ConvergenceError(f"line solver: {res.message}", res.report, HINT)

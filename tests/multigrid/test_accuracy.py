@@ -657,6 +657,13 @@ def test_an_asymptotic_grid_sequence_is_extrapolated_and_an_irregular_one_is_not
     assert abs(value - 1.0) < abs(v[-1] - 1.0) / 5.0
     assert abs(value - 1.0) <= err
     assert err >= GRID_SAFETY * EXTRAPOLATION_FLOOR * abs(v[-1] - v[-2])
+    # a first-order term beside the second-order one, of either sign (finest ratios 4.24 and
+    # 3.65): the extrapolation keeps two thirds of it, and the stated error covers that
+    for a in (0.01, -0.02):
+        w = [1.0 - h**2 + a * h for h in hs]
+        value, err = extrapolated(w)
+        assert abs(value - 1.0) == pytest.approx(2.0 / 3.0 * abs(a) * hs[-1])
+        assert abs(value - 1.0) <= err < 2.0 * abs(value - 1.0)
     # ratios outside 2^1.5 - 2^2.5 (first order; a sign change; too few grids): no extrapolation
     assert extrapolated([1.0 - h for h in hs]) is None
     assert extrapolated([1.0, 1.1, 1.05, 1.06]) is None

@@ -1,18 +1,19 @@
-"""Point solves at a target accuracy against the deep references, in one process: time, grid,
-box, status, the estimated and the true error of Hc and Hm (issue "Accuracy per second").
+"""Solves at a target accuracy against the deep references, in one process: time, grid, box,
+status, the estimated and the true error of Hc and Hm (issue "Accuracy per second").
 
-Every point reference of validation/accuracy (`python validation/accuracy/references.py
---contact point` writes them to build/validation/accuracy/references) is solved through
-`ehl_multigrid.solve` at each accuracy, one case after another in this process (numba warm
-after two small warm-up solves; no process start-up in the times, unlike verified.py). A film is
-*within its estimate* when |true error| <= the stated error; the references' own uncertainty
-is listed beside (Hm's reaches 0.2 % where its box change depends on the mesh, and (5, 0) is
-not resolved by its reference).
+Every reference of validation/accuracy of the chosen contact (`python
+validation/accuracy/references.py --contact point|line` writes them to
+build/validation/accuracy/references) is solved through `ehl_multigrid.solve` at each accuracy,
+one case after another in this process (numba warm after small warm-up solves; no process
+start-up in the times, unlike verified.py). A film is *within its estimate* when |true error|
+<= the stated error; the references' own uncertainty is listed beside (point Hm's reaches
+0.2 % where its box change depends on the mesh, and (5, 0) is not resolved by its reference).
 
-    python validation/bench/point_honesty.py --label after
-    git worktree add /tmp/before REV && python validation/bench/point_honesty.py --label before --code /tmp/before
+    python validation/bench/honesty_table.py --label after                 # point contacts
+    python validation/bench/honesty_table.py --contact line --label after
+    git worktree add /tmp/before REV && python validation/bench/honesty_table.py --label before --code /tmp/before
 
-writes build/validation/bench/point_honesty_<label>.json and .md (kept after every case).
+writes build/validation/bench/<contact>_honesty_<label>.json and .md (kept after every case).
 """
 
 from __future__ import annotations
@@ -31,8 +32,11 @@ from _paths import out_dir  # noqa: E402
 from verified import reference  # noqa: E402  (this folder is the script's own path entry)
 
 OUT = Path(out_dir("bench"))
-CASES = ((20, 10, 1), (100, 10, 1), (100, 20, 1), (20, 0, 1), (20, 10, 0.25), (20, 10, 4),
-         (1000, 10, 1), (5, 0, 1))
+CASES = {"point": ((20, 10, 1), (100, 10, 1), (100, 20, 1), (20, 0, 1), (20, 10, 0.25), (20, 10, 4),
+                   (1000, 10, 1), (5, 0, 1)),
+         # the line cases of validation/accuracy/common.LINE_CASES
+         "line": ((5, 0, 1), (5, 10, 1), (20, 0, 1), (20, 10, 1), (20, 20, 1), (100, 0, 1), (100, 10, 1),
+                  (100, 20, 1), (1000, 10, 1), (1000, 20, 1), (3000, 10, 1))}
 
 
 def table(rows: list[dict[str, Any]]) -> str:
@@ -55,7 +59,8 @@ def table(rows: list[dict[str, Any]]) -> str:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--label", default="point_honesty")
+    ap.add_argument("--label", default="table")
+    ap.add_argument("--contact", choices=("point", "line"), default="point")
     ap.add_argument("--accuracies", nargs="*", type=float, default=[0.005, 0.01])
     ap.add_argument("--code", default=None, help="import the package of this checkout (a git worktree)")
     args = ap.parse_args()
@@ -64,15 +69,17 @@ def main() -> None:
     import ehl_multigrid as ehl
 
     def problem(M: float, L: float, theta: float) -> Any:
+        if args.contact == "line":
+            return ehl.MoesProblem("line", M=M, L=L)
         return ehl.MoesProblem("point" if theta == 1 else "elliptic", M=M, L=L, theta=theta)
 
-    for theta in (1, 4):  # numba compiled and loaded before timing
+    for theta in (1, 4) if args.contact == "point" else (1,):  # numba compiled and loaded before timing
         ehl.solve(problem(20, 10, theta), accuracy=0.05)
     rows: list[dict[str, Any]] = []
-    path = OUT / f"point_honesty_{args.label}.json"
+    path = OUT / f"{args.contact}_honesty_{args.label}.json"
     for acc in args.accuracies:
-        for M, L, theta in CASES:
-            ref = reference(("point", float(M), float(L), float(theta)))
+        for M, L, theta in CASES[args.contact]:
+            ref = reference((args.contact, float(M), float(L), float(theta)))
             t0 = time.perf_counter()
             sol = ehl.solve(problem(M, L, theta), accuracy=acc)
             wall = time.perf_counter() - t0
