@@ -17,6 +17,7 @@ on this case (V cycles do, and get there only after the switch to W cycles, with
 import pytest
 
 from ehl_multigrid.line import solve_line
+from ehl_multigrid.multigrid.accuracy import correction_factors
 
 CASE = dict(M=500.0, L=20.0, points=16385, local_newton=None)
 
@@ -36,6 +37,13 @@ def _film_stopped(**kw):
     return solve_line(**CASE, accuracy=0.0025, raise_on_failure=False, **kw)
 
 
+def _own(r, k: str) -> float:
+    """The film of ``r``'s own grid (an accuracy-driven result reports films extrapolated over
+    the grids: the discrete solution is compared with what the iteration reached)."""
+    fc, fm = correction_factors(r.extra.get("film_correction"))
+    return r.scalars[k] / (fc if k == "Hc" else fm)
+
+
 @pytest.fixture(scope="module")
 def confirmed():
     """The default film stop (confirmed by a W cycle), read by two tests."""
@@ -44,27 +52,27 @@ def confirmed():
 
 def test_v_cycle_film_stop_without_confirmation_is_one_percent_off(deep):
     r = _film_stopped(confirm_early_stop=False)
-    assert abs(r.scalars["Hm"] / deep.scalars["Hm"] - 1.0) > 5e-3
+    assert abs(_own(r, "Hm") / deep.scalars["Hm"] - 1.0) > 5e-3
 
 
 def test_confirmed_film_stop_is_close_to_the_discrete_solution(deep, confirmed):
     r = confirmed
-    assert abs(r.scalars["Hm"] / deep.scalars["Hm"] - 1.0) < 5e-4
-    assert abs(r.scalars["Hm"] / deep.scalars["Hm"] - 1.0) < r.scalars["Hm_error"]
+    assert abs(_own(r, "Hm") / deep.scalars["Hm"] - 1.0) < 5e-4
+    assert abs(_own(r, "Hm") / deep.scalars["Hm"] - 1.0) < r.scalars["Hm_error"]
 
 
 @pytest.mark.xfail(strict=True, reason="Hm still drifts by 2e-4 after the confirmed stop: 2.6x "
                    "its stated algebraic part (the total estimate, 0.45 %, covers it)")
 def test_confirmed_film_stop_hm_within_its_algebraic_estimate(deep, confirmed):
     r = confirmed
-    true = abs(r.scalars["Hm"] / deep.scalars["Hm"] - 1.0)
+    true = abs(_own(r, "Hm") / deep.scalars["Hm"] - 1.0)
     assert true <= r.extra["error_budget"]["algebraic"]["Hm"]
 
 
 def test_with_local_newton_the_film_stop_is_within_its_algebraic_estimate(deep):
     case = {**CASE, "local_newton": 1025}
     r = solve_line(**case, accuracy=0.0025, raise_on_failure=False)
-    true = abs(r.scalars["Hm"] / deep.scalars["Hm"] - 1.0)
+    true = abs(_own(r, "Hm") / deep.scalars["Hm"] - 1.0)
     # measured: 1.3e-6 against a stated algebraic part of 4.8e-4 (without: 2.3e-4 against 9e-5)
     assert true <= r.extra["error_budget"]["algebraic"]["Hm"]
-    assert abs(r.scalars["Hc"] / deep.scalars["Hc"] - 1.0) <= r.extra["error_budget"]["algebraic"]["Hc"]
+    assert abs(_own(r, "Hc") / deep.scalars["Hc"] - 1.0) <= r.extra["error_budget"]["algebraic"]["Hc"]

@@ -7,15 +7,15 @@ from ehl_multigrid.multigrid.accuracy import DOMAIN_REUSE_BELOW, DOMAIN_SAFETY
 
 
 def test_a_negligible_box_change_is_reused_and_agrees_with_the_finer_grids_own_probes():
-    # line (100, 10) at 1 %: 2049 points, then 4097 on the same box; the box change (about
+    # line (100, 10) at 0.5 %: 4097 points, then 8193 on the same box; the box change (about
     # 1.3e-4) is measured once
-    res = solve_line(100.0, 10.0, accuracy=0.01)
+    res = solve_line(100.0, 10.0, accuracy=0.005)
     assert res.success
-    assert len(res.X) == 4097
-    assert "measured with the 2049-point solve" in res.extra["domain_note"]
+    assert len(res.X) == 8193
+    assert "measured with the 4097-point solve" in res.extra["domain_note"]
     dom = res.error.budget["domain"]
-    assert max(dom.values()) < DOMAIN_REUSE_BELOW * 0.01  # the domain part: 3x the change
-    # the 4097-point solve's own probes: the reused change within a factor 1.5 of theirs,
+    assert max(dom.values()) < DOMAIN_REUSE_BELOW * 0.005  # the domain part: 3x the change
+    # the 8193-point solve's own probes: the reused change within a factor 1.5 of theirs,
     # so the stated domain part (3x the change) still bounds what they would measure
     own = line_domain_change(res.problem, res.options, res)
     for k, d in zip(("Hc", "Hm"), own, strict=True):
