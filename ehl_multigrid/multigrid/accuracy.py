@@ -482,11 +482,14 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
         fix = {}
         sub = [d.get("Hm_sub", math.nan) for d in fmg] + [getattr(fin[-1], "Hm_sub", math.nan) if fin else math.nan]
         sequences = [("Hc", [d["Hc"] for d in fmg] + [Hc], Hc)]
-        if all(math.isfinite(v) for v in sub):
-            # the minimum between the nodes converges regularly where the nodal one jumps
-            # from node to node (subgrid_min_film); both tend to the same minimum film
-            sequences.append(("Hm", sub, Hm))
-        sequences.append(("Hm", [d["Hm"] for d in fmg] + [Hm], Hm))
+        if getattr(result, "contact", "") != "line":
+            # not the line's minimum film: it converges at about first order (ratios 2.2-3.6
+            # on 513-32769 points at (100, 10) and (20, 20))
+            if all(math.isfinite(v) for v in sub):
+                # the minimum between the nodes converges regularly where the nodal one jumps
+                # from node to node (subgrid_min_film); both tend to the same minimum film
+                sequences.append(("Hm", sub, Hm))
+            sequences.append(("Hm", [d["Hm"] for d in fmg] + [Hm], Hm))
         for k, films, F in sequences:
             x = extrapolated(films) if k not in fix else None
             if x is not None:
