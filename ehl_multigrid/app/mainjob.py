@@ -49,6 +49,7 @@ from ..model.paths import safe_stem, writable_dir
 from ..model.results import Result, save_results
 from ..model.scene import Scene
 from ..solution import Status
+from . import warmup
 from .console import Progress, print_table, report_leftovers
 from .plan import make_plan, print_plan
 from .solved import package_result, require_computed
@@ -381,6 +382,7 @@ def _run_locked(scene: Scene, options: MainJobOptions, out: Path) -> dict[str, A
                      compress=complete)  # a partial file is replaced by the next stage's
 
     prog = Progress(f"ehl run {scene.name}", total=len(stages), unit="stages")
+    helpers = warmup.start(scene.kind)
     try:
         for i, (name, stage) in enumerate(stages, 1):
             prog.status(f"stage {i}/{len(stages)} {name}", force=True)
@@ -396,6 +398,7 @@ def _run_locked(scene: Scene, options: MainJobOptions, out: Path) -> dict[str, A
             save(complete=len(ran) == len(planned))
             prog.advance(text=f"{name} took {time.perf_counter() - t0:.1f} s")
     finally:
+        warmup.stop(helpers)
         prog.close()
         # only the finished stages' files are moved (a figure of the stage a stop interrupted
         # stays in the staging folder, which is removed); a stop request waits for the move
