@@ -531,9 +531,12 @@ def film_tol(options: Any, accuracy: float | None, tol_factor: float = 1.0) -> f
     return min(FILM_TOL_FRACTION * accuracy * tol_factor, 0.1)
 
 
-def film_change(solve_default: Any, solve_wide: Any, floor_ok: bool = False) -> tuple[float, float] | None:
+def film_change(solve_default: Any, solve_wide: Any, floor_ok: bool = False,
+                hm_sub: bool = False) -> tuple[float, float] | None:
     """Relative change of (Hc, Hm) from the default-box solve to the wide-box solve (two
     callables returning results); None when either raises a clear error or does not converge.
+    With ``hm_sub`` Hm is the sub-grid minimum film of the last cycle (:func:`final_films`)
+    where both solves record one.
 
     With ``floor_ok`` a solve that ended at its relaxation's floor (``residual_floor``: films
     jittering above the film tolerance at a residual that no longer falls) counts, and its last
@@ -555,8 +558,10 @@ def film_change(solve_default: Any, solve_wide: Any, floor_ok: bool = False) -> 
             if d is None or not all(math.isfinite(v) for v in d.values()):
                 return None
             jitter = [jitter[0] + d["Hc"], jitter[1] + d["Hm"]]
-        films.append((r.scalars["Hc_venner"], r.scalars["Hm_venner"]))
-    (c0, m0), (c1, m1) = films
+        films.append(final_films(r))
+    (c0, m0, s0), (c1, m1, s1) = films
+    if hm_sub and math.isfinite(s0) and math.isfinite(s1):
+        m0, m1 = s0, s1
     dc, dm = c1 / c0 - 1.0, m1 / m0 - 1.0
     return (math.copysign(abs(dc) + jitter[0], dc), math.copysign(abs(dm) + jitter[1], dm))
 
