@@ -151,3 +151,36 @@ def test_plain_probes_of_a_narrow_contact_run_on_the_circular_minimum_mesh(monke
     seen.clear()
     point_solve.point_domain_change(pb, opts, planned, {}, tight=point_solve.SERIES_FILM_TOL)
     assert seen[0] == 257  # the box series keeps the contact's own floor
+
+
+@pytest.mark.solver
+def test_a_large_solve_takes_the_second_box_change_from_the_coarse_mesh_when_the_meshes_agree(monkeypatch):
+    """The change beyond twice the box is measured on the coarse mesh and scaled by the first
+    change's ratio of the two meshes (COARSE_D4_FROM, lowered here to this 513-point solve);
+    where the first changes of the two meshes differ by more than COARSE_D4_AGREEMENT, on the
+    probe mesh as before."""
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.problem import problem_from_moes
+
+    pb = problem_from_moes(100.0, 10.0, 1.0)
+    opts = PointOptions(points=513, half=True, film_tol=2.5e-4, raise_on_failure=False)
+    sol = point_solve.solve_fas(pb, opts)
+    seen = []
+    original = point_solve.solve_fas
+    monkeypatch.setattr(point_solve, "solve_fas",
+                        lambda problem, options, **kw: seen.append(options.points) or original(problem, options, **kw))
+    monkeypatch.setattr(point_solve, "COARSE_D4_FROM", 513)
+    cache = {}
+    coarse = point_solve.point_box_series(pb, opts, sol, cache)
+    assert max(seen) == 257  # the 4x box on 65 points per default box, not 129
+    kind = sol.extra["box_series_hm"] == "sub-grid"
+    d2, d2c = (point_solve.point_domain_change(pb, opts, sol, cache, tight=point_solve.SERIES_FILM_TOL,
+                                               coarser=c, hm_sub=kind) for c in (0, 1))
+    low = point_solve.point_domain_change(pb, opts, sol, cache, boxes=(1.0, 2.0, 4.0), coarser=1,
+                                          tight=point_solve.SERIES_FILM_TOL, hm_sub=kind)
+    assert all(abs(c - d) <= point_solve.COARSE_D4_AGREEMENT * abs(d) for c, d in zip(d2c, d2, strict=True))
+    assert coarse.d2 == d2 and coarse.d4 == pytest.approx([low[1][i] * d2[i] / d2c[i] for i in (0, 1)])
+    monkeypatch.setattr(point_solve, "COARSE_D4_AGREEMENT", 0.0)
+    seen.clear()
+    fine = point_solve.point_box_series(pb, opts, sol, cache)
+    assert max(seen) == 513 and fine.d2 == d2 and fine.d4 != coarse.d4
