@@ -897,3 +897,21 @@ def test_subgrid_minimum_film_is_exact_for_a_quadratic_film_between_the_nodes():
         subgrid_min_film(full, half=False), rel=1e-12)
     # a minimum on the boundary has no sub-grid fit: the nodal value
     assert subgrid_min_film(np.broadcast_to(X, (41, 31)), half=False) == -2.0
+
+
+def test_a_coarser_grid_at_its_residual_floor_serves_the_sequence_only_when_its_jitter_is_small():
+    from types import SimpleNamespace
+
+    from ehl_multigrid.multigrid.accuracy import FLOOR_JITTER_FRACTION, floor_films_usable
+
+    cycles = [SimpleNamespace(level=1, Hc=1.0, Hm=0.5, Hm_sub=0.49),
+              SimpleNamespace(level=1, Hc=1.0001, Hm=0.5001, Hm_sub=0.4901)]
+    res = SimpleNamespace(levels=2, history=cycles, scalars={"Hc_venner": 1.0001, "Hm_venner": 0.5001})
+    # jumps of 1e-4 against differences of about 1e-2 from the finer grid: usable
+    assert floor_films_usable(res, (1.0101, 0.5101, 0.5001))
+    # a finer film within ten jumps of this one (here Hm): the jitter would decide the sequence
+    close = 0.5001 + 0.5e-4 / FLOOR_JITTER_FRACTION
+    assert not floor_films_usable(res, (1.0101, close, 0.5001))
+    assert not floor_films_usable(res, None)
+    assert not floor_films_usable(SimpleNamespace(levels=2, history=cycles[:1], scalars=res.scalars),
+                                  (1.0101, 0.5101, 0.5001))
