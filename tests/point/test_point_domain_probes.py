@@ -97,6 +97,15 @@ def test_a_tolerance_step_of_the_solve_reuses_its_domain_probes(monkeypatch):
     assert first is not None and again == first and seen == []
 
 
+def _record_solves(monkeypatch) -> list:
+    """The options of every point solve from here on (``point.solve.solve_fas``), in order."""
+    seen = []
+    original = point_solve.solve_fas
+    monkeypatch.setattr(point_solve, "solve_fas",
+                        lambda problem, options, **kw: seen.append(options) or original(problem, options, **kw))
+    return seen
+
+
 @pytest.mark.solver
 def test_a_box_series_that_cannot_meet_the_target_solves_no_wider_probe(monkeypatch):
     from ehl_multigrid.multigrid.accuracy import DECAY_SAFETY, MESH_SAFETY
@@ -106,10 +115,7 @@ def test_a_box_series_that_cannot_meet_the_target_solves_no_wider_probe(monkeypa
     pb = problem_from_moes(20.0, 10.0, 1.0)
     opts = PointOptions(points=513, half=True, film_tol=1e-4, raise_on_failure=False)
     sol = point_solve.solve_fas(pb, opts)
-    seen = []
-    original = point_solve.solve_fas
-    monkeypatch.setattr(point_solve, "solve_fas",
-                        lambda problem, options, **kw: seen.append(options) or original(problem, options, **kw))
+    seen = _record_solves(monkeypatch)
     cache = {}
     # no room left by the grid and iteration parts: the two cheap pairs decide, nothing wider
     assert point_solve.point_box_series(pb, opts, sol, cache, left=(1e-6, 1e-6)) is None
@@ -165,14 +171,11 @@ def test_a_large_solve_takes_the_second_box_change_from_the_coarse_mesh_when_the
     pb = problem_from_moes(100.0, 10.0, 1.0)
     opts = PointOptions(points=513, half=True, film_tol=2.5e-4, raise_on_failure=False)
     sol = point_solve.solve_fas(pb, opts)
-    seen = []
-    original = point_solve.solve_fas
-    monkeypatch.setattr(point_solve, "solve_fas",
-                        lambda problem, options, **kw: seen.append(options.points) or original(problem, options, **kw))
+    seen = _record_solves(monkeypatch)
     monkeypatch.setattr(point_solve, "COARSE_D4_FROM", 513)
     cache = {}
     coarse = point_solve.point_box_series(pb, opts, sol, cache)
-    assert max(seen) == 257  # the 4x box on 65 points per default box, not 129
+    assert max(o.points for o in seen) == 257  # the 4x box on 65 points per default box, not 129
     kind = sol.extra["box_series_hm"] == "sub-grid"
     d2, d2c = (point_solve.point_domain_change(pb, opts, sol, cache, tight=point_solve.SERIES_FILM_TOL,
                                                coarser=c, hm_sub=kind) for c in (0, 1))
@@ -183,4 +186,4 @@ def test_a_large_solve_takes_the_second_box_change_from_the_coarse_mesh_when_the
     monkeypatch.setattr(point_solve, "COARSE_D4_AGREEMENT", 0.0)
     seen.clear()
     fine = point_solve.point_box_series(pb, opts, sol, cache)
-    assert max(seen) == 513 and fine.d2 == d2 and fine.d4 != coarse.d4
+    assert max(o.points for o in seen) == 513 and fine.d2 == d2 and fine.d4 != coarse.d4
