@@ -954,7 +954,10 @@ class _SteadyControl:
                 rc = self._solve(n, box, 0.1 * tol)
                 record(Refinement(n, box, 0.1 * tol, math.nan, math.nan, rc.wall_s, "levels"))
                 finer = known.get(2 * (n - 1) + 1) or (final_films(res) if 2 * (n - 1) + 1 == at.points else None)
-                if rc.success or (rc.status_name == "residual_floor" and floor_films_usable(rc, finer)):
+                # a floor's films only three grids or more below the solve's: they then enter the
+                # asymptotic test, not the finest ratio that sets the stated error (extrapolated)
+                deep = 8 * (n - 1) <= at.points - 1
+                if rc.success or (deep and rc.status_name == "residual_floor" and floor_films_usable(rc, finer)):
                     key_c = (box, getattr(rc, "extra", {}).get("y_ratio"))
                     self.finals.setdefault(key_c, {})[n] = final_films(rc)
             return estimate_error(res, dom, known, decay=changes, extrapolate=self.extrapolate)
