@@ -468,8 +468,9 @@ def point_box_series(problem: PointProblem, options: PointOptions, sol: EHLResul
     mesh fails. One box lower costs an eighth of one box further: circular (20, 10) at 0.5 % on
     1025 points and twice the box, 0.1 s against 5.2 s. On solves of :data:`COARSE_D4_FROM`
     points and more the change beyond twice the box is measured on the coarse mesh and scaled
-    by the ratio of the first change on the two meshes (the 6205 inner race at 0.5 %: corrected
-    films within 0.012 % of the probe mesh's, 24 s instead of 37 s in process).
+    by the ratio of the first change on the two meshes (the 6205 inner race on 2049 points:
+    corrected films within 0.012 % of the probe mesh's series), where that first change agrees
+    within :data:`COARSE_D4_AGREEMENT` on both meshes.
 
     ``left`` (per film, Hc and Hm: the part of the target the grid and iteration parts leave)
     skips the series, returning None, where the mesh dependence of the first change alone
@@ -505,6 +506,7 @@ def point_box_series(problem: PointProblem, options: PointOptions, sol: EHLResul
     def series(boxes: tuple[float, float, float]) -> BoxSeries | None:
         used: list[EHLResult] = []
         fine, rough = pairs[hm_sub]
+        changes = None
         if (boxes[0] >= 1.0 and sol.X.shape[0] >= COARSE_D4_FROM and fine is not None and rough is not None
                 and all(d != 0.0 and abs(c - d) <= COARSE_D4_AGREEMENT * abs(d) for c, d in zip(rough, fine, strict=True))):
             # beyond the box: the second change on the coarse mesh, scaled by the first change's
@@ -513,10 +515,9 @@ def point_box_series(problem: PointProblem, options: PointOptions, sol: EHLResul
             low = point_domain_change(problem, options, sol, cache, boxes=boxes, coarser=1, used=used,
                                       tight=SERIES_FILM_TOL, hm_sub=hm_sub)
             point_domain_change(problem, options, sol, cache, used=used, tight=SERIES_FILM_TOL, hm_sub=hm_sub)
-            if low is None:
-                return None
-            changes = [fine, tuple(d4 * d2 / c2 for d4, d2, c2 in zip(low[1], fine, low[0], strict=True))]
-        else:
+            if low is not None:
+                changes = [fine, tuple(d4 * d2 / c2 for d4, d2, c2 in zip(low[1], fine, low[0], strict=True))]
+        if changes is None:  # on the probe mesh, also where the coarse mesh's series failed
             changes = point_domain_change(problem, options, sol, cache, boxes=boxes, used=used,
                                           tight=SERIES_FILM_TOL, hm_sub=hm_sub)
         if changes is None:
