@@ -303,12 +303,15 @@ class PointOptions(MultigridOptions):
                              "grids below the current one where theta moves)")
         # a tuple of ints, so that the options stay hashable (a list from a mapping of options)
         object.__setattr__(self, "exact_rules", tuple(None if r is None else int(r) for r in rules))
+        # rigid surfaces carry the load within a few sqrt(2 H) of the centre, far inside the
+        # Hertz circle at high M or theta (point.problem.default_domain)
+        edge, side = (1.05, 0.5) if self.elastic else (1e-4, 1e-4)
         if self.xmin is not None:
-            require_range("xmin", self.xmin, -20000.0, -1.05, "- (x/a)")
+            require_range("xmin", self.xmin, -20000.0, -edge, "- (x/a)")
         if self.xmax is not None:
-            require_range("xmax", self.xmax, 1.05, 20000.0, "- (x/a)")
+            require_range("xmax", self.xmax, edge, 20000.0, "- (x/a)")
         if self.ymax is not None:
-            require_range("ymax", self.ymax, 0.5, 20000.0, "- (y/a)")
+            require_range("ymax", self.ymax, side, 20000.0, "- (y/a)")
         if self.y_ratio is not None:
             require_range("y_ratio", self.y_ratio, 0.125, 8.0, "-")
             if abs(math.log2(self.y_ratio) - round(math.log2(self.y_ratio))) > 1e-12:

@@ -194,6 +194,33 @@ def rigid_length(problem: PointProblem) -> float:
     return math.sqrt(2.0 * H)
 
 
+def rigid_film(problem: PointProblem) -> float:
+    """Central film of the same contact with rigid surfaces (Venner units): Nijenbanning's
+    rigid asymptotes (2.25, 2.27) combined as ``(HRI^3 + HRP^3)^(1/3)``, the form (2.23) takes
+    without its elastic terms (``s = 3`` where the rigid film dominates)."""
+    from ..model.fits import nijenbanning_terms
+
+    t = nijenbanning_terms(problem.M, problem.L, problem.theta)
+    H = (float(t["HRI"]) ** 3 + (float(t["HRP"]) ** 3 if problem.L > 0 else 0.0)) ** (1.0 / 3.0)
+    return H / problem.moes_factor
+
+
+def rigid_coarse_intervals(length: float, points: int, s: float) -> int:
+    """Coarse intervals along X of a rigid-surface solve: the smallest ``16 * 2^k`` whose mesh
+    is at most :data:`RIGID_COARSE_CELL` times the rigid inlet length ``s = sqrt(2 H)``
+    (:func:`rigid_film`), and no more than the finest grid has. Without the elastic
+    deformation the pressure is carried within a few ``s`` of the centre (0.12 a at circular
+    (20, 0)), and a coarse grid that cannot hold it drives the load balance to blow up."""
+    n = 16
+    while length / n > RIGID_COARSE_CELL * s and n < points - 1:
+        n *= 2
+    return min(n, points - 1)
+
+
+#: coarsest mesh of a rigid-surface solve in units of its inlet length (rigid_coarse_intervals)
+RIGID_COARSE_CELL = 0.8
+
+
 def domain_scale(problem: PointProblem) -> float:
     """Factor >= 1 by which the default domain is widened in the thick-film (low M) regime:
     ``max(1, (1 + 3 s)/4.5)``, so that the inlet holds at least 3 inlet lengths ``s`` upstream
@@ -202,21 +229,32 @@ def domain_scale(problem: PointProblem) -> float:
     return max(1.0, (1.0 + 3.0 * rigid_length(problem)) / 4.5)
 
 
-def default_domain(problem: PointProblem) -> tuple[float, float, float]:
+#: default box of a rigid-surface solve in units of its inlet length s (rigid_film): X in
+#: [-RIGID_BOX[0] s, RIGID_BOX[1] s], |Y| <= RIGID_BOX[2] s / sqrt(theta)
+RIGID_BOX = (24.0, 8.0, 16.0)
+
+
+def default_domain(problem: PointProblem, elastic: bool = True) -> tuple[float, float, float]:
     """Default ``(xmin, xmax, ymax)`` in units of a: the classic X in [-4.5, 1.5],
-    Y in [-3, 3] b/a, scaled by :func:`domain_scale` at low M.
+    Y in [-3, 3] b/a, scaled by :func:`domain_scale` at low M. Rigid surfaces
+    (``elastic=False``): :data:`RIGID_BOX` in units of the rigid inlet length
+    ``s = sqrt(2 H)`` (:func:`rigid_film`), the size of their pressure zone (0.15 a at circular
+    (20, 0), 0.03 a at theta 4), whatever the Hertz circle.
 
     Doubling this box at equal mesh size raises Hc by 1.2 % at (M, L) = (20, 10) and more at
     lighter loads (docs/accuracy.md, "Domain error").
     """
+    if not elastic:
+        s = math.sqrt(2.0 * rigid_film(problem))
+        return -RIGID_BOX[0] * s, RIGID_BOX[1] * s, RIGID_BOX[2] * s / math.sqrt(problem.theta)
     f = domain_scale(problem)
     return -4.5 * f, 1.5 * f, 3.0 * f * problem.b_over_a
 
 
 def resolve_domain(problem: PointProblem, xmin: float | None, xmax: float | None,
-                   ymax: float | None) -> tuple[float, float, float]:
+                   ymax: float | None, elastic: bool = True) -> tuple[float, float, float]:
     """``(xmin, xmax, ymax)``: the given values, :func:`default_domain` where None."""
-    dx0, dx1, dy = default_domain(problem)
+    dx0, dx1, dy = default_domain(problem, elastic)
     return (dx0 if xmin is None else float(xmin), dx1 if xmax is None else float(xmax),
             dy if ymax is None else float(ymax))
 

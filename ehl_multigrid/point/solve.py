@@ -192,10 +192,9 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
                      final_h00_gain=sol.settings.h00_gain, final_cycle=sol.settings.cycle,
                      final_switch=sol.settings.switch)
     if not sol.success and not opt.elastic:
-        sol.message += ("; rigid surfaces (elastic = False): the FMG starts from the elastic fit's "
-                        "film and a Hertzian pressure, far from the rigid solution at low M (circular "
-                        "(20, 0): fitted Hc 1.43, rigid-isoviscous asymptote 0.103, Moes units), and "
-                        "such a start can diverge")
+        sol.message += ("; rigid surfaces (elastic = False): the box, the coarsest mesh and the start "
+                        "follow the rigid film's inlet length sqrt(2 H) (point.problem.rigid_film); a "
+                        "given box or coarse grid that does not resolve it can diverge")
     elif not sol.success:
         need = min_points(problem.M, problem.b_over_a, cap=None)
         if opt.points < need:
@@ -317,7 +316,7 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     # series of a box correction keeps the contact's own: its coarse-mesh pair, one mesh lower,
     # would fall where Hm's second change is off ((20, 10, theta 4): 0.027 % on 65 points per
     # default box against 0.17 % on 129-257)
-    d0 = default_domain(problem)
+    d0 = default_domain(problem, options.elastic)
     scale = 2 ** max(0, round(math.log2((xmax - xmin) / (d0[1] - d0[0]))))
     n_min = (min_points(problem.M, 1.0 if tight is None else problem.b_over_a) - 1) * scale + 1
     if domain_scale(problem) > 1.0:
@@ -405,7 +404,7 @@ class PlannedSolve:
 
 def planned_solve(problem: PointProblem, options: PointOptions) -> PlannedSolve:
     """The grid layout a :func:`solve_fas` with ``options`` will have (:func:`~.fas.grid_layout`)."""
-    domain = resolve_domain(problem, options.xmin, options.xmax, options.ymax)
+    domain = resolve_domain(problem, options.xmin, options.xmax, options.ymax, options.elastic)
     levels, ratio = grid_layout(problem, options, domain)
     return PlannedSolve(levels, np.empty(int(options.points)), {"domain": domain, "y_ratio": ratio})
 
@@ -479,7 +478,7 @@ def point_box_series(problem: PointProblem, options: PointOptions, sol: EHLResul
     cannot meet the target (circular (100, 10) at 0.5 % on 513 points: a 513-point probe on
     four times the box, 1.6 s). ``sol.extra["box_series_skipped"]`` then says so."""
     xmin, xmax, _ = sol.extra["domain"]
-    d0 = default_domain(problem)
+    d0 = default_domain(problem, options.elastic)
     coarse: list[tuple[float, float] | None] = []
     # Hm's box change measured by the nodal or the sub-grid minimum film, whichever moves less
     # from the coarse mesh to the probe mesh: either jumps on coarse meshes where the other does
@@ -657,7 +656,7 @@ def solve_point(
             # within the budget, but never below the smallest grid the solver converges on
             floor = min_points(pb.M, pb.b_over_a)
             points = min(solver_grid("point", pb.M, accuracy, floor=floor).points, max(max_points, floor))
-        base = resolve_domain(pb, opts.xmin, opts.xmax, opts.ymax)
+        base = resolve_domain(pb, opts.xmin, opts.xmax, opts.ymax, opts.elastic)
         # the last converged solve of the sequence, and the cell aspect every later solve keeps
         # once one fell back to square cells (the same discrete problem on each grid for the
         # Richardson estimate, and no stretched attempt that fails first)

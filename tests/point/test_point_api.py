@@ -106,12 +106,14 @@ def test_cli_solver_newton_and_rigid(tmp_path, capsys):
     assert rc == 0
     d = json.loads(capsys.readouterr().out)
     assert d["solver"] == "newton" and d["converged"]
+    # one box for both (a rigid solve's own box follows its film: 44 a upstream here)
+    box = ["--xmin", "-7", "--xmax", "2.3", "--ymax", "4.6"]
     rc = main(["solve", "--M", "3", "--L", "0", "--contact", "point", "--points", "65", "--accuracy", "none", "--rigid",
-               "--json", "--no-plots", "--out", str(tmp_path)])
+               *box, "--json", "--no-plots", "--out", str(tmp_path)])
     assert rc == 0
     rigid = json.loads(capsys.readouterr().out)
     main(["solve", "--M", "3", "--L", "0", "--contact", "point", "--points", "65", "--accuracy", "none",
-          "--json", "--no-plots", "--out", str(tmp_path)])
+          *box, "--json", "--no-plots", "--out", str(tmp_path)])
     elastic = json.loads(capsys.readouterr().out)
     # the elastic bodies flatten in the contact and carry the load on a thicker film
     assert rigid["converged"] and elastic["converged"]
@@ -184,10 +186,11 @@ def test_the_fas_solver_takes_the_symmetric_half_domain_unless_told_otherwise():
     assert not solve_point(20, 10, options=PointOptions(points=65), estimate=False).half
 
 
-def test_a_rigid_start_that_touches_ends_as_a_named_failure_not_an_exception():
-    """Rigid surfaces (elastic = False) at (20, 0), theta 4: the start's gap closes (no flow, no
-    film response on the diagonal); the solve returns a failure that names the rigid start,
-    where the residual scaling divided by zero before."""
-    res = solve_point(20, 0, theta=4.0, rigid=True, points=129, estimate=False)
+def test_a_rigid_solve_on_a_coarse_mesh_that_cannot_hold_its_film_ends_as_a_named_failure():
+    """Rigid surfaces (elastic = False) at (20, 0), theta 4, forced onto 16 coarse intervals
+    (about 2 rigid inlet lengths each): the coarse film closes (no flow, no film response on
+    the diagonal, where the residual scaling once divided by zero); the solve returns a failure
+    that names the rigid surfaces' scale, not a finer grid."""
+    res = solve_point(20, 0, theta=4.0, rigid=True, points=129, n_coarse=16, estimate=False)
     assert not res.success and res.status_name == "diverged"
-    assert "rigid surfaces" in res.message and "too coarse" not in res.message
+    assert "rigid film's inlet length" in res.message and "too coarse" not in res.message

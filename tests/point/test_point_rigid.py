@@ -1,0 +1,49 @@
+"""Rigid point contacts (``elastic=False``): the FAS solver against the independent sparse
+direct solve of the same discrete rigid-isoviscous problem (point/rigid.py), on the rigid box,
+whose size follows the rigid film ``s = sqrt(2 H)`` instead of the Hertz circle."""
+
+import math
+
+import pytest
+
+from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.multigrid.options import PointOptions
+from ehl_multigrid.point import problem_from_moes, solve_fas
+from ehl_multigrid.point.problem import RIGID_BOX, default_domain, rigid_film
+from ehl_multigrid.point.rigid import rigid_pressure
+
+
+def _rigid_against_direct(theta: float) -> None:
+    # L = 0 and incompressible: the equations the direct solve is exact for
+    pb = problem_from_moes(20.0, 0.0, theta, "barus", "incompressible")
+    out = solve_fas(pb, points=129, elastic=False, tol=1e-8, tol_load=1e-10)
+    assert out.success and out.levels >= 2, out.message
+    # the direct solution at the FAS film constant: the same pressure, and the load balanced
+    # (d ln W / d ln H00 is about -1.5 here, so 1e-6 of the load is 1e-6 of H00)
+    G = 0.5 * out.X[None, :] ** 2 + 0.5 * theta * out.Y[:, None] ** 2
+    P = rigid_pressure(out.X, out.Y, out.H0 + G, pb.lam)
+    hx, hy = out.X[1] - out.X[0], out.Y[1] - out.Y[0]
+    assert hx * hy * P.sum() == pytest.approx(pb.load, rel=1e-6)
+    assert abs(out.P - P).max() < 1e-5 * P.max()
+
+
+@pytest.mark.parametrize("theta", [0.25, 1.0, 4.0])
+def test_rigid_contact_converges_to_the_direct_rigid_isoviscous_solution(theta):
+    """(20, 0) diverged at theta 1 and 4 with the elastic contact's box, coarse mesh, Jacobi-
+    distributive relaxation and Hertzian start (load error ~1e10 on the second grid)."""
+    _rigid_against_direct(theta)
+
+
+@pytest.mark.parametrize("theta", [0.25, 1.0, 4.0])
+def test_rigid_box_is_measured_in_rigid_film_lengths(theta):
+    pb = problem_from_moes(20.0, 0.0, theta)
+    s = math.sqrt(2.0 * rigid_film(pb))
+    xmin, xmax, ymax = default_domain(pb, elastic=False)
+    assert (xmin, xmax, ymax * math.sqrt(theta)) == pytest.approx(
+        (-RIGID_BOX[0] * s, RIGID_BOX[1] * s, RIGID_BOX[2] * s))
+
+
+def test_a_box_inside_the_hertz_circle_is_accepted_for_rigid_surfaces_only():
+    PointOptions(elastic=False, xmin=-0.6, xmax=0.2, ymax=0.2)
+    with pytest.raises(InputError, match="xmax = 0.2"):
+        PointOptions(xmin=-4.5, xmax=0.2, ymax=0.6)
