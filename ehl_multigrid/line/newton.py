@@ -132,16 +132,20 @@ def _phi(level: LineLevel, P: np.ndarray, r: np.ndarray, s: np.ndarray, P_frozen
     return phi
 
 
-def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10) -> int:
+def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10, keep: bool = False) -> int:
     """Solve the level's problem in place (``level.P``, ``level.H0``); return the number of
     Jacobian factorisations (Newton steps; the chord steps that reuse a factorisation while it
     contracts by :data:`CHORD_CONTRACTION` per step are not counted, ``max_iter`` counts all).
+    ``keep``: start with chord steps on the factorisation the last ``keep`` solve of this level
+    left, and leave the last one for the next (the coarsest grid of the cycles, whose problem
+    changes little from cycle to cycle: line (3000, 6) at 0.5 %, 65 factorisations of its
+    513-point grid took 0.85 s of a 3.0 s solve).
 
     Raises :class:`NewtonFailure` when the damped iteration stalls or the film collapses.
     The dense factorisations run on one BLAS thread (:func:`serial_blas`).
     """
     with serial_blas():
-        return _newton_solve(level, max_iter, tol)
+        return _newton_solve(level, max_iter, tol, keep)
 
 
 #: a factorised Jacobian is reused (chord steps) while each step lowers the merit |phi| by at
@@ -167,13 +171,16 @@ def _jacobian(level: LineLevel, P: np.ndarray, r: np.ndarray, dL: np.ndarray, s:
     return J
 
 
-def _newton_solve(level: LineLevel, max_iter: int, tol: float) -> int:
+def _newton_solve(level: LineLevel, max_iter: int, tol: float, keep: bool = False) -> int:
     n = level.n
     P, H0 = level.P.copy(), float(level.H0)
     P_frozen = level.P.copy()
     inner = np.arange(1, n - 1)
     frozen = level.frozen[1:-1]
-    lu, s = None, None
+    lu, s = getattr(level, "kept_factor", None) if keep else None, None
+    if lu is not None:
+        lu, s = lu
+    level.kept_factor = None
     # the iterate of the last factorisation: chord steps that lead where the fresh scaling is
     # not finite are undone, and the solve goes on with plain Newton steps
     chord, last_fresh, chorded = True, (P, H0), False
@@ -195,6 +202,8 @@ def _newton_solve(level: LineLevel, max_iter: int, tol: float) -> int:
             last_fresh, chorded = (P, H0), False
         if np.max(np.abs(phi)) < tol:
             level.P, level.H0 = P, H0
+            if keep and lu is not None:
+                level.kept_factor = (lu, s)
             return factorised
         if fresh:
             try:
@@ -229,6 +238,8 @@ def _newton_solve(level: LineLevel, max_iter: int, tol: float) -> int:
                 continue
             if np.max(np.abs(phi)) < 1e3 * tol:  # round-off floor reached: accept
                 level.P, level.H0 = P, H0
+                if keep:
+                    level.kept_factor = (lu, s)
                 return factorised
             raise NewtonFailure(f"coarse Newton line search failed at iteration {it} "
                                 f"(|phi| = {norm0:.3g})")

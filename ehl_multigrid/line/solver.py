@@ -335,7 +335,7 @@ class LineHierarchy:
         lv = self.levels[k]
         saved = (lv.P.copy(), lv.H0)
         try:
-            its = newton_solve(lv)
+            its = newton_solve(lv, keep=True)
         except NewtonFailure as exc:
             lv.P, lv.H0 = saved
             self.solver.note(f"coarse Newton failed ({exc}); relaxed instead")
