@@ -12,6 +12,7 @@ from ehl_multigrid.multigrid.accuracy import (
     ErrorEstimate,
     next_refinement,
     points_needed,
+    refinement_candidates,
     richardson,
     solve_to_accuracy,
 )
@@ -129,6 +130,24 @@ def _budget(g, d, a=1e-6):
     return {"grid": {"Hc": g, "Hm": g}, "domain": {"Hc": d, "Hm": d}, "algebraic": {"Hc": a, "Hm": a}}
 
 
+def test_a_line_film_that_falls_slower_than_second_order_jumps_two_grids_at_once():
+    """Line (3000, 6) at 0.5 % on 16385 points: Hm states 4.42 % (grid part); one grid finer at
+    second order (/4) would leave 1.1 %, so the loop stepped to 32769 (1.21 %) and then 65537
+    (0.39 %). With the line's Hm gain capped at 2^1.5 per grid, two grids are predicted to
+    leave 0.55 % and are the closest step: 65537 directly."""
+    from ehl_multigrid.multigrid.controller import choose
+
+    b = {"grid": {"Hc": 0.0037, "Hm": 0.0442}, "domain": {"Hc": 1e-5, "Hm": 1e-5},
+         "algebraic": {"Hc": 1e-5, "Hm": 1e-5}}
+    line = refinement_candidates(b, 0.005, 16385, 1.0, 1.0, 131073, 4.0,
+                                 grid_gain={"Hc": 4.0, "Hm": 2.0**1.5}, two_grids=True)
+    assert choose(line, 0.005, 0.0442).at == Resolution(65537)
+    # a point contact keeps one grid at a time at second order
+    point = refinement_candidates(b, 0.005, 257, 1.0, 1.0, 2049, 4.0)
+    assert "2 points" not in [c.what for c in point]
+    assert choose(point, 0.005, 0.0442).at == Resolution(513)
+
+
 def test_points_needed_follows_second_order_grid_error():
     # grid error 0.04 at 257 points, target 0.01: a factor 4 in error is 2 in mesh size
     assert points_needed(_budget(0.04, 0.0), 0.01, 257) == 513
@@ -142,7 +161,7 @@ def _preset_estimates(monkeypatch):
     import ehl_multigrid.multigrid.accuracy as acc
 
     monkeypatch.setattr(acc, "estimate_error", lambda res, dom, converged=None, decay=None, **kw:
-                        ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4)))
+                        ErrorEstimate(res.err, res.err, _budget(res.err, 1e-4), 2.0, 2.0))
 
     def fake_attach(res, est, accuracy):
         res.error = est
@@ -193,7 +212,7 @@ def test_a_two_grid_refinement_that_fails_falls_back_to_one_grid_finer(monkeypat
 
     monkeypatch.setattr(acc, "attach_estimate", fake_attach)
     # the planner asks for two grids finer on a box twice as wide, once
-    monkeypatch.setattr(acc, "refinement_candidates", lambda b, a, n, box, t, mx, lim, hope=False:
+    monkeypatch.setattr(acc, "refinement_candidates", lambda b, a, n, box, t, mx, lim, hope=False, **kw:
                         [Candidate("2 points+box", Resolution(2049, 2.0), 2, 0.001)] if n == 513 else [])
     runs = {(513, 1.0): _Fake(513, True, 0.03), (2049, 2.0): _Fake(2049, False, math.nan),
             (1025, 1.0): _Fake(1025, True, 0.005)}
@@ -202,7 +221,7 @@ def test_a_two_grid_refinement_that_fails_falls_back_to_one_grid_finer(monkeypat
     assert [(s["points"], s["box"]) for s in out.extra["refinements"]] == [(513, 1.0), (2049, 2.0), (1025, 1.0)]
     # a failed one-grid step has nothing smaller to fall back to
     runs = {(513, 1.0): _Fake(513, True, 0.03), (1025, 1.0): _Fake(1025, False, math.nan)}
-    monkeypatch.setattr(acc, "refinement_candidates", lambda b, a, n, box, t, mx, lim, hope=False:
+    monkeypatch.setattr(acc, "refinement_candidates", lambda b, a, n, box, t, mx, lim, hope=False, **kw:
                         [Candidate("points", Resolution(1025), 1, 0.001)] if n == 513 else [])
     out = solve_to_accuracy(lambda n, b, t: runs[(n, b)], lambda r, b: (0.0, 0.0), 0.01, 513, 2049)
     assert out is runs[(513, 1.0)] and "refinement to 1025 points" in out.message
@@ -484,7 +503,9 @@ def test_a_refinement_predicted_to_overrun_the_time_budget_is_not_started(monkey
     _preset_estimates(monkeypatch)
 
     def run(budget, dimensions=2):
-        runs = {257: _Fake(257, True, 0.03), 513: _Fake(513, True, 0.005)}
+        # 0.025: one grid finer is predicted to meet 1 % in a line contact too (its Hm grid
+        # part falls by at most 2^1.5 per grid, LINE_HM_PREDICT_ORDER)
+        runs = {257: _Fake(257, True, 0.025), 513: _Fake(513, True, 0.005)}
         asked = []
 
         def solve(n, b, t):
