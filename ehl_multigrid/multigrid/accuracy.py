@@ -949,8 +949,9 @@ class _SteadyControl:
 
         def short(e: ErrorEstimate) -> bool:
             # a film not extrapolated may be held back by the FMG films alone (the default
-            # scene, (216, 8.9) on 513 points: FMG Hm ratios 2.0, 2.5; converged 5.5, 3.1)
-            return self.extrapolate and len(e.extrapolated) < 2
+            # scene, (216, 8.9) on 513 points: FMG Hm ratios 2.0, 2.5; converged 5.5, 3.1);
+            # a line contact extrapolates Hc only
+            return self.extrapolate and len(e.extrapolated) < (1 if self.dimensions == 1 else 2)
 
         def repair(e: ErrorEstimate) -> ErrorEstimate:
             # the FMG films may be what is irregular: the coarser grids solved to convergence;
