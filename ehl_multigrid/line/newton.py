@@ -132,20 +132,23 @@ def _phi(level: LineLevel, P: np.ndarray, r: np.ndarray, s: np.ndarray, P_frozen
     return phi
 
 
-def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10, keep: bool = False) -> int:
+def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10, keep: bool = False,
+                 single: bool = False) -> int:
     """Solve the level's problem in place (``level.P``, ``level.H0``); return the number of
     Jacobian factorisations (Newton steps; the chord steps that reuse a factorisation while it
     contracts by :data:`CHORD_CONTRACTION` per step are not counted, ``max_iter`` counts all).
     ``keep``: start with chord steps on the factorisation the last ``keep`` solve of this level
     left, and leave the last one for the next (the coarsest grid of the cycles, whose problem
     changes little from cycle to cycle: line (3000, 6) at 0.5 %, 65 factorisations of its
-    513-point grid took 0.85 s of a 3.0 s solve).
+    513-point grid took 0.85 s of a 3.0 s solve). ``single``: factorise in single precision on
+    grids of :data:`SINGLE_FROM` points and more (a start, which the cycles refine: its
+    chord steps converge linearly and stop near ``tol`` instead of far below it).
 
     Raises :class:`NewtonFailure` when the damped iteration stalls or the film collapses.
     The dense factorisations run on one BLAS thread (:func:`serial_blas`).
     """
     with serial_blas():
-        return _newton_solve(level, max_iter, tol, keep)
+        return _newton_solve(level, max_iter, tol, keep, single)
 
 
 #: a factorised Jacobian is reused (chord steps) while each step lowers the merit |phi| by at
@@ -153,6 +156,11 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10, keep:
 #: O(n^3) (0.37 s at 2049 points), a chord step O(n^2) (a few ms): the FMG start of line
 #: (3000, 6) on 2049 points takes 3 factorisations instead of 5 (docs/accuracy.md)
 CHORD_CONTRACTION = 0.2
+#: grids of at least this many points factorise their Jacobian in single precision (half the
+#: time of a 2049-point LU: line (3000, 6) at 0.5 % 0.68 -> 0.46 s of factorisations; the
+#: residual and the line search stay in double, and a single-precision step the line search
+#: rejects is taken again with a double-precision factor)
+SINGLE_FROM = 1025
 
 
 def _jacobian(level: LineLevel, P: np.ndarray, r: np.ndarray, dL: np.ndarray, s: np.ndarray,
@@ -171,7 +179,8 @@ def _jacobian(level: LineLevel, P: np.ndarray, r: np.ndarray, dL: np.ndarray, s:
     return J
 
 
-def _newton_solve(level: LineLevel, max_iter: int, tol: float, keep: bool = False) -> int:
+def _newton_solve(level: LineLevel, max_iter: int, tol: float, keep: bool = False,
+                  single: bool = False) -> int:
     n = level.n
     P, H0 = level.P.copy(), float(level.H0)
     P_frozen = level.P.copy()
@@ -185,6 +194,7 @@ def _newton_solve(level: LineLevel, max_iter: int, tol: float, keep: bool = Fals
     # not finite are undone, and the solve goes on with plain Newton steps
     chord, last_fresh, chorded = True, (P, H0), False
     factorised = 0
+    single = single and n >= SINGLE_FROM
     for it in range(1, max_iter + 1):
         fresh = lu is None
         r, dL = _system(level, P, H0, fresh)
@@ -211,14 +221,16 @@ def _newton_solve(level: LineLevel, max_iter: int, tol: float, keep: bool = Fals
                 # 2-core box
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-                    lu = scipy.linalg.lu_factor(_jacobian(level, P, r, dL, s, frozen),
-                                                check_finite=False)
+                    J = _jacobian(level, P, r, dL, s, frozen)
+                    if single:
+                        J = J.astype(np.float32)
+                    lu = scipy.linalg.lu_factor(J, check_finite=False)
             except (np.linalg.LinAlgError, scipy.linalg.LinAlgError, ValueError) as exc:
                 raise NewtonFailure(f"singular coarse Jacobian: {exc}") from None
             if not np.all(np.isfinite(lu[0])):
                 raise NewtonFailure("singular coarse Jacobian: non-finite factor")
             factorised += 1
-        step = scipy.linalg.lu_solve(lu, -phi, check_finite=False)
+        step = scipy.linalg.lu_solve(lu, -phi.astype(lu[0].dtype), check_finite=False).astype(float)
         t = 1.0
         while True:
             Pt = P.copy()
@@ -235,6 +247,9 @@ def _newton_solve(level: LineLevel, max_iter: int, tol: float, keep: bool = Fals
         if not (np.isfinite(norm) and norm <= (1.0 - 1e-4 * t) * norm0):
             if not fresh:  # the reused factor no longer points downhill: a fresh Jacobian
                 lu = None
+                continue
+            if single:  # a single-precision factor that fails: the step again in double
+                single, lu = False, None
                 continue
             if np.max(np.abs(phi)) < 1e3 * tol:  # round-off floor reached: accept
                 level.P, level.H0 = P, H0

@@ -466,7 +466,7 @@ class LineHierarchy:
                 self._initial_guess(lv)
             last = k == top or self.levels[k + 1].n > MAX_START_POINTS
             try:
-                its = newton_solve(lv, max_iter=120)
+                its = newton_solve(lv, max_iter=120, single=True)
             except NewtonFailure as exc:
                 if from_coarser:  # the Hertzian start before giving up on this grid
                     from_coarser = False
