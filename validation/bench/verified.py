@@ -46,6 +46,8 @@ CASES: dict[str, tuple[list[str], tuple[str, float, float, float] | None]] = {
     "line_3000_6": (["--contact", "line", "--M", "3000", "--L", "6"], None),
     "line_1500_8": (["--contact", "line", "--M", "1500", "--L", "8"], None),
     "line_1000_10": (["--contact", "line", "--M", "1000", "--L", "10"], ("line", 1000.0, 10.0, 1.0)),
+    "line_5000_25": (["--contact", "line", "--M", "5000", "--L", "25"], None),
+    "line_100_20": (["--contact", "line", "--M", "100", "--L", "20"], ("line", 100.0, 20.0, 1.0)),
     "bearing_6205": (["bearing_6205_inner_race"], None),
     "thermal_T9_line": (["appendix_c_line_4240N", "--thermal"], None),
 }
