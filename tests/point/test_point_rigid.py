@@ -47,3 +47,15 @@ def test_a_box_inside_the_hertz_circle_is_accepted_for_rigid_surfaces_only():
     PointOptions(elastic=False, xmin=-0.6, xmax=0.2, ymax=0.2)
     with pytest.raises(InputError, match="xmax = 0.2"):
         PointOptions(xmin=-4.5, xmax=0.2, ymax=0.6)
+
+
+def test_a_rigid_film_short_of_its_target_says_why_without_trying_wider_boxes():
+    """The rigid box error falls about as 1/box: the loop keeps the rigid box and says so
+    (it refined box and grid together for 15 minutes before)."""
+    from ehl_multigrid.point import solve_point
+
+    res = solve_point(20, 0, rigid=True, density="incompressible", accuracy=0.05, max_points=129)
+    assert res.status_name == "inaccurate"
+    assert res.error.budget["domain"]["Hc"] > 0.05
+    assert all(r["box"] == 1.0 for r in res.extra["refinements"])
+    assert "1/box" in res.message
