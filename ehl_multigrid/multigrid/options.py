@@ -221,7 +221,10 @@ class PointOptions(MultigridOptions):
     domain); ``xmin, xmax, ymax`` -- domain in units of a (None: the default box, widened at
     low M); ``y_ratio`` -- (points along Y - 1)/(points - 1), a power of 2 (None: cells
     stretched with the ellipse, hy/hx ~ b/a, square cells as the retry of a diverged solve); ``half`` -- solve Y >= 0 only (symmetric contact); ``coarse_sweeps`` -- relaxations
-    per coarsest-grid visit; ``elastic`` -- False for rigid surfaces; ``alternating`` -- relax
+    per coarsest-grid visit; ``elastic`` -- False for rigid surfaces; ``far_field`` -- the
+    upstream boundary holds the far-field pressure of the undeformed gap and the load balance
+    counts the load beyond the box (``point.farfield``; circular contacts only; None: on for
+    rigid circular contacts); ``alternating`` -- relax
     Y lines after every X-line sweep (None: on every grid when b/a < 0.5, contacts long in the
     rolling direction; wider contacts on their grids of at least 129 points in solves of at
     least 513 points, where the resolved pressure spike's oblique ridge otherwise leaves an
@@ -275,6 +278,7 @@ class PointOptions(MultigridOptions):
     half: bool = False
     coarse_sweeps: int = 10
     elastic: bool = True
+    far_field: bool | None = None
     y_pre: bool = True
     local_film_update: bool = True
     alternating: bool | None = None
@@ -292,6 +296,8 @@ class PointOptions(MultigridOptions):
         for name in RETRIES:
             require_choice(name, getattr(self, name), (True, False))
         require_range("serial_below", self.serial_below, 1, 2**31, "grid points (nx ny)")
+        if self.far_field is not None:
+            require_choice("far_field", self.far_field, (True, False))
         if int(self.serial_below) != self.serial_below:
             raise InputError(f"serial_below = {self.serial_below} must be an integer (grid points)")
         rules = self.exact_rules

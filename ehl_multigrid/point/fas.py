@@ -30,6 +30,7 @@ from ..multigrid.policy import PolicyParameters, RobustnessPolicy, Settings
 from ..multigrid.threads import ThreadBudget, resolve_threads
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
+from .farfield import boundary_excess, far_field_on, far_pressure, load_outside
 from .postprocess import subgrid_min_film
 from .problem import (
     WIDE_CONTACT,
@@ -252,6 +253,11 @@ class PointHierarchy:
         self.alternating = (self.boa < ALTERNATE_BELOW) if alt is None else bool(alt)
         self.sweep_work = 2.0 if self.alternating else 1.0
         self.g_target = problem.load
+        #: far-field boundary values and the load beyond the box (point.farfield)
+        self.far = far_field_on(options.far_field, options.elastic, problem.theta)
+        if self.far and abs(problem.theta - 1.0) > 1e-12:
+            raise InputError(f"far_field = True needs a circular contact (theta = 1), not theta = "
+                             f"{problem.theta:g}: the far-field pressure is derived for a round gap")
         #: squeeze coefficient of a BDF time step (the new-time part ``ct rho H`` of
         #: ``d(rho H)/dT``; the history part goes into the finest grid's ``f``); 0: steady
         self.ct = 0.0
@@ -293,6 +299,14 @@ class PointHierarchy:
                         self.g_target, np.ascontiguousarray(self.cd * Ky))
             lev.alternate = self.alternating or (opt.alternating is None and n >= ALTERNATE_FINEST
                                                  and nk >= ALTERNATE_FROM)
+            lev.Pb, lev.far_load = None, 0.0
+            if self.far:
+                Pb = far_pressure(self.lam, X[None, :], Y[:, None])
+                inner = (slice(0 if opt.half else 1, -1), slice(1, -1))
+                Pb[inner] = 0.0
+                lev.Pb = Pb
+                lev.far_load = (load_outside(self.lam, self.xmin, self.xmax, self.ymax)
+                                - boundary_excess(Pb, hx, hy, opt.half))
             self.levels.append(lev)
         self.nfine = self.levels[-1].npts
         self.share_work_arrays()
@@ -369,7 +383,17 @@ class PointHierarchy:
             self.update_film(lev)
 
     def load(self, lev: Level) -> float:
-        return load_integral(lev.P, lev.hx, lev.hy, self.options.half)
+        return load_integral(lev.P, lev.hx, lev.hy, self.options.half) + lev.far_load
+
+    def set_boundary(self, lev: Level) -> None:
+        """The boundary values: zero, or the far-field pressure (:attr:`far`)."""
+        P = lev.P
+        P[:, 0] = P[:, -1] = 0.0
+        P[-1] = 0.0
+        if not self.options.half:
+            P[0] = 0.0
+        if lev.Pb is not None:
+            P += lev.Pb
 
     def residual(self, lev: Level) -> np.ndarray:
         self.threads.for_size(lev.npts)
@@ -457,6 +481,7 @@ class PointHierarchy:
     def fmg_interpolate(self, k: int, s: Settings) -> float:
         lev = self.levels[k]
         lev.P = nm.interpolate_cubic(self.levels[k - 1].P, self.options.half)
+        self.set_boundary(lev)
         lev.f = np.zeros_like(lev.P)
         lev.g = self.g_target
         self.update_film(lev)
@@ -527,9 +552,15 @@ class PointHierarchy:
         if not self.options.half:
             lev.P[0] = 0.0
         if rigid:
-            lev.P *= self.g_target / max(load_integral(lev.P, lev.hx, lev.hy, self.options.half), 1e-300)
+            # the load the interior carries: the target less the far field's (point.farfield)
+            want = self.g_target - lev.far_load
+            if lev.Pb is not None:
+                want -= load_integral(lev.Pb, lev.hx, lev.hy, self.options.half)
+            lev.P *= max(want, 0.1 * self.g_target) / max(
+                load_integral(lev.P, lev.hx, lev.hy, self.options.half), 1e-300)
         else:
             Hc_fit = nijenbanning_central(self.pb.M, self.pb.L, self.theta) / self.pb.moes_factor
+        self.set_boundary(lev)
         self.H00 = 0.0
         lev.W = lev.defo(lev.P)
         i = int(np.argmin(np.abs(lev.X)))
@@ -553,12 +584,8 @@ class PointHierarchy:
                                          fill_value=0.0)
         YY, XX = np.meshgrid(lev.Y, lev.X, indexing="ij")
         P = interp(np.stack([YY.ravel(), XX.ravel()], axis=1)).reshape(lev.shape)
-        P = np.maximum(P, 0.0)
-        P[:, 0] = P[:, -1] = 0.0
-        P[-1] = 0.0
-        if not self.options.half:
-            P[0] = 0.0
-        lev.P = np.ascontiguousarray(P)
+        lev.P = np.ascontiguousarray(np.maximum(P, 0.0))
+        self.set_boundary(lev)
         lev.f = np.zeros_like(lev.P)
         lev.g = self.g_target
         self.H00 = float(H00)

@@ -16,7 +16,7 @@ from ehl_multigrid.point.rigid import rigid_pressure
 def _rigid_against_direct(theta: float) -> None:
     # L = 0 and incompressible: the equations the direct solve is exact for
     pb = problem_from_moes(20.0, 0.0, theta, "barus", "incompressible")
-    out = solve_fas(pb, points=129, elastic=False, tol=1e-8, tol_load=1e-10)
+    out = solve_fas(pb, points=129, elastic=False, far_field=False, tol=1e-8, tol_load=1e-10)
     assert out.success and out.levels >= 2, out.message
     # the direct solution at the FAS film constant: the same pressure, and the load balanced
     # (d ln W / d ln H00 is about -1.5 here, so 1e-6 of the load is 1e-6 of H00)
@@ -50,12 +50,31 @@ def test_a_box_inside_the_hertz_circle_is_accepted_for_rigid_surfaces_only():
 
 
 def test_a_rigid_film_short_of_its_target_says_why_without_trying_wider_boxes():
-    """The rigid box error falls about as 1/box: the loop keeps the rigid box and says so
-    (it refined box and grid together for 15 minutes before)."""
+    """An elliptic rigid contact (no far-field boundary): its box error falls about as 1/box,
+    so the loop keeps the rigid box and says so (it refined box and grid together for 15
+    minutes before)."""
     from ehl_multigrid.point import solve_point
 
-    res = solve_point(20, 0, rigid=True, density="incompressible", accuracy=0.05, max_points=129)
+    res = solve_point(20, 0, theta=0.25, rigid=True, density="incompressible", accuracy=0.05,
+                      max_points=129)
     assert res.status_name == "inaccurate"
     assert res.error.budget["domain"]["Hc"] > 0.05
     assert all(r["box"] == 1.0 for r in res.extra["refinements"])
     assert "1/box" in res.message
+
+
+def test_the_far_field_boundary_makes_the_rigid_circular_film_independent_of_the_box():
+    """Circular (20, 0), rigid, incompressible, one mesh (a quarter of the rigid inlet length):
+    on half and on the whole rigid box Hc 0.0633 / 0.0726 with P = 0 on the boundary, 0.08446 /
+    0.08428 with the far-field pressure there and its load beyond the box counted."""
+    pb = problem_from_moes(20.0, 0.0, 1.0, "barus", "incompressible")
+    xmin, xmax, ymax = default_domain(pb, elastic=False)
+    films = {}
+    for far in (False, True):
+        for f, n in ((0.5, 65), (1.0, 129)):
+            out = solve_fas(pb, points=n, elastic=False, far_field=far, xmin=f * xmin, xmax=f * xmax,
+                            ymax=f * ymax, tol=1e-7, tol_load=1e-9)
+            assert out.success, out.message
+            films[far, f] = out.H0
+    assert films[False, 1.0] / films[False, 0.5] - 1.0 > 0.1
+    assert abs(films[True, 1.0] / films[True, 0.5] - 1.0) < 0.005

@@ -1,0 +1,52 @@
+"""The far-field pressure of a circular contact (point.farfield): it solves the far-field
+Reynolds equation ``div(r^6 grad P) = 8 lambda X``, meets Reynolds' free-boundary condition on
+its ray, and its load outside a box is the integral of the pressure there."""
+
+import math
+
+import pytest
+from scipy.integrate import dblquad
+
+from ehl_multigrid.point.farfield import PSI, far_pressure, load_outside
+
+LAM = 0.37
+
+
+def test_far_pressure_solves_the_far_field_reynolds_equation():
+    # central differences of div(r^6 grad P) at points inside the pressurised sector
+    h = 1e-3
+    for x, y in ((-3.0, 0.5), (-2.0, -2.5), (0.4, 2.0), (-5.0, 0.0)):
+        def flux(xa, ya, dx, dy):
+            r6 = (xa * xa + ya * ya) ** 3
+            grad = (far_pressure(LAM, xa + dx * h / 2, ya + dy * h / 2)
+                    - far_pressure(LAM, xa - dx * h / 2, ya - dy * h / 2)) / h
+            return r6 * grad
+        div = ((flux(x + h / 2, y, 1, 0) - flux(x - h / 2, y, 1, 0))
+               + (flux(x, y + h / 2, 0, 1) - flux(x, y - h / 2, 0, 1))) / h
+        assert div == pytest.approx(8.0 * LAM * x, rel=1e-4)
+
+
+def test_far_pressure_meets_reynolds_condition_on_its_free_boundary():
+    phi_c = math.pi - PSI
+    assert math.degrees(phi_c) == pytest.approx(71.56, abs=0.01)
+    r, d = 2.0, 1e-6
+    on = far_pressure(LAM, r * math.cos(phi_c + d), r * math.sin(phi_c + d))
+    inside = far_pressure(LAM, r * math.cos(phi_c + 1e-3), r * math.sin(phi_c + 1e-3))
+    assert abs(on) < 1e-9 and 0.0 < inside < 1e-6  # P and dP/dphi vanish there
+    assert far_pressure(LAM, r * math.cos(phi_c - 0.01), r * math.sin(phi_c - 0.01)) == 0.0
+
+
+def test_load_outside_a_box_is_the_integral_of_the_far_pressure_there():
+    xmin, xmax, ymax = -1.5, 0.5, 1.0
+    big = 20.0  # beyond this square: load_outside of the square itself
+
+    def p(y, x):
+        inside = xmin <= x <= xmax and abs(y) <= ymax
+        return 0.0 if inside else float(far_pressure(LAM, x, y))
+
+    num = sum(dblquad(p, xa, xb, ya, yb, epsabs=1e-9)[0]
+              for xa, xb in ((-big, xmin), (xmin, xmax), (xmax, big))
+              for ya, yb in ((-big, -ymax), (-ymax, ymax), (ymax, big))
+              if (xa, ya) != (xmin, -ymax))
+    tail = load_outside(LAM, -big, big, big)
+    assert num + tail == pytest.approx(load_outside(LAM, xmin, xmax, ymax), rel=1e-4)
