@@ -255,6 +255,9 @@ class PointHierarchy:
         self.g_target = problem.load
         #: far-field boundary values and the load beyond the box (point.farfield)
         self.far = far_field_on(options.far_field, options.elastic, problem.theta)
+        #: 2 H00 of the far field's gap (r^2 + c2)/2, from the film fit (point.farfield)
+        self.far_c2 = 2.0 * (rigid_film(problem) if not options.elastic else
+                             float(nijenbanning_central(problem.M, problem.L, 1.0)) / problem.moes_factor)
         if self.far and abs(problem.theta - 1.0) > 1e-12:
             raise InputError(f"far_field = True needs a circular contact (theta = 1), not theta = "
                              f"{problem.theta:g}: the far-field pressure is derived for a round gap")
@@ -301,11 +304,11 @@ class PointHierarchy:
                                                  and nk >= ALTERNATE_FROM)
             lev.Pb, lev.far_load = None, 0.0
             if self.far:
-                Pb = far_pressure(self.lam, X[None, :], Y[:, None])
+                Pb = far_pressure(self.lam, X[None, :], Y[:, None], self.far_c2)
                 inner = (slice(0 if opt.half else 1, -1), slice(1, -1))
                 Pb[inner] = 0.0
                 lev.Pb = Pb
-                lev.far_load = (load_outside(self.lam, self.xmin, self.xmax, self.ymax)
+                lev.far_load = (load_outside(self.lam, self.xmin, self.xmax, self.ymax, self.far_c2)
                                 - boundary_excess(Pb, hx, hy, opt.half))
             self.levels.append(lev)
         self.nfine = self.levels[-1].npts

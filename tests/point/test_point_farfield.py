@@ -50,3 +50,22 @@ def test_load_outside_a_box_is_the_integral_of_the_far_pressure_there():
               if (xa, ya) != (xmin, -ymax))
     tail = load_outside(LAM, -big, big, big)
     assert num + tail == pytest.approx(load_outside(LAM, xmin, xmax, ymax), rel=1e-4)
+
+
+def test_the_gap_correction_solves_the_far_field_equation_to_the_next_order():
+    # div(H^3 grad P) = lam X with H = (r^2 + c2)/2: the residual of the corrected form falls
+    # as (c2/r^2)^2 relative to the source, the uncorrected one's as c2/r^2
+    c2, h = 0.05, 1e-3
+
+    def residual(x, y, c):
+        def flux(xa, ya, dx, dy):
+            H = (xa * xa + ya * ya + c2) / 2.0
+            grad = (far_pressure(LAM, xa + dx * h / 2, ya + dy * h / 2, c)
+                    - far_pressure(LAM, xa - dx * h / 2, ya - dy * h / 2, c)) / h
+            return H**3 * grad
+        div = ((flux(x + h / 2, y, 1, 0) - flux(x - h / 2, y, 1, 0))
+               + (flux(x, y + h / 2, 0, 1) - flux(x, y - h / 2, 0, 1))) / h
+        return abs(div / (LAM * x) - 1.0)
+
+    x, y = -1.0, 0.3  # c2/r^2 = 0.046
+    assert residual(x, y, c2) < 0.1 * residual(x, y, 0.0)
