@@ -132,10 +132,9 @@ FINE_SWITCH_HX = 6.0 / 2048
 FINE_SWITCH_FACTOR = 4.0
 
 
-#: least relaxations per coarsest-grid visit of a rigid-surface solve: its coarsest grid keeps
-#: about 64 intervals (point.problem.rigid_coarse_intervals), which 10 sweeps leave far from
-#: solved (circular (20, 0) on 129 points: 42 cycles to a residual of 2e-7 against 36 cycles to
-#: 2e-11 with 50)
+#: least relaxations per coarsest-grid visit of a rigid-surface solve, and at least twice its
+#: intervals along X: its coarsest grid keeps 64 intervals or more (rigid_coarse_intervals),
+#: which 10 sweeps leave far from solved (docs/robustness.md, "Rigid surfaces")
 RIGID_COARSE_SWEEPS = 50
 
 
@@ -443,7 +442,7 @@ class PointHierarchy:
         if sweeps is None:
             sweeps = self.options.coarse_sweeps
             if not self.options.elastic:
-                sweeps = max(sweeps, RIGID_COARSE_SWEEPS)
+                sweeps = max(sweeps, RIGID_COARSE_SWEEPS, 2 * (lev.nx - 1))
         c_h = s.h00_gain
         self.gain = min(self.gain, c_h)
         for _ in range(sweeps):
