@@ -253,7 +253,7 @@ class PointHierarchy:
         self.sweep_work = 2.0 if self.alternating else 1.0
         self.g_target = problem.load
         #: far-field boundary values and the load beyond the box (point.farfield)
-        self.far = far_field_on(options.far_field, options.elastic, problem.theta)
+        self.far = far_field_on(options.far_field, options.elastic, problem.theta, domain_scale(problem) > 1.0)
         #: 2 H00 of the far field's gap (r^2 + c2)/2, from the film fit (point.farfield)
         self.far_c2 = 2.0 * (rigid_film(problem) if not options.elastic else
                              float(nijenbanning_central(problem.M, problem.L, 1.0)) / problem.moes_factor)

@@ -698,7 +698,7 @@ def solve_point(
         # thick films (low M) spread over many inlet lengths: their box may grow further, on a
         # mesh that coarsens with it (the coarse grid follows the inlet length)
         box_limit = THICK_FILM_BOX_LIMIT if domain_scale(pb) > 1.0 else 4.0
-        far = far_field_on(opts.far_field, opts.elastic, pb.theta)
+        far = far_field_on(opts.far_field, opts.elastic, pb.theta, domain_scale(pb) > 1.0)
         if not opts.elastic:
             # rigid surfaces keep their box: with the far-field boundary (circular) its error is
             # small (0.2 % from half the box to the whole), without it (elliptic) it falls only

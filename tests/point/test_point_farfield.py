@@ -69,3 +69,16 @@ def test_the_gap_correction_solves_the_far_field_equation_to_the_next_order():
 
     x, y = -1.0, 0.3  # c2/r^2 = 0.046
     assert residual(x, y, c2) < 0.1 * residual(x, y, 0.0)
+
+
+def test_a_thick_circular_film_converges_with_the_far_field_on_a_box_of_a_hundred_a():
+    """Circular (1, 10): the pressure spreads over the inlet length s = 8 a and with P = 0 on
+    the boundary the box error fell only as 1/box (0.5 % needed an inlet of about 16000 a; it
+    ended inaccurate after 83 s on eight times the default box). The far field (on by default
+    for thick circular films) meets 1 % on a box 100 a upstream."""
+    from ehl_multigrid.point import solve_point
+
+    res = solve_point(1, 10, accuracy=0.01)
+    assert res.status_name == "converged", res.message
+    assert res.extra["domain"][0] > -150.0
+    assert res.error.budget["domain"]["Hc"] < 0.003

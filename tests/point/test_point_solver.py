@@ -99,7 +99,7 @@ def test_thick_film_wide_box_converges_to_the_newton_answer():
 
     pb = problem_from_moes(1.0, 0.0)
     box = {k: 4.0 * v for k, v in zip(("xmin", "xmax", "ymax"), default_domain(pb), strict=True)}
-    fas = solve_fas(pb, points=65, **box)
+    fas = solve_fas(pb, points=65, far_field=False, **box)  # the Newton path has P = 0 there
     assert fas.success and fas.levels >= 2 and fas.cycles <= 25, fas.message
     nw = solve_newton_amg(pb, points=65, max_iter=60, **box)
     assert nw.report.converged, nw.report.message
