@@ -156,10 +156,9 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10, keep:
 #: O(n^3) (0.37 s at 2049 points), a chord step O(n^2) (a few ms): the FMG start of line
 #: (3000, 6) on 2049 points takes 3 factorisations instead of 5 (docs/accuracy.md)
 CHORD_CONTRACTION = 0.2
-#: grids of at least this many points factorise their Jacobian in single precision (half the
-#: time of a 2049-point LU: line (3000, 6) at 0.5 % 0.68 -> 0.46 s of factorisations; the
-#: residual and the line search stay in double, and a single-precision step the line search
-#: rejects is taken again with a double-precision factor)
+#: start grids of at least this many points may factorise their Jacobian in single precision
+#: (``newton_solve(single=True)``; half the time of a 2049-point LU; the residual and the line
+#: search stay in double: docs/accuracy.md)
 SINGLE_FROM = 1025
 
 

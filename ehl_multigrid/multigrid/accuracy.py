@@ -537,9 +537,8 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
                          tuple(fix) if extrapolate else ())
 
 
-#: largest order at which a line contact's stated Hm error is predicted to fall per grid: it fell
-#: by 2.3-3.7 per grid (orders 1.2-1.9) at M = 1000-5000 on 16385-131073 points, and an observed
-#: order of 2.1 at (1500, 8) on 16385 points predicted 0.36 % on 32769 where 0.60 % came
+#: largest order at which a line contact's stated Hm error is predicted to fall per grid (it fell
+#: by 2.3-3.7 per grid at M = 1000-5000; docs/accuracy.md)
 LINE_HM_PREDICT_ORDER = 1.5
 #: a box change whose domain part (:data:`DOMAIN_SAFETY` times it) is below this fraction of
 #: the target is not measured again on finer grids of the same box (docs/accuracy.md)
