@@ -27,7 +27,8 @@ def _rigid_against_direct(theta: float) -> None:
     assert abs(out.P - P).max() < 1e-5 * P.max()
 
 
-@pytest.mark.parametrize("theta", [0.25, 1.0, 4.0])
+@pytest.mark.parametrize("theta", [pytest.param(0.25, marks=pytest.mark.slow), 1.0,
+                                   pytest.param(4.0, marks=pytest.mark.slow)])
 def test_rigid_contact_converges_to_the_direct_rigid_isoviscous_solution(theta):
     """(20, 0) diverged at theta 1 and 4 with the elastic contact's box, coarse mesh, Jacobi-
     distributive relaxation and Hertzian start (load error ~1e10 on the second grid)."""
