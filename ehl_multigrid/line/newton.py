@@ -139,8 +139,7 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10, keep:
     contracts by :data:`CHORD_CONTRACTION` per step are not counted, ``max_iter`` counts all).
     ``keep``: start with chord steps on the factorisation the last ``keep`` solve of this level
     left, and leave the last one for the next (the coarsest grid of the cycles, whose problem
-    changes little from cycle to cycle: line (3000, 6) at 0.5 %, 65 factorisations of its
-    513-point grid took 0.85 s of a 3.0 s solve). ``single``: factorise in single precision on
+    changes little from cycle to cycle; docs/accuracy.md). ``single``: factorise in single precision on
     grids of :data:`SINGLE_FROM` points and more (a start, which the cycles refine: its
     chord steps converge linearly and stop near ``tol`` instead of far below it).
 

@@ -224,7 +224,8 @@ class PointOptions(MultigridOptions):
     per coarsest-grid visit; ``elastic`` -- False for rigid surfaces; ``far_field`` -- the
     upstream boundary holds the far-field pressure of the undeformed gap and the load balance
     counts the load beyond the box (``point.farfield``; circular contacts only; None: on for
-    rigid circular contacts); ``alternating`` -- relax
+    circular contacts with rigid surfaces or a thick film, ``point.problem.domain_scale`` > 1);
+    ``alternating`` -- relax
     Y lines after every X-line sweep (None: on every grid when b/a < 0.5, contacts long in the
     rolling direction; wider contacts on their grids of at least 129 points in solves of at
     least 513 points, where the resolved pressure spike's oblique ridge otherwise leaves an

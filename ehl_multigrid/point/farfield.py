@@ -32,14 +32,6 @@ PSI = brentq(lambda p: math.tan(p) + 3.0 * math.tanh(3.0 * p), 1.6, 3.0)
 COSH_RATIO = math.cos(PSI) / math.cosh(3.0 * PSI)
 
 
-def _angular(phi: np.ndarray) -> np.ndarray:
-    """``r^3 P / lambda`` of the far field at polar angle ``phi`` (from +X, in [0, 2 pi))."""
-    B = -FAR_AMPLITUDE
-    inside = (phi > math.pi - PSI) & (phi < math.pi + PSI)
-    a = B * np.cos(phi) + B * COSH_RATIO * np.cosh(3.0 * (phi - math.pi))
-    return np.where(inside, np.maximum(a, 0.0), 0.0)
-
-
 def _terms(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The ``cos(phi)`` and ``cosh(3 (phi - pi))`` terms of ``r^3 P / lambda`` inside the sector."""
     B = -FAR_AMPLITUDE

@@ -40,6 +40,7 @@ from .problem import (
     resolve_domain,
     rigid_coarse_intervals,
     rigid_film,
+    rigid_film_length,
     rigid_length,
 )
 
@@ -193,7 +194,7 @@ def grid_layout(problem: PointProblem, opt: PointOptions,
     n = int(opt.points)
     nc = opt.n_coarse
     if nc is None and not opt.elastic:
-        nc = rigid_coarse_intervals(xmax - xmin, n, math.sqrt(2.0 * rigid_film(problem)))
+        nc = rigid_coarse_intervals(xmax - xmin, n, rigid_film_length(problem))
     elif nc is None:
         nc = coarse_intervals(problem.M, xmax - xmin, n, domain_scale(problem), rigid_length(problem),
                               problem.b_over_a)
@@ -255,8 +256,10 @@ class PointHierarchy:
         #: far-field boundary values and the load beyond the box (point.farfield)
         self.far = far_field_on(options.far_field, options.elastic, problem.theta, domain_scale(problem) > 1.0)
         #: 2 H00 of the far field's gap (r^2 + c2)/2, from the film fit (point.farfield)
-        self.far_c2 = 2.0 * (rigid_film(problem) if not options.elastic else
-                             float(nijenbanning_central(problem.M, problem.L, 1.0)) / problem.moes_factor)
+        self.far_c2 = 0.0
+        if self.far:
+            self.far_c2 = 2.0 * (rigid_film(problem) if not options.elastic else
+                                 float(nijenbanning_central(problem.M, problem.L, 1.0)) / problem.moes_factor)
         if self.far and abs(problem.theta - 1.0) > 1e-12:
             raise InputError(f"far_field = True needs a circular contact (theta = 1), not theta = "
                              f"{problem.theta:g}: the far-field pressure is derived for a round gap")
@@ -545,7 +548,7 @@ class PointHierarchy:
             # the Hertz circle: a semi-ellipsoid of half-axes s and s/sqrt(theta) that carries
             # the load
             Hc_fit = rigid_film(self.pb)
-            sx = math.sqrt(2.0 * Hc_fit)
+            sx = rigid_film_length(self.pb)
             sy = sx / math.sqrt(self.theta)
             XX, YY = XX / sx, lev.Y[:, None] / sy
         lev.P = np.ascontiguousarray(np.sqrt(np.clip(1.0 - XX**2 - YY**2, 0.0, None)))

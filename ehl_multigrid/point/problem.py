@@ -205,6 +205,12 @@ def rigid_film(problem: PointProblem) -> float:
     return H / problem.moes_factor
 
 
+def rigid_film_length(problem: PointProblem) -> float:
+    """Inlet length ``s = sqrt(2 H)`` [a] of the rigid film :func:`rigid_film`: the size of a
+    rigid contact's pressure zone."""
+    return math.sqrt(2.0 * rigid_film(problem))
+
+
 def rigid_coarse_intervals(length: float, points: int, s: float) -> int:
     """Coarse intervals along X of a rigid-surface solve: the smallest ``16 * 2^k`` whose mesh
     is at most :data:`RIGID_COARSE_CELL` times the rigid inlet length ``s = sqrt(2 H)``
@@ -245,7 +251,7 @@ def default_domain(problem: PointProblem, elastic: bool = True) -> tuple[float, 
     lighter loads (docs/accuracy.md, "Domain error").
     """
     if not elastic:
-        s = math.sqrt(2.0 * rigid_film(problem))
+        s = rigid_film_length(problem)
         return -RIGID_BOX[0] * s, RIGID_BOX[1] * s, RIGID_BOX[2] * s / math.sqrt(problem.theta)
     f = domain_scale(problem)
     return -4.5 * f, 1.5 * f, 3.0 * f * problem.b_over_a

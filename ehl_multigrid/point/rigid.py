@@ -85,10 +85,8 @@ def rigid_pressure(X, Y, H, lam, order=2, max_active_iter=100):
 
 
 def solve_rigid_direct(problem: PointProblem, n: int = 65, xmin: float = -4.5, xmax: float = 1.5,
-                       ymax: float | None = None, order: int = 2,
-                       bracket: tuple[float, float] | None = None) -> dict:
-    """Rigid-isoviscous reference: returns ``{"H00", "Hc_venner", "Hc", "P", "X", "Y"}``.
-    ``bracket``: H00 values on either side of the answer (Venner units), searched otherwise."""
+                       ymax: float | None = None, order: int = 2) -> dict:
+    """Rigid-isoviscous reference: returns ``{"H00", "Hc_venner", "Hc", "P", "X", "Y"}``."""
     ymax = 3.0 * problem.b_over_a if ymax is None else ymax
     X = np.linspace(xmin, xmax, n)
     Y = np.linspace(-ymax, ymax, n)
@@ -100,7 +98,7 @@ def solve_rigid_direct(problem: PointProblem, n: int = 65, xmin: float = -4.5, x
         P = rigid_pressure(X, Y, H00 + G, lam, order)
         return hx * hy * P.sum() - problem.load
 
-    lo, hi = (1e-3, 1.0) if bracket is None else bracket
+    lo, hi = 1e-3, 1.0
     for _ in range(20):
         if load_err(lo) > 0:
             break
