@@ -234,6 +234,9 @@ class PointHierarchy:
     #: in subclasses whose convergence carries more than the films (mass balance, time step,
     #: flow factors)
     grid_stop = True
+    #: the far-field boundary (point.farfield) may apply: the steady flooded solve only (False
+    #: in subclasses whose inlet is a supplied layer, a time step or carries flow factors)
+    far_field_ok = True
 
     def __init__(self, problem: PointProblem, options: PointOptions) -> None:
         self.pb = self.problem = problem
@@ -254,7 +257,11 @@ class PointHierarchy:
         self.sweep_work = 2.0 if self.alternating else 1.0
         self.g_target = problem.load
         #: far-field boundary values and the load beyond the box (point.farfield)
-        self.far = far_field_on(options.far_field, options.elastic, problem.theta, domain_scale(problem) > 1.0)
+        if options.far_field and not self.far_field_ok:
+            raise InputError(f"far_field = True is for the steady flooded point solver, not the "
+                             f"{self.name} solver (its inlet boundary is not the undeformed gap's far field)")
+        self.far = self.far_field_ok and far_field_on(options.far_field, options.elastic, problem.theta,
+                                                      domain_scale(problem) > 1.0)
         #: 2 H00 of the far field's gap (r^2 + c2)/2, from the film fit (point.farfield)
         self.far_c2 = 0.0
         if self.far:

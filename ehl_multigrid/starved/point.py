@@ -208,6 +208,7 @@ class StarvedPointHierarchy(PointHierarchy):
     can_alternate = False  # its own sweep relaxes X lines only
     local_update = False
     grid_stop = False  # the mass balance needs the residual, not only the films
+    far_field_ok = False  # the supply, not the far field, feeds the inlet
 
     def __init__(self, problem: PointProblem, options: PointOptions, hoil: Any,
                  coarse_theta: int | None = None) -> None:

@@ -90,6 +90,7 @@ class TransientPointHierarchy(PointTimeStepGrids, PointHierarchy):
     start iterate when the driver starts (:meth:`start` returns the finest level: no FMG)."""
 
     name = "transient point"
+    far_field_ok = False  # a time step on the core's box, as measured (docs/transient.md)
 
     def __init__(self, problem: PointProblem, options: PointOptions,
                  geometry: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> None:

@@ -82,3 +82,19 @@ def test_a_thick_circular_film_converges_with_the_far_field_on_a_box_of_a_hundre
     assert res.status_name == "converged", res.message
     assert res.extra["domain"][0] > -150.0
     assert res.error.budget["domain"]["Hc"] < 0.003
+
+
+def test_only_the_steady_flooded_solver_takes_the_far_field():
+    """A starved thick film is fed by its supply, not by the far field: off by default there,
+    and refused when asked for."""
+    from ehl_multigrid.model.errors import InputError
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.fas import PointHierarchy
+    from ehl_multigrid.point.problem import problem_from_moes
+    from ehl_multigrid.starved.point import StarvedPointHierarchy
+
+    pb = problem_from_moes(1.0, 10.0)
+    assert PointHierarchy(pb, PointOptions(points=65)).far
+    assert not StarvedPointHierarchy(pb, PointOptions(points=65), 1.0).far
+    with pytest.raises(InputError, match="far_field"):
+        StarvedPointHierarchy(pb, PointOptions(points=65, far_field=True), 1.0)

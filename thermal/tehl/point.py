@@ -51,6 +51,7 @@ class FactorPointHierarchy(PointHierarchy):
     name = "point (generalised Reynolds)"
     grid_stop = False  # started on the finest grid: no FMG grids to estimate from
     local_update = False  # eps carries the flow factors: every refresh goes through update_film
+    far_field_ok = False  # the far field is derived for the isothermal Reynolds equation
 
     def __init__(self, problem: PointProblem, options: PointOptions) -> None:
         super().__init__(problem, options)
