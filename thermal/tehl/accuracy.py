@@ -39,7 +39,13 @@ from typing import Any
 
 from ehl_multigrid.model.errors import ConvergenceError, InputError, require_range
 from ehl_multigrid.model.scene import Scene
-from ehl_multigrid.multigrid.accuracy import DOMAIN_DECAY, DOMAIN_SAFETY, GRID_SAFETY
+from ehl_multigrid.multigrid.accuracy import (
+    DOMAIN_DECAY,
+    DOMAIN_REUSE_BELOW,
+    DOMAIN_SAFETY,
+    GRID_SAFETY,
+    extrapolated,
+)
 from ehl_multigrid.multigrid.controller import Candidate, Refinement, Resolution, choose, control
 
 from ..traction import wall_speeds
@@ -54,6 +60,9 @@ ORDERS = {"line": (2.0, 2.0), "point": (1.5, 2.0)}
 QUANTITIES = ("Hc", "Hm", "friction_coefficient", "T_max")
 #: smallest grid along X a TEHL solve takes (TEHLOptions)
 MIN_POINTS = 65
+#: smallest mesh (points per default box) of a point contact's box probe: the appendix D
+#: point's outer iteration stalls on 65 (docs/thermal.md, "Error estimate")
+POINT_PROBE_POINTS = 129
 #: largest number of intervals across the film the refinement goes to
 MAX_NZ = 80
 #: default largest grid along X of the refinement (line, point)
@@ -141,7 +150,8 @@ def domain_change(result: Any, cache: SolveCache | None = None) -> dict[str, Any
     """
     cache = cache or SolveCache.of(result)
     o = result.options
-    sizes = sorted({max((o.points - 1) // 4 + 1, MIN_POINTS), max((o.points - 1) // 2 + 1, MIN_POINTS)})
+    least = POINT_PROBE_POINTS if _is_point(result) else MIN_POINTS
+    sizes = sorted({max((o.points - 1) // 4 + 1, least), max((o.points - 1) // 2 + 1, least)})
     for n in sizes:
         base = cache(n, o.nz, o.box)
         if base is None:
@@ -167,6 +177,11 @@ class TEHLErrorEstimate:
     film_noise: float
     notes: list[str] = field(default_factory=list)
     wall_s: float = math.nan
+    #: relative corrections of the films the estimate is for (``"Hc"``, ``"Hm"``): their
+    #: second-order extrapolation over the grids along X; empty when the films are the grid's
+    correction: dict[str, float] = field(default_factory=dict)
+    #: relative changes of every quantity from ``nz / 2`` to ``nz`` (the grid_z part's measure)
+    z_change: dict[str, float] | None = None
 
     def __getitem__(self, key: str) -> dict[str, float]:
         return self.budget[key]
@@ -195,8 +210,50 @@ class TEHLErrorEstimate:
         return out
 
 
+def grid_sequence(result: Any, cache: SolveCache) -> list[Any] | None:
+    """The converged solves on ``points / 8``, ``/ 4``, ``/ 2`` and ``result`` itself (same nz
+    and box), coarse to fine; None when the coarsest is below :data:`MIN_POINTS` or one of
+    them did not converge."""
+    o = result.options
+    ns = [o.points]
+    for _ in range(3):
+        ns.insert(0, (ns[0] - 1) // 2 + 1)
+    if ns[0] < MIN_POINTS:
+        return None
+    seq = [cache(n, o.nz, o.box) for n in ns[:-1]] + [result]
+    return None if any(r is None for r in seq) else seq
+
+
+def _subgrid_hm(result: Any) -> float:
+    from ehl_multigrid.point.postprocess import subgrid_min_film
+
+    return subgrid_min_film(result.H, True) * result.problem.moes_factor
+
+
+def extrapolated_films(seq: list[Any]) -> dict[str, tuple[float, float]]:
+    """Films of the finest solve of ``seq`` (:func:`grid_sequence`) reported as their
+    second-order extrapolation over the grids, as the core does (:func:`~ehl_multigrid.
+    multigrid.accuracy.extrapolated`: the last two ratios of successive differences
+    asymptotic): ``{film: (relative correction, relative error stated)}`` for each film that
+    passes. Hc always; Hm of point contacts only, from the minimum between the nodes first (it
+    converges regularly where the nodal one jumps), else the nodal one. A line's Hm converges
+    at about first order in the core and is not extrapolated."""
+    fine = seq[-1]
+    sequences = [("Hc", [r.Hc for r in seq])]
+    if _is_point(fine):
+        sequences += [("Hm", [_subgrid_hm(r) for r in seq]), ("Hm", [r.Hm for r in seq])]
+    out: dict[str, tuple[float, float]] = {}
+    for key, films in sequences:
+        x = extrapolated(films) if key not in out else None
+        if x is not None:
+            F = float(getattr(fine, key))
+            out[key] = (x[0] / F - 1.0, x[1] / abs(F))
+    return out
+
+
 def estimate_error(result: Any, *, cache: SolveCache | None = None,
-                   domain: dict[str, Any] | None | bool = True) -> TEHLErrorEstimate:
+                   domain: dict[str, Any] | None | bool = True, extrapolate: bool = False,
+                   z_change: dict[str, float] | None = None) -> TEHLErrorEstimate:
     """Error budget of a TEHL line or point solution (see the module docstring for the parts).
 
     Parameters
@@ -207,6 +264,12 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
     domain : True measures the box part (:func:`domain_change`); a dict is a change measured
         before at the same box (it does not depend on the grid); False leaves it unknown
         (the totals are then NaN).
+    extrapolate : report the films whose grid sequence along X is asymptotic as their
+        extrapolation (:func:`extrapolated_films`, flooded contacts): the estimate is then of
+        the corrected films (``correction``), its grid_x part that extrapolation's error. Costs
+        a solve on ``points / 8`` beyond those the estimate makes anyway.
+    z_change : the changes from ``nz / 2`` measured before on a coarser grid of the same nz
+        and box (``TEHLErrorEstimate.z_change``), used instead of a solve on ``nz / 2``.
 
     Costs a solve on every other node, one on nz/2 (together about one more solve for a line,
     two thirds of one for a point) and the box probe (a quarter and a half of a solve for a
@@ -222,11 +285,17 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
     px, pz = ORDERS["point" if _is_point(result) else "line"]
     notes: list[str] = []
     coarse_x = cache((o.points - 1) // 2 + 1, o.nz, o.box)
-    coarse_z = cache(o.points, o.nz // 2, o.box)
     if coarse_x is None:
         notes.append(f"the solve on {(o.points - 1) // 2 + 1} points did not converge: grid error along X unknown")
-    if coarse_z is None:
-        notes.append(f"the solve on nz = {o.nz // 2} did not converge: grid error across the film unknown")
+    if z_change is None:
+        coarse_z = cache(o.points, o.nz // 2, o.box)
+        if coarse_z is None:
+            notes.append(f"the solve on nz = {o.nz // 2} did not converge: grid error across the film unknown")
+        else:
+            z_change = {k: _difference(k, _value(result, k), _value(coarse_z, k)) for k in QUANTITIES}
+    else:
+        notes.append(f"grid error across the film from the change nz = {o.nz // 2} -> {o.nz} measured on a "
+                     f"coarser grid along X (it does not depend on that grid)")
     starved = getattr(result, "starved", None) or {}
     if starved and not starved.get("inlet_flooded", True):
         # the box starts at the meniscus, ahead of which the starved inlet carries the layer
@@ -253,17 +322,38 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
         notes.append(f"iteration part includes the meniscus search's supply mismatch {supply:.2g}")
     iteration = {"Hc": max(last["dHc"] / w, noise) + supply, "Hm": max(last["dHm"] / w, noise) + supply,
                  "friction_coefficient": last["dP"] / w + supply, "T_max": last["dT"] / w}
+    fixes: dict[str, tuple[float, float]] = {}
+    if extrapolate and coarse_x is not None and not starved:
+        seq = grid_sequence(result, cache)
+        fixes = extrapolated_films(seq) if seq is not None else {}
+        if fixes:
+            notes.append(f"{' and '.join(fixes)} extrapolated over the grids along X (second order; the last "
+                         f"grids' sequence is asymptotic): grid_x part = the extrapolation's error")
     budget: dict[str, dict[str, float]] = {}
     for key in QUANTITIES:
         q = _value(result, key)
         gx = (GRID_SAFETY * _difference(key, q, _value(coarse_x, key)) / (2.0**px - 1.0)
               if coarse_x is not None else math.nan)
-        gz = (GRID_SAFETY * _difference(key, q, _value(coarse_z, key)) / (2.0**pz - 1.0)
-              if coarse_z is not None else math.nan)
+        if key in fixes:
+            gx = fixes[key][1]
+        gz = GRID_SAFETY * z_change[key] / (2.0**pz - 1.0) if z_change is not None else math.nan
         dom = DOMAIN_SAFETY * domain[key] if domain is not None else math.nan
         parts = {"grid_x": gx, "grid_z": gz, "domain": dom, "iteration": iteration[key]}
         budget[key] = {**parts, "total": sum(parts.values())}  # NaN when a part is unknown
-    return TEHLErrorEstimate(budget, (px, pz), domain, noise, notes, time.perf_counter() - t0)
+    return TEHLErrorEstimate(budget, (px, pz), domain, noise, notes, time.perf_counter() - t0,
+                             {k: v[0] for k, v in fixes.items()}, z_change)
+
+
+def corrected_result(result: Any, correction: dict[str, float]) -> Any:
+    """A copy of a TEHL ``result`` whose films are extrapolated by the relative ``correction``
+    (``TEHLErrorEstimate.correction``); the isothermal films are scaled by the same factors,
+    so that the thermal reduction ratios stay those of one grid, where the grid errors of the
+    thermal and the isothermal film cancel. The fields and ``grid_films`` stay the grid's."""
+    if not correction:
+        return result
+    c, m = 1.0 + correction.get("Hc", 0.0), 1.0 + correction.get("Hm", 0.0)
+    return replace(result, Hc=result.Hc * c, Hm=result.Hm * m, Hc_isothermal=result.Hc_isothermal * c,
+                   Hm_isothermal=result.Hm_isothermal * m, grid_films=(float(result.Hc), float(result.Hm)))
 
 
 @dataclass
@@ -372,7 +462,7 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
     wall_speeds(scene.us, slip)
     if point:
         require_flooded_point(scene)
-    tehl = _TEHLControl(scene, slip, opts, point, limit, max_nz, box_limit)
+    tehl = _TEHLControl(scene, slip, opts, point, limit, max_nz, box_limit, accuracy)
     out = control(tehl, Resolution(opts.points, opts.box, 1.0, opts.nz), accuracy, refine=refine,
                   time_budget=time_budget, max_points=limit, progress=progress)
     if not out.converged:
@@ -382,6 +472,7 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
                                "or check the inputs")
     res, est = out.result, tehl.estimates[id(out.result)]
     accurate = out.met
+    res = corrected_result(res, est.correction)
     if accurate:
         msg = "converged" if accuracy is None else f"converged; estimated error within {accuracy:g}"
     elif not refine:
@@ -391,6 +482,10 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
         o = res.options
         msg = (f"the estimated error (Hc {est.Hc:.2g}, Hm {est.Hm:.2g}) at {o.points} points, nz = {o.nz}, "
                f"box x{o.box:g} exceeds the requested accuracy {accuracy:g}; not refined further: {out.why}")
+    if est.correction:
+        msg += ("; Hc and Hm extrapolated over the grids (" + ", ".join(
+            f"{k} {v:+.2%}" for k, v in est.correction.items()) + "; the isothermal films by the same "
+            "factors); the fields are the finest grid's")
     return AccurateTEHL(res, est, accuracy, accurate, out.steps, msg, out.wall_s)
 
 
@@ -401,9 +496,13 @@ class _TEHLControl:
     :func:`step_candidates`."""
 
     def __init__(self, scene: Scene, slip: float, opts: TEHLOptions, point: bool, limit: int,
-                 max_nz: int, box_limit: float) -> None:
+                 max_nz: int, box_limit: float, accuracy: float | None = None) -> None:
         self.scene, self.slip, self.opts, self.point = scene, slip, opts, point
         self.limit, self.max_nz, self.box_limit = limit, max_nz, box_limit
+        self.accuracy = accuracy
+        #: changes from nz / 2 by (nz, box, tolerance scale), kept where their grid_z part is
+        #: below DOMAIN_REUSE_BELOW of the target (the core's rule for the box change)
+        self.z_changes: dict[tuple[int, float, float], dict[str, float]] = {}
         self.dimensions = 2 if point else 1
         self.cache = SolveCache(scene, slip, opts, point)
         self.cache_scale = 1.0
@@ -435,9 +534,14 @@ class _TEHLControl:
         return at.finer() if first else None
 
     def estimate(self, res: Any, at: Resolution, record: Any) -> tuple[float, float]:
-        est = estimate_error(res, cache=self.cache, domain=self.domains.get(at.box, True))
+        zkey = (at.nz, float(at.box), float(at.tol))
+        est = estimate_error(res, cache=self.cache, domain=self.domains.get(at.box, True),
+                             extrapolate=self.accuracy is not None, z_change=self.z_changes.get(zkey))
         if est.domain is not None:
             self.domains[at.box] = est.domain  # a far-field change: the same at every grid of this box
+        if (self.accuracy is not None and est.z_change is not None and zkey not in self.z_changes
+                and max(est["Hc"]["grid_z"], est["Hm"]["grid_z"]) < DOMAIN_REUSE_BELOW * self.accuracy):
+            self.z_changes[zkey] = est.z_change
         self.estimates[id(res)] = est
         return est.Hc, est.Hm
 

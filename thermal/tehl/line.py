@@ -206,6 +206,9 @@ class TEHLLineResult:
     flux_in: float = math.nan
     flux_balance: float = math.nan
     starved: dict[str, Any] | None = None
+    #: (Hc, Hm) of the grid when the reported films are extrapolated over the grids
+    #: (:func:`thermal.tehl.accuracy.corrected_result`), else None
+    grid_films: tuple[float, float] | None = None
 
     @property
     def x(self) -> np.ndarray:
@@ -245,7 +248,13 @@ class TEHLLineResult:
             "slip": self.slip, "wall_s": self.wall_s, "momentum": self.report.extra.get("momentum", "gradient"),
             "compressive_heating": self.options.compressive_heating,
             **{k: v for k, v in (self.starved or {}).items() if not isinstance(v, (list, dict))},
+            **grid_film_keys(self.grid_films),
         }
+
+
+def grid_film_keys(grid_films: tuple[float, float] | None) -> dict[str, float]:
+    """``Hc_field`` and ``Hm_field`` (the grid's films) of a result whose films are extrapolated."""
+    return {} if grid_films is None else {"Hc_field": grid_films[0], "Hm_field": grid_films[1]}
 
 
 _State = Iterate

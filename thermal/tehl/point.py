@@ -40,7 +40,7 @@ from ..parallel import LineJob, solve_thermal_lines
 from ..profiles import profile_from_arrays
 from ..traction import wall_speeds
 from .coefficients import film_factors
-from .line import TEHLOptions, interior_heat_budget
+from .line import TEHLOptions, grid_film_keys, interior_heat_budget
 from .outer import Iterate, outer_iteration
 
 
@@ -150,6 +150,9 @@ class TEHLPointResult:
     wall_s: float = math.nan
     extra: dict[str, Any] = field(default_factory=dict)
     options: TEHLOptions | None = None
+    #: (Hc, Hm) of the grid when the reported films are extrapolated over the grids
+    #: (:func:`thermal.tehl.accuracy.corrected_result`), else None
+    grid_films: tuple[float, float] | None = None
 
     def summary(self) -> dict[str, Any]:
         return {"Hc": self.Hc, "Hm": self.Hm, "Hc_isothermal": self.Hc_isothermal,
@@ -157,7 +160,8 @@ class TEHLPointResult:
                 "friction_coefficient": self.friction_coefficient, "friction_decoupled": self.friction_decoupled,
                 "T_max": self.T_max, "heat_partition": list(self.heat_partition),
                 "heat_balance_error": self.heat_balance_error, "outer_iterations": len(self.outer),
-                "converged": bool(self.report.converged), "slip": self.slip, "wall_s": self.wall_s}
+                "converged": bool(self.report.converged), "slip": self.slip, "wall_s": self.wall_s,
+                **grid_film_keys(self.grid_films)}
 
 
 @dataclass

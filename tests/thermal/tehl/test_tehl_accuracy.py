@@ -7,12 +7,20 @@ from __future__ import annotations
 
 import json
 import math
+from types import SimpleNamespace
 
+import numpy as np
 import pytest
 
 from ehl_multigrid.model.scene import load_scene
 from thermal.tehl import TEHLOptions, estimate_error, solve_tehl_line
-from thermal.tehl.accuracy import SolveCache, next_step, solve_tehl_to_accuracy
+from thermal.tehl.accuracy import (
+    SolveCache,
+    extrapolated_films,
+    grid_sequence,
+    next_step,
+    solve_tehl_to_accuracy,
+)
 from thermal.tehl.point import solve_tehl_point
 
 #: appendix D ball on flat (T9, 8 m/s, 60 degC) at 5 N: resolved from 65 points
@@ -36,8 +44,9 @@ def test_point_estimate_is_finite_and_covers_the_finer_solve(point_scene):
     e = estimate_error(r, cache=cache)
     for key in ("Hc", "Hm", "friction_coefficient", "T_max"):
         assert all(math.isfinite(v) and v >= 0 for v in e[key].values()), key
-    # the estimate reused the solves on every other node, on nz/2 and the box probe
-    assert {(65, 10, 1.0), (129, 5, 1.0), (129, 10, 2.0)} <= set(cache.results)
+    # the estimate reused the solves on every other node, on nz/2 and the box probe (a point
+    # contact's probe on no fewer than 129 points per default box)
+    assert {(65, 10, 1.0), (129, 5, 1.0), (257, 10, 2.0)} <= set(cache.results)
     for key, fine in POINT_FINE.items():
         true = abs(getattr(r, key) - fine) / fine
         assert true <= e[key]["total"], key
@@ -102,3 +111,44 @@ def test_ehl_solve_thermal_point_is_converged_when_the_estimate_meets_the_target
     assert rc == 0 and out["converged"] and out["contact"] == "point"
     assert max(out["Hc_error"], out["Hm_error"]) <= 0.1
     assert {"grid_x", "grid_z", "domain", "iteration", "total"} <= set(out["error_budget"]["Hc"])
+
+
+def _solve_stub(kind: str, Hc: float, Hm: float) -> SimpleNamespace:
+    H = np.full((3, 5), 9.0)
+    H[0, 2] = Hm  # the film's minimum on the symmetry row, as a point result's half domain holds it
+    H[0, 1] = H[0, 3] = Hm + 0.5
+    H[1, 2] = Hm + 0.5
+    return SimpleNamespace(Hc=Hc, Hm=Hm, H=H, scene=SimpleNamespace(kind=kind),
+                           problem=SimpleNamespace(moes_factor=1.0))
+
+
+def test_films_of_a_second_order_sequence_are_extrapolated_by_a_third_of_the_last_difference():
+    films = [2.0 - 1.0 / 4**k for k in range(4)]  # F* = 2, error h^2
+    point = [_solve_stub("point", f, f / 2) for f in films]
+    fixes = extrapolated_films(point)
+    assert set(fixes) == {"Hc", "Hm"}
+    d = films[-1] - films[-2]
+    assert fixes["Hc"][0] == pytest.approx((films[-1] + d / 3) / films[-1] - 1.0)
+    assert (films[-1] * (1 + fixes["Hc"][0])) == pytest.approx(2.0, rel=1e-12)
+    # a line's Hm converges at about first order in the core: only Hc is extrapolated
+    assert set(extrapolated_films([_solve_stub("line", f, f / 2) for f in films])) == {"Hc"}
+    # an irregular sequence (ratios 2 and 8) is not
+    assert extrapolated_films([_solve_stub("point", f, 1.0) for f in (1.0, 1.8, 1.9, 1.9125)]) == {}
+
+
+def test_accuracy_driven_line_reports_hc_extrapolated_within_its_stated_error():
+    scene = load_scene("appendix_c_line_4240N")
+    done = solve_tehl_to_accuracy(scene, 0.5, TEHLOptions(points=513, nz=10), 0.005, refine=False)
+    r, est = done.result, done.estimate
+    assert set(est.correction) == {"Hc"} and r.grid_films is not None
+    assert r.Hc == pytest.approx(r.grid_films[0] * (1.0 + est.correction["Hc"]), rel=1e-12)
+    assert r.Hc / r.Hc_isothermal == pytest.approx(r.grid_films[0] / done.result.Hc_isothermal * (1.0 + est.correction["Hc"]), rel=1e-12)
+    assert "extrapolated over the grids" in done.message and r.summary()["Hc_field"] == r.grid_films[0]
+    # reference: the same extrapolation one grid finer (129 ... 1025 points)
+    cache = SolveCache(scene, 0.5, TEHLOptions(points=1025, nz=10), False)
+    fine = cache(1025, 10, 1.0)
+    ref = fine.Hc * (1.0 + extrapolated_films(grid_sequence(fine, cache))["Hc"][0])
+    true = abs(r.Hc / ref - 1.0)
+    assert true <= est["Hc"]["grid_x"]
+    # the extrapolation is closer to the reference than the grid's own film
+    assert true < abs(r.grid_films[0] / ref - 1.0) / 5.0
