@@ -923,7 +923,7 @@ def march_line(
     dx, p, h, dpdx, qp, flux, compress, dpdx_c, oil, u1, u2, um, T_oil, Ts1, Ts2,
     WL1, WR1, WL2, WR2, nz, thermal, tol_T, tol_tau, max_inner, relax,
     max_sweeps, lagged, zone_passes, zone_tol, s1, s2, depth,
-    T, tau, u, gv, q1, q2, heat, slope, inner_its, history, first_zone_passes=-1,
+    T, tau, u, gv, q1, q2, heat, slope, inner_its, history, first_zone_passes=-1, warm=False,
 ):
     """Repeat :func:`sweep_line` until the field stops changing (thesis 3.2.2.2 with the
     upstream influences lagged; see ``thermal.line.solve_thermal_line``).
@@ -936,14 +936,17 @@ def march_line(
     ``zone_passes``, ``zone_tol``: relaxation of reverse-flow zones within each sweep
     (:func:`sweep_line`; 0 passes: none); ``first_zone_passes`` (>= 0) caps the passes of the
     first sweep, whose zone coefficients come from a field still far from its fixed point.
+    ``warm``: ``T``, ``q1``, ``q2`` and ``slope`` hold a field near this one (the solution of
+    the previous outer iteration): the first sweep starts from it as the later ones do, and
+    its change counts.
 
     Returns ``(sweeps, settled, n_station_fail, n_tau_fail, n_reverse)`` of the last sweep and
     the number of zone passes of all sweeps.
     """
     n = p.shape[0]
     nzp = nz + 1
-    q1_lag = np.zeros(n)
-    q2_lag = np.zeros(n)
+    q1_lag = q1.copy() if warm else np.zeros(n)
+    q2_lag = q2.copy() if warm else np.zeros(n)
     T_lag = T.copy()
     N = 2 * n + n * nzp
     X = np.empty((depth + 1, N))
@@ -957,16 +960,17 @@ def march_line(
     sweeps = 0
     for k in range(max_sweeps):
         sweeps = k + 1
-        passes_k = min(zone_passes, first_zone_passes) if k == 0 and first_zone_passes >= 0 else zone_passes
+        first = k == 0 and not warm
+        passes_k = min(zone_passes, first_zone_passes) if first and first_zone_passes >= 0 else zone_passes
         n_fail, n_tau_fail, n_rev, n_pass = sweep_line(
             dx, p, h, dpdx, qp, flux, compress, dpdx_c, oil, u1, u2, um, T_oil, Ts1, Ts2,
-            WL1, WR1, WL2, WR2, nz, thermal, k == 0, q1_lag, q2_lag, T_lag,
+            WL1, WR1, WL2, WR2, nz, thermal, first, q1_lag, q2_lag, T_lag,
             tol_T, tol_tau, max_inner, relax, T, tau, u, gv, q1, q2, heat, slope, inner_its, passes_k, zone_tol,
         )
         zone_total += n_pass
         change = 1.0
         finite = True
-        if k > 0:
+        if not first:
             change = 0.0
             for i in range(n):
                 for j in range(nzp):
@@ -979,7 +983,7 @@ def march_line(
         if not (thermal and (lagged or n_rev > 0)):
             settled = True
             break
-        if k > 0 and change < tol_T:
+        if not first and change < tol_T:
             settled = True
             break
         for i in range(n):

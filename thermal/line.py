@@ -144,7 +144,8 @@ def _zmean(a: np.ndarray) -> np.ndarray:
 
 
 def solve_thermal_line(profile: LineProfile, env: Surroundings, options: ThermalOptions,
-                       kernel_length: float = math.inf, symmetric: bool = True) -> ThermalLineSolution:
+                       kernel_length: float = math.inf, symmetric: bool = True,
+                       start: ThermalLineSolution | None = None) -> ThermalLineSolution:
     """Solve the thermal Eyring model on one line profile.
 
     Each sweep marches from inlet to outlet (thesis 3.2.2.2); influences pointing upstream
@@ -156,6 +157,10 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     at once: the thick inlet of an EHL field then settles in as few sweeps as the rest of the
     contact (3-4 on appendix C, against 20-30 without), to the same field within the sweep
     tolerance ``tol_T``.
+
+    ``start``: a solution of a nearby profile on the same stations and nz (the previous outer
+    iteration of a TEHL solve), from whose temperatures, wall fluxes and stress slopes the
+    sweeps start; the field they settle to is the same within ``tol_T``.
 
     Raises :class:`ConvergenceError` on non-finite values or temperatures outside the property
     model (T < -135 degC); an unconverged but finite solution is returned with
@@ -195,6 +200,9 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     q1 = np.zeros(nx)
     q2 = np.zeros(nx)
     inner = np.zeros(nx, dtype=np.int64)
+    warm = start is not None and start.T.shape == T.shape and bool(options.thermal)
+    if warm:
+        T[:], tau[:], q1[:], q2[:], slope[:] = start.T, start.tau, start.q1, start.q2, start.stress_slope
     # lagged fluxes enter through sum W q: scale them to kelvin by the self weights
     s1 = max(abs(WL1[nx - 1] + WR1[nx - 1]), 1e-300)
     s2 = max(abs(WL2[nx - 1] + WR2[nx - 1]), 1e-300)
@@ -205,6 +213,7 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
         float(options.tol_T), float(options.tol_tau), int(options.max_inner), float(options.relax),
         int(options.max_sweeps), bool(lagged), ZONE_PASSES if symmetric else 0, ZONE_TOL * float(options.tol_T),
         float(s1), float(s2), ANDERSON_DEPTH, T, tau, u, gv, q1, q2, heat, slope, inner, history, FIRST_ZONE_PASSES,
+        warm,
     )
     sweep_change = history[:sweeps].copy()
     wall = time.perf_counter() - t0

@@ -30,11 +30,14 @@ class LineJob:
     env: Surroundings
     options: ThermalOptions
     kernel_length: float = math.inf
+    #: a solution of a nearby profile on the same stations to start from (warm start)
+    start: ThermalLineSolution | None = None
 
 
 def _solve(job: LineJob, keep_errors: bool) -> ThermalLineSolution | ConvergenceError:
     try:
-        return solve_thermal_line(job.profile, job.env, job.options, kernel_length=job.kernel_length)
+        return solve_thermal_line(job.profile, job.env, job.options, kernel_length=job.kernel_length,
+                                  start=job.start)
     except ConvergenceError as exc:
         if keep_errors:
             return exc

@@ -56,10 +56,10 @@ def test_film_frictions_yield_a_failed_point_in_its_place(line_lo, monkeypatch):
 
     real = par.solve_thermal_line
 
-    def failing(profile, env, options, kernel_length):
+    def failing(profile, env, options, kernel_length, start=None):
         if env.u1 + env.u2 < 0.5:
             raise ConvergenceError("test failure", None, "")
-        return real(profile, env, options, kernel_length=kernel_length)
+        return real(profile, env, options, kernel_length=kernel_length, start=start)
 
     monkeypatch.setattr(par, "solve_thermal_line", failing)
     out = list(film_frictions(line_lo, loads=[4240.0] * 3, hs=[2e-7] * 3, us=[8.0, 0.1, 4.0], slip=0.3,

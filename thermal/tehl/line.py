@@ -85,6 +85,9 @@ class TEHLOptions:
         ``-(T/rho)(d rho/d T)_p u dp/dx`` (Bruyere et al. 2012; Habchi 2008) besides the
         thesis's terms (3.5) (:class:`~thermal.options.ThermalOptions`); False is the thesis's
         energy equation.
+    warm_thermal : each thermal solve of the outer iteration starts from the previous one's
+        temperatures (the same field within ``tol_thermal``, in fewer sweeps); False starts
+        every one from the oil temperature.
     multigrid : overrides of the core :class:`LineOptions` (tol, cycle, levels ...); by default
         each multilevel solve stops on the films (``film_tol = tol_H / 4``: Hc and Hm change by
         less between two finest-grid cycles, load error below it), since a residual of 1e-5
@@ -108,6 +111,7 @@ class TEHLOptions:
     surface_kernel: str = "moving-strip"
     compressive_heating: bool = True
     multigrid: dict[str, Any] = field(default_factory=dict)
+    warm_thermal: bool = True
 
     def __post_init__(self) -> None:
         n = int(self.points) - 1
@@ -286,8 +290,9 @@ def isothermal_start(scene: Scene, options: TEHLOptions) -> _State:
 
 
 def _thermal(scene: Scene, pb: LineProblem, st: _State, env: Surroundings, topt: ThermalOptions,
-             X: np.ndarray, flux_factor: np.ndarray | None = None) -> ThermalLineSolution:
-    """The thermal layer on the current P, H.
+             X: np.ndarray, flux_factor: np.ndarray | None = None,
+             start: ThermalLineSolution | None = None) -> ThermalLineSolution:
+    """The thermal layer on the current P, H (its sweeps from ``start`` when given).
 
     Default: stress slope ``h dp/dx`` of the current pressure (momentum (3.4)). With
     ``flux_factor`` (the flow factor ``a`` of the generalised Reynolds solve that gave P, ones
@@ -310,7 +315,7 @@ def _thermal(scene: Scene, pb: LineProblem, st: _State, env: Surroundings, topt:
     prof = profile_from_arrays(x, st.P * pb.pmax, st.H * pb.b ** 2 / pb.R, b=pb.b, nx=X.size,
                                width=scene.length, x_in=None, x_out=None, source="tehl", viscosity=visc)
     opts = topt.with_changes(momentum="flux") if flux_factor is not None else topt
-    sol = solve_thermal_line(prof, env, opts, kernel_length=scene.length)
+    sol = solve_thermal_line(prof, env, opts, kernel_length=scene.length, start=start)
     if not sol.report.converged:
         raise ConvergenceError(f"TEHL: the thermal solve did not converge: {sol.report.message}",
                                sol.report, OUTER_HINT)
@@ -450,18 +455,21 @@ def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: _State |
                       {"cycles": int(res.cycles), "film_noise": min(noise, 1.0)})
 
     modes: list[str] = []
+    last: list[ThermalLineSolution] = []  # the previous outer iteration's thermal solution
 
     def thermal(st_: _State) -> tuple[ThermalLineSolution, np.ndarray]:
+        start = last[-1] if last and opts.warm_thermal else None
         try:
-            th = _thermal(scene, pb, st_, env, topt, X)
+            th = _thermal(scene, pb, st_, env, topt, X, start=start)
             modes.append("gradient")
         except ConvergenceError as exc:
             # the fixed gradient ran away (NaN): the flux of the generalised Reynolds solve
-            th = _thermal(scene, pb, st_, env, topt, X, flux_factor=hz.levels[-1].a)
+            th = _thermal(scene, pb, st_, env, topt, X, flux_factor=hz.levels[-1].a, start=start)
             modes.append("flux")
             if len(modes) == 1 or modes[-2] != "flux":
                 notes.append(f"thermal solve {len(modes)}: the stress slope h dp/dx ran away "
                              f"({str(exc).splitlines()[0][:80]}); the slope keeps the solve's Poiseuille flux")
+        last[:] = [th]
         return th, th.T
 
     done = outer_iteration(st, sol, sol.T, a, c, factors=factors, ehl=ehl, solve_thermal=thermal,

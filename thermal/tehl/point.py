@@ -237,6 +237,8 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
     nzp = opts.nz + 1
     klen = 2.0 * b_len
 
+    last: dict[int, Any] = {}  # each row's thermal solution of the previous outer iteration
+
     def thermal(st: Iterate) -> tuple[_Rows, np.ndarray]:
         rows = [j for j in range(shape[0]) if np.max(st.P[j]) > 0.0]
         jobs = []
@@ -248,12 +250,14 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
                                        nx=X.size, width=w, x_in=None, x_out=None, Y=float(Y[jj]) * a_len / b_len,
                                        contact_half=math.sqrt(max(1.0 - (Y[jj] * a_len / b_len) ** 2, 0.0)),
                                        source="tehl")
-            jobs.append(LineJob(prof, env, topt, klen))
+            jobs.append(LineJob(prof, env, topt, klen, last.get(jj) if opts.warm_thermal else None))
             widths.append(w)
         sols = list(solve_thermal_lines(jobs, threads=threads))
         T = np.full((shape[0], X.size, nzp), float(scene.T_oil))
         for jj, s in zip(rows, sols, strict=True):
             T[jj] = s.T
+        last.clear()
+        last.update(zip(rows, sols, strict=True))
         return _Rows(rows, sols, np.array(widths), T), T
 
     def factors(th: _Rows) -> tuple[np.ndarray, np.ndarray]:

@@ -53,3 +53,30 @@ def test_point_energy_balance_and_heating(pair):
 def test_point_solver_refuses_a_line_contact():
     with pytest.raises(InputError, match="line contact"):
         solve_tehl_point(load_scene("appendix_c_line_4240N"), 0.5)
+
+
+@pytest.mark.solver
+@pytest.mark.xdist_group("tehl_point_pair")
+def test_rows_started_from_the_previous_outer_iteration_give_the_same_solution(scene, pair):
+    # pair[0] starts every row's thermal march from its previous outer iteration (the default)
+    cold = solve_tehl_point(scene, 0.5, TEHLOptions(points=65, nz=10, warm_thermal=False))
+    warm = pair[0]
+    assert warm.options.warm_thermal and len(warm.outer) == len(cold.outer)
+    for key in ("Hc", "Hm", "friction", "T_max"):
+        assert getattr(warm, key) == pytest.approx(getattr(cold, key), rel=1e-6), key
+    np.testing.assert_allclose(warm.T_mid, cold.T_mid, atol=1e-3)
+
+
+def test_a_thermal_march_started_from_its_own_solution_settles_in_one_sweep():
+    from thermal.line import Surroundings, solve_thermal_line
+    from thermal.tehl import solve_tehl_line
+
+    sc = load_scene("appendix_c_line_4240N")
+    r = solve_tehl_line(sc, 0.5, points=129, nz=10)  # an EHL inlet: reverse flow, lagged sweeps
+    env = Surroundings(sc.lubricant, sc.body1, sc.body2, r.u1, r.u2, sc.T_oil, sc.T_surface1, sc.T_surface2)
+    prof, opts = r.thermal.profile, r.options.thermal_options()
+    cold = solve_thermal_line(prof, env, opts, kernel_length=sc.length)
+    again = solve_thermal_line(prof, env, opts, kernel_length=sc.length, start=cold)
+    assert cold.report.iterations >= 2 and again.report.iterations == 1 and again.report.converged
+    np.testing.assert_allclose(again.T, cold.T, rtol=0, atol=1e-3)
+    assert again.force_per_length == pytest.approx(cold.force_per_length, rel=1e-5)
