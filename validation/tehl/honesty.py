@@ -5,6 +5,7 @@ TEHL solve on a wider box at the solve's own mesh.
 
 Usage: ``python validation/tehl/honesty.py [CASE ...]`` (default: all cases, then ``summary``);
 ``orders`` re-runs the point grid sequences behind the point orders of the estimate,
+``extrapolated`` checks the extrapolated films' grid part against the extrapolation one grid finer,
 ``chapter5`` estimates the chapter 5 point solve (series D, disc 3). Each case
 adds its row to ``build/validation/tehl/honesty.json``; ``summary`` computes the coverage and writes
 ``build/validation/tehl/honesty_summary.json`` and ``build/validation/tehl/honesty.png``.
@@ -224,6 +225,52 @@ def chapter5(default_tol: bool = False) -> None:
                                                           indent=1))
 
 
+#: name -> (scene, slip, points of the checked solve): the extrapolated films
+EXTRAPOLATED = {
+    "line_42400N_S0.1": ("appendix_c_line_42400N", 0.1, 513),
+    "line_42400N_S1": ("appendix_c_line_42400N", 1.0, 513),
+    "line_4240N_S0.1": ("appendix_c_line_4240N", 0.1, 513),
+    "line_4240N_S1": ("appendix_c_line_4240N", 1.0, 513),
+    "point_42.8N_S0": ("appendix_d_point", 0.0, 513),
+    "point_42.8N_S0.5": ("appendix_d_point", 0.5, 513),
+}
+
+
+def extrapolated() -> None:
+    """The grid part of an extrapolated TEHL film (``estimate_error(..., extrapolate=True)``,
+    nz = 20, default box) against the same extrapolation one grid finer (five grids), whose own
+    stated error is the reference's uncertainty: the box and nz parts do not change with it.
+    Writes ``build/validation/tehl/honesty_extrapolated.json``."""
+    from thermal.tehl.accuracy import extrapolated_films, grid_sequence
+
+    out = {}
+    for name, (scene_name, slip, n) in EXTRAPOLATED.items():
+        sc = load_scene(scene_name)
+        point = sc.kind != "line"
+        cache = SolveCache(sc, slip, TEHLOptions(points=n, nz=20), point)
+        t = time.perf_counter()
+        r = cache(n, 20, 1.0)
+        est = estimate_error(r, cache=cache, extrapolate=True)
+        wall = time.perf_counter() - t
+        fine = cache(2 * n - 1, 20, 1.0)
+        row = {"scene": scene_name, "slip": slip, "points": n, "wall_s": wall, "correction": est.correction,
+               "grid_x": {k: est.budget[k]["grid_x"] for k in ("Hc", "Hm")}}
+        if fine is not None:
+            ref = extrapolated_films(grid_sequence(fine, cache))
+            row["reference_points"] = 2 * n - 1
+            for k in ("Hc", "Hm"):
+                value = getattr(r, k) * (1.0 + est.correction.get(k, 0.0))
+                if k in ref:
+                    truth = getattr(fine, k) * (1.0 + ref[k][0])
+                    row[k] = {"true": abs(value / truth - 1.0), "reference_uncertainty": ref[k][1],
+                              "stated": est.budget[k]["grid_x"], "extrapolated": k in est.correction}
+        else:
+            row["reference_error"] = cache.errors.get((2 * n - 1, 20, 1.0))
+        out[name] = row
+        print(name, json.dumps(row), flush=True)
+        (OUT / "honesty_extrapolated.json").write_text(json.dumps(out, indent=1))
+
+
 if __name__ == "__main__":
     names = sys.argv[1:] or [*CASES, "summary"]
     for name in names:
@@ -231,6 +278,8 @@ if __name__ == "__main__":
             summary()
         elif name == "orders":
             orders()
+        elif name == "extrapolated":
+            extrapolated()
         elif name == "chapter5":
             chapter5()
         elif name == "chapter5_default":
