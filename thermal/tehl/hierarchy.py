@@ -17,6 +17,7 @@ previous outer iterate, so FMG and its dense start are not needed.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -27,6 +28,11 @@ from ehl_multigrid.line.problem import LineProblem
 from ehl_multigrid.line.solver import LineHierarchy, line_levels
 from ehl_multigrid.multigrid.driver import MultilevelSolver
 from ehl_multigrid.multigrid.options import LineOptions
+
+#: coarsest grid of the outer iteration's multilevel solves (points; the core's default
+#: goes down to 65-129): from the converged iterate the cycles on 4097 points stalled
+#: and diverged with 7 grids, not with 5 (docs/thermal.md, "Coupled thermal EHL film")
+COARSEST_POINTS = 257
 
 
 @dataclass
@@ -65,6 +71,8 @@ class FactorLineHierarchy(LineHierarchy):
         super().__init__(problem, options)
         par = problem.rheology()
         nlev = line_levels(options, problem.M)
+        if options.levels is None:
+            nlev = min(nlev, max(1, round(math.log2((options.points - 1) / (COARSEST_POINTS - 1))) + 1))
         n_f = options.points
         self.levels = [
             FactorLevel((n_f - 1) // 2 ** (nlev - 1 - k) + 1, problem.xmin, problem.xmax, par,

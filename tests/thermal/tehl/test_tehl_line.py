@@ -167,3 +167,26 @@ def test_error_estimate_bounds_the_error_against_the_fine_solution(scene):
     for key, ref in fine.items():
         true = abs(getattr(r, key) - ref) / ref
         assert true <= e[key]["total"] <= 10 * true + 1e-4, key
+
+
+def test_outer_iteration_grids_stop_at_257_points_unless_levels_are_given(scene):
+    from thermal.tehl.hierarchy import COARSEST_POINTS, FactorLineHierarchy
+
+    pb = line_problem(scene, TEHLOptions(points=4097))
+    default = FactorLineHierarchy(pb, LineOptions.build(None, points=4097))
+    assert default.levels[0].n == COARSEST_POINTS and default.levels[-1].n == 4097
+    # the core would go down to 65 points for this M
+    assert FactorLineHierarchy(pb, LineOptions.build(None, points=4097, levels=7)).levels[0].n == 65
+    assert FactorLineHierarchy(pb, LineOptions.build(None, points=129)).levels[0].n == 129
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("slip", [0.5, 1.0])
+def test_tehl_line_on_4097_points_converges_where_a_65_point_coarsest_grid_diverged(scene, slip):
+    # with 7 grids (down to 65 points) the cycles from the converged iterate diverged at outer
+    # iteration 17 (S = 0.5) or the outer iteration stalled for 60 iterations (S = 1)
+    r = solve_tehl_line(scene, slip, TEHLOptions(points=4097, nz=20))
+    coarse = solve_tehl_line(scene, slip, TEHLOptions(points=2049, nz=20))
+    assert r.report.converged
+    # on the sequence of the finer grids: Hc moves by 0.04 % from 2049 points (0.17 % from 1025)
+    assert abs(r.Hc / coarse.Hc - 1.0) < 1e-3
