@@ -50,6 +50,7 @@ CASES: dict[str, tuple[list[str], tuple[str, float, float, float] | None]] = {
     "line_100_20": (["--contact", "line", "--M", "100", "--L", "20"], ("line", 100.0, 20.0, 1.0)),
     "bearing_6205": (["bearing_6205_inner_race"], None),
     "thermal_T9_line": (["appendix_c_line_4240N", "--thermal"], None),
+    "thermal_T9_point": (["appendix_d_point", "--thermal"], None),
 }
 ACCURACIES = (0.05, 0.01, 0.005, 0.001)
 
