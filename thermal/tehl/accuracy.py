@@ -61,7 +61,7 @@ QUANTITIES = ("Hc", "Hm", "friction_coefficient", "T_max")
 #: smallest grid along X a TEHL solve takes (TEHLOptions)
 MIN_POINTS = 65
 #: smallest mesh (points per default box) of a point contact's box probe: the appendix D
-#: point's outer iteration stalls on 65 (docs/thermal.md, "Error estimate")
+#: point's outer iteration stalls on 65 (docs/thermal.md, "Extrapolated TEHL films")
 POINT_PROBE_POINTS = 129
 #: largest number of intervals across the film the refinement goes to
 MAX_NZ = 80
