@@ -76,7 +76,9 @@ def _is_point(result: Any) -> bool:
 class SolveCache:
     """TEHL solves of one contact and slip keyed by ``(points, nz, box)``; a solve that raises a
     clear error (no convergence, a grid too coarse) is kept as ``None``. The estimate and the
-    refinement share one cache, so a solve is never repeated."""
+    refinement share one cache, so a solve is never repeated. A point solve starts from the
+    cached solve with half its intervals (same nz and box) when there is one
+    (:func:`~thermal.tehl.point.solve_tehl_point`'s ``start``)."""
 
     def __init__(self, scene: Scene, slip: float, options: TEHLOptions, point: bool) -> None:
         self.scene, self.slip, self.options, self.point = scene, float(slip), options, point
@@ -107,7 +109,8 @@ class SolveCache:
             opts = self.options.with_changes(points=key[0], nz=key[1], box=key[2])
             try:
                 if self.point:
-                    res = solve_tehl_point(self.scene, self.slip, opts)
+                    coarser = self.results.get(((key[0] - 1) // 2 + 1, key[1], key[2]))
+                    res = solve_tehl_point(self.scene, self.slip, opts, start=coarser)
                 else:
                     res = solve_tehl_line(self.scene, self.slip, opts, meniscus=self.meniscus)
                 self.results[key] = res
