@@ -76,9 +76,9 @@ def _is_point(result: Any) -> bool:
 class SolveCache:
     """TEHL solves of one contact and slip keyed by ``(points, nz, box)``; a solve that raises a
     clear error (no convergence, a grid too coarse) is kept as ``None``. The estimate and the
-    refinement share one cache, so a solve is never repeated. A point solve starts from the
-    cached solve with half its intervals (same nz and box) when there is one
-    (:func:`~thermal.tehl.point.solve_tehl_point`'s ``start``)."""
+    refinement share one cache, so a solve is never repeated. A flooded solve starts from the
+    cached solve with half its intervals (same nz and box) when there is one (``coarse`` of
+    :func:`~thermal.tehl.point.solve_tehl_point` and :func:`~thermal.tehl.line.solve_tehl_line`)."""
 
     def __init__(self, scene: Scene, slip: float, options: TEHLOptions, point: bool) -> None:
         self.scene, self.slip, self.options, self.point = scene, float(slip), options, point
@@ -110,9 +110,11 @@ class SolveCache:
             try:
                 if self.point:
                     coarser = self.results.get(((key[0] - 1) // 2 + 1, key[1], key[2]))
-                    res = solve_tehl_point(self.scene, self.slip, opts, start=coarser)
+                    res = solve_tehl_point(self.scene, self.slip, opts, coarse=coarser)
                 else:
-                    res = solve_tehl_line(self.scene, self.slip, opts, meniscus=self.meniscus)
+                    coarser = None if math.isfinite(self.scene.supply.hoil) else \
+                        self.results.get(((key[0] - 1) // 2 + 1, key[1], key[2]))
+                    res = solve_tehl_line(self.scene, self.slip, opts, meniscus=self.meniscus, coarse=coarser)
                 self.results[key] = res
                 self.add(res)
             except (ConvergenceError, InputError) as exc:

@@ -42,6 +42,7 @@ from ehl_multigrid.model.scene import Scene
 from ehl_multigrid.multigrid.driver import MultilevelSolver
 from ehl_multigrid.multigrid.options import LineOptions
 from ehl_multigrid.multigrid.policy import RobustnessPolicy
+from ehl_multigrid.multigrid.transfer import interpolate_cubic
 
 from ..line import Surroundings, ThermalLineSolution, solve_thermal_line
 from ..options import SURFACE_KERNELS, ThermalOptions
@@ -358,7 +359,7 @@ def interior_heat_budget(sol: ThermalLineSolution, lubricant: Any) -> dict[str, 
 def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None, *,
                     us: float | None = None, load: float | None = None, start: _State | None = None,
                     guess: TEHLLineResult | None = None, meniscus: float | None = None,
-                    **changes: Any) -> TEHLLineResult:
+                    coarse: TEHLLineResult | None = None, **changes: Any) -> TEHLLineResult:
     """Solve the thermal EHL line contact of ``scene`` at ``slip`` (S = 2 (u1 - u2)/(u1 + u2)).
 
     A scene with a finite ``[supply] hoil`` is solved starved (:func:`solve_tehl_line_starved`:
@@ -376,6 +377,9 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
     guess : a TEHL solution of the same scene, grid and box (another slip) to start the
         outer iteration from (pressure, film constant and across-film factors); flooded
         inlets only.
+    coarse : a TEHL solution of the same scene, slip and box on half the intervals: its
+        across-film factors, interpolated, start the outer iteration after one multilevel
+        solve with them (nested iteration; flooded inlets, without ``guess``).
     meniscus : starved inlets: the meniscus X = x/b the search starts from (None: the
         isothermal starved solver's on the same grid).
 
@@ -392,15 +396,16 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
     slip = scene.slip if slip is None else float(slip)
     wall_speeds(scene.us, slip)  # the slip's range, before any solve
     if math.isfinite(scene.supply.hoil):
-        if start is not None or guess is not None:
+        if start is not None or guess is not None or coarse is not None:
             raise InputError("start and guess apply to flooded inlets: a starved solve (finite [supply] "
                              "hoil) searches its own meniscus, and each box has its own start")
         return solve_tehl_line_starved(scene, slip, opts, meniscus=meniscus)
-    return _solve_flooded(scene, slip, opts, start, guess)
+    return _solve_flooded(scene, slip, opts, start, guess, coarse)
 
 
 def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: _State | None = None,
-                   guess: TEHLLineResult | None = None) -> TEHLLineResult:
+                   guess: TEHLLineResult | None = None,
+                   coarse: TEHLLineResult | None = None) -> TEHLLineResult:
     """The TEHL solve with a flooded inlet on the box of ``opts`` (see :func:`solve_tehl_line`)."""
     t0 = time.perf_counter()
     u1, u2 = wall_speeds(scene.us, slip)
@@ -471,6 +476,14 @@ def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: _State |
                              f"({str(exc).splitlines()[0][:80]}); the slope keeps the solve's Poiseuille flux")
         last[:] = [th]
         return th, th.T
+
+    if guess is None and coarse is not None and 2 * coarse.a.size - 1 == X.size:
+        # the coarse fixed point's factors with the film they give on this grid (a consistent
+        # start; the coarse pressure itself has its spike a grid off)
+        a, c = (np.exp(interpolate_cubic(np.log(f))) for f in (coarse.a, coarse.c))
+        st = ehl(a, c, st, 0)
+        sol, _ = thermal(st)
+        notes.append(f"outer iteration started from the factors of the solve on {coarse.X.size} points")
 
     done = outer_iteration(st, sol, sol.T, a, c, factors=factors, ehl=ehl, solve_thermal=thermal,
                            relax=opts.relax, anderson=opts.anderson, max_outer=opts.max_outer,

@@ -193,14 +193,14 @@ def require_flooded_point(scene: Scene) -> None:
 
 
 def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None, *,
-                     threads: int | None = None, start: TEHLPointResult | None = None,
+                     threads: int | None = None, coarse: TEHLPointResult | None = None,
                      **changes: Any) -> TEHLPointResult:
     """Solve the thermal EHL point contact of ``scene`` at ``slip``.
 
     ``options`` as for :func:`~thermal.tehl.line.solve_tehl_line` (``points`` along X, default
     257 here when not given; ``multigrid`` overrides the core :class:`PointOptions`); the
     half domain Y >= 0 is solved. ``threads``: thread pool of the row thermal solves.
-    ``start``: the solution of the same contact on the grid with half the intervals (same box
+    ``coarse``: the solution of the same contact on the grid with half the intervals (same box
     and nz): its across-film factors, interpolated, start the outer iteration after one
     multilevel solve with them (nested iteration; the fixed point is the same within the outer
     tolerances, in fewer iterations: appendix D at S = 1 on 513 points 15 -> 11). A finite
@@ -303,13 +303,13 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
     th, T = thermal(st)
     decoupled = float(sum(s.force_per_length * w for s, w in zip(th.sols, th.widths, strict=True)))
     a0, c0 = np.ones(shape), np.ones(shape)
-    if start is not None and (2 * start.a.shape[0] - 1, 2 * start.a.shape[1] - 1) == shape:
+    if coarse is not None and (2 * coarse.a.shape[0] - 1, 2 * coarse.a.shape[1] - 1) == shape:
         # the coarse fixed point's factors with the film they give on this grid: a consistent
         # start (the interpolated coarse pressure itself is not: its spike is a grid off)
-        a0, c0 = (interpolate_cubic(np.ascontiguousarray(f), True) for f in (start.a, start.c))
+        a0, c0 = (interpolate_cubic(np.ascontiguousarray(f), True) for f in (coarse.a, coarse.c))
         st = ehl(a0, c0, st, 0)
         th, T = thermal(st)
-        notes.append(f"outer iteration started from the factors of the solve on {start.X.size} points")
+        notes.append(f"outer iteration started from the factors of the solve on {coarse.X.size} points")
     done = outer_iteration(st, th, T, a0, c0, factors=factors, ehl=ehl,
                            solve_thermal=thermal, relax=opts.relax, anderson=opts.anderson,
                            max_outer=opts.max_outer, tol_P=opts.tol_P, tol_H=opts.tol_H, tol_T=opts.tol_T)

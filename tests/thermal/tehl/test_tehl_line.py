@@ -190,3 +190,17 @@ def test_tehl_line_on_4097_points_converges_where_a_65_point_coarsest_grid_diver
     assert r.report.converged
     # on the sequence of the finer grids: Hc moves by 0.04 % from 2049 points (0.17 % from 1025)
     assert abs(r.Hc / coarse.Hc - 1.0) < 1e-3
+
+
+@pytest.mark.solver
+def test_a_line_solve_started_from_the_coarser_grids_factors_reaches_the_same_fixed_point(scene):
+    coarse = solve_tehl_line(scene, 0.5, points=513, nz=10)
+    cold = solve_tehl_line(scene, 0.5, points=1025, nz=10)
+    nested = solve_tehl_line(scene, 0.5, points=1025, nz=10, coarse=coarse)
+    assert any("factors of the solve on 513 points" in a for a in nested.report.extra["actions"])
+    assert len(nested.outer) < len(cold.outer)
+    for key in ("Hc", "Hm", "friction"):  # within the outer tolerances (tol_H = 1e-4)
+        assert getattr(nested, key) == pytest.approx(getattr(cold, key), rel=1e-4), key
+    # a starved scene searches its own meniscus: no coarse start
+    with pytest.raises(InputError, match="flooded inlets"):
+        solve_tehl_line(scene.with_supply(hoil=1e-7), 0.5, points=1025, nz=10, coarse=coarse)

@@ -87,7 +87,7 @@ def test_a_thermal_march_started_from_its_own_solution_settles_in_one_sweep():
 def test_a_solve_started_from_the_coarser_grids_factors_reaches_the_same_fixed_point(scene, pair):
     coarse = pair[0]  # 65 points, nz = 10, S = 0.5
     cold = solve_tehl_point(scene, 0.5, TEHLOptions(points=129, nz=10))
-    nested = solve_tehl_point(scene, 0.5, TEHLOptions(points=129, nz=10), start=coarse)
+    nested = solve_tehl_point(scene, 0.5, TEHLOptions(points=129, nz=10), coarse=coarse)
     assert any("factors of the solve on 65 points" in a for a in nested.report.extra["actions"])
     assert len(nested.outer) < len(cold.outer)
     # the same fixed point within the outer tolerances (tol_H = 1e-4, tol_T = 0.01 K)
