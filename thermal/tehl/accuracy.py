@@ -488,7 +488,7 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
         msg = (f"the estimated error (Hc {est.Hc:.2g}, Hm {est.Hm:.2g}) at {o.points} points, nz = {o.nz}, "
                f"box x{o.box:g} exceeds the requested accuracy {accuracy:g}; not refined further: {out.why}")
     if est.correction:
-        msg += ("; Hc and Hm extrapolated over the grids (" + ", ".join(
+        msg += (f"; {' and '.join(est.correction)} extrapolated over the grids (" + ", ".join(
             f"{k} {v:+.2%}" for k, v in est.correction.items()) + "; the isothermal films by the same "
             "factors); the fields are the finest grid's")
     return AccurateTEHL(res, est, accuracy, accurate, out.steps, msg, out.wall_s)
