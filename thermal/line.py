@@ -200,7 +200,10 @@ def solve_thermal_line(profile: LineProfile, env: Surroundings, options: Thermal
     q1 = np.zeros(nx)
     q2 = np.zeros(nx)
     inner = np.zeros(nx, dtype=np.int64)
-    warm = start is not None and start.T.shape == T.shape and bool(options.thermal)
+    if start is not None and start.T.shape != T.shape:
+        raise InputError(f"start has {start.T.shape[0]} stations x {start.T.shape[1] - 1} intervals across "
+                         f"the film; this solve has {nx} x {nz}")
+    warm = start is not None and bool(options.thermal)
     if warm:
         T[:], tau[:], q1[:], q2[:], slope[:] = start.T, start.tau, start.q1, start.q2, start.stress_slope
     # lagged fluxes enter through sum W q: scale them to kelvin by the self weights

@@ -47,6 +47,7 @@ from ehl_multigrid.multigrid.accuracy import (
     extrapolated,
 )
 from ehl_multigrid.multigrid.controller import Candidate, Refinement, Resolution, choose, control
+from ehl_multigrid.point.postprocess import subgrid_min_film
 
 from ..traction import wall_speeds
 from .line import TEHLOptions
@@ -230,8 +231,6 @@ def grid_sequence(result: Any, cache: SolveCache) -> list[Any] | None:
 
 
 def _subgrid_hm(result: Any) -> float:
-    from ehl_multigrid.point.postprocess import subgrid_min_film
-
     return subgrid_min_film(result.H, True) * result.problem.moes_factor
 
 

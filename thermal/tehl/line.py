@@ -397,9 +397,12 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
     wall_speeds(scene.us, slip)  # the slip's range, before any solve
     if math.isfinite(scene.supply.hoil):
         if start is not None or guess is not None or coarse is not None:
-            raise InputError("start and guess apply to flooded inlets: a starved solve (finite [supply] "
-                             "hoil) searches its own meniscus, and each box has its own start")
+            raise InputError("start, guess and coarse apply to flooded inlets: a starved solve (finite "
+                             "[supply] hoil) searches its own meniscus, and each box has its own start")
         return solve_tehl_line_starved(scene, slip, opts, meniscus=meniscus)
+    if guess is not None and coarse is not None:
+        raise InputError("give guess (a solution on the same grid) or coarse (one on half the intervals), "
+                         "not both: each sets the factors the outer iteration starts from")
     return _solve_flooded(scene, slip, opts, start, guess, coarse)
 
 
@@ -407,6 +410,9 @@ def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: _State |
                    guess: TEHLLineResult | None = None,
                    coarse: TEHLLineResult | None = None) -> TEHLLineResult:
     """The TEHL solve with a flooded inlet on the box of ``opts`` (see :func:`solve_tehl_line`)."""
+    if coarse is not None and 2 * coarse.a.size - 1 != opts.points:
+        raise InputError(f"coarse has {coarse.a.size} points; the options ask for {opts.points}, so it needs "
+                         f"{(opts.points - 1) // 2 + 1}")
     t0 = time.perf_counter()
     u1, u2 = wall_speeds(scene.us, slip)
     env = Surroundings(scene.lubricant, scene.body1, scene.body2, u1, u2, scene.T_oil,
@@ -477,7 +483,7 @@ def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: _State |
         last[:] = [th]
         return th, th.T
 
-    if guess is None and coarse is not None and 2 * coarse.a.size - 1 == X.size:
+    if coarse is not None:
         # the coarse fixed point's factors with the film they give on this grid (a consistent
         # start; the coarse pressure itself has its spike a grid off)
         a, c = (np.exp(interpolate_cubic(np.log(f))) for f in (coarse.a, coarse.c))

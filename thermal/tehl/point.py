@@ -213,6 +213,9 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
     if options is None and "points" not in changes:
         changes["points"] = 257
     opts = (options or TEHLOptions()).with_changes(**changes) if changes else options
+    if coarse is not None and 2 * coarse.X.size - 1 != opts.points:
+        raise InputError(f"coarse has {coarse.X.size} points along X; the options ask for {opts.points}, so it "
+                         f"needs {(opts.points - 1) // 2 + 1}")
     slip = scene.slip if slip is None else float(slip)
     u1, u2 = wall_speeds(scene.us, slip)
     env = Surroundings(scene.lubricant, scene.body1, scene.body2, u1, u2, scene.T_oil,
@@ -303,7 +306,10 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
     th, T = thermal(st)
     decoupled = float(sum(s.force_per_length * w for s, w in zip(th.sols, th.widths, strict=True)))
     a0, c0 = np.ones(shape), np.ones(shape)
-    if coarse is not None and (2 * coarse.a.shape[0] - 1, 2 * coarse.a.shape[1] - 1) == shape:
+    if coarse is not None:
+        if (2 * coarse.a.shape[0] - 1, 2 * coarse.a.shape[1] - 1) != shape:
+            raise InputError(f"coarse has the grid {coarse.a.shape[::-1]} (X, Y); the options ask for "
+                             f"{shape[::-1]}, so it needs half the intervals of each")
         # the coarse fixed point's factors with the film they give on this grid: a consistent
         # start (the interpolated coarse pressure itself is not: its spike is a grid off)
         a0, c0 = (interpolate_cubic(np.ascontiguousarray(f), True) for f in (coarse.a, coarse.c))

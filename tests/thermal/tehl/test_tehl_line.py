@@ -204,3 +204,13 @@ def test_a_line_solve_started_from_the_coarser_grids_factors_reaches_the_same_fi
     # a starved scene searches its own meniscus: no coarse start
     with pytest.raises(InputError, match="flooded inlets"):
         solve_tehl_line(scene.with_supply(hoil=1e-7), 0.5, points=1025, nz=10, coarse=coarse)
+
+
+def test_a_coarse_start_of_the_wrong_grid_or_beside_a_guess_is_refused(scene):
+    from types import SimpleNamespace
+
+    wrong = SimpleNamespace(a=np.ones(100), c=np.ones(100), X=np.zeros(100))
+    with pytest.raises(InputError, match="coarse has 100 points.*needs 129"):
+        solve_tehl_line(scene, 0.5, points=257, nz=10, coarse=wrong)
+    with pytest.raises(InputError, match="not both"):
+        solve_tehl_line(scene, 0.5, points=257, nz=10, coarse=wrong, guess=wrong)

@@ -80,6 +80,8 @@ def test_a_thermal_march_started_from_its_own_solution_settles_in_one_sweep():
     assert cold.report.iterations >= 2 and again.report.iterations == 1 and again.report.converged
     np.testing.assert_allclose(again.T, cold.T, rtol=0, atol=1e-3)
     assert again.force_per_length == pytest.approx(cold.force_per_length, rel=1e-5)
+    with pytest.raises(InputError, match="start has 129 stations x 10 intervals"):
+        solve_thermal_line(prof, env, opts.with_changes(nz=5), kernel_length=sc.length, start=cold)
 
 
 @pytest.mark.solver
@@ -94,3 +96,10 @@ def test_a_solve_started_from_the_coarser_grids_factors_reaches_the_same_fixed_p
     for key in ("Hc", "Hm", "friction"):
         assert getattr(nested, key) == pytest.approx(getattr(cold, key), rel=2e-4), key
     assert nested.T_max == pytest.approx(cold.T_max, abs=0.05)
+
+
+def test_a_coarse_start_of_the_wrong_grid_is_refused(scene):
+    from types import SimpleNamespace
+
+    with pytest.raises(InputError, match="coarse has 100 points along X.*needs 65"):
+        solve_tehl_point(scene, 0.5, TEHLOptions(points=129, nz=10), coarse=SimpleNamespace(X=np.zeros(100)))
