@@ -40,31 +40,37 @@ def _terms(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             np.where(inside, B * COSH_RATIO * np.cosh(3.0 * (phi - math.pi)), 0.0))
 
 
-def far_pressure(lam: float, X: np.ndarray, Y: np.ndarray, c2: float = 0.0) -> np.ndarray:
-    """The far-field pressure at ``(X, Y)`` (Venner units; zero at the origin). ``c2 = 2 H00``:
-    the gap ``(r^2 + c2)/2`` instead of ``r^2/2`` to first order in ``c2/r^2``, which turns the
-    radial factors into ``r^-3 (1 - 2 c2/r^2)`` (cos) and ``r^-3 (1 - 4.5 c2/r^2)`` (cosh)."""
+def far_pressure(lam: float, X: np.ndarray, Y: np.ndarray, c2: float = 0.0,
+                 k: float = 0.0) -> np.ndarray:
+    """The far-field pressure at ``(X, Y)`` (Venner units; zero at the origin). ``c2 = 2 H00``
+    and ``k`` (the far deformation ``k/r`` of an elastic contact, ``k`` = the deformation
+    constant times the load): the gap ``r^2/2 + c2/2 + k/r`` instead of ``r^2/2``, to first
+    order in ``c2/r^2`` and ``k/r^3``, which turns the radial factors into
+    ``r^-3 (1 - 2 c2/r^2 - 16 k/r^3)`` (cos) and ``r^-3 (1 - 4.5 c2/r^2 - 6 k/r^3)`` (cosh)."""
     X, Y = np.broadcast_arrays(np.asarray(X, float), np.asarray(Y, float))
     r = np.hypot(X, Y)
     phi = np.mod(np.arctan2(Y, X), 2.0 * math.pi)
     t1, t3 = _terms(phi)
     with np.errstate(divide="ignore", invalid="ignore"):
-        q = c2 / (r * r)
-        out = lam * np.maximum(t1 * (1.0 - 2.0 * q) + t3 * (1.0 - 4.5 * q), 0.0) / r**3
+        q, e = c2 / (r * r), k / r**3
+        out = lam * np.maximum(t1 * (1.0 - 2.0 * q - 16.0 * e) + t3 * (1.0 - 4.5 * q - 6.0 * e),
+                               0.0) / r**3
     return np.where(r > 0.0, out, 0.0)
 
 
-def load_outside(lam: float, xmin: float, xmax: float, ymax: float, c2: float = 0.0) -> float:
+def load_outside(lam: float, xmin: float, xmax: float, ymax: float, c2: float = 0.0,
+                 k: float = 0.0) -> float:
     """``∫∫ far_pressure`` outside the box ``xmin <= X <= xmax, |Y| <= ymax`` (``xmin < 0 <
-    xmax``): along each ray ``∫_R^inf r^-3 (1 - a c2/r^2) r dr = 1/R - a c2/(3 R^3)``, ``R``
-    where the ray leaves the box."""
+    xmax``): along each ray ``∫_R^inf r^-3 (1 - a c2/r^2 - b k/r^3) r dr = 1/R - a c2/(3 R^3)
+    - b k/(4 R^4)``, ``R`` where the ray leaves the box."""
     def ray(phi: float) -> float:
         c, s = math.cos(phi), math.sin(phi)
         R = min([xmin / c] if c < 0 else [xmax / c] if c > 0 else [math.inf])
         if s != 0.0:
             R = min(R, ymax / abs(s))
         t1, t3 = (float(t) for t in _terms(np.array(phi)))
-        return t1 * (1.0 / R - 2.0 * c2 / (3.0 * R**3)) + t3 * (1.0 / R - 1.5 * c2 / R**3)
+        return (t1 * (1.0 / R - 2.0 * c2 / (3.0 * R**3) - 4.0 * k / R**4)
+                + t3 * (1.0 / R - 1.5 * c2 / R**3 - 1.5 * k / R**4))
 
     lo, hi = math.pi - PSI, math.pi + PSI
     corners = sorted(p % (2 * math.pi) for p in (math.atan2(ymax, xmin), math.atan2(-ymax, xmin),
@@ -97,4 +103,4 @@ def far_field_on(far_field: bool | None, elastic: bool, theta: float, thick: boo
     the inlet and whose box error with ``P = 0`` falls only as 1/box."""
     if far_field is not None:
         return bool(far_field)
-    return abs(theta - 1.0) < 1e-12 and (not elastic or thick)
+    return abs(theta - 1.0) < 1e-12

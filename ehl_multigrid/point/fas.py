@@ -263,10 +263,16 @@ class PointHierarchy:
         self.far = self.far_field_ok and far_field_on(options.far_field, options.elastic, problem.theta,
                                                       domain_scale(problem) > 1.0)
         #: 2 H00 of the far field's gap (r^2 + c2)/2, from the film fit (point.farfield)
-        self.far_c2 = 0.0
+        #: and ``k`` of its far deformation ``k/r`` (elastic: the deformation constant x load)
+        self.far_c2 = self.far_k = 0.0
         if self.far:
+            thick = domain_scale(problem) > 1.0
+            self.far_k = self.cd * self.g_target
+            # H00 = central film - central deformation: the Hertzian pressure's
+            # (3 pi/4) k; a thick film's pressure spreads over its inlet (taken as none)
             self.far_c2 = 2.0 * (rigid_film(problem) if not options.elastic else
-                                 float(nijenbanning_central(problem.M, problem.L, 1.0)) / problem.moes_factor)
+                                 float(nijenbanning_central(problem.M, problem.L, 1.0)) / problem.moes_factor
+                                 - (0.0 if thick else 0.75 * math.pi * self.far_k))
         if self.far and abs(problem.theta - 1.0) > 1e-12:
             raise InputError(f"far_field = True needs a circular contact (theta = 1), not theta = "
                              f"{problem.theta:g}: the far-field pressure is derived for a round gap")
@@ -313,11 +319,11 @@ class PointHierarchy:
                                                  and nk >= ALTERNATE_FROM)
             lev.Pb, lev.far_load = None, 0.0
             if self.far:
-                Pb = far_pressure(self.lam, X[None, :], Y[:, None], self.far_c2)
+                Pb = far_pressure(self.lam, X[None, :], Y[:, None], self.far_c2, self.far_k)
                 inner = (slice(0 if opt.half else 1, -1), slice(1, -1))
                 Pb[inner] = 0.0
                 lev.Pb = Pb
-                lev.far_load = (load_outside(self.lam, self.xmin, self.xmax, self.ymax, self.far_c2)
+                lev.far_load = (load_outside(self.lam, self.xmin, self.xmax, self.ymax, self.far_c2, self.far_k)
                                 - boundary_excess(Pb, hx, hy, opt.half))
             self.levels.append(lev)
         self.nfine = self.levels[-1].npts

@@ -252,6 +252,10 @@ def solve_from_neighbour(problem: PointProblem, options: PointOptions, failed: E
     return keep
 
 
+#: film and load tolerance of the domain probes of a far-field contact, as a share of the
+#: solve's film stop (docs/accuracy.md, "Far-field boundary")
+FAR_PROBE_FRACTION = 0.2
+
 #: the probes' residual tolerance, whatever the solve's: they stop on their films, so a
 #: tolerance step of the solve reuses them (docs/accuracy.md, "Domain error")
 PROBE_RESIDUAL_TOL = 1e-4
@@ -326,6 +330,7 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     # would fall where Hm's second change is off ((20, 10, theta 4): 0.027 % on 65 points per
     # default box against 0.17 % on 129-257)
     d0 = default_domain(problem, options.elastic)
+    far = far_field_on(options.far_field, options.elastic, problem.theta, domain_scale(problem) > 1.0)
     scale = 2 ** max(0, round(math.log2((xmax - xmin) / (d0[1] - d0[0]))))
     n_min = (min_points(problem.M, 1.0 if tight is None else problem.b_over_a) - 1) * scale + 1
     if domain_scale(problem) > 1.0:
@@ -355,6 +360,10 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
             # (1, 0) at 2 %: 1025 points on a 400 a box reached max_cycles at 1e-4 (93 s)
             if tight is not None:
                 ftol = ltol = tight
+            elif far and options.film_tol:
+                # the far field leaves box changes of a few 1e-4: the probes' iteration errors
+                # (about 2.5x their film stop) would read as one
+                ftol = ltol = FAR_PROBE_FRACTION * options.film_tol
             else:
                 ftol, ltol = max(PROBE_FILM_TOL, options.film_tol or 0.0), max(options.tol_load, 1e-4)
             # the films stop the probes; one residual tolerance for every step of the sequence
@@ -726,9 +735,9 @@ def solve_point(
         res = solve_to_accuracy(solve, probe, accuracy, points, max_points, box_limit=box_limit,
                                 start=first,
                                 refine=accuracy is not None and not (explicit or fixed_box),
-                                decay_probe=decay_probe if domain_scale(pb) <= 1.0 else None,
+                                decay_probe=decay_probe if domain_scale(pb) <= 1.0 and not far else None,
                                 progress=progress, correct_box=True, extrapolate=True,
-                                hope_correction=fast_box_decay(pb),
+                                hope_correction=fast_box_decay(pb) and not far,
                                 time_budget=math.inf if time_budget is None else time_budget)
         why = thick_film_reason(pb, res, accuracy) if res.status_name == "inaccurate" \
             and domain_scale(pb) > 1.0 and opts.elastic else ""

@@ -289,7 +289,8 @@ def solve_transient_point(
     with preserved_threads():
         theta0 = None
         if not math.isfinite(hoil):
-            steady = solve_fas(problem, opts)
+            # the time steps hold P = 0 on the boundary (far_field_ok): so does their start
+            steady = solve_fas(problem, replace(opts, far_field=False))
             require_steady_start("point", steady, initial, HINT)
         else:
             # the starved steady solution of the run's grid (its discretisation and supply;

@@ -656,7 +656,7 @@ def test_a_solve_on_twice_the_box_is_corrected_with_the_decay_measured_one_box_l
     Its widest probe is as large as the solve."""
     from ehl_multigrid.multigrid.accuracy import DOMAIN_SAFETY
 
-    sol = solve_point(20.0, 10.0, points=513, xmin=-9.0, xmax=3.0, ymax=6.0, accuracy=4.5e-3)
+    sol = solve_point(20.0, 10.0, points=513, xmin=-9.0, xmax=3.0, ymax=6.0, accuracy=4.5e-3, far_field=False)
     (below_c, below_m), (d2c, d2m) = sol.extra["domain_changes_below"]
     assert DOMAIN_SAFETY * max(abs(d2c), abs(d2m)) > 4.5e-3  # the fixed factor alone misses
     assert "domain_changes" not in sol.extra
@@ -729,11 +729,11 @@ def test_point_target_missed_only_by_the_domain_part_is_met_by_the_box_correctio
     """Circular (20, 10) on 513 points: a target the grid and iteration parts meet but the
     domain part misses is met by correcting the films for the box (two doublings measured on
     the probe mesh); the corrected films move towards the wider box."""
-    fixed = solve_point(20.0, 10.0, points=513)
+    fixed = solve_point(20.0, 10.0, far_field=False, points=513)
     b = fixed.error.budget
     target = max(b["grid"][k] + b["algebraic"][k] + 0.3 * b["domain"][k] for k in ("Hc", "Hm"))
     assert max(fixed.Hc_error, fixed.Hm_error) > target
-    sol = solve_point(20.0, 10.0, points=513, accuracy=target)
+    sol = solve_point(20.0, 10.0, far_field=False, points=513, accuracy=target)
     (d2c, d2m), (d4c, d4m) = sol.extra["domain_changes"]
     assert 3.0 < d2c / d4c < 12.0 and 3.0 < d2m / d4m < 12.0
     parts = sol.extra["film_correction"]
@@ -749,7 +749,7 @@ def test_point_target_missed_only_by_the_domain_part_is_met_by_the_box_correctio
 def test_no_decay_probe_is_larger_than_the_solve():
     """On 129 points the widest decay probe would need 513: the fixed factor stands (a
     refinement costs less than that probe)."""
-    sol = solve_point(20.0, 10.0, points=129, accuracy=0.06)
+    sol = solve_point(20.0, 10.0, far_field=False, points=129, accuracy=0.06, far_field=False)
     assert "domain_changes" not in sol.extra
     assert sol.status_name == "inaccurate" and max(sol.Hc_error, sol.Hm_error) > 0.06
 
@@ -760,18 +760,18 @@ def test_a_box_corrected_film_is_honest_against_wider_boxes():
     reference on boxes twice and four times as wide, one grid finer, continued beyond the 4x
     box with the decay of its own box changes, the corrected film is within its estimate, and
     that estimate is below the uncorrected film's."""
-    fixed = solve_point(20.0, 10.0, points=513)
+    fixed = solve_point(20.0, 10.0, far_field=False, points=513)
     b = fixed.error.budget
     target = max(b["grid"][k] + b["algebraic"][k] + 0.3 * b["domain"][k] for k in ("Hc", "Hm"))
-    sol = solve_point(20.0, 10.0, points=513, accuracy=target)
+    sol = solve_point(20.0, 10.0, far_field=False, points=513, accuracy=target)
     assert "film_correction" in sol.extra
     d = sol.extra["domain"]
     box = [dict(xmin=f * d[0], xmax=f * d[1], ymax=f * d[2], half=True, estimate=False, tol=1e-6,
                 tol_load=1e-7) for f in (1, 2, 4)]
-    one = solve_point(20.0, 10.0, points=513, **box[0])
-    a = solve_point(20.0, 10.0, points=1025, **box[1])  # the mesh of one, box 2x
-    b = solve_point(20.0, 10.0, points=2049, **box[1])
-    c = solve_point(20.0, 10.0, points=2049, **box[2])  # the mesh of a, box 4x
+    one = solve_point(20.0, 10.0, far_field=False, points=513, **box[0])
+    a = solve_point(20.0, 10.0, far_field=False, points=1025, **box[1])  # the mesh of one, box 2x
+    b = solve_point(20.0, 10.0, far_field=False, points=2049, **box[1])
+    c = solve_point(20.0, 10.0, far_field=False, points=2049, **box[2])  # the mesh of a, box 4x
     for k, est, was in (("Hc_venner", sol.Hc_error, fixed.Hc_error), ("Hm_venner", sol.Hm_error, fixed.Hm_error)):
         d2, d4 = a.scalars[k] / one.scalars[k] - 1.0, c.scalars[k] / a.scalars[k] - 1.0
         ref = (b.scalars[k] + (b.scalars[k] - a.scalars[k]) / 3.0) * c.scalars[k] / a.scalars[k]
@@ -872,8 +872,9 @@ def test_a_point_film_not_extrapolated_is_tried_again_on_converged_coarser_films
 def _default_scene_at_2_percent(points=None):
     from ehl_multigrid.model.scene import load_scene
 
+    # P = 0 on the boundary: the path of a contact without the far field (elliptic)
     kw = {} if points is None else {"points": points}
-    return solve_point(scene=load_scene("default"), accuracy=0.02, **kw)
+    return solve_point(scene=load_scene("default"), accuracy=0.02, far_field=False, **kw)
 
 
 @pytest.mark.slow
@@ -888,7 +889,7 @@ def test_a_miss_decided_by_the_domain_part_is_corrected_for_the_box_before_coars
     """Circular (20, 10) at 0.5 % (513 points on twice the box): Hc is not extrapolated (its
     65-point FMG film is off the sequence), but the domain part decides the miss; the box
     series alone meets the target, so no coarser grid is solved to convergence."""
-    r = solve_point(20.0, 10.0, accuracy=0.005)
+    r = solve_point(20.0, 10.0, accuracy=0.005, far_field=False)
     assert r.success and r.X.shape[0] == 513
     assert "box" in r.error.correction
     assert not [s for s in r.extra["refinements"] if s["purpose"] == "levels"]

@@ -26,8 +26,9 @@ def test_solve_point_from_moes_returns_result_with_line_solver_shape():
 def test_solve_point_newton_path_agrees_with_fas_on_the_same_grid():
     # no error estimate: its extra solves do not change the films compared. 33 points: the
     # Newton path's start grid only (its continuation from 33 to 65 points is
-    # test_point_solver.py::test_newton_pyamg_path_reaches_the_fas_answer)
-    a = solve_point(20, 10, points=33, estimate=False)
+    # test_point_solver.py::test_newton_pyamg_path_reaches_the_fas_answer). The Newton path
+    # holds P = 0 on the boundary: the FAS solve without its far field is the same problem
+    a = solve_point(20, 10, points=33, estimate=False, far_field=False)
     b = solve_point(20, 10, points=33, solver="newton", estimate=False)
     assert b.converged, b.report.message
     assert b.Hc == pytest.approx(a.Hc, rel=3e-4)

@@ -82,7 +82,7 @@ def test_a_tolerance_step_of_the_solve_reuses_its_domain_probes(monkeypatch):
     from ehl_multigrid.point.problem import problem_from_moes
 
     pb = problem_from_moes(20.0, 10.0, 1.0)
-    opts = PointOptions(points=129, half=True, film_tol=1e-4, raise_on_failure=False)
+    opts = PointOptions(points=129, half=True, film_tol=1e-4, raise_on_failure=False, far_field=False)
     sol = point_solve.solve_fas(pb, opts)
     cache = {}
     first = point_solve.point_domain_change(pb, opts, sol, cache)
@@ -169,7 +169,7 @@ def test_a_large_solve_takes_the_second_box_change_from_the_coarse_mesh_when_the
     from ehl_multigrid.point.problem import problem_from_moes
 
     pb = problem_from_moes(100.0, 10.0, 1.0)
-    opts = PointOptions(points=513, half=True, film_tol=2.5e-4, raise_on_failure=False)
+    opts = PointOptions(points=513, half=True, film_tol=2.5e-4, raise_on_failure=False, far_field=False)
     sol = point_solve.solve_fas(pb, opts)
     seen = _record_solves(monkeypatch)
     monkeypatch.setattr(point_solve, "COARSE_D4_FROM", 513)

@@ -96,7 +96,8 @@ def test_failed_refinement_is_solved_again_from_the_converged_neighbour(monkeypa
     """The refinement of the sequence is made to fail from its FMG start: the sequence solves
     it again from the 129-point solution and goes on, instead of stopping there."""
     calls = _fail_first_257(monkeypatch, probing)
-    res = solve_point(20.0, 10.0, accuracy=0.003, max_points=257, half=True, raise_on_failure=False)
+    res = solve_point(20.0, 10.0, accuracy=0.003, max_points=257, half=True, raise_on_failure=False,
+                      far_field=False)
     i = calls.index((257, -9.0, False, False))
     assert calls[i + 1] == (257, -9.0, True, False)  # the same grid and box, from the neighbour
     assert any("retry_from_neighbour" in a for a in res.actions)
@@ -108,14 +109,14 @@ def test_failed_refinement_is_solved_again_from_the_converged_neighbour(monkeypa
     assert all(v == v for v in res.error.budget["grid"].values())
     # and it is the FMG's answer on that grid and box, within the stated algebraic error
     x0, x1, y1 = resolve_domain(res.problem, None, None, None)
-    fmg = solve_fas(res.problem, points=257, xmin=2 * x0, xmax=2 * x1, ymax=2 * y1, **TIGHT)
+    fmg = solve_fas(res.problem, points=257, xmin=2 * x0, xmax=2 * x1, ymax=2 * y1, far_field=False, **TIGHT)
     for key, part in (("Hc_venner", "Hc"), ("Hm_venner", "Hm")):
         assert _rel(res.scalars[key], fmg.scalars[key]) <= max(res.error.budget["algebraic"][part], 1e-6)
 
 
 def test_without_the_neighbour_retry_the_sequence_falls_back_to_the_smaller_step(monkeypatch, probing):
     calls = _fail_first_257(monkeypatch, probing)
-    res = solve_point(20.0, 10.0, accuracy=0.003, max_points=257, half=True, raise_on_failure=False,
+    res = solve_point(20.0, 10.0, accuracy=0.003, max_points=257, half=True, raise_on_failure=False, far_field=False,
                       retry_from_neighbour=False)
     assert (257, -9.0, True, False) not in calls
     assert not any("retry_from_neighbour" in a for a in res.actions)

@@ -25,14 +25,14 @@ def plain():
     mp = pytest.MonkeyPatch()
     mp.setattr(solve_mod, "start_box", lambda *a, **k: None)
     try:
-        return solve_point(20.0, 10.0, accuracy=TARGET, half=True, raise_on_failure=False)
+        return solve_point(20.0, 10.0, accuracy=TARGET, half=True, far_field=False, raise_on_failure=False)
     finally:
         mp.undo()
 
 
 def test_a_default_box_too_small_for_the_target_is_skipped_with_the_same_answer(plain):
     lines = []
-    res = solve_point(20.0, 10.0, accuracy=TARGET, half=True, raise_on_failure=False, progress=lines.append)
+    res = solve_point(20.0, 10.0, accuracy=TARGET, half=True, far_field=False, raise_on_failure=False, progress=lines.append)
     assert res.success and plain.success
     # the plain sequence solved the default box first and then refined to twice it
     assert _solves(plain)[0][1] == 1.0 and _solves(plain)[-1][1] == 2.0
@@ -56,7 +56,7 @@ def test_a_failed_start_on_twice_the_box_falls_back_to_the_default_box(monkeypat
         return res
 
     monkeypatch.setattr(solve_mod, "solve_fas", solve_fas)
-    res = solve_point(20.0, 10.0, accuracy=TARGET, half=True, raise_on_failure=False)
+    res = solve_point(20.0, 10.0, accuracy=TARGET, half=True, far_field=False, raise_on_failure=False)
     assert failed  # the wide start was tried
     steps = _solves(res)
     assert steps[:2] == [(257, 2.0), (129, 1.0)]

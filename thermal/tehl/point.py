@@ -225,7 +225,12 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
     if opts.box != 1.0:
         box = resolve_domain(pb, mg.get("xmin"), mg.get("xmax"), mg.get("ymax"))
         mg.update(xmin=opts.box * box[0], xmax=opts.box * box[1], ymax=opts.box * box[2])
-    popts = PointOptions.build(None, **{"points": opts.points, "half": True, "raise_on_failure": False, **mg})
+    if mg.get("far_field"):
+        raise InputError("far_field = True: the thermal point solver holds P = 0 on its boundary")
+    # P = 0 on the boundary, as the thermal hierarchy (far_field_ok): the isothermal start
+    # and reference films on the same problem
+    popts = PointOptions.build(None, **{"points": opts.points, "half": True, "raise_on_failure": False,
+                                        **mg, "far_field": False})
     # the outer iteration's solves stop on the films (see TEHLOptions.multigrid); the
     # isothermal start keeps the core's residual rule
     popts_outer = PointOptions.build(popts, film_tol=mg.get("film_tol", 0.25 * opts.tol_H))
