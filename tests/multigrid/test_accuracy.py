@@ -749,7 +749,7 @@ def test_point_target_missed_only_by_the_domain_part_is_met_by_the_box_correctio
 def test_no_decay_probe_is_larger_than_the_solve():
     """On 129 points the widest decay probe would need 513: the fixed factor stands (a
     refinement costs less than that probe)."""
-    sol = solve_point(20.0, 10.0, far_field=False, points=129, accuracy=0.06, far_field=False)
+    sol = solve_point(20.0, 10.0, far_field=False, points=129, accuracy=0.06)
     assert "domain_changes" not in sol.extra
     assert sol.status_name == "inaccurate" and max(sol.Hc_error, sol.Hm_error) > 0.06
 
