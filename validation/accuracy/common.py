@@ -166,7 +166,10 @@ def cached_solve(contact: str, M: float, L: float, theta: float, points: int, bo
             if "y_ratio" not in opts and box != 1.0:
                 base = cached_solve(contact, M, L, theta, (points - 1) // int(box) + 1, 1.0, **opts)
                 dom["y_ratio"] = base["y_ratio"]
-            sol = solve_point(M, L, theta=theta, points=points, estimate=False, **dom, **opts)
+            # P = 0 on the boundary unless the options ask for the far field (then in the key):
+            # the references of references.py are independent of it
+            sol = solve_point(M, L, theta=theta, points=points, estimate=False, **dom,
+                              **{"far_field": False, **opts})
             extra = {"domain": list(sol.extra["domain"]), "y_ratio": sol.extra["y_ratio"],
                      "shape": list(sol.P.shape)}
         rec = record(sol, time.perf_counter() - t0, time.process_time() - c0, load0)

@@ -6,8 +6,11 @@ validation/accuracy/references.py --contact point|line` writes them to
 build/validation/accuracy/references) is solved through `ehl_multigrid.solve` at each accuracy,
 one case after another in this process (numba warm after small warm-up solves; no process
 start-up in the times, unlike verified.py). A film is *within its estimate* when |true error|
-<= the stated error; the references' own uncertainty is listed beside (point Hm's reaches
-0.2 % where its box change depends on the mesh, and (5, 0) is not resolved by its reference).
+<= the stated error; the references' own uncertainty is listed beside. `--refs` chooses them:
+`p0` (references.py, P = 0 on boxes up to 8x; point Hm's uncertainty reaches 0.2-0.4 % where
+its box change depends on the mesh, and (5, 0) is not resolved), `far` (far_references.py, the
+far-field boundary, circular contacts; Hm within 0.01-0.2 %) or, the default, per film the
+sharper of the two (they agree within their joint uncertainty on every circular case).
 
     python validation/bench/honesty_table.py --label after                 # point contacts
     python validation/bench/honesty_table.py --contact line --label after
@@ -63,6 +66,8 @@ def main() -> None:
     ap.add_argument("--contact", choices=("point", "line"), default="point")
     ap.add_argument("--accuracies", nargs="*", type=float, default=[0.005, 0.01])
     ap.add_argument("--code", default=None, help="import the package of this checkout (a git worktree)")
+    ap.add_argument("--refs", choices=("p0", "far", "sharper"), default="sharper",
+                    help="references: P = 0 boxes, far field, or per film the sharper (verified.reference)")
     args = ap.parse_args()
     if args.code:
         sys.path.insert(0, os.path.abspath(args.code))
@@ -79,7 +84,7 @@ def main() -> None:
     path = OUT / f"{args.contact}_honesty_{args.label}.json"
     for acc in args.accuracies:
         for M, L, theta in CASES[args.contact]:
-            ref = reference((args.contact, float(M), float(L), float(theta)))
+            ref = reference((args.contact, float(M), float(L), float(theta)), args.refs)
             t0 = time.perf_counter()
             sol = ehl.solve(problem(M, L, theta), accuracy=acc)
             wall = time.perf_counter() - t0
@@ -91,6 +96,7 @@ def main() -> None:
                              wall_s=wall, points=int(raw.X.shape[0]), box=steps[-1]["box"] if steps else 1.0,
                              est=[sol.error.Hc, sol.error.Hm], true=true,
                              ref_unc=[ref["Hc_unc"], ref["Hm_unc"]] if ref else [math.nan, math.nan],
+                             ref_kind=ref.get("kind") if ref else None,
                              budget=raw.error.budget, correction=raw.extra.get("film_correction"),
                              solves=[(s["points"], s["box"], s["purpose"]) for s in steps]))
             print(table(rows[-1:]).splitlines()[2], file=sys.stderr, flush=True)  # the row

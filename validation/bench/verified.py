@@ -36,6 +36,7 @@ from _paths import out_dir  # noqa: E402
 
 OUT = out_dir("bench")
 REFS = Path(out_dir("accuracy/references"))
+FAR_REFS = Path(out_dir("accuracy/far_references"))
 
 #: name -> (arguments of `ehl solve`, reference key (contact, M, L, theta) or None)
 CASES: dict[str, tuple[list[str], tuple[str, float, float, float] | None]] = {
@@ -59,16 +60,30 @@ def load() -> float:
     return os.getloadavg()[0]
 
 
-def reference(key: tuple[str, float, float, float] | None) -> dict[str, Any] | None:
-    """The stored deep reference of validation/accuracy for ``key``, or None."""
+def reference(key: tuple[str, float, float, float] | None, refs: str = "sharper") -> dict[str, Any] | None:
+    """The stored deep reference of validation/accuracy for ``key``, or None: ``refs`` "p0"
+    (references.py: P = 0 on boxes up to 8x, extrapolated), "far" (far_references.py: the
+    far-field boundary; circular contacts) or "sharper" (per film, the one of smaller
+    uncertainty; the two agree within their joint uncertainty on every circular case)."""
     if key is None:
         return None
     contact, M, L, theta = key
-    path = REFS / f"{contact}_M{M:g}_L{L:g}_t{theta:g}.json"  # validation/accuracy/references.ref_path
-    if not path.exists():
-        return None
-    rec = json.loads(path.read_text())
-    return rec if rec.get("ok") else None
+    name = f"{contact}_M{M:g}_L{L:g}_t{theta:g}.json"  # validation/accuracy/references.ref_path
+    found = {}
+    for kind, root in (("p0", REFS), ("far", FAR_REFS)):
+        path = root / name
+        if refs in (kind, "sharper") and path.exists():
+            rec = json.loads(path.read_text())
+            if rec.get("ok"):
+                found[kind] = rec
+    if len(found) < 2:
+        return next(iter(found.values()), None)
+    out: dict[str, Any] = {"ok": True, "kind": {}}
+    for k in ("Hc", "Hm"):
+        kind = min(found, key=lambda q: found[q][k + "_unc"])
+        out.update({k + "_ref": found[kind][k + "_ref"], k + "_unc": found[kind][k + "_unc"]})
+        out["kind"][k] = kind
+    return out
 
 
 def ehl_command(code: str | None = None) -> list[str]:
