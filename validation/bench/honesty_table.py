@@ -50,13 +50,20 @@ def table(rows: list[dict[str, Any]]) -> str:
         out.append(f"| ({r['M']:g}, {r['L']:g}, {r['theta']:g}) | {r['accuracy']:g} | {r['status']} | "
                    f"{r['wall_s']:.1f} | {r['points']} | {r['box']:g} | {r['est'][0]:.2%} | {r['est'][1]:.2%} | "
                    f"{t[0]:+.2%} | {t[1]:+.2%} | {r['ref_unc'][0]:.2%} | {r['ref_unc'][1]:.2%} |")
-    within = [abs(t) <= e for r in rows if r["status"] == "converged" and r["true"]
-              for t, e in zip(r["true"], r["est"], strict=True)]
-    ratios = sorted(abs(t) / e for r in rows if r["status"] == "converged" and r["true"]
-                    for t, e in zip(r["true"], r["est"], strict=True))
+    films = [(abs(t), e, u, f"({r['M']:g}, {r['L']:g}, {r['theta']:g}) {k} at {r['accuracy']:g}")
+             for r in rows if r["status"] == "converged" and r["true"]
+             for t, e, u, k in zip(r["true"], r["est"], r["ref_unc"], ("Hc", "Hm"), strict=True)]
+    within = [t <= e for t, e, _, _ in films]
+    ratios = sorted(t / e for t, e, _, _ in films)
     if ratios:
         out.append(f"\nConverged films within their estimate: {sum(within)} of {len(within)}; median "
                    f"true/estimated {ratios[len(ratios) // 2]:.2f}, largest {ratios[-1]:.2f}.")
+        # a reference less certain than the estimate cannot show the film outside it
+        blind = [f"{name} (true {t:.3%}, stated {e:.3%}, reference +- {u:.3%})"
+                 for t, e, u, name in films if t > e and u >= e]
+        if blind:
+            out.append("Outside, but the reference cannot decide (its uncertainty is at least the "
+                       "stated error): " + "; ".join(blind) + ".")
     return "\n".join(out)
 
 
