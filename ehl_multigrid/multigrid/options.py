@@ -223,8 +223,8 @@ class PointOptions(MultigridOptions):
     stretched with the ellipse, hy/hx ~ b/a, square cells as the retry of a diverged solve); ``half`` -- solve Y >= 0 only (symmetric contact); ``coarse_sweeps`` -- relaxations
     per coarsest-grid visit; ``elastic`` -- False for rigid surfaces; ``far_field`` -- the
     boundary holds the far-field pressure of the gap (undeformed, with the elastic far
-    deformation) and the load balance counts the load beyond the box (``point.farfield``;
-    circular contacts of the steady flooded solver only; None: on for every circular contact);
+    deformation) and the load balance counts the load beyond the box (``point.farfield``,
+    ``point.farfield_angular``; the steady flooded solver only; None: on);
     ``alternating`` -- relax
     Y lines after every X-line sweep (None: on every grid when b/a < 0.5, contacts long in the
     rolling direction; wider contacts on their grids of at least 129 points in solves of at

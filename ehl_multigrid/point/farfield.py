@@ -96,11 +96,7 @@ def boundary_excess(P: np.ndarray, hx: float, hy: float, half: bool) -> float:
     return float(hx * hy * np.sum(rows[:, None] * w * P))
 
 
-def far_field_on(far_field: bool | None, elastic: bool, theta: float, thick: bool = False) -> bool:
-    """Whether a point solve takes the far-field boundary: as asked, else for circular contacts
-    (the derivation above is for a round gap) with rigid surfaces or a film thick against the
-    deformation (``thick``: ``point.problem.domain_scale`` > 1), whose pressure spreads over
-    the inlet and whose box error with ``P = 0`` falls only as 1/box."""
-    if far_field is not None:
-        return bool(far_field)
-    return abs(theta - 1.0) < 1e-12
+def far_field_on(far_field: bool | None) -> bool:
+    """Whether a point solve takes the far-field boundary: as asked, else always (circular
+    contacts by this module's closed form, elliptic ones by ``point.farfield_angular``)."""
+    return True if far_field is None else bool(far_field)

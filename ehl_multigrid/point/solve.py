@@ -330,7 +330,7 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     # would fall where Hm's second change is off ((20, 10, theta 4): 0.027 % on 65 points per
     # default box against 0.17 % on 129-257)
     d0 = default_domain(problem, options.elastic)
-    far = far_field_on(options.far_field, options.elastic, problem.theta, domain_scale(problem) > 1.0)
+    far = far_field_on(options.far_field)
     scale = 2 ** max(0, round(math.log2((xmax - xmin) / (d0[1] - d0[0]))))
     n_min = (min_points(problem.M, 1.0 if tight is None else problem.b_over_a) - 1) * scale + 1
     if domain_scale(problem) > 1.0:
@@ -707,7 +707,7 @@ def solve_point(
         # thick films (low M) spread over many inlet lengths: their box may grow further, on a
         # mesh that coarsens with it (the coarse grid follows the inlet length)
         box_limit = THICK_FILM_BOX_LIMIT if domain_scale(pb) > 1.0 else 4.0
-        far = far_field_on(opts.far_field, opts.elastic, pb.theta, domain_scale(pb) > 1.0)
+        far = far_field_on(opts.far_field)
         if not opts.elastic:
             # rigid surfaces keep their box: with the far-field boundary (circular) its error is
             # small (0.2 % from half the box to the whole), without it (elliptic) it falls only
