@@ -96,6 +96,33 @@ def boundary_excess(P: np.ndarray, hx: float, hy: float, half: bool) -> float:
     return float(hx * hy * np.sum(rows[:, None] * w * P))
 
 
+class ClosedFormFarField:
+    """The circular contact's far field (this module's closed form) behind the interface of
+    :class:`~.farfield_angular.AngularFarField` (``pressure``, ``load_outside``)."""
+
+    theta = 1.0
+
+    @staticmethod
+    def pressure(lam: float, X: np.ndarray, Y: np.ndarray, c2: float = 0.0, k: float = 0.0) -> np.ndarray:
+        return far_pressure(lam, X, Y, c2, k)
+
+    @staticmethod
+    def load_outside(lam: float, xmin: float, xmax: float, ymax: float, c2: float = 0.0,
+                     k: float = 0.0) -> float:
+        return load_outside(lam, xmin, xmax, ymax, c2, k)
+
+
+def far_field_for(theta: float):
+    """The far field of ellipticity ``theta``: the closed form for a round gap (on it the film
+    comes closer to the wide box than with the angular solution: docs/accuracy.md), else
+    :func:`~.farfield_angular.angular_far_field`."""
+    if abs(theta - 1.0) <= 1e-12:
+        return ClosedFormFarField()
+    from .farfield_angular import angular_far_field
+
+    return angular_far_field(float(theta))
+
+
 def far_field_on(far_field: bool | None) -> bool:
     """Whether a point solve takes the far-field boundary: as asked, else always (circular
     contacts by this module's closed form, elliptic ones by ``point.farfield_angular``)."""

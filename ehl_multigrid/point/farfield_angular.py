@@ -19,7 +19,7 @@ Reynolds' free-boundary condition ``P = dP/dphi = 0`` on the ray ``phi_c = pi - 
 ``-0.8 cos(phi) + C cosh(3 (phi - pi))``, ``psi`` = 108.44 deg (``point.farfield``). For
 ``theta < 1`` the ``k`` problem is near resonance with that condition (``g_k`` reaches 300 times
 ``f`` at theta 0.25, 1100 at 0.15, and does not reduce the residual of the far-field equation):
-the solver leaves that term out there.
+:class:`AngularFarField` leaves that term out there (``with_deformation``).
 """
 
 from __future__ import annotations
@@ -60,6 +60,11 @@ class AngularFarField:
     g_c: CubicHermiteSpline
     g_k: CubicHermiteSpline
 
+    @property
+    def with_deformation(self) -> bool:
+        """Whether the ``k`` term is used: not below theta 1 (near resonance: module note)."""
+        return self.theta >= 1.0
+
     def terms(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``f, g_c, g_k`` at ``phi`` in ``[0, 2 pi)`` (zero outside the sector)."""
         a = math.pi - np.abs(math.pi - np.asarray(phi, float))  # symmetric about phi = pi
@@ -75,6 +80,7 @@ class AngularFarField:
         rho = np.hypot(X, Yp)
         phi = np.mod(np.arctan2(Yp, X), 2.0 * math.pi)
         f, gc, gk = self.terms(phi)
+        k = k if self.with_deformation else 0.0
         with np.errstate(divide="ignore", invalid="ignore"):
             out = lam * np.maximum(f + c2 * gc / rho**2 + k * gk / rho**3, 0.0) / rho**3
         return np.where(rho > 0.0, out, 0.0)
@@ -88,6 +94,7 @@ class AngularFarField:
         clipped at 0 where the corrections outweigh ``f`` next to the free boundary), times
         ``1/sqrt(theta)`` (``dY = dY'/sqrt(theta)``)."""
         yb = math.sqrt(self.theta) * ymax
+        k = k if self.with_deformation else 0.0
 
         def ray(phi: float) -> float:
             c, s = math.cos(phi), math.sin(phi)

@@ -30,8 +30,8 @@ from ..multigrid.policy import PolicyParameters, RobustnessPolicy, Settings
 from ..multigrid.threads import ThreadBudget, resolve_threads
 from . import numerics as nm
 from .deformation import cell_kernel, make_deformation
-from .farfield import boundary_excess, far_field_on, far_pressure, load_outside
-from .farfield_angular import angular_far_field, hertz_central_deformation
+from .farfield import boundary_excess, far_field_for, far_field_on
+from .farfield_angular import hertz_central_deformation
 from .postprocess import subgrid_min_film
 from .problem import (
     WIDE_CONTACT,
@@ -263,9 +263,9 @@ class PointHierarchy:
                              f"{self.name} solver (its inlet boundary is not the undeformed gap's far field)")
         self.far = self.far_field_ok and far_field_on(options.far_field)
         #: the far field's ``c2 = 2 H00`` and ``k`` of its far deformation ``k/r`` (elastic: the
-        #: deformation constant x load), and its angular functions (point.farfield_angular)
+        #: deformation constant x load), and the far field itself (point.farfield)
         self.far_c2 = self.far_k = 0.0
-        self.far_field = None
+        self.far_field = far_field_for(problem.theta) if self.far else None
         if self.far:
             self.far_k = self.cd * self.g_target
             # H00 = central film - the Hertzian pressure's central deformation (also for thick
@@ -274,14 +274,6 @@ class PointHierarchy:
             self.far_c2 = 2.0 * (rigid_film(problem) if not options.elastic else
                                  float(nijenbanning_central(problem.M, problem.L, problem.theta))
                                  / problem.moes_factor - d0)
-            if abs(problem.theta - 1.0) > 1e-12:
-                # the closed form of point.farfield is for a round gap (and on it holds the
-                # film closer to the wide box than the angular solution: docs/accuracy.md)
-                self.far_field = angular_far_field(float(problem.theta))
-                if problem.theta < 1.0:
-                    # the k term's angular problem is near resonance on wide contacts (its
-                    # function reaches 300x the leading one at theta 0.25): left out there
-                    self.far_k = 0.0
         #: squeeze coefficient of a BDF time step (the new-time part ``ct rho H`` of
         #: ``d(rho H)/dT``; the history part goes into the finest grid's ``f``); 0: steady
         self.ct = 0.0
@@ -325,16 +317,12 @@ class PointHierarchy:
                                                  and nk >= ALTERNATE_FROM)
             lev.Pb, lev.far_load = None, 0.0
             if self.far:
-                Pb = (far_pressure(self.lam, X[None, :], Y[:, None], self.far_c2, self.far_k)
-                      if self.far_field is None else
-                      self.far_field.pressure(self.lam, X[None, :], Y[:, None], self.far_c2, self.far_k))
+                Pb = self.far_field.pressure(self.lam, X[None, :], Y[:, None], self.far_c2, self.far_k)
                 inner = (slice(0 if opt.half else 1, -1), slice(1, -1))
                 Pb[inner] = 0.0
                 lev.Pb = Pb
-                lev.far_load = ((load_outside(self.lam, self.xmin, self.xmax, self.ymax, self.far_c2, self.far_k)
-                                 if self.far_field is None else
-                                 self.far_field.load_outside(self.lam, self.xmin, self.xmax, self.ymax,
-                                                             self.far_c2, self.far_k))
+                lev.far_load = (self.far_field.load_outside(self.lam, self.xmin, self.xmax, self.ymax,
+                                                            self.far_c2, self.far_k)
                                 - boundary_excess(Pb, hx, hy, opt.half))
             self.levels.append(lev)
         self.nfine = self.levels[-1].npts

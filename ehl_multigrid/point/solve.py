@@ -223,8 +223,8 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
 RIGID_BOX_NOTE = ("rigid surfaces: far upstream the film grows as r^2 and the pressure falls only as "
                   "r^-3, so the load outside the box, and the box error, fall about as 1/box (circular "
                   "(20, 0) without its far-field boundary: Hc +7.5 % from twice the box, +2.6 % more from "
-                  "four times); wider boxes are not tried, and the far-field boundary (point.farfield) "
-                  "is derived for circular contacts only")
+                  "four times); wider boxes are not tried: leave the far-field boundary on "
+                  "(far_field, point.farfield) to bound it")
 
 
 #: statuses of a failed start that the retry from a converged neighbour answers
@@ -709,10 +709,10 @@ def solve_point(
         box_limit = THICK_FILM_BOX_LIMIT if domain_scale(pb) > 1.0 else 4.0
         far = far_field_on(opts.far_field)
         if not opts.elastic:
-            # rigid surfaces keep their box: with the far-field boundary (circular) its error is
-            # small (0.2 % from half the box to the whole), without it (elliptic) it falls only
-            # about as 1/box (RIGID_BOX_NOTE); a wider box on the coarsest mesh the rigid inlet
-            # length needs costs more than it gains (1025 points on twice the box: 125 s)
+            # rigid surfaces keep their box: with the far-field boundary its error is small
+            # (circular: 0.2 % from half the box to the whole), without it (far_field=False) it
+            # falls only about as 1/box (RIGID_BOX_NOTE); a wider box on the coarsest mesh the
+            # rigid inlet length needs costs more than it gains (1025 points on twice the box: 125 s)
             box_limit = 1.0
 
         def first(n: int) -> tuple[int, float]:
