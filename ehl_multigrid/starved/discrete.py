@@ -43,9 +43,12 @@ from ..line.discrete import FINE_H, add_wedge_band
 def face_weights(i, theta, order, starved):
     """Weights ``(w_i, w_{i-1})`` of the upwind face value ``Q_{i+1/2} = w_i q_i + w_{i-1} q_{i-1}``:
     second order (1.5, -0.5); with a starved inlet, first order (1, 0) where either point is
-    not full (a front or a cavitated zone: the second-order extrapolation across the jump of
-    ``theta`` at the meniscus undershoots -- measured: a meniscus cell emptied below the
-    supplied flux and a relaxation stuck at a residual of 0.4); the first face: ``q_0`` at a
+    well below full (a front or a cavitated zone: the second-order extrapolation across the
+    jump of ``theta`` at the meniscus undershoots -- measured: a meniscus cell emptied below
+    the supplied flux and a relaxation stuck at a residual of 0.4), the share of second order
+    falling continuously with the content (:func:`second_order_share`: a switch at full made
+    the residual jump when a pressurised point's content fell below 1, and a dent's steps
+    stalled with a point flipping between the regimes); the first face: ``q_0`` at a
     starved inlet, ``(q_0 + q_1)/2`` at a flooded one (the flooded solver's first-order
     difference at i = 1). With a flooded inlet the scheme is the flooded solver's everywhere
     (``theta`` only enters behind the rupture point)."""
@@ -53,9 +56,57 @@ def face_weights(i, theta, order, starved):
         if starved or order == 1:
             return 1.0, 0.0
         return 0.5, 0.5  # weights of (q_0, q_1): see wedge_row
-    if order == 2 and (not starved or (theta[i] >= 1.0 and theta[i - 1] >= 1.0)):
+    if order == 2 and not starved:
         return 1.5, -0.5
+    if order == 2:
+        b = second_order_share(theta[i]) * second_order_share(theta[i - 1])
+        return 1.0 + 0.5 * b, -0.5 * b
     return 1.0, 0.0
+
+
+#: film content below which a starved inlet's face value is first order (see face_weights)
+THETA_FIRST_ORDER = 0.9
+
+
+@njit(cache=True)
+def second_order_share(t):
+    """Share of the second-order face value a point of film content ``t`` allows: 1 in a
+    full film, 0 at or below :data:`THETA_FIRST_ORDER`, linear between (continuous, so that
+    the residual is a continuous function of ``theta``)."""
+    if t >= 1.0:
+        return 1.0
+    if t <= THETA_FIRST_ORDER:
+        return 0.0
+    return (t - THETA_FIRST_ORDER) / (1.0 - THETA_FIRST_ORDER)
+
+
+@njit(cache=True)
+def second_order_slope(t):
+    """Derivative of :func:`second_order_share` (from below at ``t = 1``: the content of a
+    full point can only fall)."""
+    if THETA_FIRST_ORDER < t <= 1.0:
+        return 1.0 / (1.0 - THETA_FIRST_ORDER)
+    return 0.0
+
+
+@njit(cache=True)
+def wedge_share_terms(i, theta, q, order, starved):
+    """``d(Q_{i+1/2} - Q_{i-1/2})/d theta_{i-mm}``, ``mm = 0, 1, 2``, through the faces'
+    second-order shares alone (the part :func:`wedge_row`'s weights times ``rho H`` leave out;
+    ``q = rho H``); zero unless the inlet is starved and the scheme second order."""
+    e0 = 0.0
+    e1 = 0.0
+    e2 = 0.0
+    if order != 2 or not starved:
+        return e0, e1, e2
+    d = 0.5 * (theta[i] * q[i] - theta[i - 1] * q[i - 1])  # face i+1/2
+    e0 += d * second_order_slope(theta[i]) * second_order_share(theta[i - 1])
+    e1 += d * second_order_share(theta[i]) * second_order_slope(theta[i - 1])
+    if i >= 2:  # face i-1/2 (the first face of a starved inlet is first order)
+        d = 0.5 * (theta[i - 1] * q[i - 1] - theta[i - 2] * q[i - 2])
+        e1 -= d * second_order_slope(theta[i - 1]) * second_order_share(theta[i - 2])
+        e2 -= d * second_order_share(theta[i - 1]) * second_order_slope(theta[i - 2])
+    return e0, e1, e2
 
 
 @njit(cache=True)
@@ -105,10 +156,11 @@ def elrod_adams_residual(P, H, rho, theta, eps, h, f, order, starved):
 
 
 @njit(cache=True)
-def march_cavitated_content(P, theta, q, eps, f, h, order, starved, cav):
+def march_cavitated_content(P, theta, q, eps, f, h, order, starved, cav, ct, hist):
     """Film content ``theta_i`` of the cavitated points ``cav`` (ascending) that makes row ``i``
     of :func:`elrod_adams_residual` zero given its upwind neighbours and ``P`` (in place,
-    clipped to [0, 1]); ``q = rho H``."""
+    clipped to [0, 1]); ``q = rho H``; a time step's rows add ``ct theta_i q_i - hist_i``
+    (``ct = 0`` for a steady problem)."""
     ih2 = 1.0 / (h * h)
     for k in range(cav.shape[0]):
         i = cav[k]
@@ -119,7 +171,7 @@ def march_cavitated_content(P, theta, q, eps, f, h, order, starved, cav):
         rest = c1 * theta[i - 1] * q[i - 1]
         if c2 != 0.0:
             rest += c2 * theta[i - 2] * q[i - 2]
-        t = (h * (pois - f[i]) - rest) / (c0 * q[i])
+        t = (h * (pois - f[i] + hist[i]) - rest) / ((c0 + h * ct) * q[i])
         theta[i] = min(max(t, 0.0), 1.0)
 
 
@@ -166,7 +218,9 @@ def band_jacobian(P, theta, q0_fixed, H, rho, drho, eps, K, h, order, elastic, b
 
     ``AP[i, band + 1 + d] = dL_i/dP_{i+d}`` for ``|d| <= band + 1``, with ``eps`` and the film
     content frozen (Picard) and the film's elastic dependence on ``P`` kept within the band;
-    ``AT[i, mm] = dL_i/dtheta_{i-mm} = -c_mm rho H/h`` (upwind weights, ``mm = 0, 1, 2``).
+    ``AT[i, mm] = dL_i/dtheta_{i-mm} = -c_mm rho H/h`` (upwind weights, ``mm = 0, 1, 2``; the
+    faces' second-order shares held: with their derivative, which the dense Newton keeps, the
+    coupled starved start of (20, 10) fed 0.05 on 257 points diverged).
     ``q0_fixed``: a starved inlet's flux ``q_0 = Hoil`` does not depend on ``P``, and no
     pressure flow passes its first face.
     """

@@ -57,6 +57,11 @@ class StarvedLevel(LineLevel):
             return 1.0
         return self.hoil / H_inlet
 
+    def content_rate(self) -> tuple[float, np.ndarray]:
+        """``(ct, hist)`` of the time derivative ``d(theta rho H)/dT = ct theta rho H - hist``
+        in the rows of this grid: ``(0, 0)`` for a steady problem."""
+        return 0.0, np.zeros(self.n)
+
     def state(self, P: np.ndarray | None = None, H0: float | None = None,
               theta: np.ndarray | None = None) -> StarvedState:
         P = self.P if P is None else P

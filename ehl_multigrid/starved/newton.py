@@ -11,9 +11,8 @@ import warnings
 import numpy as np
 import scipy.linalg
 
-from ..line.discrete import fluid_state
 from ..multigrid.threads import serial_blas
-from .discrete import elrod_adams_residual, march_cavitated_content, wedge_row
+from .discrete import march_cavitated_content, wedge_row, wedge_share_terms
 from .level import StarvedLevel
 
 
@@ -30,12 +29,9 @@ def _residual(lv: StarvedLevel, P: np.ndarray, theta: np.ndarray, H0: float) -> 
 def _jacobian(lv: StarvedLevel, P: np.ndarray, theta: np.ndarray, H0: float, Kmat: np.ndarray):
     """``(r, dL/dP (n x n), dL/dH0, dL/dtheta (n x n, banded), theta with the inlet value)``."""
     n, h = lv.n, lv.h
-    W = lv.deform(P)
-    H, rho, drho, lne, dlne, eps = fluid_state(P, W, lv.X, H0, lv.par, lv.lam, lv.elastic)
-    th = theta.copy()
-    th[0] = lv.inlet_theta(H[0])
+    st = lv.state(P, H0, theta)  # the grid's own film (a time step's moving geometry included)
+    H, rho, drho, dlne, eps, r, th = st.H, st.rho, st.drho, st.dlne, st.eps, st.r, st.theta
     starved = bool(th[0] < 1.0)
-    r, _ = elrod_adams_residual(P, H, rho, th, eps, h, lv.f, lv.order, starved)
     dH = -Kmat / np.pi if lv.elastic else np.zeros((n, n))
     pos = H > 0.0
     Hs = np.where(pos, H, 1.0)
@@ -66,13 +62,21 @@ def _jacobian(lv: StarvedLevel, P: np.ndarray, theta: np.ndarray, H0: float, Kma
         dL[1] += ih2 * dem[0] * (P[1] - P[0])
         dL[1, 1] += ih2 * em[0]
         dL[1, 0] -= ih2 * em[0]
+    q = rho * H
     for k in range(1, n - 1):
+        e = wedge_share_terms(k, th, q, lv.order, starved)
+        for mm in range(3 if k >= 2 else 2):
+            dT[k, k - mm] -= e[mm] / h
         c = wedge_row(k, th, lv.order, starved)
         for mm in range(3):
             if c[mm] == 0.0:
                 continue
             dL[k] -= c[mm] * dq[k - mm] / h
             dT[k, k - mm] -= c[mm] * rho[k - mm] * H[k - mm] / h
+    ct, _ = lv.content_rate()
+    if ct != 0.0:  # a time step's rows carry + ct theta rho H - hist
+        dL[i] -= ct * dq[i]
+        dT[i, i] -= ct * rho[i] * H[i]
     return r, dL, dT, th
 
 
@@ -195,5 +199,7 @@ def exact_cavitation(lv: StarvedLevel) -> None:
     lv.P[cav] = 0.0
     st = lv.state()
     th = st.theta.copy()
-    march_cavitated_content(lv.P, th, st.rho * st.H, st.eps, lv.f, lv.h, lv.order, bool(th[0] < 1.0), cav)
+    ct, hist = lv.content_rate()
+    march_cavitated_content(lv.P, th, st.rho * st.H, st.eps, lv.f, lv.h, lv.order, bool(th[0] < 1.0), cav,
+                            ct, hist)
     lv.theta = th

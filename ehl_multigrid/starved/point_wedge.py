@@ -17,7 +17,8 @@ Where the film is full the scheme is the point core's second-order upwind differ
 is the central first face), so a flooded inlet reproduces the core's default (second-order)
 flooded film. The faces telescope: the sum of the residuals is the imbalance of the boundary
 flows, whatever the face orders (discrete mass conservation). The line contact
-(:func:`ehl_multigrid.starved.discrete.face_weights`) asks for both points full; here the
+(:func:`ehl_multigrid.starved.discrete.face_weights`) blends to first order as either point's
+content falls below full (continuously, for its dense Newton); here the
 order of a face must not depend on the film content of the point whose balance it closes
 (see :func:`face_value`): only the first cavitated point's outgoing face extrapolates across
 the rupture, where ``q`` is continuous.

@@ -71,6 +71,9 @@ class CavitatedStepLevel(StarvedLevel):
         scale += float(np.sum(np.abs(squeeze[1:-1])))
         return StarvedState(H, rho, drho, lne, dlne, eps, r, scale, th, q)
 
+    def content_rate(self) -> tuple[float, np.ndarray]:
+        return self.ct, self.hist
+
     def squeeze(self, st: StarvedState) -> np.ndarray:
         """``d(theta rho H)/dT`` of the state (the BDF difference)."""
         return self.ct * st.q - self.hist
@@ -107,9 +110,12 @@ class CavitatedStepHierarchy(TimeStepGrids, StarvedLineHierarchy):
 
     def last_resort(self, k: int, solver: Any) -> bool:
         """A stalled step (the free boundary in a dent flips between regimes from cycle to
-        cycle, so the coarse-grid corrections undo each other): finish it by fine-grid
-        relaxation alone, with the film constant following the load, for at most
-        :data:`FINISH_SWEEPS` sweeps."""
+        cycle, so the coarse-grid corrections undo each other): finish it by the starved
+        solver's dense semismooth Newton on the finest grid (its rows with the squeeze term)
+        where the grid is small enough, else by fine-grid relaxation alone, with the film
+        constant following the load, for at most :data:`FINISH_SWEEPS` sweeps."""
+        if StarvedLineHierarchy.last_resort(self, k, solver):
+            return True
         fin = self.levels[k]
         s = solver.settings
         tol, tol_load = solver.options.tol, solver.options.tol_load
