@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -154,3 +155,38 @@ def starved_dents(solve: Callable[..., Any], problem: Any, feature: Callable[...
     rows = dent_rows(lambda depth, S: solve(problem, feature(-depth, 0.5, x0=-1.6), slide_roll=S,
                                             t_end=2.7 / (1.0 + 0.5 * S), **kw), dents, Hc, points)
     return Hc, Hm, rows
+
+
+def supply_steps(solve: Callable[..., Any], problem: Any, hoil: float, points: int,
+                 steps: Sequence[tuple[float, float]], dt: float = 0.1) -> list[dict[str, Any]]:
+    """Mass-conserving runs of ``solve`` (the line or point transient solver) on smooth
+    surfaces fed ``hoil``, the supplied layer stepped at T = 0.05 to each ``(after, t_end)``
+    of ``steps``: Hc(T) against the starved steady film of the new layer, the mass error and
+    the steps accepted as stalled."""
+    rows = []
+    for after, t_end in steps:
+        row: dict[str, Any] = {"from": hoil, "to": after, "points": points}
+        try:  # the starved steady film of the new layer, where its coupled solve converges
+            row["Hc_new_steady"] = float(solve(problem, None, points=points, steps=1, dt=0.05,
+                                               cavitation="mass-conserving", hoil=after,
+                                               snapshot_every=10**5).Hc[0])
+        except Exception as exc:
+            row["new_steady_failed"] = str(exc).splitlines()[0]
+        t0 = time.perf_counter()
+        try:
+            res = solve(problem, None, points=points, dt=dt, t_end=t_end, cavitation="mass-conserving",
+                        hoil=lambda T, a=after: hoil if T < 0.05 else a, snapshot_every=10**5)
+            row["completed"] = True
+        except Exception as exc:
+            res = getattr(exc, "partial", None)
+            row.update({"completed": False, "failed": str(exc).splitlines()[0]})
+        row["wall_s"] = time.perf_counter() - t0
+        if res is not None and res.steps:
+            err = np.abs(np.asarray(res.series["mass_error"][1:]))
+            row.update({"Hc_before": float(res.Hc[0]), "T": res.T.tolist(), "Hc": res.Hc.tolist(),
+                        "mass_error_max": float(np.max(err)), "stalled": int(np.sum(res.stalled)),
+                        "Hc_at": {f"{T:g}": float(np.interp(T, res.T, res.Hc))
+                                  for T in (3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 10.0) if T <= res.T[-1]}})
+        rows.append(row)
+        print({k: v for k, v in row.items() if k not in ("T", "Hc")})
+    return rows

@@ -427,7 +427,7 @@ STARVED_HOIL = 0.05
 #: dents through the starved contact: (depth, slip S)
 STARVED_DENTS = ((0.1, 0.0), (0.1, 1.0), (0.2, 0.0), (0.2, 1.0))
 #: supply steps: (layer after the step, end time)
-SUPPLY_STEPS = ((0.025, 6.0), (0.075, 8.0))
+SUPPLY_STEPS = ((0.025, 8.0), (0.075, 10.0))
 
 
 def part_starved(quick: bool) -> None:
@@ -439,30 +439,8 @@ def part_starved(quick: bool) -> None:
     n = 129 if quick else 257
     Hc0, Hm0, dents = common.starved_dents(solve_transient_line, pb, Bump, STARVED_HOIL, n,
                                            STARVED_DENTS[:1] if quick else STARVED_DENTS)
-    steps = []
-    for after, t_end in SUPPLY_STEPS[:1] if quick else SUPPLY_STEPS:
-        row = {"from": STARVED_HOIL, "to": after, "points": n, "Hc_before": Hc0}
-        try:  # the starved steady film of the new layer, where its coupled solve converges
-            row["Hc_new_steady"] = float(solve_transient_line(
-                pb, None, points=n, steps=1, dt=0.05, cavitation="mass-conserving", hoil=after,
-                snapshot_every=10**5).Hc[0])
-        except Exception as exc:
-            row["new_steady_failed"] = str(exc).splitlines()[0]
-        try:
-            res = solve_transient_line(pb, None, points=n, dt=0.1, t_end=t_end, cavitation="mass-conserving",
-                                       hoil=lambda T, a=after: STARVED_HOIL if T < 0.05 else a,
-                                       snapshot_every=10**5)
-            row["completed"] = True
-        except Exception as exc:
-            res = getattr(exc, "partial", None)
-            row.update({"completed": False, "failed": str(exc).splitlines()[0]})
-        if res is not None and res.steps:
-            row.update({"T": res.T.tolist(), "Hc": res.Hc.tolist(),
-                        "mass_error_max": float(np.max(np.abs(res.series["mass_error"][1:]))),
-                        "Hc_at": {f"{T:g}": float(np.interp(T, res.T, res.Hc)) for T in (3.0, 4.0, 5.0, 5.5, 6.0, 8.0)
-                                  if T <= res.T[-1]}})
-        steps.append(row)
-        print({k: v for k, v in row.items() if k not in ("T", "Hc")})
+    steps = common.supply_steps(solve_transient_line, pb, STARVED_HOIL, n,
+                                SUPPLY_STEPS[:1] if quick else SUPPLY_STEPS)
     save("starved" + ("_quick" if quick else ""), {"M": 20, "L": 10, "hoil": STARVED_HOIL, "Hc_starved": Hc0,
                                                    "Hm_starved": Hm0, "dents": dents, "supply_steps": steps})
 

@@ -501,18 +501,23 @@ def part_cavitation(quick: bool) -> None:
 #: carries about 0.5) and the dents through it: (depth, slip S)
 STARVED_HOIL = 0.1
 STARVED_DENTS = ((0.2, 0.0), (0.2, 1.0), (0.4, 1.0))
+#: supply steps: (layer after the step, end time)
+SUPPLY_STEPS = ((0.05, 7.0),)
 
 
 def part_starved(quick: bool) -> None:
     """(20, 10) fed a layer ``STARVED_HOIL`` at the inlet, mass-conserving, 129^2 (65^2 quick),
     default steps and tolerances: dents of width 0.5 from X = -1.6 until they are at X = 1.1,
-    the film's extremes against the starved steady film, the mass error and stalls."""
+    the film's extremes against the starved steady film, the mass error and stalls; the supply
+    stepped at T = 0.05 to half the layer, Hc(T) against the new starved steady film."""
     pb = problem_from_moes(20, 10)
     n = 65 if quick else 129
     Hc0, Hm0, rows = common.starved_dents(solve_transient_point, pb, Dent2D, STARVED_HOIL, n,
                                           STARVED_DENTS[:1] if quick else STARVED_DENTS)
+    steps = common.supply_steps(solve_transient_point, pb, STARVED_HOIL, n, SUPPLY_STEPS)
     save("point_starved" + ("_quick" if quick else ""), {"M": 20, "L": 10, "hoil": STARVED_HOIL,
-                                                         "Hc_starved": Hc0, "Hm_starved": Hm0, "rows": rows})
+                                                         "Hc_starved": Hc0, "Hm_starved": Hm0, "rows": rows,
+                                                         "supply_steps": steps})
 
 
 def part_adaptive(quick: bool) -> None:
