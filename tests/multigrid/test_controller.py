@@ -25,6 +25,16 @@ def test_choose_takes_a_cheaper_candidate_within_the_sharpness_of_the_best_predi
     assert choose([fine], 0.005, 0.0105) is None
 
 
+def test_a_cheaper_candidate_that_gains_too_little_does_not_hide_one_that_gains_enough():
+    # circular (5, 0) at 1 % on 513 points and four times the box, error 1.18 %: a tolerance
+    # step predicted 1.11 %, within the sharpness of the finer grid's 1.02 %, but short of a
+    # 10 % gain; the finer grid gains enough
+    fine = Candidate("points", Resolution(1025, box=4.0, tol=0.1), 1, 0.0102)
+    tol = Candidate("tolerance", Resolution(513, box=4.0, tol=0.01), 0, 0.0111)
+    assert choose([fine, tol], 0.01, 0.0118) is fine
+    assert choose([tol], 0.01, 0.0118) is None
+
+
 def test_choose_takes_a_candidate_with_an_unknown_prediction_first():
     measured = Candidate("points", Resolution(513), 1, 0.001)
     needed = Candidate("nz", Resolution(257, nz=16), 0, math.nan)
