@@ -685,6 +685,14 @@ def test_an_asymptotic_grid_sequence_is_extrapolated_and_an_irregular_one_is_not
         value, err = extrapolated(w)
         assert abs(value - 1.0) == pytest.approx(2.0 / 3.0 * abs(a) * hs[-1])
         assert abs(value - 1.0) <= err < 2.0 * abs(value - 1.0)
+    # a finest ratio of 4 after 4.59 (FMG films with algebraic errors, Barus (500, 5, theta 0.25)
+    # on 1025 points): not taken as exact, at least half the term of the ratio before is stated
+    d = [0.00959, 0.00307, 0.000668, 0.000167]
+    u = [0.03]
+    for x in d:
+        u.append(u[-1] + x)
+    value, err = extrapolated(u)
+    assert err >= 0.999 * GRID_SAFETY * 0.5 * abs(0.00307 / 0.000668 - 4.0) / 3.0 * 0.000167
     # ratios outside 2^1.5 - 2^2.5 (first order; a sign change; too few grids): no extrapolation
     assert extrapolated([1.0 - h for h in hs]) is None
     assert extrapolated([1.0, 1.1, 1.05, 1.06]) is None
