@@ -161,8 +161,8 @@ def extrapolated(values: list[float]) -> tuple[float, float] | None:
     if 0.0 in d[1:] or not all(lo <= a / b <= hi for a, b in zip(d, d[1:], strict=False)):
         return None
     # a smooth higher-order term at most halves the ratio's distance from 4 per grid: a finest
-    # ratio closer than that is a coincidence of the FMG films' algebraic errors (Barus (500, 5,
-    # theta 0.25) on 1025 points: Hm ratios 4.59, 4.00 stated 0.006 %; converged films 4.14, 6.9)
+    # ratio closer than that is a coincidence of the FMG films' algebraic errors
+    # (docs/accuracy.md, "Extrapolated films")
     term = max(_next_order(d[-2] / d[-1]), 0.5 * _next_order(d[-3] / d[-2]))
     return v[-1] + d[-1] / 3.0, GRID_SAFETY * max(term, EXTRAPOLATION_FLOOR) * abs(d[-1])
 

@@ -143,8 +143,7 @@ def choose(candidates: list[Candidate], accuracy: float, now: float, hope: float
         lowest = min(c.predicted for c in ok)
         # an unknown current error (NaN) is improved by any finite prediction; a cheaper
         # candidate that gains too little does not hide a dearer one that gains enough
-        # (circular (5, 0) at 1 % on 513 points, four times the box: a tolerance step predicted
-        # 1.11 % and the finer grid 1.02 % from 1.18 %)
+        # (docs/accuracy.md, the controller's rules)
         gaining = [c for c in ok if c.predicted <= PREDICTION_SHARPNESS * lowest
                    and not c.predicted >= REQUIRED_GAIN * now]
         if not gaining:
