@@ -64,7 +64,8 @@ PHYSICS_GROUP = "ehl.physics"
 PART_NAMES = {"algebraic": "iteration"}
 #: options of a transient run besides the multigrid options of its time steps
 TRANSIENT_RUN_KEYS = ("dt", "steps", "t_end", "scheme", "snapshot_every", "accept_stall", "xmin",
-                      "xmax", "time_error", "checkpoint", "resume", "cavitation", "time_tol")
+                      "xmax", "time_error", "checkpoint", "resume", "cavitation", "time_tol",
+                      "mass_tol")
 #: options of a scene's steady or starved solve that choose the model rather than the numerics
 #: (the scene's ``[solver.ehl]`` table applies below them; a MoesProblem carries its own)
 MODEL_KEYS = ("viscosity", "density")

@@ -270,6 +270,13 @@ class MultilevelSolver:
             return False
         return self._confirmed_at != len(self.history)
 
+    def wants_cycles(self) -> bool:
+        """The hierarchy's own criterion once the tolerances hold (its ``wants_cycles(solver)``,
+        e.g. the oil balance of a mass-conserving time step): True asks for another finest-grid
+        cycle within ``max_cycles``; the solve stays converged when the limit ends them."""
+        wants = getattr(self.hierarchy, "wants_cycles", None)
+        return bool(wants is not None and wants(self))
+
     def confirm(self, k: int, c: int) -> None:
         """One W cycle on grid ``k`` (then back to the solve's cycle type unless the policy
         changed it meanwhile)."""
@@ -401,11 +408,12 @@ class MultilevelSolver:
                 self._finest_phase = True
                 while extra < o.max_cycles:
                     if self.converged():
-                        if not self.needs_confirmation():
+                        if self.needs_confirmation():
+                            self.confirm(top, o.cycles + extra)
+                            extra += 1
+                            continue
+                        if not self.wants_cycles():
                             break
-                        self.confirm(top, o.cycles + extra)
-                        extra += 1
-                        continue
                     self.run_cycle(top, o.cycles + extra)
                     extra += 1
                     if o.film_tol is not None and not self.converged() and self.films_at_floor():

@@ -40,6 +40,7 @@ from ..starved.level import StarvedLevel, StarvedState
 from ..starved.line import StarvedLineHierarchy
 from .discrete import add_content_squeeze
 from .hierarchy import TimeStepGrids
+from .oil_balance import OilBalanceCycles
 
 #: most fine-grid relaxation sweeps that finish a stalled step
 FINISH_SWEEPS = 400
@@ -86,7 +87,7 @@ class CavitatedStepLevel(StarvedLevel):
         return AP, AT
 
 
-class CavitatedStepHierarchy(TimeStepGrids, StarvedLineHierarchy):
+class CavitatedStepHierarchy(OilBalanceCycles, TimeStepGrids, StarvedLineHierarchy):
     """Grids of one mass-conserving time step (driver protocol): the flooded solver's grids
     (no starved FMG start grid: a step starts on the finest grid from the previous step)."""
 
@@ -107,6 +108,11 @@ class CavitatedStepHierarchy(TimeStepGrids, StarvedLineHierarchy):
         self.starved_inlet = bool(self.hoil < self.flux_flooded)
         for lv in self.levels:
             lv.hoil, lv.starved_inlet = self.hoil, self.starved_inlet
+
+    def step_mass_error(self) -> float:
+        lv = self.fine
+        st = lv.state()
+        return domain_mass_error(lv.P, st.theta, st.q, st.eps, lv.squeeze(st), lv.h, lv.order)
 
     def last_resort(self, k: int, solver: Any) -> bool:
         """A stalled step (the free boundary in a dent flips between regimes from cycle to

@@ -123,8 +123,10 @@ def same_run(saved: dict[str, Any], run: dict[str, Any]) -> list[str]:
     def norm(v: Any) -> str:
         return json.dumps(v, sort_keys=True, default=str)
 
-    # files written before these options existed ran the projection at fixed steps
-    saved = {**{k: v for k, v in (("cavitation", "projection"), ("time_tol", None)) if k in run},
+    # files written before these options existed ran the projection at fixed steps, without
+    # the oil-balance cycles
+    saved = {**{k: v for k, v in (("cavitation", "projection"), ("time_tol", None), ("mass_tol", None))
+                if k in run},
              **saved}
     out = []
     for key in sorted(set(saved) | set(run)):

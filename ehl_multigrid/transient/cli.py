@@ -22,6 +22,7 @@ from ..model.paths import output_file, record_outputs, safe_stem, writable_dir
 from ..model.scene import load_scene
 from .checkpoint import EVERY_S, Checkpoint, read_checkpoint
 from .defaults import DEFAULT_POINTS, DEFAULT_XMIN
+from .oil_balance import MASS_TOL
 from .stepping import SCHEMES
 from .supply import supply_notes
 
@@ -30,6 +31,11 @@ MAX_POINTS = 4097
 #: largest point-contact grid (points along X) of the command line: a pass at 513^2 takes
 #: about an hour
 MAX_POINT_POINTS = 513
+
+
+def _mass_tol(text: str) -> float | None:
+    """``--mass-tol``: a number, or ``none`` (checked by the solver)."""
+    return None if text.strip().lower() == "none" else float(text)
 
 
 def register(subparsers: Any) -> None:
@@ -62,6 +68,10 @@ def register(subparsers: Any) -> None:
                    help="the projection P >= 0 (default), or mass-conserving Elrod-Adams "
                         "cavitation (oil conserved where the film ruptures and reforms, e.g. "
                         "behind a deep dent; takes a scene's finite [supply] hoil)")
+    p.add_argument("--mass-tol", type=_mass_tol, default=MASS_TOL, metavar="TOL",
+                   help=f"mass-conserving cavitation: the oil a step may gain or lose over the "
+                        f"inflow; steps take more cycles until it holds (default {MASS_TOL:g}; "
+                        f"'none': the step tolerances alone)")
     p.add_argument("--xmin", type=float, default=DEFAULT_XMIN,
                    help=f"inlet X = x/b (point: x/a) (default {DEFAULT_XMIN:g})")
     p.add_argument("--threshold", type=float, default=None,
@@ -162,7 +172,7 @@ def _front_door(scene: Any, args: argparse.Namespace, points: int, checkpoint: C
     return front.solve(scene, physics="transient", accuracy=None, options={
         "points": points, "dt": args.dt, "steps": args.steps, "t_end": args.t_end, "scheme": args.scheme,
         "snapshot_every": args.snapshot_every, "xmin": args.xmin, "checkpoint": checkpoint,
-        "resume": resume, "cavitation": args.cavitation,
+        "resume": resume, "cavitation": args.cavitation, "mass_tol": args.mass_tol,
         **({"time_tol": args.time_tol} if args.time_tol is not None else {}),
         **({"time_error": True} if getattr(args, "time_error", False) else {})})
 
@@ -192,7 +202,8 @@ def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes:
     h5 = output_file(out, stem, ".h5")
     run = {"scene": scene.to_dict(), "points": points, "dt": args.dt, "steps": args.steps,
            "t_end": args.t_end, "scheme": args.scheme, "snapshot_every": args.snapshot_every,
-           "xmin": args.xmin, "cavitation": args.cavitation, "time_tol": args.time_tol}
+           "xmin": args.xmin, "cavitation": args.cavitation, "time_tol": args.time_tol,
+           "mass_tol": args.mass_tol}
     resume = read_checkpoint(h5, run) if args.resume else None
     for text in warnings:
         print(f"ehl transient: warning: {text}", file=sys.stderr)
@@ -272,7 +283,7 @@ def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: 
         payload["mass_balance_max"] = summary["mass_balance_max"]
     # oil gained per step over the inflow (mass-conserving cavitation; NaN: projection)
     payload.update({"cavitation": summary["cavitation"], "mass_error_max": summary["mass_error_max"],
-                    "mass_error_mean": summary["mass_error_mean"]})
+                    "mass_error_mean": summary["mass_error_mean"], "mass_tol": summary["mass_tol"]})
     payload.update({"wall_per_step_s": summary["wall_per_step_s"], "wall_s": summary["wall_s"]})
     if time_part is not None:
         payload["time_error"] = time_part

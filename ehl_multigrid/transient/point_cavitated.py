@@ -43,6 +43,7 @@ from ..point.fas import Y_JD_MODE, Y_OMEGA, Y_OMEGA_JD, Level, sweep_switch
 from ..point.problem import PointProblem
 from ..starved import point as starved_point
 from ..starved.point import COARSE_THETA_MESH, StarvedPointHierarchy, face_fluxes
+from .oil_balance import OilBalanceCycles
 from .point_hierarchy import PointTimeStepGrids
 
 #: most fine-grid relaxation sweeps that finish a stalled step (:meth:`CavitatedPointStepHierarchy.last_resort`)
@@ -51,7 +52,7 @@ FINISH_SWEEPS = 400
 FINISH_CHECK = 10
 
 
-class CavitatedPointStepHierarchy(PointTimeStepGrids, StarvedPointHierarchy):
+class CavitatedPointStepHierarchy(OilBalanceCycles, PointTimeStepGrids, StarvedPointHierarchy):
     """Grids of one mass-conserving time step of the point contact, coarsest first (driver
     protocol): the starved point hierarchy with the moving geometry and the squeeze term.
     The finest grid holds the start iterate (P, H00 and ``theta``) when the driver starts
@@ -103,6 +104,9 @@ class CavitatedPointStepHierarchy(PointTimeStepGrids, StarvedPointHierarchy):
         if free:
             self._release(lev)
             self._march(lev)
+
+    def step_mass_error(self) -> float:
+        return point_domain_mass_error(self)
 
     def squeeze(self) -> np.ndarray:
         """``d(theta rho H)/dT`` on the finest grid (the BDF difference)."""

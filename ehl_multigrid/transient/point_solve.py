@@ -44,6 +44,7 @@ from ..point.solve import solve_fas
 from ..starved.point import STARVED_MAX_CYCLES_2, STARVED_TOL, solve_starved_point
 from .checkpoint import Checkpoint, restore
 from .features import feature_speed
+from .oil_balance import MASS_TOL, require_mass_tol
 from .point_cavitated import CavitatedPointStepHierarchy, cavitated_film, point_domain_mass_error
 from .point_features import PointFeature, Smooth2D
 from .point_hierarchy import TransientPointHierarchy
@@ -205,7 +206,8 @@ def solve_transient_point(
     on_film_collapse: str = "raise",
     callback: Callable[[dict[str, Any]], None] | None = None, checkpoint: Checkpoint | None = None,
     resume: dict[str, Any] | None = None, cavitation: str = "projection",
-    hoil: float | Callable[[float], float] = math.inf, time_tol: float | None = None, **kw: Any,
+    hoil: float | Callable[[float], float] = math.inf, time_tol: float | None = None,
+    mass_tol: float | None = MASS_TOL, **kw: Any,
 ) -> PointTransientResult:
     """Run a surface feature through an EHL point contact at constant load.
 
@@ -243,6 +245,10 @@ def solve_transient_point(
     time_tol : local time error per step (relative film error): BDF2 steps sized to it
         inside each output step ``dt`` (as :func:`~.solve.solve_transient_line`); None: one
         step per ``dt``. Allowed: [1e-8, 0.1].
+    mass_tol : mass-conserving cavitation: the oil a step may gain or lose over the inflow
+        (its domain mass error). Steps whose tolerances hold take more finest-grid cycles
+        while it is above ``mass_tol`` and still falling (:mod:`.oil_balance`); None: the
+        tolerances alone. Allowed: [1e-12, 1] or None.
     hoil : the oil layer supplied ahead of the contact (Venner units ``hoil Rx/a^2``, both
         surfaces, ambient density: :func:`~ehl_multigrid.starved.supply.hoil_venner` with
         ``a``, ``Rx`` converts metres); ``inf``: a flooded inlet; or a function of ``T``. A
@@ -274,6 +280,7 @@ def solve_transient_point(
     with preserved_threads():
         if mass_conserving:
             hz = CavitatedPointStepHierarchy(problem, opts, feature.height, hoil)
+            hz.mass_tol = require_mass_tol(mass_tol)
         else:
             hz = TransientPointHierarchy(problem, opts, feature.height)
     fine = hz.fine
@@ -304,7 +311,8 @@ def solve_transient_point(
         out = PointTransientResult(problem=problem, feature=feature, body=body, slide_roll=slide_roll,
                                    speed=speed, dt=float(dt), scheme=scheme, options=opts, steady=steady,
                                    X=fine.X.copy(), Y=fine.Y.copy(), yf=float(getattr(feature, "y0", 0.0)),
-                                   cavitation=cavitation, hoil=hoil)
+                                   cavitation=cavitation, hoil=hoil,
+                                   mass_tol=getattr(hz, "mass_tol", None))
         ic = int(np.argmin(np.abs(fine.X)))
         jc = int(np.argmin(np.abs(fine.Y)))
         boa = problem.b_over_a

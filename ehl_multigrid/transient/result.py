@@ -95,6 +95,9 @@ class TransientResult:
     cavitation: str = "projection"
     #: the supplied oil layer (Venner units; inf: flooded inlet)
     hoil: float = math.inf
+    #: the oil a mass-conserving step may gain over the inflow (None: no criterion, or the
+    #: projection)
+    mass_tol: float | None = None
     _unkept: int | None = field(default=None, repr=False)
 
     def __getattr__(self, name: str) -> Any:
@@ -295,6 +298,7 @@ class TransientResult:
             "time_error_max": _nanmax_abs(self.series.get("time_error", [])[1:]),
             "rejected_steps": int(np.sum(self.series.get("rejected", [0.0]))),
             "mass_error_max": _nanmax_abs(self.series.get("mass_error", [])[1:]),
+            "mass_tol": self.mass_tol,
             "mass_error_mean": _nanmean(self.series.get("mass_error", [])[1:]),
             "wall_per_step_s": float(np.mean(wall)) if wall.size else math.nan,
             "work_units_per_step": float(np.mean(self.work_units[1:])) if cyc.size else math.nan,

@@ -38,6 +38,7 @@ from .cavitated import CavitatedStepHierarchy
 from .checkpoint import Checkpoint, restore
 from .features import Feature, Smooth, feature_speed
 from .hierarchy import TransientLineHierarchy
+from .oil_balance import MASS_TOL, require_mass_tol
 from .result import TransientResult
 from .stepping import (
     SCHEMES,
@@ -70,7 +71,8 @@ def solve_transient_line(
     initial: tuple[np.ndarray, float] | None = None, accept_stall: float = 1e-3,
     callback: Callable[[dict[str, Any]], None] | None = None, checkpoint: Checkpoint | None = None,
     resume: dict[str, Any] | None = None, cavitation: str = "projection",
-    hoil: float | Callable[[float], float] = math.inf, time_tol: float | None = None, **kw: Any,
+    hoil: float | Callable[[float], float] = math.inf, time_tol: float | None = None,
+    mass_tol: float | None = MASS_TOL, **kw: Any,
 ) -> TransientResult:
     """Run a surface feature through an EHL line contact at constant load.
 
@@ -109,6 +111,10 @@ def solve_transient_line(
         ``dt`` is covered by BDF2 steps sized to it (Milne's device; :func:`.stepping.
         _advance_adaptive`), so ``dt`` is the output sampling only. None: one step per ``dt``.
         Allowed: [1e-8, 0.1].
+    mass_tol : mass-conserving cavitation: the oil a step may gain or lose over the inflow
+        (its domain mass error). Steps whose tolerances hold take more finest-grid cycles
+        while it is above ``mass_tol`` and still falling (:mod:`.oil_balance`); None: the
+        tolerances alone. Allowed: [1e-12, 1] or None.
     hoil : the oil layer supplied ahead of the contact (Venner units ``hoil R/b^2``, both
         surfaces, ambient density; :func:`~ehl_multigrid.starved.supply.hoil_venner` converts
         metres); ``inf``: a flooded inlet; or a function of ``T`` (a supply that changes in
@@ -153,6 +159,7 @@ def solve_transient_line(
         stepper = _LineStepper(TransientLineHierarchy(problem, opts, feature.height), problem, opts)
     else:
         hz = CavitatedStepHierarchy(problem, opts, feature.height, flooded, hoil)
+        hz.mass_tol = require_mass_tol(mass_tol)
         stepper = _CavitatedLineStepper(hz, problem, opts)
         stepper.supply = supply
         if hz.starved_inlet:
@@ -163,7 +170,8 @@ def solve_transient_line(
             stepper.set_content(steady.extra["theta"])
     out = TransientResult(problem=problem, feature=feature, body=body, slide_roll=slide_roll,
                           speed=speed, dt=float(dt), scheme=scheme, options=opts, steady=steady,
-                          X=stepper.hz.fine.X.copy(), cavitation=cavitation, hoil=hoil)
+                          X=stepper.hz.fine.X.copy(), cavitation=cavitation, hoil=hoil,
+                          mass_tol=getattr(stepper.hz, "mass_tol", None))
     if resume is None:
         start(stepper, out, steady.P.copy(), steady.H0, initial, True, t0)
     else:

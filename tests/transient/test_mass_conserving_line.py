@@ -1,6 +1,6 @@
 """Mass-conserving (Elrod-Adams) cavitation in the transient line contact
 (``solve_transient_line(..., cavitation="mass-conserving")``): its steady limit is the
-starved solver's flooded-inlet solution, it conserves oil over a dent passage to the step
+starved solver's flooded-inlet solution, it conserves oil over a dent passage to its mass
 tolerance, its film differs from the projection ``P >= 0`` behind a deep dent, and the two
 models agree while no film ruptures inside the contact."""
 
@@ -39,16 +39,16 @@ def test_steady_limit_is_the_starved_solvers_flooded_inlet_solution():
     assert theta.min() < 0.9 and np.all(theta > 0.0) and np.all(theta <= 1.0)
 
 
-def test_a_deep_dent_under_sliding_conserves_oil_to_the_step_tolerance():
+def test_a_deep_dent_under_sliding_conserves_oil_to_the_mass_tolerance():
     # a dent 3.5x the central film deep, moving at 1.5 u_m (SRR +0.5), through the contact
     dent = Bump(-0.3, 0.5, -1.6)
-    kw = {"slide_roll": 1.0, "steps": 55, "tol": 1e-8}
+    kw = {"slide_roll": 1.0, "steps": 55}
     mc, pr = _run("mass-conserving", dent, **kw), _run("projection", dent, **kw)
     assert mc.complete and pr.complete and not np.any(mc.stalled)
     err = np.asarray(mc.series["mass_error"][1:])
-    # oil gained over the passage, relative to the oil that flowed in (the per-step inflow
-    # is nearly constant): zero to the step tolerance
-    assert abs(np.mean(err)) < 1e-6 and np.max(np.abs(err)) < 1e-5
+    # oil gained per step over the inflow within the default mass_tol = 1e-6 (measured:
+    # largest 9.9e-7, mean -2.4e-7; without the criterion 2.6e-5)
+    assert abs(np.mean(err)) < 5e-7 and np.max(np.abs(err)) <= 1e-6
     assert np.all(np.isnan(pr.series["mass_error"]))  # not measured for the projection
     # the film behind the dent differs between the models
     assert np.max(np.abs(mc.Hm - pr.Hm)) > 1e-4
