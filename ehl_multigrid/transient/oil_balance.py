@@ -29,9 +29,9 @@ def require_mass_tol(mass_tol: float | None) -> float | None:
 class OilBalanceCycles:
     """Mixin of the mass-conserving step hierarchies: :meth:`wants_cycles` (the driver's hook)
     asks for finest-grid cycles while the step's domain mass error exceeds :attr:`mass_tol`
-    and still falls (by :data:`MASS_FLOOR_RATE` over :data:`MASS_FLOOR_CYCLES` cycles: near 1e-6 the balance
-    can rise for a cycle or two before it falls on); the cycle limit ends them
-    with the step converged, its mass error recorded in the run's series."""
+    and still falls (by :data:`MASS_FLOOR_RATE` over :data:`MASS_FLOOR_CYCLES` cycles: near
+    1e-6 the balance can rise for a cycle or two before it falls on); the cycle limit ends
+    them with the step converged, its mass error recorded in the run's series."""
 
     mass_tol: float | None = MASS_TOL
 
