@@ -33,6 +33,16 @@ SHAPES = ("cosine-gaussian", "gaussian")
 #: Largest feature height accepted [Venner film units]: far above the central film of any
 #: line contact the solver covers (Hc ~ 0.01-0.5); a larger one cuts through both surfaces.
 MAX_AMPLITUDE = 1.0
+#: Deepest dent or valley accepted [film units]: a pocket touches nothing, so real
+#: micrometre dents on nanometre films are taken; how deep ones run: docs/transient.md.
+MAX_DEPTH = 10.0
+
+
+def require_relief(field: str, z: np.ndarray, units: str) -> None:
+    """Heights of a feature or map: peaks up to :data:`MAX_AMPLITUDE`, depths (``-z``) up
+    to :data:`MAX_DEPTH`."""
+    require_range(f"{field} (highest)", max(float(np.max(z)), 0.0), 0.0, MAX_AMPLITUDE, units)
+    require_range(f"{field} (deepest)", max(-float(np.min(z)), 0.0), 0.0, MAX_DEPTH, units)
 
 
 def require_in(field: str, value: float, lo: float, hi: float, units: str, why: str,
@@ -137,7 +147,7 @@ class Bump(ShapedFeature):
     kind = "bump"
 
     def __post_init__(self) -> None:
-        require_range("feature.amplitude", self.amplitude, -MAX_AMPLITUDE, MAX_AMPLITUDE, "- (a R/b^2)")
+        require_range("feature.amplitude", self.amplitude, -MAX_DEPTH, MAX_AMPLITUDE, "- (a R/b^2)")
         require_range("feature.width", self.width, 1e-3, 1e3, "- (x/b)")
         require_range("feature.x0", self.x0, -1e3, 1e3, "- (x/b)")
         require_choice("feature.shape", self.shape, SHAPES)
@@ -187,8 +197,7 @@ class Profile:
         dx = np.diff(x)
         if np.any(dx <= 0.0) or np.ptp(dx) > 1e-6 * dx.mean():
             raise InputError("feature.x must be uniformly spaced and increasing")
-        require_range("feature.z (max |z|)", float(np.max(np.abs(z))), 0.0,
-                      MAX_AMPLITUDE, "- (a R/b^2)")
+        require_relief("feature.z", z, "- (a R/b^2)")
         object.__setattr__(self, "x", x)
         object.__setattr__(self, "z", z)
 

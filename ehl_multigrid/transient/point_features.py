@@ -34,7 +34,16 @@ import numpy as np
 from scipy.ndimage import map_coordinates
 
 from ..model.errors import InputError, require_choice, require_range
-from .features import MAX_AMPLITUDE, SHAPES, ShapedFeature, Smooth, feature_of_kind, require_in
+from .features import (
+    MAX_AMPLITUDE,
+    MAX_DEPTH,
+    SHAPES,
+    ShapedFeature,
+    Smooth,
+    feature_of_kind,
+    require_in,
+    require_relief,
+)
 
 #: a waviness closer than this to longitudinal (degrees) does not move through the contact
 LONGITUDINAL_TOL = 1e-9
@@ -119,7 +128,7 @@ class Dent2D(ShapedFeature):
     kind = "bump"
 
     def __post_init__(self) -> None:
-        require_range("feature.amplitude", self.amplitude, -MAX_AMPLITUDE, MAX_AMPLITUDE, "- (a Rx/a^2)")
+        require_range("feature.amplitude", self.amplitude, -MAX_DEPTH, MAX_AMPLITUDE, "- (a Rx/a^2)")
         require_range("feature.width", self.width, 1e-3, 1e3, "- (x/a)")
         require_range("feature.x0", self.x0, -1e3, 1e3, "- (x/a)")
         require_range("feature.y0", self.y0, -1e3, 1e3, "- (y/a)")
@@ -174,8 +183,7 @@ class HeightMap:
             raise InputError("feature.z must be finite (fill missing points first)")
         require_range("feature.dx", self.dx, 1e-6, 1e3, "- (x/a)", lo_open=True)
         require_range("feature.dy", self.dy, 1e-6, 1e3, "- (y/a)", lo_open=True)
-        require_range("feature.z (max |z|)", float(np.max(np.abs(z))), 0.0, MAX_AMPLITUDE,
-                      "- (a Rx/a^2)")
+        require_relief("feature.z", z, "- (a Rx/a^2)")
         object.__setattr__(self, "z", z)
 
     @property

@@ -39,7 +39,7 @@ import numpy as np
 
 from ..line.problem import LineProblem
 from ..model.errors import InputError, reject_unknown_keys, require_choice, require_range
-from .features import MAX_AMPLITUDE, SHAPES, Bump, Feature, Profile, Waviness, require_in
+from .features import MAX_AMPLITUDE, MAX_DEPTH, SHAPES, Bump, Feature, Profile, Waviness, require_in
 from .point_features import Dent2D, HeightMap, PointFeature, Waviness2D
 
 KEYS = {"kind", "amplitude", "width", "wavelength", "x0", "shape", "body", "phase"}
@@ -220,17 +220,21 @@ class _FilmUnit:
 
     def _limit(self) -> str:
         return (f"the transient solver takes features up to {MAX_AMPLITUDE:g} film unit "
-                f"{self.film} = {MAX_AMPLITUDE * self.height:.4g} m high or deep for this contact")
+                f"{self.film} = {MAX_AMPLITUDE * self.height:.4g} m high and {MAX_DEPTH:g} film "
+                f"units = {MAX_DEPTH * self.height:.4g} m deep for this contact")
 
     def check_amplitude(self, kind: str, amp: float) -> float:
         what = {"dent": "the dent's depth", "bump": "the bump's height",
                 "waviness": "the waviness amplitude"}[kind]
-        return require_in("feature.amplitude", amp, 0.0, min(1e-3, MAX_AMPLITUDE * self.height),
+        most = MAX_DEPTH if kind == "dent" else MAX_AMPLITUDE
+        return require_in("feature.amplitude", amp, 0.0, min(1e-3, most * self.height),
                           "m", f"{what}; {self._limit()}")
 
     def check_map_heights(self, z: np.ndarray) -> None:
-        require_in("feature.file (max |height|)", float(np.max(np.abs(z))), 0.0,
+        require_in("feature.file (highest)", max(float(np.max(z)), 0.0), 0.0,
                    MAX_AMPLITUDE * self.height, "m", self._limit())
+        require_in("feature.file (deepest)", max(-float(np.min(z)), 0.0), 0.0,
+                   MAX_DEPTH * self.height, "m", self._limit())
 
     def check_length(self, key: str, value: float, most: float, why: str) -> float:
         """``value`` [m] within ``[1e-3, most]`` of the length unit, in metres."""

@@ -57,6 +57,15 @@ def test_a_deep_dent_under_sliding_conserves_oil_to_the_mass_tolerance():
     assert abs(np.mean(err)) < 2e-7 and np.max(np.abs(err)) <= 1e-6
 
 
+def test_a_dent_four_film_units_deep_enters_the_contact_conserving_oil():
+    # 9.6 Hc deep (a micrometre dent on a film of a tenth of a micrometre), at S = 1 from
+    # X = -2 until its centre is at X = -0.5, inside the Hertzian circle
+    res = _run("mass-conserving", Dent2D(-4.0, 1.0, x0=-2.0), 16, slide_roll=1.0)
+    assert res.complete and not np.any(res.stalled)
+    assert 0.0 < np.min(res.Hm) < 0.5 * res.Hm_steady  # measured 0.097 against 0.26
+    assert np.max(np.abs(res.series["mass_error"][1:])) <= 1e-6
+
+
 def test_the_step_tolerances_alone_leave_the_oil_balance_to_the_load_tolerance():
     # the same passage without the mass criterion: a film-constant offset within the load
     # tolerance gains oil over the whole contact through the squeeze term (measured 1.3e-5)

@@ -108,17 +108,31 @@ def test_bad_point_feature_values_are_refused_naming_field_value_and_range(featu
         point_feature_from_scene_table(feature, pb)
 
 
+def test_a_micrometre_dent_on_a_nanometre_film_is_taken():
+    # 7 um deep on the tribometer ball, about 70 times its film: 3.8 film units a^2/Rx
+    pb = problem_from_scene(load_scene("ball_on_disc_tribometer"))
+    dent, _ = point_feature_from_scene_table({**DENT, "amplitude": 7e-6}, pb)
+    assert dent.amplitude == pytest.approx(-7e-6 * pb.Rx / pb.a**2)
+    assert dent.amplitude < -3.0
+
+
 def test_a_dent_too_deep_is_refused_in_metres_with_its_sign():
     sc = load_scene("ball_on_disc_tribometer")
     pb = problem_from_scene(sc)
     with pytest.raises(InputError) as err:
-        point_feature_from_scene_table({**DENT, "amplitude": 7e-6}, pb)
+        point_feature_from_scene_table({**DENT, "amplitude": 25e-6}, pb)
     msg = str(err.value)
-    most = pb.a**2 / pb.Rx
+    most = 10.0 * pb.a**2 / pb.Rx
     # the depth as the scene gave it (positive, metres) and the range in metres
-    assert "feature.amplitude = 7e-06 m" in msg and "depth" in msg
+    assert "feature.amplitude = 2.5e-05 m" in msg and "depth" in msg
     assert re.search(rf"\[0, {most:.6g}\] m", msg)
-    assert "-3.8" not in msg and "a Rx/a^2" not in msg  # no film units, no flipped sign
+    assert "-13" not in msg and "a Rx/a^2" not in msg  # no film units, no flipped sign
+
+
+def test_a_bump_higher_than_one_film_unit_is_refused():
+    pb = problem_from_scene(load_scene("ball_on_disc_tribometer"))
+    with pytest.raises(InputError, match=r"feature\.amplitude = 3e-06 m .*range"):
+        point_feature_from_scene_table({**DENT, "kind": "bump", "amplitude": 3e-6}, pb)
 
 
 def test_slip_outside_its_range_is_refused_naming_the_scene_field(monkeypatch, tmp_path):

@@ -187,8 +187,10 @@ def test_bad_step_count_and_scheme_are_rejected(problem):
         solve_transient_line(problem, Bump(0.01, 0.5), dt=0.01, steps=0, points=65)
     with pytest.raises(InputError, match="scheme"):
         solve_transient_line(problem, Bump(0.01, 0.5), dt=0.01, steps=1, scheme="rk4", points=65)
-    with pytest.raises(InputError, match=r"feature\.amplitude = 2 .*\[-1, 1\]"):
-        Bump(2.0, 0.5)
+    with pytest.raises(InputError, match=r"feature\.amplitude = 2 .*\[-10, 1\]"):
+        Bump(2.0, 0.5)  # higher than a film unit: cuts through; dents may go to 10 deep
+    with pytest.raises(InputError, match=r"feature\.amplitude = -11 .*\[-10, 1\]"):
+        Bump(-11.0, 0.5)
 
 
 def test_a_bump_that_cuts_through_the_film_raises_a_convergence_error(problem):
