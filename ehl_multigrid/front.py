@@ -415,11 +415,17 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
 
         pb = problem_from_scene(scene)
         starved_ok = runkw.get("cavitation") == "mass-conserving"
-        if starved_ok and not scene.supply.hoil_profile and math.isfinite(scene.supply.hoil):
+        if starved_ok and (scene.supply.hoil_profile or math.isfinite(scene.supply.hoil)):
             from .starved.supply import hoil_venner
 
             # Venner units of the point contact: hoil Rx/a^2 (as solve_starved_point_scene)
-            runkw["hoil"] = hoil_venner(scene.supply.hoil, pb.a, pb.Rx)
+            if scene.supply.hoil_profile:
+                def hoil_y(Y: float, sup: Any = scene.supply, a: float = pb.a, Rx: float = pb.Rx) -> float:
+                    return hoil_venner(float(sup.layer_at(Y * a)), a, Rx)
+
+                runkw["hoil_y"] = hoil_y
+            else:
+                runkw["hoil"] = hoil_venner(scene.supply.hoil, pb.a, pb.Rx)
         if dc is not None and box_keys:
             raise InputError(f"options {sorted(box_keys)} with a PointOptions object: give the box "
                              f"(xmin, xmax, ymax) in the PointOptions")

@@ -207,7 +207,7 @@ def solve_transient_point(
     callback: Callable[[dict[str, Any]], None] | None = None, checkpoint: Checkpoint | None = None,
     resume: dict[str, Any] | None = None, cavitation: str = "projection",
     hoil: float | Callable[[float], float] = math.inf, time_tol: float | None = None,
-    mass_tol: float | None = MASS_TOL, **kw: Any,
+    mass_tol: float | None = MASS_TOL, hoil_y: Callable[[float], float] | None = None, **kw: Any,
 ) -> PointTransientResult:
     """Run a surface feature through an EHL point contact at constant load.
 
@@ -257,6 +257,11 @@ def solve_transient_point(
         (:func:`~ehl_multigrid.starved.point.solve_starved_point`), and every step feeds the
         inlet the layer of its time.
 
+    hoil_y : instead of ``hoil``, a layer that varies across the track and not in time: a
+        function of ``Y`` (``y/a``) giving the layer in Venner units (a scene's ``[supply]
+        hoil_profile``); mass-conserving cavitation only. The start is the starved steady
+        solution of that profile, and the result's ``hoil`` its mean over the rows.
+
     Returns
     -------
     PointTransientResult
@@ -270,7 +275,14 @@ def solve_transient_point(
     """
     require_choice("scheme", scheme, SCHEMES)
     require_choice("on_film_collapse", on_film_collapse, ("raise", "stop"))
+    if hoil_y is not None and (callable(hoil) or math.isfinite(hoil)):
+        raise InputError("hoil and hoil_y both given: a layer across the track (hoil_y) or one "
+                         "uniform layer (hoil), not both")
+    if hoil_y is not None and cavitation != "mass-conserving":
+        raise InputError(f"hoil_y (a layer across the track) needs cavitation = 'mass-conserving'; "
+                         f"got {cavitation!r}")
     supply, hoil = model_inputs(cavitation, hoil, time_tol)
+    layer: Any = hoil if hoil_y is None else hoil_y  # what the grids and the start are fed
     feature = Smooth2D() if feature is None else feature
     speed = feature_speed(body, slide_roll)
     opts = point_transient_options(options, **kw)
@@ -279,7 +291,7 @@ def solve_transient_point(
     mass_conserving = cavitation == "mass-conserving"
     with preserved_threads():
         if mass_conserving:
-            hz = CavitatedPointStepHierarchy(problem, opts, feature.height, hoil)
+            hz = CavitatedPointStepHierarchy(problem, opts, feature.height, layer)
             hz.mass_tol = require_mass_tol(mass_tol)
         else:
             hz = TransientPointHierarchy(problem, opts, feature.height)
@@ -295,14 +307,14 @@ def solve_transient_point(
     stepper.supply = supply
     with preserved_threads():
         theta0 = None
-        if not math.isfinite(hoil):
+        if hoil_y is None and not math.isfinite(hoil):
             # the time steps hold P = 0 on the boundary (far_field_ok): so does their start
             steady = solve_fas(problem, replace(opts, far_field=False))
             require_steady_start("point", steady, initial, HINT)
         else:
             # the starved steady solution of the run's grid (its discretisation and supply;
             # it solves its own flooded start, so the core's flooded solve is not made)
-            steady = solve_starved_point(problem, hoil, replace(
+            steady = solve_starved_point(problem, layer, replace(
                 opts, tol=min(opts.tol, STARVED_TOL), tol_load=min(opts.tol_load, STARVED_TOL),
                 max_cycles=max(opts.max_cycles, STARVED_MAX_CYCLES_2)))
             if not _within_step_tolerance(steady, opts):
@@ -311,7 +323,7 @@ def solve_transient_point(
         out = PointTransientResult(problem=problem, feature=feature, body=body, slide_roll=slide_roll,
                                    speed=speed, dt=float(dt), scheme=scheme, options=opts, steady=steady,
                                    X=fine.X.copy(), Y=fine.Y.copy(), yf=float(getattr(feature, "y0", 0.0)),
-                                   cavitation=cavitation, hoil=hoil,
+                                   cavitation=cavitation, hoil=hz.hoil if mass_conserving else hoil,
                                    mass_tol=getattr(hz, "mass_tol", None))
         ic = int(np.argmin(np.abs(fine.X)))
         jc = int(np.argmin(np.abs(fine.Y)))

@@ -94,9 +94,13 @@ def supply_notes(scene: Any, feature: Any, scale: float, starved_ok: bool = Fals
     (:func:`check_flooded_supply`: raises for a starving supply); the note of a finite supply
     that counts as flooded. ``starved_ok`` (a line or point contact with mass-conserving
     cavitation): a finite ``[supply] hoil`` is solved as given, and the note says so (a
-    ``hoil_profile`` across the track is still checked as a flooded supply)."""
+    ``hoil_profile`` across the track of a point contact is fed as it is, too)."""
     sup = scene.supply
-    if starved_ok and not sup.hoil_profile and math.isfinite(sup.hoil):
+    if starved_ok and sup.hoil_profile:
+        layers = sup.hoil_profile[1]
+        return [f"[supply] hoil_profile: the inlet is fed this layer across the track "
+                f"({min(layers):.4g} .. {max(layers):.4g} m; mass-conserving cavitation)"]
+    if starved_ok and math.isfinite(sup.hoil):
         return [f"[supply] hoil = {sup.hoil:.4g} m: the inlet is fed this layer (mass-conserving "
                 f"cavitation; a layer above the flooded contact's flux floods it)"]
     note = check_flooded_supply(scene, feature_height(feature, scale))

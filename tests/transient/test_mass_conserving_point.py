@@ -104,6 +104,29 @@ def test_a_starved_inlet_holds_the_starved_steady_film_and_conserves_its_supply(
     assert np.max(np.abs(res.series["mass_error"][1:])) < 1e-5  # measured 1.4e-6
 
 
+def _centre_track(Y):
+    return 0.1 if abs(Y) < 0.6 else 0.4  # a starved centre track, more oil at its sides
+
+
+def test_a_layer_across_the_track_is_fed_row_by_row_and_holds_its_starved_film():
+    res = _run("mass-conserving", None, 6, dt=0.05, hoil_y=_centre_track)
+    ref = solve_starved_point(PB, _centre_track, points=65, half=False, wedge_order=2)
+    assert ref.success
+    assert abs(res.Hc[-1] / res.Hc[0] - 1.0) < 1e-5  # a steady start stays steady
+    assert abs(res.Hc[-1] / float(ref.scalars["Hc_venner"]) - 1.0) < 1e-4  # measured 2.4e-5
+    assert np.max(np.abs(res.series["mass_error"][1:])) <= 1e-6
+    # the centre track's layer sets the central film; the side oil adds a little
+    uniform = _run("mass-conserving", None, 1, dt=0.05, hoil=0.1).Hc[-1]
+    assert uniform < res.Hc[-1] < 1.05 * uniform  # measured +0.7 %
+
+
+def test_a_layer_across_the_track_needs_the_mass_conserving_model_and_no_uniform_layer():
+    with pytest.raises(InputError, match="hoil_y.*mass-conserving"):
+        _run("projection", None, 1, hoil_y=_centre_track)
+    with pytest.raises(InputError, match="hoil and hoil_y"):
+        _run("mass-conserving", None, 1, hoil=0.1, hoil_y=_centre_track)
+
+
 @pytest.mark.parametrize("bad", [0.0, 2.0, math.nan])
 def test_a_mass_tolerance_outside_its_range_is_refused_naming_it(bad):
     with pytest.raises(InputError, match="mass_tol"):

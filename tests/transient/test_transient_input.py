@@ -65,6 +65,22 @@ def test_a_supply_well_above_the_flooded_film_is_solved_as_flooded_with_a_note()
     assert r / (1.0 + r**3.5) ** (1.0 / 3.5) == pytest.approx(0.99)
 
 
+@pytest.mark.solver
+def test_a_layer_across_the_track_of_a_scene_feeds_a_mass_conserving_run(monkeypatch, tmp_path, capsys):
+    # a starved centre track (50 nm, the flooded film is 205 nm) with more oil at its sides
+    d = _scene("ball_on_disc_tribometer").to_dict()
+    d["supply"] = {"hoil_profile": {"y": [0.0, 5e-5, 1e-4, 1e-3], "hoil": [5e-8, 5e-8, 3e-7, 3e-7]}}
+    sc = Scene.from_dict(d)
+    with pytest.raises(InputError, match="hoil_profile"):
+        _run(monkeypatch, tmp_path, sc)  # the projection: flooded inlets only
+    out = _run(monkeypatch, tmp_path, sc, "--cavitation", "mass-conserving", "--steps", "1",
+               "--no-plots")
+    assert "hoil_profile: the inlet is fed this layer across the track" in capsys.readouterr().err
+    assert out["converged"] and out["mass_error_max"] <= 1e-6
+    # the centre track's layer governs: far below the flooded film (measured 0.11 of it)
+    assert out["hc_min"] < 0.3 * sc.central_film_fit()[1]
+
+
 def test_a_starving_scene_exits_2_before_any_solve(tmp_path, capsys):
     path = tmp_path / "s.toml"
     path.write_text(_scene("ball_on_disc_tribometer", hoil=20e-9).to_toml())
