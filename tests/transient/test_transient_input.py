@@ -77,7 +77,7 @@ def test_a_layer_across_the_track_of_a_scene_feeds_a_mass_conserving_run(monkeyp
                "--no-plots")
     assert "hoil_profile: the inlet is fed this layer across the track" in capsys.readouterr().err
     assert out["converged"] and out["mass_error_max"] <= 1e-6
-    # the centre track's layer governs: far below the flooded film (measured 0.11 of it)
+    # the centre track's layer governs: far below the flooded film (measured 0.21 of it)
     assert out["hc_min"] < 0.3 * sc.central_film_fit()[1]
 
 
