@@ -187,3 +187,26 @@ def test_a_large_solve_takes_the_second_box_change_from_the_coarse_mesh_when_the
     seen.clear()
     fine = point_solve.point_box_series(pb, opts, sol, cache)
     assert max(o.points for o in seen) == 513 and fine.d2 == d2 and fine.d4 != coarse.d4
+
+
+def test_a_probe_that_ran_out_of_cycles_is_not_solved_again_at_a_tighter_tolerance():
+    """A probe that failed from its FMG start fails again at a tighter film and load tolerance
+    (the same cycles from the same start): the cache answers it; another grid, box or coarse
+    start, or a looser tolerance, is solved."""
+    from dataclasses import replace
+    from types import SimpleNamespace
+
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.solve import failed_looser
+
+    o = PointOptions(points=1025, xmin=-36.0, xmax=12.0, ymax=24.0, film_tol=1e-4, tol_load=1e-4)
+    failed = SimpleNamespace(success=False)
+    cache = {o: failed}
+    tighter = replace(o, film_tol=1e-5, tol_load=1e-5)
+    assert failed_looser(cache, tighter) is failed
+    assert failed_looser(cache, o) is failed
+    assert failed_looser(cache, replace(o, film_tol=1e-3, tol_load=1e-3)) is None  # looser
+    assert failed_looser(cache, replace(tighter, points=2049)) is None
+    assert failed_looser(cache, replace(tighter, xmin=-18.0)) is None
+    assert failed_looser(cache, replace(tighter, n_coarse=64)) is None
+    assert failed_looser({o: SimpleNamespace(success=True)}, tighter) is None  # converged: looser_probe
