@@ -210,3 +210,32 @@ def test_a_probe_that_ran_out_of_cycles_is_not_solved_again_at_a_tighter_toleran
     assert failed_looser(cache, replace(tighter, xmin=-18.0)) is None
     assert failed_looser(cache, replace(tighter, n_coarse=64)) is None
     assert failed_looser({o: SimpleNamespace(success=True)}, tighter) is None  # converged: looser_probe
+
+
+def test_a_probe_out_of_cycles_on_the_rules_coarse_grid_is_solved_again_from_half_of_it(monkeypatch):
+    """circular (5, 0), 1025 points on eight times the box: 128 coarse intervals ran out of
+    cycles (1136 work units), 64 converge in 146; the answer is the converged attempt, charged
+    for both. A probe with its own coarse grid, or fewer than 64 intervals, is left as it is."""
+    from types import SimpleNamespace
+
+    from ehl_multigrid.multigrid.options import PointOptions
+
+    calls = []
+
+    def fake_solve(problem, options):
+        calls.append(options.n_coarse)
+        return SimpleNamespace(success=True, status_name="converged", work_units=146.0, wall_s=7.0,
+                               actions=[])
+
+    monkeypatch.setattr(point_solve, "solve_fas", fake_solve)
+    o = PointOptions(points=1025, xmin=-36.0, xmax=12.0, ymax=24.0)
+    failed = SimpleNamespace(success=False, status_name="max_cycles", levels=4, work_units=1136.0,
+                             wall_s=55.0, actions=[])
+    r = point_solve.coarser_probe(None, o, failed)
+    assert calls == [64] and r.success and r.work_units == 1136.0 + 146.0
+    assert "128 coarse intervals" in r.actions[-1]
+    assert point_solve.coarser_probe(None, o, SimpleNamespace(**{**vars(failed), "levels": 5})) \
+        .status_name == "max_cycles"  # 64 intervals: not halved again
+    own = PointOptions(points=1025, xmin=-36.0, xmax=12.0, ymax=24.0, n_coarse=128)
+    assert point_solve.coarser_probe(None, own, failed) is failed
+    assert calls == [64]
