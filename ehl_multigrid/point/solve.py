@@ -332,11 +332,12 @@ def coarser_probe(problem: PointProblem, options: PointOptions, res: EHLResult) 
     if n_coarse < PROBE_COARSER_FROM:
         return res
     again = solve_fas(problem, replace(options, n_coarse=n_coarse // 2))
-    again.work_units += res.work_units
-    again.wall_s += res.wall_s
-    again.actions.append(f"probe ended max_cycles on {n_coarse} coarse intervals; solved again "
-                         f"from {n_coarse // 2}: {again.status_name}")
-    return again if again.success else res
+    kept, other = (again, res) if again.success else (res, again)
+    kept.work_units += other.work_units
+    kept.wall_s += other.wall_s
+    kept.actions.append(f"probe ended max_cycles on {n_coarse} coarse intervals; solved again "
+                        f"from {n_coarse // 2}: {again.status_name}")
+    return kept
 
 
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
@@ -415,7 +416,7 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
                         raise_on_failure=False, tol=PROBE_RESIDUAL_TOL,
                         tol_load=ltol, film_tol=ftol)
             if cache is None:
-                r = solve_fas(problem, o)
+                r = coarser_probe(problem, o, solve_fas(problem, o))
             else:
                 if o not in cache:
                     start = looser_probe(cache, o)

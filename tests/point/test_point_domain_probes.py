@@ -239,3 +239,16 @@ def test_a_probe_out_of_cycles_on_the_rules_coarse_grid_is_solved_again_from_hal
     own = PointOptions(points=1025, xmin=-36.0, xmax=12.0, ymax=24.0, n_coarse=128)
     assert point_solve.coarser_probe(None, own, failed) is failed
     assert calls == [64]
+
+
+def test_a_probe_that_fails_from_half_its_coarse_grid_too_keeps_its_first_answer_charged_for_both(monkeypatch):
+    from types import SimpleNamespace
+
+    from ehl_multigrid.multigrid.options import PointOptions
+
+    monkeypatch.setattr(point_solve, "solve_fas", lambda problem, options: SimpleNamespace(
+        success=False, status_name="diverged", work_units=40.0, wall_s=2.0, actions=[]))
+    failed = SimpleNamespace(success=False, status_name="max_cycles", levels=4, work_units=1136.0,
+                             wall_s=55.0, actions=[])
+    r = point_solve.coarser_probe(None, PointOptions(points=1025), failed)
+    assert r is failed and r.work_units == 1176.0 and "diverged" in r.actions[-1]
