@@ -416,14 +416,11 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
         pb = problem_from_scene(scene)
         starved_ok = runkw.get("cavitation") == "mass-conserving"
         if starved_ok and (scene.supply.hoil_profile or math.isfinite(scene.supply.hoil)):
-            from .starved.supply import hoil_venner
+            from .starved.supply import hoil_venner, layer_across_track
 
             # Venner units of the point contact: hoil Rx/a^2 (as solve_starved_point_scene)
             if scene.supply.hoil_profile:
-                def hoil_y(Y: float, sup: Any = scene.supply, a: float = pb.a, Rx: float = pb.Rx) -> float:
-                    return hoil_venner(float(sup.layer_at(Y * a)), a, Rx)
-
-                runkw["hoil_y"] = hoil_y
+                runkw["hoil_y"] = layer_across_track(scene.supply, pb.a, pb.Rx)
             else:
                 runkw["hoil"] = hoil_venner(scene.supply.hoil, pb.a, pb.Rx)
         if dc is not None and box_keys:

@@ -288,13 +288,20 @@ def looser_probe(cache: dict[PointOptions, EHLResult], options: PointOptions) ->
     looser film or load tolerance (a domain probe before the box series needs it tighter):
     the tighter probe continues its cycles from it instead of solving again from the coarsest
     grid. None when there is none."""
+    return _looser(cache, options, True, ("n_coarse",))
+
+
+def _looser(cache: dict[PointOptions, EHLResult], options: PointOptions, success: bool,
+            free: tuple[str, ...] = ()) -> EHLResult | None:
+    """A probe of ``cache`` with ``success`` equal to the given one whose options equal
+    ``options`` but for the film and load tolerances (looser or equal) and the fields ``free``."""
     def same(o: PointOptions) -> dict[str, Any]:
-        return {k: v for k, v in vars(o).items() if k not in ("film_tol", "tol_load", "n_coarse")}
+        return {k: v for k, v in vars(o).items() if k not in ("film_tol", "tol_load", *free)}
 
     key = same(options)
     for o, r in cache.items():
-        if (r.success and same(o) == key and (o.film_tol or 0.0) >= (options.film_tol or 0.0)
-                and o.tol_load >= options.tol_load):
+        if (bool(r.success) == success and same(o) == key
+                and (o.film_tol or 0.0) >= (options.film_tol or 0.0) and o.tol_load >= options.tol_load):
             return r
     return None
 
@@ -305,15 +312,7 @@ def failed_looser(cache: dict[PointOptions, EHLResult], options: PointOptions) -
     same cycles from the same start and fail too (circular (5, 0) at 1 %: a 1025-point probe
     on eight times the box ran out of cycles twice, 53 s each, before and after the solve's
     tolerance step). None when there is none."""
-    def same(o: PointOptions) -> dict[str, Any]:
-        return {k: v for k, v in vars(o).items() if k not in ("film_tol", "tol_load")}
-
-    key = same(options)
-    for o, r in cache.items():
-        if (not r.success and same(o) == key and (o.film_tol or 0.0) >= (options.film_tol or 0.0)
-                and o.tol_load >= options.tol_load):
-            return r
-    return None
+    return _looser(cache, options, False)
 
 
 #: a probe that runs out of cycles with at least this many coarse intervals (the rule's) is

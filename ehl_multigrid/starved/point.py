@@ -923,15 +923,13 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
     or, without it, the scene's ``[solver.ehl]`` ``wedge_order`` (or ``order``).
     """
     from ..point.problem import problem_from_scene
-    from .supply import hoil_venner
+    from .supply import hoil_venner, layer_across_track
 
     pb = problem_from_scene(scene, viscosity=viscosity, density=density)
     h_m = scene.supply.hoil if hoil is None else hoil
     Hoil: Any = hoil_venner(h_m, pb.a, pb.Rx)
     if hoil is None and scene.supply.hoil_profile:
-        # the layer across the track at each grid row (Y in units of a)
-        def Hoil(Y: float, sup=scene.supply, a=pb.a, Rx=pb.Rx) -> float:
-            return hoil_venner(float(sup.layer_at(Y * a)), a, Rx)
+        Hoil = layer_across_track(scene.supply, pb.a, pb.Rx)
     if accuracy is not None:
         require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
     require_range("max_points", max_points, 65, 65537, "points")

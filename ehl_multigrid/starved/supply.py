@@ -10,6 +10,7 @@ notice when it is thicker than the gap. In Venner's line-contact units (``X = x/
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -46,3 +47,12 @@ def hoil_venner(hoil_m: float, b: float, R: float) -> float:
     """``Hoil = hoil R/b^2`` from a layer ``hoil_m`` [m] (``inf`` stays ``inf``)."""
     hoil_m = require_range("supply.hoil", hoil_m, 0.0, math.inf, "m", lo_open=True)
     return math.inf if math.isinf(hoil_m) else hoil_m * R / b**2
+
+
+def layer_across_track(supply: Any, a: float, Rx: float) -> Callable[[float], float]:
+    """A scene's ``[supply] hoil_profile`` as the point solvers take it: the layer in Venner
+    units (``hoil Rx/a^2``) at a row ``Y = y/a``."""
+    def Hoil(Y: float) -> float:
+        return hoil_venner(float(supply.layer_at(Y * a)), a, Rx)
+
+    return Hoil

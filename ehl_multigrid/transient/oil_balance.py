@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..model.errors import require_range
+from ..model.errors import InputError, require_range
 
 #: default largest oil gained or lost by a mass-conserving step, relative to the inflow
 MASS_TOL = 1e-6
@@ -20,9 +20,12 @@ MASS_TOL = 1e-6
 MASS_FLOOR_RATE, MASS_FLOOR_CYCLES = 0.5, 5
 
 
-def require_mass_tol(mass_tol: float | None) -> float | None:
+def require_mass_tol(mass_tol: float | None, cavitation: str = "mass-conserving") -> float | None:
     """``mass_tol`` checked: None (no criterion) or in ``[1e-12, 1]`` (oil per step over the
-    inflow)."""
+    inflow); with the projection (no oil balance) only None or the default."""
+    if cavitation == "projection" and mass_tol is not None and mass_tol != MASS_TOL:
+        raise InputError(f"mass_tol = {mass_tol!r} applies to cavitation = 'mass-conserving'; the "
+                         f"projection P >= 0 has no oil balance to hold")
     return None if mass_tol is None else require_range("mass_tol", mass_tol, 1e-12, 1.0)
 
 

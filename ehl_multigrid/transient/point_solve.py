@@ -282,6 +282,7 @@ def solve_transient_point(
         raise InputError(f"hoil_y (a layer across the track) needs cavitation = 'mass-conserving'; "
                          f"got {cavitation!r}")
     supply, hoil = model_inputs(cavitation, hoil, time_tol)
+    mass_tol = require_mass_tol(mass_tol, cavitation)
     layer: Any = hoil if hoil_y is None else hoil_y  # what the grids and the start are fed
     feature = Smooth2D() if feature is None else feature
     speed = feature_speed(body, slide_roll)
@@ -292,7 +293,7 @@ def solve_transient_point(
     with preserved_threads():
         if mass_conserving:
             hz = CavitatedPointStepHierarchy(problem, opts, feature.height, layer)
-            hz.mass_tol = require_mass_tol(mass_tol)
+            hz.mass_tol = mass_tol
         else:
             hz = TransientPointHierarchy(problem, opts, feature.height)
     fine = hz.fine

@@ -143,6 +143,7 @@ def solve_transient_line(
         raise InputError("problem.elastic = False: the transient solver needs elastic surfaces")
     require_choice("scheme", scheme, SCHEMES)
     supply, hoil = model_inputs(cavitation, hoil, time_tol)
+    mass_tol = require_mass_tol(mass_tol, cavitation)
     feature = Smooth() if feature is None else feature
     feature.check_domain(problem.xmin, problem.xmax)
     speed = feature_speed(body, slide_roll)
@@ -159,7 +160,7 @@ def solve_transient_line(
         stepper = _LineStepper(TransientLineHierarchy(problem, opts, feature.height), problem, opts)
     else:
         hz = CavitatedStepHierarchy(problem, opts, feature.height, flooded, hoil)
-        hz.mass_tol = require_mass_tol(mass_tol)
+        hz.mass_tol = mass_tol
         stepper = _CavitatedLineStepper(hz, problem, opts)
         stepper.supply = supply
         if hz.starved_inlet:

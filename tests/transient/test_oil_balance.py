@@ -11,6 +11,7 @@ import pytest
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.transient.oil_balance import (
     MASS_FLOOR_CYCLES,
+    MASS_TOL,
     OilBalanceCycles,
     require_mass_tol,
 )
@@ -64,3 +65,10 @@ def test_no_criterion_asks_nothing_and_nan_asks_nothing():
 def test_a_tolerance_outside_its_range_is_refused_naming_it(bad):
     with pytest.raises(InputError, match=r"mass_tol = .* range \[1e-12, 1\]"):
         require_mass_tol(bad)
+
+
+def test_a_tolerance_for_the_projection_is_refused_rather_than_ignored():
+    with pytest.raises(InputError, match=r"mass_tol = 1e-08 .*mass-conserving"):
+        require_mass_tol(1e-8, "projection")
+    assert require_mass_tol(None, "projection") is None
+    assert require_mass_tol(MASS_TOL, "projection") == MASS_TOL  # the default, not asked for
