@@ -21,7 +21,7 @@ CYCLES = ("V", "W", "F")
 DEFORMATIONS = ("mlmi", "fft", "direct")
 #: the robustness retries of a failed point solve (:class:`PointOptions`, docs/robustness.md)
 RETRIES = ("retry_square_cells", "retry_full_refresh", "retry_finer_start", "retry_coarser_start",
-           "retry_from_neighbour")
+           "retry_uncapped_start", "retry_from_neighbour")
 
 
 @dataclass(frozen=True)
@@ -250,7 +250,9 @@ class PointOptions(MultigridOptions):
     X and Y lines alternating on every grid is solved again with ``local_film_update`` off;
     ``retry_finer_start`` -- a diverged contact with b/a < 0.5 is solved again from four times
     as many coarse intervals; ``retry_coarser_start`` -- a solve still diverged is solved again
-    from half as many; ``retry_from_neighbour`` -- in an accuracy-driven sequence
+    from half as many; ``retry_uncapped_start`` -- a wide contact (b/a >= 4) whose coarse
+    grid was capped at 64 intervals and that ends at its residual floor or out of cycles is
+    solved again from the rule's uncapped coarse grid; ``retry_from_neighbour`` -- in an accuracy-driven sequence
     (``point.solve.solve_point``), a refinement whose own start fails is solved again from the
     last converged solution of the sequence.
     ``serial_below`` -- grids of fewer points (``nx ny``) run their kernels on one numba
@@ -287,6 +289,7 @@ class PointOptions(MultigridOptions):
     retry_full_refresh: bool = True
     retry_finer_start: bool = True
     retry_coarser_start: bool = True
+    retry_uncapped_start: bool = True
     retry_from_neighbour: bool = True
     exact_rules: tuple[int | None, ...] = (None, 1)
     serial_below: int = 129 * 129

@@ -70,3 +70,21 @@ def test_wide_contact_runs_w_cycles_without_rejected_cycles():
     # the options' own cycle, and X-line solves of other contacts, are left as they were
     assert point_cycle(PointOptions(points=513, cycle="F"), False, wide=True) == "F"
     assert point_cycle(PointOptions(points=513), False) == "F"
+
+
+def test_wide_contact_at_its_floor_from_the_capped_coarse_grid_is_solved_again_from_the_rule():
+    # (1000, 0, theta 0.1), b/a 4.4, 1025 points on twice the default box (a box probe's wide
+    # solve): from the capped 64 coarse intervals the films wander by 1.8 % at a residual floor
+    # of 1e-5, Hc 2 % above the discrete solution; from the rule's 128 it converges
+    from ehl_multigrid.point.problem import default_domain, problem_from_moes
+
+    pb = problem_from_moes(1000, 0, 0.1)
+    x0, x1, y = default_domain(pb)
+    wide = dict(points=1025, half=True, xmin=2 * x0, xmax=2 * x1, ymax=2 * y, film_tol=2e-4, tol_load=2e-4)
+    sol = solve_fas(pb, **wide, raise_on_failure=False)
+    assert sol.status_name == "converged"
+    assert any(a.startswith("ended residual_floor") and "128 coarse intervals instead of 64 "
+               "(retry_uncapped_start): converged" in a for a in sol.actions)
+    # the box changes the film by far less than the floor's error: the default box on the same mesh
+    narrow = solve_fas(pb, points=513, half=True, film_tol=2e-4, tol_load=2e-4)
+    assert sol.scalars["Hc"] == pytest.approx(narrow.scalars["Hc"], rel=1e-3)
