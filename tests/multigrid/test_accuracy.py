@@ -849,6 +849,27 @@ def test_a_probe_at_its_residual_floor_counts_with_its_jitter_added_to_the_box_c
     assert film_change(lambda: narrow, lambda: diverged, floor_ok=True) is None
 
 
+def test_a_probe_at_its_floor_is_uncertain_by_its_films_wander_over_the_last_cycles_not_the_last_jump():
+    # the (1000, 0, theta 0.1) wide probe from 64 coarse intervals (Venner Hc per finest cycle):
+    # its last cycle moved Hc by 0.16 %, its last four by 1.8 %, and it ended 2.1 % off
+    from types import SimpleNamespace
+
+    from ehl_multigrid.multigrid.accuracy import film_change, floor_film_spread
+
+    hcs = (0.024575, 0.024623, 0.024406, 0.024809, 0.024849)
+    hist = [SimpleNamespace(level=4, Hc=h, Hm=0.019, Hm_sub=float("nan")) for h in hcs]
+    wide = SimpleNamespace(success=False, status_name="residual_floor", history=hist,
+                           scalars={"Hc_venner": hcs[-1], "Hm_venner": 0.019})
+    spread = floor_film_spread(hist)
+    assert spread["Hc"] == pytest.approx(1.0 - 0.024406 / 0.024849)
+    assert spread["Hm"] == 0.0
+    narrow = SimpleNamespace(success=True, status_name="converged", history=hist[:1],
+                             scalars={"Hc_venner": 0.024333, "Hm_venner": 0.019})
+    dc, _ = film_change(lambda: narrow, lambda: wide, floor_ok=True)
+    assert dc == pytest.approx(hcs[-1] / 0.024333 - 1.0 + spread["Hc"])
+    assert floor_film_spread(hist[:1]) is None
+
+
 def _sequence_result(hm_nodal, hm_sub):
     """A converged point result whose FMG and finest films are given (Venner units)."""
     from types import SimpleNamespace
