@@ -60,6 +60,13 @@ SUSPECT_ORDER = 4.0
 #: (20, 0) and 2.55 times at (5, 0), where the thick film's pressure spreads far upstream and
 #: the error falls only about 1.6x per doubling
 DOMAIN_SAFETY = 3.0
+#: the fixed factor where the boundary holds the far-field pressure (point contacts,
+#: ``point.farfield``): there the change falls 5-40 times per doubling, and the whole domain
+#: error is 1.0-1.27 times the first doubling's change on the far-field references of circular
+#: (5, 0), (20, 0), (20, 10), (100, 10), (100, 20), (1000, 10) and elliptic (20, 10, theta 0.25
+#: and 4) (Hc and Hm; (20, 0) Hc 1.7 times, at 8e-5, below the references' uncertainty);
+#: validation/accuracy/far_references.py
+FAR_DOMAIN_SAFETY = 2.0
 #: multiplies the geometric remainder ``|d2| r/(r - 1)`` of a box change ``d2`` that falls by
 #: ``r`` per doubling, when a third box measured ``r`` (:func:`domain_from_decay`). Measured
 #: (validation/accuracy, estimator_variants.py, the honesty rows with the references' box
@@ -413,14 +420,15 @@ def final_films(result: Any) -> tuple[float, float, float]:
 def estimate_error(result: Any, domain: tuple[float, float] | None = None,
                    converged: dict[int, tuple[float, ...]] | None = None,
                    decay: tuple[tuple[float, float], tuple[float, float]] | BoxSeries | None = None,
-                   extrapolate: bool = False) -> ErrorEstimate:
+                   extrapolate: bool = False, domain_safety: float = DOMAIN_SAFETY) -> ErrorEstimate:
     """Error estimate of a converged multilevel result (films in Venner units).
 
     ``result`` has ``fmg`` (per FMG grid: ``points``, ``Hc``, ``Hm``), ``history`` (per cycle:
     level, ``Hc``, ``Hm``), ``load_error_history``, ``levels`` and the final ``Hc_venner``,
     ``Hm_venner`` scalars; ``domain`` is the relative change of (Hc, Hm) when the box is
     doubled, or None when it was not measured (then the domain part is NaN and the total
-    is not known). ``converged`` maps a coarser grid's points to the films ``(Hc, Hm)`` of a
+    is not known); the domain part is ``domain_safety`` times it (:data:`DOMAIN_SAFETY`, or
+    :data:`FAR_DOMAIN_SAFETY` for a far-field boundary). ``converged`` maps a coarser grid's points to the films ``(Hc, Hm)`` of a
     converged solve of the same discrete problem (same box and options): they replace that
     grid's FMG films, which carry the algebraic error of the FMG's few cycles there (line
     (21.9, 3.25) Roelands: 0.4 % at 1025 and 2049 points against grid differences of 0.2 %,
@@ -533,7 +541,7 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
         dom = {"Hc": math.nan, "Hm": math.nan}
         notes.append("domain error not measured")
     else:
-        dom = {"Hc": DOMAIN_SAFETY * abs(domain[0]), "Hm": DOMAIN_SAFETY * abs(domain[1])}
+        dom = {"Hc": domain_safety * abs(domain[0]), "Hm": domain_safety * abs(domain[1])}
     if extrapolate:
         fix = {}
         sub = [d.get("Hm_sub", math.nan) for d in fmg] + [getattr(fin[-1], "Hm_sub", math.nan) if fin else math.nan]
@@ -851,7 +859,8 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
                       box_limit: float = 4.0, refine: bool = True, time_budget: float = math.inf,
                       decay_probe: Any = None, progress: Any = None, dimensions: int = 2,
                       correct_box: bool = False, extrapolate: bool = False,
-                      hope_correction: bool = False, start: Any = None) -> Any:
+                      hope_correction: bool = False, start: Any = None,
+                      domain_safety: float = DOMAIN_SAFETY) -> Any:
     """Solve, estimate, and refine until the estimated errors of Hc and Hm meet ``accuracy``.
 
     ``solve(points, box, tol_factor) -> result`` runs the contact's solver on a grid of
@@ -890,11 +899,12 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     the contact's box change is expected to decay fast enough for a correction, which the
     controller's hopeful step may count on (:func:`refinement_candidates`). ``start(points) ->
     (points, box)``, when given, chooses the first solve's grid and box (its time counts in the
-    sequence's).
+    sequence's). ``domain_safety`` multiplies a probe's box change into the domain part
+    (:func:`estimate_error`).
     """
     steady = _SteadyControl(solve, probe, decay_probe, accuracy, refine, max_points, box_limit,
                             dimensions, correct_box, extrapolate and accuracy is not None,
-                            correct_box and hope_correction)
+                            correct_box and hope_correction, domain_safety)
     t0 = time.perf_counter()
     first = Resolution(points) if start is None or not refine else Resolution(*start(points))
     out = control(steady, first, accuracy, refine=refine, time_budget=time_budget,
@@ -920,8 +930,10 @@ class _SteadyControl:
 
     def __init__(self, solve: Any, probe: Any, decay_probe: Any, accuracy: float | None, refine: bool,
                  max_points: int, box_limit: float, dimensions: int, correct_box: bool = False,
-                 extrapolate: bool = False, hope_correction: bool = False) -> None:
+                 extrapolate: bool = False, hope_correction: bool = False,
+                 domain_safety: float = DOMAIN_SAFETY) -> None:
         self._solve, self.probe, self.decay_probe = solve, probe, decay_probe
+        self.domain_safety = domain_safety
         self.correct_box, self.extrapolate = correct_box, extrapolate
         self.hope_correction = hope_correction
         self.accuracy, self.refine = accuracy, refine
@@ -960,14 +972,15 @@ class _SteadyControl:
         else:
             dom = self.probe(res, box)
         if (dom is not None and self.accuracy is not None
-                and DOMAIN_SAFETY * max(abs(dom[0]), abs(dom[1])) < DOMAIN_REUSE_BELOW * self.accuracy):
+                and self.domain_safety * max(abs(dom[0]), abs(dom[1])) < DOMAIN_REUSE_BELOW * self.accuracy):
             self.small_domain.setdefault(key, (at.points, dom))
         if dom is None and self.last_domain is not None:
             # the change measured around a smaller box bounds the one around a wider box
             dom = self.last_domain
             res.extra["domain_note"] = "domain error bounded by the change measured at a smaller box"
         self.last_domain = dom if dom is not None else self.last_domain
-        est = estimate_error(res, dom, self.finals.get(key), extrapolate=self.extrapolate)
+        est = estimate_error(res, dom, self.finals.get(key), extrapolate=self.extrapolate,
+                             domain_safety=self.domain_safety)
         grid_unknown = not all(math.isfinite(v) for v in est.budget["grid"].values())
         changes: Any = None
 
@@ -999,7 +1012,8 @@ class _SteadyControl:
                 if rc.success or (deep and rc.status_name == "residual_floor" and floor_films_usable(rc, finer)):
                     key_c = (box, getattr(rc, "extra", {}).get("y_ratio"))
                     self.finals.setdefault(key_c, {})[n] = final_films(rc)
-            return estimate_error(res, dom, known, decay=changes, extrapolate=self.extrapolate)
+            return estimate_error(res, dom, known, decay=changes, extrapolate=self.extrapolate,
+                                  domain_safety=self.domain_safety)
 
         could = correction_could_meet if self.correct_box else decay_could_meet
         b = est.budget
@@ -1029,7 +1043,7 @@ class _SteadyControl:
                 else:  # measured one box lower: [below, d2]
                     res.extra["domain_changes_below"] = [list(changes.below), list(changes.d2)]
                 est = estimate_error(res, dom, self.finals.get(key), decay=changes,
-                                     extrapolate=self.extrapolate)
+                                     extrapolate=self.extrapolate, domain_safety=self.domain_safety)
         if not repaired and (est.irregular or short(est)) and missed(est):
             est = repair(est)
         if None not in (res.scalars.get("Hc_venner"), res.scalars.get("Hm_venner")):

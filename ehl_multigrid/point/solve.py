@@ -19,6 +19,7 @@ from ..multigrid.accuracy import (
     CORRECTION_MIN_DECAY,
     DECAY_SAFETY,
     DOMAIN_SAFETY,
+    FAR_DOMAIN_SAFETY,
     MESH_SAFETY,
     PROBE_FILM_TOL,
     BoxSeries,
@@ -496,11 +497,18 @@ def planned_solve(problem: PointProblem, options: PointOptions) -> PlannedSolve:
     return PlannedSolve(levels, np.empty(int(options.points)), {"domain": domain, "y_ratio": ratio})
 
 
+def domain_safety(options: PointOptions) -> float:
+    """Factor on a box probe's film change that gives the domain part of the estimate:
+    :data:`~ehl_multigrid.multigrid.accuracy.FAR_DOMAIN_SAFETY` with the far-field boundary,
+    :data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_SAFETY` with ``P = 0``."""
+    return FAR_DOMAIN_SAFETY if far_field_on(options.far_field) else DOMAIN_SAFETY
+
+
 def start_box(problem: PointProblem, options: PointOptions, accuracy: float,
               cache: dict[PointOptions, EHLResult]) -> tuple[float, float] | None:
     """The box change (Hc, Hm) the domain probes of the planned first solve (``options``, on
     the default box) measure, when it says that box cannot meet ``accuracy``: its domain part
-    (:data:`~ehl_multigrid.multigrid.accuracy.DOMAIN_SAFETY` times the larger change) exceeds
+    (:func:`domain_safety` times the larger change) exceeds
     :data:`START_WIDE` times the target, so the controller would refine to twice the box at
     the same mesh after that solve. None otherwise: also when the probes fail, and for a
     contact whose box change does not decay fast (:func:`fast_box_decay`), which meets its
@@ -510,7 +518,8 @@ def start_box(problem: PointProblem, options: PointOptions, accuracy: float,
     if not fast_box_decay(problem):
         return None
     change = point_domain_change(problem, options, planned_solve(problem, options), cache)
-    if change is None or not DOMAIN_SAFETY * max(abs(change[0]), abs(change[1])) > START_WIDE * accuracy:
+    safety = domain_safety(options)
+    if change is None or not safety * max(abs(change[0]), abs(change[1])) > START_WIDE * accuracy:
         return None
     return change
 
@@ -807,6 +816,7 @@ def solve_point(
                                 decay_probe=decay_probe if domain_scale(pb) <= 1.0 and not far else None,
                                 progress=progress, correct_box=True, extrapolate=True,
                                 hope_correction=fast_box_decay(pb) and not far,
+                                domain_safety=domain_safety(opts),
                                 time_budget=math.inf if time_budget is None else time_budget)
         why = thick_film_reason(pb, res, accuracy) if res.status_name == "inaccurate" \
             and domain_scale(pb) > 1.0 and opts.elastic else ""
