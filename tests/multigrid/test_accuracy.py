@@ -974,3 +974,27 @@ def test_a_coarser_grid_at_its_residual_floor_serves_the_sequence_only_when_its_
     assert not floor_films_usable(res, None)
     assert not floor_films_usable(SimpleNamespace(levels=2, history=cycles[:1], scalars=res.scalars),
                                   (1.0101, 0.5101, 0.5001))
+
+
+@pytest.mark.solver
+@pytest.mark.parametrize("far", [True, False])
+def test_the_domain_part_is_twice_the_box_change_with_the_far_field_and_three_times_without(monkeypatch, far):
+    # the far field's box error falls 5-40 times per doubling (FAR_DOMAIN_SAFETY); with P = 0 it
+    # falls about twice per doubling at (20, 10) (DOMAIN_SAFETY)
+    import ehl_multigrid.point.solve as ps
+    from ehl_multigrid.multigrid.accuracy import DOMAIN_SAFETY, FAR_DOMAIN_SAFETY
+
+    changes = []
+
+    def recorded(*a, **k):
+        out = orig(*a, **k)
+        changes.append(out)
+        return out
+
+    orig = ps.point_domain_change
+    monkeypatch.setattr(ps, "point_domain_change", recorded)
+    sol = ps.solve_point(20.0, 10.0, accuracy=0.05, far_field=far)
+    d2c, d2m = changes[-1]
+    factor = FAR_DOMAIN_SAFETY if far else DOMAIN_SAFETY
+    dom = sol.extra["error_budget"]["domain"]
+    assert dom["Hc"] == pytest.approx(factor * abs(d2c)) and dom["Hm"] == pytest.approx(factor * abs(d2m))
