@@ -35,7 +35,13 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import ConvergenceError, InputError, require_range
-from ..multigrid.accuracy import PROBE_FILM_TOL, film_change, film_tol, solve_to_accuracy
+from ..multigrid.accuracy import (
+    LINE_DOMAIN_SAFETY,
+    PROBE_FILM_TOL,
+    film_change,
+    film_tol,
+    solve_to_accuracy,
+)
 from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import LineOptions, build_scene_options, scene_solver_table
@@ -867,7 +873,8 @@ def solve_line(
     res = solve_to_accuracy(solve, probe, accuracy, points, max_points,
                             refine=accuracy is not None and not (explicit or fixed_box),
                             decay_probe=decay_probe, progress=progress, dimensions=1, extrapolate=True,
-                            time_budget=math.inf if time_budget is None else time_budget)
+                            time_budget=math.inf if time_budget is None else time_budget,
+                            domain_safety=LINE_DOMAIN_SAFETY)
     if not res.success and opts.raise_on_failure:
         raise ConvergenceError(f"line solver: {res.message}", res.report, HINT)
     return res
