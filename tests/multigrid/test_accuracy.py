@@ -1012,3 +1012,25 @@ def test_the_domain_part_is_twice_the_box_change_with_the_far_field_and_three_ti
     factor = FAR_DOMAIN_SAFETY if far else DOMAIN_SAFETY
     dom = sol.extra["error_budget"]["domain"]
     assert dom["Hc"] == pytest.approx(factor * abs(d2c)) and dom["Hm"] == pytest.approx(factor * abs(d2m))
+
+
+@pytest.mark.solver
+def test_the_line_domain_part_is_twice_the_box_change(monkeypatch):
+    # the line's box change falls 5-13 times per doubling (LINE_DOMAIN_SAFETY)
+    import ehl_multigrid.line.solver as ls
+    from ehl_multigrid.multigrid.accuracy import LINE_DOMAIN_SAFETY
+
+    changes = []
+    orig = ls.line_domain_change
+
+    def recorded(*a, **k):
+        out = orig(*a, **k)
+        changes.append(out)
+        return out
+
+    monkeypatch.setattr(ls, "line_domain_change", recorded)
+    sol = ls.solve_line(20.0, 10.0, accuracy=0.05)
+    d2c, d2m = changes[-1]
+    dom = sol.extra["error_budget"]["domain"]
+    assert LINE_DOMAIN_SAFETY == 2.0
+    assert dom["Hc"] == pytest.approx(2.0 * abs(d2c)) and dom["Hm"] == pytest.approx(2.0 * abs(d2m))
