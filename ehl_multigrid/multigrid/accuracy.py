@@ -539,7 +539,7 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
         # the third box), a change that does not shrink gives no bound
         dom = {"Hc": domain_from_decay(d2c, d4c), "Hm": domain_from_decay(d2m, d4m)}
         if floor_fixed:
-            dom = {"Hc": max(dom["Hc"], DOMAIN_SAFETY * abs(d2c)), "Hm": max(dom["Hm"], DOMAIN_SAFETY * abs(d2m))}
+            dom = {"Hc": max(dom["Hc"], domain_safety * abs(d2c)), "Hm": max(dom["Hm"], domain_safety * abs(d2m))}
         notes.append(f"domain error from the box changes of two doublings (Hc {d2c:.3g}, {d4c:.3g}; "
                      f"Hm {d2m:.3g}, {d4m:.3g}) continued geometrically")
     elif domain is None:
@@ -580,7 +580,7 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
 #: largest order at which a line contact's stated Hm error is predicted to fall per grid (it fell
 #: by 2.3-3.7 per grid at M = 1000-5000; docs/accuracy.md)
 LINE_HM_PREDICT_ORDER = 1.5
-#: a box change whose domain part (:data:`DOMAIN_SAFETY` times it) is below this fraction of
+#: a box change whose domain part (the contact's fixed factor times it) is below this fraction of
 #: the target is not measured again on finer grids of the same box (docs/accuracy.md)
 DOMAIN_REUSE_BELOW = 0.1
 #: with an accuracy target the cycles stop when the films change by less than this fraction of it
@@ -839,16 +839,16 @@ REPAIR_LEVELS = 2
 REPAIR_MIN_POINTS = 65
 
 
-def decay_could_meet(est: ErrorEstimate, accuracy: float) -> bool:
+def decay_could_meet(est: ErrorEstimate, accuracy: float, domain_safety: float = DOMAIN_SAFETY) -> bool:
     """Whether a measured decay of the box change could bring an estimate that misses
-    ``accuracy`` within it: the domain part at its smallest, ``DECAY_SAFETY/DOMAIN_SAFETY`` of
+    ``accuracy`` within it: the domain part at its smallest, ``DECAY_SAFETY/domain_safety`` of
     the fixed-factor one (a change that stops after the first doubling), would meet it."""
     b = est.budget
     if not max(est.Hc, est.Hm) > accuracy:
         return False
     for k in ("Hc", "Hm"):
         d = b["domain"][k]
-        if not math.isfinite(d) or b["grid"][k] + b["algebraic"][k] + d * DECAY_SAFETY / DOMAIN_SAFETY > accuracy:
+        if not math.isfinite(d) or b["grid"][k] + b["algebraic"][k] + d * DECAY_SAFETY / domain_safety > accuracy:
             return False
     return True
 
@@ -1023,7 +1023,10 @@ class _SteadyControl:
             return estimate_error(res, dom, known, decay=changes, extrapolate=self.extrapolate,
                                   domain_safety=self.domain_safety)
 
-        could = correction_could_meet if self.correct_box else decay_could_meet
+        def could(e: ErrorEstimate, target: float) -> bool:
+            if self.correct_box:
+                return correction_could_meet(e, target)
+            return decay_could_meet(e, target, self.domain_safety)
         b = est.budget
         # a film held back only by its FMG films (not irregular) while the domain part decides
         # the miss: the box series first, the converged coarser grids only if it still misses

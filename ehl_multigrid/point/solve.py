@@ -355,6 +355,12 @@ def coarser_probe(problem: PointProblem, options: PointOptions, res: EHLResult) 
     n_coarse = (int(options.points) - 1) // 2 ** (res.levels - 1)
     if n_coarse < PROBE_COARSER_FROM:
         return res
+    if any("(retry_uncapped_start)" in a for a in res.actions):
+        x0, x1, _ = resolve_domain(problem, options.xmin, options.xmax, options.ymax, options.elastic)
+        capped = coarse_intervals(problem.M, x1 - x0, options.points, domain_scale(problem),
+                                  rigid_length(problem), problem.b_over_a)
+        if n_coarse // 2 == capped:
+            return res  # half of the uncapped start is the capped one, which this solve tried first
     again = solve_fas(problem, replace(options, n_coarse=n_coarse // 2))
     kept, other = (again, res) if again.success else (res, again)
     kept.work_units += other.work_units

@@ -88,3 +88,29 @@ def test_wide_contact_at_its_floor_from_the_capped_coarse_grid_is_solved_again_f
     # the box changes the film by far less than the floor's error: the default box on the same mesh
     narrow = solve_fas(pb, points=513, half=True, film_tol=2e-4, tol_load=2e-4)
     assert sol.scalars["Hc"] == pytest.approx(narrow.scalars["Hc"], rel=1e-3)
+
+
+def test_a_probe_out_of_cycles_from_the_uncapped_start_is_not_solved_again_from_the_capped_one(monkeypatch):
+    # the wide contact's solve already tried the capped 64 intervals before the rule's 128
+    # (retry_uncapped_start); halving 128 would repeat that attempt
+    from types import SimpleNamespace
+
+    import ehl_multigrid.point.solve as ps
+    from ehl_multigrid.point.problem import default_domain, problem_from_moes
+
+    pb = problem_from_moes(1000, 0, 0.1)
+    x0, x1, y = default_domain(pb)
+    opts = PointOptions(points=1025, xmin=2 * x0, xmax=2 * x1, ymax=2 * y, half=True)
+    res = SimpleNamespace(success=False, status_name="max_cycles", levels=4, work_units=1.0, wall_s=1.0,
+                          actions=["ended max_cycles (...); solved again with 128 coarse intervals instead "
+                                   "of 64 (retry_uncapped_start): max_cycles"])
+
+    def no_solve(*a, **k):
+        raise AssertionError("solved again")
+
+    monkeypatch.setattr(ps, "solve_fas", no_solve)
+    assert ps.coarser_probe(pb, opts, res) is res
+    # without that retry the halving is tried
+    res.actions = []
+    with pytest.raises(AssertionError, match="solved again"):
+        ps.coarser_probe(pb, opts, res)
