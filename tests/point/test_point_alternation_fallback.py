@@ -32,6 +32,7 @@ def test_a_barus_contact_at_L_20_converges_only_with_alternating_relaxation():
     assert abs(sol.Hc / ref.Hc - 1.0) < 1e-3 and abs(sol.Hm / ref.Hm - 1.0) < 2e-3
 
 
+@pytest.mark.slow  # the retry decision: test_point_retry_chain.py (no solves)
 def test_a_solve_that_fails_with_x_lines_is_solved_again_and_charged_for_both_attempts():
     # (5, 20) at 257^2 with W cycles: the mid-solve switch does not save it, the second solve
     # (alternating, W cycles) does. (The default F cycles converge it with X lines.)

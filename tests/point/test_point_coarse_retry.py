@@ -19,6 +19,7 @@ def bearing():
     return problem_from_scene(load_scene("bearing_6205_inner_race"), "roelands", "dowson-higginson")
 
 
+@pytest.mark.slow  # the retry decision: test_point_retry_chain.py (no solves)
 def test_diverged_fmg_start_is_solved_again_from_a_coarser_grid(bearing, monkeypatch):
     rule = fas.coarse_intervals
     # the rule as it falls on a box twice as long: twice the coarse intervals
@@ -32,6 +33,7 @@ def test_diverged_fmg_start_is_solved_again_from_a_coarser_grid(bearing, monkeyp
     assert sol.scalars["Hc_venner"] == pytest.approx(ref.scalars["Hc_venner"], rel=2e-4)
 
 
+@pytest.mark.slow  # the retry decision: test_point_retry_chain.py (no solves)
 def test_explicit_coarse_grid_is_not_changed(bearing):
     # alternating on every grid from the start: one diverged attempt (115 WU) instead of three
     # (the alternating and whole-refresh retries, 379 WU); on the rule's 128 intervals the same
@@ -72,6 +74,7 @@ def test_wide_contact_runs_w_cycles_without_rejected_cycles():
     assert point_cycle(PointOptions(points=513), False) == "F"
 
 
+@pytest.mark.slow  # the retry decision: test_point_retry_chain.py (no solves)
 def test_wide_contact_at_its_floor_from_the_capped_coarse_grid_is_solved_again_from_the_rule():
     # (1000, 0, theta 0.1), b/a 4.4, 1025 points on twice the default box (a box probe's wide
     # solve): from the capped 64 coarse intervals the films wander by 1.8 % at a residual floor

@@ -33,6 +33,7 @@ def test_narrow_contact_rule_asks_for_more_points_than_the_cap(narrow):
 SQUARE = 0.25
 
 
+@pytest.mark.slow  # the retry decision: test_point_retry_chain.py (no solves)
 def test_diverged_narrow_contact_is_solved_again_from_a_finer_coarse_grid(narrow):
     kw = dict(points=1025, half=True, y_ratio=SQUARE, raise_on_failure=False, retry_coarser_start=False)
     before = solve_fas(narrow, retry_finer_start=False, **kw)
@@ -54,6 +55,7 @@ def test_narrow_contact_converges_on_cells_stretched_with_the_ellipse(narrow):
     assert sol.scalars["Hm"] > 0.0
 
 
+@pytest.mark.slow  # the retry decision: test_point_retry_chain.py (no solves)
 def test_diverged_solve_on_stretched_cells_is_solved_again_on_square_cells():
     # Barus (20, 20, theta 4): NaN from the first coarse cycles on stretched cells (P = 0 on
     # the boundary, as measured: with the far field the stretched cells converge)

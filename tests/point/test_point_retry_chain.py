@@ -1,0 +1,124 @@
+"""Which retry ``solve_fas`` takes after a failed attempt, and with which coarse grid, decided
+without solving: every attempt is a stand-in that ends with a given status. The real solves of
+the same retries (the 6205 inner race from a halved coarse grid, (1000, 0, theta 0.1) from the
+uncapped rule) are the `slow` studies of ``test_point_coarse_retry.py``."""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import ehl_multigrid.point.solve as ps
+from ehl_multigrid.model.errors import ConvergenceError
+from ehl_multigrid.point.problem import default_domain, problem_from_moes
+
+
+class Retried(Exception):
+    """Raised by the stand-in solver when an attempt with an explicit coarse grid is made."""
+
+
+def stand_in(status: str, n_coarse: int, attempts: list, ymax: float = 3.0):
+    """A ``point_solver`` whose attempts end with ``status`` on ``n_coarse`` coarse intervals
+    (box X -4.5 .. 1.5, Y up to ``ymax``, square cells on the circle's box); an attempt on other
+    coarse intervals than the first one's raises :class:`Retried`."""
+
+    def point_solver(problem, opt, guess=None):
+        if attempts and opt.n_coarse not in (None, attempts[0].n_coarse):
+            raise Retried(opt.n_coarse)
+        attempts.append(opt)
+        hz = SimpleNamespace(levels=[SimpleNamespace(nx=n_coarse + 1)], xmin=-4.5, xmax=1.5,
+                             ymax=ymax, y_ratio=opt.y_ratio or 1.0, solver=None)
+        res = SimpleNamespace(status_name=status, success=False, message="stand-in",
+                              work_units=1.0, wall_s=0.1, residual_history=np.array([1e-5]),
+                              actions=[], report=None)
+        return SimpleNamespace(hierarchy=hz, solve=lambda callback=None: res, hint="")
+
+    return point_solver
+
+
+def wide_probe_options():
+    # (1000, 0, theta 0.1), b/a 4.4, 1025 points on twice the default box: a box probe's wide solve
+    pb = problem_from_moes(1000, 0, 0.1)
+    x0, x1, y = default_domain(pb)
+    return pb, dict(points=1025, half=True, xmin=2 * x0, xmax=2 * x1, ymax=2 * y)
+
+
+@pytest.mark.parametrize("status", ps.UNCAPPED_RETRY_STATUSES)
+def test_a_capped_wide_contact_that_stops_short_is_solved_again_from_the_uncapped_rule(monkeypatch, status):
+    pb, box = wide_probe_options()
+    uncapped = ps.uncapped_coarse(pb, box["xmax"] - box["xmin"], box["points"])
+    assert uncapped == 128
+    attempts: list = []
+    monkeypatch.setattr(ps, "point_solver", stand_in(status, 64, attempts))
+    with pytest.raises(Retried) as got:
+        ps.solve_fas(pb, **box)
+    assert got.value.args == (uncapped,)
+    # out of cycles, the alternating-line retries come first; at a residual floor nothing does
+    assert len(attempts) == (1 if status == "residual_floor" else 3)
+
+
+def test_a_wide_contact_not_capped_or_converging_is_not_solved_again_uncapped(monkeypatch):
+    pb, box = wide_probe_options()
+    attempts: list = []
+    # on the rule's own coarse grid there is nothing uncapped to go to
+    monkeypatch.setattr(ps, "point_solver", stand_in("residual_floor", 128, attempts))
+    with pytest.raises(ConvergenceError):
+        ps.solve_fas(pb, **box, raise_on_failure=True)
+    assert all(o.n_coarse is None for o in attempts)
+    # the option switches the retry off
+    attempts.clear()
+    monkeypatch.setattr(ps, "point_solver", stand_in("residual_floor", 64, attempts))
+    with pytest.raises(ConvergenceError):
+        ps.solve_fas(pb, **box, raise_on_failure=True, retry_uncapped_start=False)
+
+
+def test_a_diverged_start_is_solved_again_from_half_the_coarse_intervals_after_the_line_retries(monkeypatch):
+    # a wide contact (b/a >= ALTERNATE_BELOW): alternating lines and the whole-refresh retry
+    # come first, then the halved coarse grid (retry_coarser_start)
+    pb = problem_from_moes(3000, 10, 0.1)
+    attempts: list = []
+    monkeypatch.setattr(ps, "point_solver", stand_in("diverged", 128, attempts))
+    with pytest.raises(Retried) as got:
+        ps.solve_fas(pb, points=513, half=True)
+    assert got.value.args == (64,)
+    assert [o.alternating for o in attempts[:2]] == [None, True]
+    # an explicit coarse grid is the user's: not changed
+    attempts.clear()
+    monkeypatch.setattr(ps, "point_solver", stand_in("diverged", 128, attempts))
+    with pytest.raises(ConvergenceError):
+        ps.solve_fas(pb, points=513, half=True, n_coarse=128, raise_on_failure=True)
+    assert len(attempts) > 1 and all(o.n_coarse == 128 for o in attempts)
+
+
+def test_a_diverged_narrow_start_is_solved_again_from_four_times_the_coarse_intervals(monkeypatch):
+    # theta 10 (b/a 0.22), square cells asked for: retry_finer_start, 64 -> 256 intervals
+    pb = problem_from_moes(1000.0, 0.0, 10.0)
+    attempts: list = []
+    monkeypatch.setattr(ps, "point_solver", stand_in("diverged", 64, attempts))
+    with pytest.raises(Retried) as got:
+        ps.solve_fas(pb, points=1025, half=True, y_ratio=0.25, retry_coarser_start=False)
+    assert got.value.args == (256,)
+    # not where four times the intervals leave fewer than four points per coarse interval
+    attempts.clear()
+    with pytest.raises(ConvergenceError):
+        ps.solve_fas(pb, points=513, half=True, y_ratio=0.25, retry_coarser_start=False,
+                     raise_on_failure=True)
+    assert all(o.n_coarse is None for o in attempts)
+
+
+def test_a_diverged_solve_on_stretched_cells_is_solved_again_on_square_ones_and_charged_for_both(monkeypatch):
+    # (20, 20, theta 4): b/a 0.40, stretched cells y_ratio 1, square cells 0.5
+    pb = problem_from_moes(20.0, 20.0, 4.0)
+    attempts: list = []
+    monkeypatch.setattr(ps, "point_solver", stand_in("diverged", 64, attempts, default_domain(pb)[2]))
+    with pytest.raises(ConvergenceError):
+        ps.solve_fas(pb, points=257, retry_finer_start=False, retry_coarser_start=False,
+                     raise_on_failure=True)
+    ratios = [o.y_ratio for o in attempts]
+    assert ratios[0] is None and ratios[1] == 0.5
+    # every attempt is the answer's cost, and its actions say what was tried
+    solver = ps.point_solver(pb, attempts[0])
+    first = solver.solve()
+    _, kept = ps._again(pb, attempts[0], solver, first, None, "a test retry")
+    assert kept.work_units == 2.0 and kept.wall_s == pytest.approx(0.2)
+    assert kept.actions[-1].startswith("ended diverged (stand-in); solved again with a test retry")
