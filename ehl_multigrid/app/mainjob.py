@@ -201,7 +201,8 @@ def film_stage(ctx: RunContext) -> StageOutput:
         if starved:
             summary.update({k: sol.scalars.get(k) for k in (
                 "Hc_flooded", "Hm_flooded", "Hc_ratio", "meniscus_x", "mass_balance_error", "hoil")})
-        text = (f"Film from the multigrid solver on {points} points per direction: hc = {res.scalars['hc'] * 1e9:.4g} nm, "
+        along = "along X" if scene.kind == "line" else "per direction"
+        text = (f"Film from the multigrid solver on {points} points {along}: hc = {res.scalars['hc'] * 1e9:.4g} nm, "
                 f"hm = {res.scalars['hm'] * 1e9:.4g} nm (fit: hc = {summary['hc_fit'] * 1e9:.4g} nm); "
                 f"estimated errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g} (target {plan.tolerance:g}); "
                 f"load error {res.scalars['load_error']:.2g}, status: {label}.")

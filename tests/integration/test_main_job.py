@@ -24,6 +24,8 @@ def test_main_job_on_a_rough_line_contact_runs_film_traction_and_stribeck(capsys
     assert results["stribeck"].scene.name == "page63_line_2000N"
     report = (tmp_path / "page63_line_2000N_report.md").read_text()
     assert "What was modelled and why" in report and "## stribeck" in report
+    # a line contact's grid has points along X only
+    assert f"on {film.scalars['points']} points along X" in report
     assert out["stribeck"]["converged"] is True and out["traction"]["converged"] is True
 
 
