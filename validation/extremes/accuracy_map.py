@@ -145,14 +145,24 @@ def grid_and_iteration(r: dict, film: str) -> float:
     return b["grid"][film] + b["algebraic"][film]
 
 
-def run_case(case: dict, accuracy: float, check_max: int = 1 << 30, max_points: int | None = None) -> dict:
+def run_case(case: dict, accuracy: float, check_max: int = 1 << 30, max_points: int | None = None,
+             guess_check_max: int = 0) -> dict:
+    """Solve one case and check it. A point contact whose check grid lies above ``check_max``
+    is checked on that grid from its converged result (no FMG: :func:`from_converged`) when the
+    grid is at most ``guess_check_max`` points, else not at all."""
     kept: list = []
     r = solve(case, accuracy, max_points=max_points, keep=kept)
     out = {"case": case, "accuracy": accuracy, "result": r}
     if "viscosity" in case:
         out["Hc_fit"] = fit_value(case)
-    if r["status"] == "converged" and case["contact"] == "point" and 2 * (r["points"] - 1) + 1 > check_max:
-        out["check"] = {"status": "skipped", "message": f"check grid above {check_max} points"}
+    finer = 2 * (r.get("points", 0) - 1) + 1
+    if r["status"] == "converged" and case["contact"] == "point" and finer > check_max:
+        if finer <= guess_check_max and kept:
+            chk = from_converged(kept[0], finer)
+            out["check"] = {**chk, "box": (r.get("refinements") or [{}])[-1].get("box", 1.0)}
+            out.update(judged_from_converged(r, chk, kept[0]))
+        else:
+            out["check"] = {"status": "skipped", "message": f"check grid above {check_max} points"}
     elif r["status"] == "converged":
         out.update(check_case(case, accuracy, r, kept[0] if kept else None))
     return out
@@ -181,19 +191,27 @@ def check_case(case: dict, accuracy: float, r: dict, sol: Any = None) -> dict:
         out["check_difference"] = d
         out["wrong"] = any(d[f] > grid_and_iteration(r, f) + grid_and_iteration(chk, f)
                            or d[f] > r[f + "_error"] + chk[f + "_error"] for f in ("Hc", "Hm"))
-    elif chk["status"] == "converged" and chk.get("start") == "converged result":
-        # on the solve's box (a box correction taken off); the finer grid's own error is its
-        # second-order share of its difference from the finest raw film
-        corr = getattr(sol.error, "correction", None) or {}
-        d, own = {}, {}
-        for f in ("Hc", "Hm"):
-            on_box = r[f] / (1.0 + corr.get("box", {}).get(f, 0.0))
-            raw = on_box / (1.0 + corr.get("grid", {}).get(f, 0.0))
-            d[f] = abs(on_box / chk[f] - 1.0)
-            own[f] = abs(raw / chk[f] - 1.0) / 3.0
-        out["check_difference"], out["check_own_error"] = d, own
-        out["wrong"] = any(d[f] > grid_and_iteration(r, f) + own[f] for f in ("Hc", "Hm"))
+    else:
+        out.update(judged_from_converged(r, chk, sol))
     return out
+
+
+def judged_from_converged(r: dict, chk: dict, sol: Any) -> dict:
+    """The verdict on result ``r`` (its object ``sol``) from ``chk``, the finer grid solved from
+    it (:func:`from_converged`; nothing when that did not converge). Compared on the result's
+    box (a box correction taken off); the finer grid's own error is taken as the second-order
+    share of its difference from the result's finest raw film."""
+    if chk.get("status") != "converged" or chk.get("start") != "converged result":
+        return {}
+    corr = getattr(sol.error, "correction", None) or {}
+    d, own = {}, {}
+    for f in ("Hc", "Hm"):
+        on_box = r[f] / (1.0 + corr.get("box", {}).get(f, 0.0))
+        raw = on_box / (1.0 + corr.get("grid", {}).get(f, 0.0))
+        d[f] = abs(on_box / chk[f] - 1.0)
+        own[f] = abs(raw / chk[f] - 1.0) / 3.0
+    return {"check_difference": d, "check_own_error": own,
+            "wrong": any(d[f] > grid_and_iteration(r, f) + own[f] for f in ("Hc", "Hm"))}
 
 
 def from_converged(sol: Any, points: int) -> dict:
@@ -267,6 +285,9 @@ def main() -> None:
                     help="skip a point contact's check solve where its grid would exceed this many points")
     ap.add_argument("--max-points", type=int, default=None,
                     help="largest grid the accuracy target may refine to (default: the solver's)")
+    ap.add_argument("--guess-check-max", type=int, default=0,
+                    help="a point check grid above --check-max but not above this is solved from the "
+                         "converged result (no FMG) instead of skipped")
     ap.add_argument("--retry-grid-budget", metavar="FILE",
                     help="re-run only the cases of FILE (a map of this script) that stopped at the grid "
                          "budget, with --max-points; writes <FILE stem>_max<N>.json")
@@ -291,7 +312,8 @@ def main() -> None:
         recheck(Path(a.recheck), a.timeout, a.check_max)
         return
     if a.case:  # child process: one case
-        print(json.dumps(run_case(json.loads(a.case), a.accuracy, a.check_max, a.max_points)))
+        print(json.dumps(run_case(json.loads(a.case), a.accuracy, a.check_max, a.max_points,
+                                  a.guess_check_max)))
         return
     from tqdm import tqdm
 
@@ -334,23 +356,26 @@ def main() -> None:
         todo = [c for c in todo if c["contact"] == "point" and c["theta"] >= a.theta_min]
         path = path.with_name(f"{path.stem}_theta{a.theta_min:g}.json")
     done = json.loads(path.read_text()) if path.is_file() else {}
-    inputs = run_inputs(a.accuracy, a.check_max, a.max_points)
+    inputs = run_inputs(a.accuracy, a.check_max, a.max_points, a.guess_check_max)
     for case in tqdm(todo):
         key = json.dumps(case, sort_keys=True)
         if reusable(done, key, inputs):
             continue
-        done[key] = {**case_in_process(case, a.accuracy, a.check_max, a.max_points, a.timeout),
+        done[key] = {**case_in_process(case, a.accuracy, a.check_max, a.max_points, a.timeout,
+                                       guess_check_max=a.guess_check_max),
                      "inputs": inputs}
         save_records(path, done)
     print(json.dumps(count_classes(done)))
 
 
 def case_in_process(case: dict, accuracy: float, check_max: int, max_points: int | None, timeout: float,
-                    env: dict | None = None) -> dict:
+                    env: dict | None = None, guess_check_max: int = 0) -> dict:
     """One case solved and checked in its own process (``--case``), classified; a crash or a
     timeout is a record too."""
     key = json.dumps(case, sort_keys=True)
     extra = [] if max_points is None else ["--max-points", str(max_points)]
+    if guess_check_max:
+        extra += ["--guess-check-max", str(guess_check_max)]
     try:
         p = subprocess.run([sys.executable, __file__, "--accuracy", str(accuracy),
                             "--check-max", str(check_max), *extra, "--case", key],
@@ -380,11 +405,14 @@ def code_version() -> str:
     return head + ("+dirty" if dirty else "")
 
 
-def run_inputs(accuracy: float, check_max: int, max_points: int | None) -> dict:
+def run_inputs(accuracy: float, check_max: int, max_points: int | None, guess_check_max: int = 0) -> dict:
     """What a map record depends on besides its case: a resumed map reuses only the records
     computed for the same inputs (and recomputes the rest)."""
-    return {"accuracy": accuracy, "check_max": check_max, "max_points": max_points,
-            "code": code_version()}
+    out = {"accuracy": accuracy, "check_max": check_max, "max_points": max_points,
+           "code": code_version()}
+    if guess_check_max:
+        out["guess_check_max"] = guess_check_max
+    return out
 
 
 def reusable(done: dict, key: str, inputs: dict) -> bool:

@@ -39,6 +39,11 @@ def main() -> None:
     ap.add_argument("--accuracy", type=float, default=0.02)
     ap.add_argument("--max-points", type=int, default=None, help="grid budget (default: the solver's own, 2049 point / 32769 line)")
     ap.add_argument("--check-max", type=int, default=2049)
+    ap.add_argument("--guess-check-max", type=int, default=0,
+                    help="check grids above --check-max up to this many points are solved from the "
+                         "converged result (accuracy_map.from_converged) instead of skipped")
+    ap.add_argument("--skipped-in", metavar="FILE",
+                    help="only the cases whose check FILE (a map of the same kind) skipped")
     ap.add_argument("--timeout", type=float, default=900.0)
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--tag", required=True)
@@ -54,13 +59,18 @@ def main() -> None:
         todo = [c for c in todo if c["M"] >= a.m_min]
     if a.theta is not None:
         todo = [c for c in todo if c["theta"] == a.theta]
+    if a.skipped_in:
+        old = json.loads(Path(a.skipped_in).read_text())
+        skipped = {k for k, rec in old.items() if rec.get("check", {}).get("status") == "skipped"}
+        todo = [c for c in todo if json.dumps(c, sort_keys=True) in skipped]
     done = json.loads(path.read_text()) if path.is_file() else {}
-    inputs = run_inputs(a.accuracy, a.check_max, a.max_points)
+    inputs = run_inputs(a.accuracy, a.check_max, a.max_points, a.guess_check_max)
     lock = threading.Lock()
     env = dict(os.environ, NUMBA_NUM_THREADS="1")
 
     def run(case: dict) -> None:
-        rec = {**case_in_process(case, a.accuracy, a.check_max, a.max_points, a.timeout, env),
+        rec = {**case_in_process(case, a.accuracy, a.check_max, a.max_points, a.timeout, env,
+                                 a.guess_check_max),
                "inputs": inputs}
         with lock:
             done[json.dumps(case, sort_keys=True)] = rec
