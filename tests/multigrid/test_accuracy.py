@@ -990,6 +990,20 @@ def test_a_coarser_grid_at_its_residual_floor_serves_the_sequence_only_when_its_
                                   (1.0101, 0.5101, 0.5001))
 
 
+def _returns_of(monkeypatch, module, name: str) -> list:
+    """The list that receives what ``module.name`` returns on each call from now on."""
+    returned = []
+    original = getattr(module, name)
+
+    def recorded(*a, **k):
+        out = original(*a, **k)
+        returned.append(out)
+        return out
+
+    monkeypatch.setattr(module, name, recorded)
+    return returned
+
+
 @pytest.mark.solver
 @pytest.mark.parametrize("far", [True, False])
 def test_the_domain_part_is_twice_the_box_change_with_the_far_field_and_three_times_without(monkeypatch, far):
@@ -998,15 +1012,7 @@ def test_the_domain_part_is_twice_the_box_change_with_the_far_field_and_three_ti
     import ehl_multigrid.point.solve as ps
     from ehl_multigrid.multigrid.accuracy import DOMAIN_SAFETY, FAR_DOMAIN_SAFETY
 
-    changes = []
-
-    def recorded(*a, **k):
-        out = orig(*a, **k)
-        changes.append(out)
-        return out
-
-    orig = ps.point_domain_change
-    monkeypatch.setattr(ps, "point_domain_change", recorded)
+    changes = _returns_of(monkeypatch, ps, "point_domain_change")
     sol = ps.solve_point(20.0, 10.0, accuracy=0.05, far_field=far)
     d2c, d2m = changes[-1]
     factor = FAR_DOMAIN_SAFETY if far else DOMAIN_SAFETY
@@ -1020,15 +1026,7 @@ def test_the_line_domain_part_is_twice_the_box_change(monkeypatch):
     import ehl_multigrid.line.solver as ls
     from ehl_multigrid.multigrid.accuracy import LINE_DOMAIN_SAFETY
 
-    changes = []
-    orig = ls.line_domain_change
-
-    def recorded(*a, **k):
-        out = orig(*a, **k)
-        changes.append(out)
-        return out
-
-    monkeypatch.setattr(ls, "line_domain_change", recorded)
+    changes = _returns_of(monkeypatch, ls, "line_domain_change")
     sol = ls.solve_line(20.0, 10.0, accuracy=0.05)
     d2c, d2m = changes[-1]
     dom = sol.extra["error_budget"]["domain"]

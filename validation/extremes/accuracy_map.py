@@ -159,7 +159,7 @@ def run_case(case: dict, accuracy: float, check_max: int = 1 << 30, max_points: 
     if r["status"] == "converged" and case["contact"] == "point" and finer > check_max:
         if finer <= guess_check_max and kept:
             chk = from_converged(kept[0], finer)
-            out["check"] = {**chk, "box": (r.get("refinements") or [{}])[-1].get("box", 1.0)}
+            out["check"] = {**chk, "box": result_box(r)}
             out.update(judged_from_converged(r, chk, kept[0]))
         else:
             out["check"] = {"status": "skipped", "message": f"check grid above {check_max} points"}
@@ -180,7 +180,7 @@ def check_case(case: dict, accuracy: float, r: dict, sol: Any = None) -> dict:
     and so no estimate of its own: its grid error is taken as a third of its difference from
     the result's finest-grid film (second order), and the result's film is compared on the
     result's box (a box correction taken off)."""
-    box = (r.get("refinements") or [{}])[-1].get("box", 1.0)
+    box = result_box(r)
     points = 2 * (r["points"] - 1) + 1
     chk = solve(case, accuracy / 4, points=points, box=box)
     if chk["status"] not in ("converged", "inaccurate") and sol is not None:
@@ -203,23 +203,35 @@ def judged_from_converged(r: dict, chk: dict, sol: Any) -> dict:
     share of its difference from the result's finest raw film."""
     if chk.get("status") != "converged" or chk.get("start") != "converged result":
         return {}
-    corr = getattr(sol.error, "correction", None) or {}
+    on_box, raw = films_on_box(r, sol)
     d, own = {}, {}
     for f in ("Hc", "Hm"):
-        on_box = r[f] / (1.0 + corr.get("box", {}).get(f, 0.0))
-        raw = on_box / (1.0 + corr.get("grid", {}).get(f, 0.0))
-        d[f] = abs(on_box / chk[f] - 1.0)
-        own[f] = abs(raw / chk[f] - 1.0) / 3.0
+        d[f] = abs(on_box[f] / chk[f] - 1.0)
+        own[f] = abs(raw[f] / chk[f] - 1.0) / 3.0
     return {"check_difference": d, "check_own_error": own,
             "wrong": any(d[f] > grid_and_iteration(r, f) + own[f] for f in ("Hc", "Hm"))}
 
 
-def from_converged(sol: Any, points: int) -> dict:
+def films_on_box(r: dict, sol: Any) -> tuple[dict, dict]:
+    """The films of record ``r`` (its object ``sol``) on the solve's own box (a box correction
+    taken off), and its finest grid's raw films (the grid extrapolation taken off too)."""
+    corr = getattr(sol.error, "correction", None) or {}
+    on_box = {f: r[f] / (1.0 + corr.get("box", {}).get(f, 0.0)) for f in ("Hc", "Hm")}
+    return on_box, {f: on_box[f] / (1.0 + corr.get("grid", {}).get(f, 0.0)) for f in ("Hc", "Hm")}
+
+
+def result_box(r: dict) -> float:
+    """The box (in units of the solver's default) of a record's last refinement."""
+    return (r.get("refinements") or [{}])[-1].get("box", 1.0)
+
+
+def from_converged(sol: Any, points: int, keep: list | None = None, options: Any = None) -> dict:
     """The record of ``sol``'s contact solved on ``points`` from ``sol`` itself (no FMG, a
-    quarter of its tolerances, no error estimate)."""
+    quarter of the tolerances of ``options``, default ``sol``'s, no error estimate); ``keep``
+    (a list) receives the result object."""
     import dataclasses
 
-    o = sol.options
+    o = sol.options if options is None else options
     tight = dict(tol=o.tol / 4, tol_load=o.tol_load / 4, raise_on_failure=False)
     t0 = time.perf_counter()
     if sol.contact == "line":
@@ -231,6 +243,8 @@ def from_converged(sol: Any, points: int) -> dict:
         from ehl_multigrid.point.solve import solve_fas
 
         s = solve_fas(sol.problem, o, points=points, guess=(sol.X, sol.Y, sol.P, sol.H0), **tight)
+    if keep is not None:
+        keep.append(s)
     return {"status": s.status_name, "message": s.message, "Hc": s.scalars.get("Hc"),
             "Hm": s.scalars.get("Hm"), "Hc_error": None, "Hm_error": None, "points": points,
             "start": "converged result", "wall_s": time.perf_counter() - t0}

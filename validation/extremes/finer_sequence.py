@@ -16,35 +16,27 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from accuracy_map import OUT, solve  # noqa: E402
+from accuracy_map import OUT, films_on_box, from_converged, solve  # noqa: E402
 
 
 def finer_sequence(case: dict, accuracy: float) -> dict:
-    from ehl_multigrid.point.solve import solve_fas
-
     kept: list = []
     r = solve(case, accuracy, keep=kept)
     out: dict = {"case": case, "accuracy": accuracy, "result": r}
     if r["status"] != "converged" or case["contact"] != "point":
         return out
     s = kept[0]
-    corr = s.error.correction or {}
-    on_box = {f: r[f] / (1.0 + corr.get("box", {}).get(f, 0.0)) for f in ("Hc", "Hm")}
-    raw = {f: on_box[f] / (1.0 + corr.get("grid", {}).get(f, 0.0)) for f in ("Hc", "Hm")}
-    o, prev, films = s.options, s, []
+    on_box, raw = films_on_box(r, s)
+    prev, films = s, []
     for n in (2 * (r["points"] - 1) + 1, 4 * (r["points"] - 1) + 1):
-        t0 = time.perf_counter()
-        g = solve_fas(s.problem, o, points=n, guess=(prev.X, prev.Y, prev.P, prev.H0),
-                      tol=o.tol / 4, tol_load=o.tol_load / 4, raise_on_failure=False)
-        films.append({"points": n, "status": g.status_name, "Hc": g.scalars.get("Hc"),
-                      "Hm": g.scalars.get("Hm"), "wall_s": time.perf_counter() - t0})
-        if not g.success:
+        step: list = []
+        films.append(from_converged(prev, n, keep=step, options=s.options))
+        if films[-1]["status"] != "converged":
             return {**out, "finer": films}
-        prev = g
+        prev = step[0]
     b = r["error_budget"]
     out["finer"] = films
     for f in ("Hc", "Hm"):
