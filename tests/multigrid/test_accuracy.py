@@ -229,6 +229,46 @@ def test_films_converging_faster_than_second_order_are_checked_on_converged_coar
         assert asked == [(1025, 1.0)] and out.error.Hc == 0.004
 
 
+@pytest.mark.parametrize("after_decay, repaired", [(0.006, False), (0.011, True)])
+def test_a_miss_decided_by_the_domain_part_measures_the_box_decay_before_solving_coarser_grids(
+        monkeypatch, after_decay, repaired):
+    """A film not extrapolated (held back by its FMG films) that misses 1 % by its domain part
+    (grid 0.3 %, domain 1.2 % by the fixed factor) has the box decay measured first; the grids
+    below are solved to convergence only if the target is still missed."""
+    import ehl_multigrid.multigrid.accuracy as acc
+
+    def fake_estimate(res, dom, converged=None, decay=None, **kw):
+        if converged:
+            return ErrorEstimate(0.005, 0.005, _budget(0.003, 0.002, 1e-4), 2.0, 2.0)
+        err = 0.015 if decay is None else after_decay
+        return ErrorEstimate(err, err, _budget(0.003, err - 0.0031, 1e-4), 2.0, 2.0)
+
+    def fake_attach(res, est, accuracy):
+        res.error = est
+        if max(est.Hc, est.Hm) > accuracy:
+            res.success, res.status_name, res.message = False, "inaccurate", "inaccurate"
+
+    monkeypatch.setattr(acc, "estimate_error", fake_estimate)
+    monkeypatch.setattr(acc, "attach_estimate", fake_attach)
+    asked, probed = [], []
+
+    def solve(n, b, t):
+        asked.append((n, t))
+        r = _Fake(n, True, math.nan)
+        r.scalars, r.levels, r.history = {"Hc_venner": 0.05, "Hm_venner": 0.016}, 4, []
+        return r
+
+    def decay_probe(res, box):
+        probed.append(len(asked))
+        return (1e-3, 1e-3), (1e-4, 1e-4)
+
+    out = solve_to_accuracy(solve, lambda r, b: (0.004, 0.004), 0.01, 1025, 1025,
+                            decay_probe=decay_probe, extrapolate=True)
+    assert probed == [1]  # before any coarser grid was solved
+    assert out.success
+    assert asked == ([(1025, 1.0), (513, 0.1), (257, 0.1), (129, 0.1)] if repaired else [(1025, 1.0)])
+
+
 def test_a_refinement_that_fails_never_replaces_a_converged_coarser_solve(monkeypatch):
     import ehl_multigrid.multigrid.accuracy as acc
 
