@@ -46,7 +46,7 @@ from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import LineOptions, build_scene_options, scene_solver_table
 from ..multigrid.policy import PolicyParameters, RobustnessPolicy, Settings
-from ..multigrid.result import EHLResult
+from ..multigrid.result import EHLResult, tightened, tightening
 from ..multigrid.rheology import density, log_viscosity
 from ..multigrid.transfer import full_weighting, inject, interpolate_cubic, interpolate_linear
 from .discrete import projected
@@ -850,6 +850,7 @@ def solve_line(
 
     last: list[EHLResult] = []  # the previous converged solve starts the next one's Newton
     starts: dict = {}  # the sequence's converged FMG start grids (solve_line_problem)
+    grids: dict = {}  # the converged solve of each grid and box: a tolerance step continues it
 
     def solve(n: int, box: float, tol_factor: float) -> EHLResult:
         p = pb if box == 1.0 else dataclasses.replace(pb, xmin=pb.xmax - box * (pb.xmax - pb.xmin))
@@ -857,11 +858,25 @@ def solve_line(
                                 tol_load=opts.tol_load * tol_factor, raise_on_failure=False,
                                 film_tol=film_tol(opts, accuracy, tol_factor))
         guess = (last[-1].X, last[-1].P, last[-1].H0) if last else None
-        res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess, start_cache=starts)
+        prev = grids.get((n, box))
+        res = None
+        if prev is not None and tightening(prev, o, same=("points",)):
+            # a tolerance step: the cycles go on from the converged solve of this grid and box,
+            # with the relaxation it ended with
+            st = prev.settings
+            t = solve_line_problem(p, dataclasses.replace(o, omega=st.omega, omega_jd=st.omega_jd,
+                                                          h00_gain=st.h00_gain, cycle=st.cycle),
+                                   callback=callback, scene=scene, guess=(prev.X, prev.P, prev.H0),
+                                   from_guess=True)
+            res = tightened(prev, t, o) if t.success and t.levels == prev.levels else None
+        if res is None:
+            res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess, start_cache=starts)
         if res.status_name == "start_failed" and guess is None:
             res = continued_in_m(p, o, callback, scene, starts) or res
         if res.success or res.status_name == "inaccurate":
             last[:] = [res]  # only the latest: fine-grid results are large
+        if res.success:
+            grids[(n, box)] = res
         return res
 
     def probe(res: EHLResult, box: float) -> tuple[float, float] | None:

@@ -168,3 +168,41 @@ class EHLResult(ScalarAccess):
         out.update(status=self.status_name, message=self.message, solver=self.solver,
                    actions=list(self.actions))
         return out
+
+
+def tightened(previous: EHLResult, tight: EHLResult, options: Any = None) -> EHLResult:
+    """``tight``, a solve started on its finest grid from the converged ``previous`` of the same
+    discrete problem (grid, box, cells) with tighter tolerances, as if ``previous`` had run its
+    extra cycles: the FMG films, the histories and the work of both, and ``options`` (those the
+    sequence asked for, without the relaxation settings the continuation was started with: the
+    domain probes derive theirs from them and reuse their looser probes). The error estimate then
+    takes the grid part from the FMG films and the iteration part from the last finest-grid
+    cycles, as for one solve (a tolerance step of the accuracy loop costs its extra cycles,
+    not a new FMG solve)."""
+    tight.fmg = list(previous.fmg)
+    if options is not None:
+        tight.options = options
+    tight.history = list(previous.history) + list(tight.history)
+    tight.residual_history = np.concatenate([previous.residual_history, tight.residual_history])
+    tight.load_error_history = np.concatenate([previous.load_error_history, tight.load_error_history])
+    tight.cycles += previous.cycles
+    tight.work_units += previous.work_units
+    tight.actions[:0] = list(previous.actions)
+    for key in ("cycles", "work_units"):
+        if isinstance(tight.scalars.get(key), (int, float)):
+            tight.scalars[key] = getattr(tight, key)
+    tight.actions.append(f"tolerance step: cycles continued from the converged solve at the looser "
+                         f"tolerance ({previous.cycles} cycles before, {len(tight.history) - len(previous.history)} after)")
+    return tight
+
+
+def tightening(previous: EHLResult, options: Any, same: tuple[str, ...] = ("points", "xmin", "xmax", "ymax")) -> bool:
+    """Whether ``options`` ask for the discrete problem ``previous`` was solved for (the option
+    fields ``same`` equal) with tighter residual, load or film tolerances: a tolerance step that
+    :func:`tightened` can continue."""
+    before = previous.options
+    if before is None or any(getattr(before, k, None) != getattr(options, k, None) for k in same):
+        return False
+    ft0, ft1 = getattr(before, "film_tol", None), getattr(options, "film_tol", None)
+    return (options.tol < before.tol or options.tol_load < before.tol_load
+            or (ft0 is not None and ft1 is not None and ft1 < ft0))

@@ -31,7 +31,7 @@ from ..multigrid.accuracy import (
 )
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import PointOptions, build_scene_options, scene_solver_table
-from ..multigrid.result import EHLResult
+from ..multigrid.result import EHLResult, tightened, tightening
 from ..multigrid.rheology import log_viscosity
 from ..multigrid.threads import preserved_threads
 from .farfield import far_field_on
@@ -759,10 +759,11 @@ def solve_point(
             floor = min_points(pb.M, pb.b_over_a)
             points = min(solver_grid("point", pb.M, accuracy, floor=floor).points, max(max_points, floor))
         base = resolve_domain(pb, opts.xmin, opts.xmax, opts.ymax, opts.elastic)
-        # the last converged solve of the sequence, and the cell aspect every later solve keeps
+        # the last converged solve of the sequence (and of each grid and box: a tolerance step
+        # continues it), and the cell aspect every later solve keeps
         # once one fell back to square cells (the same discrete problem on each grid for the
         # Richardson estimate, and no stretched attempt that fails first)
-        seq: dict[str, Any] = {"ok": None, "y_ratio": None}
+        seq: dict[str, Any] = {"ok": None, "y_ratio": None, "grids": {}}
 
         def solve(n: int, box: float, tol_factor: float) -> EHLResult:
             dom = {} if box == 1.0 else dict(xmin=box * base[0], xmax=box * base[1], ymax=box * base[2])
@@ -770,12 +771,26 @@ def solve_point(
                         raise_on_failure=False, film_tol=film_tol(opts, accuracy, tol_factor), **dom)
             if seq["y_ratio"] is not None:
                 o = replace(o, y_ratio=seq["y_ratio"])
-            r = solve_fas(pb, o, callback=callback, scene=scene)
+            prev = seq["grids"].get((n, box))
+            r = None
+            if prev is not None and tightening(prev, o):
+                # a tolerance step: the cycles go on from the converged solve of this grid
+                # on the cells and coarse grid of that solve (a retry may have changed them)
+                # with the relaxation it ended with (the policy may have damped it)
+                same = replace(o, y_ratio=prev.extra["y_ratio"],
+                               n_coarse=(int(o.points) - 1) // 2 ** (prev.levels - 1),
+                               omega=prev.extra["final_omega"], omega_jd=prev.extra["final_omega_jd"],
+                               h00_gain=prev.extra["final_h00_gain"], cycle=prev.extra["final_cycle"])
+                t = solve_fas(pb, same, callback=callback, scene=scene,
+                              guess=(prev.X, prev.Y, prev.P, float(prev.H0)))
+                r = tightened(prev, t, o) if t.success and t.levels == prev.levels else None
+            if r is None:
+                r = solve_fas(pb, o, callback=callback, scene=scene)
             if (opts.retry_from_neighbour and not r.success and seq["ok"] is not None
                     and r.status_name in NEIGHBOUR_RETRY):
                 r = solve_from_neighbour(pb, o, r, seq["ok"], callback, scene)
             if r.success:
-                seq["ok"] = r
+                seq["ok"] = seq["grids"][(n, box)] = r
                 if opts.y_ratio is None and r.extra.get("square_cells_fallback"):
                     seq["y_ratio"] = r.extra["y_ratio"]
             return r
