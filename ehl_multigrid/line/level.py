@@ -96,10 +96,6 @@ class LineLevel:
         """``h sum P`` (trapezoid; P = 0 at the ends)."""
         return float(self.h * np.sum(self.P if P is None else P))
 
-    def load_residual(self) -> float:
-        """``g - h sum P`` (FAS load equation residual)."""
-        return self.g - self.load()
-
     def residual_norm(self, st: State) -> float:
         """Mean absolute complementarity residual (frozen points excluded)."""
         rp = projected(st.r, self.P)

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..model import groups
 from ..model.constants import ETA_INF, MOES_ONLY_DEFAULTS, P_R
-from ..model.errors import InputError, require_choice, require_positive, require_range
+from ..model.errors import InputError, require_choice, require_range
 from ..multigrid.rheology import DENSITY, VISCOSITY, pack
 
 #: Range of the Moes groups the solver accepts (beyond it the grids it would need are
@@ -188,7 +188,3 @@ def check_grid(points: int, levels: int, min_coarse: int = 17) -> int:
             f"the coarsest grid needs at least {min_coarse} points"
         )
     return coarse + 1
-
-
-def require_positive_option(name: str, value: float, units: str = "-") -> float:
-    return require_positive(name, value, units)

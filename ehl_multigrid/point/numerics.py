@@ -175,21 +175,6 @@ def scaled_residual(r, H, rho, eps, K00, hx, hy, sym, out, ct=0.0):
                 out[j, i] = np.inf
 
 
-@njit(cache=True)
-def wedge_norm(H, rho, hx, sym, order):
-    """RMS of the wedge term ``d(rho H)/dX`` over the interior (the residual's scale)."""
-    ny, nx = H.shape
-    j0 = 0 if sym else 1
-    s = 0.0
-    n = 0
-    for j in range(j0, ny - 1):
-        for i in range(1, nx - 1):
-            w = _wedge(rho, H, j, i, hx, order, 0.0)
-            s += w * w
-            n += 1
-    return math.sqrt(s / max(n, 1))
-
-
 # -- line relaxation -------------------------------------------------------------------------
 @njit(cache=True)
 def _gfun(Kc, d, jd):

@@ -344,19 +344,6 @@ class StarvedPointHierarchy(PointHierarchy):
             return depth <= self.coarse_theta
         return depth <= 1 or self.levels[k].hx <= self.theta_mesh
 
-    def mass_residual(self, lev: Level) -> float:
-        """``sum |f - L| hx hy`` over the interior relative to the flow entering the inlet
-        face: a bound of the discrete mass imbalance (the sum of the residuals is the
-        imbalance of the boundary flows)."""
-        r = self.residual(lev)
-        half = self.options.half
-        w = np.ones(lev.ny)
-        if half:
-            w[0] = 0.5
-        total = float((w[:, None] * np.abs(r)).sum()) * lev.hx * lev.hy
-        fl = face_fluxes(lev.P, lev.H, lev.rho, lev.eps, lev.theta, lev.hx, lev.hy, half, lev.order)
-        return total / max(abs(fl["in"]), 1e-300)
-
     def measure(self, k: int) -> Any:
         m = super().measure(k)
         if k == len(self.levels) - 1:
