@@ -46,7 +46,7 @@ from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import LineOptions, build_scene_options, scene_solver_table
 from ..multigrid.policy import PolicyParameters, RobustnessPolicy, Settings
-from ..multigrid.result import EHLResult, tightened, tightening
+from ..multigrid.result import EHLResult, ended_relaxation, tightened, tightening
 from ..multigrid.rheology import density, log_viscosity
 from ..multigrid.transfer import full_weighting, inject, interpolate_cubic, interpolate_linear
 from .discrete import projected
@@ -863,9 +863,7 @@ def solve_line(
         if prev is not None and tightening(prev, o, same=("points",)):
             # a tolerance step: the cycles go on from the converged solve of this grid and box,
             # with the relaxation it ended with
-            st = prev.settings
-            t = solve_line_problem(p, dataclasses.replace(o, omega=st.omega, omega_jd=st.omega_jd,
-                                                          h00_gain=st.h00_gain, cycle=st.cycle),
+            t = solve_line_problem(p, dataclasses.replace(o, **ended_relaxation(prev)),
                                    callback=callback, scene=scene, guess=(prev.X, prev.P, prev.H0),
                                    from_guess=True)
             res = tightened(prev, t, o) if t.success and t.levels == prev.levels else None

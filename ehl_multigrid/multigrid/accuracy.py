@@ -837,11 +837,9 @@ def _why_short(est: ErrorEstimate, accuracy: float, points: int, max_points: int
 REPAIR_LEVELS = 2
 #: smallest grid solved for the repair
 REPAIR_MIN_POINTS = 65
-#: an observed order above this (differences falling more than 5.7-fold per grid) of a film
-#: not extrapolated also asks for the repair, whether or not the target is met: circular Barus
-#: (1000, 20) (alpha_bar 73) at 1 % on 1025 points had FMG Hc ratios 4.3 and 5.8 (order 2.98)
-#: because its FMG film on 513 points lay 0.64 % above the converged one, and stated Hc 0.40 %,
-#: Hm 0.62 % for a true 0.49 %, 0.85 % (docs/accuracy.md, "Extrapolated films")
+#: an observed order above this of a film not extrapolated also asks for the repair, met target
+#: or not: FMG films off their grids' converged ones can make a sequence look this fast
+#: (circular Barus (1000, 20) at 1 %; docs/accuracy.md, "Extrapolated films")
 FAST_ORDER = 2.5
 
 

@@ -196,6 +196,13 @@ def tightened(previous: EHLResult, tight: EHLResult, options: Any = None) -> EHL
     return tight
 
 
+def ended_relaxation(previous: EHLResult) -> dict[str, Any]:
+    """The relaxation settings ``previous`` ended with (the policy may have damped them), as
+    option fields: a tolerance step continues with them."""
+    st = previous.settings
+    return dict(omega=st.omega, omega_jd=st.omega_jd, h00_gain=st.h00_gain, cycle=st.cycle)
+
+
 def tightening(previous: EHLResult, options: Any, same: tuple[str, ...] = ("points", "xmin", "xmax", "ymax")) -> bool:
     """Whether ``options`` ask for the discrete problem ``previous`` was solved for (the option
     fields ``same`` equal) with tighter residual, load or film tolerances: a tolerance step that

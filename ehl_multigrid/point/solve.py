@@ -31,7 +31,7 @@ from ..multigrid.accuracy import (
 )
 from ..multigrid.gridchoice import solver_grid
 from ..multigrid.options import PointOptions, build_scene_options, scene_solver_table
-from ..multigrid.result import EHLResult, tightened, tightening
+from ..multigrid.result import EHLResult, ended_relaxation, tightened, tightening
 from ..multigrid.rheology import log_viscosity
 from ..multigrid.threads import preserved_threads
 from .farfield import far_field_on
@@ -779,8 +779,7 @@ def solve_point(
                 # with the relaxation it ended with (the policy may have damped it)
                 same = replace(o, y_ratio=prev.extra["y_ratio"],
                                n_coarse=(int(o.points) - 1) // 2 ** (prev.levels - 1),
-                               omega=prev.extra["final_omega"], omega_jd=prev.extra["final_omega_jd"],
-                               h00_gain=prev.extra["final_h00_gain"], cycle=prev.extra["final_cycle"])
+                               **ended_relaxation(prev))
                 t = solve_fas(pb, same, callback=callback, scene=scene,
                               guess=(prev.X, prev.Y, prev.P, float(prev.H0)))
                 r = tightened(prev, t, o) if t.success and t.levels == prev.levels else None

@@ -193,6 +193,17 @@ class _Fake:
         self.err, self.extra, self.scalars, self.wall_s = err, {}, {}, 0.1
 
 
+def _settled(asked, err):
+    """A stand-in solve recording ``(points, tol_factor)`` whose result states ``err``."""
+
+    def solve(n, b, t):
+        asked.append((n, t))
+        r = _Fake(n, True, err)
+        r.scalars, r.levels, r.history = {"Hc_venner": 0.05, "Hm_venner": 0.016}, 4, []
+        return r
+    return solve
+
+
 @pytest.mark.parametrize("order, repaired", [(2.98, True), (2.4, False)])
 def test_films_converging_faster_than_second_order_are_checked_on_converged_coarser_grids(
         monkeypatch, order, repaired):
@@ -213,14 +224,7 @@ def test_films_converging_faster_than_second_order_are_checked_on_converged_coar
     monkeypatch.setattr(acc, "estimate_error", fake_estimate)
     monkeypatch.setattr(acc, "attach_estimate", fake_attach)
     asked = []
-
-    def solve(n, b, t):
-        asked.append((n, t))
-        r = _Fake(n, True, 0.004)
-        r.scalars, r.levels, r.history = {"Hc_venner": 0.05, "Hm_venner": 0.016}, 4, []
-        return r
-
-    out = solve_to_accuracy(solve, lambda r, b: (0.0, 0.0), 0.01, 1025, 1025)
+    out = solve_to_accuracy(_settled(asked, 0.004), lambda r, b: (0.0, 0.0), 0.01, 1025, 1025)
     assert out.success
     if repaired:
         assert asked == [(1025, 1.0), (513, 0.1), (257, 0.1)]
@@ -252,17 +256,11 @@ def test_a_miss_decided_by_the_domain_part_measures_the_box_decay_before_solving
     monkeypatch.setattr(acc, "attach_estimate", fake_attach)
     asked, probed = [], []
 
-    def solve(n, b, t):
-        asked.append((n, t))
-        r = _Fake(n, True, math.nan)
-        r.scalars, r.levels, r.history = {"Hc_venner": 0.05, "Hm_venner": 0.016}, 4, []
-        return r
-
     def decay_probe(res, box):
         probed.append(len(asked))
         return (1e-3, 1e-3), (1e-4, 1e-4)
 
-    out = solve_to_accuracy(solve, lambda r, b: (0.004, 0.004), 0.01, 1025, 1025,
+    out = solve_to_accuracy(_settled(asked, math.nan), lambda r, b: (0.004, 0.004), 0.01, 1025, 1025,
                             decay_probe=decay_probe, extrapolate=True)
     assert probed == [1]  # before any coarser grid was solved
     assert out.success
@@ -1008,9 +1006,8 @@ def test_a_box_corrected_film_converging_faster_than_second_order_is_estimated_o
     """Circular (20, 10) at 0.5 % (513 points on twice the box): the domain part decides the
     miss and the box series corrects the films; Hm's FMG sequence converges at order 2.56, above
     FAST_ORDER, so the grids below are solved to convergence (0.3 s) and both films extrapolate.
-    Against the far-field reference (Hc 0.436779, Hm 0.298389, within 0.02 %) the films were
-    -0.23 %, -0.38 % stated at 0.35 %, 0.40 % before, and are -0.05 %, -0.25 % stated at 0.09 %,
-    0.30 % with the rule."""
+    Against the far-field reference (Hc 0.436779, Hm 0.298389, within 0.02 %) the films lie
+    -0.05 %, -0.25 % off, stated at 0.09 %, 0.30 %."""
     r = solve_point(20.0, 10.0, accuracy=0.005, far_field=False)
     assert r.success and r.X.shape[0] == 513
     assert "box" in r.error.correction and set(r.error.extrapolated) == {"Hc", "Hm"}
