@@ -773,7 +773,9 @@ def solve_point(
                 o = replace(o, y_ratio=seq["y_ratio"])
             prev = seq["grids"].get((n, box))
             r = None
-            if prev is not None and tightening(prev, o):
+            # a solve on other cells than the sequence's (before its fall-back to square cells)
+            # is another discrete problem: no step continues it
+            if prev is not None and o.y_ratio in (None, prev.extra["y_ratio"]) and tightening(prev, o):
                 # a tolerance step: the cycles go on from the converged solve of this grid
                 # on the cells and coarse grid of that solve (a retry may have changed them)
                 # with the relaxation it ended with (the policy may have damped it)

@@ -68,3 +68,32 @@ def test_a_point_tolerance_step_continues_and_agrees_with_a_fresh_solve_of_its_g
     assert fresh.success
     for k in ("Hc", "Hm"):
         assert abs(_raw(r, k) / fresh.scalars[k] - 1.0) < r.error.budget["algebraic"][k]
+
+
+@pytest.mark.solver
+def test_no_tolerance_step_continues_a_solve_on_other_cells_than_the_sequence_keeps(monkeypatch):
+    """Once a solve of the sequence falls back to square cells, every later solve keeps them; a
+    tolerance step must not continue a converged solve on the earlier cells (another discrete
+    problem: Barus (20, 20, theta 4) at 1 % mixed a 257-point film on y_ratio 1 into a sequence
+    on 0.5 and stated Hm 5.1 % on 513 points, refining to 2049, against 0.85 % with the
+    sequence on one set of cells). Stand-in fall-back: the (20, 25, theta 0.1) case's 65-point
+    repair level is solved on other cells and reported as a fall-back; its 129-point tolerance
+    step then follows."""
+    import ehl_multigrid.point.solve as ps
+
+    real, calls = ps.solve_fas, []
+
+    def spy(problem, options, **kw):
+        fake = options.points == 65 and options.y_ratio is None
+        r = real(problem, dataclasses.replace(options, y_ratio=0.5) if fake else options, **kw)
+        if fake:
+            r.extra["square_cells_fallback"] = True
+        calls.append((options.points, r.extra["y_ratio"], "guess" in kw))
+        return r
+
+    monkeypatch.setattr(ps, "solve_fas", spy)
+    r = solve_point(20.0, 25.0, theta=0.1, accuracy=0.02)
+    assert r.success
+    after = calls[[c[0] for c in calls].index(65):]
+    assert any(n == 129 for n, _, _ in after)  # the stand-in reached the tolerance step
+    assert all(ratio == 0.5 for _, ratio, _ in after), after
