@@ -24,6 +24,7 @@ import numpy as np
 from numba import njit
 
 from ..model.errors import require_choice
+from ..multigrid import transforms
 from .kernel import log_kernel
 
 METHODS = ("mlmi", "fft", "direct")
@@ -65,7 +66,6 @@ class FFTDeformation:
     def __init__(self, n: int, h: float) -> None:
         import scipy.fft  # here, not at import: a solve on MLMI never needs it
 
-        self._fft = scipy.fft
         self.n, self.h = n, h
         self.kernel = log_kernel(n, h)
         self.size = scipy.fft.next_fast_len(2 * n - 1, real=True)
@@ -75,8 +75,8 @@ class FFTDeformation:
         self._kf = scipy.fft.rfft(c)
 
     def apply(self, P: np.ndarray) -> np.ndarray:
-        pf = self._fft.rfft(np.asarray(P, dtype=float), n=self.size)
-        return self._fft.irfft(pf * self._kf, n=self.size)[: self.n]
+        pf = transforms.rfft(np.asarray(P, dtype=float), self.size)
+        return transforms.irfft(pf * self._kf, self.size)[: self.n]
 
 
 # -- multilevel multi-integration -----------------------------------------------------------

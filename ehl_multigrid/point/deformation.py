@@ -30,6 +30,7 @@ import scipy.fft as sfft
 from numba import njit, prange
 
 from ..model.errors import InputError
+from ..multigrid import transforms as tr
 
 
 def _F(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -217,10 +218,7 @@ def _split(fn, n: int, parts: int) -> None:
 
 def _dct1_columns_inplace(R: np.ndarray, lo: int, hi: int, inverse: bool) -> None:
     """DCT-I (or its inverse) along axis 0 of the columns ``lo:hi`` of ``R``, in place."""
-    V = R[:, lo:hi]
-    r = (sfft.idct if inverse else sfft.dct)(V, type=1, axis=0, overwrite_x=True, workers=1)
-    if not np.may_share_memory(r, V):  # pocketfft wrote into a new array
-        V[...] = r
+    tr.dct1(R[:, lo:hi], inverse)
 
 
 class FFTDeformation(Deformation):
@@ -281,7 +279,7 @@ class FFTDeformation(Deformation):
         F, mx = self._spec, self.mx
 
         def block(a: int, b: int) -> None:
-            F[a:b] = sfft.rfft(src[a:b], n=mx, axis=1, workers=1)
+            F[a:b] = tr.rfft(src[a:b], mx)
 
         self._rows(block, src.shape[0], w)
 
@@ -290,7 +288,7 @@ class FFTDeformation(Deformation):
         F, nx, mx = self._spec, self.nx, self.mx
 
         def block(a: int, b: int) -> None:
-            dst[a:b] = sfft.irfft(F[a:b], n=mx, axis=1, workers=1)[:, :nx]
+            dst[a:b] = tr.irfft(F[a:b], mx)[:, :nx]
 
         self._rows(block, nrows, w)
 
@@ -300,9 +298,9 @@ class FFTDeformation(Deformation):
         S, nx, mx = self.S, self.nx, self.mx
 
         def block(a: int, b: int) -> None:
-            F = sfft.rfft(R[a:b], n=mx, axis=1, workers=1)
+            F = tr.rfft(R[a:b], mx)
             F *= S[a:b]
-            R[a:b] = sfft.irfft(F, n=mx, axis=1, workers=1)[:, :nx]
+            R[a:b] = tr.irfft(F, mx)[:, :nx]
 
         self._rows(block, R.shape[0], w)
 
@@ -332,10 +330,10 @@ class FFTDeformation(Deformation):
             blk = B[:, : c1 - c0]
             blk[:ny] = F[:, c0:c1]
             blk[ny:] = 0.0
-            sfft.fft(blk, axis=0, overwrite_x=True, workers=w)
+            tr.fft_inplace(blk, False, w)
             blk[:ny] *= S[:, c0:c1]
             blk[ny:] *= S[ny - 2:0:-1, c0:c1]
-            sfft.ifft(blk, axis=0, overwrite_x=True, workers=w)
+            tr.fft_inplace(blk, True, w)
             F[:, c0:c1] = blk[:ny]
         self._irfft_rows(ny, out, w)
         return out
