@@ -281,11 +281,6 @@ def momentum_mode(profile: LineProfile, options: ThermalOptions) -> str:
     return "gradient" if m == "on" else "off"
 
 
-def uses_momentum(profile: LineProfile, options: ThermalOptions) -> bool:
-    """Whether the pressure term of (3.4) is applied (see ThermalOptions.momentum)."""
-    return momentum_mode(profile, options) != "off"
-
-
 def _reaches_upstream(WL: np.ndarray, WR: np.ndarray) -> bool:
     """True when a surface kernel carries heat upstream (index m = i - j < 0 in WL, m <= 0 in WR)."""
     i0 = (WL.size - 1) // 2

@@ -104,12 +104,6 @@ def material(name: str, extra: dict[str, Material] | None = None) -> Solid:
         ) from None
 
 
-def material_source(name: str, extra: dict[str, Material] | None = None) -> str:
-    """Source note of a named material ('' for an unknown name)."""
-    m = {**MATERIALS, **(extra or {})}.get(name)
-    return m.source if m is not None else ""
-
-
 def material_from_table(
     name: str, table: dict[str, Any], extra: dict[str, Material] | None = None
 ) -> Material:

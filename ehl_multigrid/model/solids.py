@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, fields, replace
 
-from .errors import InputError, reject_unknown_keys, require_positive, require_range
+from .errors import reject_unknown_keys, require_positive, require_range
 
 
 @dataclass(frozen=True)
@@ -60,15 +60,6 @@ class Solid:
 #: E = 2.1e11 Pa with nu = 0.3 gives E' = 2.308e11 Pa for steel on steel.
 STEEL = Solid(name="steel", E=2.1e11, nu=0.3, rho=7875.0, k=67.0, cp=400.0, hardness=5e9)
 PRESETS: dict[str, Solid] = {"steel": STEEL}
-
-
-def solid_preset(name: str) -> Solid:
-    try:
-        return PRESETS[name]
-    except KeyError:
-        raise InputError(
-            f"solid preset {name!r} is not known; known presets are {sorted(PRESETS)}"
-        ) from None
 
 
 def reduced_modulus(E1: float, nu1: float, E2: float, nu2: float) -> float:

@@ -199,11 +199,6 @@ class ErrorEstimate:
     #: the films reported as their extrapolation over the grids (``"Hc"``, ``"Hm"``)
     extrapolated: tuple[str, ...] = ()
 
-    def as_dict(self) -> dict[str, Any]:
-        return {"Hc_error": self.Hc, "Hm_error": self.Hm, "error_budget": self.budget,
-                "order_Hc": self.order_Hc, "order_Hm": self.order_Hm,
-                "Hc_extrapolated_venner": self.Hc_extrapolated, "error_notes": list(self.notes)}
-
 
 #: largest factor by which a slowly contracting iteration's last change is scaled (rho = 0.95)
 MAX_ITERATION_FACTOR = 19.0

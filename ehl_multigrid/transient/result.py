@@ -266,12 +266,6 @@ class TransientResult:
         inside = self._within(1.0)
         return [float(np.mean(self.snapshots[n]["H"][inside] < threshold)) for n in sorted(self.snapshots)]
 
-    def film_distribution(self, bins: int = 40) -> tuple[np.ndarray, np.ndarray]:
-        """Histogram (counts, edges) of H over the Hertzian contact and all kept steps."""
-        inside = self._within(1.0)
-        H = np.concatenate([self.snapshots[n]["H"][inside] for n in sorted(self.snapshots)])
-        return np.histogram(H, bins=bins)
-
     def summary(self) -> dict[str, Any]:
         """JSON-ready scalars of the run (``complete`` False and ``stop_reason`` for a run that
         ended early)."""
