@@ -6,8 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg
 
+from ..multigrid.banded import solve_banded
 from .deformation import make_deformation
 from .discrete import (
     distribute_changes,
@@ -121,9 +121,9 @@ class LineLevel:
 def solve_band(ab: np.ndarray, rhs: np.ndarray, band: int) -> np.ndarray:
     """Solve a collective line-relaxation system in LAPACK band storage (``band`` sub- and
     super-diagonals); a singular system (a film collapsed to zero) falls back to point Jacobi."""
-    try:
-        return scipy.linalg.solve_banded((band, band), ab, rhs, check_finite=False)
-    except (np.linalg.LinAlgError, ValueError):
-        # singular line system (e.g. a film collapsed to zero): point Jacobi this sweep
-        d = ab[band]
-        return np.where(np.abs(d) > 0.0, rhs / np.where(d == 0.0, 1.0, d), 0.0)
+    x, ok = solve_banded(np.ascontiguousarray(ab, dtype=float), np.ascontiguousarray(rhs, dtype=float), band)
+    if ok:
+        return x
+    # singular line system (e.g. a film collapsed to zero): point Jacobi this sweep
+    d = ab[band]
+    return np.where(np.abs(d) > 0.0, rhs / np.where(d == 0.0, 1.0, d), 0.0)
