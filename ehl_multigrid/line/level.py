@@ -3,11 +3,13 @@ FAS right-hand sides and the current iterate (P, H0), with the operations the cy
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg
+from scipy.linalg.lapack import dgbsv
 
-from ..multigrid.banded import solve_banded
 from .deformation import make_deformation
 from .discrete import (
     distribute_changes,
@@ -120,10 +122,40 @@ class LineLevel:
 
 def solve_band(ab: np.ndarray, rhs: np.ndarray, band: int) -> np.ndarray:
     """Solve a collective line-relaxation system in LAPACK band storage (``band`` sub- and
-    super-diagonals); a singular system (a film collapsed to zero) falls back to point Jacobi."""
-    x, ok = solve_banded(np.ascontiguousarray(ab, dtype=float), np.ascontiguousarray(rhs, dtype=float), band)
-    if ok:
-        return x
+    super-diagonals); a singular system (a film collapsed to zero) falls back to point Jacobi.
+
+    LAPACK's ``gbsv`` is called directly, as ``scipy.linalg.solve_banded`` calls it (the same
+    answer, bit for bit), on a work array kept per thread and size: the fresh work array of
+    each call (page faults on 10 MB at 131073 points) cost as much as the solve
+    (docs/performance.md, "Line relaxation")."""
+    n = ab.shape[1]
+    if band >= 2 and n > 1:
+        ext = _band_work(band, n)
+        ext[:band] = 0.0
+        ext[band:] = ab
+        _, _, x, info = dgbsv(band, band, ext, rhs, overwrite_ab=1, overwrite_b=0)
+        if info == 0:
+            return x
+        if info < 0:
+            raise ValueError(f"illegal value in argument {-info} of LAPACK gbsv")
+    else:
+        try:
+            return scipy.linalg.solve_banded((band, band), ab, rhs, check_finite=False)
+        except (np.linalg.LinAlgError, ValueError):
+            pass
     # singular line system (e.g. a film collapsed to zero): point Jacobi this sweep
     d = ab[band]
     return np.where(np.abs(d) > 0.0, rhs / np.where(d == 0.0, 1.0, d), 0.0)
+
+
+
+_WORK = threading.local()
+
+
+def _band_work(band: int, n: int) -> np.ndarray:
+    """The thread's work array for :func:`solve_band` (gbsv's storage, ``3 band + 1`` rows)."""
+    arrays = _WORK.__dict__.setdefault("arrays", {})
+    key = (band, n)
+    if key not in arrays:
+        arrays[key] = np.empty((3 * band + 1, n))
+    return arrays[key]
