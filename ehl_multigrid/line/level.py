@@ -148,13 +148,14 @@ def solve_band(ab: np.ndarray, rhs: np.ndarray, band: int) -> np.ndarray:
     return np.where(np.abs(d) > 0.0, rhs / np.where(d == 0.0, 1.0, d), 0.0)
 
 
-
 _WORK = threading.local()
 
 
 def _band_work(band: int, n: int) -> np.ndarray:
     """The thread's work array for :func:`solve_band` (gbsv's storage, ``3 band + 1`` rows)."""
-    arrays = _WORK.__dict__.setdefault("arrays", {})
+    arrays = getattr(_WORK, "arrays", None)
+    if arrays is None:
+        arrays = _WORK.arrays = {}
     key = (band, n)
     if key not in arrays:
         arrays[key] = np.empty((3 * band + 1, n))
