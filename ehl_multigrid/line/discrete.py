@@ -94,12 +94,15 @@ def projected(r, P):
 
 
 @njit(cache=True)
-def add_wedge_band(A, i, k, c, H, rho, drho, K, h, elastic, wq):
+def add_wedge_band(A, i, k, c, H, rho, drho, K, h, elastic, wq, row=-1):
     """Subtract from row ``i`` of the band Jacobian ``A`` (``A[i, wq + d] = dL_i/dP_{i+d}``,
     ``|d| <= wq``) the wedge term ``c q_k / h`` of ``q_k = rho_k H_k`` (``c`` its upwind weight,
     times the film content where there is one): ``dq_k/dP_j = rho_k dH_k/dP_j + drho_k H_k
-    delta_kj`` with ``dH_k/dP_j = -K_|k-j|/pi``."""
+    delta_kj`` with ``dH_k/dP_j = -K_|k-j|/pi``. ``row`` >= 0: write that row of ``A`` instead
+    (a one-row buffer)."""
     n = H.shape[0]
+    if row < 0:
+        row = i
     inv_pi = 1.0 / np.pi
     for d in range(-wq, wq + 1):
         j = i + d
@@ -111,7 +114,7 @@ def add_wedge_band(A, i, k, c, H, rho, drho, K, h, elastic, wq):
             val = -rho[k] * K[dist] * inv_pi
         if j == k:
             val += drho[k] * H[k]
-        A[i, wq + d] -= c * val / h
+        A[row, wq + d] -= c * val / h
 
 
 @njit(cache=True)
@@ -156,21 +159,7 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
     n = P.shape[0]
     m = n - 2  # interior unknowns 1 .. n-2
     wq = q + 1
-    # A[i, i + d] for |d| <= q + 1 (Jacobian of L with eps frozen)
-    A = np.zeros((n, 2 * wq + 1))
     ih2 = 1.0 / (h * h)
-    for i in range(1, n - 1):
-        ep = 0.5 * (eps[i] + eps[i + 1])
-        em = 0.5 * (eps[i] + eps[i - 1])
-        A[i, wq - 1] += em * ih2
-        A[i, wq] += -(ep + em) * ih2
-        A[i, wq + 1] += ep * ih2
-        c0, c1, c2 = wedge_coefficients(i, order)
-        for mm in range(3):
-            c = c0 if mm == 0 else (c1 if mm == 1 else c2)
-            if c == 0.0:
-                continue
-            add_wedge_band(A, i, i - mm, c, H, rho, drho, K, h, elastic, wq)
     jac = np.zeros(n, dtype=np.bool_)
     fix = np.zeros(n, dtype=np.bool_)
     fix[0] = fix[n - 1] = True
@@ -186,6 +175,9 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
             jac[j] = False
     ab = np.zeros((2 * q + 1, m))
     rhs = np.zeros(m)
+    # row i of the Jacobian of L with eps frozen, A[i, i + d] for |d| <= q + 1, built per row
+    # (a whole n x (2q + 3) matrix cost more in memory traffic than its arithmetic)
+    A = np.zeros((1, 2 * wq + 1))
     for i in range(1, n - 1):
         row = i - 1
         fixed = (P[i] <= 0.0 and r[i] >= 0.0) or frozen[i]
@@ -193,17 +185,29 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
             ab[q, row] = 1.0
             rhs[row] = 0.0
             continue
+        A[0, :] = 0.0
+        ep = 0.5 * (eps[i] + eps[i + 1])
+        em = 0.5 * (eps[i] + eps[i - 1])
+        A[0, wq - 1] += em * ih2
+        A[0, wq] += -(ep + em) * ih2
+        A[0, wq + 1] += ep * ih2
+        c0, c1, c2 = wedge_coefficients(i, order)
+        for mm in range(3):
+            c = c0 if mm == 0 else (c1 if mm == 1 else c2)
+            if c == 0.0:
+                continue
+            add_wedge_band(A, i, i - mm, c, H, rho, drho, K, h, elastic, wq, 0)
         rhs[row] = r[i]
         for d in range(-q, q + 1):
             j = i + d
             if j < 1 or j > n - 2:
                 continue
-            b = A[i, wq + d]
+            b = A[0, wq + d]
             if jac[j]:
                 if j - 1 >= 1:
-                    b -= 0.5 * A[i, wq + d - 1]
+                    b -= 0.5 * A[0, wq + d - 1]
                 if j + 1 <= n - 2:
-                    b -= 0.5 * A[i, wq + d + 1]
+                    b -= 0.5 * A[0, wq + d + 1]
             # LAPACK band storage: ab[q + row - col, col]
             ab[q + row - (j - 1), j - 1] = b
     # fixed (cavitated) unknowns: zero their columns in other rows
