@@ -216,11 +216,6 @@ def _split(fn, n: int, parts: int) -> None:
         f.result()
 
 
-def _dct1_columns_inplace(R: np.ndarray, lo: int, hi: int, inverse: bool) -> None:
-    """DCT-I (or its inverse) along axis 0 of the columns ``lo:hi`` of ``R``, in place."""
-    tr.dct1(R[:, lo:hi], inverse)
-
-
 class FFTDeformation(Deformation):
     """DC-FFT (Liu, Wang & Liu, Wear 243, 2000): the discrete sum as a linear convolution by FFT, exact to
     round-off, in ``O(N log N)``.
@@ -315,9 +310,9 @@ class FFTDeformation(Deformation):
             R = self._real
             R[:ny] = P
             R[ny:] = 0.0
-            _split(lambda lo, hi: _dct1_columns_inplace(R, lo, hi, False), nx, w)
+            _split(lambda lo, hi: tr.dct1(R[:, lo:hi], False), nx, w)
             self._convolve_rows(R, w)
-            _split(lambda lo, hi: _dct1_columns_inplace(R, lo, hi, True), nx, w)
+            _split(lambda lo, hi: tr.dct1(R[:, lo:hi], True), nx, w)
             out[:] = R[:ny]
             return out
         F, S = self._spec, self.S
