@@ -51,7 +51,8 @@ from ..model.errors import (
 )
 from .console import add_common_options, jsonable, locked_command, print_payload, print_table
 
-__all__ = ["Terminated", "add_common_options", "build_parser", "jsonable", "main", "print_payload", "print_table"]
+__all__ = ["Terminated", "add_common_options", "build_parser", "jsonable", "main", "print_payload", "print_table",
+           "run"]
 
 EXIT_OK = 0
 EXIT_INTERNAL = 1
@@ -395,6 +396,34 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:
         _stdout_to_devnull()
         return EXIT_BROKEN_PIPE
+
+
+def run() -> None:
+    """The ``ehl`` console script: :func:`main`, then the process ends without the
+    interpreter's teardown.
+
+    Once the command has returned, its files are closed and its output written; what the
+    interpreter would still do is wait for the threads (:func:`threading._shutdown`: the
+    idle FFT and thermal pools), run the ``atexit`` handlers (logging, h5py, multiprocessing)
+    and then free every module and object one by one, which takes 0.3-0.4 s after a solve
+    (numba's and OpenMP's runtimes; docs/performance.md). The first two are done here, the
+    last is skipped by :func:`os._exit`. Without ``threading._shutdown`` (another Python) the
+    exit is the ordinary one."""
+    code = main()
+    import atexit
+    import threading
+
+    shutdown = getattr(threading, "_shutdown", None)
+    if shutdown is None:
+        sys.exit(code)
+    shutdown()
+    atexit._run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):  # a reader gone or a closed stream: nothing left to say
+            pass
+    os._exit(code)
 
 
 def _stdout_to_devnull() -> None:
