@@ -106,6 +106,38 @@ def _finish(sol: EHLResult, scene: Any) -> EHLResult:
     return sol
 
 
+#: finest-grid cycles over which a solve that ran out of cycles must have contracted steadily, and
+#: the fall over them (twice the policy's stall test), for the relaxation retries to be skipped
+#: (:func:`steadily_contracting`)
+STEADY_WINDOW = 8
+STEADY_FALL = 0.8
+
+
+def steadily_contracting(sol: EHLResult) -> bool:
+    """True when ``sol`` ran out of cycles (``max_cycles``) with its residual and load error
+    each falling on every one of its last :data:`STEADY_WINDOW` cycles, to at most
+    :data:`STEADY_FALL` of their first value, and no cycle rejected: slow, not unstable. The
+    whole-refresh retry answers an iteration that oscillates or diverges (``retry_full_refresh``,
+    docs/robustness.md); on a slow one it runs out of cycles again (circular (5, 0), 1025 points
+    on eight times the box: the three attempts contract by 0.88-0.91 a cycle, 17 s each)."""
+    r = np.asarray(sol.residual_history, dtype=float)[-STEADY_WINDOW:]
+    g = np.abs(np.asarray(sol.load_error_history, dtype=float))[-STEADY_WINDOW:]
+    if sol.status_name != "max_cycles" or r.size < STEADY_WINDOW or g.size < STEADY_WINDOW:
+        return False
+    if any("rejected" in a for a in sol.actions):
+        return False
+    falling = bool(np.all(np.diff(r) < 0.0) and np.all(np.diff(g) < 0.0))
+    return falling and r[-1] <= STEADY_FALL * r[0] and g[-1] <= STEADY_FALL * g[0]
+
+
+def slow_note(sol: EHLResult, retry: str) -> str:
+    """The action of a relaxation retry skipped because ``sol`` was slow, not unstable."""
+    r = np.asarray(sol.residual_history, dtype=float)[-STEADY_WINDOW:]
+    q = (r[-1] / r[0]) ** (1.0 / (r.size - 1))
+    return (f"ended max_cycles still contracting steadily (residual x{q:.2f} a cycle over the last "
+            f"{r.size}): slow, not unstable, so {retry} was not tried")
+
+
 def _again(problem: PointProblem, opt: PointOptions, solver: Any, sol: EHLResult,
            callback: Callable[[dict[str, Any]], None] | None, how: str,
            guess: Any = None) -> tuple[Any, EHLResult]:
@@ -162,14 +194,24 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
                                  solver, sol, callback, f"square cells (y_ratio {square_ratio:g} "
                                  f"instead of {hz0.y_ratio:g}; retry_square_cells)", guess)
             base = replace(opt, y_ratio=solver.hierarchy.y_ratio)
-        if retry and sol.status_name in RETRY_ALTERNATING:
+        hz1 = solver.hierarchy
+        # every grid alternated already (the fine-grid rule, not the policy's switch) and the
+        # iteration was merely slow: the retry would add nothing but another slow solve
+        alternated = not hz1.alternating and all(lev.alternate for lev in hz1.levels)
+        if retry and sol.status_name in RETRY_ALTERNATING and alternated and steadily_contracting(sol):
+            sol.actions.append(slow_note(sol, "the retry alternating on every grid (every grid "
+                                              "alternated already)"))
+        elif retry and sol.status_name in RETRY_ALTERNATING:
             # X lines alone failed: solve again alternating X and Y lines on every grid from
             # the start (the policy's mid-solve switch comes too late on some grids)
             # (with W cycles unless the options name one: point_cycle)
             solver, sol = _again(problem, replace(base, alternating=True, raise_on_failure=False), solver,
                                  sol, callback, "X and Y lines alternating on every grid", guess)
-        if (retry and opt.retry_full_refresh and sol.status_name in RETRY_ALTERNATING
-                and opt.local_film_update):
+        full_refresh = (retry and opt.retry_full_refresh and sol.status_name in RETRY_ALTERNATING
+                        and opt.local_film_update)
+        if full_refresh and steadily_contracting(sol):
+            sol.actions.append(slow_note(sol, "the whole-refresh retry (retry_full_refresh)"))
+        elif full_refresh:
             # W cycles unless the options name one: with the steady default's F cycles circular
             # Barus (500, 20, theta 0.25) at 1025 points diverges in this retry too
             solver, sol = _again(problem, replace(base, local_film_update=False, raise_on_failure=False,

@@ -17,20 +17,26 @@ class Retried(Exception):
     """Raised by the stand-in solver when an attempt with an explicit coarse grid is made."""
 
 
-def stand_in(status: str, n_coarse: int, attempts: list, ymax: float = 3.0):
+def stand_in(status: str, n_coarse: int, attempts: list, ymax: float = 3.0,
+             residuals=(1e-5,), loads=(1e-3,), alternate: bool = False, made: list | None = None):
     """A ``point_solver`` whose attempts end with ``status`` on ``n_coarse`` coarse intervals
-    (box X -4.5 .. 1.5, Y up to ``ymax``, square cells on the circle's box); an attempt on other
-    coarse intervals than the first one's raises :class:`Retried`."""
+    (box X -4.5 .. 1.5, Y up to ``ymax``, square cells on the circle's box) after the given
+    residual and load-error histories, its grids alternating X and Y lines by the fine-grid rule
+    when ``alternate``; an attempt on other coarse intervals than the first one's raises
+    :class:`Retried`."""
 
     def point_solver(problem, opt, guess=None):
         if attempts and opt.n_coarse not in (None, attempts[0].n_coarse):
             raise Retried(opt.n_coarse)
         attempts.append(opt)
-        hz = SimpleNamespace(levels=[SimpleNamespace(nx=n_coarse + 1)], xmin=-4.5, xmax=1.5,
-                             ymax=ymax, y_ratio=opt.y_ratio or 1.0, solver=None)
+        hz = SimpleNamespace(levels=[SimpleNamespace(nx=n_coarse + 1, alternate=alternate)], xmin=-4.5,
+                             xmax=1.5, ymax=ymax, y_ratio=opt.y_ratio or 1.0, solver=None,
+                             alternating=bool(opt.alternating))
         res = SimpleNamespace(status_name=status, success=False, message="stand-in",
-                              work_units=1.0, wall_s=0.1, residual_history=np.array([1e-5]),
-                              actions=[], report=None)
+                              work_units=1.0, wall_s=0.1, residual_history=np.array(residuals),
+                              load_error_history=np.array(loads), actions=[], report=None)
+        if made is not None:
+            made.append(res)
         return SimpleNamespace(hierarchy=hz, solve=lambda callback=None: res, hint="")
 
     return point_solver
@@ -122,3 +128,51 @@ def test_a_diverged_solve_on_stretched_cells_is_solved_again_on_square_ones_and_
     _, kept = ps._again(pb, attempts[0], solver, first, None, "a test retry")
     assert kept.work_units == 2.0 and kept.wall_s == pytest.approx(0.2)
     assert kept.actions[-1].startswith("ended diverged (stand-in); solved again with a test retry")
+
+
+SLOW = dict(residuals=1e-6 * 0.9 ** np.arange(12), loads=-1e-3 * 0.9 ** np.arange(12))
+
+
+def test_a_solve_out_of_cycles_but_contracting_steadily_is_not_retried_with_other_relaxations(monkeypatch):
+    # circular (5, 0) on eight times the box: every grid alternates by the fine-grid rule and the
+    # residual falls by 0.91 a cycle; the alternating and whole-refresh retries (17 s each) were as slow
+    pb, box = problem_from_moes(5.0, 0.0, 1.0), dict(points=1025, half=True, raise_on_failure=True)
+    attempts: list = []
+    made: list = []
+    monkeypatch.setattr(ps, "point_solver", stand_in("max_cycles", 128, attempts, alternate=True,
+                                                     made=made, **SLOW))
+    with pytest.raises(ConvergenceError):
+        ps.solve_fas(pb, **box)
+    assert len(attempts) == 1
+    assert "x0.90 a cycle" in made[0].actions[0] and "slow, not unstable" in made[0].actions[0]
+    # grids that did not alternate yet: the alternating retry runs, the whole refresh does not
+    attempts.clear()
+    monkeypatch.setattr(ps, "point_solver", stand_in("max_cycles", 128, attempts, alternate=False, **SLOW))
+    with pytest.raises(ConvergenceError):
+        ps.solve_fas(pb, **box)
+    assert [o.alternating for o in attempts] == [None, True]
+    assert all(o.local_film_update for o in attempts)
+
+
+@pytest.mark.parametrize("history", [
+    dict(residuals=SLOW["residuals"] * np.r_[np.ones(11), 1.2], loads=SLOW["loads"]),  # a residual rise
+    dict(residuals=SLOW["residuals"], loads=-1e-3 * 0.99 ** np.arange(12)),  # a load error near a stall
+])
+def test_a_solve_out_of_cycles_that_is_not_steadily_contracting_gets_every_relaxation_retry(monkeypatch, history):
+    pb = problem_from_moes(5.0, 0.0, 1.0)
+    attempts: list = []
+    monkeypatch.setattr(ps, "point_solver", stand_in("max_cycles", 128, attempts, alternate=True, **history))
+    with pytest.raises(ConvergenceError):
+        ps.solve_fas(pb, points=1025, half=True, raise_on_failure=True)
+    assert [o.alternating for o in attempts] == [None, True, None]
+    assert attempts[2].local_film_update is False
+
+
+def test_steady_contraction_is_judged_on_max_cycles_only():
+    res = SimpleNamespace(status_name="diverged", actions=[], **{
+        "residual_history": SLOW["residuals"], "load_error_history": SLOW["loads"]})
+    assert not ps.steadily_contracting(res)
+    res.status_name = "max_cycles"
+    assert ps.steadily_contracting(res)
+    res.actions = ["cycle 3 on grid 2 rejected (residual 1e-3)"]
+    assert not ps.steadily_contracting(res)
