@@ -151,9 +151,8 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10, keep:
 
 
 #: a factorised Jacobian is reused (chord steps) while each step lowers the merit |phi| by at
-#: least this factor; a slower step, or a failed line search, refreshes it. A dense LU costs
-#: O(n^3) (0.37 s at 2049 points), a chord step O(n^2) (a few ms): the FMG start of line
-#: (3000, 6) on 2049 points takes 3 factorisations instead of 5 (docs/accuracy.md)
+#: least this factor; a slower step, or a failed line search, refreshes it (docs/accuracy.md,
+#: "What an accuracy costs")
 CHORD_CONTRACTION = 0.2
 #: start grids of at least this many points may factorise their Jacobian in single precision
 #: (``newton_solve(single=True)``; half the time of a 2049-point LU; the residual and the line

@@ -43,41 +43,23 @@ GRID_SAFETY = 1.5
 #: the grid, and converges irregularly (line (20, 10): local orders 1.3-2.3 between 513 and
 #: 4097 points while the three-grid order says 2.3)
 HM_MAX_ORDER = 1.5
-#: the same cap for line contacts. Measured on the 35 converged line results of the fit map at
-#: 1 % (validation/extremes/reference_check.py: converged solves on n, 2n, 4n points): Hm's
-#: own order is 0.7-3.3, below 1.5 in 14 of 33, and Roelands (500, 10) at 8193 points stated a
-#: grid plus algebraic Hm error of 0.35 % for a true 0.53 % (order 1.34) with the cap at 1.5
+#: the same cap for line contacts, whose Hm converges at about first order (own orders 0.7-3.3
+#: on the fit map's line results; docs/accuracy.md, "Extrapolated films")
 LINE_HM_MAX_ORDER = 1.0
-#: an observed order above this (twice the formal 2: differences falling more than 16-fold in
-#: one refinement) marks a sequence as pre-asymptotic, its last difference small by accident
-#: (a film crossing its limit). Measured: isoviscous line (100, 0) at 2049 points, Hm on
-#: 513-2049 points 0.79261, 0.79718, 0.79725 (order 6.2) gave 0.011 % for a true 0.16 %
-#: (converged films 0.79643, 0.79622, 0.79611 on 4097-16385 points)
+#: an observed order above this (twice the formal 2) marks a sequence as pre-asymptotic, its last
+#: difference small by accident; it takes the first-order bound (docs/accuracy.md, "Grid error")
 SUSPECT_ORDER = 4.0
-#: multiplies the change of the film when the box is doubled. Measured against boxes up to 8x
-#: (validation/accuracy, point contacts): the whole domain error is 1.06-1.28 times the first
-#: doubling's change at (20, 10), (100, 10), (100, 20), theta 0.25 and 4, but 1.77 times at
-#: (20, 0) and 2.55 times at (5, 0), where the thick film's pressure spreads far upstream and
-#: the error falls only about 1.6x per doubling
+#: the domain part over the film's change when the box is doubled, where the boundary holds
+#: ``P = 0`` (point contacts, the thermal layer; docs/accuracy.md, "Domain error")
 DOMAIN_SAFETY = 3.0
 #: the fixed factor where the boundary holds the far-field pressure (point contacts,
-#: ``point.farfield``): there the change falls 5-40 times per doubling, and the whole domain
-#: error is 1.0-1.27 times the first doubling's change on the far-field references of circular
-#: (5, 0), (20, 0), (20, 10), (100, 10), (100, 20), (1000, 10) and elliptic (20, 10, theta 0.25
-#: and 4) (Hc and Hm; (20, 0) Hc 1.7 times, at 8e-5, below the references' uncertainty);
-#: validation/accuracy/far_references.py
+#: ``point.farfield``; docs/accuracy.md, "Far-field boundary")
 FAR_DOMAIN_SAFETY = 2.0
 #: the fixed factor of line contacts (``P = 0`` at an inlet 20 rigid lengths upstream,
-#: ``line.problem.default_xmin``): on the 10 line references (M 5-1000, L 0-20) the change falls
-#: 5-13 times per doubling and the whole box error is 1.08-1.26 times the first doubling's change
-#: (1.33 where a decay of 4 is assumed); validation/accuracy/references.py
+#: ``line.problem.default_xmin``; docs/accuracy.md, "Domain error")
 LINE_DOMAIN_SAFETY = 2.0
-#: multiplies the geometric remainder ``|d2| r/(r - 1)`` of a box change ``d2`` that falls by
-#: ``r`` per doubling, when a third box measured ``r`` (:func:`domain_from_decay`). Measured
-#: (validation/accuracy, estimator_variants.py, the honesty rows with the references' box
-#: series): 100 % of the point films within the estimate, median true/estimate 0.52 against
-#: 0.42 with the fixed factor; at (5, 0), where the change falls 1.3-1.7x per doubling, it
-#: gives 30 %/58 % against true 16 %/25 %
+#: multiplies the geometric remainder ``|d2| r/(r - 1)`` of a box change ``d2`` that falls by ``r``
+#: per doubling (:func:`domain_from_decay`, :func:`domain_correction`; docs/accuracy.md, "Domain error")
 DECAY_SAFETY = 1.25
 #: resolution of the tight probes' box changes (relative; three times their film and load
 #: tolerances): a second change below it counts as this large, and when both are below it
@@ -341,9 +323,7 @@ class BoxSeries:
 #: box: slower decays (thick films) leave a remainder the geometric continuation does not bound
 CORRECTION_MIN_DECAY = 2.0
 #: multiplies the change of the first box change between the coarse and the probe mesh: Hm's
-#: box change does not converge monotonically with the mesh (circular (100, 10): 0.33, 0.19,
-#: 0.34 % on meshes of 65, 129, 257 points per default box), so one more refinement may move it
-#: as far again, and the second change's own mesh dependence is not measured
+#: box change is irregular in the mesh (docs/accuracy.md, "Box correction")
 MESH_SAFETY = 2.0
 
 
@@ -383,13 +363,9 @@ def domain_correction(d2: float, d4: float | None, d2_coarse: float | None, nois
     return c, DECAY_SAFETY * (abs(beyond) + mesh + noise)
 
 
-#: A solve started on its finest grid from a given solution (the line's continuation in M) has
-#: no FMG; its iteration error is at least the largest film change over this many last cycles.
-#: Measured on isoviscous (5000, 0), continued from M = 2500 on 32769-131073 points at the
-#: accuracy loop's two tolerances, against solves to the residual 1e-9: the change-based
-#: estimate was 1.4-3.4 times below the true iteration error in 5 of 12 films (Hc 2.2e-5 stated,
-#: 6.9e-5 true at 32769 points), the films creeping on after a small last change; the largest
-#: of the last three changes covers all 12.
+#: a solve started on its finest grid from a given solution (no FMG) states as its iteration
+#: error at least the largest film change over this many last cycles (docs/robustness.md,
+#: "Line solver defaults")
 FROM_GUESS_CHANGES = 3
 
 
@@ -580,11 +556,8 @@ LINE_HM_PREDICT_ORDER = 1.5
 DOMAIN_REUSE_BELOW = 0.1
 #: with an accuracy target the cycles stop when the films change by less than this fraction of it
 FILM_TOL_FRACTION = 0.05
-#: the domain probes' two solves stop when the films change by less than this per cycle: their
-#: difference must measure the box, not two iteration errors. Measured: line (5000, 10) at
-#: 8193 points meets the residual tolerance 1e-4 with Hc 0.63 % and Hm 1.3 % from its discrete
-#: solution (the films contract by ~0.3 per cycle), which a residual-stopped probe read as a
-#: box effect of 0.64 %.
+#: film tolerance (relative change per cycle) of the domain probes' solves: their difference must
+#: measure the box, not two iteration errors (docs/accuracy.md, "Domain error")
 PROBE_FILM_TOL = 1e-4
 
 
@@ -695,12 +668,8 @@ DOMAIN_DECAY = 4.0
 #: how much smaller a box correction leaves the domain part than the fixed factor (circular
 #: (20, 10) and elliptic (50, 10) at 1025 points: 6-12x; docs/accuracy.md)
 CORRECTION_GAIN = 4.0
-#: above this estimated grid error (relative, either film) the grid is not yet in its
-#: asymptotic range and the refinement goes one grid at a time: the predictions of a jump of
-#: two grids rest on an estimate that is itself rough. Measured (point (1000, 10), 5 %): the
-#: 513-point estimate (grid Hc 55 %, Hm 67 %) sent the refinement to 2049 points on a box twice
-#: as wide (15.6 s), where 1025 points on the default box meet the target (2.6 s; 20.7 % and
-#: 108 % on an earlier version of the iteration, whose path took that step)
+#: no jump of two grids while the estimated grid error (relative, either film) is above this: the
+#: grid is not yet in its asymptotic range (docs/accuracy.md, "The accuracy controller")
 PREASYMPTOTIC_GRID = 0.1
 
 
@@ -821,14 +790,9 @@ def _why_short(est: ErrorEstimate, accuracy: float, points: int, max_points: int
     return "the iteration (algebraic) error dominates"
 
 
-#: when the FMG films of a result converge irregularly (first-order grid estimate) and the
-#: estimate misses the target, the accuracy loop first solves this many coarser grids of the same
-#: box to convergence (tolerances x 0.1) and estimates again from their films: an FMG level's
-#: few cycles leave algebraic errors that can exceed the grid differences (line (21.9, 3.25),
-#: Roelands, the page-63 scene at 500 N: FMG films 0.2-0.4 % off on 513-2049 points, estimate
-#: 1.2 % by the first-order bound for a true 0.07 %; the refinements it then chose ran 56 s and
-#: diverged at 32769 points). Costs about 5/16 of the finest solve. A point film that could
-#: not be extrapolated (:func:`extrapolated` needs four grids) is repaired one grid further down.
+#: coarser grids solved to convergence (tolerances x 0.1) when the FMG films converge irregularly
+#: and the estimate misses the target; one more for a point film not extrapolated
+#: (docs/accuracy.md, "Extrapolated films")
 REPAIR_LEVELS = 2
 #: smallest grid solved for the repair
 REPAIR_MIN_POINTS = 65

@@ -115,9 +115,8 @@ PREDICTION_SHARPNESS = 1.1
 #: a refinement that misses the target must at least lower the error by this factor
 REQUIRED_GAIN = 0.9
 #: a cheaper finer grid predicted within this factor of the target is tried before the
-#: refinement predicted to meet it (once per sequence, two-dimensional contacts): the
-#: predictions leave out what the finer FMG sequence adds (an extrapolated film, a box
-#: correction), and a cost rank is 4x the work there (docs/accuracy.md)
+#: refinement predicted to meet it, once per sequence in two dimensions (docs/accuracy.md,
+#: "The accuracy controller")
 HOPE = 1.5
 
 

@@ -590,10 +590,9 @@ def decays_below(problem: PointProblem, options: PointOptions, sol: EHLResult,
     return all(d != 0.0 and b / d >= CORRECTION_MIN_DECAY for b, d in ((bc, dc), (bm, dm)))
 
 
-#: solves of at least this many points along X measure the second change of a box series
-#: beyond the box on the coarse mesh (:func:`point_box_series`) where the first change on the
-#: coarse mesh is within :data:`COARSE_D4_AGREEMENT` of the probe mesh's for both films
-#: (docs/accuracy.md, "Box correction")
+#: solves of at least this many points along X measure the box series' second change on the
+#: coarse mesh where its first change agrees with the probe mesh's (:data:`COARSE_D4_AGREEMENT`;
+#: docs/accuracy.md, "Box correction")
 COARSE_D4_FROM = 2049
 COARSE_D4_AGREEMENT = 0.25
 

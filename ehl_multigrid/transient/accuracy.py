@@ -46,10 +46,7 @@ def time_error(fine: TransientResult, coarse: TransientResult) -> dict[str, floa
 #: run's: BDF2's steps scale as tol^(1/3), so this halves them
 TIGHTER_TOL = 1.0 / 8.0
 #: the time error of an adaptive run over its largest difference from the run at
-#: :data:`TIGHTER_TOL` of its tolerance; with the error falling 4x per halved step it would be
-#: 4/3. Measured (docs/transient.md, validation/transient/line_study.py --part adaptive): the
-#: true error is 1.2-1.6 times the difference, the error falling only 1.7-3.7x per eighth of
-#: the tolerance
+#: :data:`TIGHTER_TOL` of its tolerance (docs/transient.md, "The time error a run states")
 ADAPTIVE_FACTOR = 2.0
 
 
