@@ -130,12 +130,13 @@ def steadily_contracting(sol: EHLResult) -> bool:
     return falling and r[-1] <= STEADY_FALL * r[0] and g[-1] <= STEADY_FALL * g[0]
 
 
-def slow_note(sol: EHLResult, retry: str) -> str:
-    """The action of a relaxation retry skipped because ``sol`` was slow, not unstable."""
+def slow_note(sol: EHLResult, retries: list[str]) -> str:
+    """The action of the relaxation ``retries`` skipped because ``sol`` was slow, not unstable."""
     r = np.asarray(sol.residual_history, dtype=float)[-STEADY_WINDOW:]
     q = (r[-1] / r[0]) ** (1.0 / (r.size - 1))
+    what = f"{retries[0]} was" if len(retries) == 1 else f"neither {' nor '.join(retries)} was"
     return (f"ended max_cycles still contracting steadily (residual x{q:.2f} a cycle over the last "
-            f"{r.size}): slow, not unstable, so {retry} was not tried")
+            f"{r.size}): slow, not unstable, so {what} tried")
 
 
 def _again(problem: PointProblem, opt: PointOptions, solver: Any, sol: EHLResult,
@@ -198,9 +199,9 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
         # every grid alternated already (the fine-grid rule, not the policy's switch) and the
         # iteration was merely slow: the retry would add nothing but another slow solve
         alternated = not hz1.alternating and all(lev.alternate for lev in hz1.levels)
+        skipped = []
         if retry and sol.status_name in RETRY_ALTERNATING and alternated and steadily_contracting(sol):
-            sol.actions.append(slow_note(sol, "the retry alternating on every grid (every grid "
-                                              "alternated already)"))
+            skipped.append("the retry alternating on every grid (every grid alternated already)")
         elif retry and sol.status_name in RETRY_ALTERNATING:
             # X lines alone failed: solve again alternating X and Y lines on every grid from
             # the start (the policy's mid-solve switch comes too late on some grids)
@@ -210,7 +211,7 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
         full_refresh = (retry and opt.retry_full_refresh and sol.status_name in RETRY_ALTERNATING
                         and opt.local_film_update)
         if full_refresh and steadily_contracting(sol):
-            sol.actions.append(slow_note(sol, "the whole-refresh retry (retry_full_refresh)"))
+            skipped.append("the whole-refresh retry (retry_full_refresh)")
         elif full_refresh:
             # W cycles unless the options name one: with the steady default's F cycles circular
             # Barus (500, 20, theta 0.25) at 1025 points diverges in this retry too
@@ -218,6 +219,8 @@ def solve_fas(problem: PointProblem, options: PointOptions | None = None,
                                                   cycle=base.cycle or ALTERNATING_CYCLE),
                                  solver, sol, callback, "the film refreshed by whole deformations "
                                  "between the X and Y halves (retry_full_refresh)", guess)
+        if skipped:
+            sol.actions.append(slow_note(sol, skipped))
         if finer and sol.status_name == "diverged" and 4 * n_coarse <= (opt.points - 1) // 4:
             solver, sol = _again(problem, replace(base, n_coarse=4 * n_coarse, raise_on_failure=False), solver,
                                  sol, callback, f"{4 * n_coarse} coarse intervals instead of {n_coarse} "
