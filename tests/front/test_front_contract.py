@@ -63,7 +63,7 @@ def steady_point():
 @pytest.fixture(scope="module")
 def starved_line():
     # physics=None: the scene's finite [supply] hoil picks the starved solver
-    return ehl.solve(starved_line_scene(), options={"points": 513})
+    return ehl.solve(starved_line_scene(), options={"points": 257})
 
 
 @pytest.fixture(scope="module")
@@ -171,7 +171,7 @@ def test_steady_point_equals_solve_point_called_directly_on_the_half_domain(stea
 def test_starved_line_equals_solve_starved_scene_called_directly(starved_line):
     from ehl_multigrid.starved import solve_starved_scene
 
-    direct = solve_starved_scene(starved_line_scene(), points=513, accuracy=ACC, raise_on_failure=False)
+    direct = solve_starved_scene(starved_line_scene(), points=257, accuracy=ACC, raise_on_failure=False)
     assert starved_line.physics == "starved"
     assert starved_line.Hc == direct.Hc and starved_line.Hm == direct.Hm
     assert starved_line.hc == direct.scalars["hc"]
