@@ -74,9 +74,9 @@ def test_a_point_tolerance_step_continues_and_agrees_with_a_fresh_solve_of_its_g
 def test_no_tolerance_step_continues_a_solve_on_other_cells_than_the_sequence_keeps(monkeypatch):
     """Once a solve of the sequence falls back to square cells, every later solve keeps them; a
     tolerance step must not continue a converged solve on the earlier cells (another discrete
-    problem: Barus (20, 20, theta 4) at 1 % mixed a 257-point film on y_ratio 1 into a sequence
-    on 0.5 and stated Hm 5.1 % on 513 points, refining to 2049, against 0.85 % with the
-    sequence on one set of cells). Stand-in fall-back: the (20, 25, theta 0.1) case's 65-point
+    problem: for Barus (20, 20, theta 4) at 1 % a 257-point film on y_ratio 1 in a sequence on
+    0.5 states Hm 5.1 % on 513 points, against 0.85 % with the whole sequence on one set of
+    cells; docs/accuracy.md). Stand-in fall-back: the (20, 25, theta 0.1) case's 65-point
     repair level is solved on other cells and reported as a fall-back; its 129-point tolerance
     step then follows."""
     import ehl_multigrid.point.solve as ps
