@@ -40,3 +40,49 @@ def test_domain_probe_from_the_solution_measures_the_deep_box_change(sol):
     assert abs(deep[0]) > 1e-5  # a change the probe must resolve
     for got, want in zip(change, deep, strict=True):
         assert got == pytest.approx(want, rel=0.05)
+
+
+def _probe_grids(monkeypatch, sol, below_start):
+    """The grids (points of the default box's solve) on which ``line_domain_change`` solves,
+    for a solve that started on its finest grid (no FMG grids below it)."""
+    import ehl_multigrid.line.solver as ls
+
+    seen, real = [], ls.solve_line_problem
+
+    def spy(problem, options, *a, **kw):
+        if problem.xmin == sol.problem.xmin:
+            seen.append(options.points)
+        return real(problem, options, *a, **kw)
+
+    monkeypatch.setattr(ls, "solve_line_problem", spy)
+    started_on_finest = dataclasses.replace(sol)
+    started_on_finest.fmg = [{"level": sol.levels - 1}]
+    change = line_domain_change(sol.problem, sol.options, started_on_finest, below_start=below_start)
+    return change, seen
+
+
+def test_a_solve_started_on_its_finest_grid_measures_its_box_on_a_coarse_grid_where_far_below(
+        monkeypatch, sol):
+    """The continuation in M starts on the finest grid, so the probes had only that grid
+    ((5000, 0) on 16385 and 32769 points: 7.4 s for a change of 2e-6). Two grids below, the box
+    change is accepted where ``below_start`` says it lies far below the target; the same change
+    as on the finest grid within the factor 1.2 that ``solve_line``'s rule allows for (the
+    inlet is resolved on coarse meshes)."""
+    coarse, seen = _probe_grids(monkeypatch, sol, lambda change: True)
+    assert seen == [513]
+    fine, seen = _probe_grids(monkeypatch, sol, lambda change: False)  # ends on the finest grid
+    assert seen[-1] == 2049
+    for c, f in zip(coarse, fine, strict=True):
+        assert 1.0 / 1.2 < c / f < 1.2  # measured: Hc 1.01, Hm 1.12
+
+
+def test_a_coarse_box_change_not_far_below_the_target_is_measured_again_on_a_finer_grid(
+        monkeypatch, sol):
+    change, seen = _probe_grids(monkeypatch, sol, lambda change: False)
+    assert seen == [513, 1025, 2049]  # neither coarse grid's change counts: the finest measures it
+    assert change is not None
+
+
+def test_without_below_start_the_probe_stays_on_the_grids_the_fmg_reached(monkeypatch, sol):
+    _, seen = _probe_grids(monkeypatch, sol, None)
+    assert seen == [2049]

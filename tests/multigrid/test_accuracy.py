@@ -149,6 +149,27 @@ def test_a_line_film_that_falls_slower_than_second_order_jumps_two_grids_at_once
     assert choose(point, 0.005, 0.0442).at == Resolution(513)
 
 
+def test_a_line_film_two_grids_cannot_bring_near_the_target_jumps_three():
+    """Line (5000, 25) at 0.5 % on 16385 points: Hm states 6.92 %; two grids at the line's Hm
+    gain (2^1.5 per grid) are predicted to leave 0.87 %, more than THREE_GRIDS_BEYOND times the
+    target, so the loop jumps to 131073 points (0.45 % stated there) instead of stepping through
+    65537 (1.21 %, 0.7 s). (3000, 6) above, two grids predicted 0.55 %, keeps the two-grid step
+    (it met the target there, 0.39 %)."""
+    from ehl_multigrid.multigrid.controller import choose
+
+    b = {"grid": {"Hc": 0.006, "Hm": 0.0692}, "domain": {"Hc": 1e-5, "Hm": 1e-5},
+         "algebraic": {"Hc": 1e-5, "Hm": 1e-5}}
+    gain = {"Hc": 4.0, "Hm": 2.0**1.5}
+    line = refinement_candidates(b, 0.005, 16385, 1.0, 1.0, 131073, 4.0, grid_gain=gain, two_grids=True)
+    assert choose(line, 0.005, 0.0692).at == Resolution(131073)
+    # within the grid budget only
+    capped = refinement_candidates(b, 0.005, 16385, 1.0, 1.0, 65537, 4.0, grid_gain=gain, two_grids=True)
+    assert "3 points" not in [c.what for c in capped]
+    near = {**b, "grid": {"Hc": 0.0037, "Hm": 0.0442}}
+    line = refinement_candidates(near, 0.005, 16385, 1.0, 1.0, 131073, 4.0, grid_gain=gain, two_grids=True)
+    assert "3 points" not in [c.what for c in line]
+
+
 def test_points_needed_follows_second_order_grid_error():
     # grid error 0.04 at 257 points, target 0.01: a factor 4 in error is 2 in mesh size
     assert points_needed(_budget(0.04, 0.0), 0.01, 257) == 513
