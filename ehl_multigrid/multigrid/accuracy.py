@@ -634,8 +634,11 @@ def apply_correction(result: Any) -> None:
                 scal[k] = float(scal[k]) * factor
     result.extra["film_correction"] = {name: dict(part) for name, part in corr.items()}
     said = {"grid": "extrapolated over the grids", "box": "corrected for the box"}
-    result.message += "; Hc and Hm " + " and ".join(
-        f"{said[name]} ({part['Hc']:+.2%}, {part['Hm']:+.2%})" for name, part in corr.items()
+    # the grid part names only the films extrapolated (a line's Hm never is)
+    films = {"grid": tuple(getattr(est, "extrapolated", ())) or ("Hc", "Hm"), "box": ("Hc", "Hm")}
+    result.message += "; " + "; ".join(
+        f"{' and '.join(films[name])} {said[name]} (" + ", ".join(f"{part[f]:+.2%}" for f in films[name]) + ")"
+        for name, part in corr.items()
     ) + "; the fields are the finest grid's on the solve's box"
 
 

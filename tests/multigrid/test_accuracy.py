@@ -841,6 +841,22 @@ def test_a_corrected_result_scales_its_film_scalars_and_keeps_the_fields_films()
     assert "+1.00%" in res.message and "-2.00%" in res.message
 
 
+def test_the_message_of_a_corrected_result_names_only_the_films_each_part_corrected():
+    """A line result extrapolates Hc only: its message said "Hc and Hm extrapolated over the
+    grids (+0.02%, +0.00%)" of a gear's pitch-point contact whose Hm was the finest grid's."""
+    from types import SimpleNamespace
+
+    from ehl_multigrid.multigrid.accuracy import apply_correction
+
+    corr = {"grid": {"Hc": 0.0002, "Hm": 0.0}, "box": {"Hc": 0.01, "Hm": -0.02}}
+    res = SimpleNamespace(error=ErrorEstimate(1e-3, 1e-3, {}, correction=corr, extrapolated=("Hc",)),
+                          scalars={"Hc": 2.0, "Hm": 1.0}, extra={}, message="converged")
+    apply_correction(res)
+    assert res.message.startswith("converged; Hc extrapolated over the grids (+0.02%); Hc and Hm "
+                                  "corrected for the box (+1.00%, -2.00%); ")
+    assert "Hm extrapolated" not in res.message
+
+
 def test_point_target_missed_only_by_the_domain_part_is_met_by_the_box_correction():
     """Circular (20, 10) on 513 points: a target the grid and iteration parts meet but the
     domain part misses is met by correcting the films for the box (two doublings measured on
