@@ -78,6 +78,9 @@ STEADY_LINE_POLICY = PolicyParameters(
 #: film tolerance of a domain probe started from the solution (line_domain_change)
 GUESS_PROBE_FILM_TOL = 1e-6
 
+#: most Newton steps of a coarse solve on a grid whose Newton failed before in the same solve
+NEWTON_AFTER_FAILURE = 20
+
 #: local Newton (:meth:`LineHierarchy.relax`): where the largest complementarity residual
 #: exceeds this multiple of the mean, in a window of this half width
 LOCAL_NEWTON_FACTOR = 20.0
@@ -185,6 +188,8 @@ class LineHierarchy:
             for k in range(nlev)
         ]
         self.newton_iterations = 0
+        #: grids whose coarse Newton failed in this solve: relaxed on the later visits
+        self.newton_failed: set[int] = set()
         self.solver: MultilevelSolver | None = None
         #: coarsest grid the cycles visit (solved by Newton like level 0); raised on a stall to
         #: ``film_floor``, the FMG start grid when the start moved up because the grids below
@@ -342,10 +347,18 @@ class LineHierarchy:
         lv = self.levels[k]
         saved = (lv.P.copy(), lv.H0)
         try:
-            its = newton_solve(lv, keep=True)
+            # after a failure on this grid (an isoviscous contact at M >= 3000 started from a
+            # given solution, its coarse film not positive), the later attempts that succeed
+            # take few steps: a failing one stops early (docs/robustness.md)
+            its = newton_solve(lv, keep=True,
+                               max_iter=NEWTON_AFTER_FAILURE if k in self.newton_failed else 80)
         except NewtonFailure as exc:
             lv.P, lv.H0 = saved
-            self.solver.note(f"coarse Newton failed ({exc}); relaxed instead")
+            if k not in self.newton_failed:
+                self.solver.note(f"coarse Newton failed on {lv.n} points ({exc}); relaxed "
+                                 f"instead (later attempts on this grid stop after "
+                                 f"{NEWTON_AFTER_FAILURE} steps)")
+            self.newton_failed.add(k)
             return self.relax(k, 20, s, True)
         lv.P = np.maximum(lv.P, 0.0)
         self.newton_iterations += its
