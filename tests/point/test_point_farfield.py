@@ -5,7 +5,6 @@ its ray, and its load outside a box is the integral of the pressure there."""
 import math
 
 import pytest
-from scipy.integrate import dblquad
 
 from ehl_multigrid.point.farfield import PSI, far_pressure, load_outside
 
@@ -36,18 +35,12 @@ def test_far_pressure_meets_reynolds_condition_on_its_free_boundary():
     assert far_pressure(LAM, r * math.cos(phi_c - 0.01), r * math.sin(phi_c - 0.01)) == 0.0
 
 
-def test_load_outside_a_box_is_the_integral_of_the_far_pressure_there():
+def test_load_outside_a_box_is_the_integral_of_the_far_pressure_there(load_around_box):
     xmin, xmax, ymax = -1.5, 0.5, 1.0
     big = 20.0  # beyond this square: load_outside of the square itself
-
-    def p(y, x):
-        inside = xmin <= x <= xmax and abs(y) <= ymax
-        return 0.0 if inside else float(far_pressure(LAM, x, y))
-
-    num = sum(dblquad(p, xa, xb, ya, yb, epsabs=1e-9)[0]
-              for xa, xb in ((-big, xmin), (xmin, xmax), (xmax, big))
-              for ya, yb in ((-big, -ymax), (-ymax, ymax), (ymax, big))
-              if (xa, ya) != (xmin, -ymax))
+    # Simpson sums on a 0.02 mesh around the box: within 2e-8 of the load (1e-9 on 0.01, 4e-7
+    # on 0.04; the adaptive dblquad with epsabs 1e-9, 1e-11, took seven times as long)
+    num = load_around_box(lambda x, y: far_pressure(LAM, x, y), xmin, xmax, ymax, big, h=0.02)
     tail = load_outside(LAM, -big, big, big)
     assert num + tail == pytest.approx(load_outside(LAM, xmin, xmax, ymax), rel=1e-4)
 

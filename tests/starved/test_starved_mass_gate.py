@@ -74,7 +74,9 @@ def test_a_starved_point_result_that_creates_oil_fails_with_a_mass_message(ball_
 
 def test_ehl_solve_exits_3_on_a_starved_result_that_does_not_conserve_mass(ball_on_flat, without_exact_zone_solve,
                                                                           tmp_path, capsys):
-    rc = main(["solve", str(ball_on_flat), "--points", "129", "--accuracy", "none", "--no-plots", "--json",
+    # on 65^2, at 0.4 of the cost: the solve stops near the flooded film there too (0.85 of
+    # it) with a mass-balance error of 0.9 of the inflow (27 on 129^2, the test above)
+    rc = main(["solve", str(ball_on_flat), "--points", "65", "--accuracy", "none", "--no-plots", "--json",
                "--out", str(tmp_path / "o")])
     out = json.loads(capsys.readouterr().out)
     assert rc == 3

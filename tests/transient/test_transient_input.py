@@ -34,11 +34,11 @@ def _scene(name, feature=DENT, **supply):
     return Scene.from_dict(d)
 
 
-def _run(monkeypatch, tmp_path, scene, *extra):
+def _run(monkeypatch, tmp_path, scene, *extra, points=129):
     p = argparse.ArgumentParser()
     cli.register(p.add_subparsers(dest="command"))
     monkeypatch.setattr(cli, "load_scene", lambda name: scene)
-    args = p.parse_args(["transient", "x", "--out", str(tmp_path), "--points", "129", *extra])
+    args = p.parse_args(["transient", "x", "--out", str(tmp_path), "--points", str(points), *extra])
     return args.func(args)
 
 
@@ -73,8 +73,10 @@ def test_a_layer_across_the_track_of_a_scene_feeds_a_mass_conserving_run(monkeyp
     sc = Scene.from_dict(d)
     with pytest.raises(InputError, match="hoil_profile"):
         _run(monkeypatch, tmp_path, sc)  # the projection: flooded inlets only
+    # 65 points (the layer and the mass balance are the same as on 129: hc 0.209 and 0.208 of
+    # the flooded fit, mass error 3e-7 and 4e-10, at a quarter of the cost)
     out = _run(monkeypatch, tmp_path, sc, "--cavitation", "mass-conserving", "--steps", "1",
-               "--no-plots")
+               "--no-plots", points=65)
     assert "hoil_profile: the inlet is fed this layer across the track" in capsys.readouterr().err
     assert out["converged"] and out["mass_error_max"] <= 1e-6
     # the centre track's layer governs: far below the flooded film (measured 0.21 of it)

@@ -21,7 +21,6 @@ from thermal.tehl.accuracy import (
     next_step,
     solve_tehl_to_accuracy,
 )
-from thermal.tehl.point import solve_tehl_point
 
 #: appendix D ball on flat (T9, 8 m/s, 60 degC) at 5 N: resolved from 65 points
 POINT_LOAD = 5.0
@@ -38,8 +37,10 @@ def point_scene():
     return load_scene("appendix_d_point").with_operating(load=POINT_LOAD)
 
 
-def test_point_estimate_is_finite_and_covers_the_finer_solve(point_scene):
-    r = solve_tehl_point(point_scene, 0.5, points=129, nz=10)
+# the solve estimated here is test_tehl_point.py's cold start (one worker builds it once)
+@pytest.mark.xdist_group("tehl_point_5n")
+def test_point_estimate_is_finite_and_covers_the_finer_solve(tehl_ball_5n_129):
+    r = tehl_ball_5n_129  # S = 0.5 on 129 points, nz = 10
     cache = SolveCache.of(r)
     e = estimate_error(r, cache=cache)
     for key in ("Hc", "Hm", "friction_coefficient", "T_max"):
@@ -136,7 +137,9 @@ def test_films_of_a_second_order_sequence_are_extrapolated_by_a_third_of_the_las
     assert extrapolated_films([_solve_stub("point", f, 1.0) for f in (1.0, 1.8, 1.9, 1.9125)]) == {}
 
 
-def test_accuracy_driven_line_reports_hc_extrapolated_within_its_stated_error():
+# the reference's 1025-point solve is test_tehl_line.py's cold start (one worker builds it once)
+@pytest.mark.xdist_group("tehl_line_lo_1025")
+def test_accuracy_driven_line_reports_hc_extrapolated_within_its_stated_error(tehl_line_lo_1025):
     scene = load_scene("appendix_c_line_4240N")
     done = solve_tehl_to_accuracy(scene, 0.5, TEHLOptions(points=513, nz=10), 0.005, refine=False)
     r, est = done.result, done.estimate
@@ -146,6 +149,7 @@ def test_accuracy_driven_line_reports_hc_extrapolated_within_its_stated_error():
     assert "; Hc extrapolated over the grids" in done.message and r.summary()["Hc_field"] == r.grid_films[0]
     # reference: the same extrapolation one grid finer (129 ... 1025 points)
     cache = SolveCache(scene, 0.5, TEHLOptions(points=1025, nz=10), False)
+    cache.add(tehl_line_lo_1025)  # the solve cache(1025, 10, 1.0) makes first: from the isothermal start
     fine = cache(1025, 10, 1.0)
     ref = fine.Hc * (1.0 + extrapolated_films(grid_sequence(fine, cache))["Hc"][0])
     true = abs(r.Hc / ref - 1.0)

@@ -102,14 +102,22 @@ def test_sliding_heats_and_the_faster_surface_takes_more_heat(pair):
     assert pos.report.converged and len(pos.outer) >= 2
 
 
-def test_regression_appendix_c_4240N_slip_half(scene):
+@pytest.fixture(scope="module")
+def pinned(scene):
+    """S = 0.5 on 513 points, nz = 20, without compressive heating: the regression pin's
+    setting, whose error estimate is also checked."""
+    return solve_tehl_line(scene, 0.5, points=513, nz=20, compressive_heating=False)
+
+
+@pytest.mark.xdist_group("tehl_line_pinned")
+def test_regression_appendix_c_4240N_slip_half(pinned):
     """Pinned at this setting (513 points, nz = 20, the thesis's energy equation (3.5) without
     compressive heating), computed once; the tolerance 5e-4 covers the outer tolerances (1e-4
     on Hc and Hm, 0.01 K) and the algebraic residual. At 2049 points and nz = 40 the same
     quantities are Hc 4.2132, Hm 3.4489, mu 0.025469, T_max 70.76 degC: this setting's
     discretisation error is -0.8 % (Hc), -0.7 % (Hm), +0.1 % (mu), measured once; the pin
     guards the code, not the grid."""
-    r = solve_tehl_line(scene, 0.5, points=513, nz=20, compressive_heating=False)
+    r = pinned
     assert r.Hc == pytest.approx(REG["Hc"], rel=5e-4)
     assert r.Hm == pytest.approx(REG["Hm"], rel=5e-4)
     assert r.friction_coefficient == pytest.approx(REG["mu"], rel=5e-4)
@@ -156,12 +164,13 @@ def test_an_outer_iteration_that_cannot_meet_its_tolerance_raises(scene):
 
 
 @pytest.mark.solver
-def test_error_estimate_bounds_the_error_against_the_fine_solution(scene):
+@pytest.mark.xdist_group("tehl_line_pinned")
+def test_error_estimate_bounds_the_error_against_the_fine_solution(pinned):
     """At 513 points / nz = 20 the estimate must cover the difference to the 2049 / nz = 40
     solution (values in the regression test's docstring) without exceeding it tenfold."""
     from thermal.tehl import estimate_error
 
-    r = solve_tehl_line(scene, 0.5, points=513, nz=20, compressive_heating=False)
+    r = pinned
     e = estimate_error(r)
     fine = {"Hc": 4.213188, "Hm": 3.448868, "friction_coefficient": 0.0254686}
     for key, ref in fine.items():
@@ -193,9 +202,11 @@ def test_tehl_line_on_4097_points_converges_where_a_65_point_coarsest_grid_diver
 
 
 @pytest.mark.solver
-def test_a_line_solve_started_from_the_coarser_grids_factors_reaches_the_same_fixed_point(scene):
+@pytest.mark.xdist_group("tehl_line_lo_1025")
+def test_a_line_solve_started_from_the_coarser_grids_factors_reaches_the_same_fixed_point(scene,
+                                                                                        tehl_line_lo_1025):
     coarse = solve_tehl_line(scene, 0.5, points=513, nz=10)
-    cold = solve_tehl_line(scene, 0.5, points=1025, nz=10)
+    cold = tehl_line_lo_1025  # 1025 points, nz = 10, from the isothermal start
     nested = solve_tehl_line(scene, 0.5, points=1025, nz=10, coarse=coarse)
     assert any("factors of the solve on 513 points" in a for a in nested.report.extra["actions"])
     assert len(nested.outer) < len(cold.outer)

@@ -31,7 +31,7 @@ def test_isothermal_newtonian_limit_equals_the_core_point_solver(scene):
 
 
 @pytest.mark.solver
-@pytest.mark.xdist_group("tehl_point_pair")
+@pytest.mark.xdist_group("tehl_point_5n")
 def test_point_slip_sign_mirrors_the_solution(pair):
     pos, neg = pair
     assert neg.Hc == pytest.approx(pos.Hc, rel=1e-6)
@@ -41,7 +41,7 @@ def test_point_slip_sign_mirrors_the_solution(pair):
 
 
 @pytest.mark.solver
-@pytest.mark.xdist_group("tehl_point_pair")
+@pytest.mark.xdist_group("tehl_point_5n")
 def test_point_energy_balance_and_heating(pair):
     pos, _ = pair
     assert pos.heat_balance_error < 0.01
@@ -56,7 +56,7 @@ def test_point_solver_refuses_a_line_contact():
 
 
 @pytest.mark.solver
-@pytest.mark.xdist_group("tehl_point_pair")
+@pytest.mark.xdist_group("tehl_point_5n")
 def test_rows_started_from_the_previous_outer_iteration_give_the_same_solution(scene, pair):
     # pair[0] starts every row's thermal march from its previous outer iteration (the default)
     cold = solve_tehl_point(scene, 0.5, TEHLOptions(points=65, nz=10, warm_thermal=False))
@@ -85,10 +85,11 @@ def test_a_thermal_march_started_from_its_own_solution_settles_in_one_sweep():
 
 
 @pytest.mark.solver
-@pytest.mark.xdist_group("tehl_point_pair")
-def test_a_solve_started_from_the_coarser_grids_factors_reaches_the_same_fixed_point(scene, pair):
+@pytest.mark.xdist_group("tehl_point_5n")
+def test_a_solve_started_from_the_coarser_grids_factors_reaches_the_same_fixed_point(scene, pair,
+                                                                                   tehl_ball_5n_129):
     coarse = pair[0]  # 65 points, nz = 10, S = 0.5
-    cold = solve_tehl_point(scene, 0.5, TEHLOptions(points=129, nz=10))
+    cold = tehl_ball_5n_129  # 129 points, nz = 10, S = 0.5, from the isothermal start
     nested = solve_tehl_point(scene, 0.5, TEHLOptions(points=129, nz=10), coarse=coarse)
     assert any("factors of the solve on 65 points" in a for a in nested.report.extra["actions"])
     assert len(nested.outer) < len(cold.outer)
