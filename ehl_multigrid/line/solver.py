@@ -91,6 +91,14 @@ LOCAL_NEWTON_HALF = 48
 LOCAL_NEWTON_PRE_ALPHA = 20.0
 
 
+def start_key(problem: LineProblem, options: LineOptions, n: int, x0: float, x1: float,
+              order: int) -> tuple:
+    """The key of an FMG start grid of ``n`` points on ``[x0, x1]`` in a start cache
+    (:meth:`LineHierarchy.start_key`)."""
+    return (repr(problem), n, x0, x1, order, options.deformation, options.mlmi_order,
+            options.mlmi_radius)
+
+
 def coarse_points(M: float) -> int:
     """Default coarsest grid: at high load a coarse grid cannot carry a positive film
     (Venner & Lubrecht), so the coarsest grid is refined with M."""
@@ -425,9 +433,7 @@ class LineHierarchy:
     def start_key(self, k: int) -> tuple:
         """What defines grid ``k``'s discrete problem (the key of :attr:`start_cache`)."""
         lv = self.levels[k]
-        o = self.options
-        return (repr(self.problem), lv.n, float(lv.X[0]), float(lv.X[-1]), lv.order, o.deformation,
-                o.mlmi_order, o.mlmi_radius)
+        return start_key(self.problem, self.options, lv.n, float(lv.X[0]), float(lv.X[-1]), lv.order)
 
     def _start_level(self) -> int:
         want = self.options.fmg_start_points or coarse_points(self.problem.M)
@@ -911,6 +917,13 @@ def solve_line(
     def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
         return line_domain_change(res.problem, res.options, res, below_start=far_below)
 
+    def no_film(n: int, box: float) -> bool:
+        # a start grid whose dense Newton start found no positive film (start cache None): a
+        # repair solve there fails (film_not_positive; (5000, 0) at 2049 points: 0.6 s)
+        p = pb if box == 1.0 else dataclasses.replace(pb, xmin=pb.xmax - box * (pb.xmax - pb.xmin))
+        key = start_key(p, opts, n, float(p.xmin), float(p.xmax), opts.wedge_order)
+        return key in starts and starts[key] is None
+
     def decay_probe(res: EHLResult, box: float) -> tuple[tuple[float, float], tuple[float, float]] | None:
         return line_domain_decay(res.problem, res.options, res)
 
@@ -918,7 +931,7 @@ def solve_line(
                             refine=accuracy is not None and not (explicit or fixed_box),
                             decay_probe=decay_probe, progress=progress, dimensions=1, extrapolate=True,
                             time_budget=math.inf if time_budget is None else time_budget,
-                            domain_safety=LINE_DOMAIN_SAFETY)
+                            domain_safety=LINE_DOMAIN_SAFETY, no_film=no_film)
     if not res.success and opts.raise_on_failure:
         raise ConvergenceError(f"line solver: {res.message}", res.report, HINT)
     return res

@@ -842,7 +842,7 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
                       decay_probe: Any = None, progress: Any = None, dimensions: int = 2,
                       correct_box: bool = False, extrapolate: bool = False,
                       hope_correction: bool = False, start: Any = None,
-                      domain_safety: float = DOMAIN_SAFETY) -> Any:
+                      domain_safety: float = DOMAIN_SAFETY, no_film: Any = None) -> Any:
     """Solve, estimate, and refine until the estimated errors of Hc and Hm meet ``accuracy``.
 
     ``solve(points, box, tol_factor) -> result`` runs the contact's solver on a grid of
@@ -882,11 +882,12 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     controller's hopeful step may count on (:func:`refinement_candidates`). ``start(points) ->
     (points, box)``, when given, chooses the first solve's grid and box (its time counts in the
     sequence's). ``domain_safety`` multiplies a probe's box change into the domain part
-    (:func:`estimate_error`).
+    (:func:`estimate_error`). ``no_film(points, box) -> bool``, when given, names the coarser
+    grids the sequence found without a positive discrete film: the repair does not solve them.
     """
     steady = _SteadyControl(solve, probe, decay_probe, accuracy, refine, max_points, box_limit,
                             dimensions, correct_box, extrapolate and accuracy is not None,
-                            correct_box and hope_correction, domain_safety)
+                            correct_box and hope_correction, domain_safety, no_film)
     t0 = time.perf_counter()
     first = Resolution(points) if start is None or not refine else Resolution(*start(points))
     out = control(steady, first, accuracy, refine=refine, time_budget=time_budget,
@@ -913,8 +914,9 @@ class _SteadyControl:
     def __init__(self, solve: Any, probe: Any, decay_probe: Any, accuracy: float | None, refine: bool,
                  max_points: int, box_limit: float, dimensions: int, correct_box: bool = False,
                  extrapolate: bool = False, hope_correction: bool = False,
-                 domain_safety: float = DOMAIN_SAFETY) -> None:
+                 domain_safety: float = DOMAIN_SAFETY, no_film: Any = None) -> None:
         self._solve, self.probe, self.decay_probe = solve, probe, decay_probe
+        self.no_film = no_film
         self.domain_safety = domain_safety
         self.correct_box, self.extrapolate = correct_box, extrapolate
         self.hope_correction = hope_correction
@@ -983,7 +985,7 @@ class _SteadyControl:
             n = at.points
             for _ in range(REPAIR_LEVELS + int(short(e))):
                 n = (n - 1) // 2 + 1
-                if n < REPAIR_MIN_POINTS or n in known:
+                if n < REPAIR_MIN_POINTS or n in known or (self.no_film is not None and self.no_film(n, box)):
                     continue
                 rc = self._solve(n, box, 0.1 * tol)
                 record(Refinement(n, box, 0.1 * tol, math.nan, math.nan, rc.wall_s, "levels"))
