@@ -196,7 +196,8 @@ class LineHierarchy:
             for k in range(nlev)
         ]
         self.newton_iterations = 0
-        #: grids whose coarse Newton failed in this solve: relaxed on the later visits
+        #: grids whose coarse Newton failed in this solve: their later attempts stop after
+        #: NEWTON_AFTER_FAILURE steps
         self.newton_failed: set[int] = set()
         self.solver: MultilevelSolver | None = None
         #: coarsest grid the cycles visit (solved by Newton like level 0); raised on a stall to
