@@ -44,6 +44,25 @@ def film_calibration(ctx: RunContext) -> tuple[float, str]:
     return 1.0, f"fitted film ({setting}; hc_fit = {hc_fit * 1e9:.4g} nm at the operating point)"
 
 
+#: regime codes of :func:`~mixed.stribeck.classify_regime` in the words of a summary
+REGIME_WORDS = {"BL": "boundary lubrication", "ML": "mixed lubrication", "EHL": "full-film EHL"}
+
+
+def operating_point(scene, thermal: bool, thermal_options, options, film_factor: float) -> dict:
+    """The mixed-lubrication state at the scene's own sum velocity (the curve's grid rarely
+    holds it): friction, asperity share of the load, Lambda and regime of the scene's supply."""
+    import numpy as np
+
+    from .stribeck import stribeck_curve
+
+    c = stribeck_curve(scene, np.array([scene.us]), thermal=thermal, thermal_options=thermal_options,
+                       options=options, transitions=False, film_factor=film_factor)
+    return {"us": float(scene.us), "friction_coefficient": float(c.friction.coefficient[0]),
+            "asperity_fraction": float(c.sharing.asperity_fraction[0]),
+            "Lambda": float(c.sharing.Lambda[0]), "regime": c.regime_names()[0],
+            "converged": c.converged}
+
+
 def stribeck_stage(ctx: RunContext) -> StageOutput | None:
     from .stribeck import default_us, stribeck_cases, stribeck_options, stribeck_result
 
@@ -68,17 +87,21 @@ def stribeck_stage(ctx: RunContext) -> StageOutput | None:
         figures = [Path(f) for f in stribeck_figures(curves, ctx.outdir, f"stribeck_{scene.name}")]
     c = curves[0]
     f = c.friction.coefficient
+    op = operating_point(scene, thermal, topts, stribeck_options(scene), factor)
     i_min = int(f.argmin())
     summary = {
         "thermal": thermal, "us": c.us, "friction_coefficient": f,
         "Pa": c.sharing.Pa, "Ph": c.sharing.Ph, "gamma1": c.sharing.gamma1, "hfr": c.sharing.hfr, "hss": c.sharing.hss,
-        "converged": c.converged, "film_factor": factor, "film_source": film_source,
+        "converged": c.converged and op["converged"], "film_factor": factor, "film_source": film_source,
+        "operating_point": op,
     }
     text = (f"{'Thermal' if thermal else 'Isothermal'} Stribeck curve over us = {us.min():.3g}-{us.max():.3g} m/s "
             f"at slip {c.friction.slip:g}: f = {f[0]:.3g} at the slowest speed, minimum {f[i_min]:.3g} at "
             f"{c.us[i_min]:.3g} m/s, {f[-1]:.3g} at the fastest"
-            + (f"; starved curves for hoil/sigma = {hoil}" if hoil else "") + f"; converged: {c.converged}. "
-            f"Film: {film_source}.")
+            + (f"; starved curves for hoil/sigma = {hoil}" if hoil else "")
+            + f". At the operating us = {op['us']:.3g} m/s: f = {op['friction_coefficient']:.4g}, the asperities "
+            f"carry {100 * op['asperity_fraction']:.3g} % of the load (load-sharing film hfr/Rq = {op['Lambda']:.3g}): "
+            f"{REGIME_WORDS[op['regime']]}; converged: {summary['converged']}. Film: {film_source}.")
     if ctx.mark_film_failure(summary).get("status") == "film_estimate":
         text += f" NOT A SOLVED-FILM RESULT: {summary['message']}."
     return StageOutput("stribeck", res, summary, figures, text)

@@ -193,6 +193,14 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
             f"f = {op.coefficient:.4g} +- {op.error:.2g} (estimated; computed at that slip on {op.grid}, "
             f"temperature rise {op.max_temperature_rise:.3g} K); converged: {summary['converged']}. "
             f"Film: {film_source}.")
+    if plan.includes("asperities"):
+        # a rough scene: this is the friction of the film alone; the Stribeck stage shares the
+        # load with the asperities
+        lam = plan.get("asperities").estimate
+        summary["full_film_only"] = True
+        text += (f" This is the full film's friction (smooth surfaces): the surfaces are rough "
+                 f"(the smooth film's Lambda = hc/Rq down to {lam:.3g} over the planned speeds), so the asperities carry part of the load; the "
+                 f"Stribeck stage gives the mixed friction at the operating point.")
     if ctx.mark_film_failure(summary).get("status") == "film_estimate":
         text += f" NOT A SOLVED-FILM RESULT: {summary['message']}."
     return StageOutput("traction", res, summary, figures, text)

@@ -2,6 +2,7 @@
 
 import json
 
+import numpy as np
 import pytest
 
 from ehl_multigrid.app.cli import main
@@ -27,6 +28,16 @@ def test_main_job_on_a_rough_line_contact_runs_film_traction_and_stribeck(capsys
     # a line contact's grid has points along X only
     assert f"on {film.scalars['points']} points along X" in report
     assert out["stribeck"]["converged"] is True and out["traction"]["converged"] is True
+    # the mixed friction at the scene's own speed, computed there, lies on the curve (log-us
+    # interpolation between the grid's neighbours), and the smooth-film traction says it is one
+    scene = load_scene("page63_line_2000N")
+    op = out["stribeck"]["operating_point"]
+    us, f = np.asarray(out["stribeck"]["us"]), np.asarray(out["stribeck"]["friction_coefficient"])
+    assert op["us"] == pytest.approx(scene.us)
+    assert op["friction_coefficient"] == pytest.approx(np.interp(np.log(scene.us), np.log(us), f), rel=0.02)
+    assert 0.0 <= op["asperity_fraction"] <= 1.0 and op["regime"] in ("BL", "ML", "EHL")
+    assert "carry" in report and "of the load" in report
+    assert out["traction"]["full_film_only"] is True
 
 
 def test_main_job_skips_the_stribeck_stage_for_smooth_surfaces(capsys, tmp_path):
@@ -35,6 +46,7 @@ def test_main_job_skips_the_stribeck_stage_for_smooth_surfaces(capsys, tmp_path)
     results = load_results(out["hdf5"])
     assert set(results) == {"film", "traction"}
     assert out["plan"]["film"] == "fit" and results["film"].kind == "hertz_fit"
+    assert "full_film_only" not in out["traction"]
 
 
 @pytest.mark.slow
