@@ -4,7 +4,8 @@ On a uniform grid ``X_i = X_0 + i h``, ``i = 0 .. n-1``, with ``P_0 = P_{n-1} = 
 
 * film: ``H_i = H0 + X_i^2/2 - (1/pi) W_i``, ``W_i = sum_j K_|i-j| P_j`` (kernel.py);
 * Reynolds: ``L_i = [eps_{i+1/2}(P_{i+1}-P_i) - eps_{i-1/2}(P_i-P_{i-1})]/h^2 - D_i(rho H)``
-  with ``eps = rho H^3/(eta lambda)``, ``eps_{i+1/2}`` the mean of the neighbours, and
+  with ``eps = rho H^3/(eta lambda)``, ``eps_{i+1/2}`` the face coefficient of the neighbours
+  (arithmetic mean by default, :mod:`~ehl_multigrid.multigrid.flux`), and
   ``D_i`` the upwind wedge difference: second order
   ``(1.5 q_i - 2 q_{i-1} + 0.5 q_{i-2})/h`` (first order ``(q_i - q_{i-1})/h`` at ``i = 1``
   or when ``order == 1``);
@@ -21,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..multigrid.flux import eps_face
 from ..multigrid.rheology import density, log_viscosity
 
 #: grids finer than this use the h-scaled switch threshold (line_relaxation_system)
@@ -62,16 +64,17 @@ def wedge_coefficients(i, order):
 
 
 @njit(cache=True)
-def reynolds_residual(P, H, rho, eps, h, f, order):
+def reynolds_residual(P, H, rho, eps, h, f, order, face=0):
     """Residual ``r = f - L(P)`` (zero at the boundary points) and the sum of the absolute
-    Poiseuille and wedge terms (the scale of :func:`relative_residual`)."""
+    Poiseuille and wedge terms (the scale of :func:`relative_residual`); ``face`` the code of
+    the Poiseuille face coefficient (:mod:`~ehl_multigrid.multigrid.flux`)."""
     n = P.shape[0]
     r = np.zeros(n)
     scale = 0.0
     ih2 = 1.0 / (h * h)
     for i in range(1, n - 1):
-        ep = 0.5 * (eps[i] + eps[i + 1])
-        em = 0.5 * (eps[i] + eps[i - 1])
+        ep = eps_face(eps[i], eps[i + 1], face)
+        em = eps_face(eps[i], eps[i - 1], face)
         pois = (ep * (P[i + 1] - P[i]) - em * (P[i] - P[i - 1])) * ih2
         c0, c1, c2 = wedge_coefficients(i, order)
         q = c0 * rho[i] * H[i] + c1 * rho[i - 1] * H[i - 1]
@@ -119,7 +122,7 @@ def add_wedge_band(A, i, k, c, H, rho, drho, K, h, elastic, wq, row=-1):
 
 @njit(cache=True)
 def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, threshold, q, frozen,
-                           threshold_h=0.0, jd_free=False, threshold_eps=0.0):
+                           threshold_h=0.0, jd_free=False, threshold_eps=0.0, face=0):
     """Banded system of one collective (line) relaxation sweep.
 
     The changes of all points are solved at once (Venner's line relaxation; in 1-D the line
@@ -186,8 +189,8 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
             rhs[row] = 0.0
             continue
         A[0, :] = 0.0
-        ep = 0.5 * (eps[i] + eps[i + 1])
-        em = 0.5 * (eps[i] + eps[i - 1])
+        ep = eps_face(eps[i], eps[i + 1], face)
+        em = eps_face(eps[i], eps[i - 1], face)
         A[0, wq - 1] += em * ih2
         A[0, wq] += -(ep + em) * ih2
         A[0, wq + 1] += ep * ih2

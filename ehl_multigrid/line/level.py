@@ -58,6 +58,8 @@ class LineLevel:
     H0: float = 0.0
     f: np.ndarray = field(init=False)
     g: float = float(np.pi / 2)
+    #: Poiseuille face coefficient (code of :data:`~ehl_multigrid.multigrid.flux.FACE_MODES`)
+    face: int = 0
 
     def __post_init__(self) -> None:
         self.X = np.linspace(self.xmin, self.xmax, self.n)
@@ -91,7 +93,7 @@ class LineLevel:
         H0 = self.H0 if H0 is None else H0
         W = self.deform(P)
         H, rho, drho, lne, dlne, eps = fluid_state(P, W, self.X, H0, self.par, self.lam, self.elastic)
-        r, scale = reynolds_residual(P, H, rho, eps, self.h, self.f, self.order)
+        r, scale = reynolds_residual(P, H, rho, eps, self.h, self.f, self.order, self.face)
         return State(H, rho, drho, lne, dlne, eps, r, scale)
 
     def load(self, P: np.ndarray | None = None) -> float:
@@ -113,7 +115,7 @@ class LineLevel:
         st = self.state() if st is None else st
         ab, rhs, jac = line_relaxation_system(
             self.P, st.H, st.rho, st.drho, st.eps, st.r, self.kernel, self.h, self.order,
-            self.elastic, switch, band, self.frozen, switch_h, True, switch_eps)
+            self.elastic, switch, band, self.frozen, switch_h, True, switch_eps, self.face)
         delta = solve_band(ab, rhs, band)
         damp = np.ones(self.n)
         self.P = distribute_changes(self.P, delta, jac, omega, omega_jd, damp, self.frozen)

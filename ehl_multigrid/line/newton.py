@@ -16,6 +16,7 @@ import numpy as np
 import scipy.linalg
 from numba import njit
 
+from ..multigrid.flux import eps_face_d
 from ..multigrid.threads import serial_blas
 from .discrete import fluid_state, reynolds_residual, wedge_coefficients
 from .level import LineLevel
@@ -37,7 +38,7 @@ def _fluid(level: LineLevel, P: np.ndarray, H0: float):
             # generalised Reynolds (thermal EHL): frozen flow and Couette density factors; the
             # Jacobian follows from eps, rho and drho
             eps, rho, drho = eps * a, rho * level.c, drho * level.c
-        r, _ = reynolds_residual(P, H, rho, eps, level.h, level.f, level.order)
+        r, _ = reynolds_residual(P, H, rho, eps, level.h, level.f, level.order, level.face)
     return r, (H, rho, drho, dlne, eps)
 
 
@@ -48,10 +49,10 @@ def _system(level: LineLevel, P: np.ndarray, H0: float, jacobian: bool):
     if not jacobian:
         return r, None
     return r, reynolds_jacobian(P, H, rho, drho, dlne, eps, level.kernel, level.h,
-                                level.order, level.elastic)
+                                level.order, level.elastic, level.face)
 
 
-def reynolds_jacobian(P, H, rho, drho, dlne, eps, kernel, h, order, elastic):
+def reynolds_jacobian(P, H, rho, drho, dlne, eps, kernel, h, order, elastic, face=0):
     """``dL_i/dx_j`` of the discrete Reynolds operator (discrete.py) for the inner points
     ``i = 1 .. n-2`` and the unknowns ``x = (P_1 .. P_{n-2}, H0)``: an ``(n-2, n-1)`` array.
 
@@ -59,11 +60,11 @@ def reynolds_jacobian(P, H, rho, drho, dlne, eps, kernel, h, order, elastic):
     the viscosity; ``rho H`` through the film and the density; ``H0`` shifts every film.
     Points with ``H <= 0`` carry ``eps = 0`` and no ``eps`` derivative."""
     return reynolds_jacobian_block(P, H, rho, drho, dlne, eps, kernel, h, order, elastic,
-                                   1, P.shape[0] - 1, True)
+                                   1, P.shape[0] - 1, True, face)
 
 
 @njit(cache=True)
-def reynolds_jacobian_block(P, H, rho, drho, dlne, eps, kernel, h, order, elastic, lo, hi, h0):
+def reynolds_jacobian_block(P, H, rho, drho, dlne, eps, kernel, h, order, elastic, lo, hi, h0, face=0):
     """Rows ``i = lo .. hi-1`` and pressure columns ``j = lo .. hi-1`` of
     :func:`reynolds_jacobian` (``1 <= lo < hi <= n-1``), plus the ``H0`` column when ``h0``:
     the block a windowed Newton step needs (:func:`local_newton`)."""
@@ -83,10 +84,13 @@ def reynolds_jacobian_block(P, H, rho, drho, dlne, eps, kernel, h, order, elasti
         c[k] = drho[k] * H[k]
     for i in range(lo, hi):
         row = i - lo
-        ep = 0.5 * (eps[i] + eps[i + 1])
-        em = 0.5 * (eps[i] + eps[i - 1])
-        gp = 0.5 * ih2 * (P[i + 1] - P[i])
-        gm = 0.5 * ih2 * (P[i] - P[i - 1])
+        ep, dep_i, dep_n = eps_face_d(eps[i], eps[i + 1], face)
+        em, dem_i, dem_n = eps_face_d(eps[i], eps[i - 1], face)
+        # Poiseuille response to eps_i, eps_(i+1) (face i+1/2) and eps_i, eps_(i-1) (face i-1/2)
+        gpi = dep_i * ih2 * (P[i + 1] - P[i])
+        gpn = dep_n * ih2 * (P[i + 1] - P[i])
+        gmi = dem_i * ih2 * (P[i] - P[i - 1])
+        gmn = dem_n * ih2 * (P[i] - P[i - 1])
         c0, c1, c2 = wedge_coefficients(i, order)
         w0, w1, w2 = c0 / h, c1 / h, c2 / h
         # film response: pressure columns
@@ -95,7 +99,10 @@ def reynolds_jacobian_block(P, H, rho, drho, dlne, eps, kernel, h, order, elasti
                 dHi = -kernel[abs(i - j)] * inv_pi
                 dHp = -kernel[abs(i + 1 - j)] * inv_pi
                 dHm = -kernel[abs(i - 1 - j)] * inv_pi
-                v = gp * (a[i] * dHi + a[i + 1] * dHp) - gm * (a[i] * dHi + a[i - 1] * dHm)
+                if gpi == gpn and gmi == gmn:  # symmetric faces (arithmetic): Venner's grouping
+                    v = gpi * (a[i] * dHi + a[i + 1] * dHp) - gmi * (a[i] * dHi + a[i - 1] * dHm)
+                else:
+                    v = gpi * a[i] * dHi + gpn * a[i + 1] * dHp - gmi * a[i] * dHi - gmn * a[i - 1] * dHm
                 v -= w0 * rho[i] * dHi + w1 * rho[i - 1] * dHm
                 if c2 != 0.0:
                     v -= w2 * rho[i - 2] * (-kernel[abs(i - 2 - j)] * inv_pi)
@@ -106,17 +113,21 @@ def reynolds_jacobian_block(P, H, rho, drho, dlne, eps, kernel, h, order, elasti
                 continue
             v = 0.0
             if k == i:
-                v += (gp - gm) * b[i] - ih2 * (ep + em) - w0 * c[i]
+                v += (gpi - gmi) * b[i] - ih2 * (ep + em) - w0 * c[i]
             elif k == i + 1:
-                v += gp * b[i + 1] + ih2 * ep
+                v += gpn * b[i + 1] + ih2 * ep
             elif k == i - 1:
-                v += -gm * b[i - 1] + ih2 * em - w1 * c[i - 1]
+                v += -gmn * b[i - 1] + ih2 * em - w1 * c[i - 1]
             elif k == i - 2:
                 v += -w2 * c[i - 2]
             out[row, k - lo] += v
         if h0:
             # H0: every film moves by dH0
-            out[row, m] = gp * (a[i] + a[i + 1]) - gm * (a[i] + a[i - 1]) \
+            if gpi == gpn and gmi == gmn:
+                dP0 = gpi * (a[i] + a[i + 1]) - gmi * (a[i] + a[i - 1])
+            else:
+                dP0 = gpi * a[i] + gpn * a[i + 1] - gmi * a[i] - gmn * a[i - 1]
+            out[row, m] = dP0 \
                 - (w0 * rho[i] + w1 * rho[i - 1] + (w2 * rho[i - 2] if c2 != 0.0 else 0.0))
     return out
 
@@ -297,7 +308,7 @@ def local_newton(level: LineLevel, center: int, half: int = 48, max_iter: int = 
             a = getattr(level, "a", None)
             if a is not None:
                 eps, rho, drho = eps * a[s0:s1], rho * level.c[s0:s1], drho * level.c[s0:s1]
-            r, _ = reynolds_residual(Ps, H, rho, eps, level.h, level.f[s0:s1], level.order)
+            r, _ = reynolds_residual(Ps, H, rho, eps, level.h, level.f[s0:s1], level.order, level.face)
         return r[rows], (H, rho, drho, dlne, eps)
 
     P = P0.copy()
@@ -305,7 +316,7 @@ def local_newton(level: LineLevel, center: int, half: int = 48, max_iter: int = 
     merit0 = None
     for _ in range(max_iter):
         J = reynolds_jacobian_block(P, *st, level.kernel, level.h, level.order, level.elastic,
-                                    lo - s0, hi - s0, False)
+                                    lo - s0, hi - s0, False, level.face)
         s = 1.0 / np.maximum(np.abs(np.diagonal(J)), 1e-300)
         with np.errstate(all="ignore"):
             phi = np.minimum(P[rows], s * r)

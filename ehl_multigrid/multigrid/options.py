@@ -17,6 +17,9 @@ from typing import Any, ClassVar
 
 from ..model.errors import InputError, require_choice, require_range
 
+#: Poiseuille face coefficients (``multigrid.flux.FACE_MODES``; not imported here: numba)
+FACES = ("arithmetic", "logarithmic")
+
 CYCLES = ("V", "W", "F")
 DEFORMATIONS = ("mlmi", "fft", "direct")
 #: the robustness retries of a failed point solve (:class:`PointOptions`, docs/robustness.md)
@@ -173,7 +176,11 @@ class LineOptions(MultigridOptions):
     steady solver only, see ``line.solver.LineHierarchy.relax``); ``retry_finer_start`` -- a
     solve whose FMG diverges below its finest grid is solved again with the coarsest grid
     twice as fine (one level fewer), while at least two levels remain (``adapt`` and the
-    automatic levels only; the steady solver, ``line.solver.solve_line_problem``).
+    automatic levels only; the steady solver, ``line.solver.solve_line_problem``); ``face`` --
+    the Poiseuille face coefficient, ``"arithmetic"`` or ``"logarithmic"`` mean of the
+    neighbours' ``eps`` (``multigrid.flux``; the line solvers built on ``line.level.LineLevel``:
+    steady, thermal EHL and transient; the starved line solver keeps the arithmetic mean). The
+    logarithmic one is for plain solves: ``solve_line`` refuses it with an error estimate.
     """
 
     points: int = 1025
@@ -196,9 +203,11 @@ class LineOptions(MultigridOptions):
     fmg_match_film: bool = True
     local_newton: int | None = 1025
     retry_finer_start: bool = True
+    face: str = "arithmetic"
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        require_choice("face", self.face, FACES)
         n = int(self.points) - 1
         if self.points < 33 or n & (n - 1):
             raise InputError(f"points = {self.points} must be 2^k + 1 >= 33 (e.g. 257, 1025, 4097)")

@@ -60,7 +60,7 @@ class TransientLineLevel(LineLevel):
         W = self.deform(P) + math.pi * self.R
         H, rho, drho, lne, dlne, eps = fluid_state(P, W, self.X, H0, self.par, self.lam, True)
         squeeze = self.ct * rho * H - self.hist
-        r, scale = reynolds_residual(P, H, rho, eps, self.h, self.f + squeeze, self.order)
+        r, scale = reynolds_residual(P, H, rho, eps, self.h, self.f + squeeze, self.order, self.face)
         scale += float(np.sum(np.abs(squeeze[1:-1])))
         return State(H, rho, drho, lne, dlne, eps, r, scale)
 
@@ -76,7 +76,7 @@ class TransientLineLevel(LineLevel):
         st = self.state() if st is None else st
         ab, rhs, jac = line_relaxation_system(
             self.P, st.H, st.rho, st.drho, st.eps, st.r, self.kernel, self.h, self.order,
-            True, switch, band, self.frozen, switch_h, False, switch_eps)
+            True, switch, band, self.frozen, switch_h, False, switch_eps, self.face)
         if self.ct != 0.0:
             add_squeeze_band(ab, self.P, st.H, st.rho, st.drho, st.r, self.kernel, self.ct, band,
                              jac, self.frozen, True)

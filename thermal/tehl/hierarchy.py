@@ -56,7 +56,7 @@ class FactorLevel(LineLevel):
         rho = rho * self.c
         drho = drho * self.c
         eps = eps * self.a
-        r, scale = reynolds_residual(P, H, rho, eps, self.h, self.f, self.order)
+        r, scale = reynolds_residual(P, H, rho, eps, self.h, self.f, self.order, self.face)
         return State(H, rho, drho, lne, dlne, eps, r, scale)
 
 
