@@ -28,7 +28,7 @@ from .solved import package_result, require_computed
 #: command-line flag (argparse name) -> line solver option
 _ARG_OPTIONS = {"points": "points", "levels": "levels", "cycle": "cycle", "cycles": "cycles",
                 "max_cycles": "max_cycles", "deformation": "deformation", "tol": "tol",
-                "tol_load": "tol_load", "threads": "threads"}
+                "tol_load": "tol_load", "threads": "threads", "face": "face"}
 
 
 def run_solve(args: argparse.Namespace, scene: Any) -> dict[str, Any]:

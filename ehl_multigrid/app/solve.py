@@ -75,6 +75,10 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--cycles", type=int, default=None, help="cycles per FMG level")
     p.add_argument("--max-cycles", type=int, default=None, help="extra finest-level cycles allowed to converge")
     p.add_argument("--deformation", choices=["mlmi", "fft", "direct"], default=None, help="elastic deformation path")
+    p.add_argument("--face", choices=["arithmetic", "logarithmic", "auto"], default=None,
+                   help="line contacts: Poiseuille face coefficient, the arithmetic (default) or "
+                        "logarithmic mean of the neighbours' eps; 'auto' takes the logarithmic one "
+                        "for piezoviscous oils (more accurate minimum film on fewer points)")
     p.add_argument("--xmin", type=float, default=None, help="inlet boundary X")
     p.add_argument("--xmax", type=float, default=None, help="outlet boundary X")
     p.add_argument("--ymax", type=float, default=None, help="half-width of the domain in Y (point contacts)")
@@ -135,6 +139,9 @@ def run_solve(args: argparse.Namespace) -> dict:
     if contact == "line":
         from .line_cli import run_solve as run_contact
     else:
+        if getattr(args, "face", None) is not None:
+            raise InputError("--face applies to line contacts only (the point solver keeps the "
+                             "arithmetic mean)")
         from .point_cli import run_solve as run_contact
     return run_contact(args, scene)
 

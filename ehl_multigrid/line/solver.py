@@ -56,6 +56,10 @@ from .level import LineLevel, State
 from .newton import NewtonFailure, local_newton, newton_solve
 from .problem import LineProblem, check_grid, fit_central_film
 
+#: the steady solver's face coefficient is logarithmic from this ``alpha_bar`` on (``face =
+#: "auto"``): the mean of an exponential interpolant of ``eps`` where the viscosity varies
+#: exponentially across the outlet (docs/accuracy.md, "Face coefficient of the Poiseuille flux")
+FACE_LOG_ALPHA = 1.0
 #: Largest grid solved directly by Newton at the start of FMG (dense Jacobian).
 MAX_START_POINTS = 2049
 #: Largest grid an accuracy target may refine to: 4 s and 0.8 GB peak at M = 3000, L = 15
@@ -197,7 +201,7 @@ class LineHierarchy:
             for k in range(nlev)
         ]
         for lv in self.levels:
-            lv.face = FACE_MODES[options.face]
+            lv.face = FACE_MODES.get(options.face, 0)
         self.newton_iterations = 0
         #: grids whose coarse Newton failed in this solve: their later attempts stop after
         #: NEWTON_AFTER_FAILURE steps
@@ -632,6 +636,9 @@ def line_solver(problem: LineProblem, options: LineOptions) -> MultilevelSolver:
     hz.local_newton_pre = problem.alpha_bar > LOCAL_NEWTON_PRE_ALPHA
     hz.switch_eps = options.switch_eps if options.switch_eps is not None else \
         default_switch_eps(problem)
+    if options.face == "auto" and problem.alpha_bar >= FACE_LOG_ALPHA:
+        for lv in hz.levels:
+            lv.face = FACE_MODES["logarithmic"]
     solver = MultilevelSolver(hz, options, line_settings(problem, options),
                               RobustnessPolicy(STEADY_LINE_POLICY, options.adapt), HINT)
     hz.solver = solver
@@ -729,6 +736,8 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
                            f"again on {levels} grids (coarsest twice as fine; retry_finer_start): "
                            f"{res.status_name}")
     out = finish_line_result(res, solver, scene)
+    # the face coefficient the grids used (the estimate's rule for Hm depends on it)
+    out.extra["face"] = "logarithmic" if solver.hierarchy.levels[-1].face else "arithmetic"
     solver.hierarchy.solver = None  # break the solver <-> hierarchy cycle (frees the grids)
     return out
 
@@ -871,11 +880,11 @@ def solve_line(
     opts = build_scene_options(LineOptions, options, table, kw)
     if not estimate:
         return solve_line_problem(pb, opts, callback=callback, scene=scene)
-    if opts.face != "arithmetic":
-        # its minimum film's grid sequence is not monotone on coarse grids, and the estimate
-        # stated 0.10 % at (5000, 25) for a true 0.15 % (docs/accuracy.md)
-        raise InputError(f"face = {opts.face!r} is for plain solves (estimate=False): the error "
-                         f"estimate is validated with the arithmetic face coefficient only")
+    if opts.face == "logarithmic" and pb.alpha_bar < FACE_LOG_ALPHA:
+        # the estimate's rules for logarithmic faces were checked where "auto" takes them
+        raise InputError(f"face = 'logarithmic' with an error estimate needs alpha_bar >= "
+                         f"{FACE_LOG_ALPHA:g} (here {pb.alpha_bar:.3g}): use face = 'auto' or "
+                         f"'arithmetic', or a plain solve (estimate=False)")
     explicit = "points" in kw or "points" in table or (options is not None and accuracy is None)
     fixed_box = xmin is not None or "xmin" in model
     if accuracy is not None:

@@ -89,9 +89,11 @@ def hm_max_order(contact: str) -> float:
     return LINE_HM_MAX_ORDER if contact == "line" else HM_MAX_ORDER
 
 
-def richardson(values: list[float], safety: float = GRID_SAFETY, max_order: float = 2.0) -> Richardson:
+def richardson(values: list[float], safety: float = GRID_SAFETY, max_order: float = 2.0,
+               earlier_half: bool = False) -> Richardson:
     """Grid-error estimate of ``values[-1]`` from films on grids refined by 2 each time; the
-    observed order is capped at ``max_order``."""
+    observed order is capped at ``max_order``. ``earlier_half``: at least half the difference
+    before the last, as for an irregular sequence, even where the sequence looks regular."""
     v = [float(x) for x in values if math.isfinite(x)]
     if len(v) < 2:
         return Richardson(math.inf, math.nan, math.nan, False)
@@ -106,7 +108,7 @@ def richardson(values: list[float], safety: float = GRID_SAFETY, max_order: floa
         order, regular = math.nan, False
     p = min(order, max_order) if regular else 1.0
     err = abs(d2) / (2.0**p - 1.0)
-    if not regular and len(v) >= 3:
+    if (not regular or earlier_half) and len(v) >= 3:
         # a non-monotone (or slower than first order) sequence: the last difference may be
         # small by accident; first order from the one before bounds it. Measured: line
         # (100, 20) at 2049 points, Hm 0.017595, 0.018897, 0.018845 on 513-2049 gave 0.17 %
@@ -445,7 +447,11 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
         if used:
             notes.append(f"Richardson with the converged films of the solves on {used} points")
     rc = richardson([d["Hc"] for d in fmg] + [Hc])
-    rm = richardson([d["Hm"] for d in fmg] + [Hm], max_order=hm_max_order(getattr(result, "contact", "")))
+    # a line's Hm with logarithmic faces is not monotone over the grids (docs/accuracy.md, "Face
+    # coefficient of the Poiseuille flux"): the difference before the last bounds it too
+    log_face = getattr(result, "extra", {}).get("face") == "logarithmic"
+    rm = richardson([d["Hm"] for d in fmg] + [Hm], max_order=hm_max_order(getattr(result, "contact", "")),
+                    earlier_half=log_face)
     if not rc.regular:
         notes.append("Hc converges irregularly over the last grids: first-order estimate")
     if not rm.regular:
@@ -683,14 +689,14 @@ THREE_GRIDS_BEYOND = 1.5
 def refinement_candidates(budget: dict[str, dict[str, float]], accuracy: float, points: int, box: float,
                           tol_factor: float, max_points: int, box_limit: float,
                           corrects: bool = False, grid_gain: dict[str, float] | None = None,
-                          two_grids: bool = False) -> list[Candidate]:
+                          two_grids: bool = False, one_grid: bool = False) -> list[Candidate]:
     """The refinements of a steady solve and the larger film error each is predicted to leave:
     one more grid (grid error / 4, or per film / ``grid_gain[film]``), with ``two_grids`` two
     more grids on the same box (grid error / gain^2) and, where those are predicted to miss
     the target by more than :data:`THREE_GRIDS_BEYOND`, three (gain^3), a box twice as wide at
     the same mesh (domain error / :data:`DOMAIN_DECAY`) or on the same points (grid error x 4),
     both, or tolerances ten times tighter (algebraic / 10). No jump of two grids while the grid
-    error is above :data:`PREASYMPTOTIC_GRID`.
+    error is above :data:`PREASYMPTOTIC_GRID`, nor with ``one_grid``.
 
     Where the domain part is not known (its probes did not converge) but the grid part is and
     the known parts miss ``accuracy``, the one candidate is the finer grid, its prediction
@@ -734,7 +740,7 @@ def refinement_candidates(budget: dict[str, dict[str, float]], accuracy: float, 
                                  total(1.0, 1.0 / DOMAIN_DECAY, 1.0),
                                  total(1.0, 1.0 / (DOMAIN_DECAY * CORRECTION_GAIN), 1.0) if corrects
                                  else math.nan))
-        rough = max(budget["grid"].values()) > PREASYMPTOTIC_GRID
+        rough = max(budget["grid"].values()) > PREASYMPTOTIC_GRID or one_grid
         two = finer.finer()
         if two_grids and two.points <= max_points and not rough:
             out.append(Candidate("2 points", two, 2, total(1.0, 1.0, 1.0, 2)))
@@ -1012,8 +1018,12 @@ class _SteadyControl:
                         and self.decay_probe is not None and could(est, self.accuracy)
                         and max(b["domain"].values()) > max(b["grid"].values()))
         repaired = False
+        # a line's Hm with logarithmic faces converges within the FMG films' own algebraic
+        # error on the coarse grids ((5, 20): FMG films falling, converged ones rising), so its
+        # sequence is always taken from converged coarser solves (docs/accuracy.md)
+        log_face = self.dimensions == 1 and res.extra.get("face") == "logarithmic"
         if (((est.irregular or short(est)) and (grid_unknown or missed(est)) and not domain_first)
-                or self.superconvergent(est, at.points, key)):
+                or self.superconvergent(est, at.points, key) or log_face):
             est, repaired = repair(est), True
         if self.accuracy is not None and self.decay_probe is not None and could(est, self.accuracy):
             if self.correct_box:
@@ -1057,9 +1067,13 @@ class _SteadyControl:
             est = res.error
             gain = {k: 2.0 ** min(max(o, 1.0), cap) if math.isfinite(o) else 2.0
                     for k, o, cap in (("Hc", est.order_Hc, 2.0), ("Hm", est.order_Hm, LINE_HM_PREDICT_ORDER))}
+        # an irregular sequence's first-order bound says nothing of how fast the next grids
+        # lower it: one grid at a time, whose film judges the sequence again
         return refinement_candidates(res.error.budget, self.accuracy, at.points, at.box, at.tol,
                                      self.max_points, self.box_limit, self.hope_correction,
-                                     grid_gain=gain, two_grids=self.dimensions == 1)
+                                     grid_gain=gain, two_grids=self.dimensions == 1,
+                                     one_grid=self.dimensions == 1 and res.error.irregular
+                                     and res.extra.get("face") == "logarithmic")
 
     def why_short(self, res: Any, at: Resolution) -> str:
         est = res.error

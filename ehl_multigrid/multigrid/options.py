@@ -18,7 +18,7 @@ from typing import Any, ClassVar
 from ..model.errors import InputError, require_choice, require_range
 
 #: Poiseuille face coefficients (``multigrid.flux.FACE_MODES``; not imported here: numba)
-FACES = ("arithmetic", "logarithmic")
+FACES = ("arithmetic", "logarithmic", "auto")
 
 CYCLES = ("V", "W", "F")
 DEFORMATIONS = ("mlmi", "fft", "direct")
@@ -180,7 +180,10 @@ class LineOptions(MultigridOptions):
     the Poiseuille face coefficient, ``"arithmetic"`` or ``"logarithmic"`` mean of the
     neighbours' ``eps`` (``multigrid.flux``; the line solvers built on ``line.level.LineLevel``:
     steady, thermal EHL and transient; the starved line solver keeps the arithmetic mean). The
-    logarithmic one is for plain solves: ``solve_line`` refuses it with an error estimate.
+    logarithmic one is for plain solves: ``solve_line`` refuses it with an error estimate;
+    ``"auto"``: logarithmic in the steady solver where ``alpha_bar >= line.solver.FACE_LOG_ALPHA``,
+    else (and in the other solvers) arithmetic. The default stays arithmetic until the starved,
+    thermal and transient kernels and the planner tables follow (docs/accuracy.md).
     """
 
     points: int = 1025
