@@ -135,6 +135,14 @@ JD_FILM_FACTOR = 2.0
 JD_FILM_MAX = 0.05
 
 
+def line_face(face: str, alpha_bar: float) -> str:
+    """The face coefficient an option names: ``"auto"`` is logarithmic from
+    :data:`FACE_LOG_ALPHA` on, arithmetic below."""
+    if face == "auto":
+        return "logarithmic" if alpha_bar >= FACE_LOG_ALPHA else "arithmetic"
+    return face
+
+
 def default_switch_eps(problem: LineProblem) -> float:
     """Absolute switch: Jacobi-distributive where ``eps < JD_FILM_FACTOR eps_c`` on every grid,
     ``eps_c = rho H_c^3/(eta lambda)`` at the Hertzian maximum (P = 1) with the Moes-fit
@@ -187,6 +195,9 @@ class LineHierarchy:
 
     #: the grid type (subclasses add unknowns or terms to a grid)
     level_type = LineLevel
+    #: the grids' kernels take the Poiseuille face coefficient of the options (``face``); False
+    #: where a subclass's own kernels keep the arithmetic mean
+    faces = True
 
     def __init__(self, problem: LineProblem, options: LineOptions) -> None:
         self.problem = problem
@@ -200,8 +211,11 @@ class LineHierarchy:
                             options.mlmi_order, options.mlmi_radius)
             for k in range(nlev)
         ]
+        #: the kernels' code of the Poiseuille face coefficient (subclasses that build their own
+        #: grids give it to them)
+        self.face = FACE_MODES[line_face(options.face, problem.alpha_bar) if self.faces else "arithmetic"]
         for lv in self.levels:
-            lv.face = FACE_MODES.get(options.face, 0)
+            lv.face = self.face
         self.newton_iterations = 0
         #: grids whose coarse Newton failed in this solve: their later attempts stop after
         #: NEWTON_AFTER_FAILURE steps
@@ -636,9 +650,6 @@ def line_solver(problem: LineProblem, options: LineOptions) -> MultilevelSolver:
     hz.local_newton_pre = problem.alpha_bar > LOCAL_NEWTON_PRE_ALPHA
     hz.switch_eps = options.switch_eps if options.switch_eps is not None else \
         default_switch_eps(problem)
-    if options.face == "auto" and problem.alpha_bar >= FACE_LOG_ALPHA:
-        for lv in hz.levels:
-            lv.face = FACE_MODES["logarithmic"]
     solver = MultilevelSolver(hz, options, line_settings(problem, options),
                               RobustnessPolicy(STEADY_LINE_POLICY, options.adapt), HINT)
     hz.solver = solver

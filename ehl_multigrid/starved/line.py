@@ -93,6 +93,9 @@ STARVED_TOL_LOAD = 1e-7
 class StarvedLineHierarchy(LineHierarchy):
     """Grids of one mass-conserving line-contact solve (protocol of the multilevel driver)."""
 
+    #: the Elrod-Adams kernels keep the arithmetic face coefficient
+    faces = False
+
     name = "starved line"
     grid_stop = False  # the mass balance needs the residual, not only the films
     level_type = StarvedLevel

@@ -43,6 +43,15 @@ def test_zero_amplitude_feature_reproduces_the_steady_core_solution(problem):
     assert res.summary()["cycles_max"] <= 3
 
 
+def test_zero_amplitude_feature_reproduces_the_steady_solution_with_logarithmic_faces_too(problem):
+    # the time steps take the steady solver's face coefficient (face = "auto": logarithmic here)
+    res = solve_transient_line(problem, Bump(0.0, 0.5, x0=-3.0), dt=0.05, steps=10, points=129,
+                               snapshot_every=10, options=transient_options(face="auto"))
+    assert res.steady.success and res.steady.extra["face"] == "logarithmic"
+    assert np.max(np.abs(res.Hc / res.steady.Hc_venner - 1.0)) < 1e-5
+    assert np.max(np.abs(res.Hm / res.steady.Hm_venner - 1.0)) < 1e-5
+
+
 def test_smooth_start_from_another_speed_settles_to_the_steady_solution(problem):
     # steady film at a 1.2x higher M at the same load (same alpha_bar, lambda changes: a
     # speed step), then run at the problem's speed without a feature (65 points: the start-up

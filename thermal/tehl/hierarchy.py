@@ -80,6 +80,8 @@ class FactorLineHierarchy(LineHierarchy):
                         options.mlmi_order, options.mlmi_radius)
             for k in range(nlev)
         ]
+        for lv in self.levels:
+            lv.face = self.face
         self._P0: np.ndarray | None = None
         self._H00 = 0.0
 

@@ -68,6 +68,18 @@ def test_isothermal_newtonian_limit_equals_the_core_solver(scene):
     assert np.max(np.abs(r.P - core.P)) < 2e-3
 
 
+def test_isothermal_limit_equals_the_core_solver_with_logarithmic_faces_too(scene):
+    # the TEHL grids take the core's face coefficient (face = "auto": logarithmic here)
+    opts = TEHLOptions(points=257, nz=10, thermal=False, shear_thinning=False, multigrid={"face": "auto"})
+    r = solve_tehl_line(scene, 0.0, opts)
+    core = solve_line_problem(line_problem(scene, opts), LineOptions(points=257, face="auto"))
+    arith = solve_line_problem(line_problem(scene, opts), LineOptions(points=257))
+    assert core.extra["face"] == "logarithmic"
+    assert abs(arith.Hm / core.Hm - 1.0) > 1e-2  # the two faces differ by far more than 2e-4
+    assert r.Hc == pytest.approx(core.Hc, rel=2e-4)
+    assert r.Hm == pytest.approx(core.Hm, rel=2e-4)
+
+
 def test_vanishing_thermal_loading_gives_the_isothermal_film(scene):
     # us 100 times lower: thermal loading (beta eta0 um^2 / k) 1e4 times lower, no slip
     slow = scene.with_operating(us=scene.us / 100.0)
