@@ -196,7 +196,7 @@ class LineHierarchy:
     #: the grid type (subclasses add unknowns or terms to a grid)
     level_type = LineLevel
     #: the grids' kernels take the Poiseuille face coefficient of the options (``face``); False
-    #: where a subclass's own kernels keep the arithmetic mean
+    #: where a subclass's own kernels keep the arithmetic mean (every line solver takes it now)
     faces = True
 
     def __init__(self, problem: LineProblem, options: LineOptions) -> None:

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 #: names of the face coefficients and the codes the kernels take
@@ -54,3 +55,20 @@ def eps_face_d(a: float, b: float, mode: int) -> tuple[float, float, float]:
     d = math.log(a) - math.log(b)
     m = (a - b) / d
     return m, (1.0 - m / a) / d, (m / b - 1.0) / d
+
+
+def eps_faces(a: np.ndarray, b: np.ndarray, mode: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`eps_face_d` on arrays (the dense Newton Jacobians assembled with numpy)."""
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float)
+    m, da, db = 0.5 * (a + b), np.full(a.shape, 0.5), np.full(a.shape, 0.5)
+    if mode == 0:
+        return m, da, db
+    log = (a > 0.0) & (b > 0.0) & (np.abs(a - b) > EQUAL_REL * (a + b))
+    with np.errstate(all="ignore"):
+        d = np.log(a) - np.log(b)
+        ml = (a - b) / d
+        m = np.where(log, ml, m)
+        da = np.where(log, (1.0 - ml / a) / d, da)
+        db = np.where(log, (ml / b - 1.0) / d, db)
+    return m, da, db

@@ -178,12 +178,12 @@ class LineOptions(MultigridOptions):
     twice as fine (one level fewer), while at least two levels remain (``adapt`` and the
     automatic levels only; the steady solver, ``line.solver.solve_line_problem``); ``face`` --
     the Poiseuille face coefficient, ``"arithmetic"`` or ``"logarithmic"`` mean of the
-    neighbours' ``eps`` (``multigrid.flux``; the line solvers built on ``line.level.LineLevel``:
-    steady, thermal EHL and transient; the starved line solver keeps the arithmetic mean). The
+    neighbours' ``eps`` (``multigrid.flux``; every line solver: steady, starved, thermal EHL and
+    transient). The
     logarithmic one is for plain solves: ``solve_line`` refuses it with an error estimate;
     ``"auto"``: logarithmic in the steady solver where ``alpha_bar >= line.solver.FACE_LOG_ALPHA``,
-    else (and in the other solvers) arithmetic. The default stays arithmetic until the starved,
-    thermal and transient kernels and the planner tables follow (docs/accuracy.md).
+    else arithmetic. The default stays arithmetic until the planner tables and the point kernels
+    follow (docs/accuracy.md).
     """
 
     points: int = 1025

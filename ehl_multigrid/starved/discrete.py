@@ -37,6 +37,7 @@ import numpy as np
 from numba import njit
 
 from ..line.discrete import FINE_H, add_wedge_band
+from ..multigrid.flux import eps_face
 
 
 @njit(cache=True)
@@ -131,7 +132,7 @@ def wedge_row(i, theta, order, starved):
 
 
 @njit(cache=True)
-def elrod_adams_residual(P, H, rho, theta, eps, h, f, order, starved):
+def elrod_adams_residual(P, H, rho, theta, eps, h, f, order, starved, face=0):
     """Residual ``r = f - L(P, theta)`` (zero at the boundary points) and the sum of the
     absolute Poiseuille and wedge terms (the scale of the relative residual). No pressure
     flow passes the first face of a starved inlet."""
@@ -140,8 +141,8 @@ def elrod_adams_residual(P, H, rho, theta, eps, h, f, order, starved):
     scale = 0.0
     ih2 = 1.0 / (h * h)
     for i in range(1, n - 1):
-        ep = 0.5 * (eps[i] + eps[i + 1])
-        em = 0.5 * (eps[i] + eps[i - 1])
+        ep = eps_face(eps[i], eps[i + 1], face)
+        em = eps_face(eps[i], eps[i - 1], face)
         if i == 1 and starved:
             em = 0.0
         pois = (ep * (P[i + 1] - P[i]) - em * (P[i] - P[i - 1])) * ih2
@@ -156,7 +157,7 @@ def elrod_adams_residual(P, H, rho, theta, eps, h, f, order, starved):
 
 
 @njit(cache=True)
-def march_cavitated_content(P, theta, q, eps, f, h, order, starved, cav, ct, hist):
+def march_cavitated_content(P, theta, q, eps, f, h, order, starved, cav, ct, hist, face=0):
     """Film content ``theta_i`` of the cavitated points ``cav`` (ascending) that makes row ``i``
     of :func:`elrod_adams_residual` zero given its upwind neighbours and ``P`` (in place,
     clipped to [0, 1]); ``q = rho H``; a time step's rows add ``ct theta_i q_i - hist_i``
@@ -164,8 +165,8 @@ def march_cavitated_content(P, theta, q, eps, f, h, order, starved, cav, ct, his
     ih2 = 1.0 / (h * h)
     for k in range(cav.shape[0]):
         i = cav[k]
-        ep = 0.5 * (eps[i] + eps[i + 1])
-        em = 0.0 if (i == 1 and starved) else 0.5 * (eps[i] + eps[i - 1])
+        ep = eps_face(eps[i], eps[i + 1], face)
+        em = 0.0 if (i == 1 and starved) else eps_face(eps[i], eps[i - 1], face)
         pois = (ep * (P[i + 1] - P[i]) - em * (P[i] - P[i - 1])) * ih2
         c0, c1, c2 = wedge_row(i, theta, order, starved)
         rest = c1 * theta[i - 1] * q[i - 1]
@@ -176,13 +177,13 @@ def march_cavitated_content(P, theta, q, eps, f, h, order, starved, cav, ct, his
 
 
 @njit(cache=True)
-def face_fluxes(P, theta, q, eps, h, order, starved):
+def face_fluxes(P, theta, q, eps, h, order, starved, face=0):
     """Mass flux ``Q_{i+1/2} - eps_{i+1/2} (P_{i+1} - P_i)/h`` through every face
     ``i + 1/2``, ``i = 0 .. n-2`` (the fluxes whose differences are the discrete operator)."""
     n = P.shape[0]
     F = np.empty(n - 1)
     for i in range(n - 1):
-        e = 0.5 * (eps[i] + eps[i + 1])
+        e = eps_face(eps[i], eps[i + 1], face)
         w0, w1 = face_weights(i, theta, order, starved)
         if i == 0:
             Q = w0 * q[0] + w1 * q[1]
@@ -213,7 +214,7 @@ def cavitated(P, theta, r, frozen, H):
 
 
 @njit(cache=True)
-def band_jacobian(P, theta, q0_fixed, H, rho, drho, eps, K, h, order, elastic, band):
+def band_jacobian(P, theta, q0_fixed, H, rho, drho, eps, K, h, order, elastic, band, face=0):
     """Band parts of the Jacobian of ``L`` for one collective line-relaxation sweep.
 
     ``AP[i, band + 1 + d] = dL_i/dP_{i+d}`` for ``|d| <= band + 1``, with ``eps`` and the film
@@ -230,8 +231,8 @@ def band_jacobian(P, theta, q0_fixed, H, rho, drho, eps, K, h, order, elastic, b
     AT = np.zeros((n, 3))
     ih2 = 1.0 / (h * h)
     for i in range(1, n - 1):
-        ep = 0.5 * (eps[i] + eps[i + 1])
-        em = 0.5 * (eps[i] + eps[i - 1])
+        ep = eps_face(eps[i], eps[i + 1], face)
+        em = eps_face(eps[i], eps[i - 1], face)
         if i == 1 and q0_fixed:
             em = 0.0
         AP[i, wq - 1] += em * ih2

@@ -71,7 +71,8 @@ class StarvedLevel(LineLevel):
         H, rho, drho, lne, dlne, eps = fluid_state(P, W, self.X, H0, self.par, self.lam, self.elastic)
         th[0] = self.inlet_theta(H[0])
         q = th * rho * H
-        r, scale = elrod_adams_residual(P, H, rho, th, eps, self.h, self.f, self.order, bool(th[0] < 1.0))
+        r, scale = elrod_adams_residual(P, H, rho, th, eps, self.h, self.f, self.order, bool(th[0] < 1.0),
+                                        self.face)
         return StarvedState(H, rho, drho, lne, dlne, eps, r, scale, th, q)
 
     def residual_norm(self, st: State) -> float:
@@ -83,12 +84,12 @@ class StarvedLevel(LineLevel):
 
     def fluxes(self, st: StarvedState) -> np.ndarray:
         """Mass flux through every face (:func:`face_fluxes`)."""
-        return face_fluxes(self.P, st.theta, st.q, st.eps, self.h, self.order, bool(st.theta[0] < 1.0))
+        return face_fluxes(self.P, st.theta, st.q, st.eps, self.h, self.order, bool(st.theta[0] < 1.0), self.face)
 
     def jacobian(self, st: StarvedState, q0_fixed: bool, band: int) -> tuple[np.ndarray, np.ndarray]:
         """Band parts ``(AP, AT)`` of the Jacobian of the sweep (:func:`band_jacobian`)."""
         return band_jacobian(self.P, st.theta, q0_fixed, st.H, st.rho, st.drho, st.eps,
-                             self.kernel, self.h, self.order, self.elastic, band)
+                             self.kernel, self.h, self.order, self.elastic, band, self.face)
 
     def relax(self, switch: float, omega: float, omega_jd: float, band: int = 4,
               st: State | None = None, switch_h: float = 0.0, omega_theta: float = 1.0,

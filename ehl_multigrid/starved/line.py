@@ -93,9 +93,6 @@ STARVED_TOL_LOAD = 1e-7
 class StarvedLineHierarchy(LineHierarchy):
     """Grids of one mass-conserving line-contact solve (protocol of the multilevel driver)."""
 
-    #: the Elrod-Adams kernels keep the arithmetic face coefficient
-    faces = False
-
     name = "starved line"
     grid_stop = False  # the mass balance needs the residual, not only the films
     level_type = StarvedLevel
@@ -343,7 +340,7 @@ def flooded_flux(lv: StarvedLevel, flooded: EHLResult) -> float:
     stride = (flooded.X.shape[0] - 1) // (lv.n - 1)
     P = np.maximum(flooded.P[::stride], 0.0)
     st = lv.state(P, flooded.H0, np.ones(lv.n))
-    F = face_fluxes(P, st.theta, st.q, st.eps, lv.h, lv.order, False)
+    F = face_fluxes(P, st.theta, st.q, st.eps, lv.h, lv.order, False, lv.face)
     return float(F[min(int(np.argmax(P)), F.shape[0] - 1)])
 
 

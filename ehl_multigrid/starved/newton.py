@@ -11,6 +11,7 @@ import warnings
 import numpy as np
 import scipy.linalg
 
+from ..multigrid.flux import eps_faces
 from ..multigrid.threads import serial_blas
 from .discrete import march_cavitated_content, wedge_row, wedge_share_terms
 from .level import StarvedLevel
@@ -50,10 +51,10 @@ def _jacobian(lv: StarvedLevel, P: np.ndarray, theta: np.ndarray, H0: float, Kma
     dL = np.zeros((n, n + 1))
     dT = np.zeros((n, n))
     i = np.arange(1, n - 1)
-    ep = 0.5 * (eps[i] + eps[i + 1])
-    em = 0.5 * (eps[i] + eps[i - 1])
-    dep = 0.5 * (deps[i] + deps[i + 1])
-    dem = 0.5 * (deps[i] + deps[i - 1])
+    ep, dep_i, dep_n = eps_faces(eps[i], eps[i + 1], lv.face)
+    em, dem_i, dem_n = eps_faces(eps[i], eps[i - 1], lv.face)
+    dep = dep_i[:, None] * deps[i] + dep_n[:, None] * deps[i + 1]
+    dem = dem_i[:, None] * deps[i] + dem_n[:, None] * deps[i - 1]
     dL[i] = ih2 * (dep * (P[i + 1] - P[i])[:, None] - dem * (P[i] - P[i - 1])[:, None])
     dL[i, i + 1] += ih2 * ep
     dL[i, i] -= ih2 * (ep + em)
@@ -201,5 +202,5 @@ def exact_cavitation(lv: StarvedLevel) -> None:
     th = st.theta.copy()
     ct, hist = lv.content_rate()
     march_cavitated_content(lv.P, th, st.rho * st.H, st.eps, lv.f, lv.h, lv.order, bool(th[0] < 1.0), cav,
-                            ct, hist)
+                            ct, hist, lv.face)
     lv.theta = th

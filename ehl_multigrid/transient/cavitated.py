@@ -68,7 +68,7 @@ class CavitatedStepLevel(StarvedLevel):
         q = th * rho * H
         squeeze = self.ct * q - self.hist
         r, scale = elrod_adams_residual(P, H, rho, th, eps, self.h, self.f + squeeze, self.order,
-                                        bool(th[0] < 1.0))
+                                        bool(th[0] < 1.0), self.face)
         scale += float(np.sum(np.abs(squeeze[1:-1])))
         return StarvedState(H, rho, drho, lne, dlne, eps, r, scale, th, q)
 
@@ -112,7 +112,7 @@ class CavitatedStepHierarchy(OilBalanceCycles, TimeStepGrids, StarvedLineHierarc
     def step_mass_error(self) -> float:
         lv = self.fine
         st = lv.state()
-        return domain_mass_error(lv.P, st.theta, st.q, st.eps, lv.squeeze(st), lv.h, lv.order)
+        return domain_mass_error(lv.P, st.theta, st.q, st.eps, lv.squeeze(st), lv.h, lv.order, lv.face)
 
     def last_resort(self, k: int, solver: Any) -> bool:
         """A stalled step (the free boundary in a dent flips between regimes from cycle to
@@ -143,13 +143,13 @@ class CavitatedStepHierarchy(OilBalanceCycles, TimeStepGrids, StarvedLineHierarc
 
 
 def domain_mass_error(P: np.ndarray, theta: np.ndarray, q: np.ndarray, eps: np.ndarray,
-                      squeeze: np.ndarray, h: float, order: int) -> float:
+                      squeeze: np.ndarray, h: float, order: int, face: int = 0) -> float:
     """Net oil gained by the whole grid in a step, relative to the inflow: ``(h sum_i
     d(theta rho H)_i/dT - (F_in - F_out)) / F_in`` over the interior nodes, with the face
     fluxes of the conservative scheme (:func:`~ehl_multigrid.starved.discrete.face_fluxes`;
     ``q = theta rho H``, ``squeeze`` its BDF difference, a starved inlet when ``theta[0] < 1``).
     It is ``-h sum_i r_i / F_in`` (the finest grid's right-hand side is 0): zero to the
     solve's tolerance."""
-    F = face_fluxes(P, theta, q, eps, h, order, bool(theta[0] < 1.0))
+    F = face_fluxes(P, theta, q, eps, h, order, bool(theta[0] < 1.0), face)
     storage = h * float(np.sum(squeeze[1:-1]))
     return (storage - (F[0] - F[-1])) / max(abs(F[0]), 1e-300)

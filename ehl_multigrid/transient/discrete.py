@@ -25,6 +25,7 @@ import numpy as np
 from numba import njit
 
 from ..line.discrete import add_wedge_band
+from ..multigrid.flux import eps_face
 
 
 @njit(cache=True)
@@ -67,18 +68,18 @@ def add_squeeze_band(ab, P, H, rho, drho, r, K, ct, q, jac, frozen, elastic):
 
 
 @njit(cache=True)
-def flux_balance(P, H, rho, eps, h, dq_dt, i0, i1):
+def flux_balance(P, H, rho, eps, h, dq_dt, i0, i1, face=0):
     """Discrete mass balance of the control volume of nodes ``i0 .. i1``:
     ``h sum_i d(rho H)_i/dT - (F_in - F_out)``, with the Poiseuille flux
-    ``eps_{i+1/2}(P_{i+1} - P_i)/h`` and the second-order upwind Couette flux
+    ``eps_{i+1/2}(P_{i+1} - P_i)/h`` (``face``: :mod:`~ehl_multigrid.multigrid.flux`) and the second-order upwind Couette flux
     ``1.5 (rho H)_i - 0.5 (rho H)_{i-1}`` through the faces ``i0 - 1/2`` and ``i1 + 1/2``.
     Zero (to the residual) when the discrete equations are in conservation form."""
     q = rho * H
     # face i-1/2 of node i (i >= 2): Couette 1.5 q_{i-1} - 0.5 q_{i-2}
     fin_c = 1.5 * q[i0 - 1] - 0.5 * q[i0 - 2]
     fout_c = 1.5 * q[i1] - 0.5 * q[i1 - 1]
-    fin_p = 0.5 * (eps[i0 - 1] + eps[i0]) * (P[i0] - P[i0 - 1]) / h
-    fout_p = 0.5 * (eps[i1] + eps[i1 + 1]) * (P[i1 + 1] - P[i1]) / h
+    fin_p = eps_face(eps[i0 - 1], eps[i0], face) * (P[i0] - P[i0 - 1]) / h
+    fout_p = eps_face(eps[i1], eps[i1 + 1], face) * (P[i1 + 1] - P[i1]) / h
     storage = 0.0
     for i in range(i0, i1 + 1):
         storage += h * dq_dt[i]

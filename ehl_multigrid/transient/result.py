@@ -212,7 +212,7 @@ class TransientResult:
             # the projection counts every gap as full, so its balance over the grid measures
             # the gap behind each rupture, not the oil that changes the film: not recorded
             return math.nan
-        return domain_mass_error(lv.P, theta, st.q, st.eps, lv.squeeze(st), lv.h, lv.order)
+        return domain_mass_error(lv.P, theta, st.q, st.eps, lv.squeeze(st), lv.h, lv.order, lv.face)
 
     @staticmethod
     def _mass_balance(lv: Any, st: Any) -> float:
@@ -225,7 +225,7 @@ class TransientResult:
         if i1 <= i0:
             return math.nan
         dq = lv.squeeze(st)
-        bal = flux_balance(P, st.H, st.rho, st.eps, lv.h, dq, i0, i1)
+        bal = flux_balance(P, st.H, st.rho, st.eps, lv.h, dq, i0, i1, lv.face)
         q = st.rho * st.H
         return float(bal / max(abs(q[i0]), abs(q[i1]), 1e-300))
 

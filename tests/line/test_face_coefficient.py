@@ -14,7 +14,7 @@ from ehl_multigrid.line.newton import _system
 from ehl_multigrid.line.problem import LineProblem
 from ehl_multigrid.line.solver import line_solver
 from ehl_multigrid.model.errors import InputError
-from ehl_multigrid.multigrid.flux import FACE_MODES, eps_face, eps_face_d
+from ehl_multigrid.multigrid.flux import FACE_MODES, eps_face, eps_face_d, eps_faces
 from ehl_multigrid.multigrid.options import LineOptions
 
 LOG, ARITH = FACE_MODES["logarithmic"], FACE_MODES["arithmetic"]
@@ -43,6 +43,15 @@ def test_face_derivatives_match_finite_differences(a, b):
         up = eps_face(a + e, b, LOG) if arg == 0 else eps_face(a, b + e, LOG)
         dn = eps_face(a - e, b, LOG) if arg == 0 else eps_face(a, b - e, LOG)
         assert (up - dn) / (2 * e) == pytest.approx(d, rel=1e-5, abs=1e-12)
+
+
+def test_array_faces_equal_the_kernel_faces():
+    a = np.array([1.0, 3e-9, 1.0, 5.0, 0.0, 2.0])
+    b = np.array([2.0, 1.0, 1.0 + 1e-8, 0.2, 3.0, 2.0])
+    for mode in (ARITH, LOG):
+        m, da, db = eps_faces(a, b, mode)
+        for k in range(a.size):
+            assert (m[k], da[k], db[k]) == pytest.approx(eps_face_d(a[k], b[k], mode), rel=1e-12)
 
 
 @pytest.mark.parametrize("face", ["arithmetic", "logarithmic"])

@@ -34,6 +34,17 @@ def test_thick_supply_reproduces_the_flooded_core_solution_within_its_error():
     assert abs(thick.scalars["outlet_change_Hm"]) < 1e-4
 
 
+def test_thick_supply_reproduces_the_flooded_core_solution_with_logarithmic_faces_too():
+    # the Elrod-Adams kernels take the core's face coefficient (face = "auto": logarithmic here)
+    core = solve_line(20.0, 10.0, points=513, estimate=False, face="auto")
+    thick = solve_starved_line(PB, 10.0, points=513, face="auto")
+    arith = solve_line(20.0, 10.0, points=513, estimate=False)
+    assert core.extra["face"] == "logarithmic" and thick.success
+    assert abs(arith.Hm / core.Hm - 1.0) > 1e-3  # the faces differ by far more than below
+    assert abs(thick.Hc / core.Hc - 1.0) < 1e-5 and abs(thick.Hm / core.Hm - 1.0) < 1e-4
+    assert thick.scalars["mass_balance_error"] < 1e-6
+
+
 @pytest.mark.solver
 @pytest.mark.xdist_group("starved_line_half_starved")
 def test_mass_is_conserved_to_1e6_relative(half_starved):

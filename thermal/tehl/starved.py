@@ -55,7 +55,8 @@ def tehl_face_fluxes(level: Any, P: np.ndarray, H0: float) -> np.ndarray:
     :func:`ehl_multigrid.starved.discrete.face_fluxes` with a full film)."""
     st = level.state(P, H0)
     q = st.rho * st.H  # rho carries the Couette factor c (FactorLevel.state)
-    return face_fluxes(np.asarray(P, dtype=float), np.ones(P.shape[0]), q, st.eps, level.h, level.order, False)
+    return face_fluxes(np.asarray(P, dtype=float), np.ones(P.shape[0]), q, st.eps, level.h, level.order, False,
+                       level.face)
 
 
 def flux_summary(F: np.ndarray, P: np.ndarray) -> tuple[float, float]:
