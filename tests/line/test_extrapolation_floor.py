@@ -1,0 +1,35 @@
+"""A line contact's extrapolated Hc states at least LINE_EXTRAPOLATION_FLOOR of the last grid
+difference: (1, 25) extrapolates over ratios near 4 that fall to 2.9-3.3 on finer grids, and
+its stated error must still cover its true one (the reference check of the line maps)."""
+
+import pytest
+
+from ehl_multigrid.line import solve_line
+from ehl_multigrid.multigrid.accuracy import (
+    EXTRAPOLATION_FLOOR,
+    GRID_SAFETY,
+    LINE_EXTRAPOLATION_FLOOR,
+    extrapolated,
+)
+
+
+def test_the_floor_bounds_an_extrapolation_whose_ratios_are_exactly_four():
+    films = [1.0 - 4.0 ** -k for k in range(1, 6)]  # ratios 4: the next-order term vanishes
+    d = films[-1] - films[-2]
+    _, err = extrapolated(films)
+    assert err == pytest.approx(GRID_SAFETY * EXTRAPOLATION_FLOOR * d)
+    _, err = extrapolated(films, LINE_EXTRAPOLATION_FLOOR)
+    assert err == pytest.approx(GRID_SAFETY * LINE_EXTRAPOLATION_FLOOR * d)
+
+
+#: (1, 25) on the default box, Venner units: Hc limit of converged solves on 1025, 2049 and 4097
+#: points (3.58382, 3.58825, 3.58960; ratio 3.28), residual 1e-10
+HC_LIMIT_1_25 = 3.59019
+
+
+@pytest.mark.solver
+def test_extrapolated_line_hc_covers_its_true_error_where_the_ratios_drift():
+    r = solve_line(1.0, 25.0, accuracy=0.02)
+    assert r.success and "Hc" in r.error.extrapolated
+    true = abs(r.scalars["Hc_venner"] / HC_LIMIT_1_25 - 1.0)
+    assert r.error.budget["grid"]["Hc"] + r.error.budget["algebraic"]["Hc"] >= true
