@@ -14,6 +14,7 @@ sharper of the two (they agree within their joint uncertainty on every circular 
 
     python validation/bench/honesty_table.py --label after                 # point contacts
     python validation/bench/honesty_table.py --contact line --label after
+    python validation/bench/honesty_table.py --contact line --face auto --label auto
     git worktree add /tmp/before REV && python validation/bench/honesty_table.py --label before --code /tmp/before
 
 writes build/validation/bench/<contact>_honesty_<label>.json and .md (kept after every case).
@@ -75,7 +76,10 @@ def main() -> None:
     ap.add_argument("--code", default=None, help="import the package of this checkout (a git worktree)")
     ap.add_argument("--refs", choices=("p0", "far", "sharper"), default="sharper",
                     help="references: P = 0 boxes, far field, or per film the sharper (verified.reference)")
+    ap.add_argument("--face", choices=("arithmetic", "logarithmic", "auto"), default=None,
+                    help="line contacts: the Poiseuille face coefficient (LineOptions.face)")
     args = ap.parse_args()
+    opts = {"face": args.face} if args.face else None
     if args.code:
         sys.path.insert(0, os.path.abspath(args.code))
     import ehl_multigrid as ehl
@@ -93,7 +97,7 @@ def main() -> None:
         for M, L, theta in CASES[args.contact]:
             ref = reference((args.contact, float(M), float(L), float(theta)), args.refs)
             t0 = time.perf_counter()
-            sol = ehl.solve(problem(M, L, theta), accuracy=acc)
+            sol = ehl.solve(problem(M, L, theta), accuracy=acc, options=opts)
             wall = time.perf_counter() - t0
             raw = sol.raw
             films = (raw.scalars["Hc_venner"], raw.scalars["Hm_venner"])
