@@ -17,8 +17,9 @@ contacts the logarithmic mean puts the minimum film of (1500, 8) within 0.1 % of
 8193-16385 points, where the arithmetic mean leaves 1.6-0.6 %; coefficients smaller still (the
 geometric mean, or the harmonic average ``ab/L`` of the exponential, which carries a pure
 Poiseuille flux exactly) bring Hc closer but overshoot Hm by 1-5 %. Its grid sequence of Hm is
-not monotone on coarse grids, which the accuracy loop's estimate reads as irregular, so it is
-an option, not the default.
+not monotone on coarse grids, so the accuracy loop states it with more caution
+(``accuracy.richardson(earlier_half=...)``, converged coarser solves); ``LineOptions.face`` takes
+it on request (``"auto"``: where ``alpha_bar >= 1``), the default stays arithmetic.
 
 Where a node has no film (``eps = 0``, a collapsed iterate) both use the arithmetic mean, so a
 point next to it keeps its Poiseuille coupling.
