@@ -179,11 +179,10 @@ class LineOptions(MultigridOptions):
     automatic levels only; the steady solver, ``line.solver.solve_line_problem``); ``face`` --
     the Poiseuille face coefficient, ``"arithmetic"`` or ``"logarithmic"`` mean of the
     neighbours' ``eps`` (``multigrid.flux``; every line solver: steady, starved, thermal EHL and
-    transient). The
-    logarithmic one is for plain solves: ``solve_line`` refuses it with an error estimate;
-    ``"auto"``: logarithmic in the steady solver where ``alpha_bar >= line.solver.FACE_LOG_ALPHA``,
-    else arithmetic. The default stays arithmetic until the planner tables and the point kernels
-    follow (docs/accuracy.md).
+    transient), or ``"auto"``: logarithmic where ``alpha_bar >= line.solver.FACE_LOG_ALPHA``,
+    arithmetic below. Error estimates with the logarithmic one are validated for the steady
+    solver from that ``alpha_bar`` on (``solve_line`` refuses it below); the default stays
+    arithmetic (docs/accuracy.md, "Face coefficient of the Poiseuille flux").
     """
 
     points: int = 1025
