@@ -34,7 +34,7 @@ import scipy.optimize
 
 from ..line.problem import LineProblem
 from ..line.solver import HINT, MAX_ACCURACY_POINTS, line_domain_change, solve_line_problem
-from ..model.errors import ConvergenceError, require_range
+from ..model.errors import ConvergenceError, InputError, require_range
 from ..multigrid.accuracy import (
     LOAD_SENSITIVITY,
     ErrorEstimate,
@@ -266,6 +266,12 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
     """
     hoil = check_hoil(hoil)
     opts = starved_options(options, **kw)
+    if estimate and opts.face != "arithmetic":
+        # its estimate (the core's Richardson on the starved films) is validated with the
+        # arithmetic face coefficient only (docs/accuracy.md)
+        raise InputError(f"face = {opts.face!r}: the starved solver's error estimate is validated "
+                         f"with the arithmetic face coefficient only; use estimate=False for a "
+                         f"plain solve")
     if accuracy is not None:
         require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
     if refine is None:

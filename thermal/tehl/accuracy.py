@@ -281,6 +281,11 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
     """
     t0 = time.perf_counter()
     o = result.options
+    face = (getattr(o, "multigrid", None) or {}).get("face", "arithmetic")
+    if face != "arithmetic":
+        # the parts' rules were measured with the core's arithmetic face coefficient
+        raise InputError(f"face = {face!r}: the TEHL error estimate is validated with the arithmetic "
+                         f"face coefficient only (docs/accuracy.md)")
     if o.points < 2 * (MIN_POINTS - 1) + 1 or o.nz < 8:
         raise InputError(f"estimate_error needs points >= {2 * (MIN_POINTS - 1) + 1} and nz >= 8 (got "
                          f"{o.points}, {o.nz}): it solves again on half the grid")

@@ -78,6 +78,10 @@ def test_isothermal_limit_equals_the_core_solver_with_logarithmic_faces_too(scen
     assert abs(arith.Hm / core.Hm - 1.0) > 1e-2  # the two faces differ by far more than 2e-4
     assert r.Hc == pytest.approx(core.Hc, rel=2e-4)
     assert r.Hm == pytest.approx(core.Hm, rel=2e-4)
+    from thermal.tehl import estimate_error
+
+    with pytest.raises(InputError, match="face"):
+        estimate_error(r)
 
 
 def test_vanishing_thermal_loading_gives_the_isothermal_film(scene):
