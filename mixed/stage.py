@@ -48,23 +48,9 @@ def film_calibration(ctx: RunContext) -> tuple[float, str]:
 REGIME_WORDS = {"BL": "boundary lubrication", "ML": "mixed lubrication", "EHL": "full-film EHL"}
 
 
-def operating_point(scene, thermal: bool, thermal_options, options, film_factor: float) -> dict:
-    """The mixed-lubrication state at the scene's own sum velocity (the curve's grid rarely
-    holds it): friction, asperity share of the load, Lambda and regime of the scene's supply."""
-    import numpy as np
-
-    from .stribeck import stribeck_curve
-
-    c = stribeck_curve(scene, np.array([scene.us]), thermal=thermal, thermal_options=thermal_options,
-                       options=options, transitions=False, film_factor=film_factor)
-    return {"us": float(scene.us), "friction_coefficient": float(c.friction.coefficient[0]),
-            "asperity_fraction": float(c.sharing.asperity_fraction[0]),
-            "Lambda": float(c.sharing.Lambda[0]), "regime": c.regime_names()[0],
-            "converged": c.converged}
-
-
 def stribeck_stage(ctx: RunContext) -> StageOutput | None:
     from .stribeck import default_us, stribeck_cases, stribeck_options, stribeck_result
+    from .tasks import stribeck_point_task
 
     scene, plan = ctx.scene, ctx.plan
     if scene.roughness is None:
@@ -87,7 +73,7 @@ def stribeck_stage(ctx: RunContext) -> StageOutput | None:
         figures = [Path(f) for f in stribeck_figures(curves, ctx.outdir, f"stribeck_{scene.name}")]
     c = curves[0]
     f = c.friction.coefficient
-    op = operating_point(scene, thermal, topts, stribeck_options(scene), factor)
+    op = stribeck_point_task(scene, thermal=thermal, thermal_options=topts, film_factor=factor)
     i_min = int(f.argmin())
     summary = {
         "thermal": thermal, "us": c.us, "friction_coefficient": f,

@@ -195,9 +195,6 @@ class LineHierarchy:
 
     #: the grid type (subclasses add unknowns or terms to a grid)
     level_type = LineLevel
-    #: the grids' kernels take the Poiseuille face coefficient of the options (``face``); False
-    #: where a subclass's own kernels keep the arithmetic mean (every line solver takes it now)
-    faces = True
 
     def __init__(self, problem: LineProblem, options: LineOptions) -> None:
         self.problem = problem
@@ -213,7 +210,7 @@ class LineHierarchy:
         ]
         #: the kernels' code of the Poiseuille face coefficient (subclasses that build their own
         #: grids give it to them)
-        self.face = FACE_MODES[line_face(options.face, problem.alpha_bar) if self.faces else "arithmetic"]
+        self.face = FACE_MODES[line_face(options.face, problem.alpha_bar)]
         for lv in self.levels:
             lv.face = self.face
         self.newton_iterations = 0

@@ -89,6 +89,12 @@ def hm_max_order(contact: str) -> float:
     return LINE_HM_MAX_ORDER if contact == "line" else HM_MAX_ORDER
 
 
+def log_faces(result: Any) -> bool:
+    """Whether a line result's grids took the logarithmic face coefficient
+    (``multigrid.flux``; ``solve_line_problem`` records it in ``extra["face"]``)."""
+    return getattr(result, "extra", {}).get("face") == "logarithmic"
+
+
 def richardson(values: list[float], safety: float = GRID_SAFETY, max_order: float = 2.0,
                earlier_half: bool = False) -> Richardson:
     """Grid-error estimate of ``values[-1]`` from films on grids refined by 2 each time; the
@@ -461,9 +467,8 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
         rc = richardson([d["Hc"] for d in fmg] + [Hc], max_order=LINE_FAST_HC_ORDER)
     # a line's Hm with logarithmic faces is not monotone over the grids (docs/accuracy.md, "Face
     # coefficient of the Poiseuille flux"): the difference before the last bounds it too
-    log_face = getattr(result, "extra", {}).get("face") == "logarithmic"
     rm = richardson([d["Hm"] for d in fmg] + [Hm], max_order=hm_max_order(getattr(result, "contact", "")),
-                    earlier_half=log_face)
+                    earlier_half=log_faces(result))
     if not rc.regular:
         notes.append("Hc converges irregularly over the last grids: first-order estimate")
     if not rm.regular:
@@ -548,8 +553,8 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
                 # from node to node (subgrid_min_film); both tend to the same minimum film
                 sequences.append(("Hm", sub, Hm))
             sequences.append(("Hm", [d["Hm"] for d in fmg] + [Hm], Hm))
+        floor = LINE_EXTRAPOLATION_FLOOR if getattr(result, "contact", "") == "line" else EXTRAPOLATION_FLOOR
         for k, films, F in sequences:
-            floor = LINE_EXTRAPOLATION_FLOOR if getattr(result, "contact", "") == "line" else EXTRAPOLATION_FLOOR
             x = extrapolated(films, floor) if k not in fix else None
             if x is not None:
                 fix[k] = x[0] / F - 1.0
@@ -1036,9 +1041,8 @@ class _SteadyControl:
         # a line's Hm with logarithmic faces converges within the FMG films' own algebraic
         # error on the coarse grids ((5, 20): FMG films falling, converged ones rising), so its
         # sequence is always taken from converged coarser solves (docs/accuracy.md)
-        log_face = self.dimensions == 1 and res.extra.get("face") == "logarithmic"
         if (((est.irregular or short(est)) and (grid_unknown or missed(est)) and not domain_first)
-                or self.superconvergent(est, at.points, key) or log_face):
+                or self.superconvergent(est, at.points, key) or log_faces(res)):
             est, repaired = repair(est), True
         if self.accuracy is not None and self.decay_probe is not None and could(est, self.accuracy):
             if self.correct_box:
@@ -1087,8 +1091,7 @@ class _SteadyControl:
         return refinement_candidates(res.error.budget, self.accuracy, at.points, at.box, at.tol,
                                      self.max_points, self.box_limit, self.hope_correction,
                                      grid_gain=gain, two_grids=self.dimensions == 1,
-                                     one_grid=self.dimensions == 1 and res.error.irregular
-                                     and res.extra.get("face") == "logarithmic")
+                                     one_grid=res.error.irregular and log_faces(res))
 
     def why_short(self, res: Any, at: Resolution) -> str:
         est = res.error

@@ -58,18 +58,11 @@ def eps_face_d(a: float, b: float, mode: int) -> tuple[float, float, float]:
     return m, (1.0 - m / a) / d, (m / b - 1.0) / d
 
 
+@njit(cache=True)
 def eps_faces(a: np.ndarray, b: np.ndarray, mode: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`eps_face_d` on arrays (the dense Newton Jacobians assembled with numpy)."""
-    a = np.asarray(a, dtype=float)
-    b = np.asarray(b, dtype=float)
-    m, da, db = 0.5 * (a + b), np.full(a.shape, 0.5), np.full(a.shape, 0.5)
-    if mode == 0:
-        return m, da, db
-    log = (a > 0.0) & (b > 0.0) & (np.abs(a - b) > EQUAL_REL * (a + b))
-    with np.errstate(all="ignore"):
-        d = np.log(a) - np.log(b)
-        ml = (a - b) / d
-        m = np.where(log, ml, m)
-        da = np.where(log, (1.0 - ml / a) / d, da)
-        db = np.where(log, (ml / b - 1.0) / d, db)
+    n = a.shape[0]
+    m, da, db = np.empty(n), np.empty(n), np.empty(n)
+    for k in range(n):
+        m[k], da[k], db[k] = eps_face_d(a[k], b[k], mode)
     return m, da, db
