@@ -86,3 +86,36 @@ def test_a_coarse_box_change_not_far_below_the_target_is_measured_again_on_a_fin
 def test_without_below_start_the_probe_stays_on_the_grids_the_fmg_reached(monkeypatch, sol):
     _, seen = _probe_grids(monkeypatch, sol, None)
     assert seen == [2049]
+
+
+def _fmg_probe_grids(monkeypatch, sol, below_start):
+    """The grids (points of the default box) of ``line_domain_change``'s solves for an FMG solve."""
+    import ehl_multigrid.line.solver as ls
+
+    seen, real = [], ls.solve_line_problem
+
+    def spy(problem, options, *a, **kw):
+        if problem.xmin == sol.problem.xmin:
+            seen.append(options.points)
+        return real(problem, options, *a, **kw)
+
+    monkeypatch.setattr(ls, "solve_line_problem", spy)
+    return line_domain_change(sol.problem, sol.options, sol, below_start=below_start), seen
+
+
+def test_an_fmg_solve_first_looks_at_its_box_on_a_coarse_fmg_grid(monkeypatch):
+    """An accuracy-driven solve's probe first runs on the coarsest FMG grid of at least
+    ``COARSE_PROBE_POINTS`` (513 of 8193 here, a sixteenth of the points of the probe two grids
+    below the finest) and keeps that change where ``below_start`` accepts it; otherwise it goes
+    on two grids below the finest, as before. Coarse and fine meshes measure the same change
+    (the inlet is resolved on 513 points)."""
+    sol = solve_line(20.0, 10.0, points=8193, estimate=False)
+    assert min(d["points"] for d in sol.fmg) < 513
+    coarse, seen = _fmg_probe_grids(monkeypatch, sol, lambda change: True)
+    assert seen == [513]
+    fine, seen = _fmg_probe_grids(monkeypatch, sol, lambda change: False)
+    assert seen == [513, 2049]
+    for c, f in zip(coarse, fine, strict=True):
+        assert 1.0 / 1.2 < c / f < 1.2
+    _, seen = _fmg_probe_grids(monkeypatch, sol, None)  # no rule: two grids below the finest
+    assert seen == [2049]
