@@ -691,6 +691,8 @@ SCENE_POINTS = 257
 #: largest grid an accuracy target refines a starved point solve to (513^2 half domain: about
 #: 4x the 257^2 cost, 10-40 s on the shared 2-core machine; ``max_points`` raises it)
 SCENE_MAX_POINTS = 513
+#: the coarsest grid whose film enters the three-grid estimate (:func:`starved_point_error`)
+COARSEST_ESTIMATE_POINTS = 65
 #: side outflow (relative to the inflow) above which the box's side boundary Y = ymax is
 #: taken to shape the solution (domain error unknown)
 SIDE_FLOW_LIMIT = 1e-4
@@ -714,13 +716,36 @@ def order_note(order: int) -> str:
     return ORDER_NOTE if int(order) == 1 else ORDER_NOTE_2
 
 
-def starved_point_error(fine: EHLResult, coarse: EHLResult | None) -> ErrorEstimate:
+def _grid_term(f: float, c: float, cc: float | None, p: float) -> float:
+    """Absolute grid error of the film ``f`` from the films ``c`` and ``cc`` of the grids with
+    half and a quarter of the intervals (``cc`` None: two grids only), order ``p`` assumed:
+    Richardson ``|d2|/(2^p - 1)``; where the differences fall more slowly than ``2^p`` per grid
+    (ratio ``r = d1/d2`` below it) the observed ratio continued, ``|d2|/(r - 1)``; where they
+    change sign or do not fall, at least half the difference before."""
+    d2 = f - c
+    err = abs(d2) / (2.0**p - 1.0)
+    if cc is None:
+        return err
+    d1 = c - cc
+    if d1 != 0.0 and d2 != 0.0 and (d1 > 0) == (d2 > 0) and abs(d1) > abs(d2):
+        r = d1 / d2
+        return abs(d2) / (r - 1.0) if r < 2.0**p else err
+    return max(err, 0.5 * abs(d1))
+
+
+def starved_point_error(fine: EHLResult, coarse: EHLResult | None,
+                        coarser: EHLResult | None = None) -> ErrorEstimate:
     """Error estimate of a starved point solve (relative, Hc and Hm).
 
-    * grid: two-grid Richardson from ``coarse`` (the same supply on the grid with half the
-      intervals) to ``fine`` with the observed order of the solve's wedge discretisation
-      (:data:`GRID_ORDER`), times the core's safety factor ``GRID_SAFETY`` (1.5); without a
-      converged coarse solve, unknown (NaN);
+    * grid: Richardson from ``coarse`` (the same supply on the grid with half the intervals)
+      to ``fine`` with the order of the solve's wedge discretisation (:data:`GRID_ORDER`), or
+      the observed ratio of the differences where ``coarser`` (a quarter of the intervals)
+      shows them falling more slowly, at least half the difference before where they change
+      sign (:func:`_grid_term`), times the core's safety factor ``GRID_SAFETY`` (1.5); without
+      a converged coarse solve, unknown (NaN). The first-order wedge's films converge at
+      observed orders 0.5-1.2 on fine grids (the report's 20 nm ball: Hm ratios 1.43, 1.41 on
+      1025-4097 points, where a first-order two-grid estimate stated 0.37 % at 1025 for a true
+      0.42-0.6 %; docs/starvation.md, "Grid order of the estimate");
     * algebraic: the last finest-grid change of the film times the contraction factor, the
       load error times the core's film sensitivity, plus the relative mass imbalance (in the
       starved limit the film carries the supply, so a mass error is a film error);
@@ -733,13 +758,16 @@ def starved_point_error(fine: EHLResult, coarse: EHLResult | None) -> ErrorEstim
     notes = [order_note(order)]
     # the coarse solve's iteration must have converged; its own accuracy verdict does not
     # matter (a refinement step passes the previous, 'inaccurate' solve as the coarse one)
-    if coarse is not None and coarse.status_name in ("converged", "inaccurate"):
+    ok = ("converged", "inaccurate")
+    if coarse is not None and coarse.status_name in ok:
         pc, pm = GRID_ORDER[order]
-        dc = Hc - float(coarse.scalars["Hc_venner"])
-        dm = Hm - float(coarse.scalars["Hm_venner"])
-        grid = {"Hc": GRID_SAFETY * abs(dc) / (2.0**pc - 1.0) / abs(Hc),
-                "Hm": GRID_SAFETY * abs(dm) / (2.0**pm - 1.0) / abs(Hm)}
-        xc = Hc + dc / (2.0**pc - 1.0)
+        three = coarser is not None and coarser.status_name in ok
+        if not three:
+            notes.append("no converged solve two grids below: the grid part assumes the wedge's order")
+        cc = {k: float(coarser.scalars[k]) if three else None for k in ("Hc_venner", "Hm_venner")}
+        grid = {"Hc": GRID_SAFETY * _grid_term(Hc, float(coarse.scalars["Hc_venner"]), cc["Hc_venner"], pc) / abs(Hc),
+                "Hm": GRID_SAFETY * _grid_term(Hm, float(coarse.scalars["Hm_venner"]), cc["Hm_venner"], pm) / abs(Hm)}
+        xc = Hc + (Hc - float(coarse.scalars["Hc_venner"])) / (2.0**pc - 1.0)
     else:
         grid = {"Hc": math.nan, "Hm": math.nan}
         xc = math.nan
@@ -819,8 +847,8 @@ def _scene_solve(pb: PointProblem, Hoil: float, options: PointOptions | None, po
 class _StarvedPointControl:
     """A starved point scene solve as a :class:`~ehl_multigrid.multigrid.controller.Controlled`
     physics: the grid is the one refinement (the meniscus lies inside the box), estimated by
-    :func:`starved_point_error` from the grid with half the intervals; a refinement starts from
-    the previous grid's film (:func:`_scene_solve`)."""
+    :func:`starved_point_error` from the grids with half and a quarter of the intervals; a
+    refinement starts from the previous grid's film (:func:`_scene_solve`)."""
 
     dimensions = 2
 
@@ -829,7 +857,7 @@ class _StarvedPointControl:
         self.pb, self.Hoil, self.options, self.kw = pb, Hoil, options, kw
         self.accuracy, self.with_estimate, self.max_points = accuracy, estimate, max_points
         self.prev: EHLResult | None = None  # the previous grid's converged result
-        self.coarse: EHLResult | None = None  # the solve on the grid with half the intervals
+        self.solved: dict[int, EHLResult] = {}  # the sequence's solves by points
 
     def solve(self, at: Resolution) -> EHLResult:
         prev, n = self.prev, at.points
@@ -853,22 +881,30 @@ class _StarvedPointControl:
     def remedy(self, result: EHLResult, at: Resolution, first: bool) -> Resolution | None:
         return None
 
-    def coarse_of(self, points: int) -> EHLResult:
+    def coarse_of(self, points: int, record: Any = None) -> EHLResult:
         """The solve on the grid with half the intervals of ``points`` (made once)."""
-        if self.coarse is None:
-            self.coarse = _scene_solve(self.pb, self.Hoil, self.options, (points - 1) // 2 + 1, self.kw)
-        return self.coarse
+        n = (points - 1) // 2 + 1
+        if n not in self.solved:
+            self.solved[n] = _scene_solve(self.pb, self.Hoil, self.options, n, self.kw)
+            if record is not None:
+                record(Refinement(n, 1.0, 1.0, math.nan, math.nan, self.solved[n].wall_s, "levels"))
+        return self.solved[n]
+
+    def coarser_of(self, points: int, record: Any = None) -> EHLResult | None:
+        """The solve on the grid with a quarter of the intervals of ``points`` (made once;
+        None below :data:`COARSEST_ESTIMATE_POINTS`)."""
+        n = (points - 1) // 4 + 1
+        if n < COARSEST_ESTIMATE_POINTS:
+            return None
+        return self.coarse_of((points - 1) // 2 + 1, record)
 
     def estimate(self, res: EHLResult, at: Resolution, record: Any) -> tuple[float, float]:
         self.prev = res
         if not self.with_estimate:
             return math.nan, math.nan
-        if self.coarse is None:
-            record(Refinement((at.points - 1) // 2 + 1, 1.0, 1.0, math.nan, math.nan,
-                              self.coarse_of(at.points).wall_s, "levels"))
-        est = starved_point_error(res, self.coarse)
+        self.solved[at.points] = res  # the coarse solve of the next grid
+        est = starved_point_error(res, self.coarse_of(at.points, record), self.coarser_of(at.points, record))
         attach_estimate(res, est, self.accuracy)
-        self.coarse = res  # the coarse solve of the next grid
         return est.Hc, est.Hm
 
     def candidates(self, res: EHLResult, at: Resolution) -> list[Candidate]:
@@ -939,7 +975,7 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
     res = out.result
     if not out.converged and estimate:
         # a failed solve still states what its estimate would be (the coarse grid's difference)
-        attach_estimate(res, starved_point_error(res, starved.coarse_of(n)), accuracy)
+        attach_estimate(res, starved_point_error(res, starved.coarse_of(n), starved.coarser_of(n)), accuracy)
     elif out.converged and out.why:
         res.message += f"; not refined further: {out.why}"
         res.extra["not_refined_because"] = out.why

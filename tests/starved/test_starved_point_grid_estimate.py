@@ -1,0 +1,72 @@
+"""The starved point solver's grid error from three grids (``starved.point.starved_point_error``).
+
+The first-order wedge's films converge more slowly than first order on fine grids. Measured on the
+report's ball (10 mm ball on a flat, T9 at 80 degC, pmax 0.5 GPa, hoil 20 nm; the chapter-6 scene
+with ``[supply] hoil = 2e-8``), the minimum film hm [1e-8 m] on 257, 513, 1025, 2049 and 4097
+points: 1.0046815, 1.0135957, 1.0111300, 1.0093835, 1.0081423 (the two finest solved from the
+1025-point film to a residual of 1e-8; the 2049 film moves by 2e-8 relative at 1e-10). The
+differences change sign after 513 points and then fall with ratios 1.41-1.43, so the error of
+the 1025-point film is at least the two finer differences plus a first-order tail, 0.42 %,
+about 0.6 % if the ratio holds. The two-grid first-order estimate stated 0.37 %.
+"""
+
+import math
+from types import SimpleNamespace
+
+import pytest
+
+from ehl_multigrid.multigrid.accuracy import GRID_SAFETY
+from ehl_multigrid.starved.point import _grid_term, starved_point_error
+
+HM = {257: 1.0046815, 513: 1.0135957, 1025: 1.0111300, 2049: 1.0093835, 4097: 1.0081423}
+
+
+def _true_error_lower_bound(n: int) -> float:
+    """Relative error of the film on ``n`` points against the 4097-point film continued at first
+    order (a lower bound where the differences fall more slowly than first order)."""
+    limit = HM[4097] + (HM[4097] - HM[2049])
+    return abs(HM[n] / limit - 1.0)
+
+
+def test_a_sign_change_before_the_last_difference_is_bounded_by_half_the_difference_before():
+    two = GRID_SAFETY * _grid_term(HM[1025], HM[513], None, 1.0) / HM[1025]
+    three = GRID_SAFETY * _grid_term(HM[1025], HM[513], HM[257], 1.0) / HM[1025]
+    true = _true_error_lower_bound(1025)
+    assert two < true  # the two-grid estimate understated it
+    assert three >= true
+
+
+def test_differences_falling_more_slowly_than_first_order_are_continued_at_their_ratio():
+    err = GRID_SAFETY * _grid_term(HM[2049], HM[1025], HM[513], 1.0) / HM[2049]
+    r = (HM[1025] - HM[513]) / (HM[2049] - HM[1025])
+    assert 1.0 < r < 2.0
+    assert err == pytest.approx(GRID_SAFETY * abs(HM[2049] - HM[1025]) / (r - 1.0) / HM[2049])
+    assert err >= _true_error_lower_bound(2049)
+
+
+def test_differences_falling_at_the_assumed_order_or_faster_keep_the_richardson_term():
+    f, c, cc = 1.0, 1.01, 1.05  # ratio 4 against first order
+    assert _grid_term(f, c, cc, 1.0) == pytest.approx(0.01)
+    assert _grid_term(f, c, None, 1.0) == pytest.approx(0.01)
+
+
+def _result(hc: float, hm: float) -> SimpleNamespace:
+    return SimpleNamespace(status_name="converged", scalars={"Hc_venner": hc, "Hm_venner": hm})
+
+
+def test_the_estimate_takes_the_third_grid_and_says_when_it_has_none():
+    import numpy as np
+
+    from ehl_multigrid.multigrid.driver import CycleRecord
+
+    fine = SimpleNamespace(
+        scalars={"Hc_venner": 1.0, "Hm_venner": HM[1025]}, options=SimpleNamespace(wedge_order=1),
+        levels=1, history=[CycleRecord(0, c, 1e-9, 0.0, 1.0, 1.0, Hm=HM[1025]) for c in range(3)],
+        load_error_history=np.array([0.0]), half=True,
+        extra={"mass_balance_error": 0.0, "theta": np.zeros((3, 3)), "fluxes": {"side": 0.0, "in": 1.0}})
+    with_three = starved_point_error(fine, _result(1.0, HM[513]), _result(1.0, HM[257]))
+    with_two = starved_point_error(fine, _result(1.0, HM[513]))
+    assert with_three.budget["grid"]["Hm"] > with_two.budget["grid"]["Hm"]
+    assert any("two grids below" in n for n in with_two.notes)
+    assert not any("two grids below" in n for n in with_three.notes)
+    assert math.isfinite(with_three.Hm)
