@@ -4,7 +4,7 @@ The first-order wedge's films converge more slowly than first order on fine grid
 report's ball (10 mm ball on a flat, T9 at 80 degC, pmax 0.5 GPa, hoil 20 nm; the chapter-6 scene
 with ``[supply] hoil = 2e-8``), the minimum film hm [1e-8 m] on 257, 513, 1025, 2049 and 4097
 points: 1.0046815, 1.0135957, 1.0111300, 1.0093835, 1.0081423 (the two finest solved from the
-1025-point film to a residual of 1e-8; the 2049 film moves by 2e-8 relative at 1e-10). The
+1025-point film to a residual of 1e-8; the 2049 film moves by 6e-7 relative at 1e-10). The
 differences change sign after 513 points and then fall with ratios 1.41-1.43, so the error of
 the 1025-point film is at least the two finer differences plus a first-order tail, 0.42 %,
 about 0.6 % if the ratio holds. The two-grid first-order estimate stated 0.37 %.
