@@ -753,14 +753,16 @@ def _grid_term(f: float, c: float, cc: float | None, p: float) -> float:
     half and a quarter of the intervals (``cc`` None: two grids only), order ``p`` assumed:
     Richardson ``|d2|/(2^p - 1)``; where the differences fall more slowly than ``2^p`` per grid
     (ratio ``r = d1/d2`` below it) the observed ratio continued, ``|d2|/(r - 1)``; where they
-    change sign or do not fall, at least half the difference before."""
+    do not fall, no bound (inf); where they change sign, at least half the difference before."""
     d2 = f - c
     err = abs(d2) / (2.0**p - 1.0)
     if cc is None:
         return err
     d1 = c - cc
-    if d1 != 0.0 and d2 != 0.0 and (d1 > 0) == (d2 > 0) and abs(d1) > abs(d2):
+    if d1 != 0.0 and d2 != 0.0 and (d1 > 0) == (d2 > 0):
         r = d1 / d2
+        if r <= 1.0:
+            return math.inf  # the differences do not fall: no bound
         return abs(d2) / (r - 1.0) if r < 2.0**p else err
     return max(err, 0.5 * abs(d1))
 
@@ -947,6 +949,8 @@ class _StarvedPointControl:
             return []
         b, pc = res.error.budget, GRID_ORDER[int(res.options.wedge_order)][0]
         predicted = max(b["grid"][k] / 2.0**pc + b["algebraic"][k] + b["domain"][k] for k in ("Hc", "Hm"))
+        if any(math.isinf(b["grid"][k]) for k in ("Hc", "Hm")):
+            predicted = math.nan  # differences that do not fall yet: the finer grid measures on
         return [Candidate("points", finer, 1, predicted)]
 
     def why_short(self, res: EHLResult, at: Resolution) -> str:

@@ -50,6 +50,13 @@ def test_differences_falling_at_the_assumed_order_or_faster_keep_the_richardson_
     assert _grid_term(f, c, None, 1.0) == pytest.approx(0.01)
 
 
+def test_differences_that_do_not_fall_give_no_bound():
+    """Appendix D with a 50 nm layer: Hc moved by +0.061 % from 257 to 513 points and by +0.069 %
+    from 513 to 1025; the last difference (0.069 %) bounds nothing."""
+    assert math.isinf(_grid_term(1.00130, 1.00061, 1.0, 1.0))
+    assert math.isinf(_grid_term(1.0010, 1.0005, 1.0, 1.0))  # equal differences
+
+
 def _result(hc: float, hm: float) -> SimpleNamespace:
     return SimpleNamespace(status_name="converged", scalars={"Hc_venner": hc, "Hm_venner": hm})
 
