@@ -983,7 +983,7 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
     The wedge order (:data:`STARVED_WEDGE_ORDER` by default) is the keyword ``wedge_order``
     or, without it, the scene's ``[solver.ehl]`` ``wedge_order`` (or ``order``).
     """
-    from ..point.problem import problem_from_scene
+    from ..point.problem import min_points, problem_from_scene
     from .supply import hoil_venner, layer_across_track
 
     pb = problem_from_scene(scene, viscosity=viscosity, density=density)
@@ -1006,7 +1006,10 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
                 kw["wedge_order"] = table[key]
                 break
     explicit = "points" in kw or options is not None
-    n = int(kw.pop("points", options.points if options is not None else SCENE_POINTS))
+    # the flooded solver's smallest grid for this load: the chapter-6 1.93 GPa ball (M 10282)
+    # with a 50 nm layer has a negative film on 257 points (mass_not_conserved), a film on 513
+    start = max(SCENE_POINTS, min_points(pb.M, pb.b_over_a, cap=max_points))
+    n = int(kw.pop("points", options.points if options is not None else start))
     starved = _StarvedPointControl(pb, Hoil, options, kw, accuracy, estimate, max_points)
     out = control(starved, Resolution(n), accuracy, refine=estimate and not explicit,
                   max_points=max_points, progress=progress)

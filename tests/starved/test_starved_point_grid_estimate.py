@@ -110,3 +110,23 @@ def test_a_residual_floor_with_still_films_and_balanced_mass_is_accepted_with_it
     assert not _accept_floor(_floor_result(1e-9, 10 * MASS_TOL), 0.005).success
     assert not _accept_floor(_floor_result(1e-9, 1.3e-7), None).success
     assert not _accept_floor(_floor_result(1e-9, 1.3e-7, status=1), 0.005).success
+
+
+@pytest.mark.parametrize(("scene", "points"), [("chapter6_starved_0.5GPa", 257), ("chapter6_starved_1.93GPa", 513)])
+def test_a_starved_scene_starts_on_the_flooded_solvers_smallest_grid_for_its_load(monkeypatch, scene, points):
+    """The chapter-6 1.93 GPa ball (M 10282) with a 50 nm layer had a negative film on the
+    257-point start grid (mass_not_conserved); it starts on 513 points (``point.problem.min_points``),
+    where it converges; the 0.5 GPa ball (M 179) keeps 257."""
+    import ehl_multigrid.starved.point as sp
+    from ehl_multigrid import load_scene
+
+    class Started(Exception):
+        pass
+
+    def first(physics, at, *a, **kw):
+        raise Started(at.points)
+
+    monkeypatch.setattr(sp, "control", first)
+    with pytest.raises(Started) as got:
+        sp.solve_starved_point_scene(load_scene(scene), hoil=5e-8, accuracy=0.005, flooded=False)
+    assert got.value.args[0] == points
