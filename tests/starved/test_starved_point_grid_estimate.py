@@ -112,21 +112,20 @@ def test_a_residual_floor_with_still_films_and_balanced_mass_is_accepted_with_it
     assert not _accept_floor(_floor_result(1e-9, 1.3e-7, status=1), 0.005).success
 
 
-@pytest.mark.parametrize(("scene", "points"), [("chapter6_starved_0.5GPa", 257), ("chapter6_starved_1.93GPa", 513)])
-def test_a_starved_scene_starts_on_the_flooded_solvers_smallest_grid_for_its_load(monkeypatch, scene, points):
+@pytest.mark.parametrize(("scene", "finer"), [("chapter6_starved_0.5GPa", None), ("chapter6_starved_1.93GPa", 513)])
+def test_a_failed_first_grid_below_the_flooded_solvers_smallest_moves_to_the_next(scene, finer):
     """The chapter-6 1.93 GPa ball (M 10282) with a 50 nm layer had a negative film on the
-    257-point start grid (mass_not_conserved); it starts on 513 points (``point.problem.min_points``),
-    where it converges; the 0.5 GPa ball (M 179) keeps 257."""
-    import ehl_multigrid.starved.point as sp
+    257-point start grid (mass_not_conserved, no film); below the flooded solver's smallest grid
+    for its load (``point.problem.min_points``: 513) the controller's remedy is the next grid,
+    where it converges. The 0.5 GPa ball (M 179) has no remedy. The start stays 257: the 6205
+    inner race (M 3620) with 50 nm converges there and fails by FMG on 513."""
     from ehl_multigrid import load_scene
+    from ehl_multigrid.multigrid.controller import Resolution
+    from ehl_multigrid.point.problem import problem_from_scene
+    from ehl_multigrid.starved.point import SCENE_MAX_POINTS, SCENE_POINTS, _StarvedPointControl
 
-    class Started(Exception):
-        pass
-
-    def first(physics, at, *a, **kw):
-        raise Started(at.points)
-
-    monkeypatch.setattr(sp, "control", first)
-    with pytest.raises(Started) as got:
-        sp.solve_starved_point_scene(load_scene(scene), hoil=5e-8, accuracy=0.005, flooded=False)
-    assert got.value.args[0] == points
+    pb = problem_from_scene(load_scene(scene))
+    ctl = _StarvedPointControl(pb, 0.01, None, {}, 0.005, True, SCENE_MAX_POINTS)
+    fix = ctl.remedy(None, Resolution(SCENE_POINTS), True)
+    assert (fix.points if fix is not None else None) == finer
+    assert ctl.remedy(None, Resolution(SCENE_POINTS), False) is None  # only before a converged solve
