@@ -725,6 +725,8 @@ def _accept_floor(res: EHLResult, accuracy: float | None) -> EHLResult:
                        f"cycles and a mass imbalance of {mb:.2g}: accepted as converged, the spread "
                        "counted in the algebraic error")
     return res
+
+
 #: side outflow (relative to the inflow) above which the box's side boundary Y = ymax is
 #: taken to shape the solution (domain error unknown)
 SIDE_FLOW_LIMIT = 1e-4
@@ -779,7 +781,7 @@ def starved_point_error(fine: EHLResult, coarse: EHLResult | None,
       a converged coarse solve, unknown (NaN). The first-order wedge's films converge at
       observed orders 0.5-1.2 on fine grids (the report's 20 nm ball: Hm ratios 1.43, 1.41 on
       1025-4097 points, where a first-order two-grid estimate stated 0.37 % at 1025 for a true
-      0.42-0.6 %; docs/starvation.md, "Grid order of the estimate");
+      0.42-0.6 %; docs/starvation.md, "Three grids");
     * algebraic: the last finest-grid change of the film times the contraction factor, the
       load error times the core's film sensitivity, plus the relative mass imbalance (in the
       starved limit the film carries the supply, so a mass error is a film error);
