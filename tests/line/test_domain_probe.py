@@ -119,3 +119,13 @@ def test_an_fmg_solve_first_looks_at_its_box_on_a_coarse_fmg_grid(monkeypatch):
         assert 1.0 / 1.2 < c / f < 1.2
     _, seen = _fmg_probe_grids(monkeypatch, sol, None)  # no rule: two grids below the finest
     assert seen == [2049]
+
+
+def test_an_isoviscous_solve_probes_two_grids_below_the_finest_without_the_coarse_look(monkeypatch):
+    """Isoviscous contacts at high M hardly carry a film on coarse grids, and the coarse look cost
+    more than it saved there ((1000, 0) at 0.5 %: 1.6 -> 2.5 s): L = 0 keeps the probe two grids
+    below the finest."""
+    sol = solve_line(20.0, 0.0, points=8193, estimate=False)
+    assert min(d["points"] for d in sol.fmg) < 513
+    _, seen = _fmg_probe_grids(monkeypatch, sol, lambda change: True)
+    assert seen == [2049]
