@@ -68,7 +68,7 @@ from ..multigrid.threads import preserved_threads
 from ..point import numerics as nm
 from ..point.fas import HINT, POINT_POLICY, Level, PointHierarchy, point_settings
 from ..point.postprocess import build_result
-from ..point.problem import PointProblem
+from ..point.problem import PointProblem, min_points
 from .gate import apply_mass_gate
 from .point_mass import inlet_solve
 from .point_wedge import face_value, flux_operator, march_theta, wedge_correction
@@ -922,8 +922,6 @@ class _StarvedPointControl:
         # chapter-6 1.93 GPa ball (M 10282) with a 50 nm layer has a negative film on 257
         # points (mass_not_conserved) and a film on 513; the 6205 inner race (M 3620) converges
         # on 257 and fails by FMG on 513, so the start stays 257 (docs/starvation.md)
-        from ..point.problem import min_points
-
         finer = at.finer()
         if first and finer.points <= self.max_points and at.points < min_points(self.pb.M, self.pb.b_over_a):
             return finer

@@ -42,9 +42,8 @@ def test_domain_probe_from_the_solution_measures_the_deep_box_change(sol):
         assert got == pytest.approx(want, rel=0.05)
 
 
-def _probe_grids(monkeypatch, sol, below_start):
-    """The grids (points of the default box's solve) on which ``line_domain_change`` solves,
-    for a solve that started on its finest grid (no FMG grids below it)."""
+def _fmg_probe_grids(monkeypatch, sol, below_start):
+    """The grids (points of the default box) of ``line_domain_change``'s solves for ``sol``."""
     import ehl_multigrid.line.solver as ls
 
     seen, real = [], ls.solve_line_problem
@@ -55,10 +54,14 @@ def _probe_grids(monkeypatch, sol, below_start):
         return real(problem, options, *a, **kw)
 
     monkeypatch.setattr(ls, "solve_line_problem", spy)
+    return line_domain_change(sol.problem, sol.options, sol, below_start=below_start), seen
+
+
+def _probe_grids(monkeypatch, sol, below_start):
+    """The same for ``sol`` as if it had started on its finest grid (no FMG grids below it)."""
     started_on_finest = dataclasses.replace(sol)
     started_on_finest.fmg = [{"level": sol.levels - 1}]
-    change = line_domain_change(sol.problem, sol.options, started_on_finest, below_start=below_start)
-    return change, seen
+    return _fmg_probe_grids(monkeypatch, started_on_finest, below_start)
 
 
 def test_a_solve_started_on_its_finest_grid_measures_its_box_on_a_coarse_grid_where_far_below(
@@ -87,20 +90,6 @@ def test_without_below_start_the_probe_stays_on_the_grids_the_fmg_reached(monkey
     _, seen = _probe_grids(monkeypatch, sol, None)
     assert seen == [2049]
 
-
-def _fmg_probe_grids(monkeypatch, sol, below_start):
-    """The grids (points of the default box) of ``line_domain_change``'s solves for an FMG solve."""
-    import ehl_multigrid.line.solver as ls
-
-    seen, real = [], ls.solve_line_problem
-
-    def spy(problem, options, *a, **kw):
-        if problem.xmin == sol.problem.xmin:
-            seen.append(options.points)
-        return real(problem, options, *a, **kw)
-
-    monkeypatch.setattr(ls, "solve_line_problem", spy)
-    return line_domain_change(sol.problem, sol.options, sol, below_start=below_start), seen
 
 
 def test_an_fmg_solve_first_looks_at_its_box_on_a_coarse_fmg_grid(monkeypatch):
