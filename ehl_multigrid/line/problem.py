@@ -171,6 +171,11 @@ def default_xmin(M: float, L: float) -> float:
     return float(min(-4.5, math.floor(2.0 * (-1.0 - 20.0 * math.sqrt(2.0 * H))) / 2.0))
 
 
+def box_ratio(problem: LineProblem) -> float:
+    """The problem's box length over that of its default box ``[default_xmin, 1.5]``."""
+    return (problem.xmax - problem.xmin) / (1.5 - default_xmin(problem.M, problem.L))
+
+
 def check_grid(points: int, levels: int, min_coarse: int = 17) -> int:
     """Validate ``points = 2^k + 1`` and ``levels``; return the coarsest grid's points."""
     require_range("points", points, 33, 2**20 + 1, "grid points")

@@ -179,6 +179,14 @@ class MultilevelSolver:
         hz.correct(k, token, s)
         self._add(hz.relax(k, o.nu2, s, k != top, post=True))
 
+    def trial_cycle(self, k: int) -> Measurement:
+        """One FAS cycle on grid ``k`` outside the histories and the robustness policy: for a
+        hierarchy's start that falls back to another method when the cycles fail (the caller
+        restores the iterate). Its work units count; numerical errors propagate."""
+        self._level_res = []
+        self._cycle(k, k, self.settings.cycle)
+        return self.hierarchy.measure(k)
+
     def run_cycle(self, k: int, c: int) -> Measurement:
         """One accepted cycle on grid ``k``: rejected attempts are undone and repeated with
         the policy's next step; raises ``_Stop`` when the retries run out."""

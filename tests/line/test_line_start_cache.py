@@ -2,8 +2,8 @@
 (``solve_line_problem(start_cache=...)``): a later solve starts its dense Newton on the start
 grid an earlier one converged on, from that solution. An accuracy sequence solves the same start
 grid again for every finer grid, and at M = 3000 that is a dense Newton solve of 2049 points
-(3-4 s) each time. The cached solution is only a start: Newton checks it, and the answer is the
-one a fresh solve gives. Solves outside a sequence keep nothing, so they repeat bit for bit."""
+(3-4 s) each time. The cached solution is only a start: FAS cycles (on a grid with coarser grids
+below it) or Newton check it, and the answer is the one a fresh solve gives. Solves outside a sequence keep nothing, so they repeat bit for bit."""
 
 from __future__ import annotations
 
