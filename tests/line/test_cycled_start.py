@@ -66,3 +66,35 @@ def test_a_probe_of_twice_the_box_coarsens_to_the_default_box_mesh_size():
     short = LineHierarchy(pb, LineOptions(points=4097)).levels[0]
     long = LineHierarchy(wide, LineOptions(points=8193)).levels[0]
     assert np.diff(long.X)[0] == pytest.approx(np.diff(short.X)[0])
+
+
+def test_a_later_solve_starts_fmg_above_the_filmless_start_grids_from_the_given_solution():
+    pb = LineProblem.from_moes(5000, 5)
+    tight = LineOptions(points=8193, tol=1e-9, tol_load=1e-10, max_cycles=100, raise_on_failure=False)
+    starts: dict = {}
+    first = solve_line_problem(pb, dataclasses.replace(tight, points=4097), start_cache=starts)
+    assert first.status_name == "start_failed"  # 513-2049 points hold no positive film at M = 5000
+    assert starts and all(v is None for v in starts.values())
+    src = ls.continued_in_m(pb, dataclasses.replace(tight, points=4097), start_cache=starts)
+    guess = (src.X, src.P, src.H0)
+    fmg = solve_line_problem(pb, tight, guess=guess, start_cache=starts)
+    assert any("FMG start on 4097 points solved by FAS cycles from the given solution" in a
+               for a in fmg.actions)
+    assert [d["points"] for d in fmg.fmg] == [4097, 8193]  # an FMG sequence for the estimate
+    finest = solve_line_problem(pb, tight, guess=guess, from_guess=True)
+    assert fmg.success and finest.success
+    for key in ("Hc_venner", "Hm_venner"):
+        assert fmg.scalars[key] == pytest.approx(finest.scalars[key], rel=1e-6)
+
+
+def test_an_isoviscous_later_solve_keeps_its_start_on_the_finest_grid():
+    # FMG through the fine grids of an isoviscous contact rejects cycle after cycle: the later
+    # solves of its sequence cycle on their finest grid from the given solution
+    pb = LineProblem.from_moes(3000, 0)
+    opts = LineOptions(points=16385, raise_on_failure=False)
+    starts: dict = {}
+    solve_line_problem(pb, opts, start_cache=starts)
+    src = ls.continued_in_m(pb, opts, start_cache=starts)  # (its M = 1500 step fails on 8193)
+    r = solve_line_problem(pb, opts, guess=(src.X, src.P, src.H0), start_cache=starts)
+    assert r.success
+    assert any("started on the 16385-point grid from the given solution" in a for a in r.actions)
