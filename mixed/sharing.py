@@ -168,18 +168,18 @@ class _Problem:
 
     def delta_at(self, log_hc: np.ndarray) -> float | np.ndarray:
         """Chevalier's exponent at flooded films ``exp(log_hc)`` [m] (a number, or per point)."""
-        return exponent_at(self.kind, self.delta, log_hc, self.log_venner, self.hoil)
+        return exponent_at(self.kind, self.delta, log_hc, self.log_venner, self.hoil, self.theta)
 
 
 def exponent_at(kind: str, delta: float | str, log_hc: np.ndarray, log_venner: float,
-                hoil: float) -> float | np.ndarray:
+                hoil: float, theta: float = 1.0) -> float | np.ndarray:
     """``delta`` itself, or for ``"inlet"`` :func:`~mixed.starvation.inlet_delta` of the flooded
     film ``exp(log_hc)`` [m] in Venner units (``log_venner = ln(Rx/a^2)``); NaN for a flooded
     inlet (``hoil = inf``), where no exponent applies."""
     if math.isinf(hoil):
         return math.nan
     if delta == INLET:
-        return inlet_delta(kind, np.exp(np.asarray(log_hc, dtype=float) + log_venner))
+        return inlet_delta(kind, np.exp(np.asarray(log_hc, dtype=float) + log_venner), theta)
     return delta
 
 
@@ -203,7 +203,8 @@ def fitted_film(
     Hc = float(fits.central_film_fit(scene.kind, M, L, theta, gamma1))
     log_hc = np.array([math.log(Hc * scene.film_scale(us) * require_film_factor(film_factor))])
     contact = contact_at_load(scene, P)
-    d = exponent_at(scene.kind, delta, log_hc, math.log(scene.Rx / contact.a**2), hoil)
+    d = exponent_at(scene.kind, delta, log_hc, math.log(scene.Rx / contact.a**2), hoil,
+                    1.0 if scene.kind == "line" else scene.theta)
     rho_bar = density_ratio_at(contact.pmax)
     return float(np.exp(log_starved_film(log_hc, hoil, rho_bar, d))[0])
 

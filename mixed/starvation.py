@@ -9,8 +9,10 @@
   ``Hc_ff = hc Rx/a^2`` the flooded central film in Venner units (inlet length ~ Hc_ff^(2/3)),
   fitted to the package's mass-conserving starved point solver and held at its ends outside
   Hc_ff = 0.063-0.447 (docs/fits.md); in the spirit of Damiens et al. (2004), whose one inlet
-  parameter collapses circular contacts. Elliptic contacts are refused: their exponent depends
-  on the ellipticity too. Line contacts (no side flow): the starved line solver gives
+  parameter collapses circular contacts. Elliptic contacts (theta = Rx/Ry in 0.25-4): the
+  circular rule plus ``t (-0.202 + 2.152 log10(Hc_ff)) + 1.574 t^2``, ``t = log10(theta)``
+  (wide contacts lose less oil sideways: a sharper knee); refused outside that range. Line
+  contacts (no side flow): the starved line solver gives
   ``Hc/Hc_ff = min(r, 1)``, which (6.1) approaches at its largest admitted ``delta`` (20).
 * ``hs_min``: the separation at which the asperities alone carry the load (gamma2 = 1). When the
   starved film cannot keep ``hs`` above it the contact is in boundary lubrication (Fig. 6.1).

@@ -290,7 +290,7 @@ class Scene:
         hz = self.hertz if load is None else self.hertz_at(load)
         delta = self.supply.delta
         if delta == INLET:
-            delta = float(inlet_delta(self.kind, hc * self.Rx / hz.a**2))
+            delta = float(inlet_delta(self.kind, hc * self.Rx / hz.a**2, self.theta))
         k = float(chevalier_reduction(hoil / (hc * density_ratio_at(hz.pmax)), delta))
         return Hc * k, hc * k
 

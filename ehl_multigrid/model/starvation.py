@@ -7,8 +7,10 @@ density at pmax (isothermal Dowson-Higginson (2.7)), bounds the film as the spee
 inlet: circular contacts ``2.37 - 0.95 log10(Hc_ff)`` (``Hc_ff = hc Rx/a^2``), fitted to the
 package's mass-conserving starved point solver within 0.1 over nine contacts (L = 2-20); line
 contacts ``Hc/Hc_ff = min(r, 1)``, which (6.1) approaches at its largest admitted ``delta`` (20);
-elliptic contacts refused (their exponent depends on the ellipticity as well). Both rules are in
-the spirit of Damiens et al. (2004), whose inlet parameter collapses circular contacts.
+elliptic contacts (``0.25 <= theta <= 4``) the circular rule with terms in ``t = log10(theta)``,
+``+ t (-0.202 + 2.152 log10(Hc_ff)) + 1.574 t^2``, fitted to the same solver over 20 contacts
+(rms 0.11); outside that ellipticity they are refused. The rules are in the spirit of Damiens et
+al. (2004), whose inlet parameter collapses circular contacts.
 """
 
 from __future__ import annotations
@@ -28,6 +30,15 @@ INLET_DELTA_FIT = (2.37, -0.95)
 #: Hc_ff (Venner) over which that fit was made; outside it ``delta`` is held at the end values,
 #: since the fitted line does not hold beyond them (docs/fits.md)
 INLET_HC_RANGE = (0.063, 0.447)
+#: elliptic contacts: ``delta`` = the circular rule ``+ t (c1 + c2 log10(Hc_ff)) + c3 t^2``,
+#: ``t = log10(theta)``, fitted to the starved point solver at theta 0.25-4 (docs/fits.md)
+INLET_DELTA_THETA = (-0.202, 2.152, 1.574)
+#: the ellipticities ``theta = Rx/Ry`` over which that fit was made (refused outside)
+INLET_THETA_RANGE = (0.25, 4.0)
+#: elliptic Hc_ff (Venner) range at theta: these values times ``theta^INLET_HC_THETA_POWER``;
+#: ``delta`` is held at its ends, as the circular one at INLET_HC_RANGE
+INLET_HC_RANGE_ELLIPTIC = (0.0445, 0.245)
+INLET_HC_THETA_POWER = -0.53
 #: line contacts: (6.1) at its largest admitted exponent stands for the solver's min(r, 1)
 LINE_INLET_DELTA = 20.0
 #: the admitted constant exponents
@@ -46,24 +57,33 @@ def require_delta(name: str, delta: float | str) -> float | str:
     return require_range(name, delta, DELTA_RANGE[0], DELTA_RANGE[1], "-")
 
 
-def inlet_delta(kind: str, hc_venner: ArrayLike) -> ArrayLike:
+def inlet_delta(kind: str, hc_venner: ArrayLike, theta: float = 1.0) -> ArrayLike:
     """Chevalier's exponent from the flooded inlet: ``kind`` ``"line"`` gives
-    :data:`LINE_INLET_DELTA`; ``"elliptic"`` is refused (not measured); a circular contact ``2.37 - 0.95 log10(Hc_ff)``, ``Hc_ff = hc Rx/a^2``
+    :data:`LINE_INLET_DELTA`; a circular contact ``2.37 - 0.95 log10(Hc_ff)``, ``Hc_ff = hc Rx/a^2``
     (flooded central film in Venner units, ``a`` the Hertzian semi-axis in the rolling
-    direction), with ``Hc_ff`` held inside :data:`INLET_HC_RANGE`, where it was measured."""
-    if kind == "elliptic":
-        raise InputError(
-            "supply.delta = 'inlet' is measured for line and circular contacts only: at theta = 0.5 and 2 "
-            "the starved point solver's exponent lies 0.4-0.8 from the circular rule (the side flow depends "
-            "on the ellipticity; validation/starved/study_collapse_range.py); give supply.delta a number "
-            "(0.5-20) for this elliptic contact")
+    direction), with ``Hc_ff`` held inside :data:`INLET_HC_RANGE`, where it was measured; an
+    elliptic contact of ellipticity ``theta = Rx/Ry`` in :data:`INLET_THETA_RANGE` adds
+    :data:`INLET_DELTA_THETA`'s terms (``Hc_ff`` held inside the range measured at that theta)."""
     h = np.asarray(hc_venner, dtype=float)
     if np.any(~(h > 0)):
         raise InputError(f"hc_venner = {h[~(h > 0)].ravel()[:3]} must be > 0 (flooded film, h Rx/a^2)")
+    a, b = INLET_DELTA_FIT
     if kind == "line":
         out = np.full(h.shape, LINE_INLET_DELTA)
+    elif kind == "elliptic":
+        lo, hi = INLET_THETA_RANGE
+        if not lo <= theta <= hi:
+            raise InputError(
+                f"supply.delta = 'inlet' is measured for elliptic contacts with theta = Rx/Ry in "
+                f"[{lo:g}, {hi:g}] (here {theta:.4g}): the starved point solver's exponent depends on the "
+                "ellipticity (validation/starved/study_collapse_elliptic.py); give supply.delta a number "
+                "(0.5-20) for this elliptic contact")
+        t = math.log10(theta)
+        c1, c2, c3 = INLET_DELTA_THETA
+        scale = theta ** INLET_HC_THETA_POWER
+        x = np.log10(np.clip(h, INLET_HC_RANGE_ELLIPTIC[0] * scale, INLET_HC_RANGE_ELLIPTIC[1] * scale))
+        out = a + b * x + t * (c1 + c2 * x) + c3 * t * t
     else:
-        a, b = INLET_DELTA_FIT
         out = a + b * np.log10(np.clip(h, *INLET_HC_RANGE))
     return float(out) if out.ndim == 0 else out
 

@@ -8,6 +8,7 @@ import pytest
 
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.scene import Scene, load_scene
+from ehl_multigrid.model.starvation import INLET_HC_RANGE_ELLIPTIC, INLET_THETA_RANGE
 from ehl_multigrid.multigrid.rheology import density
 from ehl_multigrid.point.problem import problem_from_moes
 from ehl_multigrid.point.solve import solve_fas
@@ -85,12 +86,55 @@ def test_delta_input_is_checked():
     assert math.isinf(sc.with_supply(delta="inlet").supply.hoil)
 
 
-def test_inlet_exponent_is_refused_for_elliptic_contacts():
+def test_inlet_exponent_is_refused_for_elliptic_contacts_outside_the_measured_ellipticity():
+    # the 6205 inner race: b/a 9.4, theta = Rx/Ry far below 0.25
     sc = load_scene("bearing_6205_inner_race").to_dict()
     sc["roughness"] = load_scene("series_C_disc3_1.93GPa").to_dict()["roughness"]
     ell = Scene.from_dict(sc).with_supply(delta="inlet")
-    with pytest.raises(InputError, match="elliptic"):
+    assert ell.theta < INLET_THETA_RANGE[0]
+    with pytest.raises(InputError, match=r"elliptic contacts with theta .* \[0.25, 4\]"):
         load_sharing(ell, [1.0], hoil=ell.roughness.Rq)
+    with pytest.raises(InputError, match="theta"):
+        inlet_delta("elliptic", 0.1, 5.0)
+
+
+@pytest.mark.solver
+@pytest.mark.parametrize(("M", "L", "theta"), [(300.0, 5.0, 0.25), (50.0, 10.0, 4.0)])
+def test_elliptic_inlet_exponent_matches_the_starved_point_solver_where_the_circular_rule_does_not(M, L, theta):
+    """Supply = the flooded central film, as the circular test above: the wide contact (theta
+    0.25, little side flow) has a sharper knee than the circular rule says, the narrow one a
+    softer one (validation/starved/study_collapse_elliptic.py)."""
+    pb = problem_from_moes(M, L, theta)
+    ff = solve_fas(pb, points=129, half=True, wedge_order=1, tol=STARVED_TOL, max_cycles=40)
+    Hff = ff.scalars["Hc_venner"]
+    i0 = int(np.argmin(np.abs(ff.X)))
+    rho_c = float(density(float(ff.P[0, i0]), ff.problem.rheology())[0])
+    s = solve_starved_point(pb, Hff, points=129, half=True)
+    assert s.status_name == "converged"
+    ratio = s.scalars["Hc_venner"] / Hff
+    r = 1.0 / rho_c
+    rule = abs(chevalier_reduction(r, inlet_delta("elliptic", Hff, theta)) / ratio - 1)
+    circular = abs(chevalier_reduction(r, inlet_delta("point", Hff)) / ratio - 1)
+    assert rule < 0.02
+    assert circular > 2.0 * rule
+
+
+def test_elliptic_inlet_exponent_joins_the_circular_rule_at_theta_one():
+    h = np.geomspace(INLET_HC_RANGE[0], INLET_HC_RANGE_ELLIPTIC[1], 7)
+    assert np.allclose(inlet_delta("elliptic", h, 1.0), inlet_delta("point", h), atol=1e-12)
+    # wider contacts (smaller theta) lose less oil sideways: a larger exponent
+    assert inlet_delta("elliptic", 0.1, 0.25) > inlet_delta("elliptic", 0.1, 1.0) > inlet_delta("elliptic", 0.1, 4.0)
+
+
+def test_an_elliptic_scene_takes_the_elliptic_inlet_exponent_in_the_mixed_layer():
+    d = load_scene("chapter6_starved_0.5GPa").to_dict()
+    d["geometry"]["Ry"] = 2.0 * d["geometry"]["Rx"]  # theta = Rx/Ry = 0.5
+    d["contact"]["kind"] = "elliptic"
+    ell = Scene.from_dict(d).with_supply(delta="inlet")
+    assert ell.theta == pytest.approx(0.5)
+    ls = load_sharing(ell, [0.1, 1.0, 10.0], hoil=1.5 * ell.roughness.Rq)
+    d_used = ls.delta_used[np.isfinite(ls.delta_used)]
+    assert d_used.size and np.all((d_used > 3.0) & (d_used < 5.0))
 
 
 def test_flooded_elliptic_contact_needs_no_exponent():
