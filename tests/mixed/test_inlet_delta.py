@@ -18,19 +18,23 @@ from mixed.starvation import INLET_HC_RANGE, LINE_INLET_DELTA, chevalier_reducti
 from mixed.stribeck import stribeck_curve
 
 
-@pytest.mark.solver
-def test_inlet_exponent_matches_the_starved_point_solver_where_3p5_does_not():
-    """(20, 10), supply = the flooded central film: the solver's Hc/Hc_ff against (6.1) with
-    r = Hoil/(Hc_ff rho_c) (rho at the flooded centre), as in validation/starved."""
-    pb = problem_from_moes(20.0, 10.0)
+def _supplied_with_the_flooded_film(pb):
+    """``(Hc_ff, Hc/Hc_ff, r)`` of the starved point solver (129^2, half domain) supplied with
+    the flooded central film, ``r = Hoil/(Hc_ff rho_c)`` with rho at the flooded centre."""
     ff = solve_fas(pb, points=129, half=True, wedge_order=1, tol=STARVED_TOL, max_cycles=40)
     Hff = ff.scalars["Hc_venner"]
     i0 = int(np.argmin(np.abs(ff.X)))
     rho_c = float(density(float(ff.P[0, i0]), ff.problem.rheology())[0])
     s = solve_starved_point(pb, Hff, points=129, half=True)
     assert s.status_name == "converged"
-    ratio = s.scalars["Hc_venner"] / Hff
-    r = Hff / (Hff * rho_c)
+    return Hff, s.scalars["Hc_venner"] / Hff, 1.0 / rho_c
+
+
+@pytest.mark.solver
+def test_inlet_exponent_matches_the_starved_point_solver_where_3p5_does_not():
+    """(20, 10), supply = the flooded central film: the solver's Hc/Hc_ff against (6.1) with
+    r = Hoil/(Hc_ff rho_c) (rho at the flooded centre), as in validation/starved."""
+    Hff, ratio, r = _supplied_with_the_flooded_film(problem_from_moes(20.0, 10.0))
     d = inlet_delta("point", Hff)
     assert 2.6 < d < 2.9
     assert chevalier_reduction(r, d) / ratio - 1 == pytest.approx(0.0, abs=0.015)
@@ -104,15 +108,7 @@ def test_elliptic_inlet_exponent_matches_the_starved_point_solver_where_the_circ
     """Supply = the flooded central film, as the circular test above: the wide contact (theta
     0.25, little side flow) has a sharper knee than the circular rule says, the narrow one a
     softer one (validation/starved/study_collapse_elliptic.py)."""
-    pb = problem_from_moes(M, L, theta)
-    ff = solve_fas(pb, points=129, half=True, wedge_order=1, tol=STARVED_TOL, max_cycles=40)
-    Hff = ff.scalars["Hc_venner"]
-    i0 = int(np.argmin(np.abs(ff.X)))
-    rho_c = float(density(float(ff.P[0, i0]), ff.problem.rheology())[0])
-    s = solve_starved_point(pb, Hff, points=129, half=True)
-    assert s.status_name == "converged"
-    ratio = s.scalars["Hc_venner"] / Hff
-    r = 1.0 / rho_c
+    Hff, ratio, r = _supplied_with_the_flooded_film(problem_from_moes(M, L, theta))
     rule = abs(chevalier_reduction(r, inlet_delta("elliptic", Hff, theta)) / ratio - 1)
     circular = abs(chevalier_reduction(r, inlet_delta("point", Hff)) / ratio - 1)
     assert rule < 0.02

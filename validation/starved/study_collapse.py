@@ -36,7 +36,7 @@ import numpy as np
 import scipy.optimize
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from study_point import RATIOS, fit_delta, run_case  # noqa: E402
+from study_point import RATIOS, fit_delta, resumable, run_case  # noqa: E402
 
 from ehl_multigrid.point.problem import problem_from_moes  # noqa: E402
 from ehl_multigrid.point.solve import solve_fas  # noqa: E402
@@ -102,18 +102,9 @@ def main() -> None:
     base = BASE[:1] if a.quick else BASE
     match_l = MATCH_L[:1] if a.quick else MATCH_L
     plan_key = {"base": base, "match_l": list(match_l), "points": POINTS, "ratios": RATIOS}
-    data: dict = {"plan": plan_key, "cases": []}
-    if path.exists():
-        prev = json.loads(path.read_text())
-        if prev.get("plan") == json.loads(json.dumps(plan_key)):
-            data = prev
+    data, save = resumable(path, plan_key)
     done = {(c["M"], c["L"]) for c in data["cases"]}
     t0 = time.perf_counter()
-
-    def save() -> None:
-        tmp = path.with_suffix(".json.tmp")
-        tmp.write_text(json.dumps(data, indent=1, default=float))
-        tmp.replace(path)
 
     todo: list[tuple[float, float, str]] = [(M, L, f"base {i}") for i, (M, L) in enumerate(base)]
     for i, (M, L) in enumerate(base):

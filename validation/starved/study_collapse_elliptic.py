@@ -36,7 +36,7 @@ import numpy as np
 import scipy.optimize
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from study_point import RATIOS, fit_delta, run_case  # noqa: E402
+from study_point import RATIOS, fit_delta, resumable, run_case  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _paths import out_dir  # noqa: E402
@@ -103,18 +103,9 @@ def main() -> None:
     thetas = (0.5, 2.0) if a.quick else THETAS
     loads = LOADS[1:2] if a.quick else LOADS
     plan = {"thetas": list(thetas), "loads": [list(x) for x in loads], "points": POINTS, "ratios": RATIOS}
-    data: dict = {"plan": plan, "cases": []}
-    if path.exists():
-        prev = json.loads(path.read_text())
-        if prev.get("plan") == json.loads(json.dumps(plan)):
-            data = prev
+    data, save = resumable(path, plan)
     done = {(c["M"], c["L"], c["theta"]) for c in data["cases"]}
     t0 = time.perf_counter()
-
-    def save() -> None:
-        tmp = path.with_suffix(".json.tmp")
-        tmp.write_text(json.dumps(data, indent=1, default=float))
-        tmp.replace(path)
 
     todo = [(M, L, th) for th in thetas for M, L in loads if (M, L, th) not in done]
     with ProcessPoolExecutor(max_workers=a.workers) as pool:

@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from study_point import RATIOS, fit_delta, run_case  # noqa: E402
+from study_point import RATIOS, fit_delta, resumable, run_case  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _paths import out_dir  # noqa: E402
@@ -57,18 +57,9 @@ def main() -> None:
     path = OUT / f"starved_collapse_range{tag}.json"
     cases = CASES[:1] if a.quick else CASES
     plan = {"cases": cases, "ratios": RATIOS}
-    data: dict = {"plan": plan, "cases": []}
-    if path.exists():
-        prev = json.loads(path.read_text())
-        if prev.get("plan") == json.loads(json.dumps(plan)):
-            data = prev
+    data, save = resumable(path, plan)
     done = {(c["M"], c["L"], c["theta"]) for c in data["cases"]}
     t0 = time.perf_counter()
-
-    def save() -> None:
-        tmp = path.with_suffix(".json.tmp")
-        tmp.write_text(json.dumps(data, indent=1, default=float))
-        tmp.replace(path)
 
     for M, L, theta, points in cases:
         if (M, L, theta) in done:

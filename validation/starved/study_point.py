@@ -24,6 +24,7 @@ import json
 import math
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -84,6 +85,23 @@ def run_case(M: float, L: float, points: int, ratios: list[float], theta: float 
               f"{Hc / Hff:.5f} mb {e['mass_balance_error']:.2e} cycles {rec['cycles']} "
               f"{wall:.1f} s", flush=True)
     return out
+
+
+def resumable(path: Path, plan: dict) -> tuple[dict, Callable[[], None]]:
+    """The study record at ``path`` when it was made for the same ``plan`` (an interrupted run
+    resumes), else a fresh one; and the function that saves it atomically (temporary + rename)."""
+    data: dict = {"plan": plan, "cases": []}
+    if path.exists():
+        prev = json.loads(path.read_text())
+        if prev.get("plan") == json.loads(json.dumps(plan)):
+            data = prev
+
+    def save() -> None:
+        tmp = path.with_suffix(".json.tmp")
+        tmp.write_text(json.dumps(data, indent=1, default=float))
+        tmp.replace(path)
+
+    return data, save
 
 
 def fit_delta(runs: list[dict]) -> dict:
