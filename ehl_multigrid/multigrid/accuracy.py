@@ -868,7 +868,8 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
                       decay_probe: Any = None, progress: Any = None, dimensions: int = 2,
                       correct_box: bool = False, extrapolate: bool = False,
                       hope_correction: bool = False, start: Any = None,
-                      domain_safety: float = DOMAIN_SAFETY, no_film: Any = None) -> Any:
+                      domain_safety: float = DOMAIN_SAFETY, no_film: Any = None,
+                      min_points: int = 0) -> Any:
     """Solve, estimate, and refine until the estimated errors of Hc and Hm meet ``accuracy``.
 
     ``solve(points, box, tol_factor) -> result`` runs the contact's solver on a grid of
@@ -910,10 +911,12 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     sequence's). ``domain_safety`` multiplies a probe's box change into the domain part
     (:func:`estimate_error`). ``no_film(points, box) -> bool``, when given, names the coarser
     grids the sequence found without a positive discrete film: the repair does not solve them.
+    ``min_points``: the smallest grid the solver is expected to converge on for this load; a
+    first solve that fails on a coarser grid (the planner caps its first grid) moves to the next.
     """
     steady = _SteadyControl(solve, probe, decay_probe, accuracy, refine, max_points, box_limit,
                             dimensions, correct_box, extrapolate and accuracy is not None,
-                            correct_box and hope_correction, domain_safety, no_film)
+                            correct_box and hope_correction, domain_safety, no_film, min_points)
     t0 = time.perf_counter()
     first = Resolution(points) if start is None or not refine else Resolution(*start(points))
     out = control(steady, first, accuracy, refine=refine, time_budget=time_budget,
@@ -940,9 +943,9 @@ class _SteadyControl:
     def __init__(self, solve: Any, probe: Any, decay_probe: Any, accuracy: float | None, refine: bool,
                  max_points: int, box_limit: float, dimensions: int, correct_box: bool = False,
                  extrapolate: bool = False, hope_correction: bool = False,
-                 domain_safety: float = DOMAIN_SAFETY, no_film: Any = None) -> None:
+                 domain_safety: float = DOMAIN_SAFETY, no_film: Any = None, min_points: int = 0) -> None:
         self._solve, self.probe, self.decay_probe = solve, probe, decay_probe
-        self.no_film = no_film
+        self.no_film, self.min_points = no_film, min_points
         self.domain_safety = domain_safety
         self.correct_box, self.extrapolate = correct_box, extrapolate
         self.hope_correction = hope_correction
@@ -965,8 +968,12 @@ class _SteadyControl:
         return f"{result.status_name}: {result.message.split(';')[0]}"
 
     def remedy(self, result: Any, at: Resolution, first: bool) -> Resolution | None:
-        # a grid too coarse for the load: the finer grid is the only remedy
-        return at.finer() if result.status_name == "film_not_positive" else None
+        # a grid too coarse for the load: the finer grid is the only remedy. So is a first grid
+        # that fails below the solver's smallest for the load: circular theta 10 at (5000, 10)
+        # ends max_cycles on the planner's 2049 points and needs 8193 (point.problem.min_points)
+        if result.status_name == "film_not_positive" or (first and at.points < self.min_points):
+            return at.finer()
+        return None
 
     def estimate(self, res: Any, at: Resolution, record: Any) -> tuple[float, float]:
         box, tol = at.box, at.tol

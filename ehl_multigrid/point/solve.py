@@ -877,6 +877,7 @@ def solve_point(
         # measured decay bounds the error no better than the fixed factor, and their probes on
         # 4-32x boxes cost minutes (fit map, Roelands (5, 20): 715 s against 31 s)
         res = solve_to_accuracy(solve, probe, accuracy, points, max_points, box_limit=box_limit,
+                                min_points=min_points(pb.M, pb.b_over_a, cap=None),
                                 start=first,
                                 refine=accuracy is not None and not (explicit or fixed_box),
                                 decay_probe=decay_probe if domain_scale(pb) <= 1.0 and not far else None,
