@@ -108,7 +108,7 @@ def line_result(sol: EHLResult, scene: Any = None) -> Result:
         res.add_coord("x", sol.X * pb.b, "m", "rolling direction")
         res.add_field("p", sol.P * pb.pmax, "Pa", ("x",), "pressure")
         res.add_field("h", sol.H * pb.b**2 / pb.R, "m", ("x",), "film thickness")
-    units = {"hc": "m", "hm": "m", "wall_s": "s", "wall_total_s": "s", "pmax": "Pa"}
+    units = {"hc": "m", "hm": "m", "wall_s": "s", "wall_total_s": "s", "estimate_s": "s", "pmax": "Pa"}
     res.add_report(sol.report)
     for k, v in sol.scalars.items():
         res.set_scalar(k, v, units.get(k, "-"))

@@ -883,7 +883,8 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     (twice the points; up to ``box_limit``) or tolerances ten times tighter. With ``refine=False`` (explicit grid or box) the first
     result is only judged. Every solve is recorded in ``result.extra['refinements']``; the wall
     time of the whole sequence (solves, repair solves and domain probes) in
-    ``result.extra['wall_total_s']`` and the scalar ``wall_total_s`` (``wall_s`` stays the
+    ``result.extra['wall_total_s']`` and the scalar ``wall_total_s``, the part spent estimating
+    (probes, repair solves) in ``estimate_s`` (``wall_s`` stays the
     returned solve's own).
 
     When the target is not met the returned result is the most accurate one of the sequence
@@ -914,9 +915,12 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     ``min_points``: the smallest grid the solver is expected to converge on for this load; a
     first solve that fails on a coarser grid (the planner caps its first grid) moves to the next.
     """
+    clock = EstimateClock()
+    probe, decay_probe, start = clock.timed(probe), clock.timed(decay_probe), clock.timed(start)
     steady = _SteadyControl(solve, probe, decay_probe, accuracy, refine, max_points, box_limit,
                             dimensions, correct_box, extrapolate and accuracy is not None,
                             correct_box and hope_correction, domain_safety, no_film, min_points)
+    steady.clock = clock
     t0 = time.perf_counter()
     first = Resolution(points) if start is None or not refine else Resolution(*start(points))
     out = control(steady, first, accuracy, refine=refine, time_budget=time_budget,
@@ -931,7 +935,33 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
         res.message += f"; not refined further: {out.why}"
         res.extra["not_refined_because"] = out.why
     apply_correction(res)
-    return _stamp(res, t0)
+    return _stamp(res, t0, clock.seconds)
+
+
+class EstimateClock:
+    """Seconds spent in the functions it wraps (:meth:`timed`), a call inside another timed call
+    counted once: the estimator's share of an accuracy sequence (probes before the first solve,
+    repair solves, the estimates)."""
+
+    def __init__(self) -> None:
+        self.seconds = 0.0
+        self._depth = 0
+
+    def timed(self, f: Any) -> Any:
+        if f is None:
+            return None
+
+        def run(*args: Any, **kw: Any) -> Any:
+            if self._depth:
+                return f(*args, **kw)
+            self._depth += 1
+            t0 = time.perf_counter()
+            try:
+                return f(*args, **kw)
+            finally:
+                self.seconds += time.perf_counter() - t0
+                self._depth -= 1
+        return run
 
 
 class _SteadyControl:
@@ -946,6 +976,8 @@ class _SteadyControl:
                  domain_safety: float = DOMAIN_SAFETY, no_film: Any = None, min_points: int = 0) -> None:
         self._solve, self.probe, self.decay_probe = solve, probe, decay_probe
         self.no_film, self.min_points = no_film, min_points
+        #: the seconds spent estimating over the sequence (probes, repair solves, the estimate)
+        self.clock = EstimateClock()
         self.domain_safety = domain_safety
         self.correct_box, self.extrapolate = correct_box, extrapolate
         self.hope_correction = hope_correction
@@ -976,6 +1008,10 @@ class _SteadyControl:
         return None
 
     def estimate(self, res: Any, at: Resolution, record: Any) -> tuple[float, float]:
+        """The estimate of one solve (probes and repair solves included), timed by :attr:`clock`."""
+        return self.clock.timed(self._estimate)(res, at, record)
+
+    def _estimate(self, res: Any, at: Resolution, record: Any) -> tuple[float, float]:
         box, tol = at.box, at.tol
         key = (box, getattr(res, "extra", {}).get("y_ratio"))
         small = self.small_domain.get(key)
@@ -1109,10 +1145,12 @@ class _SteadyControl:
         return why
 
 
-def _stamp(res: Any, t0: float) -> Any:
-    """Record the wall time of the whole accuracy sequence on the returned result."""
+def _stamp(res: Any, t0: float, estimate_s: float | None = None) -> Any:
+    """Record the wall time of the whole accuracy sequence on the returned result, and of its
+    estimates (``estimate_s``: probes, repair solves and the estimate itself) where measured."""
     total = time.perf_counter() - t0
-    res.extra["wall_total_s"] = total
+    stamps = {"wall_total_s": total} if estimate_s is None else {"wall_total_s": total, "estimate_s": estimate_s}
+    res.extra.update(stamps)
     if isinstance(getattr(res, "scalars", None), dict):
-        res.scalars["wall_total_s"] = total
+        res.scalars.update(stamps)
     return res

@@ -160,7 +160,7 @@ class EHLResult(ScalarAccess):
                 "levels", "points", "cycles", "wall_s", "converged", "X_Hm", "X_spike",
                 "residual", "work_units", "M", "L", "theta", "pmax", "alpha_bar", "lambda_venner",
                 "Hc_dpdx0", "X_dpdx0", "Y_Hm", "Hm_centerline", "P_max", "H00", "final_residual",
-                "Hc_error", "Hm_error", "wall_total_s"]
+                "Hc_error", "Hm_error", "wall_total_s", "estimate_s"]
         out = {k: self.scalars[k] for k in keys if k in self.scalars}
         if self.error is not None:
             out["error_budget"] = self.error.budget

@@ -160,8 +160,9 @@ def build_result(sol, scene=None, extra_scalars: dict | None = None, fields: boo
     res.set_scalar("points", int(len(sol.X)))
     res.set_scalar("cycles", int(sol.report.iterations))
     res.set_scalar("wall_s", float(sol.report.wall_s), "s")
-    if "wall_total_s" in sol.extra:  # the whole accuracy sequence (solves and probes)
-        res.set_scalar("wall_total_s", float(sol.extra["wall_total_s"]), "s")
+    for key in ("wall_total_s", "estimate_s"):  # the whole accuracy sequence, and its estimates
+        if key in sol.extra:
+            res.set_scalar(key, float(sol.extra[key]), "s")
     res.set_scalar("converged", bool(sol.report.converged))
     res.set_scalar("H00", float(sol.H00))
     res.set_scalar("M", pb.M)
@@ -205,8 +206,8 @@ def summary_payload(res: Result) -> dict:
     keys = ["Hc", "Hm", "Hc_venner", "Hm_venner", "hc", "hm", "p_spike", "load_error", "levels",
             "points", "cycles", "wall_s", "converged", "Hc_dpdx0", "X_dpdx0", "X_Hm", "Y_Hm",
             "Hm_centerline", "X_spike", "P_max", "H00", "M", "L", "theta", "final_residual",
-            "work_units", "message", "status", "Hc_error", "Hm_error", "wall_total_s"]
-    out = {k: res.scalars.get(k) for k in keys}
+            "work_units", "message", "status", "Hc_error", "Hm_error", "wall_total_s", "estimate_s"]
+    out = {k: res.scalars.get(k) for k in keys if k != "estimate_s" or k in res.scalars}
     out.update({k: res.scalars[k] for k in ("Hc_field", "Hm_field") if k in res.scalars})
     out["actions"] = res.meta.get("actions", [])
     if "error_budget" in res.meta:

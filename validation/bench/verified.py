@@ -115,7 +115,7 @@ def run(case: str, accuracy: float, timeout: float, code: str | None = None) -> 
         row.update(status="no output", stderr=p.stderr[-400:])
         return row
     for k in ("status", "Hc", "Hm", "Hc_venner", "Hm_venner", "Hc_error", "Hm_error", "points",
-              "work_units", "wall_total_s", "levels", "Hc_field", "Hm_field", "message"):
+              "work_units", "wall_total_s", "estimate_s", "levels", "Hc_field", "Hm_field", "message"):
         row[k] = out.get(k)  # Hc_field, Hm_field: the finest grid's films where Hc, Hm are extrapolated
     ref = reference(key)
     if ref is not None and out.get("Hc_venner") is not None:
@@ -130,11 +130,21 @@ def table(rows: list[dict[str, Any]]) -> str:
     def pct(v: Any) -> str:
         return "" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{100 * v:.3g} %"
 
-    lines = ["| case | accuracy | wall [s] | status | points | est. Hc / Hm | true Hc / Hm | verified | load |",
-             "|---|---|---|---|---|---|---|---|---|"]
+    def estimator(r: dict[str, Any]) -> str:
+        # the estimates' seconds (probes, repair solves) and their share of the solves' own
+        est, total = r.get("estimate_s"), r.get("wall_total_s")
+        if est is None or total is None or total <= est:
+            return ""
+        return f"{est:.2f} ({est / (total - est):.0%})"
+
+    lines = ["| case | accuracy | wall [s] | status | points | levels | WU | estimator [s] (of the solves) "
+             "| est. Hc / Hm | true Hc / Hm | verified | load |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
+        wu = r.get("work_units")
         lines.append(f"| {r['case']} | {r['accuracy']:g} | {r['wall_s']:.1f} | {r.get('status')} | "
-                     f"{r.get('points', '')} | {pct(r.get('Hc_error'))} / {pct(r.get('Hm_error'))} | "
+                     f"{r.get('points', '')} | {r.get('levels', '')} | {'' if wu is None else f'{wu:.0f}'} | "
+                     f"{estimator(r)} | {pct(r.get('Hc_error'))} / {pct(r.get('Hm_error'))} | "
                      f"{pct(r.get('Hc_true'))} / {pct(r.get('Hm_true'))} | {r.get('verified', '')} | "
                      f"{r.get('load_before', math.nan):.1f} |")
     return "\n".join(lines)
