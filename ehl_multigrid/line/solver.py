@@ -120,8 +120,8 @@ def coarse_points(M: float, box: float = 1.0) -> int:
     """Default coarsest grid: at high load a coarse grid cannot carry a positive film
     (Venner & Lubrecht), so the coarsest grid is refined with M. ``box``: the box length over
     the default one (:func:`~ehl_multigrid.line.problem.box_ratio`); a longer box keeps the
-    coarsest mesh size, with proportionally more points (a probe of twice the box at M = 2000
-    coarsened to twice the mesh size had no coarse film: 61 cycles without converging)."""
+    coarsest mesh size, with proportionally more points (at twice the mesh size a probe of twice
+    the box at M = 2000 has no coarse film; docs/accuracy.md, "Cycled start")."""
     n = 65 if M <= 50 else (129 if M <= 200 else (257 if M <= 1000 else 513))
     return (n - 1) * 2 ** max(0, round(math.log2(box))) + 1
 
@@ -586,14 +586,13 @@ class LineHierarchy:
     def _guess_start_above(self, k: int, solver: MultilevelSolver) -> int | None:
         """FMG from the grid above ``k`` (the largest dense start grid, found without a positive
         film by an earlier solve of the sequence), solved by cycles from the given solution,
-        instead of cycles on the finest grid from it (their coarse grids fail there: (5000, 5)
-        at 0.5 %, 131073 points, 3.3 -> 1.5 s, and the FMG films spare the estimate two
-        converged coarser solves). None when that grid's cycles fail or settle on no positive
-        film, and for isoviscous contacts."""
+        instead of cycles on the finest grid from it, where the coarse grids' Newton fails and
+        the estimate lacks FMG films (docs/accuracy.md, "Cycled start"). None when that grid's
+        cycles fail or settle on no positive film, and for isoviscous contacts."""
         j = k + 1
         if j >= len(self.levels) - 1 or self.problem.L <= 0.0:
-            # isoviscous: FMG through the fine grids rejects cycle after cycle ((5000, 0) at
-            # 0.5 %: 131073 points in 11.5 s against 3.3 s on the finest grid from the solution)
+            # isoviscous: FMG through the fine grids rejects cycle after cycle, slower than the
+            # finest-grid start (docs/accuracy.md, "Cycled start")
             return None
         lv = self.levels[j]
         self._initial_guess(lv)
@@ -607,8 +606,8 @@ class LineHierarchy:
     def _cycled_start(self, k: int, solver: MultilevelSolver, source: str = "") -> bool:
         """Solve start grid ``k`` from its present iterate (a converged neighbour's solution)
         by FAS cycles through the grids below it, which carry no positive film of their own
-        but serve as coarse grids: (3000, 6) at 0.5 %, 2049 points, 6 cycles instead of four
-        dense single-precision factorisations (1.56 -> 1.11 s). True when the cycles settle (on
+        but serve as coarse grids ((3000, 6) at 0.5 %: 6 cycles on 2049 points instead of four
+        dense single-precision factorisations). True when the cycles settle (on
         a positive film or not: the grid's own discrete solution either way); False, with the
         iterate restored, when they fail or do not settle within :data:`START_CYCLES`."""
         lv = self.levels[k]

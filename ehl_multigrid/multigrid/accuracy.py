@@ -919,8 +919,7 @@ def solve_to_accuracy(solve: Any, probe: Any, accuracy: float | None, points: in
     probe, decay_probe, start = clock.timed(probe), clock.timed(decay_probe), clock.timed(start)
     steady = _SteadyControl(solve, probe, decay_probe, accuracy, refine, max_points, box_limit,
                             dimensions, correct_box, extrapolate and accuracy is not None,
-                            correct_box and hope_correction, domain_safety, no_film, min_points)
-    steady.clock = clock
+                            correct_box and hope_correction, domain_safety, no_film, min_points, clock)
     t0 = time.perf_counter()
     first = Resolution(points) if start is None or not refine else Resolution(*start(points))
     out = control(steady, first, accuracy, refine=refine, time_budget=time_budget,
@@ -973,11 +972,12 @@ class _SteadyControl:
     def __init__(self, solve: Any, probe: Any, decay_probe: Any, accuracy: float | None, refine: bool,
                  max_points: int, box_limit: float, dimensions: int, correct_box: bool = False,
                  extrapolate: bool = False, hope_correction: bool = False,
-                 domain_safety: float = DOMAIN_SAFETY, no_film: Any = None, min_points: int = 0) -> None:
+                 domain_safety: float = DOMAIN_SAFETY, no_film: Any = None, min_points: int = 0,
+                 clock: EstimateClock | None = None) -> None:
         self._solve, self.probe, self.decay_probe = solve, probe, decay_probe
         self.no_film, self.min_points = no_film, min_points
         #: the seconds spent estimating over the sequence (probes, repair solves, the estimate)
-        self.clock = EstimateClock()
+        self.clock = EstimateClock() if clock is None else clock
         self.domain_safety = domain_safety
         self.correct_box, self.extrapolate = correct_box, extrapolate
         self.hope_correction = hope_correction
@@ -1001,7 +1001,7 @@ class _SteadyControl:
 
     def remedy(self, result: Any, at: Resolution, first: bool) -> Resolution | None:
         # a grid too coarse for the load: the finer grid is the only remedy. So is a first grid
-        # that fails below the solver's smallest for the load: circular theta 10 at (5000, 10)
+        # that fails below the solver's smallest for the load: elliptic theta 10 at (5000, 10)
         # ends max_cycles on the planner's 2049 points and needs 8193 (point.problem.min_points)
         if result.status_name == "film_not_positive" or (first and at.points < self.min_points):
             return at.finer()

@@ -558,9 +558,9 @@ def domain_safety(options: PointOptions) -> float:
 def same_problem_probe(problem: PointProblem, options: PointOptions,
                        probes: dict[PointOptions, EHLResult]) -> EHLResult | None:
     """A converged domain probe of the discrete problem ``options`` ask for (same grid, box and
-    cells; looser tolerances), marked ``extra["domain_probe"]``: a solve of the sequence continues
-    it by a tolerance step instead of a new FMG solve (the 6205 inner race: its 513-point probe of
-    the default box is the repair's 513-point grid, 1.0 s by FMG)."""
+    cells; looser tolerances): a solve of the sequence continues it by a tolerance step instead
+    of a new FMG solve (the 6205 inner race: its 513-point probe of the default box is the
+    repair's 513-point grid; docs/accuracy.md, "What the estimator costs")."""
     want = resolve_domain(problem, options.xmin, options.xmax, options.ymax, options.elastic)
     layout = ("tol", "tol_load", "film_tol", "n_coarse", "levels", "xmin", "xmax", "ymax", "y_ratio",
               "raise_on_failure")
@@ -570,7 +570,6 @@ def same_problem_probe(problem: PointProblem, options: PointOptions,
             continue
         # every option but the tolerances and the grid layout equal: the same discrete problem
         if replace(po, **{k: getattr(options, k) for k in layout}) == options:
-            pr.extra["domain_probe"] = True
             return pr
     return None
 
@@ -836,13 +835,12 @@ def solve_point(
             if seq["y_ratio"] is not None:
                 o = replace(o, y_ratio=seq["y_ratio"])
             prev = seq["grids"].get((n, box))
-            if prev is None:
-                prev = same_problem_probe(pb, o, probes)
+            probe_start = prev is None and (prev := same_problem_probe(pb, o, probes)) is not None
             r = None
             # a solve on other cells than the sequence's (before its fall-back to square cells)
             # is another discrete problem: no step continues it
             if prev is not None and o.y_ratio in (None, prev.extra["y_ratio"]) and (
-                    tightening(prev, o) or prev.extra.get("domain_probe")):
+                    tightening(prev, o) or probe_start):
                 # a tolerance step: the cycles go on from the converged solve of this grid
                 # on the cells and coarse grid of that solve (a retry may have changed them)
                 # with the relaxation it ended with (the policy may have damped it)
@@ -850,7 +848,7 @@ def solve_point(
                 # h00_gain outside the options' range, a thick film's box of a hundred a)
                 same = replace(o, y_ratio=prev.extra["y_ratio"],
                                n_coarse=(int(o.points) - 1) // 2 ** (prev.levels - 1),
-                               **({} if prev.extra.get("domain_probe") else ended_relaxation(prev)))
+                               **({} if probe_start else ended_relaxation(prev)))
                 t = solve_fas(pb, same, callback=callback, scene=scene,
                               guess=(prev.X, prev.Y, prev.P, float(prev.H0)))
                 r = tightened(prev, t, o) if t.success and t.levels == prev.levels else None
