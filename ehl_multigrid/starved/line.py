@@ -59,11 +59,12 @@ from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.options import LineOptions
 from ..multigrid.policy import RobustnessPolicy, Settings
 from ..multigrid.result import EHLResult
-from ..multigrid.transfer import inject, interpolate_cubic, interpolate_linear
+from ..multigrid.transfer import inject, interpolate_linear
 from .discrete import face_fluxes
 from .gate import apply_mass_gate
 from .level import StarvedLevel
 from .newton import StarvedNewtonFailure, newton_solve
+from .refine import supply_ratio
 
 #: largest grid the dense Newton may finish on the start grid
 MAX_DENSE_POINTS = 513
@@ -124,15 +125,9 @@ class StarvedLineHierarchy(LineHierarchy):
 
     # -- observables ----------------------------------------------------------------------
     def measure(self, k: int) -> Measurement:
-        lv = self.levels[k]
-        st = lv.state()
-        res = self.relative_residual(lv, st)
-        Hc = self.central_film(lv, st)
-        ok = bool(np.all(np.isfinite(lv.P)) and np.all(np.isfinite(lv.theta)) and np.isfinite(lv.H0)
-                  and np.isfinite(res) and np.all(np.isfinite(st.H)) and Hc > 0.0)
-        zone = (np.abs(lv.X) <= 1.5) | (lv.P > 0)
-        Hm = float(np.min(st.H[zone])) if zone.any() else math.nan
-        return Measurement(res, lv.load() / lv.g - 1.0, Hc, ok, Hm)
+        m = super().measure(k)
+        m.ok = m.ok and bool(np.all(np.isfinite(self.levels[k].theta)))
+        return m
 
     def finite(self) -> bool:
         lv = self.levels[-1]
@@ -148,14 +143,18 @@ class StarvedLineHierarchy(LineHierarchy):
     # -- cycle pieces ---------------------------------------------------------------------
     def relax(self, k: int, sweeps: int, s: Settings, coarse: bool, post: bool = False) -> float:
         lv = self.levels[k]
-        # the film content follows the pressure's under-relaxation when the policy halves it
-        omega_theta = min(1.0, 2.0 * s.omega)
         for _ in range(sweeps):
-            lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=s.switch_h,
-                     omega_theta=omega_theta)
-            if coarse:
-                lv.H0 += s.h00_gain * (lv.load() - lv.g)
+            self._sweep(lv, s, s.h00_gain if coarse else None)
         return sweeps * self.work(k)
+
+    def _sweep(self, lv: StarvedLevel, s: Settings, gain: float | None) -> None:
+        """One relaxation sweep of grid ``lv``, then, with a ``gain``, the film constant
+        following the load error."""
+        # the film content follows the pressure's under-relaxation when the policy halves it
+        lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=s.switch_h,
+                 omega_theta=min(1.0, 2.0 * s.omega))
+        if gain is not None:
+            lv.H0 += gain * (lv.load() - lv.g)
 
     def restrict(self, k: int, s: Settings) -> tuple[Any, float]:
         lv, cv = self.levels[k], self.levels[k - 1]
@@ -196,25 +195,20 @@ class StarvedLineHierarchy(LineHierarchy):
         return self.relax(k, COARSE_SWEEPS, s, True)
 
     def fmg_interpolate(self, k: int, s: Settings) -> float:
-        lv, cv = self.levels[k], self.levels[k - 1]
-        lv.P = np.maximum(interpolate_cubic(cv.P), 0.0)
-        lv.P[0] = lv.P[-1] = 0.0
-        lv.theta = np.clip(interpolate_linear(cv.theta), 1e-12, 1.0)
+        """The flooded solver's interpolation of ``P`` and ``H0`` (the film does not depend on
+        ``theta``), the film content interpolated linearly, 1 where pressurised."""
+        cost = super().fmg_interpolate(k, s)
+        lv = self.levels[k]
+        lv.theta = np.clip(interpolate_linear(self.levels[k - 1].theta), 1e-12, 1.0)
         lv.theta[lv.P > 0.0] = 1.0
-        lv.H0 = cv.H0
-        lv.f = np.zeros(lv.n)
-        lv.g = 0.5 * math.pi
         lv.frozen[:] = False
-        if self.options.fmg_match_film:
-            lv.H0 += self.central_film(cv) - self.central_film(lv)
-        return 0.0
+        return cost
 
     # -- FMG start ------------------------------------------------------------------------
     def _from_flooded(self, lv: StarvedLevel) -> None:
         """The flooded solution on grid ``lv`` (injected), with the central film matched."""
         fl = self.flooded
-        stride = (fl.X.shape[0] - 1) // (lv.n - 1)
-        lv.P = np.maximum(fl.P[::stride].copy(), 0.0)
+        lv.P = flooded_pressure(lv, fl)
         lv.theta = np.ones(lv.n)
         lv.f = np.zeros(lv.n)
         lv.g = 0.5 * math.pi
@@ -259,11 +253,8 @@ class StarvedLineHierarchy(LineHierarchy):
         s = solver.settings
         tol, tol_load = 0.1 * solver.options.tol, 0.1 * solver.options.tol_load
         sweeps = 0
-        omega_theta = min(1.0, 2.0 * s.omega)
         while sweeps < START_SWEEPS:
-            lv.relax(s.switch, s.omega, s.omega_jd, self.options.band, switch_h=s.switch_h,
-                     omega_theta=omega_theta)
-            lv.H0 += START_GAIN * s.h00_gain * (lv.load() - lv.g)
+            self._sweep(lv, s, START_GAIN * s.h00_gain)
             sweeps += 1
             if sweeps % 50 == 0:
                 m = self.measure(k)
@@ -277,15 +268,23 @@ class StarvedLineHierarchy(LineHierarchy):
         solver.note(f"FMG start on {lv.n} points: {sweeps} relaxation sweeps from the flooded "
                     f"solution (residual {m.residual:.3g}, load error {m.load_error:.3g})")
         if lv.n <= MAX_DENSE_POINTS and not (m.residual < tol and abs(m.load_error) < tol_load):
-            saved = (lv.P.copy(), lv.theta.copy(), lv.H0)
-            try:
-                its = newton_solve(lv, max_iter=40)
-                self.newton_iterations += its
+            its = self._newton(lv, 40, solver, "FMG start: dense Newton did not finish the start grid ({})")
+            if its is not None:
                 solver.work_units += its * self.work(k)
-            except StarvedNewtonFailure as exc:
-                lv.P, lv.theta, lv.H0 = saved
-                solver.note(f"FMG start: dense Newton did not finish the start grid ({exc})")
         return k
+
+    def _newton(self, lv: StarvedLevel, max_iter: int, solver: MultilevelSolver, failed: str) -> int | None:
+        """Dense Newton on grid ``lv`` (:func:`.newton.newton_solve`): its iterations, or None
+        with the grid restored and ``failed`` (formatted with the reason) noted."""
+        saved = (lv.P.copy(), lv.theta.copy(), lv.H0)
+        try:
+            its = newton_solve(lv, max_iter=max_iter)
+        except StarvedNewtonFailure as exc:
+            lv.P, lv.theta, lv.H0 = saved
+            solver.note(failed.format(exc))
+            return None
+        self.newton_iterations += its
+        return its
 
     # -- last resort ----------------------------------------------------------------------
     def last_resort(self, k: int, solver: MultilevelSolver) -> bool:
@@ -293,15 +292,10 @@ class StarvedLineHierarchy(LineHierarchy):
         fin = self.levels[k]
         if fin.n > LAST_RESORT_POINTS:
             return False
-        saved = (fin.P.copy(), fin.theta.copy(), fin.H0)
         fin.frozen[:] = False
-        try:
-            its = newton_solve(fin, max_iter=60)
-        except StarvedNewtonFailure as exc:
-            fin.P, fin.theta, fin.H0 = saved
-            solver.note(f"finest-grid Newton after the multigrid stall failed: {exc}")
+        its = self._newton(fin, 60, solver, "finest-grid Newton after the multigrid stall failed: {}")
+        if its is None:
             return False
-        self.newton_iterations += its
         solver.work_units += its
         solver.note(f"multigrid stalled: finished by {its} dense Newton iterations on the {fin.n}-point grid")
         solver.record(k, -1, self.measure(k))
@@ -333,12 +327,16 @@ def flooded_flux_estimate(flooded: EHLResult) -> float:
     return float(rho * flooded.H[i])
 
 
+def flooded_pressure(lv: StarvedLevel, flooded: EHLResult) -> np.ndarray:
+    """The flooded solution's pressure injected on grid ``lv`` (a coarser grid of the same box)."""
+    return np.maximum(flooded.P[::(flooded.X.shape[0] - 1) // (lv.n - 1)], 0.0)
+
+
 def flooded_flux(lv: StarvedLevel, flooded: EHLResult) -> float:
     """Mass flux through the flooded contact (Venner units), at the face next to the
     pressure maximum (where the flux is all Couette), evaluated on grid ``lv``'s
     discretisation of the flooded solution."""
-    stride = (flooded.X.shape[0] - 1) // (lv.n - 1)
-    P = np.maximum(flooded.P[::stride], 0.0)
+    P = flooded_pressure(lv, flooded)
     st = lv.state(P, flooded.H0, np.ones(lv.n))
     F = face_fluxes(P, st.theta, st.q, st.eps, lv.h, lv.order, False, lv.face)
     return float(F[min(int(np.argmax(P)), F.shape[0] - 1)])
@@ -381,7 +379,7 @@ def starved_scalars(lv: StarvedLevel, hoil: float, flooded: EHLResult, pb: LineP
     rho_c = float(np.interp(0.0, X, st.rho))
     Hc = float(np.interp(0.0, X, st.H))
     s["rho_c"] = rho_c
-    s["rho_c_Hc_over_hoil"] = rho_c * Hc / hoil if math.isfinite(hoil) else math.nan
+    s["rho_c_Hc_over_hoil"] = supply_ratio(rho_c, Hc, hoil)
     s["Hc_flooded_venner"] = float(flooded.scalars["Hc_venner"])
     s["Hm_flooded_venner"] = float(flooded.scalars["Hm_venner"])
     s["Hc_flooded"] = float(flooded.scalars["Hc"])

@@ -43,11 +43,12 @@ from ..multigrid.accuracy import (
     hm_max_order,
     richardson,
 )
-from ..multigrid.controller import Candidate, Resolution, control
+from ..multigrid.controller import Resolution, control
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
 from .gate import apply_mass_gate
 from .line import solve_starved_problem, starved_options
+from .refine import StarvedControl, compare_flooded, note_not_refined, supply_ratio
 from .supply import check_hoil
 
 #: meniscus positions tried (from the contact outwards) to bracket ``F(X_m) = Hoil``; the
@@ -95,8 +96,7 @@ class _FluxMap:
     def solve(self, xm: float) -> EHLResult:
         if xm not in self.cache:
             pb = dataclasses.replace(self.problem, xmin=float(xm))
-            res = solve_starved_problem(pb, math.inf, self.options)
-            self.work += res.work_units if math.isfinite(res.work_units) else 0.0
+            res = self._counted(solve_starved_problem(pb, math.inf, self.options))
             if not res.success and res.message.startswith("the flooded start solve failed"):
                 res = self._continued(pb, xm) or res
             self.cache[xm] = res
@@ -115,15 +115,18 @@ class _FluxMap:
             # started on the finest grid itself: the FMG's coarse grids are what fail here
             opts = dataclasses.replace(self.options, raise_on_failure=False, film_tol=None,
                                        fmg_start_points=self.points)
-            flooded = solve_line_problem(pb, opts, guess=(near.X, near.P, near.H0))
-            self.work += flooded.work_units if math.isfinite(flooded.work_units) else 0.0
+            flooded = self._counted(solve_line_problem(pb, opts, guess=(near.X, near.P, near.H0)))
             if not flooded.success:
                 continue
-            res = solve_starved_problem(pb, math.inf, self.options, flooded=flooded)
-            self.work += res.work_units if math.isfinite(res.work_units) else 0.0
+            res = self._counted(solve_starved_problem(pb, math.inf, self.options, flooded=flooded))
             if res.success:
                 return res
         return None
+
+    def _counted(self, res: EHLResult) -> EHLResult:
+        """``res``, its work added to the searches' work."""
+        self.work += res.work_units if math.isfinite(res.work_units) else 0.0
+        return res
 
     def flux(self, xm: float) -> float:
         res = self.solve(xm)
@@ -281,8 +284,7 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
                   max_points=max_points, progress=progress)
     res = out.result
     if out.converged and out.why and res.status == 6:
-        res.message += f"; not refined further: {out.why}"
-        res.extra["not_refined_because"] = out.why
+        note_not_refined(res, out)
     if not res.success and opts.raise_on_failure:
         # the solves of the sequence return their failures (the controller judges them): the
         # caller's request to raise is honoured once, for the answer
@@ -294,18 +296,17 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
     return res
 
 
-class _StarvedLineControl:
-    """A starved line solve as a :class:`~ehl_multigrid.multigrid.controller.Controlled`
-    physics: the grid is the one refinement (the nested meniscus searches start again on the
-    finer grid); each solve carries its own estimate (:func:`supply_estimate`)."""
+class _StarvedLineControl(StarvedControl):
+    """A starved line solve under the accuracy controller: the grid is the one refinement (the
+    nested meniscus searches start again on the finer grid); each solve carries its own
+    estimate (:func:`supply_estimate`)."""
 
     dimensions = 1
 
     def __init__(self, problem: LineProblem, hoil: float, opts: LineOptions, accuracy: float | None,
                  estimate: bool, callback: Any, scene: Any, max_points: int) -> None:
-        self.problem, self.hoil, self.opts = problem, hoil, opts
-        self.accuracy, self.with_estimate, self.callback, self.scene = accuracy, estimate, callback, scene
-        self.max_points = max_points
+        super().__init__(accuracy, estimate, max_points)
+        self.problem, self.hoil, self.opts, self.callback, self.scene = problem, hoil, opts, callback, scene
 
     def solve(self, at: Resolution) -> EHLResult:
         opts = dataclasses.replace(self.opts, points=at.points)
@@ -315,30 +316,14 @@ class _StarvedLineControl:
     def converged(self, result: EHLResult) -> bool:
         return bool(result.success) or result.status == 6
 
-    def failure(self, result: EHLResult) -> str:
-        return f"{result.status_name}: {result.message.splitlines()[0] if result.message else ''}"
-
-    def remedy(self, result: EHLResult, at: Resolution, first: bool) -> Resolution | None:
-        return None
-
     def estimate(self, res: EHLResult, at: Resolution, record: Any) -> tuple[float, float]:
         err = getattr(res, "error", None)
         return (err.Hc, err.Hm) if err is not None else (math.nan, math.nan)
 
-    def candidates(self, res: EHLResult, at: Resolution) -> list[Candidate]:
-        finer = at.finer()
-        if finer.points > self.max_points or getattr(res, "error", None) is None:
-            return []
-        b = res.error.budget
+    def predicted(self, res: EHLResult, b: dict[str, dict[str, float]]) -> float:
         # second order on the grid (the core's Richardson rule on the nested searches' films)
-        predicted = max(b["grid"][k] / 4.0 + sum(v[k] for n, v in b.items() if n != "grid")
-                        for k in ("Hc", "Hm"))
-        return [Candidate("points", finer, 1, predicted)]
-
-    def why_short(self, res: EHLResult, at: Resolution) -> str:
-        if at.finer().points > self.max_points:
-            return f"the next grid ({at.finer().points} points) exceeds max_points = {self.max_points}"
-        return "a finer grid is not predicted to lower the error by 10 %"
+        return max(b["grid"][k] / 4.0 + sum(v[k] for n, v in b.items() if n != "grid")
+                   for k in ("Hc", "Hm"))
 
 
 def _solve_once(problem: LineProblem, hoil: float, opts: LineOptions, accuracy: float | None,
@@ -413,15 +398,12 @@ def _solve_once(problem: LineProblem, hoil: float, opts: LineOptions, accuracy: 
         res.extra["upstream"] = {"X": Xu, "H": Hu, "theta": np.minimum(1.0, hoil / Hu)}
         res.extra["meniscus_history"] = history
     fl = full.extra["flooded"]
-    for key in ("Hc_flooded_venner", "Hm_flooded_venner", "Hc_flooded", "Hm_flooded"):
-        res.scalars[key] = full.scalars[key]
-    res.scalars["Hc_ratio"] = res.scalars["Hc_venner"] / full.scalars["Hc_flooded_venner"]
-    res.scalars["Hm_ratio"] = res.scalars["Hm_venner"] / full.scalars["Hm_flooded_venner"]
+    compare_flooded(res.scalars, *(full.scalars[k] for k in ("Hc_flooded_venner", "Hm_flooded_venner",
+                                                             "Hc_flooded", "Hm_flooded")))
     res.scalars["hoil_venner"] = hoil
     res.scalars["Hoil"] = problem.moes_from_venner(hoil) if math.isfinite(hoil) else math.inf
     res.scalars["flux_flooded"] = F_ff
-    res.scalars["rho_c_Hc_over_hoil"] = (res.scalars["rho_c"] * res.scalars["Hc_venner"] / hoil
-                                         if math.isfinite(hoil) else math.nan)
+    res.scalars["rho_c_Hc_over_hoil"] = supply_ratio(res.scalars["rho_c"], res.scalars["Hc_venner"], hoil)
     res.scalars["inlet_flooded"] = bool(hoil >= F_ff)
     # the Elrod-Adams outlet against the flooded (Reynolds-condition) solver on the same box
     res.scalars["outlet_change_Hc"] = full.scalars["Hc_venner"] / fl.scalars["Hc_venner"] - 1.0

@@ -59,7 +59,7 @@ from ..multigrid.accuracy import (
     floor_film_spread,
     iteration_error,
 )
-from ..multigrid.controller import Candidate, Refinement, Resolution, control
+from ..multigrid.controller import Refinement, Resolution, control
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import PointOptions
 from ..multigrid.policy import RobustnessPolicy, Settings
@@ -72,6 +72,7 @@ from ..point.problem import PointProblem, min_points
 from .gate import apply_mass_gate
 from .point_mass import inlet_solve
 from .point_wedge import face_value, flux_operator, march_theta, wedge_correction
+from .refine import StarvedControl, compare_flooded, note_not_refined, supply_ratio
 from .supply import check_hoil, check_profile
 
 #: default tolerance of the starved solve on the core's scaled residual (a pressure change
@@ -146,11 +147,7 @@ def face_fluxes(P: np.ndarray, H: np.ndarray, rho: np.ndarray, eps: np.ndarray, 
     (:func:`.point_wedge.face_value`: first order, or second order where the film is full)."""
     ny, nx = P.shape
     rq = np.ascontiguousarray(theta * rho)
-    j0 = 0 if half else 1
-    rows = np.arange(j0, ny - 1)
-    w = np.ones(rows.size)
-    if half:
-        w[0] = 0.5
+    rows, w = balance_rows(ny, half)
 
     def xflux(i: int) -> np.ndarray:  # flux through the face between columns i and i + 1
         conv = np.array([face_value(rq, H, theta, j, i, order) for j in rows])
@@ -185,14 +182,22 @@ def mean_layer(rows: np.ndarray, half: bool) -> float:
     """Mean supplied layer over the rows whose inlet flow the mass balance counts (those of
     :func:`face_fluxes`: a half domain's centre row with weight 1/2); ``inf`` when any of
     them is flooded."""
-    j0 = 0 if half else 1
-    r = rows[j0:rows.size - 1]
+    j, w = balance_rows(rows.size, half)
+    r = rows[j]
     if not np.all(np.isfinite(r)):
         return math.inf
-    w = np.ones(r.size)
+    return float((w * r).sum() / w.sum())
+
+
+def balance_rows(ny: int, half: bool) -> tuple[np.ndarray, np.ndarray]:
+    """The rows of a grid with ``ny`` rows whose boundary flows the mass balance counts (the
+    interior rows, and a half domain's centre row) and their weights (that centre row 1/2:
+    the full-domain flow halved)."""
+    rows = np.arange(0 if half else 1, ny - 1)
+    w = np.ones(rows.size)
     if half:
         w[0] = 0.5
-    return float((w * r).sum() / w.sum())
+    return rows, w
 
 
 class StarvedPointHierarchy(PointHierarchy):
@@ -306,10 +311,7 @@ class StarvedPointHierarchy(PointHierarchy):
         sr = np.empty_like(r)
         nm.scaled_residual(r, lev.H, lev.rho, lev.eps, float(lev.Kc[0, 0]), lev.hx, lev.hy,
                            self.options.half, sr, self.ct)
-        ny, nx = r.shape
-        j0 = 0 if self.options.half else 1
-        inner = np.zeros(r.shape, dtype=bool)
-        inner[j0:ny - 1, 1:nx - 1] = True
+        inner = self._interior(np.ones(r.shape, dtype=bool))
         drop = inner & (lev.P > 0.0) & (sr >= lev.P)
         if drop.any():
             lev.P[drop] = 0.0
@@ -325,14 +327,18 @@ class StarvedPointHierarchy(PointHierarchy):
         self.threads.for_size(lev.npts)
         self._operator(lev, lev.r)
         # in place: lev.r is a view of the buffer all grids share (PointHierarchy)
-        r = np.subtract(lev.f, lev.r, out=lev.r)
+        r = self._interior(np.subtract(lev.f, lev.r, out=lev.r))
+        r[(lev.theta <= 0.0) & (r > 0.0)] = 0.0
+        return r
+
+    def _interior(self, r: np.ndarray) -> np.ndarray:
+        """``r`` with its boundary points (those outside the balance) set to 0, in place."""
         ny, nx = r.shape
         j0 = 0 if self.options.half else 1
-        r[:j0, :] = 0.0
-        r[ny - 1, :] = 0.0
+        r[:j0] = 0.0
+        r[ny - 1:] = 0.0
         r[:, 0] = 0.0
         r[:, nx - 1] = 0.0
-        r[(lev.theta <= 0.0) & (r > 0.0)] = 0.0
         return r
 
     def _free(self, k: int) -> bool:
@@ -389,14 +395,7 @@ class StarvedPointHierarchy(PointHierarchy):
         """``f - L(P, theta)`` at the level's frozen film (0 on the boundary)."""
         out = np.empty_like(P)
         self._apply(lev, P, theta, out)
-        r = lev.f - out
-        ny, nx = r.shape
-        j0 = 0 if self.options.half else 1
-        r[:j0] = 0.0
-        r[ny - 1:] = 0.0
-        r[:, 0] = 0.0
-        r[:, nx - 1] = 0.0
-        return r
+        return self._interior(lev.f - out)
 
     def exact_zone(self, lev: Level) -> float:
         """Exact solve of the discrete balance on :meth:`exact_zone_mask` (see
@@ -507,11 +506,17 @@ def meniscus_x(X: np.ndarray, theta: np.ndarray, row: int) -> float:
     return float(X[i - 1] + (X[i] - X[i - 1]) * (1.0 - t[i - 1]))
 
 
-def imbalance_of(hz: StarvedPointHierarchy) -> float:
-    """Relative imbalance of the boundary flows of the finest grid (in - out - side)/in."""
+def boundary_flows(hz: StarvedPointHierarchy) -> tuple[dict[str, float], float]:
+    """The boundary flows of the finest grid (:func:`face_fluxes`) and their relative
+    imbalance ``|in - out - side| / in``."""
     f = hz.levels[-1]
     fl = face_fluxes(f.P, f.H, f.rho, f.eps, f.theta, f.hx, f.hy, hz.options.half, hz.order)
-    return abs(fl["in"] - fl["out"] - fl["side"]) / max(abs(fl["in"]), 1e-300)
+    return fl, abs(fl["in"] - fl["out"] - fl["side"]) / max(abs(fl["in"]), 1e-300)
+
+
+def imbalance_of(hz: StarvedPointHierarchy) -> float:
+    """Relative imbalance of the boundary flows of the finest grid (in - out - side)/in."""
+    return boundary_flows(hz)[1]
 
 
 def _solve_once(problem: PointProblem, hoil: float, opt: PointOptions, coarse_theta: int | None,
@@ -546,11 +551,19 @@ def _exact_resolve(problem: Any, hoil: float, opt: PointOptions, rule: int | Non
     if hz_new.exact_notes:
         what += f" (exact solves failed: {'; '.join(hz_new.exact_notes)})"
     what += f"; kept the {'second' if keep else 'first'}"
+    sol, hz = _kept((sol, hz), (new, hz_new), keep, what)
+    return sol, hz, mb_new if keep else mb
+
+
+def _kept(old: tuple[EHLResult, Any], new: tuple[EHLResult, Any], keep: bool,
+          what: str) -> tuple[EHLResult, Any]:
+    """``new`` (a re-solve and its hierarchy) after ``old``'s actions when ``keep``, else
+    ``old``, with the step ``what`` in the actions."""
     if keep:
-        new.actions[:0] = sol.actions
-        sol, hz, mb = new, hz_new, mb_new
-    sol.actions.append(what)
-    return sol, hz, mb
+        new[0].actions[:0] = old[0].actions
+        old = new
+    old[0].actions.append(what)
+    return old
 
 
 def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions | None = None,
@@ -646,27 +659,23 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
             if met and not sol3.success:
                 what += f" at a residual of {sol3.residual_history[-1]:.2g} (within tol {opt.tol:.3g})"
             what += f", imbalance {mb3:.2g}; kept the {'second' if keep else 'first'}"
-            if keep:
-                if not sol3.success:
-                    sol3.set_status(0, "")
-                    tight = replace(tight, tol=opt.tol)  # what the kept solve meets
-                sol3.actions[:0] = sol.actions
-                sol, hz, opt = sol3, hz3, tight
-            sol.actions.append(what)
+            if keep and not sol3.success:
+                sol3.set_status(0, "")
+                tight = replace(tight, tol=opt.tol)  # what the kept solve meets
+            sol, hz = _kept((sol, hz), (sol3, hz3), keep, what)
+            opt = tight if keep else opt
     fine = hz.levels[-1]
     sol.contact, sol.solver, sol.problem, sol.options = "point", "starved-fas", problem, opt
     sol.X, sol.Y, sol.P, sol.H = fine.X, fine.Y, fine.P.copy(), fine.H.copy()
     sol.H0, sol.half, sol.levels = hz.H00, opt.half, len(hz.levels)
     row = 0 if opt.half else (fine.ny - 1) // 2
-    fl = face_fluxes(fine.P, fine.H, fine.rho, fine.eps, fine.theta, fine.hx, fine.hy, opt.half,
-                     opt.wedge_order)
-    imbalance = (fl["in"] - fl["out"] - fl["side"]) / max(abs(fl["in"]), 1e-300)
-    width = (fine.ny - 1 - (0 if opt.half else 1) - (0.5 if opt.half else 0.0)) * fine.hy
+    fl, imbalance = boundary_flows(hz)
+    width = float(balance_rows(fine.ny, opt.half)[1].sum()) * fine.hy
     i0 = int(np.argmin(np.abs(fine.X)))
     sol.extra.update(theta=fine.theta.copy(), rho=fine.rho.copy(), hoil=hz.hoil,
                      hoil_rows=hz.hoil_rows.copy(), hoil_centre=float(hz.hoil_rows[row]),
                      meniscus_x=meniscus_x(fine.X, fine.theta, row),
-                     mass_balance_error=float(abs(imbalance)), fluxes=fl,
+                     mass_balance_error=imbalance, fluxes=fl,
                      outlet_layer=fl["out"] / width if math.isfinite(hz.hoil) else math.nan,
                      rho_c=float(fine.rho[row, i0]), domain=(hz.xmin, hz.xmax, hz.ymax),
                      coarse_theta=hz.coarse_theta, rescued=rescued, from_guess=guess is not None)
@@ -676,10 +685,8 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
                        mass_balance_error=sol.extra["mass_balance_error"])
     if math.isfinite(hz.hoil):
         # a result that does not conserve mass is not a starved solution, whatever its iteration
-        hc_row = float(hz.hoil_rows[row])
-        ratio = (sol.extra["rho_c"] * float(sol.scalars["Hc_venner"]) / hc_row
-                 if math.isfinite(hc_row) else math.nan)
-        apply_mass_gate(sol, sol.extra["mass_balance_error"], ratio)
+        apply_mass_gate(sol, sol.extra["mass_balance_error"],
+                        supply_ratio(sol.extra["rho_c"], float(sol.scalars["Hc_venner"]), float(hz.hoil_rows[row])))
     sol.scalars["converged"] = bool(sol.success)
     sol.options = replace(sol.options, raise_on_failure=asked)
     if asked and not sol.success:
@@ -841,8 +848,7 @@ def starved_point_result(sol: EHLResult, scene: Any = None) -> Any:
     film content ``theta`` beside ``P`` and ``H`` and the starved scalars."""
     from ..point.postprocess import full_fields
 
-    extra = {k: sol.scalars[k] for k in SCENE_KEYS if k in sol.scalars}
-    res = build_result(sol, scene, extra)
+    res = build_result(sol, scene, {k: sol.scalars[k] for k in SCENE_KEYS if k in sol.scalars})
     _, Tf, _ = full_fields(sol.X, sol.Y, sol.extra["theta"], sol.H, sol.half)
     res.add_field("theta", Tf.T.copy(), "-", ("X", "Y"), "film content (Elrod-Adams)")
     res.meta["starved_notes"] = order_note(sol.options.wedge_order)
@@ -881,18 +887,20 @@ def _scene_solve(pb: PointProblem, Hoil: float, options: PointOptions | None, po
                                guess=(start.X, start.Y, start.P, start.H0), **kw)
 
 
-class _StarvedPointControl:
-    """A starved point scene solve as a :class:`~ehl_multigrid.multigrid.controller.Controlled`
-    physics: the grid is the one refinement (the meniscus lies inside the box), estimated by
-    :func:`starved_point_error` from the grids with half and a quarter of the intervals; a
-    refinement starts from the previous grid's film (:func:`_scene_solve`)."""
+class _StarvedPointControl(StarvedControl):
+    """A starved point scene solve under the accuracy controller: the grid is the one
+    refinement (the meniscus lies inside the box), estimated by :func:`starved_point_error`
+    from the grids with half and a quarter of the intervals; a refinement starts from the
+    previous grid's film (:func:`_scene_solve`)."""
 
     dimensions = 2
+    raise_hint = " (ehl solve --max-points raises it)"
+    not_worth = "a finer grid is not predicted to lower the error by 10 %: the iteration part dominates"
 
     def __init__(self, pb: PointProblem, Hoil: Any, options: PointOptions | None, kw: dict[str, Any],
                  accuracy: float | None, estimate: bool, max_points: int) -> None:
+        super().__init__(accuracy, estimate, max_points)
         self.pb, self.Hoil, self.options, self.kw = pb, Hoil, options, kw
-        self.accuracy, self.with_estimate, self.max_points = accuracy, estimate, max_points
         self.prev: EHLResult | None = None  # the previous grid's converged result
         self.solved: dict[int, EHLResult] = {}  # the sequence's solves by points
 
@@ -901,21 +909,17 @@ class _StarvedPointControl:
         # a refinement starts from the previous grid's film (see _scene_solve) when the FMG
         # needed the exact zone solve there, or when the FMG fails here
         rescued = prev is not None and prev.extra.get("rescued", False)
-        res = _accept_floor(_scene_solve(self.pb, self.Hoil, self.options, n, self.kw,
-                                         prev if rescued else None), self.accuracy)
+        res = self._solve(n, prev if rescued else None)
         if prev is not None and not res.success and not res.extra.get("from_guess"):
             first = f"{res.status_name} from the FMG"
-            res = _accept_floor(_scene_solve(self.pb, self.Hoil, self.options, n, self.kw, prev), self.accuracy)
+            res = self._solve(n, prev)
             res.actions.insert(0, f"{n} points: {first}; solved again from the "
                                   f"{prev.X.size}-point film")
         self.solved[n] = res  # a failed one too: the estimate of the next grid does not repeat it
         return res
 
-    def converged(self, result: EHLResult) -> bool:
-        return bool(result.success)
-
-    def failure(self, result: EHLResult) -> str:
-        return f"{result.status_name}: {result.message.splitlines()[0] if result.message else ''}"
+    def _solve(self, n: int, start: EHLResult | None = None) -> EHLResult:
+        return _accept_floor(_scene_solve(self.pb, self.Hoil, self.options, n, self.kw, start), self.accuracy)
 
     def remedy(self, result: EHLResult, at: Resolution, first: bool) -> Resolution | None:
         # a failed first grid coarser than the flooded solver's smallest for this load: the
@@ -931,7 +935,7 @@ class _StarvedPointControl:
         """The solve on the grid with half the intervals of ``points`` (made once)."""
         n = (points - 1) // 2 + 1
         if n not in self.solved:
-            self.solved[n] = _accept_floor(_scene_solve(self.pb, self.Hoil, self.options, n, self.kw), self.accuracy)
+            self.solved[n] = self._solve(n)
             if record is not None:
                 record(Refinement(n, 1.0, 1.0, math.nan, math.nan, self.solved[n].wall_s, "levels"))
         return self.solved[n]
@@ -953,21 +957,11 @@ class _StarvedPointControl:
         attach_estimate(res, est, self.accuracy)
         return est.Hc, est.Hm
 
-    def candidates(self, res: EHLResult, at: Resolution) -> list[Candidate]:
-        finer = at.finer()
-        if finer.points > self.max_points:
-            return []
-        b, pc = res.error.budget, GRID_ORDER[int(res.options.wedge_order)][0]
-        predicted = max(b["grid"][k] / 2.0**pc + b["algebraic"][k] + b["domain"][k] for k in ("Hc", "Hm"))
+    def predicted(self, res: EHLResult, b: dict[str, dict[str, float]]) -> float:
         if any(math.isinf(b["grid"][k]) for k in ("Hc", "Hm")):
-            predicted = math.nan  # differences that do not fall yet: the finer grid measures on
-        return [Candidate("points", finer, 1, predicted)]
-
-    def why_short(self, res: EHLResult, at: Resolution) -> str:
-        if at.finer().points > self.max_points:
-            return (f"the next grid ({at.finer().points} points) exceeds max_points = {self.max_points} "
-                    f"(ehl solve --max-points raises it)")
-        return "a finer grid is not predicted to lower the error by 10 %: the iteration part dominates"
+            return math.nan  # differences that do not fall yet: the finer grid measures on
+        pc = GRID_ORDER[int(res.options.wedge_order)][0]
+        return max(b["grid"][k] / 2.0**pc + b["algebraic"][k] + b["domain"][k] for k in ("Hc", "Hm"))
 
 
 def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: PointOptions | None = None,
@@ -1025,27 +1019,20 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
         # a failed solve still states what its estimate would be (the coarse grid's difference)
         attach_estimate(res, starved_point_error(res, starved.coarse_of(n), starved.coarser_of(n)), accuracy)
     elif out.converged and out.why:
-        res.message += f"; not refined further: {out.why}"
-        res.extra["not_refined_because"] = out.why
-        res.actions.append(f"not refined further: {out.why}")
+        note_not_refined(res, out, action=True)
     scale = pb.a**2 / pb.Rx
     fl = res.extra["fluxes"]
     Hoil_c = Hoil(0.0) if callable(Hoil) else Hoil  # the centre's layer
     res.scalars.update(hoil=h_m, hoil_venner=Hoil_c, hc=res.scalars["Hc_venner"] * scale,
-                       hm=res.scalars["Hm_venner"] * scale,
-                       rho_c_Hc_over_hoil=res.extra["rho_c"] * res.scalars["Hc_venner"] / Hoil_c,
+                       hm=res.scalars["Hm_venner"] * scale, rho_c_Hc_over_hoil=res.extra["rho_c"] * res.scalars["Hc_venner"] / Hoil_c,
                        outlet_layer=res.extra["outlet_layer"],
                        side_flow=fl["side"] / fl["in"] if fl["in"] else math.nan,
                        wedge_order=int(res.options.wedge_order))
     if flooded:
         ff = solve_starved_point(pb, math.inf, res.options)
-        fac = pb.moes_factor
-        res.scalars.update(Hc_flooded_venner=ff.scalars["Hc_venner"],
-                           Hm_flooded_venner=ff.scalars["Hm_venner"],
-                           Hc_flooded=ff.scalars["Hc_venner"] * fac, Hm_flooded=ff.scalars["Hm_venner"] * fac,
-                           Hc_ratio=res.scalars["Hc_venner"] / ff.scalars["Hc_venner"],
-                           Hm_ratio=res.scalars["Hm_venner"] / ff.scalars["Hm_venner"],
-                           flooded_status=ff.status_name)
+        Hc_ff, Hm_ff = ff.scalars["Hc_venner"], ff.scalars["Hm_venner"]
+        compare_flooded(res.scalars, Hc_ff, Hm_ff, Hc_ff * pb.moes_factor, Hm_ff * pb.moes_factor)
+        res.scalars["flooded_status"] = ff.status_name
     res.scalars["converged"] = bool(res.success)
     res.builder = starved_point_result
     return res
