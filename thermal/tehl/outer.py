@@ -128,7 +128,7 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
                   options: Any, coarse: Any = None) -> OuterOutcome:
     """Run the outer iteration of ``contact`` from ``state`` and its thermal solution
     ``thermal`` (temperature array ``T``) with the factors ``a``, ``c`` in use, by the
-    relaxation and tolerances of ``options`` (:class:`~thermal.tehl.line.TEHLOptions`).
+    relaxation and tolerances of ``options`` (:class:`~thermal.tehl.options.TEHLOptions`).
 
     ``coarse``: a solution on half the intervals whose factors, interpolated, start the
     iteration after one multilevel solve with them. The contact's notes lead the report's

@@ -41,7 +41,8 @@ from ..parallel import LineJob, solve_thermal_lines
 from ..profiles import profile_from_arrays
 from .coefficients import solution_factors
 from .hierarchy import GivenStart
-from .line import TEHLOptions, heat_partition, interior_heat_budget
+from .line import heat_partition, interior_heat_budget
+from .options import TEHLOptions
 from .outer import Iterate, coupled_solve, surroundings
 from .results import TEHLResult
 

@@ -15,7 +15,7 @@ from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import Scene
 
 if TYPE_CHECKING:
-    from .line import TEHLOptions
+    from .options import TEHLOptions
 
 
 @dataclass(kw_only=True)
@@ -29,7 +29,7 @@ class TEHLResult:
     heat : the interior heat budget; heat_partition : (share into solid 1, share into solid 2)
     of the conducted heat; heat_balance_error : its relative imbalance; a, c : final flow and
     Couette factors; outer : one dict per outer iteration (dP, dHc, dHm, dT, factor change,
-    cycles, wall_s); options : the :class:`~thermal.tehl.line.TEHLOptions` of the solve.
+    cycles, wall_s); options : the :class:`~thermal.tehl.options.TEHLOptions` of the solve.
     """
 
     scene: Scene
