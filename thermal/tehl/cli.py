@@ -10,8 +10,7 @@ from typing import Any
 import numpy as np
 
 from ehl_multigrid.app.console import print_table
-from ehl_multigrid.app.solved import require_computed
-from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.errors import ConvergenceError, InputError
 from ehl_multigrid.model.scene import Scene, load_scene
 
 from ..slips import parse_slips
@@ -28,6 +27,15 @@ def solve_payload(r: Any) -> dict[str, Any]:
     out = r.summary()
     out["outer"] = [{k: v for k, v in o.items()} for o in r.outer]
     return out
+
+
+def require_computed(sol: Any) -> Any:
+    """The solver's own result of the front door's ``sol``; a :class:`ConvergenceError` with its
+    message (exit 3, naming why) when the solve raised and nothing was computed (the
+    application's :func:`ehl_multigrid.app.solved.require_computed`, which this layer may not import)."""
+    if sol.raw is None:
+        raise ConvergenceError(sol.message)
+    return sol.raw
 
 
 def register(subparsers: Any) -> None:

@@ -1,7 +1,7 @@
 """Thermal EHL point contact: the line contact's outer iteration (:mod:`thermal.tehl.outer`,
-the geometry as :class:`PointContact`) on the shared point hierarchy, with the thermal layer solved on each grid row along the
-rolling direction (the thesis's slicing of a point contact, 3.2.2.2 and (3.20), here on the
-EHL solution's own rows).
+the geometry as :class:`PointContact`) on the shared point hierarchy, with the thermal layer
+solved on each grid row along the rolling direction (the thesis's slicing of a point contact,
+3.2.2.2 and (3.20), here on the EHL solution's own rows).
 
 * pressure and film: :class:`FactorPointHierarchy`, the core
   :class:`~ehl_multigrid.point.fas.PointHierarchy` whose ``eps`` carries the flow factor
@@ -130,6 +130,18 @@ class _Rows:
     def friction(self) -> float:
         """Traction force [N] over the rows."""
         return float(sum(s.force_per_length * w for s, w in zip(self.sols, self.widths, strict=True)))
+
+    def heat(self, lubricant: Any) -> dict[str, float]:
+        """Heat budget [W] summed over the rows' interior budgets (:func:`interior_heat_budget`)."""
+        keys = ("shear", "compression", "conduction1", "conduction2", "convection")
+        heat = dict.fromkeys(keys, 0.0)
+        for s, w in zip(self.sols, self.widths, strict=True):
+            hb = interior_heat_budget(s, lubricant)
+            for k in keys:
+                heat[k] += hb[k] * w
+        heat["balance"] = ((heat["shear"] + heat["compression"] - heat["conduction1"] - heat["conduction2"]
+                            - heat["convection"]) / heat["shear"] if heat["shear"] > 0 else 0.0)
+        return heat
 
 
 def _films(pb: PointProblem, X: np.ndarray, Y: np.ndarray, P: np.ndarray, H: np.ndarray) -> tuple[float, float]:
@@ -268,14 +280,7 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
     done = coupled_solve(contact, st, th, T, np.ones(shape), np.ones(shape), opts, coarse)
     th = done.thermal
     F = th.friction()
-    keys = ("shear", "compression", "conduction1", "conduction2", "convection")
-    heat = dict.fromkeys(keys, 0.0)
-    for s, w in zip(th.sols, th.widths, strict=True):
-        hb = interior_heat_budget(s, scene.lubricant)
-        for k in keys:
-            heat[k] += hb[k] * w
-    heat["balance"] = ((heat["shear"] + heat["compression"] - heat["conduction1"] - heat["conduction2"] - heat["convection"]) / heat["shear"]
-                       if heat["shear"] > 0 else 0.0)
+    heat = th.heat(scene.lubricant)
     return TEHLPointResult(
         scene=scene, slip=slip, problem=pb, X=iso.X, Y=iso.Y, P=done.state.P, H=done.state.H, Hc=done.state.Hc,
         Hm=done.state.Hm, Hc_isothermal=Hc_iso, Hm_isothermal=Hm_iso, T_mid=th.T[:, :, (opts.nz + 1) // 2],
