@@ -229,10 +229,6 @@ def grid_sequence(result: Any, cache: SolveCache) -> list[Any] | None:
     return None if any(r is None for r in seq) else seq
 
 
-def _subgrid_hm(result: Any) -> float:
-    return subgrid_min_film(result.H, True) * result.problem.moes_factor
-
-
 def extrapolated_films(seq: list[Any]) -> dict[str, tuple[float, float]]:
     """Films of the finest solve of ``seq`` (:func:`grid_sequence`) reported as their
     second-order extrapolation over the grids, as the core does (:func:`~ehl_multigrid.
@@ -244,7 +240,8 @@ def extrapolated_films(seq: list[Any]) -> dict[str, tuple[float, float]]:
     fine = seq[-1]
     sequences = [("Hc", [r.Hc for r in seq])]
     if _is_point(fine):
-        sequences += [("Hm", [_subgrid_hm(r) for r in seq]), ("Hm", [r.Hm for r in seq])]
+        sequences += [("Hm", [subgrid_min_film(r.H, True) * r.problem.moes_factor for r in seq]),
+                      ("Hm", [r.Hm for r in seq])]
     out: dict[str, tuple[float, float]] = {}
     for key, films in sequences:
         x = extrapolated(films) if key not in out else None

@@ -144,12 +144,6 @@ class _Rows:
         return heat
 
 
-def _films(pb: PointProblem, X: np.ndarray, Y: np.ndarray, P: np.ndarray, H: np.ndarray) -> tuple[float, float]:
-    Yf, Pf, Hf = full_fields(X, Y, P, H, True)
-    m = film_metrics(X, Yf, Pf, Hf)
-    return m["Hc_center"] * pb.moes_factor, m["Hm"] * pb.moes_factor
-
-
 class PointContact:
     """The point contact of a coupled TEHL solve (:class:`~thermal.tehl.outer.Contact`): the
     half domain's factor hierarchy and one thermal layer per grid row that carries pressure."""
@@ -177,7 +171,9 @@ class PointContact:
         return res, fine.P.copy(), fine.H.copy(), float(hz.H00)
 
     def films(self, P: np.ndarray, H: np.ndarray) -> tuple[float, float]:
-        return _films(self.pb, self.X, self.Y, P, H)
+        Yf, Pf, Hf = full_fields(self.X, self.Y, P, H, True)
+        m = film_metrics(self.X, Yf, Pf, Hf)
+        return m["Hc_center"] * self.pb.moes_factor, m["Hm"] * self.pb.moes_factor
 
     def thermal(self, st: Iterate) -> tuple[_Rows, np.ndarray]:
         X, Y, pb, a_len, b_len = self.X, self.Y, self.pb, self.pb.a, self.scene.hertz.b
