@@ -9,15 +9,15 @@ The outer iteration (a fixed point in the across-film fields):
    (3.4) with the stress slope ``h dp/dx`` of the current pressure, energy (3.5) across and
    along the film, moving-heat-source surface temperatures (3.6)-(3.7)) gives ``T(x, z)`` and
    ``tau(x, z)`` on the current ``P``, ``H`` (the first solve, on the isothermal film, keeps
-   that film's Poiseuille flux instead: see :func:`_thermal`);
+   that film's Poiseuille flux instead: see :meth:`LineContact.thermal_layer`);
 3. the generalised Reynolds factors ``a``, ``c`` (:mod:`thermal.tehl.coefficients`) of that
    field are under-relaxed (in their logarithm, Anderson-mixed) and handed to the multilevel
    solve of the :class:`~thermal.tehl.hierarchy.FactorLineHierarchy` on the shared driver,
    started from the previous ``P``, which gives the next ``P``, ``H``;
-4. steps 2-3 repeat (:func:`thermal.tehl.outer.coupled_solve` on the :class:`LineContact`) until the changes of P
-   (relative L2), of the films (Hc, Hm, relative) and of the temperature (max, kelvin)
-   between outer iterations are all below their tolerances. The temperature and friction
-   returned belong to the final P.
+4. steps 2-3 repeat (:func:`thermal.tehl.outer.coupled_solve`, the geometry as
+   :class:`LineContact`) until the changes of P (relative L2), of the films (Hc, Hm,
+   relative) and of the temperature (max, kelvin) between outer iterations are all below
+   their tolerances. The temperature and friction returned belong to the final P.
 
 The thermal stations are the EHL grid's nodes (the whole box, inlet back flow included) and
 the thermal grid has ``nz`` intervals across the film. Friction, temperature and the heat
@@ -414,7 +414,6 @@ def solve_tehl_line_starved(scene: Scene, slip: float | None = None, options: TE
         full.scene, full.starved = scene, info
         full.wall_s = time.perf_counter() - t0
         return full
-    solves = 1
     seed = meniscus
     if seed is None:
         try:
@@ -439,7 +438,7 @@ def solve_tehl_line_starved(scene: Scene, slip: float | None = None, options: TE
     r = found.result
     info.update(inlet_flooded=False, meniscus_x=found.x, supply_mismatch=found.mismatch,
                 mass_balance_error=max(found.mismatch, r.flux_balance), Hc_ratio=r.Hc / info["Hc_flooded"],
-                Hm_ratio=r.Hm / info["Hm_flooded"], meniscus_solves=solves + len(found.history),
+                Hm_ratio=r.Hm / info["Hm_flooded"], meniscus_solves=1 + len(found.history),
                 meniscus_history=found.history)
     # the options as asked for (the box solve's own carry the meniscus as xmin): solves for an
     # error estimate or a refinement start from them
