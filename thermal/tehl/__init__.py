@@ -15,7 +15,7 @@ from ehl_multigrid.lazy import lazy_exports
 _LAZY = {
     "film_factors": "coefficients", "flux_integrals": "coefficients",
     "FactorLevel": "hierarchy", "FactorLineHierarchy": "hierarchy",
-    "TEHLLineResult": "line", "TEHLOptions": "line",
+    "TEHLLineResult": "line", "TEHLOptions": "options",
     "isothermal_start": "line", "solve_tehl_line": "line", "tehl_traction_curve": "line",
     "solve_tehl_line_starved": "line", "find_meniscus": "starved", "tehl_face_fluxes": "starved",
     "TEHLPointResult": "point", "solve_tehl_point": "point",

@@ -50,7 +50,7 @@ from ehl_multigrid.multigrid.controller import Candidate, Refinement, Resolution
 from ehl_multigrid.point.postprocess import subgrid_min_film
 
 from ..traction import wall_speeds
-from .line import TEHLOptions
+from .options import TEHLOptions
 from .point import require_flooded_point
 
 #: orders (along X, across the film) of the TEHL discretisation in the estimate: the observed
@@ -108,14 +108,13 @@ class SolveCache:
             from .point import solve_tehl_point
 
             opts = self.options.with_changes(points=key[0], nz=key[1], box=key[2])
+            coarser = self.results.get(((key[0] - 1) // 2 + 1, key[1], key[2]))
             try:
                 if self.point:
-                    coarser = self.results.get(((key[0] - 1) // 2 + 1, key[1], key[2]))
                     res = solve_tehl_point(self.scene, self.slip, opts, coarse=coarser)
-                else:
-                    coarser = None if math.isfinite(self.scene.supply.hoil) else \
-                        self.results.get(((key[0] - 1) // 2 + 1, key[1], key[2]))
-                    res = solve_tehl_line(self.scene, self.slip, opts, meniscus=self.meniscus, coarse=coarser)
+                else:  # a starved solve searches its own meniscus: no coarse start
+                    res = solve_tehl_line(self.scene, self.slip, opts, meniscus=self.meniscus,
+                                          coarse=None if math.isfinite(self.scene.supply.hoil) else coarser)
                 self.results[key] = res
                 self.add(res)
             except (ConvergenceError, InputError) as exc:
@@ -230,10 +229,6 @@ def grid_sequence(result: Any, cache: SolveCache) -> list[Any] | None:
     return None if any(r is None for r in seq) else seq
 
 
-def _subgrid_hm(result: Any) -> float:
-    return subgrid_min_film(result.H, True) * result.problem.moes_factor
-
-
 def extrapolated_films(seq: list[Any]) -> dict[str, tuple[float, float]]:
     """Films of the finest solve of ``seq`` (:func:`grid_sequence`) reported as their
     second-order extrapolation over the grids, as the core does (:func:`~ehl_multigrid.
@@ -245,7 +240,8 @@ def extrapolated_films(seq: list[Any]) -> dict[str, tuple[float, float]]:
     fine = seq[-1]
     sequences = [("Hc", [r.Hc for r in seq])]
     if _is_point(fine):
-        sequences += [("Hm", [_subgrid_hm(r) for r in seq]), ("Hm", [r.Hm for r in seq])]
+        sequences += [("Hm", [subgrid_min_film(r.H, True) * r.problem.moes_factor for r in seq]),
+                      ("Hm", [r.Hm for r in seq])]
     out: dict[str, tuple[float, float]] = {}
     for key, films in sequences:
         x = extrapolated(films) if key not in out else None

@@ -31,7 +31,8 @@ def solve_payload(r: Any) -> dict[str, Any]:
 
 def require_computed(sol: Any) -> Any:
     """The solver's own result of the front door's ``sol``; a :class:`ConvergenceError` with its
-    message (exit 3, naming why) when the solve raised and nothing was computed."""
+    message (exit 3, naming why) when the solve raised and nothing was computed (the
+    application's :func:`ehl_multigrid.app.solved.require_computed`, which this layer may not import)."""
     if sol.raw is None:
         raise ConvergenceError(sol.message)
     return sol.raw

@@ -26,6 +26,8 @@ at the inlet temperature with no shear thinning gives ``a = c = 1`` exactly.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ehl_multigrid.model.lubricant import Lubricant
@@ -89,3 +91,9 @@ def film_factors(p: np.ndarray, T: np.ndarray, tau: np.ndarray, lubricant: Lubri
     rho_i = lubricant.density(P2, np.full_like(T, T_oil))
     K0, C0 = flux_integrals(1.0 / eta_i, rho_i, u1, u2)
     return K / K0, C / C0
+
+
+def solution_factors(sol: Any, env: Any, shear_thinning: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`film_factors` of a thermal solution ``sol`` (:class:`~thermal.line.ThermalLineSolution`)
+    in the surroundings ``env`` (:class:`~thermal.line.Surroundings`: oil, inlet temperature, speeds)."""
+    return film_factors(sol.profile.p, sol.T, sol.tau, env.lubricant, env.T_oil, env.u1, env.u2, shear_thinning)

@@ -1,5 +1,7 @@
 """The line contact's multilevel hierarchy with the generalised Reynolds operator of a film
-whose viscosity and density vary across it (Yang & Wen 1990), for the shared FAS driver.
+whose viscosity and density vary across it (Yang & Wen 1990), for the shared FAS driver, and
+what it shares with the point contact's (:class:`thermal.tehl.point.FactorPointHierarchy`):
+the factors injected on the coarse grids and the start from a given iterate.
 
 The discrete equations are the core line contact's (:mod:`ehl_multigrid.line.discrete`),
 with two fields along X taken as given (frozen during a multilevel solve, updated by the
@@ -19,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -60,7 +63,34 @@ class FactorLevel(LineLevel):
         return State(H, rho, drho, lne, dlne, eps, r, scale)
 
 
-class FactorLineHierarchy(LineHierarchy):
+class GivenStart:
+    """Flow and Couette factors of a hierarchy (frozen during a solve) and the finest-grid
+    iterate it starts from, for a line or a point hierarchy."""
+
+    levels: list[Any]
+    _start: tuple[np.ndarray, float] | None = None
+
+    def set_factors(self, a: np.ndarray, c: np.ndarray) -> None:
+        """Flow and Couette factors on the finest grid; coarse grids inject them."""
+        shape = self.levels[-1].shape
+        if a.shape != shape or c.shape != shape:
+            raise ValueError(f"factors must have the finest grid's shape {shape}")
+        for k, lv in enumerate(self.levels):
+            every = (slice(None, None, 2 ** (len(self.levels) - 1 - k)),) * a.ndim
+            lv.a = np.ascontiguousarray(a[every], dtype=float)
+            lv.c = np.ascontiguousarray(c[every], dtype=float)
+
+    def set_iterate(self, P: np.ndarray, H0: float) -> None:
+        """The finest-grid pressure and film constant a solve starts from."""
+        self._start = (np.asarray(P, dtype=float).copy(), float(H0))
+
+    def given_start(self) -> tuple[np.ndarray, float]:
+        if self._start is None:
+            raise ValueError("set_iterate() before a solve: the hierarchy starts from a given iterate")
+        return self._start
+
+
+class FactorLineHierarchy(GivenStart, LineHierarchy):
     """:class:`~ehl_multigrid.line.solver.LineHierarchy` on :class:`FactorLevel` grids,
     started on the finest grid from a given iterate."""
 
@@ -82,32 +112,14 @@ class FactorLineHierarchy(LineHierarchy):
         ]
         for lv in self.levels:
             lv.face = self.face
-        self._P0: np.ndarray | None = None
-        self._H00 = 0.0
-
-    def set_factors(self, a: np.ndarray, c: np.ndarray) -> None:
-        """Flow and Couette factors on the finest grid; coarse grids inject them."""
-        top = self.levels[-1]
-        if a.shape != (top.n,) or c.shape != (top.n,):
-            raise ValueError(f"factors must have the finest grid's {top.n} points")
-        for k, lv in enumerate(self.levels):
-            step = 2 ** (len(self.levels) - 1 - k)
-            lv.a = np.ascontiguousarray(a[::step], dtype=float)
-            lv.c = np.ascontiguousarray(c[::step], dtype=float)
-
-    def set_iterate(self, P: np.ndarray, H0: float) -> None:
-        """The finest-grid pressure and film constant a solve starts from."""
-        self._P0 = np.asarray(P, dtype=float).copy()
-        self._H00 = float(H0)
 
     def start(self, solver: MultilevelSolver) -> int:
         self.solver = solver
-        if self._P0 is None:
-            raise ValueError("set_iterate() before a solve: the hierarchy starts from a given iterate")
+        P, H0 = self.given_start()
         top = len(self.levels) - 1
         lv = self.levels[top]
-        lv.P = self._P0.copy()
-        lv.H0 = self._H00
+        lv.P = P.copy()
+        lv.H0 = H0
         lv.f = np.zeros(lv.n)
         lv.g = 0.5 * np.pi
         lv.frozen[:] = False

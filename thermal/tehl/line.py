@@ -9,15 +9,15 @@ The outer iteration (a fixed point in the across-film fields):
    (3.4) with the stress slope ``h dp/dx`` of the current pressure, energy (3.5) across and
    along the film, moving-heat-source surface temperatures (3.6)-(3.7)) gives ``T(x, z)`` and
    ``tau(x, z)`` on the current ``P``, ``H`` (the first solve, on the isothermal film, keeps
-   that film's Poiseuille flux instead: see :func:`_thermal`);
+   that film's Poiseuille flux instead: see :meth:`LineContact.thermal_layer`);
 3. the generalised Reynolds factors ``a``, ``c`` (:mod:`thermal.tehl.coefficients`) of that
    field are under-relaxed (in their logarithm, Anderson-mixed) and handed to the multilevel
    solve of the :class:`~thermal.tehl.hierarchy.FactorLineHierarchy` on the shared driver,
    started from the previous ``P``, which gives the next ``P``, ``H``;
-4. steps 2-3 repeat (:func:`thermal.tehl.outer.outer_iteration`) until the changes of P
-   (relative L2), of the films (Hc, Hm, relative) and of the temperature (max, kelvin)
-   between outer iterations are all below their tolerances. The temperature and friction
-   returned belong to the final P.
+4. steps 2-3 repeat (:func:`thermal.tehl.outer.coupled_solve`, the geometry as
+   :class:`LineContact`) until the changes of P (relative L2), of the films (Hc, Hm,
+   relative) and of the temperature (max, kelvin) between outer iterations are all below
+   their tolerances. The temperature and friction returned belong to the final P.
 
 The thermal stations are the EHL grid's nodes (the whole box, inlet back flow included) and
 the thermal grid has ``nz`` intervals across the film. Friction, temperature and the heat
@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -36,21 +36,20 @@ import numpy as np
 from ehl_multigrid.line.problem import LineProblem
 from ehl_multigrid.line.solution import finish_line_result
 from ehl_multigrid.line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
-from ehl_multigrid.model.convergence import ConvergenceReport
-from ehl_multigrid.model.errors import ConvergenceError, InputError, require_range
+from ehl_multigrid.model.errors import ConvergenceError, InputError
 from ehl_multigrid.model.scene import Scene
 from ehl_multigrid.multigrid.driver import MultilevelSolver
-from ehl_multigrid.multigrid.options import LineOptions
 from ehl_multigrid.multigrid.policy import RobustnessPolicy
 from ehl_multigrid.multigrid.transfer import interpolate_cubic
 
 from ..line import Surroundings, ThermalLineSolution, solve_thermal_line
-from ..options import SURFACE_KERNELS, ThermalOptions
 from ..profiles import profile_from_arrays
 from ..traction import wall_speeds
-from .coefficients import film_factors
+from .coefficients import solution_factors
 from .hierarchy import FactorLineHierarchy
-from .outer import OUTER_HINT, Iterate, outer_iteration
+from .options import TEHLOptions
+from .outer import OUTER_HINT, Iterate, coupled_solve, surroundings
+from .results import TEHLResult
 from .starved import find_meniscus, flux_summary, tehl_face_fluxes
 
 #: supply tolerance of the meniscus search, relative to ``tol_H``: a tenth, so that the
@@ -58,162 +57,35 @@ from .starved import find_meniscus, flux_summary, tehl_face_fluxes
 SUPPLY_TOL = 0.1
 
 
-@dataclass(frozen=True)
-class TEHLOptions:
-    """Options of a TEHL line solve.
-
-    points : EHL grid points (2^k + 1); the thermal stations are its nodes.
-    nz : thermal intervals across the film (20: interior heat budget within 0.4 % on the
-        appendix C line contacts at S = 0.5; 10 gives up to 1.4 %).
-    xmin : inlet X = x/b (None: the core's default box); xmax : outlet X.
-    box : the box scaled by this factor (line: the inlet moved upstream, ``xmax - xmin`` times
-        ``box``; point: X and Y limits times ``box``); the error estimate's probe doubles it.
-    relax : starting under-relaxation of the factors' logarithms per outer iteration (0, 1];
-        halved (down to ``MIN_RELAX``) when the changes double in one outer iteration or grow
-        in two in a row.
-    max_outer : outer iterations allowed.
-    anderson : depth of the Anderson mixing (Walker & Ni 2011) of the damped factor update
-        (the thermal layer's :func:`thermal.kernels._anderson_step`); 0 = plain damping.
-    tol_P : |dP| / |P| (L2) between outer iterations; tol_H : relative change of Hc and Hm;
-    tol_T : max |dT| [K] between outer iterations; each change is divided by the iteration's
-        under-relaxation before it is compared with its tolerance.
-    tol_thermal : relative temperature tolerance of the thermal march (tol_T, tol_tau of
-        :class:`~thermal.options.ThermalOptions`).
-    thermal : False holds T = T_oil (Eyring shear thinning on the flow only).
-    shear_thinning : False gives the flow the Newtonian eta(p, T) (Eyring stays in the friction).
-    surface_kernel : surface-temperature kernel of the thermal layer.
-    compressive_heating : the energy equation carries the compression work
-        ``-(T/rho)(d rho/d T)_p u dp/dx`` (Bruyere et al. 2012; Habchi 2008) besides the
-        thesis's terms (3.5) (:class:`~thermal.options.ThermalOptions`); False is the thesis's
-        energy equation.
-    warm_thermal : each thermal solve of the outer iteration starts from the previous one's
-        temperatures (the same field within ``tol_thermal``, in fewer sweeps); False starts
-        every one from the oil temperature.
-    multigrid : overrides of the core :class:`LineOptions` (tol, cycle, levels ...); by default
-        each multilevel solve stops on the films (``film_tol = tol_H / 4``: Hc and Hm change by
-        less between two finest-grid cycles, load error below it), since a residual of 1e-5
-        leaves Hm uncertain to about 7e-4 (docs/thermal.md).
-    """
-
-    points: int = 513
-    nz: int = 20
-    xmin: float | None = None
-    xmax: float = 1.5
-    box: float = 1.0
-    relax: float = 0.5
-    max_outer: int = 60
-    anderson: int = 4
-    tol_P: float = 1e-4
-    tol_H: float = 1e-4
-    tol_T: float = 1e-2
-    tol_thermal: float = 1e-7
-    thermal: bool = True
-    shear_thinning: bool = True
-    surface_kernel: str = "moving-strip"
-    compressive_heating: bool = True
-    multigrid: dict[str, Any] = field(default_factory=dict)
-    warm_thermal: bool = True
-
-    def __post_init__(self) -> None:
-        n = int(self.points) - 1
-        if isinstance(self.points, bool) or self.points != int(self.points) or self.points < 65 or n & (n - 1):
-            raise InputError(f"points = {self.points!r} must be 2^k + 1 >= 65 (e.g. 257, 513, 1025)")
-        if isinstance(self.nz, bool) or not isinstance(self.nz, int) or not 4 <= self.nz <= 400:
-            raise InputError(f"nz = {self.nz!r} must be an integer in [4, 400] (intervals across the film)")
-        if self.xmin is not None:
-            require_range("xmin", self.xmin, -1000.0, -1.0, "- (x/b)")
-        require_range("xmax", self.xmax, 1.0, 100.0, "- (x/b)")
-        require_range("box", self.box, 0.25, 64.0, "- (times the default box)")
-        require_range("relax", self.relax, 0.0, 1.0, "-", lo_open=True)
-        require_range("max_outer", self.max_outer, 1, 1000, "outer iterations")
-        if isinstance(self.anderson, bool) or not isinstance(self.anderson, int) or not 0 <= self.anderson <= 20:
-            raise InputError(f"anderson = {self.anderson!r} must be an integer in [0, 20] (mixing depth)")
-        require_range("tol_P", self.tol_P, 1e-10, 0.1, "-")
-        require_range("tol_H", self.tol_H, 1e-10, 0.1, "-")
-        require_range("tol_T", self.tol_T, 1e-8, 10.0, "K")
-        require_range("tol_thermal", self.tol_thermal, 1e-12, 1e-3, "-")
-        if self.surface_kernel not in SURFACE_KERNELS:
-            raise InputError(f"surface_kernel = {self.surface_kernel!r} is not one of {list(SURFACE_KERNELS)}")
-        if not isinstance(self.compressive_heating, bool):
-            raise InputError(f"compressive_heating = {self.compressive_heating!r} must be true or false")
-
-    def line_options(self) -> LineOptions:
-        return LineOptions.build(None, **{"points": self.points, "raise_on_failure": False,
-                                          "film_tol": 0.25 * self.tol_H, **self.multigrid})
-
-    def thermal_options(self) -> ThermalOptions:
-        return ThermalOptions(nx=self.points, nz=self.nz, tol_T=self.tol_thermal, tol_tau=self.tol_thermal,
-                              max_inner=500, max_sweeps=400, momentum="on", thermal=self.thermal,
-                              surface_kernel=self.surface_kernel, compressive_heating=self.compressive_heating)
-
-    def with_changes(self, **changes: Any) -> TEHLOptions:
-        return replace(self, **changes)
-
-    def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
-
-
-@dataclass
-class TEHLLineResult:
-    """A converged TEHL line solution (SI units unless stated; Venner's X, P, H).
+@dataclass(kw_only=True)
+class TEHLLineResult(TEHLResult):
+    """A converged TEHL line solution (SI units unless stated; Venner's X, P, H), besides the
+    :class:`~thermal.tehl.results.TEHLResult` fields.
 
     X, P, H : grid x/b, p/pmax, h R/b^2 of the TEHL solution; x [m], p [Pa], h [m];
     Z : z/h nodes; T : temperature (X, Z) [degC]; tau : shear stress (X, Z) [Pa];
-    Hc, Hm : Moes central and minimum films (TEHL); hc, hm [m];
-    Hc_isothermal, Hm_isothermal : the same of the isothermal Newtonian solve on the same grid;
-    friction : traction force [N] on the line length (positive when surface 1 is faster,
-        opposing its motion); friction_coefficient : friction / load;
-    friction_decoupled : the same thermal model on the isothermal film (thesis chapter 3);
-    T_max [degC]; heat : budget per unit length [W/m] (:func:`interior_heat_budget`; its
-        ``whole_box_balance`` is the thermal layer's budget from the inlet station on);
-    heat_partition : (share into solid 1, share into solid 2) of the conducted heat;
-    heat_balance_error : |shear - conduction - convection| / shear (interior budget);
-    factors : final flow and Couette factors a(X), c(X);
-    outer : one dict per outer iteration (dP, dHc, dHm, dT, factor change, cycles, wall_s);
-    flux_in : mass flux through the box's first face (Venner units: ``rho0 (u1 + u2)/2 b^2/R``)
-        of the generalised Reynolds equation the solution satisfies
-        (:func:`thermal.tehl.starved.tehl_face_fluxes`); flux_balance : the largest relative
-        deviation from it over the faces up to the pressure maximum;
+    hc, hm [m]; friction [N] on the line length; heat : budget per unit length [W/m]
+    (:func:`interior_heat_budget`; its ``whole_box_balance`` is the thermal layer's budget
+    from the inlet station on); heat_balance_error : |shear - conduction - convection| / shear
+    (interior budget); flux_in : mass flux through the box's first face (Venner units:
+    ``rho0 (u1 + u2)/2 b^2/R``) of the generalised Reynolds equation the solution satisfies
+    (:func:`thermal.tehl.starved.tehl_face_fluxes`); flux_balance : the largest relative
+    deviation from it over the faces up to the pressure maximum;
     starved : for a finite ``[supply] hoil`` (:func:`solve_tehl_line`), the starvation
         observables (meniscus, supply, flooded film, mass balance), else None.
     """
 
-    scene: Scene
-    slip: float
+    problem: LineProblem
     u1: float
     u2: float
-    problem: LineProblem
-    X: np.ndarray
-    P: np.ndarray
-    H: np.ndarray
     H0: float
     Z: np.ndarray
     T: np.ndarray
     tau: np.ndarray
-    Hc: float
-    Hm: float
-    Hc_isothermal: float
-    Hm_isothermal: float
-    friction: float
-    friction_coefficient: float
-    friction_decoupled: float
-    T_max: float
-    heat: dict[str, float]
-    heat_partition: tuple[float, float]
-    heat_balance_error: float
-    a: np.ndarray
-    c: np.ndarray
-    outer: list[dict[str, float]]
-    report: ConvergenceReport
-    options: TEHLOptions
     thermal: ThermalLineSolution = field(repr=False)
-    wall_s: float = math.nan
     flux_in: float = math.nan
     flux_balance: float = math.nan
     starved: dict[str, Any] | None = None
-    #: (Hc, Hm) of the grid when the reported films are extrapolated over the grids
-    #: (:func:`thermal.tehl.accuracy.corrected_result`), else None
-    grid_films: tuple[float, float] | None = None
 
     @property
     def x(self) -> np.ndarray:
@@ -240,29 +112,13 @@ class TEHLLineResult:
         """Thermal reduction factor ``Hc / Hc_isothermal``."""
         return self.Hc / self.Hc_isothermal
 
-    def summary(self) -> dict[str, Any]:
-        """The scalar outputs (the ``--json`` keys of a thermal solve)."""
-        return {
-            "Hc": self.Hc, "Hm": self.Hm, "Hc_isothermal": self.Hc_isothermal,
-            "Hm_isothermal": self.Hm_isothermal, "hc": self.hc, "hm": self.hm,
-            "film_reduction": self.film_reduction, "friction": self.friction,
-            "friction_coefficient": self.friction_coefficient,
-            "friction_decoupled": self.friction_decoupled, "T_max": self.T_max,
-            "heat_partition": list(self.heat_partition), "heat_balance_error": self.heat_balance_error,
-            "outer_iterations": len(self.outer), "converged": bool(self.report.converged),
-            "slip": self.slip, "wall_s": self.wall_s, "momentum": self.report.extra.get("momentum", "gradient"),
-            "compressive_heating": self.options.compressive_heating,
-            **{k: v for k, v in (self.starved or {}).items() if not isinstance(v, (list, dict))},
-            **grid_film_keys(self.grid_films),
-        }
+    def _film_keys(self) -> dict[str, Any]:
+        return {"hc": self.hc, "hm": self.hm, "film_reduction": self.film_reduction}
 
-
-def grid_film_keys(grid_films: tuple[float, float] | None) -> dict[str, float]:
-    """``Hc_field`` and ``Hm_field`` (the grid's films) of a result whose films are extrapolated."""
-    return {} if grid_films is None else {"Hc_field": grid_films[0], "Hm_field": grid_films[1]}
-
-
-_State = Iterate
+    def _own_keys(self) -> dict[str, Any]:
+        return {"momentum": self.report.extra.get("momentum", "gradient"),
+                "compressive_heating": self.options.compressive_heating,
+                **{k: v for k, v in (self.starved or {}).items() if not isinstance(v, (list, dict))}}
 
 
 def _films(problem: LineProblem, X: np.ndarray, P: np.ndarray, H: np.ndarray) -> tuple[float, float]:
@@ -280,58 +136,106 @@ def line_problem(scene: Scene, options: TEHLOptions) -> LineProblem:
     return pb
 
 
-def isothermal_start(scene: Scene, options: TEHLOptions) -> _State:
+def isothermal_start(scene: Scene, options: TEHLOptions) -> Iterate:
     """The core isothermal Newtonian solve on the TEHL grid."""
     pb = line_problem(scene, options)
     res = solve_line_problem(pb, options.line_options(), scene=scene)
     if not res.success:
         raise ConvergenceError(f"TEHL: the isothermal start did not converge: {res.message}", res.report, HINT)
     Hc, Hm = _films(pb, res.X, res.P, res.H)
-    return _State(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm)
+    return Iterate(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm)
 
 
-def _thermal(scene: Scene, pb: LineProblem, st: _State, env: Surroundings, topt: ThermalOptions,
-             X: np.ndarray, flux_factor: np.ndarray | None = None,
-             start: ThermalLineSolution | None = None) -> ThermalLineSolution:
-    """The thermal layer on the current P, H (its sweeps from ``start`` when given).
+class LineContact:
+    """The line contact of a coupled TEHL solve (:class:`~thermal.tehl.outer.Contact`): the
+    factor hierarchy on the box of ``pb`` and one thermal layer on the EHL grid's nodes."""
 
-    Default: stress slope ``h dp/dx`` of the current pressure (momentum (3.4)). With
-    ``flux_factor`` (the flow factor ``a`` of the generalised Reynolds solve that gave P, ones
-    for the isothermal film) the slope instead carries the pressure-driven flux
-    ``-h^3 a/(12 eta(p, T_oil)) dp/dx`` of that solve (the thermal layer's ``flux`` mode, as for
-    its EHL input). The first solve on the isothermal film uses it: its steep outlet gradient
-    would drive an Eyring Poiseuille flow that its own heat thins further, the runaway the
-    thermal layer documents for a fixed gradient (measured here: NaN temperatures at thermal
-    loading 0.38 with slip).
-    """
-    x = X * pb.b
-    visc = None
-    if flux_factor is not None:
-        lub, T0 = scene.lubricant, scene.T_oil
-        fac = np.asarray(flux_factor, dtype=float)
+    label, alternation, hint = "TEHL", " between cycles", HINT
 
-        def visc(p: np.ndarray) -> np.ndarray:
-            # called on the EHL nodes (x = X b): the effective viscosity of the flow factor
-            return np.asarray(lub.viscosity(p, T0), dtype=float) / fac
-    prof = profile_from_arrays(x, st.P * pb.pmax, st.H * pb.b ** 2 / pb.R, b=pb.b, nx=X.size,
-                               width=scene.length, x_in=None, x_out=None, source="tehl", viscosity=visc)
-    opts = topt.with_changes(momentum="flux") if flux_factor is not None else topt
-    sol = solve_thermal_line(prof, env, opts, kernel_length=scene.length, start=start)
-    if not sol.report.converged:
-        raise ConvergenceError(f"TEHL: the thermal solve did not converge: {sol.report.message}",
-                               sol.report, OUTER_HINT)
-    return sol
+    def __init__(self, scene: Scene, pb: LineProblem, opts: TEHLOptions, env: Surroundings) -> None:
+        self.scene, self.pb, self.opts, self.env = scene, pb, opts, env
+        self.options = opts.line_options()
+        self.topt = opts.thermal_options()
+        self.hierarchy = FactorLineHierarchy(pb, self.options)
+        self.X = self.hierarchy.levels[-1].X
+        self.notes: list[str] = []
+        #: momentum mode of each thermal solve of the iteration ("gradient" or "flux")
+        self.modes: list[str] = []
+        self.last: ThermalLineSolution | None = None  # the previous outer iteration's thermal solution
+
+    def multilevel(self) -> tuple[Any, np.ndarray, np.ndarray, float]:
+        hz, lopts = self.hierarchy, self.options
+        solver = MultilevelSolver(hz, lopts, line_settings(self.pb, lopts), RobustnessPolicy(LINE_POLICY, lopts.adapt),
+                                  HINT)
+        hz.solver = solver
+        res = finish_line_result(solver.solve(), solver, self.scene)
+        hz.solver = None
+        return res, res.P.copy(), res.H.copy(), float(res.H0)
+
+    def films(self, P: np.ndarray, H: np.ndarray) -> tuple[float, float]:
+        return _films(self.pb, self.X, P, H)
+
+    def factors(self, th: ThermalLineSolution) -> tuple[np.ndarray, np.ndarray]:
+        return solution_factors(th, self.env, self.opts.shear_thinning)
+
+    def finer_factor(self, f: np.ndarray) -> np.ndarray:
+        return np.exp(interpolate_cubic(np.log(f)))
+
+    def thermal(self, st: Iterate) -> tuple[ThermalLineSolution, np.ndarray]:
+        """The thermal layer on ``st`` in the outer iteration: from the previous one's
+        temperatures (``warm_thermal``), with the flux of the generalised Reynolds solve when
+        the stress slope runs away."""
+        start = self.last if self.opts.warm_thermal else None
+        try:
+            th = self.thermal_layer(st, start=start)
+            self.modes.append("gradient")
+        except ConvergenceError as exc:
+            # the fixed gradient ran away (NaN): the flux of the generalised Reynolds solve
+            th = self.thermal_layer(st, flux_factor=self.hierarchy.levels[-1].a, start=start)
+            self.modes.append("flux")
+            if len(self.modes) == 1 or self.modes[-2] != "flux":
+                self.notes.append(f"thermal solve {len(self.modes)}: the stress slope h dp/dx ran away "
+                                  f"({str(exc).splitlines()[0][:80]}); the slope keeps the solve's Poiseuille flux")
+        self.last = th
+        return th, th.T
+
+    def thermal_layer(self, st: Iterate, flux_factor: np.ndarray | None = None,
+                      start: ThermalLineSolution | None = None) -> ThermalLineSolution:
+        """The thermal layer on the current P, H (its sweeps from ``start`` when given).
+
+        Default: stress slope ``h dp/dx`` of the current pressure (momentum (3.4)). With
+        ``flux_factor`` (the flow factor ``a`` of the generalised Reynolds solve that gave P,
+        ones for the isothermal film) the slope instead carries the pressure-driven flux
+        ``-h^3 a/(12 eta(p, T_oil)) dp/dx`` of that solve (the thermal layer's ``flux`` mode,
+        as for its EHL input). The first solve on the isothermal film uses it: its steep outlet
+        gradient would drive an Eyring Poiseuille flow that its own heat thins further, the
+        runaway the thermal layer documents for a fixed gradient (measured here: NaN
+        temperatures at thermal loading 0.38 with slip).
+        """
+        scene, pb, X = self.scene, self.pb, self.X
+        visc = None
+        if flux_factor is not None:
+            lub, T0 = scene.lubricant, scene.T_oil
+            fac = np.asarray(flux_factor, dtype=float)
+
+            def visc(p: np.ndarray) -> np.ndarray:
+                # called on the EHL nodes (x = X b): the effective viscosity of the flow factor
+                return np.asarray(lub.viscosity(p, T0), dtype=float) / fac
+        prof = profile_from_arrays(X * pb.b, st.P * pb.pmax, st.H * pb.b ** 2 / pb.R, b=pb.b, nx=X.size,
+                                   width=scene.length, x_in=None, x_out=None, source="tehl", viscosity=visc)
+        topt = self.topt.with_changes(momentum="flux") if flux_factor is not None else self.topt
+        sol = solve_thermal_line(prof, self.env, topt, kernel_length=scene.length, start=start)
+        if not sol.report.converged:
+            raise ConvergenceError(f"TEHL: the thermal solve did not converge: {sol.report.message}",
+                                   sol.report, OUTER_HINT)
+        return sol
 
 
-def film_noise(res: Any) -> float:
-    """Relative change of Hc and Hm over the last two finest-grid cycles of a multilevel solve
-    (the algebraic uncertainty of its films; inf with fewer than two such cycles)."""
-    top = res.levels - 1
-    fin = [h for h in res.history if h.level == top][-2:]
-    if len(fin) < 2:
-        return math.inf
-    a, b = fin
-    return float(max(abs(b.Hc - a.Hc) / abs(b.Hc), abs(b.Hm - a.Hm) / abs(b.Hm)))
+def heat_partition(heat: dict[str, float]) -> tuple[float, float]:
+    """(share into solid 1, share into solid 2) of the heat conducted in a budget ``heat``
+    (NaN when nothing is conducted)."""
+    cond = heat.get("conduction1", 0.0) + heat.get("conduction2", 0.0)
+    return (float(heat["conduction1"] / cond), float(heat["conduction2"] / cond)) if cond > 0 else (math.nan, math.nan)
 
 
 def interior_heat_budget(sol: ThermalLineSolution, lubricant: Any) -> dict[str, float]:
@@ -357,7 +261,7 @@ def interior_heat_budget(sol: ThermalLineSolution, lubricant: Any) -> dict[str, 
 
 
 def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None, *,
-                    us: float | None = None, load: float | None = None, start: _State | None = None,
+                    us: float | None = None, load: float | None = None, start: Iterate | None = None,
                     guess: TEHLLineResult | None = None, meniscus: float | None = None,
                     coarse: TEHLLineResult | None = None, **changes: Any) -> TEHLLineResult:
     """Solve the thermal EHL line contact of ``scene`` at ``slip`` (S = 2 (u1 - u2)/(u1 + u2)).
@@ -406,7 +310,7 @@ def solve_tehl_line(scene: Scene, slip: float | None = None, options: TEHLOption
     return _solve_flooded(scene, slip, opts, start, guess, coarse)
 
 
-def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: _State | None = None,
+def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: Iterate | None = None,
                    guess: TEHLLineResult | None = None,
                    coarse: TEHLLineResult | None = None) -> TEHLLineResult:
     """The TEHL solve with a flooded inlet on the box of ``opts`` (see :func:`solve_tehl_line`)."""
@@ -414,107 +318,43 @@ def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: _State |
         raise InputError(f"coarse has {coarse.a.size} points; the options ask for {opts.points}, so it needs "
                          f"{(opts.points - 1) // 2 + 1}")
     t0 = time.perf_counter()
-    u1, u2 = wall_speeds(scene.us, slip)
-    env = Surroundings(scene.lubricant, scene.body1, scene.body2, u1, u2, scene.T_oil,
-                       scene.T_surface1, scene.T_surface2)
+    env = surroundings(scene, slip)
     pb = line_problem(scene, opts)
-    lopts = opts.line_options()
-    topt = opts.thermal_options()
     iso = isothermal_start(scene, opts) if start is None else start
-    hz = FactorLineHierarchy(pb, lopts)
-    X = hz.levels[-1].X
+    contact = LineContact(scene, pb, opts, env)
+    X = contact.X
     if iso.P.shape != X.shape:
         raise InputError(f"start has {iso.P.size} points; the options ask for {X.size}")
-    lub = scene.lubricant
     st = iso
-    sol = _thermal(scene, pb, st, env, topt, X, flux_factor=np.ones(X.size))
-    decoupled = sol
+    sol = decoupled = contact.thermal_layer(st, flux_factor=np.ones(X.size))
     a = np.ones(X.size)
     c = np.ones(X.size)
     if guess is not None:
         # warm start from a neighbouring solution (e.g. the previous slip of a curve)
         if guess.P.shape != X.shape:
             raise InputError(f"guess has {guess.P.size} points; the options ask for {X.size}")
-        st = _State(guess.P.copy(), guess.H.copy(), guess.H0, guess.Hc, guess.Hm)
-        sol = _thermal(scene, pb, st, env, topt, X)
+        st = Iterate(guess.P.copy(), guess.H.copy(), guess.H0, guess.Hc, guess.Hm)
+        sol = contact.thermal_layer(st)
         a, c = guess.a.copy(), guess.c.copy()
-
-    notes: list[str] = []
-
-    def factors(th: ThermalLineSolution) -> tuple[np.ndarray, np.ndarray]:
-        return film_factors(th.profile.p, th.T, th.tau, lub, scene.T_oil, u1, u2, opts.shear_thinning)
-
-    def ehl(a_: np.ndarray, c_: np.ndarray, st_: _State, it: int) -> _State:
-        hz.set_factors(a_, c_)
-        hz.set_iterate(st_.P, st_.H0)
-        solver = MultilevelSolver(hz, lopts, line_settings(pb, lopts), RobustnessPolicy(LINE_POLICY, lopts.adapt), HINT)
-        hz.solver = solver
-        res = finish_line_result(solver.solve(), solver, scene)
-        hz.solver = None
-        noise = film_noise(res)
-        if not res.success and res.status == 1 and res.residual_history[-1] < lopts.tol and noise < 10.0 * opts.tol_H:
-            # the residual tolerance is met but the films alternate between two states (the
-            # outlet free boundary flips between nodes; Hm by up to 6e-4 at residual 2.5e-6):
-            # accepted, the alternation carried into the outer iteration as their uncertainty
-            notes.append(f"outer iteration {it}: films alternate by {noise:.2g} between cycles at residual "
-                         f"{res.residual_history[-1]:.3g}; accepted as their uncertainty")
-        elif not res.success:
-            raise ConvergenceError(f"TEHL outer iteration {it}: the multilevel solve failed: {res.message}",
-                                   res.report, HINT)
-        Hc, Hm = _films(pb, res.X, res.P, res.H)
-        return _State(res.P.copy(), res.H.copy(), float(res.H0), Hc, Hm,
-                      {"cycles": int(res.cycles), "film_noise": min(noise, 1.0)})
-
-    modes: list[str] = []
-    last: list[ThermalLineSolution] = []  # the previous outer iteration's thermal solution
-
-    def thermal(st_: _State) -> tuple[ThermalLineSolution, np.ndarray]:
-        start = last[-1] if last and opts.warm_thermal else None
-        try:
-            th = _thermal(scene, pb, st_, env, topt, X, start=start)
-            modes.append("gradient")
-        except ConvergenceError as exc:
-            # the fixed gradient ran away (NaN): the flux of the generalised Reynolds solve
-            th = _thermal(scene, pb, st_, env, topt, X, flux_factor=hz.levels[-1].a, start=start)
-            modes.append("flux")
-            if len(modes) == 1 or modes[-2] != "flux":
-                notes.append(f"thermal solve {len(modes)}: the stress slope h dp/dx ran away "
-                             f"({str(exc).splitlines()[0][:80]}); the slope keeps the solve's Poiseuille flux")
-        last[:] = [th]
-        return th, th.T
-
-    if coarse is not None:
-        # the coarse fixed point's factors with the film they give on this grid (a consistent
-        # start; the coarse pressure itself has its spike a grid off)
-        a, c = (np.exp(interpolate_cubic(np.log(f))) for f in (coarse.a, coarse.c))
-        st = ehl(a, c, st, 0)
-        sol, _ = thermal(st)
-        notes.append(f"outer iteration started from the factors of the solve on {coarse.X.size} points")
-
-    done = outer_iteration(st, sol, sol.T, a, c, factors=factors, ehl=ehl, solve_thermal=thermal,
-                           relax=opts.relax, anderson=opts.anderson, max_outer=opts.max_outer,
-                           tol_P=opts.tol_P, tol_H=opts.tol_H, tol_T=opts.tol_T)
-    st, sol, a, c, outer, report = done.state, done.thermal, done.a, done.c, done.outer, done.report
-    report.extra["actions"] = notes + list(report.extra.get("actions", []))
-    report.extra["momentum"] = modes[-1] if modes else "gradient"
-    heat = interior_heat_budget(sol, lub) if opts.thermal else {}
+    done = coupled_solve(contact, st, sol, sol.T, a, c, opts, coarse)
+    st, sol, a, c = done.state, done.thermal, done.a, done.c
+    done.report.extra["momentum"] = contact.modes[-1] if contact.modes else "gradient"
+    heat = interior_heat_budget(sol, scene.lubricant) if opts.thermal else {}
     if heat:
         heat["whole_box_balance"] = sol.heat["balance"]
         heat["inlet_boundary_loss"] = sol.heat["balance"] * sol.heat["shear"]
-    cond = heat.get("conduction1", 0.0) + heat.get("conduction2", 0.0)
-    part = (heat["conduction1"] / cond, heat["conduction2"] / cond) if cond > 0 else (math.nan, math.nan)
     F = sol.force_per_length * scene.length
     # the mass flux of the generalised Reynolds equation of the final P, H and factors
-    hz.set_factors(a, c)
-    flux_in, flux_balance = flux_summary(tehl_face_fluxes(hz.levels[-1], st.P, st.H0), st.P)
+    contact.hierarchy.set_factors(a, c)
+    flux_in, flux_balance = flux_summary(tehl_face_fluxes(contact.hierarchy.levels[-1], st.P, st.H0), st.P)
     return TEHLLineResult(
-        scene=scene, slip=slip, u1=u1, u2=u2, problem=pb, X=X.copy(), P=st.P, H=st.H, H0=st.H0,
+        scene=scene, slip=slip, u1=env.u1, u2=env.u2, problem=pb, X=X.copy(), P=st.P, H=st.H, H0=st.H0,
         Z=sol.Z, T=sol.T, tau=sol.tau, Hc=st.Hc, Hm=st.Hm, Hc_isothermal=iso.Hc, Hm_isothermal=iso.Hm,
         friction=F, friction_coefficient=F / scene.load,
         friction_decoupled=decoupled.force_per_length * scene.length, T_max=float(np.max(sol.T)),
-        heat=heat, heat_partition=part, heat_balance_error=abs(heat.get("balance", 0.0)),
-        a=a, c=c, outer=outer, report=report, options=opts, thermal=sol, wall_s=time.perf_counter() - t0,
-        flux_in=flux_in, flux_balance=flux_balance,
+        heat=heat, heat_partition=heat_partition(heat), heat_balance_error=abs(heat.get("balance", 0.0)),
+        a=a, c=c, outer=done.outer, report=done.report, options=opts, thermal=sol,
+        wall_s=time.perf_counter() - t0, flux_in=flux_in, flux_balance=flux_balance,
     )
 
 
@@ -574,7 +414,6 @@ def solve_tehl_line_starved(scene: Scene, slip: float | None = None, options: TE
         full.scene, full.starved = scene, info
         full.wall_s = time.perf_counter() - t0
         return full
-    solves = 1
     seed = meniscus
     if seed is None:
         try:
@@ -599,7 +438,7 @@ def solve_tehl_line_starved(scene: Scene, slip: float | None = None, options: TE
     r = found.result
     info.update(inlet_flooded=False, meniscus_x=found.x, supply_mismatch=found.mismatch,
                 mass_balance_error=max(found.mismatch, r.flux_balance), Hc_ratio=r.Hc / info["Hc_flooded"],
-                Hm_ratio=r.Hm / info["Hm_flooded"], meniscus_solves=solves + len(found.history),
+                Hm_ratio=r.Hm / info["Hm_flooded"], meniscus_solves=1 + len(found.history),
                 meniscus_history=found.history)
     # the options as asked for (the box solve's own carry the meniscus as xmin): solves for an
     # error estimate or a refinement start from them

@@ -1,7 +1,7 @@
-"""Thermal EHL point contact: the line contact's outer iteration (:mod:`thermal.tehl.outer`)
-on the shared point hierarchy, with the thermal layer solved on each grid row along the
-rolling direction (the thesis's slicing of a point contact, 3.2.2.2 and (3.20), here on the
-EHL solution's own rows).
+"""Thermal EHL point contact: the line contact's outer iteration (:mod:`thermal.tehl.outer`,
+the geometry as :class:`PointContact`) on the shared point hierarchy, with the thermal layer
+solved on each grid row along the rolling direction (the thesis's slicing of a point contact,
+3.2.2.2 and (3.20), here on the EHL solution's own rows).
 
 * pressure and film: :class:`FactorPointHierarchy`, the core
   :class:`~ehl_multigrid.point.fas.PointHierarchy` whose ``eps`` carries the flow factor
@@ -39,13 +39,15 @@ from ehl_multigrid.point.solve import solve_fas
 from ..line import Surroundings, ThermalLineSolution
 from ..parallel import LineJob, solve_thermal_lines
 from ..profiles import profile_from_arrays
-from ..traction import wall_speeds
-from .coefficients import film_factors
-from .line import TEHLOptions, grid_film_keys, interior_heat_budget
-from .outer import Iterate, outer_iteration
+from .coefficients import solution_factors
+from .hierarchy import GivenStart
+from .line import heat_partition, interior_heat_budget
+from .options import TEHLOptions
+from .outer import Iterate, coupled_solve, surroundings
+from .results import TEHLResult
 
 
-class FactorPointHierarchy(PointHierarchy):
+class FactorPointHierarchy(GivenStart, PointHierarchy):
     """:class:`PointHierarchy` with flow and Couette factors (frozen during a solve), started
     on the finest grid from a given iterate."""
 
@@ -59,19 +61,6 @@ class FactorPointHierarchy(PointHierarchy):
         for lev in self.levels:
             lev.a = np.ones(lev.shape)
             lev.c = np.ones(lev.shape)
-        self._start: tuple[np.ndarray, float] | None = None
-
-    def set_factors(self, a: np.ndarray, c: np.ndarray) -> None:
-        top = len(self.levels) - 1
-        if a.shape != self.levels[top].shape or c.shape != a.shape:
-            raise ValueError(f"factors must have the finest grid's shape {self.levels[top].shape}")
-        for k, lev in enumerate(self.levels):
-            step = 2 ** (top - k)
-            lev.a = np.ascontiguousarray(a[::step, ::step])
-            lev.c = np.ascontiguousarray(c[::step, ::step])
-
-    def set_iterate(self, P: np.ndarray, H00: float) -> None:
-        self._start = (np.asarray(P, dtype=float).copy(), float(H00))
 
     def _apply(self, lev: Any) -> None:
         a = getattr(lev, "a", None)
@@ -95,15 +84,14 @@ class FactorPointHierarchy(PointHierarchy):
         return cost
 
     def start(self, solver: MultilevelSolver) -> int:
-        if self._start is None:
-            raise ValueError("set_iterate() before a solve: the hierarchy starts from a given iterate")
+        P, H00 = self.given_start()
         self.solver = solver
         self.gain = solver.settings.h00_gain
         self._last_err = None
         top = len(self.levels) - 1
         lev = self.levels[top]
-        lev.P = np.ascontiguousarray(self._start[0])
-        self.H00 = self._start[1]
+        lev.P = np.ascontiguousarray(P)
+        self.H00 = H00
         self.h00_step_max = 0.1 * nijenbanning_central(self.pb.M, self.pb.L, self.theta) / self.pb.moes_factor
         lev.f = np.zeros_like(lev.P)
         lev.g = self.g_target
@@ -111,58 +99,23 @@ class FactorPointHierarchy(PointHierarchy):
         return top
 
 
-@dataclass
-class TEHLPointResult:
-    """A converged TEHL point solution (half domain Y >= 0, rows ``[j, i]``).
+@dataclass(kw_only=True)
+class TEHLPointResult(TEHLResult):
+    """A converged TEHL point solution (half domain Y >= 0, rows ``[j, i]``), besides the
+    :class:`~thermal.tehl.results.TEHLResult` fields.
 
     X, Y, P, H : grid (x/a, y/a) and Venner's fields; Hc, Hm : Moes central (X = Y = 0) and
-    minimum films, with their isothermal values; T_mid, T_surface1, T_surface2 : mid-film and
-    surface temperature maps [degC] (rows without pressure hold the oil temperature);
-    friction [N], friction_coefficient, friction_decoupled [N]; T_max [degC]; heat budget [W]
-    summed over the rows (interior budgets), heat_partition, heat_balance_error; outer history;
-    options : the :class:`TEHLOptions` of the solve.
+    minimum films; T_mid, T_surface1, T_surface2 : mid-film and surface temperature maps [degC]
+    (rows without pressure hold the oil temperature); heat budget [W] summed over the rows
+    (interior budgets); extra : ``thermal_rows``, the rows solved.
     """
 
-    scene: Scene
-    slip: float
     problem: PointProblem
-    X: np.ndarray
     Y: np.ndarray
-    P: np.ndarray
-    H: np.ndarray
-    Hc: float
-    Hm: float
-    Hc_isothermal: float
-    Hm_isothermal: float
     T_mid: np.ndarray
     T_surface1: np.ndarray
     T_surface2: np.ndarray
-    friction: float
-    friction_coefficient: float
-    friction_decoupled: float
-    T_max: float
-    heat: dict[str, float]
-    heat_partition: tuple[float, float]
-    heat_balance_error: float
-    a: np.ndarray
-    c: np.ndarray
-    outer: list[dict[str, float]]
-    report: Any
-    wall_s: float = math.nan
     extra: dict[str, Any] = field(default_factory=dict)
-    options: TEHLOptions | None = None
-    #: (Hc, Hm) of the grid when the reported films are extrapolated over the grids
-    #: (:func:`thermal.tehl.accuracy.corrected_result`), else None
-    grid_films: tuple[float, float] | None = None
-
-    def summary(self) -> dict[str, Any]:
-        return {"Hc": self.Hc, "Hm": self.Hm, "Hc_isothermal": self.Hc_isothermal,
-                "Hm_isothermal": self.Hm_isothermal, "friction": self.friction,
-                "friction_coefficient": self.friction_coefficient, "friction_decoupled": self.friction_decoupled,
-                "T_max": self.T_max, "heat_partition": list(self.heat_partition),
-                "heat_balance_error": self.heat_balance_error, "outer_iterations": len(self.outer),
-                "converged": bool(self.report.converged), "slip": self.slip, "wall_s": self.wall_s,
-                **grid_film_keys(self.grid_films)}
 
 
 @dataclass
@@ -174,12 +127,87 @@ class _Rows:
     widths: np.ndarray
     T: np.ndarray  # (row, X, Z) stacked for the change measure
 
+    def friction(self) -> float:
+        """Traction force [N] over the rows."""
+        return float(sum(s.force_per_length * w for s, w in zip(self.sols, self.widths, strict=True)))
 
-def _films(pb: PointProblem, X: np.ndarray, Y: np.ndarray, P: np.ndarray, H: np.ndarray) -> tuple[float, float]:
-    Yf, Pf, Hf = full_fields(X, Y, P, H, True)
-    m = film_metrics(X, Yf, Pf, Hf)
-    return m["Hc_center"] * pb.moes_factor, m["Hm"] * pb.moes_factor
+    def heat(self, lubricant: Any) -> dict[str, float]:
+        """Heat budget [W] summed over the rows' interior budgets (:func:`interior_heat_budget`)."""
+        keys = ("shear", "compression", "conduction1", "conduction2", "convection")
+        heat = dict.fromkeys(keys, 0.0)
+        for s, w in zip(self.sols, self.widths, strict=True):
+            hb = interior_heat_budget(s, lubricant)
+            for k in keys:
+                heat[k] += hb[k] * w
+        heat["balance"] = ((heat["shear"] + heat["compression"] - heat["conduction1"] - heat["conduction2"]
+                            - heat["convection"]) / heat["shear"] if heat["shear"] > 0 else 0.0)
+        return heat
 
+
+class PointContact:
+    """The point contact of a coupled TEHL solve (:class:`~thermal.tehl.outer.Contact`): the
+    half domain's factor hierarchy and one thermal layer per grid row that carries pressure."""
+
+    label, alternation, hint = "TEHL point", "", HINT
+
+    def __init__(self, scene: Scene, pb: PointProblem, opts: TEHLOptions, options: PointOptions,
+                 env: Surroundings, X: np.ndarray, Y: np.ndarray, threads: int | None) -> None:
+        self.scene, self.pb, self.opts, self.options, self.env = scene, pb, opts, options, env
+        self.X, self.Y, self.threads = X, Y, threads
+        self.hierarchy = FactorPointHierarchy(pb, options)
+        self.topt = opts.thermal_options()
+        self.notes: list[str] = []
+        self.last: dict[int, Any] = {}  # each row's thermal solution of the previous outer iteration
+
+    def multilevel(self) -> tuple[Any, np.ndarray, np.ndarray, float]:
+        hz, popts = self.hierarchy, self.options
+        with preserved_threads():
+            solver = MultilevelSolver(hz, popts, point_settings(self.pb, popts),
+                                      RobustnessPolicy(POINT_POLICY, popts.adapt), HINT)
+            hz.solver = solver
+            res = solver.solve()
+            hz.solver = None
+        fine = hz.levels[-1]
+        return res, fine.P.copy(), fine.H.copy(), float(hz.H00)
+
+    def films(self, P: np.ndarray, H: np.ndarray) -> tuple[float, float]:
+        Yf, Pf, Hf = full_fields(self.X, self.Y, P, H, True)
+        m = film_metrics(self.X, Yf, Pf, Hf)
+        return m["Hc_center"] * self.pb.moes_factor, m["Hm"] * self.pb.moes_factor
+
+    def thermal(self, st: Iterate) -> tuple[_Rows, np.ndarray]:
+        X, Y, pb, a_len, b_len = self.X, self.Y, self.pb, self.pb.a, self.scene.hertz.b
+        hy = float(Y[1] - Y[0])
+        rows = [j for j in range(st.P.shape[0]) if np.max(st.P[j]) > 0.0]
+        jobs = []
+        widths = []
+        for jj in rows:
+            w = hy * a_len * (1.0 if jj == 0 else 2.0)
+            prof = profile_from_arrays(X * a_len, st.P[jj] * pb.pmax, st.H[jj] * a_len**2 / pb.Rx, b=a_len,
+                                       nx=X.size, width=w, x_in=None, x_out=None, Y=float(Y[jj]) * a_len / b_len,
+                                       contact_half=math.sqrt(max(1.0 - (Y[jj] * a_len / b_len) ** 2, 0.0)),
+                                       source="tehl")
+            # strip length of the surface kernel: the transverse contact width 2b
+            jobs.append(LineJob(prof, self.env, self.topt, 2.0 * b_len,
+                                self.last.get(jj) if self.opts.warm_thermal else None))
+            widths.append(w)
+        sols = list(solve_thermal_lines(jobs, threads=self.threads))
+        T = np.full((st.P.shape[0], X.size, self.opts.nz + 1), float(self.scene.T_oil))
+        for jj, s in zip(rows, sols, strict=True):
+            T[jj] = s.T
+        self.last = dict(zip(rows, sols, strict=True))
+        return _Rows(rows, sols, np.array(widths), T), T
+
+    def factors(self, th: _Rows) -> tuple[np.ndarray, np.ndarray]:
+        shape = th.T.shape[:2]
+        a = np.ones(shape)
+        c = np.ones(shape)
+        for jj, s in zip(th.rows, th.sols, strict=True):
+            a[jj], c[jj] = solution_factors(s, self.env, self.opts.shear_thinning)
+        return a, c
+
+    def finer_factor(self, f: np.ndarray) -> np.ndarray:
+        return interpolate_cubic(np.ascontiguousarray(f), True)
 
 def require_flooded_point(scene: Scene) -> None:
     """Refuse a point contact with a finite ``[supply] hoil`` (InputError naming it): the thermal
@@ -217,9 +245,7 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
         raise InputError(f"coarse has {coarse.X.size} points along X; the options ask for {opts.points}, so it "
                          f"needs {(opts.points - 1) // 2 + 1}")
     slip = scene.slip if slip is None else float(slip)
-    u1, u2 = wall_speeds(scene.us, slip)
-    env = Surroundings(scene.lubricant, scene.body1, scene.body2, u1, u2, scene.T_oil,
-                       scene.T_surface1, scene.T_surface2)
+    env = surroundings(scene, slip)
     pb = problem_from_scene(scene)
     mg = dict(opts.multigrid)
     if opts.box != 1.0:
@@ -231,117 +257,31 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
     # and reference films on the same problem
     popts = PointOptions.build(None, **{"points": opts.points, "half": True, "raise_on_failure": False,
                                         **mg, "far_field": False})
-    # the outer iteration's solves stop on the films (see TEHLOptions.multigrid); the
-    # isothermal start keeps the core's residual rule
-    popts_outer = PointOptions.build(popts, film_tol=mg.get("film_tol", 0.25 * opts.tol_H))
-    notes: list[str] = []
-    topt = opts.thermal_options()
-    lub = scene.lubricant
-    a_len = pb.a
-    b_len = scene.hertz.b
     with preserved_threads():
         iso = solve_fas(pb, popts, scene=scene)
     if not iso.success:
         raise ConvergenceError(f"TEHL point: the isothermal start did not converge: {iso.message}", iso.report, HINT)
-    X, Y = iso.X, iso.Y
-    Hc_iso, Hm_iso = _films(pb, X, Y, iso.P, iso.H)
-    hy = float(Y[1] - Y[0])
-    hz = FactorPointHierarchy(pb, popts_outer)
-    shape = iso.P.shape
-    nzp = opts.nz + 1
-    klen = 2.0 * b_len
-
-    last: dict[int, Any] = {}  # each row's thermal solution of the previous outer iteration
-
-    def thermal(st: Iterate) -> tuple[_Rows, np.ndarray]:
-        rows = [j for j in range(shape[0]) if np.max(st.P[j]) > 0.0]
-        jobs = []
-        widths = []
-        for j in range(len(rows)):
-            jj = rows[j]
-            w = hy * a_len * (1.0 if jj == 0 else 2.0)
-            prof = profile_from_arrays(X * a_len, st.P[jj] * pb.pmax, st.H[jj] * a_len**2 / pb.Rx, b=a_len,
-                                       nx=X.size, width=w, x_in=None, x_out=None, Y=float(Y[jj]) * a_len / b_len,
-                                       contact_half=math.sqrt(max(1.0 - (Y[jj] * a_len / b_len) ** 2, 0.0)),
-                                       source="tehl")
-            jobs.append(LineJob(prof, env, topt, klen, last.get(jj) if opts.warm_thermal else None))
-            widths.append(w)
-        sols = list(solve_thermal_lines(jobs, threads=threads))
-        T = np.full((shape[0], X.size, nzp), float(scene.T_oil))
-        for jj, s in zip(rows, sols, strict=True):
-            T[jj] = s.T
-        last.clear()
-        last.update(zip(rows, sols, strict=True))
-        return _Rows(rows, sols, np.array(widths), T), T
-
-    def factors(th: _Rows) -> tuple[np.ndarray, np.ndarray]:
-        a = np.ones(shape)
-        c = np.ones(shape)
-        for jj, s in zip(th.rows, th.sols, strict=True):
-            a[jj], c[jj] = film_factors(s.profile.p, s.T, s.tau, lub, scene.T_oil, u1, u2, opts.shear_thinning)
-        return a, c
-
-    def ehl(a: np.ndarray, c: np.ndarray, st: Iterate, it: int) -> Iterate:
-        hz.set_factors(a, c)
-        hz.set_iterate(st.P, st.H0)
-        with preserved_threads():
-            solver = MultilevelSolver(hz, popts_outer, point_settings(pb, popts_outer),
-                                      RobustnessPolicy(POINT_POLICY, popts_outer.adapt), HINT)
-            hz.solver = solver
-            res = solver.solve()
-            hz.solver = None
-        top = len(hz.levels) - 1
-        fin = [h for h in res.history if h.level == top][-2:]
-        noise = (max(abs(fin[1].Hc - fin[0].Hc) / abs(fin[1].Hc), abs(fin[1].Hm - fin[0].Hm) / abs(fin[1].Hm))
-                 if len(fin) == 2 else math.inf)
-        if not res.success and res.status == 1 and res.residual_history[-1] < popts_outer.tol and noise < 10.0 * opts.tol_H:
-            # as for the line contact: films alternating at the residual tolerance are accepted,
-            # their alternation carried as the films' uncertainty
-            notes.append(f"outer iteration {it}: films alternate by {noise:.2g} at residual "
-                         f"{res.residual_history[-1]:.3g}; accepted as their uncertainty")
-        elif not res.success:
-            raise ConvergenceError(f"TEHL point outer iteration {it}: the multilevel solve failed: {res.message}",
-                                   res.report, HINT)
-        fine = hz.levels[-1]
-        P, H = fine.P.copy(), fine.H.copy()
-        Hc, Hm = _films(pb, X, Y, P, H)
-        return Iterate(P, H, float(hz.H00), Hc, Hm, {"cycles": int(res.cycles), "film_noise": min(noise, 1.0)})
-
+    # the outer iteration's solves stop on the films (see TEHLOptions.multigrid); the
+    # isothermal start keeps the core's residual rule
+    popts_outer = PointOptions.build(popts, film_tol=mg.get("film_tol", 0.25 * opts.tol_H))
+    contact = PointContact(scene, pb, opts, popts_outer, env, iso.X, iso.Y, threads)
+    Hc_iso, Hm_iso = contact.films(iso.P, iso.H)
     st = Iterate(iso.P.copy(), iso.H.copy(), float(iso.H0), Hc_iso, Hm_iso)
-    th, T = thermal(st)
-    decoupled = float(sum(s.force_per_length * w for s, w in zip(th.sols, th.widths, strict=True)))
-    a0, c0 = np.ones(shape), np.ones(shape)
-    if coarse is not None:
-        if (2 * coarse.a.shape[0] - 1, 2 * coarse.a.shape[1] - 1) != shape:
-            raise InputError(f"coarse has the grid {coarse.a.shape[::-1]} (X, Y); the options ask for "
-                             f"{shape[::-1]}, so it needs half the intervals of each")
-        # the coarse fixed point's factors with the film they give on this grid: a consistent
-        # start (the interpolated coarse pressure itself is not: its spike is a grid off)
-        a0, c0 = (interpolate_cubic(np.ascontiguousarray(f), True) for f in (coarse.a, coarse.c))
-        st = ehl(a0, c0, st, 0)
-        th, T = thermal(st)
-        notes.append(f"outer iteration started from the factors of the solve on {coarse.X.size} points")
-    done = outer_iteration(st, th, T, a0, c0, factors=factors, ehl=ehl,
-                           solve_thermal=thermal, relax=opts.relax, anderson=opts.anderson,
-                           max_outer=opts.max_outer, tol_P=opts.tol_P, tol_H=opts.tol_H, tol_T=opts.tol_T)
-    st, th = done.state, done.thermal
-    done.report.extra["actions"] = notes + list(done.report.extra.get("actions", []))
-    F = float(sum(s.force_per_length * w for s, w in zip(th.sols, th.widths, strict=True)))
-    keys = ("shear", "compression", "conduction1", "conduction2", "convection")
-    heat = dict.fromkeys(keys, 0.0)
-    for s, w in zip(th.sols, th.widths, strict=True):
-        hb = interior_heat_budget(s, lub)
-        for k in keys:
-            heat[k] += hb[k] * w
-    heat["balance"] = ((heat["shear"] + heat["compression"] - heat["conduction1"] - heat["conduction2"] - heat["convection"]) / heat["shear"]
-                       if heat["shear"] > 0 else 0.0)
-    cond = heat["conduction1"] + heat["conduction2"]
-    part = (float(heat["conduction1"] / cond), float(heat["conduction2"] / cond)) if cond > 0 else (math.nan, math.nan)
-    T_mid = th.T[:, :, nzp // 2]
+    th, T = contact.thermal(st)
+    decoupled = th.friction()
+    shape = iso.P.shape
+    if coarse is not None and (2 * coarse.a.shape[0] - 1, 2 * coarse.a.shape[1] - 1) != shape:
+        raise InputError(f"coarse has the grid {coarse.a.shape[::-1]} (X, Y); the options ask for "
+                         f"{shape[::-1]}, so it needs half the intervals of each")
+    done = coupled_solve(contact, st, th, T, np.ones(shape), np.ones(shape), opts, coarse)
+    th = done.thermal
+    F = th.friction()
+    heat = th.heat(scene.lubricant)
     return TEHLPointResult(
-        scene=scene, slip=slip, problem=pb, X=X, Y=Y, P=st.P, H=st.H, Hc=st.Hc, Hm=st.Hm, Hc_isothermal=Hc_iso,
-        Hm_isothermal=Hm_iso, T_mid=T_mid, T_surface1=th.T[:, :, 0], T_surface2=th.T[:, :, -1], friction=F,
-        friction_coefficient=F / scene.load, friction_decoupled=decoupled, T_max=float(np.max(th.T)), heat=heat,
-        heat_partition=part, heat_balance_error=float(abs(heat["balance"])), a=done.a, c=done.c, outer=done.outer,
+        scene=scene, slip=slip, problem=pb, X=iso.X, Y=iso.Y, P=done.state.P, H=done.state.H, Hc=done.state.Hc,
+        Hm=done.state.Hm, Hc_isothermal=Hc_iso, Hm_isothermal=Hm_iso, T_mid=th.T[:, :, (opts.nz + 1) // 2],
+        T_surface1=th.T[:, :, 0], T_surface2=th.T[:, :, -1], friction=F, friction_coefficient=F / scene.load,
+        friction_decoupled=decoupled, T_max=float(np.max(th.T)), heat=heat, heat_partition=heat_partition(heat),
+        heat_balance_error=float(abs(heat["balance"])), a=done.a, c=done.c, outer=done.outer,
         report=done.report, wall_s=time.perf_counter() - t0, extra={"thermal_rows": len(th.rows)}, options=opts,
     )

@@ -35,7 +35,7 @@ import numpy as np
 from ehl_multigrid.model.errors import ConvergenceError
 from ehl_multigrid.starved.discrete import face_fluxes
 
-#: farthest meniscus the search goes to (the TEHL box limit, :class:`~thermal.tehl.line.TEHLOptions`)
+#: farthest meniscus the search goes to (the TEHL box limit, :class:`~thermal.tehl.options.TEHLOptions`)
 FAR_MENISCUS = -1000.0
 #: first step of the bracket search in ``ln(-1 - X_m)`` (a 10 % change of the distance from
 #: the Hertzian edge); doubled at each step
