@@ -26,9 +26,9 @@ _LAZY = {
     "check_flooded_supply": "supply",
     "solve_with_time_error": "accuracy", "time_error": "accuracy", "adaptive_time_error": "accuracy",
     "Bump": "features", "Profile": "features", "Smooth": "features", "Waviness": "features",
-    "feature_from_table": "features", "feature_speed": "features",
+    "feature_speed": "features",
     "Dent2D": "point_features", "HeightMap": "point_features", "Smooth2D": "point_features",
-    "Waviness2D": "point_features", "point_feature_from_table": "point_features",
+    "Waviness2D": "point_features",
     "PointTransientResult": "point_solve", "max_point_time_step": "point_solve",
     "point_mass_balance": "point_solve", "point_transient_options": "point_solve",
     "solve_transient_point": "point_solve",
@@ -42,7 +42,7 @@ __getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())
 
 __all__ = ["Bump", "Checkpoint", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth",
            "Smooth2D", "TransientResult", "Waviness", "Waviness2D", "adaptive_time_error",
-           "check_flooded_supply", "feature_from_table", "feature_speed",
-           "load_series", "max_point_time_step", "max_time_step", "point_feature_from_table",
+           "check_flooded_supply", "feature_speed",
+           "load_series", "max_point_time_step", "max_time_step",
            "point_mass_balance", "point_transient_options", "read_checkpoint", "solve_transient_line",
            "solve_transient_point", "solve_with_time_error", "time_error", "transient_options"]

@@ -65,8 +65,17 @@ def feature_speed(body: int, slide_roll: float) -> float:
     return 1.0 + 0.5 * s if body == 1 else 1.0 - 0.5 * s
 
 
+class Described:
+    """``describe()`` of a dataclass feature: its kind and fields."""
+
+    kind: str
+
+    def describe(self) -> dict[str, Any]:
+        return {"kind": self.kind, **asdict(self)}
+
+
 @dataclass(frozen=True)
-class Waviness:
+class Waviness(Described):
     """Sinusoidal waviness ``A cos(2 pi X / wavelength + phase)`` (transverse ridges of a
     line contact: crests parallel to the contact line).
 
@@ -93,6 +102,11 @@ class Waviness:
         """The length a time step must resolve: the wavelength."""
         return self.wavelength
 
+    @property
+    def wavelength_x(self) -> float:
+        """The wavelength along the rolling direction."""
+        return self.wavelength
+
     def height(self, X: np.ndarray) -> np.ndarray:
         return self.amplitude * np.cos(2.0 * math.pi * np.asarray(X) / self.wavelength + self.phase)
 
@@ -101,16 +115,19 @@ class Waviness:
         require_in("feature.wavelength", self.wavelength, 1e-3, xmax - xmin, "-",
                    f"the domain [{xmin:g}, {xmax:g}] must hold one wavelength")
 
-    def describe(self) -> dict[str, Any]:
-        return {"kind": self.kind, **asdict(self)}
 
-
-class ShapedFeature:
-    """The width rules of the single-feature shapes (``width``, ``shape``), shared by the line
-    contact's :class:`Bump` and the point contact's dent."""
+class ShapedFeature(Described):
+    """The width rules of the single-feature shapes (``width``, ``shape``, centre ``x0``),
+    shared by the line contact's :class:`Bump` and the point contact's dent."""
 
     width: float
     shape: str
+    x0: float
+
+    @property
+    def x_entry(self) -> float:
+        """The position whose arrival at the outlet ends a default run: the centre."""
+        return self.x0
 
     @property
     def reach(self) -> float:
@@ -166,9 +183,6 @@ class Bump(ShapedFeature):
         require_in("feature.x0", self.x0, xmin + reach, xmax - reach, "-",
                    f"the whole feature must start inside the domain [{xmin:g}, {xmax:g}]")
 
-    def describe(self) -> dict[str, Any]:
-        return {"kind": self.kind, **asdict(self)}
-
 
 @dataclass(frozen=True, eq=False)
 class Profile:
@@ -211,6 +225,16 @@ class Profile:
         """Four sample spacings: the shortest wavelength the samples describe well."""
         return 4.0 * float(self.x[1] - self.x[0])
 
+    @property
+    def x_entry(self) -> float:
+        """The position whose arrival at the outlet ends a default run: the tail."""
+        return float(self.x[0])
+
+    @property
+    def x_ref(self) -> float:
+        """The reference position at ``T = 0``: the centre."""
+        return 0.5 * (float(self.x[0]) + float(self.x[-1]))
+
     def height(self, X: np.ndarray) -> np.ndarray:
         return np.interp(np.asarray(X, dtype=float), self.x, self.z, left=0.0, right=0.0)
 
@@ -237,10 +261,11 @@ class Smooth:
         of the film's own transients."""
         return 1.0
 
-    def height(self, X: np.ndarray) -> np.ndarray:
-        return np.zeros_like(np.asarray(X, dtype=float))
+    def height(self, X: np.ndarray, Y: np.ndarray | None = None) -> np.ndarray:
+        X = np.asarray(X, dtype=float)
+        return np.zeros_like(X) if Y is None else np.zeros(np.broadcast_shapes(X.shape, np.shape(Y)))
 
-    def check_domain(self, xmin: float, xmax: float) -> None:
+    def check_domain(self, *box: float) -> None:
         return None
 
     def describe(self) -> dict[str, Any]:
@@ -250,24 +275,21 @@ class Smooth:
 Feature = Waviness | Bump | Profile | Smooth
 
 
-def feature_from_table(table: dict[str, Any]) -> Feature:
-    """A feature from a scene's ``[feature]`` table (dimensionless keys: ``kind``,
-    ``amplitude``, ``wavelength`` or ``width``, ``x0``, ``shape``, ``phase``); the keys
-    ``body`` and ``slide_roll`` are read by the caller."""
-    return feature_of_kind(table, Waviness, Bump)
+def x_ref(feature: Any) -> float:
+    """A feature's reference position at ``T = 0`` (series ``xf``): a single feature's or a
+    sampled surface's centre, else (waviness: its crest of phase 0; smooth) 0."""
+    return getattr(feature, "x_ref", getattr(feature, "x0", 0.0))
 
 
-def feature_of_kind(table: dict[str, Any], waviness: type, bump: type) -> Any:
-    """``waviness(**keys)`` or ``bump(**keys)`` from a dimensionless ``[feature]`` table by its
-    ``kind`` (``"waviness"``, ``"bump"``, or ``"dent"``: a bump of amplitude ``-|amplitude|``);
-    the keys ``body`` and ``slide_roll`` are left to the caller."""
-    t = {k: v for k, v in table.items() if k not in ("body", "slide_roll")}
-    kind = require_choice("feature.kind", t.pop("kind", None), ("waviness", "bump", "dent"))
-    try:
-        if kind == "waviness":
-            return waviness(**t)
-        if kind == "dent":
-            t["amplitude"] = -abs(float(t.get("amplitude", 0.0)))
-        return bump(**t)
-    except TypeError as exc:
-        raise InputError(f"[feature] {exc}") from None
+def default_end_time(xmin: float, xmax: float, feature: Any, speed: float) -> float:
+    """A single feature or a sampled surface: until its :attr:`x_entry` (centre, tail) reaches
+    ``xmax`` (when it does not move: one transit of the domain); waviness: one transit plus
+    three periods along X; smooth: two transits."""
+    span = xmax - xmin
+    if feature.kind == "smooth":
+        return 2.0 * span
+    if feature.kind != "waviness":
+        return (xmax - feature.x_entry) / speed if speed > 1e-9 else span
+    wl = feature.wavelength_x
+    period = wl / abs(speed) if math.isfinite(wl) and abs(speed) > 1e-9 else 0.0
+    return span + 3.0 * period

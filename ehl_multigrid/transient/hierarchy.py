@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
 
 import numpy as np
 
@@ -37,6 +36,7 @@ from ..multigrid.driver import MultilevelSolver
 from ..multigrid.options import LineOptions
 from ..multigrid.policy import Settings
 from .discrete import add_squeeze_band
+from .stepping import StepGrids
 
 #: relaxation sweeps of one coarsest-grid visit
 COARSE_SWEEPS = 20
@@ -85,18 +85,13 @@ class TransientLineLevel(LineLevel):
         return st
 
 
-class TimeStepGrids:
+class TimeStepGrids(StepGrids):
     """What a time step's hierarchy adds to a steady line hierarchy (mixed in before it):
     the moving geometry and the squeeze term on every grid (:meth:`set_step`), the start on
     the finest grid (no FMG), the coarsest grid relaxed, no dense-Newton last resort. The
     grids' levels carry ``R``, ``ct`` and ``hist``."""
 
-    grid_stop = False  # a time step converges on its residual (no FMG grids to estimate from)
     geometry: Callable[[np.ndarray], np.ndarray]
-
-    @property
-    def fine(self) -> Any:
-        return self.levels[-1]
 
     def set_step(self, shift: float, ct: float, hist: np.ndarray) -> None:
         """Geometry displaced by ``shift`` (``R(X - shift)``) on every grid, squeeze
@@ -109,10 +104,6 @@ class TimeStepGrids:
         self.fine.f = np.zeros(self.fine.n)
         self.fine.g = 0.5 * math.pi
         self.fine.frozen[:] = False
-
-    def start(self, solver: MultilevelSolver) -> int:
-        self.solver = solver
-        return len(self.levels) - 1
 
     def coarse_solve(self, k: int, s: Settings) -> float:
         return self.relax(k, COARSE_SWEEPS, s, True)

@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
 
 import numpy as np
 
@@ -191,8 +190,3 @@ def point_domain_mass_error(hz: CavitatedPointStepHierarchy) -> float:
     storage = lv.hx * lv.hy * float((w[:, None] * hz.squeeze()[j0:ny - 1, 1:nx - 1]).sum())
     return (storage - (fl["in"] - fl["out"] - fl["side"])) / max(abs(fl["in"]), 1e-300)
 
-
-def cavitated_film(hz: Any) -> tuple[np.ndarray, np.ndarray]:
-    """``(H, theta rho H)`` of the finest grid: the film and the oil it carries."""
-    fine = hz.fine
-    return fine.H, fine.theta * fine.rho * fine.H

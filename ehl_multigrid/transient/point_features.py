@@ -38,9 +38,9 @@ from .features import (
     MAX_AMPLITUDE,
     MAX_DEPTH,
     SHAPES,
+    Described,
     ShapedFeature,
     Smooth,
-    feature_of_kind,
     require_in,
     require_relief,
 )
@@ -49,8 +49,15 @@ from .features import (
 LONGITUDINAL_TOL = 1e-9
 
 
+def waviness_span(angle: float, xmin: float, xmax: float, ymax: float) -> float:
+    """The length of the domain X in ``[xmin, xmax]``, ``|Y| <= ymax`` along a waviness's wave
+    vector at ``angle`` degrees to X (the shorter side between the axes)."""
+    return min(xmax - xmin, 2.0 * ymax) if 0.0 < abs(angle) < 90.0 else \
+        (xmax - xmin if angle == 0.0 else 2.0 * ymax)
+
+
 @dataclass(frozen=True)
-class Waviness2D:
+class Waviness2D(Described):
     """Sinusoidal waviness at an angle to the rolling direction.
 
     Attributes
@@ -96,15 +103,10 @@ class Waviness2D:
 
     def check_domain(self, xmin: float, xmax: float, ymax: float) -> None:
         """One wavelength must fit in the domain along the wave vector."""
-        span = min(xmax - xmin, 2.0 * ymax) if 0.0 < abs(self.angle) < 90.0 else \
-            (xmax - xmin if self.angle == 0.0 else 2.0 * ymax)
-        require_in("feature.wavelength", self.wavelength, 1e-3, span, "-",
+        require_in("feature.wavelength", self.wavelength, 1e-3,
+                   waviness_span(self.angle, xmin, xmax, ymax), "-",
                    f"the domain X in [{xmin:g}, {xmax:g}], |Y| <= {ymax:g} must hold one wavelength "
                    f"at angle {self.angle:g} deg")
-
-    def describe(self) -> dict[str, Any]:
-        return {"kind": self.kind, "amplitude": self.amplitude, "wavelength": self.wavelength,
-                "angle": self.angle, "phase": self.phase}
 
 
 @dataclass(frozen=True)
@@ -150,10 +152,6 @@ class Dent2D(ShapedFeature):
         require_in("feature.y0", self.y0, -ymax + self.reach, ymax - self.reach, "-",
                    f"the whole feature must lie inside |Y| <= {ymax:g}")
 
-    def describe(self) -> dict[str, Any]:
-        return {"kind": self.kind, "amplitude": self.amplitude, "width": self.width, "x0": self.x0,
-                "y0": self.y0, "shape": self.shape}
-
 
 @dataclass(frozen=True, eq=False)
 class HeightMap:
@@ -198,6 +196,17 @@ class HeightMap:
         return float(np.sqrt(np.mean(self.z**2)))
 
     @property
+    def x_entry(self) -> float:
+        """The position whose arrival at the outlet ends a default run: the upstream edge."""
+        return self.extent[0]
+
+    @property
+    def x_ref(self) -> float:
+        """The reference position at ``T = 0``: the centre."""
+        x_start, x_end, _, _ = self.extent
+        return 0.5 * (x_start + x_end)
+
+    @property
     def length_scale(self) -> float:
         """Four sample spacings along X: the shortest wavelength the samples describe well."""
         return 4.0 * float(self.dx)
@@ -223,22 +232,6 @@ class HeightMap:
                 "rms": self.amplitude, "max": float(self.z.max()), "min": float(self.z.min())}
 
 
-@dataclass(frozen=True)
-class Smooth2D(Smooth):
-    """No feature: smooth surfaces."""
-
-    def height(self, X: np.ndarray, Y: np.ndarray) -> np.ndarray:
-        X, Y = np.broadcast_arrays(np.asarray(X, dtype=float), np.asarray(Y, dtype=float))
-        return np.zeros(X.shape)
-
-    def check_domain(self, xmin: float, xmax: float, ymax: float) -> None:
-        return None
-
-
-PointFeature = Waviness2D | Dent2D | HeightMap | Smooth2D
-
-
-def point_feature_from_table(table: dict[str, Any]) -> PointFeature:
-    """A point feature from a dimensionless table (``kind`` = ``waviness``, ``bump`` or
-    ``dent``, with the keys of :class:`Waviness2D` or :class:`Dent2D`)."""
-    return feature_of_kind(table, Waviness2D, Dent2D)
+#: no feature: the line contact's smooth surfaces take ``(X, Y)`` too
+Smooth2D = Smooth
+PointFeature = Waviness2D | Dent2D | HeightMap | Smooth

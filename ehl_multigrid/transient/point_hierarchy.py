@@ -29,15 +29,15 @@ from ..multigrid.options import PointOptions
 from ..point import numerics as nm
 from ..point.fas import Level, PointHierarchy
 from ..point.problem import PointProblem
+from .stepping import StepGrids
 
 
-class PointTimeStepGrids:
+class PointTimeStepGrids(StepGrids):
     """What a time step's hierarchy adds to a steady point hierarchy (mixed in before it):
     the moving geometry ``R`` on every grid and the squeeze term (:meth:`set_step`), the start
     on the finest grid (no FMG). Call :meth:`_init_step_grids` after the steady hierarchy's
     ``__init__``."""
 
-    grid_stop = False  # a time step converges on its residual (no FMG grids to estimate from)
     local_update = False  # its time steps were measured with the full refresh after every sweep
     geometry: Callable[[np.ndarray, np.ndarray], np.ndarray]
     levels: list[Level]
@@ -48,10 +48,6 @@ class PointTimeStepGrids:
             lev.R = np.zeros_like(lev.P)
             lev.W = np.zeros_like(lev.P)  # its film subtracts the surface from W on every grid
         self.hist = np.zeros_like(self.fine.P)
-
-    @property
-    def fine(self) -> Level:
-        return self.levels[-1]
 
     def update_film(self, lev: Level) -> None:
         self.threads.for_size(lev.npts)
@@ -80,9 +76,8 @@ class PointTimeStepGrids:
         return self.ct * fine.rho * fine.H - self.hist
 
     def start(self, solver: MultilevelSolver) -> int:
-        self.solver = solver
         self.gain = solver.settings.h00_gain
-        return len(self.levels) - 1
+        return super().start(solver)
 
 
 class TransientPointHierarchy(PointTimeStepGrids, PointHierarchy):

@@ -42,21 +42,19 @@ from ..point.fas import HINT, POINT_POLICY, point_settings
 from ..point.problem import PointProblem
 from ..point.solve import solve_fas
 from ..starved.point import STARVED_MAX_CYCLES_2, STARVED_TOL, solve_starved_point
-from .checkpoint import Checkpoint, restore
-from .features import feature_speed
-from .oil_balance import MASS_TOL, require_mass_tol
-from .point_cavitated import CavitatedPointStepHierarchy, cavitated_film, point_domain_mass_error
-from .point_features import PointFeature, Smooth2D
+from .checkpoint import Checkpoint
+from .features import default_end_time, feature_speed
+from .oil_balance import MASS_TOL
+from .point_cavitated import CavitatedPointStepHierarchy, point_domain_mass_error
+from .point_features import PointFeature, Smooth
 from .point_hierarchy import TransientPointHierarchy
 from .result import TransientResult
 from .stepping import (
-    SCHEMES,
     Stepper,
-    march,
     max_time_step,
     model_inputs,
     require_steady_start,
-    start,
+    start_and_march,
     time_steps,
 )
 
@@ -64,6 +62,12 @@ from .stepping import (
 #: the default step (measured: 4-6 cycles per step at Courant 1).
 POINT_TRANSIENT_DEFAULTS = {"points": 129, "deformation": "fft", "tol": 1e-5, "tol_load": 1e-6,
                             "max_cycles": 40, "raise_on_failure": False, "half": False}
+
+#: A mass-conserving step's stall (at any residual) turns on X/Y alternating lines, then halves
+#: the under-relaxations, then ends the cycles for the fine-grid finish
+#: (:meth:`~.point_cavitated.CavitatedPointStepHierarchy.last_resort`; docs/transient.md)
+CAVITATED_POINT_POLICY = replace(POINT_POLICY, stall_ladder=(("alternate",), ("halve", "W"), ("fail",)),
+                                 cyclic_stall=False, shared_ladder=False, quiet_below=0.0)
 
 
 def point_transient_options(options: PointOptions | None = None, **kw: Any) -> PointOptions:
@@ -99,13 +103,6 @@ class PointTransientResult(TransientResult):
     def _problem_dict(self) -> dict[str, Any]:
         return self.problem.to_dict()
 
-    def _x_feature(self, T: float) -> float:
-        f = self.feature
-        if f.kind == "height_map":
-            x_start, x_end, _, _ = f.extent
-            return 0.5 * (x_start + x_end) + self.speed * T
-        return getattr(f, "x0", 0.0) + self.speed * T
-
     def _zone(self, X: np.ndarray, Y: np.ndarray, r: float = 1.0) -> np.ndarray:
         """Nodes of ``(X, Y)`` inside ``r`` times the Hertzian ellipse."""
         boa = self.problem.b_over_a
@@ -131,9 +128,6 @@ class PointTransientResult(TransientResult):
 
     def steady_film(self, name: str) -> float:
         return getattr(self, f"{name}_steady")
-
-    def _wavelength_x(self) -> float:
-        return getattr(self.feature, "wavelength_x", math.nan)
 
     def _summary_head(self) -> dict[str, Any]:
         pb = self.problem
@@ -273,7 +267,6 @@ def solve_transient_point(
         (``on_film_collapse="raise"``), naming the step; ``partial`` holds the steps before it.
         Raised whatever ``raise_on_failure``, as by :func:`~.solve.solve_transient_line`.
     """
-    require_choice("scheme", scheme, SCHEMES)
     require_choice("on_film_collapse", on_film_collapse, ("raise", "stop"))
     if hoil_y is not None and (callable(hoil) or math.isfinite(hoil)):
         raise InputError("hoil and hoil_y both given: a layer across the track (hoil_y) or one "
@@ -281,10 +274,9 @@ def solve_transient_point(
     if hoil_y is not None and cavitation != "mass-conserving":
         raise InputError(f"hoil_y (a layer across the track) needs cavitation = 'mass-conserving'; "
                          f"got {cavitation!r}")
-    supply, hoil = model_inputs(cavitation, hoil, time_tol)
-    mass_tol = require_mass_tol(mass_tol, cavitation)
+    supply, hoil, mass_tol = model_inputs(scheme, cavitation, hoil, time_tol, mass_tol)
     layer: Any = hoil if hoil_y is None else hoil_y  # what the grids and the start are fed
-    feature = Smooth2D() if feature is None else feature
+    feature = Smooth() if feature is None else feature
     speed = feature_speed(body, slide_roll)
     opts = point_transient_options(options, **kw)
     if not opts.elastic:
@@ -300,11 +292,12 @@ def solve_transient_point(
     feature.check_domain(hz.xmin, hz.xmax, hz.ymax)
     dt, steps, snapshot_every = time_steps(
         feature, speed, fine.hx, dt, steps, t_end, snapshot_every, accept_stall, "a",
-        lambda: default_point_end_time(hz.xmin, hz.xmax, feature, speed))
+        lambda: default_end_time(hz.xmin, hz.xmax, feature, speed))
 
     t0 = time.perf_counter()
-    stepper = _CavitatedPointStepper(hz, problem, opts) if mass_conserving else \
-        _PointStepper(hz, problem, opts)
+    stepper = _PointStepper(hz, problem, opts)
+    if mass_conserving:
+        stepper.policy = CAVITATED_POINT_POLICY
     stepper.supply = supply
     with preserved_threads():
         theta0 = None
@@ -333,39 +326,19 @@ def solve_transient_point(
         out.Hc_steady = float(steady.H[jc, ic])
         out.Hm_steady = float(np.min(steady.H[zone]))
         hz.h00_step_max = 0.1 * max(out.Hc_steady, 1e-6)
-        if resume is None:
-            stepper.set_content(theta0)
-            # the mass-conserving model starts from its own steady discretisation (the core's
-            # solution is the projection's, with another outlet and wedge)
-            start(stepper, out, steady.P.copy(), steady.H0, initial,
-                  feature.kind != "smooth" or mass_conserving, t0)
-        else:
-            restore(out, resume, snapshot_every)
-        march(stepper, out, speed=speed, dt=dt, steps=steps, scheme=scheme,
-              snapshot_every=snapshot_every, accept_stall=accept_stall,
-              on_film_collapse=on_film_collapse, callback=callback, t0=t0, checkpoint=checkpoint,
-              time_tol=time_tol)
+        # the mass-conserving model starts from its own steady discretisation (the core's
+        # solution is the projection's, with another outlet and wedge)
+        start_and_march(stepper, out, steady, theta0, initial, feature.kind != "smooth" or mass_conserving,
+                        resume, t0, speed=speed, dt=dt, steps=steps, scheme=scheme,
+                        snapshot_every=snapshot_every, accept_stall=accept_stall,
+                        on_film_collapse=on_film_collapse, callback=callback, checkpoint=checkpoint,
+                        time_tol=time_tol)
     return out
 
 
-def default_point_end_time(xmin: float, xmax: float, feature: PointFeature, speed: float) -> float:
-    """A dent: until its centre reaches ``xmax``; a height map: until its upstream edge does;
-    waviness: one transit of the domain plus three X periods; smooth: two transits."""
-    span = xmax - xmin
-    moving = speed > 1e-9
-    if feature.kind == "smooth":
-        return 2.0 * span
-    if feature.kind == "bump":
-        return (xmax - feature.x0) / speed if moving else span
-    if feature.kind == "height_map":
-        return (xmax - feature.extent[0]) / speed if moving else span
-    wl = feature.wavelength_x
-    period = wl / abs(speed) if math.isfinite(wl) and abs(speed) > 1e-9 else 0.0
-    return span + 3.0 * period
-
-
 class _PointStepper(Stepper):
-    """The point contact's side of the time loop."""
+    """The point contact's side of the time loop (either cavitation model, whose ``policy``
+    the run sets); ``supply`` (optional): the supplied layer as a function of time."""
 
     name = "point"
     hint = HINT
@@ -385,7 +358,9 @@ class _PointStepper(Stepper):
 
     def film(self) -> tuple[np.ndarray, np.ndarray]:
         fine = self.hz.fine
-        return fine.H, fine.rho * fine.H
+        if getattr(fine, "theta", None) is None:
+            return fine.H, fine.rho * fine.H
+        return fine.H, fine.theta * fine.rho * fine.H  # mass-conserving: the oil carried
 
     def accept_stalled(self, res: EHLResult, accept_stall: float) -> bool:
         # cycles that stall, hit the cycle limit or are rejected leave the best accepted
@@ -394,23 +369,6 @@ class _PointStepper(Stepper):
             return False
         m = self.hz.measure(len(self.hz.levels) - 1)
         return bool(m.ok and m.residual < accept_stall and m.load_error < accept_stall)
-
-
-#: A mass-conserving step's stall (at any residual) turns on X/Y alternating lines, then halves
-#: the under-relaxations, then ends the cycles for the fine-grid finish
-#: (:meth:`~.point_cavitated.CavitatedPointStepHierarchy.last_resort`; docs/transient.md)
-CAVITATED_POINT_POLICY = replace(POINT_POLICY, stall_ladder=(("alternate",), ("halve", "W"), ("fail",)),
-                                 cyclic_stall=False, shared_ladder=False, quiet_below=0.0)
-
-
-class _CavitatedPointStepper(_PointStepper):
-    """The mass-conserving point contact's side of the time loop: the oil carried is
-    ``theta rho H``; ``supply`` (optional): the supplied layer as a function of time."""
-
-    policy = CAVITATED_POINT_POLICY
-
-    def film(self) -> tuple[np.ndarray, np.ndarray]:
-        return cavitated_film(self.hz)
 
 
 def _within_step_tolerance(res: EHLResult, opts: PointOptions) -> bool:

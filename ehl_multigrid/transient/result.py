@@ -47,6 +47,7 @@ from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
 from .cavitated import domain_mass_error
 from .discrete import flux_balance
+from .features import x_ref
 
 SERIES = ("step", "T", "Hc", "Hm", "H0", "Pmax", "dP", "xf", "dH", "residual", "load_error",
           "cycles", "work_units", "wall_s", "mass_balance", "stalled", "substeps")
@@ -107,20 +108,13 @@ class TransientResult:
         raise AttributeError(name)
 
     # -- building -------------------------------------------------------------------------
-    def _x_feature(self, T: float) -> float:
-        x0 = getattr(self.feature, "x0", None)
-        if x0 is None:  # a profile: its centre
-            x = getattr(self.feature, "x", None)
-            x0 = 0.5 * (float(x[0]) + float(x[-1])) if x is not None else 0.0
-        return x0 + self.speed * T
-
     def record(self, n: int, T: float, hz: Any, res: EHLResult | None, wall: float, keep: bool) -> None:
         """Append step ``n`` (time ``T``) of the finest grid of ``hz`` to the series (``res``
         the step's solve, None for the start) and keep a snapshot when ``keep``."""
         lv, st = self._fields(hz)
         X, P, H = lv.X, lv.P, st.H
         zone = self._within(1.5) | (P > 0)
-        xf = self._x_feature(T)
+        xf = x_ref(self.feature) + self.speed * T
         s = self.series
         s["step"].append(n)
         s["T"].append(T)
@@ -189,9 +183,6 @@ class TransientResult:
         """The smooth steady film ``"Hc"`` or ``"Hm"``."""
         return getattr(self.steady, f"{name}_venner")
 
-    def _wavelength_x(self) -> float:
-        return getattr(self.feature, "wavelength", math.nan)
-
     def _summary_head(self) -> dict[str, Any]:
         return {"M": self.problem.M, "L": self.problem.L, "points": int(self.X.size),
                 "xmin": self.problem.xmin, "xmax": self.problem.xmax}
@@ -250,7 +241,7 @@ class TransientResult:
 
     def waviness_amplitude(self, periods: float = 1.0) -> float:
         """Half the peak-to-peak of ``Hc(T)`` over the last ``periods`` feature periods along X."""
-        wl = self._wavelength_x()
+        wl = getattr(self.feature, "wavelength_x", math.nan)
         if not math.isfinite(wl) or abs(self.speed) < 1e-12:
             return math.nan
         T, Hc = self.T, self.Hc
@@ -270,7 +261,7 @@ class TransientResult:
         """JSON-ready scalars of the run (``complete`` False and ``stop_reason`` for a run that
         ended early)."""
         cyc = self.cycles[1:]
-        wall = self.wall_s_series()[1:]
+        wall = np.asarray(self.series["wall_s"], dtype=float)[1:]  # (the field wall_s is the total)
         amp = getattr(self.feature, "amplitude", math.nan)
         out: dict[str, Any] = {
             **self._summary_head(),
@@ -306,9 +297,6 @@ class TransientResult:
         out["Ad_over_Ai"] = ad / amp if amp else math.nan
         out["Ad"] = ad
         return out
-
-    def wall_s_series(self) -> np.ndarray:
-        return np.asarray(self.series["wall_s"], dtype=float)
 
     # -- output ---------------------------------------------------------------------------
     #: HDF5 ``kind`` attribute of the file
