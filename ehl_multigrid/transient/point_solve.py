@@ -7,10 +7,10 @@ Venner's dimensionless transient Reynolds equation of a point contact (Venner & 
 ``d/dX(eps dP/dX) + d/dY(eps dP/dY) - d(rho H)/dX - d(rho H)/dT = 0``
 
 (wedge and squeeze terms carry the same factor, so neither has a coefficient), with the film
-of :mod:`.point_features` and the load ``int int P dX dY = 2 pi b/(3a)`` at every step
+of :mod:`.features` and the load ``int int P dX dY = 2 pi b/(3a)`` at every step
 (constant load, H00(T) free). The design is the line contact's (the time loop of :mod:`.stepping`): BDF2 steps
 (the first backward Euler), one FAS solve per step by the shared driver on
-:class:`~.point_hierarchy.TransientPointHierarchy` started from the previous solution
+:class:`~.hierarchy.TransientPointHierarchy` started from the previous solution
 extrapolated in time, the deformation (FFT) recomputed after every relaxation sweep. The
 start is the core steady solution, then the steady equations with the feature frozen at its
 ``T = 0`` position.
@@ -18,7 +18,7 @@ start is the core steady solution, then the steady equations with the feature fr
 Cavitation: the projection ``P >= 0`` of the steady core (default), or mass-conserving
 Elrod-Adams cavitation (``cavitation="mass-conserving"``: the starved point solver's film
 content ``theta`` and discretisation with the squeeze term ``d(theta rho H)/dT``,
-:mod:`.point_cavitated`), which also takes a finite supplied layer ``hoil``.
+:mod:`.cavitated`), which also takes a finite supplied layer ``hoil``.
 
 Limits: no mixed lubrication (a film that closes raises :class:`ConvergenceError`). The full
 domain is solved (features need not be symmetric in Y).
@@ -42,12 +42,11 @@ from ..point.fas import HINT, POINT_POLICY, point_settings
 from ..point.problem import PointProblem
 from ..point.solve import solve_fas
 from ..starved.point import STARVED_MAX_CYCLES_2, STARVED_TOL, solve_starved_point
+from .cavitated import CavitatedPointStepHierarchy, point_domain_mass_error
 from .checkpoint import Checkpoint
-from .features import default_end_time, feature_speed
+from .features import PointFeature, Smooth, default_end_time, feature_speed
+from .hierarchy import TransientPointHierarchy
 from .oil_balance import MASS_TOL
-from .point_cavitated import CavitatedPointStepHierarchy, point_domain_mass_error
-from .point_features import PointFeature, Smooth
-from .point_hierarchy import TransientPointHierarchy
 from .result import TransientResult
 from .stepping import (
     Stepper,
@@ -65,7 +64,7 @@ POINT_TRANSIENT_DEFAULTS = {"points": 129, "deformation": "fft", "tol": 1e-5, "t
 
 #: A mass-conserving step's stall (at any residual) turns on X/Y alternating lines, then halves
 #: the under-relaxations, then ends the cycles for the fine-grid finish
-#: (:meth:`~.point_cavitated.CavitatedPointStepHierarchy.last_resort`; docs/transient.md)
+#: (:meth:`~.cavitated.CavitatedPointStepHierarchy.last_resort`; docs/transient.md)
 CAVITATED_POINT_POLICY = replace(POINT_POLICY, stall_ladder=(("alternate",), ("halve", "W"), ("fail",)),
                                  cyclic_stall=False, shared_ladder=False, quiet_below=0.0)
 
@@ -208,8 +207,8 @@ def solve_transient_point(
     Parameters
     ----------
     problem : the steady :class:`PointProblem` (M, L, theta, lubricant).
-    feature : :class:`~.point_features.Waviness2D`, :class:`~.point_features.Dent2D`,
-        :class:`~.point_features.HeightMap` (film units ``a_phys Rx/a^2``, lengths in a);
+    feature : :class:`~.features.Waviness2D`, :class:`~.features.Dent2D`,
+        :class:`~.features.HeightMap` (film units ``a_phys Rx/a^2``, lengths in a);
         None for smooth surfaces.
     body : the surface carrying the feature (1 or 2); it moves at ``u_body/u_m`` along X.
     slide_roll : ``S = (u1 - u2)/u_m`` in [-2, 2].
@@ -233,7 +232,7 @@ def solve_transient_point(
     cavitation : ``"projection"`` (``P >= 0``: oil is created and lost where the film
         ruptures and reforms) or ``"mass-conserving"`` (Elrod-Adams film content ``theta``,
         the starved point solver's discretisation with the squeeze term
-        ``d(theta rho H)/dT``: :mod:`.point_cavitated`). The result's ``mass_error`` series
+        ``d(theta rho H)/dT``: :mod:`.cavitated`). The result's ``mass_error`` series
         (mass-conserving only) is the oil the whole grid gained in a step over the inflow;
         snapshots carry ``theta``.
     time_tol : local time error per step (relative film error): BDF2 steps sized to it

@@ -39,8 +39,21 @@ import numpy as np
 
 from ..line.problem import LineProblem
 from ..model.errors import InputError, reject_unknown_keys, require_choice, require_range
-from .features import MAX_AMPLITUDE, MAX_DEPTH, SHAPES, Bump, Feature, Profile, Waviness, require_in
-from .point_features import Dent2D, HeightMap, PointFeature, Waviness2D, waviness_span
+from .features import (
+    MAX_AMPLITUDE,
+    MAX_DEPTH,
+    SHAPES,
+    Bump,
+    Dent2D,
+    Feature,
+    HeightMap,
+    PointFeature,
+    Profile,
+    Waviness,
+    Waviness2D,
+    require_in,
+    waviness_span,
+)
 
 KEYS = {"kind", "amplitude", "width", "wavelength", "x0", "shape", "body", "phase"}
 POINT_KEYS = KEYS | {"angle", "y0"}

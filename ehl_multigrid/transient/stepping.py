@@ -127,22 +127,6 @@ class Stepper:
         return solver.solve()
 
 
-class StepGrids:
-    """What a time step's hierarchy of either contact adds to a steady one (mixed in before
-    it): the finest grid :attr:`fine`, where the driver starts (no FMG: :meth:`start`)."""
-
-    grid_stop = False  # a time step converges on its residual (no FMG grids to estimate from)
-    levels: list[Any]
-
-    @property
-    def fine(self) -> Any:
-        return self.levels[-1]
-
-    def start(self, solver: MultilevelSolver) -> int:
-        self.solver = solver
-        return len(self.levels) - 1
-
-
 def require_hoil(hoil: float, T: float) -> None:
     """Refuse a supplied layer that is not positive (at time ``T``)."""
     if not hoil > 0.0:
