@@ -80,10 +80,8 @@ def point_transient_options(options: PointOptions | None = None, **kw: Any) -> P
     return PointOptions.build(base, **{**kw, "raise_on_failure": False, "half": False})
 
 
-def max_point_time_step(feature: PointFeature, speed: float) -> float:
-    """Largest ``dT`` accepted: the feature and the free film waves (the mean speed) move at
-    most :data:`~.stepping.MAX_STEP_FRACTION` of the feature's length scale along X."""
-    return max_time_step(feature, speed)
+#: largest ``dT`` accepted: the line contact's rule, along X (:func:`~.stepping.max_time_step`)
+max_point_time_step = max_time_step
 
 
 @dataclass
@@ -210,16 +208,14 @@ def solve_transient_point(
     feature : :class:`~.features.Waviness2D`, :class:`~.features.Dent2D`,
         :class:`~.features.HeightMap` (film units ``a_phys Rx/a^2``, lengths in a);
         None for smooth surfaces.
-    body : the surface carrying the feature (1 or 2); it moves at ``u_body/u_m`` along X.
-    slide_roll : ``S = (u1 - u2)/u_m`` in [-2, 2].
     dt : time step ``dT`` (``T = t u_m/a``); default: one mesh size per step at the faster of
         the feature and the mean flow (Courant 1). Allowed: ``(0, max_point_time_step]``.
     steps, t_end : number of steps, or the end time (default: until a dent's centre or a
         map's upstream edge has reached ``xmax``; waviness: one transit plus three periods).
     options : :class:`PointOptions` of every step (defaults :data:`POINT_TRANSIENT_DEFAULTS`);
         keywords override fields.
-    scheme, snapshot_every, initial, callback, checkpoint, resume : as
-        :func:`~.solve.solve_transient_line` (``initial`` is ``(P[j, i], H00)``).
+    body, slide_roll, scheme, snapshot_every, initial, callback, checkpoint, resume, time_tol,
+    mass_tol : as :func:`~.solve.solve_transient_line` (``initial`` is ``(P[j, i], H00)``).
     accept_stall : a step whose cycles end above the tolerances (stalled, cycle limit, or
         rejected cycles: seen as a limit cycle of the cavitation boundary when a dent or rough
         patch leaves the contact) is accepted when the relative residual and load error of
@@ -235,13 +231,6 @@ def solve_transient_point(
         ``d(theta rho H)/dT``: :mod:`.cavitated`). The result's ``mass_error`` series
         (mass-conserving only) is the oil the whole grid gained in a step over the inflow;
         snapshots carry ``theta``.
-    time_tol : local time error per step (relative film error): BDF2 steps sized to it
-        inside each output step ``dt`` (as :func:`~.solve.solve_transient_line`); None: one
-        step per ``dt``. Allowed: [1e-8, 0.1].
-    mass_tol : mass-conserving cavitation: the oil a step may gain or lose over the inflow
-        (its domain mass error). Steps whose tolerances hold take more finest-grid cycles
-        while it is above ``mass_tol`` and still falling (:mod:`.oil_balance`); None: the
-        tolerances alone. Allowed: [1e-12, 1] or None.
     hoil : the oil layer supplied ahead of the contact (Venner units ``hoil Rx/a^2``, both
         surfaces, ambient density: :func:`~ehl_multigrid.starved.supply.hoil_venner` with
         ``a``, ``Rx`` converts metres); ``inf``: a flooded inlet; or a function of ``T``. A
@@ -318,12 +307,8 @@ def solve_transient_point(
                                    X=fine.X.copy(), Y=fine.Y.copy(), yf=float(getattr(feature, "y0", 0.0)),
                                    cavitation=cavitation, hoil=hz.hoil if mass_conserving else hoil,
                                    mass_tol=getattr(hz, "mass_tol", None))
-        ic = int(np.argmin(np.abs(fine.X)))
-        jc = int(np.argmin(np.abs(fine.Y)))
-        boa = problem.b_over_a
-        zone = (fine.X[None, :] ** 2 + (fine.Y[:, None] / boa) ** 2 <= 1.5**2) | (steady.P > 0)
-        out.Hc_steady = float(steady.H[jc, ic])
-        out.Hm_steady = float(np.min(steady.H[zone]))
+        out.Hc_steady = float(steady.H[int(np.argmin(np.abs(fine.Y))), int(np.argmin(np.abs(fine.X)))])
+        out.Hm_steady = float(np.min(steady.H[out._within(1.5) | (steady.P > 0)]))
         hz.h00_step_max = 0.1 * max(out.Hc_steady, 1e-6)
         # the mass-conserving model starts from its own steady discretisation (the core's
         # solution is the projection's, with another outlet and wedge)

@@ -498,19 +498,15 @@ def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, sc
                 out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
                 out.series["stalled"].append(0.0 if res.success else 1.0)
                 out.series["substeps"].append(float(solves))
+                # the history: the output step before (fixed steps), or the last two steps taken
+                prev = {"P_prev": last["P"], "H0_prev": last["H0"], "q_prev": last["q"]}
                 if time_tol is not None:
                     out.series.setdefault("time_error", [math.nan] * n).append(terr)
                     out.series.setdefault("rejected", [0.0] * n).append(float(rejected))
-                    # the last two steps taken (not the output step) carry the history
-                    out.state = {"step": n, "T": T, "P": nxt["P"], "H0": nxt["H0"],
-                                 "P_prev": nxt["P_prev"], "H0_prev": nxt["H0_prev"], "q": q,
-                                 "q_prev": nxt["q_prev"], "dt_prev": nxt["dt_prev"],
-                                 "q_prev2": nxt["q_prev2"], "dt_prev2": nxt["dt_prev2"],
-                                 "h_next": nxt["h_next"], "theta": nxt["theta"]}
-                else:
-                    out.state = {"step": n, "T": T, "P": nxt["P"], "H0": nxt["H0"],
-                                 "P_prev": last["P"], "H0_prev": last["H0"], "q": q,
-                                 "q_prev": last["q"], "theta": nxt["theta"]}
+                    prev = {k: nxt[k] for k in ("P_prev", "H0_prev", "q_prev", "dt_prev", "q_prev2",
+                                                "dt_prev2", "h_next")}
+                out.state = {"step": n, "T": T, "P": nxt["P"], "H0": nxt["H0"], "q": q,
+                             "theta": nxt["theta"], **prev}
             if checkpoint is not None:
                 checkpoint.step(out)
             if callback is not None:
