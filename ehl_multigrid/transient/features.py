@@ -148,6 +148,20 @@ class ShapedFeature(Described):
         """The position whose arrival at the outlet ends a default run: the centre."""
         return self.x0
 
+    def check_domain(self, xmin: float, xmax: float, ymax: float | None = None) -> None:
+        """The whole feature (``reach`` around its centre) must start inside the domain
+        ``[xmin, xmax]`` (a point contact's dent also inside ``|Y| <= ymax``)."""
+        f, reach, line = self.reach / self.width, self.reach, ymax is None
+        along = f"[{xmin:g}, {xmax:g}]" if line else f"X in [{xmin:g}, {xmax:g}]"
+        require_in("feature.width", self.width, 1e-3,
+                   (0.5 * (xmax - xmin) if line else min(0.5 * (xmax - xmin), ymax)) / f, "-",
+                   f"the feature must fit in the domain {along}" + ("" if line else f", |Y| <= {ymax:g}"))
+        require_in("feature.x0", self.x0, xmin + reach, xmax - reach, "-",
+                   f"the whole feature must start inside the domain {along}")
+        if not line:
+            require_in("feature.y0", self.y0, -ymax + reach, ymax - reach, "-",
+                       f"the whole feature must lie inside |Y| <= {ymax:g}")
+
     @property
     def reach(self) -> float:
         """Distance from the centre beyond which the height is negligible: ``W`` for the
@@ -193,14 +207,6 @@ class Bump(ShapedFeature):
         if self.shape == "gaussian":
             return self.amplitude * np.exp(-((s / self.width) ** 2))
         return self.amplitude * 10.0 ** (-10.0 * (s / self.width) ** 2) * np.cos(2.0 * math.pi * s / self.width)
-
-    def check_domain(self, xmin: float, xmax: float) -> None:
-        """The feature (``x0 +- reach``) must fit in the domain at the start."""
-        reach = self.reach
-        require_in("feature.width", self.width, 1e-3, 0.5 * (xmax - xmin) / (reach / self.width),
-                   "-", f"the feature must fit in the domain [{xmin:g}, {xmax:g}]")
-        require_in("feature.x0", self.x0, xmin + reach, xmax - reach, "-",
-                   f"the whole feature must start inside the domain [{xmin:g}, {xmax:g}]")
 
 
 @dataclass(frozen=True, eq=False)
@@ -410,16 +416,6 @@ class Dent2D(ShapedFeature):
         if self.shape == "gaussian":
             return self.amplitude * np.exp(-r2)
         return self.amplitude * 10.0 ** (-10.0 * r2) * np.cos(2.0 * math.pi * np.sqrt(r2))
-
-    def check_domain(self, xmin: float, xmax: float, ymax: float) -> None:
-        """The whole feature (``reach`` around its centre) must start inside the domain."""
-        f = self.reach / self.width
-        require_in("feature.width", self.width, 1e-3, min(0.5 * (xmax - xmin), ymax) / f, "-",
-                   f"the feature must fit in the domain X in [{xmin:g}, {xmax:g}], |Y| <= {ymax:g}")
-        require_in("feature.x0", self.x0, xmin + self.reach, xmax - self.reach, "-",
-                   f"the whole feature must start inside the domain X in [{xmin:g}, {xmax:g}]")
-        require_in("feature.y0", self.y0, -ymax + self.reach, ymax - self.reach, "-",
-                   f"the whole feature must lie inside |Y| <= {ymax:g}")
 
 
 @dataclass(frozen=True, eq=False)
