@@ -36,7 +36,7 @@ class Checkpoint:
 
     ``write`` writes the run as it stands (a run that ended early: its final, incomplete
     file). ``run``: the parameters of the run, stored with it (what ``--resume`` compares).
-    ``writes`` and ``write_s`` count the writes and their total time.
+    ``writes`` counts the writes.
     """
 
     def __init__(self, path: str | os.PathLike, every_s: float = EVERY_S, every_steps: int = 0,
@@ -51,7 +51,6 @@ class Checkpoint:
         self.last: float | None = None
         self.cost = 0.0
         self.writes = 0
-        self.write_s = 0.0
 
     def due(self, out: Any) -> bool:
         """Whether the run ``out`` (its last step just completed) is to be written now."""
@@ -87,7 +86,6 @@ class Checkpoint:
         self.last = self.clock()
         self.cost = self.last - t
         self.writes += 1
-        self.write_s += self.cost
         return path
 
 

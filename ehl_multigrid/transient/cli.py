@@ -13,7 +13,6 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from collections.abc import Callable
 from typing import Any
 
 from ..app.console import add_common_options, locked_command
@@ -99,55 +98,30 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
     every = require_range("--checkpoint-every", args.checkpoint_every, 0.0, 1e6, "s")
     scene = load_scene(args.scene)
     require_slip("operating.slip", scene.slip)
-    if scene.kind != "line":
-        return run_transient_point(args, scene, every)
-    from ..line.problem import LineProblem
-    from .scene_feature import feature_from_scene_table
-
-    args.points = DEFAULT_POINTS["line"] if args.points is None else args.points
-    # the feature, its body and the scales of the report (the front door builds the same run)
-    pb = LineProblem.from_scene(scene, xmin=args.xmin)
-    feature, body = feature_from_scene_table(scene.feature, pb)
-    scale = pb.b**2 / pb.R
-    notes = supply_notes(scene, feature, scale, args.cavitation == "mass-conserving")
-
-    def solve(checkpoint: Checkpoint, resume: dict[str, Any] | None) -> Any:
-        return _front_door(scene, args, args.points, checkpoint, resume)
-
-    def figures() -> tuple[Callable, Callable, Callable]:
-        from .plots import animate, plot_series, plot_snapshots
-
-        return plot_series, plot_snapshots, animate
-
-    return _run(args, scene, args.points, every, notes, [], solve, feature, body, scale, pb.pmax,
-                None, figures)
-
-
-def run_transient_point(args: argparse.Namespace, scene: Any, every: float = EVERY_S) -> dict[str, Any]:
-    """The point or elliptic contact of ``ehl transient``."""
-    from ..point.problem import problem_from_scene, resolve_domain
-    from .scene_feature import point_feature_from_scene_table
-
-    points = DEFAULT_POINTS["point"] if args.points is None else args.points
-    _require_points(points, MAX_POINT_POINTS, f" for a {scene.kind} contact")
-    require_range("--xmin", args.xmin, -20000.0, -1.05, "- (x/a)")
-    pb = problem_from_scene(scene)
+    line = scene.kind == "line"
+    points = DEFAULT_POINTS["line" if line else "point"] if args.points is None else args.points
     warnings: list[str] = []
-    feature, body = point_feature_from_scene_table(scene.feature, pb,
-                                                   resolve_domain(pb, args.xmin, None, None), warnings)
-    scale = pb.a**2 / pb.Rx
+    # the feature, its body and the scales of the report (the front door builds the same run)
+    if line:
+        from ..line.problem import LineProblem
+        from .scene_feature import feature_from_scene_table
+
+        pb = LineProblem.from_scene(scene, xmin=args.xmin)
+        feature, body = feature_from_scene_table(scene.feature, pb)
+        scale = pb.b**2 / pb.R
+    else:
+        from ..point.problem import problem_from_scene, resolve_domain
+        from .scene_feature import point_feature_from_scene_table
+
+        _require_points(points, MAX_POINT_POINTS, f" for a {scene.kind} contact")
+        require_range("--xmin", args.xmin, -20000.0, -1.05, "- (x/a)")
+        pb = problem_from_scene(scene)
+        feature, body = point_feature_from_scene_table(
+            scene.feature, pb, resolve_domain(pb, args.xmin, None, None), warnings)
+        scale = pb.a**2 / pb.Rx
     notes = supply_notes(scene, feature, scale, args.cavitation == "mass-conserving")
-
-    def solve(checkpoint: Checkpoint, resume: dict[str, Any] | None) -> Any:
-        return _front_door(scene, args, points, checkpoint, resume)
-
-    def figures() -> tuple[Callable, Callable, Callable]:
-        from .point_plots import animate_point, plot_point_series, plot_point_snapshots
-
-        return plot_point_series, plot_point_snapshots, animate_point
-
-    return _run(args, scene, points, every, notes, warnings, solve, feature, body, scale, pb.pmax,
-                scene.kind, figures)
+    return _run(args, scene, points, every, notes, warnings, feature, body, scale, pb.pmax,
+                None if line else scene.kind)
 
 
 def speeds_note(u1: float, u2: float, body: int | None) -> str:
@@ -192,9 +166,8 @@ def _require_points(points: int, most: int, where: str = "") -> None:
 
 
 def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes: list[str],
-         warnings: list[str], solve: Callable[[Checkpoint, Any], Any], feature: Any, body: int,
-         scale: float, pmax: float, contact: str | None,
-         figures: Callable[[], tuple[Callable, Callable, Callable]]) -> dict[str, Any]:
+         warnings: list[str], feature: Any, body: int, scale: float, pmax: float,
+         contact: str | None) -> dict[str, Any]:
     """Solve with checkpoints into the output file and report; a failed step reports the
     steps before it (not converged), a signal or interrupt propagates after they are written."""
     out = writable_dir(args.out)
@@ -211,7 +184,7 @@ def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes:
         print(f"ehl transient: note: {text}", file=sys.stderr)
     checkpoint = Checkpoint(h5, every_s=every if every > 0 else math.inf, run=run)
     try:
-        sol = solve(checkpoint, resume)
+        sol = _front_door(scene, args, points, checkpoint, resume)
     except BaseException as raised:
         # a signal inside a compiled kernel surfaces as a SystemError caused by it
         exc = signal_cause(raised)
@@ -231,8 +204,8 @@ def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes:
     if failure is not None:
         if res is None or not checkpoint.writes:
             raise ConvergenceError(failure)
-        return _report(args, scene, res, feature, body, scale, pmax, contact, figures, out, stem,
-                       h5, notes, warnings, failure=failure)
+        return _report(args, scene, res, feature, body, scale, pmax, contact, out, stem, h5, notes,
+                       warnings, failure=failure)
     res.run = run
     if getattr(args, "time_error", False):
         t = sol.error.parts["time"]
@@ -241,13 +214,12 @@ def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes:
         time_part = {"Hc": t.Hc, "Hm": t.Hm}
     else:
         time_part = None
-    return _report(args, scene, res, feature, body, scale, pmax, contact, figures, out, stem, h5,
-                   notes, warnings, time_part=time_part)
+    return _report(args, scene, res, feature, body, scale, pmax, contact, out, stem, h5, notes,
+                   warnings, time_part=time_part)
 
 
 def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: int, scale: float,
-            pmax: float, contact: str | None, figures: Callable[[], tuple[Callable, Callable, Callable]],
-            out: Any, stem: str, h5: Any, notes: list[str], warnings: list[str],
+            pmax: float, contact: str | None, out: Any, stem: str, h5: Any, notes: list[str], warnings: list[str],
             failure: str | None = None, time_part: dict[str, float] | None = None) -> dict[str, Any]:
     """Write the run (HDF5, figures) and return the payload of ``ehl transient`` (printing a
     line without ``--json``). ``scale``: metres per film unit; ``pmax``: Pa per pressure unit;
@@ -296,7 +268,8 @@ def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: 
         if point:
             payload["load_fraction_below_threshold"] = res.load_fraction_below(args.threshold / scale)
     if not args.no_plots:
-        plot_series, plot_snapshots, animate = figures()
+        from .plots import animate, plot_series, plot_snapshots
+
         payload["plots"] = [str(plot_series(res, output_file(out, stem + "_series", ".png"))),
                             str(plot_snapshots(res, output_file(out, stem + "_snapshots", ".png")))]
         if args.animate:

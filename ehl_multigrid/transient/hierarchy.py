@@ -1,19 +1,29 @@
-"""Grid hierarchy of one implicit time step of the line contact, for the shared multilevel
-driver (:class:`~ehl_multigrid.multigrid.driver.MultilevelSolver`).
+"""Grid hierarchies of one implicit time step of the line and the point contact, for the
+shared multilevel driver (:class:`~ehl_multigrid.multigrid.driver.MultilevelSolver`).
 
-It is the steady line hierarchy (:class:`~ehl_multigrid.line.solver.LineHierarchy`: its
-collective line relaxation, transfers, Brandt-Cryer freezing and film-constant handling)
-with two changes to the discrete operator on every grid:
+Each is the contact's steady hierarchy (line: :class:`~ehl_multigrid.line.solver.LineHierarchy`,
+its collective line relaxation, transfers, Brandt-Cryer freezing and film-constant handling;
+point: :class:`~ehl_multigrid.point.fas.PointHierarchy`, zebra line relaxation, transfers, H00 on
+the coarsest grid) with two changes to the discrete operator on every grid, and the start on
+the finest grid (no FMG: :class:`StepGrids`):
 
-* the film holds the moving surface geometry ``-R(X - c T)`` at the new time level, evaluated
-  on each grid's own nodes (so the coarse grids see the feature where it is);
-* the Reynolds equation holds the squeeze term ``d(rho H)/dT`` of the BDF1/BDF2 step
-  (discrete.py). The history part ``s`` is a constant of the step and cancels in the FAS
-  coarse-grid equations, so only the finest grid carries it; ``c_t`` is the same on all grids.
+* the film holds the moving surface geometry ``-R(X - c T)`` (point ``-R(X - c T, Y)``) at the
+  new time level, evaluated on each grid's own nodes (so the coarse grids see the feature where
+  it is; the point contact's enters the film kernel as an extra deformation ``-R/cd``, so every
+  film evaluation of the core carries it);
+* the Reynolds equation holds the squeeze term ``d(rho H)/dT = c_t rho H - s`` of the BDF1/BDF2
+  step (discrete.py). The history part ``s`` is a constant of the step: on the line it cancels
+  in the FAS coarse-grid equations, so only the finest grid carries it, with ``c_t`` the same
+  on all grids; on the point the core's squeeze coefficient :attr:`PointHierarchy.ct` carries
+  ``c_t`` and the finest grid's right-hand side is ``f = -s``, which the FAS coarse-grid
+  equations inherit through the residual.
 
-The load balance ``h sum P = pi/2`` holds at every step (constant load); ``H0`` is free. The
-coarsest grid is relaxed (with the film-constant update) instead of the steady path's dense
-Newton, whose Jacobian has no squeeze term.
+The grids' additions are :class:`TimeStepGrids` (line) and :class:`PointTimeStepGrids` (point),
+mixed into the steady hierarchies here and into the starved (mass-conserving) ones in
+:mod:`.cavitated` and :mod:`.cavitated`. The load (line ``h sum P = pi/2``, point
+``int int P = 2 pi b/(3a)``) holds at every step (constant load); the film constant is free.
+The line's coarsest grid is relaxed (with the film-constant update) instead of the steady
+path's dense Newton, whose Jacobian has no squeeze term.
 """
 
 from __future__ import annotations
@@ -34,8 +44,11 @@ from ..line.level import LineLevel, State, solve_band
 from ..line.problem import LineProblem
 from ..line.solver import LineHierarchy
 from ..multigrid.driver import MultilevelSolver
-from ..multigrid.options import LineOptions
+from ..multigrid.options import LineOptions, PointOptions
 from ..multigrid.policy import Settings
+from ..point import numerics as nm
+from ..point.fas import Level, PointHierarchy
+from ..point.problem import PointProblem
 from .discrete import add_squeeze_band
 
 #: relaxation sweeps of one coarsest-grid visit
@@ -85,18 +98,29 @@ class TransientLineLevel(LineLevel):
         return st
 
 
-class TimeStepGrids:
+class StepGrids:
+    """What a time step's hierarchy of either contact adds to a steady one (mixed in before
+    it): the finest grid :attr:`fine`, where the driver starts (no FMG: :meth:`start`)."""
+
+    grid_stop = False  # a time step converges on its residual (no FMG grids to estimate from)
+    levels: list[Any]
+
+    @property
+    def fine(self) -> Any:
+        return self.levels[-1]
+
+    def start(self, solver: MultilevelSolver) -> int:
+        self.solver = solver
+        return len(self.levels) - 1
+
+
+class TimeStepGrids(StepGrids):
     """What a time step's hierarchy adds to a steady line hierarchy (mixed in before it):
     the moving geometry and the squeeze term on every grid (:meth:`set_step`), the start on
     the finest grid (no FMG), the coarsest grid relaxed, no dense-Newton last resort. The
     grids' levels carry ``R``, ``ct`` and ``hist``."""
 
-    grid_stop = False  # a time step converges on its residual (no FMG grids to estimate from)
     geometry: Callable[[np.ndarray], np.ndarray]
-
-    @property
-    def fine(self) -> Any:
-        return self.levels[-1]
 
     def set_step(self, shift: float, ct: float, hist: np.ndarray) -> None:
         """Geometry displaced by ``shift`` (``R(X - shift)``) on every grid, squeeze
@@ -109,10 +133,6 @@ class TimeStepGrids:
         self.fine.f = np.zeros(self.fine.n)
         self.fine.g = 0.5 * math.pi
         self.fine.frozen[:] = False
-
-    def start(self, solver: MultilevelSolver) -> int:
-        self.solver = solver
-        return len(self.levels) - 1
 
     def coarse_solve(self, k: int, s: Settings) -> float:
         return self.relax(k, COARSE_SWEEPS, s, True)
@@ -133,3 +153,66 @@ class TransientLineHierarchy(TimeStepGrids, LineHierarchy):
                  geometry: Callable[[np.ndarray], np.ndarray]) -> None:
         super().__init__(problem, options)
         self.geometry = geometry
+
+
+class PointTimeStepGrids(StepGrids):
+    """What a time step's hierarchy adds to a steady point hierarchy (mixed in before it):
+    the moving geometry ``R`` on every grid and the squeeze term (:meth:`set_step`), the start
+    on the finest grid (no FMG). Call :meth:`_init_step_grids` after the steady hierarchy's
+    ``__init__``."""
+
+    local_update = False  # its time steps were measured with the full refresh after every sweep
+    geometry: Callable[[np.ndarray, np.ndarray], np.ndarray]
+    levels: list[Level]
+
+    def _init_step_grids(self, geometry: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> None:
+        self.geometry = geometry
+        for lev in self.levels:
+            lev.R = np.zeros_like(lev.P)
+            lev.W = np.zeros_like(lev.P)  # its film subtracts the surface from W on every grid
+        self.hist = np.zeros_like(self.fine.P)
+
+    def update_film(self, lev: Level) -> None:
+        self.threads.for_size(lev.npts)
+        lev.W = lev.defo(lev.P, out=lev.W)
+        lev.W -= lev.R / self.cd  # H = H00 + X^2/2 + theta Y^2/2 + cd W - R
+        nm.film(lev.W, lev.X, lev.Y, self.H00, self.theta, self.cd, lev.H)
+        nm.fluid_properties(lev.P, lev.H, self.par, self.lam, lev.rho, lev.eps)
+
+    def set_step(self, shift: float, ct: float, hist: np.ndarray) -> None:
+        """Geometry displaced by ``shift`` along X on every grid, squeeze coefficient ``ct``,
+        history ``hist`` (the finest grid's ``f = -hist``)."""
+        for lev in self.levels:
+            lev.R = np.ascontiguousarray(self.geometry(lev.X[None, :] - shift, lev.Y[:, None]),
+                                         dtype=float)
+        self.ct = float(ct)
+        self.hist = np.ascontiguousarray(hist, dtype=float).copy()
+        fine = self.fine
+        fine.f = -self.hist
+        fine.g = self.g_target
+        self._last_err = None
+        self.update_film(fine)
+
+    def squeeze(self) -> np.ndarray:
+        """``d(rho H)/dT`` on the finest grid (the BDF difference)."""
+        fine = self.fine
+        return self.ct * fine.rho * fine.H - self.hist
+
+    def start(self, solver: MultilevelSolver) -> int:
+        self.gain = solver.settings.h00_gain
+        return super().start(solver)
+
+
+class TransientPointHierarchy(PointTimeStepGrids, PointHierarchy):
+    """Grids of one time step, coarsest first (driver protocol). The finest grid holds the
+    start iterate when the driver starts (:meth:`start` returns the finest level: no FMG)."""
+
+    name = "transient point"
+    far_field_ok = False  # a time step on the core's box, as measured (docs/transient.md)
+
+    def __init__(self, problem: PointProblem, options: PointOptions,
+                 geometry: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> None:
+        if not options.elastic or problem.cd == 0.0:
+            raise ValueError("the transient point hierarchy needs elastic surfaces")
+        super().__init__(problem, options)
+        self._init_step_grids(geometry)

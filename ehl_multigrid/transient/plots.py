@@ -1,4 +1,5 @@
-"""Figures of a transient run: films over time, snapshots, and an animation."""
+"""Figures of a transient run of either contact: films over time, snapshots (line: film and
+pressure profiles; point: film maps and the row through the feature), and an animation."""
 
 from __future__ import annotations
 
@@ -13,21 +14,25 @@ from matplotlib.figure import Figure
 from ..model.atomic import atomic_path, atomic_savefig
 from .result import TransientResult
 
+#: per contact: the label of Hc, the film unit and the time unit of the series figure
+SERIES_LABELS = {False: ("Hc (X = 0)", "H (Venner)", "T = t u_m / b"),
+                 True: ("Hc (X = Y = 0)", "H = h Rx / a^2", "T = t u_m / a")}
+
+
+def is_point(res: TransientResult) -> bool:
+    """Whether ``res`` is a point-contact run (its fields are maps on ``(Y, X)``)."""
+    return getattr(res, "Y", None) is not None
+
 
 def plot_series(res: TransientResult, path: str | Path) -> Path:
-    """Hc(T), Hm(T) and the pressure fluctuation against time."""
-    return series_figure(res, path, "Hc (X = 0)", res.steady.Hc_venner, "H (Venner)", "T = t u_m / b")
-
-
-def series_figure(res: TransientResult, path: str | Path, hc_label: str, hc_steady: float,
-                  film_label: str, time_label: str) -> Path:
-    """Hc(T), Hm(T) with the smooth steady ``hc_steady`` (top) and the pressure fluctuation
-    and the largest pressure (bottom) against time, written to ``path``."""
+    """Hc(T), Hm(T) with the smooth steady Hc (top) and the pressure fluctuation and the
+    largest pressure (bottom) against time, written to ``path``."""
+    hc_label, film_label, time_label = SERIES_LABELS[is_point(res)]
     fig = Figure(figsize=(7, 5), layout="constrained")
     ax = fig.subplots(2, 1, sharex=True)
     ax[0].plot(res.T, res.Hc, label=hc_label)
     ax[0].plot(res.T, res.Hm, label="Hm")
-    ax[0].axhline(hc_steady, color="k", ls=":", lw=0.8, label="smooth steady Hc")
+    ax[0].axhline(res.steady_film("Hc"), color="k", ls=":", lw=0.8, label="smooth steady Hc")
     ax[0].set_ylabel(film_label)
     ax[0].legend(fontsize=8)
     ax[1].plot(res.T, res.dP, label="max |P - P_smooth|")
@@ -45,9 +50,12 @@ def mark_incomplete(fig: Figure, res: TransientResult) -> None:
         fig.suptitle("\n".join(textwrap.wrap(text, 110, max_lines=2)), color="C3", fontsize=8)
 
 
-def plot_snapshots(res: TransientResult, path: str | Path, count: int = 6) -> Path:
-    """Film and pressure at up to ``count`` kept steps spread over the run."""
-    pick = spread_steps(res, count)
+def plot_snapshots(res: TransientResult, path: str | Path, count: int | None = None) -> Path:
+    """Film and pressure at up to ``count`` kept steps spread over the run (default 6 line
+    profiles, 4 point film maps)."""
+    if is_point(res):
+        return _plot_point_snapshots(res, path, 4 if count is None else count)
+    pick = spread_steps(res, 6 if count is None else count)
     fig = Figure(figsize=(7, 6), layout="constrained")
     ax = fig.subplots(2, 1, sharex=True)
     T = res.T
@@ -66,9 +74,12 @@ def plot_snapshots(res: TransientResult, path: str | Path, count: int = 6) -> Pa
     return atomic_savefig(fig, path, dpi=110)
 
 
-def animate(res: TransientResult, path: str | Path, fps: int = 15) -> Path:
-    """GIF of H and P over the kept steps (matplotlib's Pillow writer)."""
+def animate(res: TransientResult, path: str | Path, fps: int | None = None) -> Path:
+    """GIF over the kept steps (matplotlib's Pillow writer): H and P (line, 15 frames/s), the
+    film map with pressure contours (point, 12 frames/s)."""
     steps = sorted(res.snapshots)
+    if is_point(res):
+        return _animate_point(res, path, steps, 12 if fps is None else fps)
     fig = Figure(figsize=(6, 5))
     ax = fig.subplots(2, 1, sharex=True)
     (lh,) = ax[0].plot(res.X, res.snapshots[steps[0]]["H"])
@@ -85,7 +96,7 @@ def animate(res: TransientResult, path: str | Path, fps: int = 15) -> Path:
         title.set_text(f"T = {res.T[n]:.3f}")
         return lh, lp, title
 
-    return save_animation(fig, frame, steps, path, fps)
+    return save_animation(fig, frame, steps, path, 15 if fps is None else fps)
 
 
 def spread_steps(res: TransientResult, count: int) -> list[int]:
@@ -103,3 +114,57 @@ def save_animation(fig: Figure, frame: Callable[[int], Any], steps: list[int], p
     with atomic_path(path, keep_suffix=True) as tmp:  # Pillow picks the format by the suffix
         anim.save(str(tmp), writer=PillowWriter(fps=fps))
     return Path(path)
+
+
+def _film_map(ax: Any, res: Any, snap: dict[str, np.ndarray], hi: float,
+              xmin: float) -> Any:
+    """Film map ``0 .. hi`` with pressure contours on ``X in [xmin, 1.5]``, ``|Y| <= 1.5``."""
+    im = ax.pcolormesh(res.X, res.Y, snap["H"], vmin=0, vmax=hi, shading="auto", cmap="viridis")
+    ax.contour(res.X, res.Y, snap["P"], levels=[0.2, 0.5, 0.8], colors="w", linewidths=0.5)
+    ax.set_xlim(xmin, 1.5)
+    ax.set_ylim(-1.5, 1.5)
+    ax.set_aspect("equal")
+    return im
+
+
+def _plot_point_snapshots(res: Any, path: str | Path, count: int) -> Path:
+    """Film maps at up to ``count`` kept steps (top) and the film and pressure on the row
+    through the feature (bottom)."""
+    pick = spread_steps(res, count)
+    fig = Figure(figsize=(3 * len(pick), 7), layout="constrained")
+    axes = fig.subplots(2, len(pick), squeeze=False)
+    j = int(np.argmin(np.abs(res.Y - res.yf)))
+    hi = 2.5 * res.Hc_steady
+    for k, n in enumerate(pick):
+        s = res.snapshots[n]
+        ax = axes[0, k]
+        im = _film_map(ax, res, s, hi, -1.8)
+        ax.set_title(f"H, T = {res.T[n]:.3g}", fontsize=9)
+        ax2 = axes[1, k]
+        ax2.plot(res.X, s["H"][j], label="H")
+        ax2.plot(res.X, res.steady.H[j], "k:", lw=0.8, label="smooth H")
+        ax2.set_ylim(0, hi)
+        ax2.set_xlim(-1.8, 1.5)
+        ax3 = ax2.twinx()
+        ax3.plot(res.X, s["P"][j], "r", lw=0.8)
+        ax3.set_ylim(0, 1.5 * max(float(np.max(res.Pmax)), 1.0))
+        ax2.set_xlabel("X = x / a")
+    fig.colorbar(im, ax=axes[0, -1])
+    axes[1, 0].legend(fontsize=7)
+    mark_incomplete(fig, res)
+    return atomic_savefig(fig, path, dpi=100)
+
+
+def _animate_point(res: Any, path: str | Path, steps: list[int], fps: int) -> Path:
+    """GIF of the film map with pressure contours over the kept ``steps`` (Pillow writer)."""
+    fig = Figure(figsize=(5, 4.5))
+    ax = fig.subplots()
+    hi = 2.5 * res.Hc_steady
+
+    def frame(n: int):
+        ax.clear()
+        _film_map(ax, res, res.snapshots[n], hi, -2.0)
+        ax.set_title(f"H (0 .. {hi:.3g}), T = {res.T[n]:.3f}", fontsize=9)
+        return []
+
+    return save_animation(fig, frame, steps, path, fps)

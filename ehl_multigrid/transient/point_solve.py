@@ -7,10 +7,10 @@ Venner's dimensionless transient Reynolds equation of a point contact (Venner & 
 ``d/dX(eps dP/dX) + d/dY(eps dP/dY) - d(rho H)/dX - d(rho H)/dT = 0``
 
 (wedge and squeeze terms carry the same factor, so neither has a coefficient), with the film
-of :mod:`.point_features` and the load ``int int P dX dY = 2 pi b/(3a)`` at every step
+of :mod:`.features` and the load ``int int P dX dY = 2 pi b/(3a)`` at every step
 (constant load, H00(T) free). The design is the line contact's (the time loop of :mod:`.stepping`): BDF2 steps
 (the first backward Euler), one FAS solve per step by the shared driver on
-:class:`~.point_hierarchy.TransientPointHierarchy` started from the previous solution
+:class:`~.hierarchy.TransientPointHierarchy` started from the previous solution
 extrapolated in time, the deformation (FFT) recomputed after every relaxation sweep. The
 start is the core steady solution, then the steady equations with the feature frozen at its
 ``T = 0`` position.
@@ -18,7 +18,7 @@ start is the core steady solution, then the steady equations with the feature fr
 Cavitation: the projection ``P >= 0`` of the steady core (default), or mass-conserving
 Elrod-Adams cavitation (``cavitation="mass-conserving"``: the starved point solver's film
 content ``theta`` and discretisation with the squeeze term ``d(theta rho H)/dT``,
-:mod:`.point_cavitated`), which also takes a finite supplied layer ``hoil``.
+:mod:`.cavitated`), which also takes a finite supplied layer ``hoil``.
 
 Limits: no mixed lubrication (a film that closes raises :class:`ConvergenceError`). The full
 domain is solved (features need not be symmetric in Y).
@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -42,21 +42,18 @@ from ..point.fas import HINT, POINT_POLICY, point_settings
 from ..point.problem import PointProblem
 from ..point.solve import solve_fas
 from ..starved.point import STARVED_MAX_CYCLES_2, STARVED_TOL, solve_starved_point
-from .checkpoint import Checkpoint, restore
-from .features import feature_speed
-from .oil_balance import MASS_TOL, require_mass_tol
-from .point_cavitated import CavitatedPointStepHierarchy, cavitated_film, point_domain_mass_error
-from .point_features import PointFeature, Smooth2D
-from .point_hierarchy import TransientPointHierarchy
-from .result import TransientResult
+from .cavitated import CavitatedPointStepHierarchy
+from .checkpoint import Checkpoint
+from .features import PointFeature, Smooth, default_end_time, feature_speed
+from .hierarchy import TransientPointHierarchy
+from .oil_balance import MASS_TOL
+from .result import PointTransientResult
 from .stepping import (
-    SCHEMES,
     Stepper,
-    march,
     max_time_step,
     model_inputs,
     require_steady_start,
-    start,
+    start_and_march,
     time_steps,
 )
 
@@ -64,6 +61,12 @@ from .stepping import (
 #: the default step (measured: 4-6 cycles per step at Courant 1).
 POINT_TRANSIENT_DEFAULTS = {"points": 129, "deformation": "fft", "tol": 1e-5, "tol_load": 1e-6,
                             "max_cycles": 40, "raise_on_failure": False, "half": False}
+
+#: A mass-conserving step's stall (at any residual) turns on X/Y alternating lines, then halves
+#: the under-relaxations, then ends the cycles for the fine-grid finish
+#: (:meth:`~.cavitated.CavitatedPointStepHierarchy.last_resort`; docs/transient.md)
+CAVITATED_POINT_POLICY = replace(POINT_POLICY, stall_ladder=(("alternate",), ("halve", "W"), ("fail",)),
+                                 cyclic_stall=False, shared_ladder=False, quiet_below=0.0)
 
 
 def point_transient_options(options: PointOptions | None = None, **kw: Any) -> PointOptions:
@@ -77,125 +80,8 @@ def point_transient_options(options: PointOptions | None = None, **kw: Any) -> P
     return PointOptions.build(base, **{**kw, "raise_on_failure": False, "half": False})
 
 
-def max_point_time_step(feature: PointFeature, speed: float) -> float:
-    """Largest ``dT`` accepted: the feature and the free film waves (the mean speed) move at
-    most :data:`~.stepping.MAX_STEP_FRACTION` of the feature's length scale along X."""
-    return max_time_step(feature, speed)
-
-
-@dataclass
-class PointTransientResult(TransientResult):
-    """Answer of :func:`solve_transient_point`: the series of :class:`TransientResult`
-    (``Hc`` at X = Y = 0, ``Hm`` the minimum over the loaded zone, ``H0`` = H00, ``dH`` on the
-    row through the feature's reference point) and snapshots of P, H ``[j, i]`` on ``(Y, X)``."""
-
-    Y: np.ndarray | None = None
-    yf: float = 0.0
-    Hc_steady: float = math.nan
-    Hm_steady: float = math.nan
-
-    file_kind = "ehl_transient_point"
-
-    def _problem_dict(self) -> dict[str, Any]:
-        return self.problem.to_dict()
-
-    def _x_feature(self, T: float) -> float:
-        f = self.feature
-        if f.kind == "height_map":
-            x_start, x_end, _, _ = f.extent
-            return 0.5 * (x_start + x_end) + self.speed * T
-        return getattr(f, "x0", 0.0) + self.speed * T
-
-    def _zone(self, X: np.ndarray, Y: np.ndarray, r: float = 1.0) -> np.ndarray:
-        """Nodes of ``(X, Y)`` inside ``r`` times the Hertzian ellipse."""
-        boa = self.problem.b_over_a
-        return X[None, :] ** 2 + (Y[:, None] / boa) ** 2 <= r**2
-
-    def _fields(self, hz: Any) -> tuple[Any, Any]:
-        return hz.fine, hz.fine
-
-    def _within(self, r: float) -> np.ndarray:
-        return self._zone(self.X, self.Y, r)
-
-    def _row(self, F: np.ndarray) -> np.ndarray:
-        return F[int(np.argmin(np.abs(self.Y - self.yf)))]
-
-    def _central_film(self, hz: Any, H: np.ndarray) -> float:
-        return hz.central_film(hz.fine)
-
-    def _film_constant(self, hz: Any) -> float:
-        return hz.H00
-
-    def _start_load_error(self, hz: Any) -> float:
-        return hz.load(hz.fine) / hz.g_target - 1.0
-
-    def steady_film(self, name: str) -> float:
-        return getattr(self, f"{name}_steady")
-
-    def _wavelength_x(self) -> float:
-        return getattr(self.feature, "wavelength_x", math.nan)
-
-    def _summary_head(self) -> dict[str, Any]:
-        pb = self.problem
-        return {"contact": "point", "M": pb.M, "L": pb.L, "theta": pb.theta,
-                "points": int(self.X.size), "points_y": int(self.Y.size),
-                "xmin": float(self.X[0]), "xmax": float(self.X[-1]), "ymax": float(self.Y[-1])}
-
-    def _record_mass_balance(self, hz: Any, st: Any, n: int) -> None:
-        bal = point_mass_balance(hz, terms=True) if n > 0 else {"balance": math.nan, "storage": math.nan}
-        self.series["mass_balance"].append(bal["balance"])
-        self.series.setdefault("storage", []).append(bal["storage"])
-        # oil gained by the whole grid over the inflow (mass-conserving cavitation); NaN for
-        # the projection, which counts every gap behind a rupture as full of oil. A run
-        # continued from a file written before the series existed: NaN before it
-        err = self.series.setdefault("mass_error", [math.nan] * (len(self.series["step"]) - 1))
-        mc = n > 0 and isinstance(hz, CavitatedPointStepHierarchy)
-        err.append(point_domain_mass_error(hz) if mc else math.nan)
-
-    # -- observables ----------------------------------------------------------------------
-    def load_fraction_below(self, threshold: float) -> list[float]:
-        """Per kept step: the fraction of the load carried where ``H <= threshold``."""
-        out = []
-        for n in sorted(self.snapshots):
-            P, H = self.snapshots[n]["P"], self.snapshots[n]["H"]
-            out.append(float(P[H <= threshold].sum() / max(P.sum(), 1e-300)))
-        return out
-
-
-def point_mass_balance(hz: TransientPointHierarchy, box: float = 0.6, terms: bool = False) -> Any:
-    """Discrete mass balance of the control volume ``|X| <= box``, ``|Y| <= box b/a`` (inside the
-    pressurised zone) of the finest grid: storage ``hx hy sum d(rho H)/dT`` minus the net
-    inflow through its faces (Poiseuille ``-eps_face dP/dn``, second-order upwind Couette
-    ``1.5 q_i - 0.5 q_{i-1}`` along X), over the Couette flux through its inlet face. Zero (to the
-    residual) when the discrete equations are in conservation form; NaN when the box holds a
-    cavitated node. ``terms``: a dict with the balance and the storage term (same scaling)."""
-    nan = {"balance": math.nan, "storage": math.nan} if terms else math.nan
-    lv = hz.fine
-    X, Y, P, q, eps = lv.X, lv.Y, lv.P, lv.rho * lv.H, lv.eps
-    hx, hy = lv.hx, lv.hy
-    ii = np.flatnonzero(np.abs(X) <= box)
-    jj = np.flatnonzero(np.abs(Y) <= box * hz.boa)
-    if ii.size < 2 or jj.size < 2 or ii[0] < 3:
-        return nan
-    i0, i1, j0, j1 = ii[0], ii[-1], jj[0], jj[-1]
-    if np.any(P[j0 - 1:j1 + 2, i0 - 1:i1 + 2] <= 0.0):
-        return nan
-    rows = slice(j0, j1 + 1)
-    cols = slice(i0, i1 + 1)
-    storage = hx * hy * float(np.sum(hz.squeeze()[rows, cols]))
-    # X faces (flux q_x = -eps dP/dX + Couette): inlet face i0 - 1/2, outlet face i1 + 1/2
-    c_in = 1.5 * q[rows, i0 - 1] - 0.5 * q[rows, i0 - 2]
-    c_out = 1.5 * q[rows, i1] - 0.5 * q[rows, i1 - 1]
-    p_in = 0.5 * (eps[rows, i0 - 1] + eps[rows, i0]) * (P[rows, i0] - P[rows, i0 - 1]) / hx
-    p_out = 0.5 * (eps[rows, i1] + eps[rows, i1 + 1]) * (P[rows, i1 + 1] - P[rows, i1]) / hx
-    flow_x = hy * float(np.sum((c_in - p_in) - (c_out - p_out)))
-    # Y faces (flux q_y = -eps dP/dY)
-    p_lo = 0.5 * (eps[j0 - 1, cols] + eps[j0, cols]) * (P[j0, cols] - P[j0 - 1, cols]) / hy
-    p_hi = 0.5 * (eps[j1, cols] + eps[j1 + 1, cols]) * (P[j1 + 1, cols] - P[j1, cols]) / hy
-    flow_y = hx * float(np.sum(-p_lo + p_hi))
-    scale = max(hy * float(np.sum(np.abs(c_in))), 1e-300)
-    bal = (storage - (flow_x + flow_y)) / scale
-    return {"balance": bal, "storage": storage / scale} if terms else bal
+#: largest ``dT`` accepted: the line contact's rule, along X (:func:`~.stepping.max_time_step`)
+max_point_time_step = max_time_step
 
 
 def solve_transient_point(
@@ -214,19 +100,17 @@ def solve_transient_point(
     Parameters
     ----------
     problem : the steady :class:`PointProblem` (M, L, theta, lubricant).
-    feature : :class:`~.point_features.Waviness2D`, :class:`~.point_features.Dent2D`,
-        :class:`~.point_features.HeightMap` (film units ``a_phys Rx/a^2``, lengths in a);
+    feature : :class:`~.features.Waviness2D`, :class:`~.features.Dent2D`,
+        :class:`~.features.HeightMap` (film units ``a_phys Rx/a^2``, lengths in a);
         None for smooth surfaces.
-    body : the surface carrying the feature (1 or 2); it moves at ``u_body/u_m`` along X.
-    slide_roll : ``S = (u1 - u2)/u_m`` in [-2, 2].
     dt : time step ``dT`` (``T = t u_m/a``); default: one mesh size per step at the faster of
         the feature and the mean flow (Courant 1). Allowed: ``(0, max_point_time_step]``.
     steps, t_end : number of steps, or the end time (default: until a dent's centre or a
         map's upstream edge has reached ``xmax``; waviness: one transit plus three periods).
     options : :class:`PointOptions` of every step (defaults :data:`POINT_TRANSIENT_DEFAULTS`);
         keywords override fields.
-    scheme, snapshot_every, initial, callback, checkpoint, resume : as
-        :func:`~.solve.solve_transient_line` (``initial`` is ``(P[j, i], H00)``).
+    body, slide_roll, scheme, snapshot_every, initial, callback, checkpoint, resume, time_tol,
+    mass_tol : as :func:`~.solve.solve_transient_line` (``initial`` is ``(P[j, i], H00)``).
     accept_stall : a step whose cycles end above the tolerances (stalled, cycle limit, or
         rejected cycles: seen as a limit cycle of the cavitation boundary when a dent or rough
         patch leaves the contact) is accepted when the relative residual and load error of
@@ -239,16 +123,9 @@ def solve_transient_point(
     cavitation : ``"projection"`` (``P >= 0``: oil is created and lost where the film
         ruptures and reforms) or ``"mass-conserving"`` (Elrod-Adams film content ``theta``,
         the starved point solver's discretisation with the squeeze term
-        ``d(theta rho H)/dT``: :mod:`.point_cavitated`). The result's ``mass_error`` series
+        ``d(theta rho H)/dT``: :mod:`.cavitated`). The result's ``mass_error`` series
         (mass-conserving only) is the oil the whole grid gained in a step over the inflow;
         snapshots carry ``theta``.
-    time_tol : local time error per step (relative film error): BDF2 steps sized to it
-        inside each output step ``dt`` (as :func:`~.solve.solve_transient_line`); None: one
-        step per ``dt``. Allowed: [1e-8, 0.1].
-    mass_tol : mass-conserving cavitation: the oil a step may gain or lose over the inflow
-        (its domain mass error). Steps whose tolerances hold take more finest-grid cycles
-        while it is above ``mass_tol`` and still falling (:mod:`.oil_balance`); None: the
-        tolerances alone. Allowed: [1e-12, 1] or None.
     hoil : the oil layer supplied ahead of the contact (Venner units ``hoil Rx/a^2``, both
         surfaces, ambient density: :func:`~ehl_multigrid.starved.supply.hoil_venner` with
         ``a``, ``Rx`` converts metres); ``inf``: a flooded inlet; or a function of ``T``. A
@@ -273,7 +150,6 @@ def solve_transient_point(
         (``on_film_collapse="raise"``), naming the step; ``partial`` holds the steps before it.
         Raised whatever ``raise_on_failure``, as by :func:`~.solve.solve_transient_line`.
     """
-    require_choice("scheme", scheme, SCHEMES)
     require_choice("on_film_collapse", on_film_collapse, ("raise", "stop"))
     if hoil_y is not None and (callable(hoil) or math.isfinite(hoil)):
         raise InputError("hoil and hoil_y both given: a layer across the track (hoil_y) or one "
@@ -281,10 +157,9 @@ def solve_transient_point(
     if hoil_y is not None and cavitation != "mass-conserving":
         raise InputError(f"hoil_y (a layer across the track) needs cavitation = 'mass-conserving'; "
                          f"got {cavitation!r}")
-    supply, hoil = model_inputs(cavitation, hoil, time_tol)
-    mass_tol = require_mass_tol(mass_tol, cavitation)
+    supply, hoil, mass_tol = model_inputs(scheme, cavitation, hoil, time_tol, mass_tol)
     layer: Any = hoil if hoil_y is None else hoil_y  # what the grids and the start are fed
-    feature = Smooth2D() if feature is None else feature
+    feature = Smooth() if feature is None else feature
     speed = feature_speed(body, slide_roll)
     opts = point_transient_options(options, **kw)
     if not opts.elastic:
@@ -300,11 +175,12 @@ def solve_transient_point(
     feature.check_domain(hz.xmin, hz.xmax, hz.ymax)
     dt, steps, snapshot_every = time_steps(
         feature, speed, fine.hx, dt, steps, t_end, snapshot_every, accept_stall, "a",
-        lambda: default_point_end_time(hz.xmin, hz.xmax, feature, speed))
+        lambda: default_end_time(hz.xmin, hz.xmax, feature, speed))
 
     t0 = time.perf_counter()
-    stepper = _CavitatedPointStepper(hz, problem, opts) if mass_conserving else \
-        _PointStepper(hz, problem, opts)
+    stepper = _PointStepper(hz, problem, opts)
+    if mass_conserving:
+        stepper.policy = CAVITATED_POINT_POLICY
     stepper.supply = supply
     with preserved_threads():
         theta0 = None
@@ -326,46 +202,22 @@ def solve_transient_point(
                                    X=fine.X.copy(), Y=fine.Y.copy(), yf=float(getattr(feature, "y0", 0.0)),
                                    cavitation=cavitation, hoil=hz.hoil if mass_conserving else hoil,
                                    mass_tol=getattr(hz, "mass_tol", None))
-        ic = int(np.argmin(np.abs(fine.X)))
-        jc = int(np.argmin(np.abs(fine.Y)))
-        boa = problem.b_over_a
-        zone = (fine.X[None, :] ** 2 + (fine.Y[:, None] / boa) ** 2 <= 1.5**2) | (steady.P > 0)
-        out.Hc_steady = float(steady.H[jc, ic])
-        out.Hm_steady = float(np.min(steady.H[zone]))
+        out.Hc_steady = float(steady.H[int(np.argmin(np.abs(fine.Y))), int(np.argmin(np.abs(fine.X)))])
+        out.Hm_steady = float(np.min(steady.H[out._within(1.5) | (steady.P > 0)]))
         hz.h00_step_max = 0.1 * max(out.Hc_steady, 1e-6)
-        if resume is None:
-            stepper.set_content(theta0)
-            # the mass-conserving model starts from its own steady discretisation (the core's
-            # solution is the projection's, with another outlet and wedge)
-            start(stepper, out, steady.P.copy(), steady.H0, initial,
-                  feature.kind != "smooth" or mass_conserving, t0)
-        else:
-            restore(out, resume, snapshot_every)
-        march(stepper, out, speed=speed, dt=dt, steps=steps, scheme=scheme,
-              snapshot_every=snapshot_every, accept_stall=accept_stall,
-              on_film_collapse=on_film_collapse, callback=callback, t0=t0, checkpoint=checkpoint,
-              time_tol=time_tol)
+        # the mass-conserving model starts from its own steady discretisation (the core's
+        # solution is the projection's, with another outlet and wedge)
+        start_and_march(stepper, out, steady, theta0, initial, feature.kind != "smooth" or mass_conserving,
+                        resume, t0, speed=speed, dt=dt, steps=steps, scheme=scheme,
+                        snapshot_every=snapshot_every, accept_stall=accept_stall,
+                        on_film_collapse=on_film_collapse, callback=callback, checkpoint=checkpoint,
+                        time_tol=time_tol)
     return out
 
 
-def default_point_end_time(xmin: float, xmax: float, feature: PointFeature, speed: float) -> float:
-    """A dent: until its centre reaches ``xmax``; a height map: until its upstream edge does;
-    waviness: one transit of the domain plus three X periods; smooth: two transits."""
-    span = xmax - xmin
-    moving = speed > 1e-9
-    if feature.kind == "smooth":
-        return 2.0 * span
-    if feature.kind == "bump":
-        return (xmax - feature.x0) / speed if moving else span
-    if feature.kind == "height_map":
-        return (xmax - feature.extent[0]) / speed if moving else span
-    wl = feature.wavelength_x
-    period = wl / abs(speed) if math.isfinite(wl) and abs(speed) > 1e-9 else 0.0
-    return span + 3.0 * period
-
-
 class _PointStepper(Stepper):
-    """The point contact's side of the time loop."""
+    """The point contact's side of the time loop (either cavitation model, whose ``policy``
+    the run sets); ``supply`` (optional): the supplied layer as a function of time."""
 
     name = "point"
     hint = HINT
@@ -385,7 +237,9 @@ class _PointStepper(Stepper):
 
     def film(self) -> tuple[np.ndarray, np.ndarray]:
         fine = self.hz.fine
-        return fine.H, fine.rho * fine.H
+        if getattr(fine, "theta", None) is None:
+            return fine.H, fine.rho * fine.H
+        return fine.H, fine.theta * fine.rho * fine.H  # mass-conserving: the oil carried
 
     def accept_stalled(self, res: EHLResult, accept_stall: float) -> bool:
         # cycles that stall, hit the cycle limit or are rejected leave the best accepted
@@ -394,23 +248,6 @@ class _PointStepper(Stepper):
             return False
         m = self.hz.measure(len(self.hz.levels) - 1)
         return bool(m.ok and m.residual < accept_stall and m.load_error < accept_stall)
-
-
-#: A mass-conserving step's stall (at any residual) turns on X/Y alternating lines, then halves
-#: the under-relaxations, then ends the cycles for the fine-grid finish
-#: (:meth:`~.point_cavitated.CavitatedPointStepHierarchy.last_resort`; docs/transient.md)
-CAVITATED_POINT_POLICY = replace(POINT_POLICY, stall_ladder=(("alternate",), ("halve", "W"), ("fail",)),
-                                 cyclic_stall=False, shared_ladder=False, quiet_below=0.0)
-
-
-class _CavitatedPointStepper(_PointStepper):
-    """The mass-conserving point contact's side of the time loop: the oil carried is
-    ``theta rho H``; ``supply`` (optional): the supplied layer as a function of time."""
-
-    policy = CAVITATED_POINT_POLICY
-
-    def film(self) -> tuple[np.ndarray, np.ndarray]:
-        return cavitated_film(self.hz)
 
 
 def _within_step_tolerance(res: EHLResult, opts: PointOptions) -> bool:

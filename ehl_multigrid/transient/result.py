@@ -1,6 +1,8 @@
-"""Result of a transient line-contact run: time series, snapshots, per-step convergence.
+"""Result of a transient run: time series, snapshots, per-step convergence, of the line
+contact (:class:`TransientResult`) and the point contact (:class:`PointTransientResult`, the
+same series with the point contact's geometry: its fields on ``(Y, X)``).
 
-Definitions (Venner units: ``X = x/b``, ``H = h R/b^2``, ``P = p/pmax``, ``T = t u_m/b``):
+Definitions (line; Venner units: ``X = x/b``, ``H = h R/b^2``, ``P = p/pmax``, ``T = t u_m/b``):
 
 * ``Hc(T)`` -- film at ``X = 0``; ``Hm(T)`` -- minimum film where ``P > 0`` or ``|X| <= 1.5``;
 * ``dP(T)`` -- pressure fluctuation ``max_X |P(X, T) - P_s(X)|`` against the smooth steady
@@ -45,8 +47,10 @@ from ..line.problem import LineProblem
 from ..model.results import COMPRESSION, _write_atomic, package_version
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
-from .cavitated import domain_mass_error
+from .cavitated import CavitatedPointStepHierarchy, domain_mass_error, point_domain_mass_error
 from .discrete import flux_balance
+from .features import x_ref
+from .hierarchy import TransientPointHierarchy
 
 SERIES = ("step", "T", "Hc", "Hm", "H0", "Pmax", "dP", "xf", "dH", "residual", "load_error",
           "cycles", "work_units", "wall_s", "mass_balance", "stalled", "substeps")
@@ -107,20 +111,13 @@ class TransientResult:
         raise AttributeError(name)
 
     # -- building -------------------------------------------------------------------------
-    def _x_feature(self, T: float) -> float:
-        x0 = getattr(self.feature, "x0", None)
-        if x0 is None:  # a profile: its centre
-            x = getattr(self.feature, "x", None)
-            x0 = 0.5 * (float(x[0]) + float(x[-1])) if x is not None else 0.0
-        return x0 + self.speed * T
-
     def record(self, n: int, T: float, hz: Any, res: EHLResult | None, wall: float, keep: bool) -> None:
         """Append step ``n`` (time ``T``) of the finest grid of ``hz`` to the series (``res``
         the step's solve, None for the start) and keep a snapshot when ``keep``."""
         lv, st = self._fields(hz)
         X, P, H = lv.X, lv.P, st.H
         zone = self._within(1.5) | (P > 0)
-        xf = self._x_feature(T)
+        xf = x_ref(self.feature) + self.speed * T
         s = self.series
         s["step"].append(n)
         s["T"].append(T)
@@ -189,9 +186,6 @@ class TransientResult:
         """The smooth steady film ``"Hc"`` or ``"Hm"``."""
         return getattr(self.steady, f"{name}_venner")
 
-    def _wavelength_x(self) -> float:
-        return getattr(self.feature, "wavelength", math.nan)
-
     def _summary_head(self) -> dict[str, Any]:
         return {"M": self.problem.M, "L": self.problem.L, "points": int(self.X.size),
                 "xmin": self.problem.xmin, "xmax": self.problem.xmax}
@@ -250,7 +244,7 @@ class TransientResult:
 
     def waviness_amplitude(self, periods: float = 1.0) -> float:
         """Half the peak-to-peak of ``Hc(T)`` over the last ``periods`` feature periods along X."""
-        wl = self._wavelength_x()
+        wl = getattr(self.feature, "wavelength_x", math.nan)
         if not math.isfinite(wl) or abs(self.speed) < 1e-12:
             return math.nan
         T, Hc = self.T, self.Hc
@@ -270,7 +264,7 @@ class TransientResult:
         """JSON-ready scalars of the run (``complete`` False and ``stop_reason`` for a run that
         ended early)."""
         cyc = self.cycles[1:]
-        wall = self.wall_s_series()[1:]
+        wall = np.asarray(self.series["wall_s"], dtype=float)[1:]  # (the field wall_s is the total)
         amp = getattr(self.feature, "amplitude", math.nan)
         out: dict[str, Any] = {
             **self._summary_head(),
@@ -306,9 +300,6 @@ class TransientResult:
         out["Ad_over_Ai"] = ad / amp if amp else math.nan
         out["Ad"] = ad
         return out
-
-    def wall_s_series(self) -> np.ndarray:
-        return np.asarray(self.series["wall_s"], dtype=float)
 
     # -- output ---------------------------------------------------------------------------
     #: HDF5 ``kind`` attribute of the file
@@ -368,6 +359,112 @@ class TransientResult:
                         g.create_dataset(k, data=self.state[k])
 
         return str(_write_atomic(path, write))
+
+
+
+@dataclass
+class PointTransientResult(TransientResult):
+    """Answer of :func:`~.point_solve.solve_transient_point`: the series of :class:`TransientResult`
+    (``Hc`` at X = Y = 0, ``Hm`` the minimum over the loaded zone, ``H0`` = H00, ``dH`` on the
+    row through the feature's reference point) and snapshots of P, H ``[j, i]`` on ``(Y, X)``."""
+
+    Y: np.ndarray | None = None
+    yf: float = 0.0
+    Hc_steady: float = math.nan
+    Hm_steady: float = math.nan
+
+    file_kind = "ehl_transient_point"
+
+    def _problem_dict(self) -> dict[str, Any]:
+        return self.problem.to_dict()
+
+    def _zone(self, X: np.ndarray, Y: np.ndarray, r: float = 1.0) -> np.ndarray:
+        """Nodes of ``(X, Y)`` inside ``r`` times the Hertzian ellipse."""
+        boa = self.problem.b_over_a
+        return X[None, :] ** 2 + (Y[:, None] / boa) ** 2 <= r**2
+
+    def _fields(self, hz: Any) -> tuple[Any, Any]:
+        return hz.fine, hz.fine
+
+    def _within(self, r: float) -> np.ndarray:
+        return self._zone(self.X, self.Y, r)
+
+    def _row(self, F: np.ndarray) -> np.ndarray:
+        return F[int(np.argmin(np.abs(self.Y - self.yf)))]
+
+    def _central_film(self, hz: Any, H: np.ndarray) -> float:
+        return hz.central_film(hz.fine)
+
+    def _film_constant(self, hz: Any) -> float:
+        return hz.H00
+
+    def _start_load_error(self, hz: Any) -> float:
+        return hz.load(hz.fine) / hz.g_target - 1.0
+
+    def steady_film(self, name: str) -> float:
+        return getattr(self, f"{name}_steady")
+
+    def _summary_head(self) -> dict[str, Any]:
+        pb = self.problem
+        return {"contact": "point", "M": pb.M, "L": pb.L, "theta": pb.theta,
+                "points": int(self.X.size), "points_y": int(self.Y.size),
+                "xmin": float(self.X[0]), "xmax": float(self.X[-1]), "ymax": float(self.Y[-1])}
+
+    def _record_mass_balance(self, hz: Any, st: Any, n: int) -> None:
+        bal = point_mass_balance(hz, terms=True) if n > 0 else {"balance": math.nan, "storage": math.nan}
+        self.series["mass_balance"].append(bal["balance"])
+        self.series.setdefault("storage", []).append(bal["storage"])
+        # oil gained by the whole grid over the inflow (mass-conserving cavitation); NaN for
+        # the projection, which counts every gap behind a rupture as full of oil. A run
+        # continued from a file written before the series existed: NaN before it
+        err = self.series.setdefault("mass_error", [math.nan] * (len(self.series["step"]) - 1))
+        mc = n > 0 and isinstance(hz, CavitatedPointStepHierarchy)
+        err.append(point_domain_mass_error(hz) if mc else math.nan)
+
+    # -- observables ----------------------------------------------------------------------
+    def load_fraction_below(self, threshold: float) -> list[float]:
+        """Per kept step: the fraction of the load carried where ``H <= threshold``."""
+        out = []
+        for n in sorted(self.snapshots):
+            P, H = self.snapshots[n]["P"], self.snapshots[n]["H"]
+            out.append(float(P[H <= threshold].sum() / max(P.sum(), 1e-300)))
+        return out
+
+
+def point_mass_balance(hz: TransientPointHierarchy, box: float = 0.6, terms: bool = False) -> Any:
+    """Discrete mass balance of the control volume ``|X| <= box``, ``|Y| <= box b/a`` (inside the
+    pressurised zone) of the finest grid: storage ``hx hy sum d(rho H)/dT`` minus the net
+    inflow through its faces (Poiseuille ``-eps_face dP/dn``, second-order upwind Couette
+    ``1.5 q_i - 0.5 q_{i-1}`` along X), over the Couette flux through its inlet face. Zero (to the
+    residual) when the discrete equations are in conservation form; NaN when the box holds a
+    cavitated node. ``terms``: a dict with the balance and the storage term (same scaling)."""
+    nan = {"balance": math.nan, "storage": math.nan} if terms else math.nan
+    lv = hz.fine
+    X, Y, P, q, eps = lv.X, lv.Y, lv.P, lv.rho * lv.H, lv.eps
+    hx, hy = lv.hx, lv.hy
+    ii = np.flatnonzero(np.abs(X) <= box)
+    jj = np.flatnonzero(np.abs(Y) <= box * hz.boa)
+    if ii.size < 2 or jj.size < 2 or ii[0] < 3:
+        return nan
+    i0, i1, j0, j1 = ii[0], ii[-1], jj[0], jj[-1]
+    if np.any(P[j0 - 1:j1 + 2, i0 - 1:i1 + 2] <= 0.0):
+        return nan
+    rows = slice(j0, j1 + 1)
+    cols = slice(i0, i1 + 1)
+    storage = hx * hy * float(np.sum(hz.squeeze()[rows, cols]))
+    # X faces (flux q_x = -eps dP/dX + Couette): inlet face i0 - 1/2, outlet face i1 + 1/2
+    c_in = 1.5 * q[rows, i0 - 1] - 0.5 * q[rows, i0 - 2]
+    c_out = 1.5 * q[rows, i1] - 0.5 * q[rows, i1 - 1]
+    p_in = 0.5 * (eps[rows, i0 - 1] + eps[rows, i0]) * (P[rows, i0] - P[rows, i0 - 1]) / hx
+    p_out = 0.5 * (eps[rows, i1] + eps[rows, i1 + 1]) * (P[rows, i1 + 1] - P[rows, i1]) / hx
+    flow_x = hy * float(np.sum((c_in - p_in) - (c_out - p_out)))
+    # Y faces (flux q_y = -eps dP/dY)
+    p_lo = 0.5 * (eps[j0 - 1, cols] + eps[j0, cols]) * (P[j0, cols] - P[j0 - 1, cols]) / hy
+    p_hi = 0.5 * (eps[j1, cols] + eps[j1 + 1, cols]) * (P[j1 + 1, cols] - P[j1, cols]) / hy
+    flow_y = hx * float(np.sum(-p_lo + p_hi))
+    scale = max(hy * float(np.sum(np.abs(c_in))), 1e-300)
+    bal = (storage - (flow_x + flow_y)) / scale
+    return {"balance": bal, "storage": storage / scale} if terms else bal
 
 
 def _nanmax_abs(v: Any) -> float:

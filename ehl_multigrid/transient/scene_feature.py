@@ -39,8 +39,21 @@ import numpy as np
 
 from ..line.problem import LineProblem
 from ..model.errors import InputError, reject_unknown_keys, require_choice, require_range
-from .features import MAX_AMPLITUDE, MAX_DEPTH, SHAPES, Bump, Feature, Profile, Waviness, require_in
-from .point_features import Dent2D, HeightMap, PointFeature, Waviness2D
+from .features import (
+    MAX_AMPLITUDE,
+    MAX_DEPTH,
+    SHAPES,
+    Bump,
+    Dent2D,
+    Feature,
+    HeightMap,
+    PointFeature,
+    Profile,
+    Waviness,
+    Waviness2D,
+    require_in,
+    waviness_span,
+)
 
 KEYS = {"kind", "amplitude", "width", "wavelength", "x0", "shape", "body", "phase"}
 POINT_KEYS = KEYS | {"angle", "y0"}
@@ -113,35 +126,16 @@ def feature_from_scene_table(table: dict[str, Any] | None, problem: LineProblem)
     ``x0`` in b, ``phase`` in rad) against the range the solver takes on the problem's domain,
     before it is made dimensionless: an :class:`InputError` names the key, the value and the
     allowed range in those units."""
+    unit = _FilmUnit(problem.b, problem.R, "b", "b^2/R", (problem.xmin, problem.xmax, None))
     if table and table.get("kind") == "map" and problem.physical:
         z, dx, _, body = _map_table(table, 1)
-        unit = _FilmUnit(problem.b, problem.R, "b", "b^2/R")
         unit.check_map_heights(z)
         X = np.arange(z.size) * (dx / problem.b)
         x0 = require_in("feature.x0", table.get("x0", problem.xmin), problem.xmin, problem.xmax,
                         "- (x/b)", f"the profile must start inside the domain X in [{problem.xmin:g}, "
                                    f"{problem.xmax:g}]")
         return Profile(x0 + X, z * problem.R / problem.b**2), body
-    kind, body, amp, length = _read_table(table, KEYS, problem, "b", "R, b")
-    unit = _FilmUnit(problem.b, problem.R, "b", "b^2/R")
-    unit.check_amplitude(kind, amp)
-    xmin, xmax = problem.xmin, problem.xmax
-    scale = problem.R / problem.b**2
-    if kind == "waviness":
-        unit.check_length("wavelength", length, xmax - xmin,
-                          f"the domain X in [{xmin:g}, {xmax:g}] must hold one wavelength")
-        phase = require_range("feature.phase", table.get("phase", 0.0), -1e3, 1e3, "rad")
-        return Waviness(amp * scale, length / problem.b, phase), body
-    shape = require_choice("feature.shape", table.get("shape", "cosine-gaussian"), SHAPES)
-    f = _reach_factor(shape)
-    unit.check_length("width", length, 0.5 * (xmax - xmin) / f,
-                      f"the {kind} must fit in the domain X in [{xmin:g}, {xmax:g}]")
-    reach = f * length / problem.b
-    x0 = require_in("feature.x0", table.get("x0", -3.0), xmin + reach, xmax - reach, "- (x/b)",
-                    f"the whole {kind} (its centre +- {reach:.3g} b) must start inside the domain "
-                    f"X in [{xmin:g}, {xmax:g}]")
-    sign = -1.0 if kind == "dent" else 1.0
-    return Bump(sign * amp * scale, length / problem.b, x0, shape), body
+    return _shape_from_table(table, KEYS, problem, unit, "R, b", -3.0)
 
 
 def point_feature_from_scene_table(table: dict[str, Any] | None, problem: Any,
@@ -157,7 +151,7 @@ def point_feature_from_scene_table(table: dict[str, Any] | None, problem: Any,
     from ..point.problem import resolve_domain
 
     xmin, xmax, ymax = resolve_domain(problem, None, None, None) if domain is None else domain
-    unit = _FilmUnit(problem.a, problem.Rx, "a", "a^2/Rx")
+    unit = _FilmUnit(problem.a, problem.Rx, "a", "a^2/Rx", (xmin, xmax, ymax))
     if table and table.get("kind") == "map" and problem.physical:
         z, dx, dy, body = _map_table(table, 2)
         unit.check_map_heights(z)
@@ -178,30 +172,47 @@ def point_feature_from_scene_table(table: dict[str, Any] | None, problem: Any,
                 f"{ymax * a:.4g} m (|Y| <= {ymax:g} a): the rows outside it are clipped and do not "
                 f"pass through the contact")
         return HeightMap(z * problem.Rx / problem.a**2, dxa, dya, x0, y0), body
-    kind, body, amp, length = _read_table(table, POINT_KEYS, problem, "a", "Rx, a")
+    return _shape_from_table(table, POINT_KEYS, problem, unit, "Rx, a", -2.5)
+
+
+def _shape_from_table(table: dict[str, Any] | None, keys: set[str], problem: Any, unit: _FilmUnit,
+                      geometry: str, x0_default: float) -> tuple[Any, int]:
+    """``(feature, body)`` of a waviness, bump or dent table in metres, checked against the
+    box of ``unit``: a line contact's :class:`Waviness` or :class:`Bump` when the box has no
+    ``ymax``, else a point contact's :class:`Waviness2D` (with ``angle``) or :class:`Dent2D`
+    (with ``y0``). ``geometry`` names the scene's lengths the table needs, ``x0_default``
+    is the default start of a bump's or dent's centre."""
+    kind, body, amp, length = _read_table(table, keys, problem, unit.name, geometry)
     unit.check_amplitude(kind, amp)
-    scale = problem.Rx / problem.a**2
+    xmin, xmax, ymax = unit.box
+    line = ymax is None
+    scale = unit.radius / unit.length**2
+    where = f"X in [{xmin:g}, {xmax:g}]" + ("" if line else f", |Y| <= {ymax:g}")
     if kind == "waviness":
-        angle = require_range("feature.angle", table.get("angle", 0.0), -90.0, 90.0, "degrees")
-        span = min(xmax - xmin, 2.0 * ymax) if 0.0 < abs(angle) < 90.0 else \
-            (xmax - xmin if angle == 0.0 else 2.0 * ymax)
-        unit.check_length("wavelength", length, span,
-                          f"the domain X in [{xmin:g}, {xmax:g}], |Y| <= {ymax:g} must hold one "
-                          f"wavelength at angle {angle:g} deg")
+        angle = 0.0 if line else require_range("feature.angle", table.get("angle", 0.0), -90.0, 90.0,
+                                                "degrees")
+        unit.check_length("wavelength", length, xmax - xmin if line else waviness_span(angle, xmin, xmax, ymax),
+                          f"the domain {where} must hold one wavelength"
+                          + ("" if line else f" at angle {angle:g} deg"))
         phase = require_range("feature.phase", table.get("phase", 0.0), -1e3, 1e3, "rad")
-        return Waviness2D(amp * scale, length / problem.a, angle, phase), body
+        if line:
+            return Waviness(amp * scale, length / unit.length, phase), body
+        return Waviness2D(amp * scale, length / unit.length, angle, phase), body
     shape = require_choice("feature.shape", table.get("shape", "cosine-gaussian"), SHAPES)
     f = _reach_factor(shape)
-    unit.check_length("width", length, min(0.5 * (xmax - xmin), ymax) / f,
-                      f"the {kind} must fit in the domain X in [{xmin:g}, {xmax:g}], |Y| <= {ymax:g}")
-    reach = f * length / problem.a
-    x0 = require_in("feature.x0", table.get("x0", -2.5), xmin + reach, xmax - reach, "- (x/a)",
-                    f"the whole {kind} (its centre +- {reach:.3g} a) must start inside the domain "
+    unit.check_length("width", length, (0.5 * (xmax - xmin) if line else min(0.5 * (xmax - xmin), ymax)) / f,
+                      f"the {kind} must fit in the domain {where}")
+    n = unit.name
+    reach = f * length / unit.length
+    x0 = require_in("feature.x0", table.get("x0", x0_default), xmin + reach, xmax - reach, f"- (x/{n})",
+                    f"the whole {kind} (its centre +- {reach:.3g} {n}) must start inside the domain "
                     f"X in [{xmin:g}, {xmax:g}]")
-    y0 = require_in("feature.y0", table.get("y0", 0.0), -ymax + reach, ymax - reach, "- (y/a)",
-                    f"the whole {kind} (its centre +- {reach:.3g} a) must lie inside |Y| <= {ymax:g}")
     sign = -1.0 if kind == "dent" else 1.0
-    return Dent2D(sign * amp * scale, length / problem.a, x0, y0, shape), body
+    if line:
+        return Bump(sign * amp * scale, length / unit.length, x0, shape), body
+    y0 = require_in("feature.y0", table.get("y0", 0.0), -ymax + reach, ymax - reach, f"- (y/{n})",
+                    f"the whole {kind} (its centre +- {reach:.3g} {n}) must lie inside |Y| <= {ymax:g}")
+    return Dent2D(sign * amp * scale, length / unit.length, x0, y0, shape), body
 
 
 def _reach_factor(shape: str) -> float:
@@ -210,12 +221,15 @@ def _reach_factor(shape: str) -> float:
 
 
 class _FilmUnit:
-    """The checks of a feature's heights and lengths in metres against the solver's limits
-    in its own units: lengths in ``length`` (b or a) [m], heights in the film unit
-    ``length^2/radius`` [m]; ``name`` and ``film`` spell them in messages."""
+    """The contact's units and box: the checks of a feature's heights and lengths in metres
+    against the solver's limits in its own units: lengths in ``length`` (b or a) [m], heights
+    in the film unit ``length^2/radius`` [m]; ``name`` and ``film`` spell them in messages;
+    ``box`` is the solver's ``(xmin, xmax, ymax)`` in units of ``length`` (``ymax`` None: a
+    line contact)."""
 
-    def __init__(self, length: float, radius: float, name: str, film: str) -> None:
-        self.length, self.name, self.film = length, name, film
+    def __init__(self, length: float, radius: float, name: str, film: str,
+                 box: tuple[float, float, float | None]) -> None:
+        self.length, self.radius, self.name, self.film, self.box = length, radius, name, film, box
         self.height = length**2 / radius
 
     def _limit(self) -> str:

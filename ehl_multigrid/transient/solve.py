@@ -30,23 +30,21 @@ import numpy as np
 
 from ..line.problem import LineProblem
 from ..line.solver import HINT, LINE_POLICY, line_settings, solve_line_problem
-from ..model.errors import InputError, require_choice
+from ..model.errors import InputError
 from ..multigrid.options import LineOptions
 from ..multigrid.result import EHLResult
 from ..starved.line import STARVED_TOL, STARVED_TOL_LOAD, solve_starved_problem
 from .cavitated import CavitatedStepHierarchy
-from .checkpoint import Checkpoint, restore
-from .features import Feature, Smooth, feature_speed
+from .checkpoint import Checkpoint
+from .features import Feature, Smooth, default_end_time, feature_speed
 from .hierarchy import TransientLineHierarchy
-from .oil_balance import MASS_TOL, require_mass_tol
+from .oil_balance import MASS_TOL
 from .result import TransientResult
 from .stepping import (
-    SCHEMES,
     Stepper,
-    march,
     model_inputs,
     require_steady_start,
-    start,
+    start_and_march,
     time_steps,
 )
 
@@ -141,9 +139,7 @@ def solve_transient_line(
     """
     if not problem.elastic:
         raise InputError("problem.elastic = False: the transient solver needs elastic surfaces")
-    require_choice("scheme", scheme, SCHEMES)
-    supply, hoil = model_inputs(cavitation, hoil, time_tol)
-    mass_tol = require_mass_tol(mass_tol, cavitation)
+    supply, hoil, mass_tol = model_inputs(scheme, cavitation, hoil, time_tol, mass_tol)
     feature = Smooth() if feature is None else feature
     feature.check_domain(problem.xmin, problem.xmax)
     speed = feature_speed(body, slide_roll)
@@ -151,7 +147,7 @@ def solve_transient_line(
     h = (problem.xmax - problem.xmin) / (opts.points - 1)
     dt, steps, snapshot_every = time_steps(
         feature, speed, h, dt, steps, t_end, snapshot_every, accept_stall, "b",
-        lambda: default_end_time(problem, feature, speed))
+        lambda: default_end_time(problem.xmin, problem.xmax, feature, speed))
 
     t0 = time.perf_counter()
     steady = flooded = solve_line_problem(problem, opts)
@@ -161,44 +157,29 @@ def solve_transient_line(
     else:
         hz = CavitatedStepHierarchy(problem, opts, feature.height, flooded, hoil)
         hz.mass_tol = mass_tol
-        stepper = _CavitatedLineStepper(hz, problem, opts)
-        stepper.supply = supply
+        stepper = _LineStepper(hz, problem, opts)
         if hz.starved_inlet:
             steady = solve_starved_problem(problem, hoil, dataclasses.replace(
                 opts, tol=min(opts.tol, STARVED_TOL), tol_load=min(opts.tol_load, STARVED_TOL_LOAD)),
                 flooded)
             require_steady_start("line (starved)", steady, initial, HINT)
-            stepper.set_content(steady.extra["theta"])
     out = TransientResult(problem=problem, feature=feature, body=body, slide_roll=slide_roll,
                           speed=speed, dt=float(dt), scheme=scheme, options=opts, steady=steady,
                           X=stepper.hz.fine.X.copy(), cavitation=cavitation, hoil=hoil,
                           mass_tol=getattr(stepper.hz, "mass_tol", None))
-    if resume is None:
-        start(stepper, out, steady.P.copy(), steady.H0, initial, True, t0)
-    else:
-        restore(out, resume, snapshot_every)
-    march(stepper, out, speed=speed, dt=dt, steps=steps, scheme=scheme, snapshot_every=snapshot_every,
-          accept_stall=accept_stall, on_film_collapse="raise", callback=callback, t0=t0,
-          checkpoint=checkpoint, time_tol=time_tol)
+    stepper.supply = supply
+    # the film content of a starved start (the flooded solution has none)
+    start_and_march(stepper, out, steady, steady.extra["theta"] if steady is not flooded else None,
+                    initial, True, resume, t0,
+                    speed=speed, dt=dt, steps=steps, scheme=scheme, snapshot_every=snapshot_every,
+                    accept_stall=accept_stall, on_film_collapse="raise", callback=callback,
+                    checkpoint=checkpoint, time_tol=time_tol)
     return out
 
 
-def default_end_time(problem: LineProblem, feature: Feature, speed: float) -> float:
-    """A bump: until its centre reaches ``xmax`` (or, when it does not move, one transit of
-    the domain at the mean speed). Waviness: one transit of the domain plus three periods."""
-    span = problem.xmax - problem.xmin
-    if feature.kind == "smooth":
-        return 2.0 * span
-    if feature.kind == "bump":
-        return (problem.xmax - feature.x0) / speed if speed > 1e-9 else span
-    if feature.kind == "profile":  # until its tail has left the domain
-        return (problem.xmax - float(feature.x[0])) / speed if speed > 1e-9 else span
-    period = feature.wavelength / abs(speed) if abs(speed) > 1e-9 else 0.0
-    return span + 3.0 * period
-
-
 class _LineStepper(Stepper):
-    """The line contact's side of the time loop."""
+    """The line contact's side of the time loop (either cavitation model); ``supply``
+    (optional): the supplied layer as a function of time."""
 
     name = "line"
     hint = HINT
@@ -218,7 +199,8 @@ class _LineStepper(Stepper):
 
     def film(self) -> tuple[np.ndarray, np.ndarray]:
         st = self.hz.fine.state()
-        return st.H, st.rho * st.H
+        q = getattr(st, "q", None)  # mass-conserving cavitation: the oil carried, theta rho H
+        return st.H, st.rho * st.H if q is None else q
 
     def accept_stalled(self, res: EHLResult, accept_stall: float) -> bool:
         # the cycles stalled (the residual stopped falling) below accept_stall
@@ -226,11 +208,3 @@ class _LineStepper(Stepper):
                     and res.residual_history[-1] < accept_stall
                     and abs(res.load_error_history[-1]) < accept_stall)
 
-
-class _CavitatedLineStepper(_LineStepper):
-    """The mass-conserving line contact's side of the time loop: the oil carried is
-    ``theta rho H``; ``supply`` (optional): the supplied layer as a function of time."""
-
-    def film(self) -> tuple[np.ndarray, np.ndarray]:
-        st = self.hz.fine.state()
-        return st.H, st.q

@@ -33,7 +33,9 @@ from ..model.errors import (
 from ..multigrid.driver import MultilevelSolver
 from ..multigrid.policy import RobustnessPolicy
 from ..multigrid.result import EHLResult
+from .checkpoint import restore
 from .features import require_in
+from .oil_balance import require_mass_tol
 
 SCHEMES = ("bdf2", "euler")
 #: cavitation models of the time steps
@@ -132,11 +134,14 @@ def require_hoil(hoil: float, T: float) -> None:
                          f"(Venner units: the oil layer ahead of the contact)")
 
 
-def model_inputs(cavitation: str, hoil: float | Callable[[float], float],
-                 time_tol: float | None) -> tuple[Callable[[float], float] | None, float]:
-    """Checked cavitation model, supply and time tolerance of a run: returns the supply as a
-    function of time (None for a constant layer) and the layer at ``T = 0``. A finite or
-    time-varying layer needs mass-conserving cavitation."""
+def model_inputs(scheme: str, cavitation: str, hoil: float | Callable[[float], float],
+                 time_tol: float | None, mass_tol: float | None
+                 ) -> tuple[Callable[[float], float] | None, float, float | None]:
+    """Checked scheme, cavitation model, supply, time and mass tolerances of a run: returns
+    the supply as a function of time (None for a constant layer), the layer at ``T = 0`` and
+    the mass tolerance (:func:`~.oil_balance.require_mass_tol`). A finite or time-varying
+    layer needs mass-conserving cavitation."""
+    require_choice("scheme", scheme, SCHEMES)
     require_choice("cavitation", cavitation, CAVITATION_MODELS)
     if time_tol is not None:
         require_range("time_tol", time_tol, 1e-8, 0.1, "- (relative film error per step)")
@@ -146,7 +151,7 @@ def model_inputs(cavitation: str, hoil: float | Callable[[float], float],
     if (supply is not None or math.isfinite(hoil0)) and cavitation != "mass-conserving":
         raise InputError(f"hoil = {hoil0:g} (a starved inlet) needs cavitation = 'mass-conserving' "
                          f"(the projection has no oil layer to starve); got {cavitation!r}")
-    return supply, hoil0
+    return supply, hoil0, require_mass_tol(mass_tol, cavitation)
 
 
 def step_coefficients(scheme: str, n: int, dt: float, q1: np.ndarray,
@@ -226,6 +231,20 @@ def start(stepper: Stepper, out: Any, P_steady: np.ndarray, H0_steady: float,
                                        f"feature at T = 0 failed: {res.message}", res.report, stepper.hint)
     out.record(0, 0.0, hz, None, 0.0, keep=True)
     out.setup_s = time.perf_counter() - t0
+
+
+def start_and_march(stepper: Stepper, out: Any, steady: EHLResult, theta0: np.ndarray | None,
+                    initial: tuple[np.ndarray, float] | None, presolve: bool,
+                    resume: dict[str, Any] | None, t0: float, **march_kw: Any) -> None:
+    """A run's start (:func:`start` from the steady solution ``steady`` and the film content
+    ``theta0``, or the completed steps of the checkpoint ``resume``), then its steps
+    (:func:`march` with ``march_kw``)."""
+    if resume is None:
+        stepper.set_content(theta0)
+        start(stepper, out, steady.P.copy(), steady.H0, initial, presolve, t0)
+    else:
+        restore(out, resume, march_kw["snapshot_every"])
+    march(stepper, out, t0=t0, **march_kw)
 
 
 def _extrapolate(P_now: np.ndarray, P_prev: np.ndarray, w: float = 1.0) -> np.ndarray:
@@ -479,19 +498,15 @@ def march(stepper: Stepper, out: Any, *, speed: float, dt: float, steps: int, sc
                 out.record(n, T, hz, res, wall, keep=(n % snapshot_every == 0 or n == steps))
                 out.series["stalled"].append(0.0 if res.success else 1.0)
                 out.series["substeps"].append(float(solves))
+                # the history: the output step before (fixed steps), or the last two steps taken
+                prev = {"P_prev": last["P"], "H0_prev": last["H0"], "q_prev": last["q"]}
                 if time_tol is not None:
                     out.series.setdefault("time_error", [math.nan] * n).append(terr)
                     out.series.setdefault("rejected", [0.0] * n).append(float(rejected))
-                    # the last two steps taken (not the output step) carry the history
-                    out.state = {"step": n, "T": T, "P": nxt["P"], "H0": nxt["H0"],
-                                 "P_prev": nxt["P_prev"], "H0_prev": nxt["H0_prev"], "q": q,
-                                 "q_prev": nxt["q_prev"], "dt_prev": nxt["dt_prev"],
-                                 "q_prev2": nxt["q_prev2"], "dt_prev2": nxt["dt_prev2"],
-                                 "h_next": nxt["h_next"], "theta": nxt["theta"]}
-                else:
-                    out.state = {"step": n, "T": T, "P": nxt["P"], "H0": nxt["H0"],
-                                 "P_prev": last["P"], "H0_prev": last["H0"], "q": q,
-                                 "q_prev": last["q"], "theta": nxt["theta"]}
+                    prev = {k: nxt[k] for k in ("P_prev", "H0_prev", "q_prev", "dt_prev", "q_prev2",
+                                                "dt_prev2", "h_next")}
+                out.state = {"step": n, "T": T, "P": nxt["P"], "H0": nxt["H0"], "q": q,
+                             "theta": nxt["theta"], **prev}
             if checkpoint is not None:
                 checkpoint.step(out)
             if callback is not None:
