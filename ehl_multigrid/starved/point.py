@@ -208,7 +208,7 @@ class StarvedPointHierarchy(PointHierarchy):
     Its operator, relaxation, theta march and exact zone solve carry the core's squeeze
     coefficient :attr:`~ehl_multigrid.point.fas.PointHierarchy.ct` (the new-time part
     ``ct theta rho H`` of a BDF time step's ``d(theta rho H)/dT``): 0 in a steady solve, set by
-    the time-step hierarchy of :mod:`ehl_multigrid.transient.point_cavitated`."""
+    the time-step hierarchy of :mod:`ehl_multigrid.transient.cavitated`."""
 
     name = "starved point"
     can_alternate = False  # its own sweep relaxes X lines only
