@@ -18,16 +18,12 @@ import math
 import numpy as np
 from scipy import special
 
-from ehl_multigrid.model.errors import InputError, require_positive, require_range
+from ehl_multigrid.model.errors import InputError, require_positive
 from ehl_multigrid.model.scene import Roughness
 
 from .gw import gw_f1, gw_log_f
 
 ArrayLike = float | np.ndarray
-
-#: Whitehouse & Archard (2.58, 2.65): sigma_s = 0.7 sigma, dd = 0.82 sigma.
-WA_SIGMA_S = 0.7
-WA_DD = 0.82
 
 
 def johnson_film(hs: ArrayLike, sigma: float) -> ArrayLike:
@@ -100,18 +96,6 @@ def _separation_from_log_film(target: np.ndarray, sigma: float, shape: tuple[int
     return float(out[0]) if shape == () else out.reshape(shape)
 
 
-def summit_separation(hs: ArrayLike, dd: float) -> ArrayLike:
-    """``hss = hs - dd`` (4.28) [m]."""
-    out = np.asarray(hs, dtype=float) - dd
-    return float(out) if out.ndim == 0 else out
-
-
-def whitehouse_archard(Rq: float) -> tuple[float, float]:
-    """Defaults when only ``Rq`` is known: ``(sigma_s, dd) = (0.7 Rq, 0.82 Rq)`` (2.58, 2.65)."""
-    Rq = require_positive("Rq", Rq, "m")
-    return WA_SIGMA_S * Rq, WA_DD * Rq
-
-
 def equivalent_surface(r1: Roughness, r2: Roughness) -> Roughness:
     """Equivalent single rough surface against a smooth one (Greenwood & Tripp).
 
@@ -139,11 +123,3 @@ def equivalent_surface(r1: Roughness, r2: Roughness) -> Roughness:
         fc=rough.fc,
         hardness=min(r1.hardness, r2.hardness),
     )
-
-
-def roughness_from_rq(Rq: float, *, n: float, beta: float, fc: float = 0.13, hardness: float = 5e9) -> Roughness:
-    """A :class:`Roughness` with Whitehouse-Archard ``sigma_s`` and ``dd`` from ``Rq``."""
-    sigma_s, dd = whitehouse_archard(Rq)
-    require_range("fc", fc, 0.0, 1.0, "-")
-    return Roughness(Rq=Rq, sigma_s=sigma_s, dd=dd, n=require_positive("n", n, "1/m^2"),
-                     beta=require_positive("beta", beta, "m"), fc=fc, hardness=require_positive("hardness", hardness, "Pa"))

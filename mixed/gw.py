@@ -146,8 +146,8 @@ def gw_f(j: float, lam: ArrayLike) -> ArrayLike:
     """Greenwood-Williamson function ``F_j(lam) = int_lam^inf (s - lam)^j phi*(s) ds`` (2.45).
 
     Relative error below 1e-12 for ``lam`` in [-10, 8] (tests check 1e-10 against
-    quadrature); vectorised over ``lam``. ``F_0`` and ``F_1`` have closed forms
-    (:func:`gw_f0`, :func:`gw_f1`); this general routine agrees with them to rounding.
+    quadrature); vectorised over ``lam``. ``F_1`` has a closed form (:func:`gw_f1`); this
+    general routine agrees with it to rounding.
 
     Examples
     --------
@@ -156,13 +156,6 @@ def gw_f(j: float, lam: ArrayLike) -> ArrayLike:
     """
     lf = gw_log_f(j, lam)
     return float(math.exp(lf)) if np.ndim(lf) == 0 else np.exp(lf)
-
-
-def gw_f0(lam: ArrayLike) -> ArrayLike:
-    """``F_0(lam) = Q(lam) = erfc(lam/sqrt 2)/2`` (fraction of summits above ``lam``)."""
-    lam = np.asarray(lam, dtype=float)
-    out = 0.5 * special.erfc(lam / math.sqrt(2.0))
-    return float(out) if out.ndim == 0 else out
 
 
 def gw_f1(lam: ArrayLike) -> ArrayLike:
@@ -183,13 +176,6 @@ def gw_f1(lam: ArrayLike) -> ArrayLike:
 def gw_f32(lam: ArrayLike) -> ArrayLike:
     """``F_3/2(lam)``, the asperity-pressure function of (4.18)."""
     return gw_f(1.5, lam)
-
-
-def gw_f_derivative(j: float, lam: ArrayLike) -> ArrayLike:
-    """``dF_j/dlam = -j F_(j-1)(lam)`` for ``j > 0`` (differentiate (2.45) under the integral)."""
-    j = require_range("j (GW function order)", j, 0.0, J_MAX, "-", lo_open=True)
-    val = gw_f(j - 1.0, lam)
-    return -j * val
 
 
 def gw_f_inverse(j: float, value: ArrayLike) -> ArrayLike:
@@ -246,28 +232,6 @@ def asperity_pressure(hss: ArrayLike, n: float, beta: float, sigma_s: float, E_r
     """
     c = asperity_pressure_coefficient(n, beta, sigma_s, E_reduced)
     return c * gw_f32(np.asarray(hss, dtype=float) / sigma_s) if np.ndim(hss) else c * gw_f32(float(hss) / sigma_s)
-
-
-def dimensionless_roughness(kind: str, n: float, beta: float, sigma_s: float, R: float, half_width: float) -> tuple[float, float]:
-    """``(n_bar, sigma_s_bar)`` of (4.19).
-
-    Line: ``sigma_s_bar = sigma_s R/b^2``, ``n_bar = 4 n b^2 sqrt(beta/R)``;
-    point: ``sigma_s_bar = sigma_s Rx/a^2``, ``n_bar = pi n a^2 sqrt(beta/Rx)``.
-    ``half_width`` is b (line) or a (point, along x).
-    """
-    if kind == "line":
-        return 4.0 * n * half_width**2 * math.sqrt(beta / R), sigma_s * R / half_width**2
-    if kind in ("point", "circular", "elliptic"):
-        return math.pi * n * half_width**2 * math.sqrt(beta / R), sigma_s * R / half_width**2
-    raise InputError(f"contact = {kind!r} is not one of ['line', 'point', 'elliptic']")
-
-
-def asperity_pressure_dimensionless(Hss: ArrayLike, n_bar: float, sigma_s_bar: float) -> ArrayLike:
-    """(4.19) ``pa_bar = (2/3) n_bar sigma_s_bar^(3/2) F_3/2(Hss/sigma_s_bar)`` = ``pa/pmax``.
-
-    ``Hss = hss R/b^2`` (line) or ``hss Rx/a^2`` (point), the same scaling as ``sigma_s_bar``.
-    """
-    return 2.0 / 3.0 * n_bar * sigma_s_bar**1.5 * np.asarray(gw_f32(np.asarray(Hss, dtype=float) / sigma_s_bar))
 
 
 def plasticity_index(E_reduced: float, hardness: float, sigma_s: float, beta: float) -> float:

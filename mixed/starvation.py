@@ -40,7 +40,6 @@ from ehl_multigrid.model.starvation import (  # noqa: F401  (chapter 6's film li
     inlet_delta,
     log_starved_film,
     require_delta,
-    starved_film,
 )
 
 from .film import johnson_film

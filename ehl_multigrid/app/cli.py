@@ -237,14 +237,6 @@ def _cmd_plan(args: argparse.Namespace) -> dict:
     return plan.to_dict()
 
 
-def _positive_float(s: str) -> float:
-    try:
-        v = float(s)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{s!r} is not a number") from None
-    return v
-
-
 def _number(s: str) -> float:
     try:
         return float(s)
@@ -274,10 +266,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("fits", help="evaluate the Moes (line) or Nijenbanning (point) central-film fit")
     p.add_argument("--contact", choices=["line", "point", "elliptic"], required=True)
-    p.add_argument("--M", type=_positive_float, required=True, help="Moes load parameter")
-    p.add_argument("--L", type=_positive_float, required=True, help="Moes lubricant parameter")
-    p.add_argument("--ellipticity", type=_positive_float, default=1.0, help="theta = Rx/Ry (point contacts)")
-    p.add_argument("--gamma1", type=_positive_float, default=1.0, help="fluid load-sharing factor P/Ph (>= 1)")
+    p.add_argument("--M", type=_number, required=True, help="Moes load parameter")
+    p.add_argument("--L", type=_number, required=True, help="Moes lubricant parameter")
+    p.add_argument("--ellipticity", type=_number, default=1.0, help="theta = Rx/Ry (point contacts)")
+    p.add_argument("--gamma1", type=_number, default=1.0, help="fluid load-sharing factor P/Ph (>= 1)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(func=_cmd_fits)
 

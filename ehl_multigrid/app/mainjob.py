@@ -217,19 +217,11 @@ def film_stage(ctx: RunContext) -> StageOutput:
                      f"Elrod-Adams solver): meniscus at X = {sol.scalars['meniscus_x']:.3g}, "
                      f"Hc/Hc_flooded = {sol.scalars['Hc_ratio']:.3g}.")
         if ctx.plots:
-            if contact == "line":
-                from .line_plots import plot_solution
+            from .film_plots import film_figures, starved_figure
 
-                figures += [Path(f) for f in plot_solution(sol, ctx.outdir / f"{scene.name}_film", scene.name)]
-            else:
-                from .point_plots import plot_result
-
-                figures += [Path(f) for f in plot_result(res, ctx.outdir, f"{scene.name}_film")]
+            figures += film_figures(contact, sol, res, ctx.outdir, f"{scene.name}_film", scene.name)
             if starved:
-                from ..starved.plots import plot_starved, plot_starved_point
-
-                plot = plot_starved if contact == "line" else plot_starved_point
-                figures.append(Path(plot(sol, ctx.outdir / f"{scene.name}_film", scene.name)))
+                figures.append(starved_figure(contact, sol, ctx.outdir, f"{scene.name}_film", scene.name))
     else:
         return _fit_film_output(ctx)
     return StageOutput("film", res, summary, figures, text)

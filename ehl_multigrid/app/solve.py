@@ -1,7 +1,7 @@
 """Arguments of ``ehl solve`` and the dispatch to the line or point multigrid solver.
 
-:mod:`~ehl_multigrid.app.line_cli` and :mod:`~ehl_multigrid.app.point_cli` each provide
-``run_solve(args, scene) -> dict``; ``scene`` is ``None`` in Moes-only mode (``--M``/``--L``).
+:func:`~ehl_multigrid.app.contact_solve.run_contact_solve` solves any contact (``scene`` is
+``None`` in Moes-only mode, ``--M``/``--L``).
 A mode of a layer above the core (``--thermal``) declares the options it reads; any other one
 given with it is refused (:func:`refuse_unread_options`), as ``--slip`` and ``--nz`` are
 without ``--thermal``.
@@ -136,14 +136,12 @@ def run_solve(args: argparse.Namespace) -> dict:
             raise InputError(f"--{flag} applies to --thermal solves only")
     if not getattr(args, "compressive_heating", True):
         raise InputError("--no-compression applies to --thermal solves only")
-    if contact == "line":
-        from .line_cli import run_solve as run_contact
-    else:
-        if getattr(args, "face", None) is not None:
-            raise InputError("--face applies to line contacts only (the point solver keeps the "
-                             "arithmetic mean)")
-        from .point_cli import run_solve as run_contact
-    return run_contact(args, scene)
+    if contact != "line" and getattr(args, "face", None) is not None:
+        raise InputError("--face applies to line contacts only (the point solver keeps the "
+                         "arithmetic mean)")
+    from .contact_solve import run_contact_solve
+
+    return run_contact_solve(args, scene, contact)
 
 
 def run_solve_mode(name: str, args: argparse.Namespace, scene) -> dict:

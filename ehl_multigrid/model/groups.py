@@ -85,12 +85,8 @@ def venner_from_moes_line(H_moes: ArrayLike, M: ArrayLike) -> ArrayLike:
     return _scalar(np.asarray(H_moes) * math.pi / (8.0 * np.asarray(M)))
 
 
-def moes_from_venner_point(H_venner: ArrayLike, M: ArrayLike) -> ArrayLike:
-    """``H_Moes = H_Venner (3 M / 2)^(2/3)`` (circular)."""
-    return _scalar(np.asarray(H_venner) * (1.5 * np.asarray(M)) ** (2.0 / 3.0))
-
-
 def venner_from_moes_point(H_moes: ArrayLike, M: ArrayLike) -> ArrayLike:
+    """``H_Venner = H_Moes / (3 M / 2)^(2/3)`` (circular)."""
     return _scalar(np.asarray(H_moes) / (1.5 * np.asarray(M)) ** (2.0 / 3.0))
 
 

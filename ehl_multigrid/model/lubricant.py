@@ -127,15 +127,6 @@ class Lubricant:
         out = ETA_INF * np.exp(np.log(self.eta0 / ETA_INF) * expo)
         return out if out.ndim else float(out)
 
-    def viscosity_barus(
-        self, p: float | np.ndarray, T: float | np.ndarray | None = None
-    ) -> np.ndarray | float:
-        """Barus viscosity (2.4) ``eta0(T) exp(alpha(T) p)`` [Pa s], alpha from Roelands at p = 0."""
-        p = np.maximum(np.asarray(p, dtype=float), 0.0)
-        eta = self.eta0 if T is None else self.eta_at(T)
-        out = eta * np.exp(self.alpha(T) * p)
-        return out if np.ndim(out) else float(out)
-
     # -- density, conductivity, heat capacity ------------------------------------------------
     def density(self, p: float | np.ndarray, T: float | np.ndarray | None = None) -> np.ndarray | float:
         """Dowson-Higginson density with the temperature term (3.10) [kg/m^3]:
@@ -160,11 +151,6 @@ class Lubricant:
     def eyring_stress(self, eta: float | np.ndarray, shear_rate: float | np.ndarray) -> np.ndarray | float:
         """Eyring shear stress (2.36, 4.33) ``tau0 asinh(eta gamma_dot / tau0)`` [Pa]."""
         out = self.tau0 * np.arcsinh(np.asarray(eta) * np.asarray(shear_rate) / self.tau0)
-        return out if np.ndim(out) else float(out)
-
-    def eyring_shear_rate(self, eta: float | np.ndarray, tau: float | np.ndarray) -> np.ndarray | float:
-        """Inverse of :meth:`eyring_stress`: ``(tau0/eta) sinh(tau/tau0)`` [1/s]."""
-        out = self.tau0 / np.asarray(eta) * np.sinh(np.asarray(tau) / self.tau0)
         return out if np.ndim(out) else float(out)
 
     # -- construction -----------------------------------------------------------------------

@@ -323,10 +323,6 @@ class StagedOutputs:
         self.published = finals
         return finals
 
-    def discard(self) -> None:
-        """Remove the staging folder without publishing anything."""
-        shutil.rmtree(self.dir, ignore_errors=True)
-
     def __enter__(self) -> StagedOutputs:
         return self
 

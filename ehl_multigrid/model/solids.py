@@ -42,11 +42,6 @@ class Solid:
         require_positive(f"{p}.cp", self.cp, "J/(kg degC)")
         require_positive(f"{p}.hardness", self.hardness, "Pa")
 
-    @property
-    def plane_strain_modulus(self) -> float:
-        """``E / (1 - nu^2)`` [Pa]."""
-        return self.E / (1.0 - self.nu**2)
-
     def with_changes(self, **changes: float | str) -> Solid:
         reject_unknown_keys("solid", changes, {f.name for f in fields(self)} | {"preset"})
         changes.pop("preset", None)

@@ -110,18 +110,6 @@ def log_starved_film(log_hc: np.ndarray, hoil: float, rho_bar: float, delta: flo
     return log_cap - np.logaddexp(0.0, delta * log_r) / delta
 
 
-def starved_film(hc: ArrayLike, hoil: float, rho_bar: float = 1.0, delta: float = 3.5) -> ArrayLike:
-    """Starved central film (6.4) ``hcs = hc r/(1 + r^delta)^(1/delta)``, ``r = hoil/(hc rho_bar)`` [m]."""
-    hoil = require_range("hoil", hoil, 0.0, math.inf, "m", lo_open=True)
-    require_positive("rho_bar", rho_bar, "-")
-    require_range("delta", delta, 0.5, 20.0, "-")
-    hc = np.asarray(hc, dtype=float)
-    if np.any(~(hc > 0)):
-        raise InputError(f"hc = {hc[~(hc > 0)].ravel()[:3]} m must be > 0")
-    out = np.exp(log_starved_film(np.log(hc), hoil, rho_bar, delta))
-    return float(out) if out.ndim == 0 else out
-
-
 def density_ratio_at(pmax: float) -> float:
     """``rho_bar(pmax)`` of (6.3): isothermal Dowson-Higginson density ratio (2.7)."""
     return float(density_ratio_dh(require_positive("pmax", pmax, "Pa")))

@@ -26,7 +26,7 @@ Definitions used here (all heights relative to the mean plane of the valid point
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
@@ -184,12 +184,6 @@ class SurfaceStats:
         "kappa_std": "1/m", "beta_mean_radius": "m", "E_reduced": "Pa", "hardness": "Pa",
         "dx": "m", "dy": "m", "n_beta_sigma_s": "-", "dd_over_sigma": "-", "sigma_s_over_sigma": "-",
     }
-
-    def with_material(self, E_reduced: float | None = None, hardness: float | None = None) -> SurfaceStats:
-        """The same statistics with psi for another E' or hardness."""
-        E = self.E_reduced if E_reduced is None else require_positive("E_reduced", E_reduced, "Pa")
-        H = self.hardness if hardness is None else require_positive("hardness", hardness, "Pa")
-        return replace(self, E_reduced=E, hardness=H, psi=plasticity_index(self.sigma_s, self.beta, E, H))
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)

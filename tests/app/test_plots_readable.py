@@ -4,7 +4,7 @@ of the title, and slender ellipses drawn in panels of a sensible shape, not as t
 import numpy as np
 import pytest
 
-from ehl_multigrid.app.point_plots import (
+from ehl_multigrid.app.film_plots import (
     MAX_TRUE_ASPECT,
     map_scales,
     maps_figure,
@@ -87,7 +87,7 @@ def test_plot_result_writes_three_pngs(tmp_path):
 
 
 def test_line_plots_label_the_film_in_the_titles_scaling():
-    from ehl_multigrid.app.line_plots import line_scales
+    from ehl_multigrid.app.film_plots import line_scales
     from ehl_multigrid.line import solve_line
     from ehl_multigrid.model.scene import load_scene
 
@@ -101,7 +101,7 @@ def test_line_plots_label_the_film_in_the_titles_scaling():
 
 
 def test_maps_of_a_fine_grid_are_drawn_on_every_fourth_point_with_the_edges_kept():
-    from ehl_multigrid.app.point_plots import MAP_POINTS, thinned
+    from ehl_multigrid.app.film_plots import MAP_POINTS, thinned
 
     sc = map_scales(_point_result(1.0, physical=False))
     fine = type(sc)(**{**vars(sc), "x": np.linspace(-4.5, 1.5, 1025), "y": np.linspace(-3, 3, 1025),

@@ -11,10 +11,7 @@ from ehl_multigrid.model.scene import Roughness
 from mixed.film import (
     equivalent_surface,
     johnson_film,
-    roughness_from_rq,
     separation_from_film,
-    summit_separation,
-    whitehouse_archard,
 )
 
 SIGMA = 7e-8
@@ -59,14 +56,6 @@ def test_inverse_rejects_non_positive_films():
         separation_from_film(0.0, SIGMA)
     with pytest.raises(InputError, match="sigma"):
         johnson_film(1e-8, -1.0)
-
-
-def test_planes_and_whitehouse_archard_defaults():
-    assert summit_separation(1e-7, 5.75e-8) == pytest.approx(4.25e-8)
-    ss, dd = whitehouse_archard(1e-7)
-    assert (ss, dd) == (pytest.approx(0.7e-7), pytest.approx(0.82e-7))
-    r = roughness_from_rq(1.5e-7, n=1e10, beta=5e-5)
-    assert r.sigma_s == pytest.approx(1.05e-7) and r.dd == pytest.approx(1.23e-7)
 
 
 def test_equivalent_surface_combines_in_quadrature_and_keeps_the_rougher_summits():

@@ -1,20 +1,27 @@
-"""PNG plots of a point-contact result: pressure and film maps, centre-line profiles in x and y,
-and an interference-style film map (dpi <= 110). Figures are built with
+"""PNG figures of a solved film, line or point (dpi 100), built with
 ``matplotlib.figure.Figure`` (no pyplot), so plotting never changes the process-wide backend.
 
-What a tribologist reads: with a physical scale (a scene) the maps show the film in nm, the
+* line contact: pressure and film over the whole domain, and a zoom on the contact that shows
+  the pressure spike and the outlet constriction (``<stem>_PH.png``, ``<stem>_zoom.png``);
+* point contact: pressure and film maps, centre-line profiles in x and y, and an
+  interference-style film map (``<stem>_maps.png``, ``<stem>_profiles.png``,
+  ``<stem>_interference.png``).
+
+What a tribologist reads: with a physical scale (a scene) the axes show the film in nm, the
 pressure in GPa and the plane in mm (or um), and the title quotes hc and hm in nm; without one
-(Moes-only) they show P = p/pmax and H in Moes's scaling, the scaling of the title's Hc and Hm.
-The maps keep the plane's true proportions (equal axes) unless the domain is more than
-:data:`MAX_TRUE_ASPECT` times longer one way than the other (slender ellipses); then each panel
-gets a readable shape and its title says by how much the axes are stretched.
+(Moes-only) they show X = x/b (x/a), P = p/pmax and H in Moes's scaling, the scaling of the
+title's Hc and Hm. The maps keep the plane's true proportions (equal axes) unless the domain is
+more than :data:`MAX_TRUE_ASPECT` times longer one way than the other (slender ellipses); then
+each panel gets a readable shape and its title says by how much the axes are stretched.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from matplotlib.figure import Figure
@@ -22,10 +29,97 @@ from matplotlib.figure import Figure
 from ..model.atomic import atomic_savefig
 from ..model.results import Result
 
+if TYPE_CHECKING:  # the line solver's package: not loaded to draw a point contact
+    from ..line.solution import LineSolution
+
 #: Largest height/width (or width/height) of the plotted plane drawn with equal axes.
 MAX_TRUE_ASPECT = 3.0
+#: Most points per axis a map draws: a map panel is about 340 pixels wide at the figures' dpi
+#: (docs/performance.md: what the figures cost)
+MAP_POINTS = 257
 
 
+# -- shared by both geometries -------------------------------------------------------------------
+def length_unit(span: float) -> tuple[str, float]:
+    """``(unit, per_m)`` of a plane whose largest coordinate is ``span`` metres: mm, or um
+    below a millimetre."""
+    return ("mm", 1e3) if span >= 1e-3 else ("um", 1e6)
+
+
+def moes_per_venner(s: dict[str, Any]) -> float:
+    """H (Moes) per H (Venner) of a result's scalars ``s``."""
+    return float(s["Hc"]) / float(s["Hc_venner"])
+
+
+def film_text(hc: float, hm: float, physical: bool) -> str:
+    """The central and minimum film of a title, in nm or in Moes's scaling."""
+    return f"hc = {hc:.4g} nm, hm = {hm:.4g} nm" if physical else f"Hc = {hc:.4g}, Hm = {hm:.4g} (Moes)"
+
+
+def save_figures(folder: str | Path, stem: str, makers: Sequence[tuple[str, Callable[[], Figure]]]) -> list[Path]:
+    """Build and write each figure ``make()`` as ``<folder>/<stem>_<suffix>.png``, one at a time;
+    return the paths."""
+    files = []
+    for suffix, make in makers:
+        f = Path(folder) / f"{stem}_{suffix}.png"
+        atomic_savefig(make(), f, dpi=100)
+        files.append(f)
+    return files
+
+
+# -- line contact --------------------------------------------------------------------------------
+def line_scales(sol: LineSolution) -> dict:
+    """Plotted arrays, labels and title values of ``sol`` (physical or Moes-scaled)."""
+    s = sol.scalars
+    pb = sol.problem
+    X, P, H = np.asarray(sol.X), np.asarray(sol.P), np.asarray(sol.H)
+    if getattr(pb, "physical", False):
+        unit, per_m = length_unit(float(np.abs(X).max() * pb.b))
+        h_nm = H * pb.b**2 / pb.R * 1e9
+        return {"x": X * pb.b * per_m, "p": P * pb.pmax / 1e9, "h": h_nm, "xlabel": f"x [{unit}]",
+                "plabel": "p [GPa]", "hlabel": "h [nm]", "x_per_X": pb.b * per_m,
+                "hc": float(s["hc"]) * 1e9, "hm": float(s["hm"]) * 1e9, "units": "nm",
+                "h_per_H": pb.b**2 / pb.R * 1e9}
+    moes = moes_per_venner(s)
+    return {"x": X, "p": P, "h": H * moes, "xlabel": "X = x/b", "plabel": "P = p/pmax", "hlabel": "H (Moes)",
+            "x_per_X": 1.0, "hc": float(s["Hc"]), "hm": float(s["Hm"]), "units": "(Moes)", "h_per_H": moes}
+
+
+def line_figure(sol: LineSolution, sc: dict, label: str, zoom: tuple[float, float] | None) -> Figure:
+    """Pressure and film of ``sol`` against x, over the whole domain or ``zoom`` (in X)."""
+    s = sol.scalars
+    fig = Figure(figsize=(6.4, 3.8))
+    # fixed margins: a constrained layout costs 0.15-0.25 s per figure
+    fig.subplots_adjust(left=0.11, right=0.88, bottom=0.13, top=0.91)
+    ax = fig.subplots()
+    ax.plot(sc["x"], sc["p"], "C0", lw=1.2, label="pressure")
+    ax.set_xlabel(sc["xlabel"])
+    ax.set_ylabel(sc["plabel"], color="C0")
+    ax2 = ax.twinx()
+    ax2.plot(sc["x"], sc["h"], "C3", lw=1.2, label="film")
+    ax2.set_ylabel(sc["hlabel"], color="C3")
+    if zoom is not None:
+        ax.set_xlim(zoom[0] * sc["x_per_X"], zoom[1] * sc["x_per_X"])
+        inside = (sol.X >= zoom[0]) & (sol.X <= zoom[1])
+        hmax = float(np.max(sc["h"][inside]))
+        ax2.set_ylim(0.0, min(hmax, 4.0 * s["Hc_venner"] * sc["h_per_H"]))
+        ax2.axhline(sc["hm"], color="C3", ls=":", lw=0.8)
+        ax2.plot([s["X_Hm"] * sc["x_per_X"]], [sc["hm"]], "v", color="C3")
+    films = film_text(sc["hc"], sc["hm"], sc["units"] == "nm")
+    ax.set_title(f"{label}: {films}, {'converged' if s['converged'] else 'NOT converged'}", fontsize=9)
+    return fig
+
+
+def plot_solution(sol: LineSolution, folder: str | Path, stem: str, title: str = "") -> list[Path]:
+    """Write ``<stem>_PH.png`` (whole domain) and ``<stem>_zoom.png`` into ``folder``; return
+    both paths."""
+    sc = line_scales(sol)
+    label = title or f"M = {sol.scalars['M']:.4g}, L = {sol.scalars['L']:.4g}"
+    return save_figures(folder, stem, [(suffix, lambda zoom=zoom: line_figure(sol, sc, label, zoom))
+                                       for suffix, zoom in (("PH", None), ("zoom", (-1.3, 1.3)))])
+
+
+# -- point contact -------------------------------------------------------------------------------
 def interference_rgb(h_m: np.ndarray, n_oil: float = 1.5, wavelengths=(650e-9, 532e-9, 450e-9)) -> np.ndarray:
     """Two-beam interference colours ``I = cos^2(2 pi n h / lambda)`` for red, green, blue."""
     rgb = [np.cos(2.0 * np.pi * n_oil * h_m / lam) ** 2 for lam in wavelengths]
@@ -59,30 +153,24 @@ def map_scales(res: Result, name: str = "") -> MapScales:
     s = res.scalars
     X, Y = np.asarray(res["X"]), np.asarray(res["Y"])
     physical = {"p", "h"} <= set(res.fields) and {"x", "y"} <= set(res.coords)
+    prefix = name + ": " if name else ""
     if physical:
         x_m, y_m = np.asarray(res["x"]), np.asarray(res["y"])
         a = (x_m[-1] - x_m[0]) / (X[-1] - X[0])  # metres per X unit (the Hertz half-width a)
-        span = max(np.abs(x_m).max(), np.abs(y_m).max())
-        unit, per_m = ("mm", 1e3) if span >= 1e-3 else ("um", 1e6)
+        unit, per_m = length_unit(max(np.abs(x_m).max(), np.abs(y_m).max()))
         h_nm = np.asarray(res["h"]).T * 1e9
         hc, hm = float(s["hc"]) * 1e9, float(s["hm"]) * 1e9
         pmax = float(s.get("pmax", np.nan))
-        title = (f"{name + ': ' if name else ''}hc = {hc:.4g} nm, hm = {hm:.4g} nm"
+        title = (f"{prefix}{film_text(hc, hm, True)}"
                  + (f", pmax = {pmax / 1e9:.3g} GPa" if math.isfinite(pmax) else ""))
         return MapScales(x_m * per_m, y_m * per_m, np.asarray(res["p"]).T / 1e9, h_nm,
                          f"x [{unit}]", f"y [{unit}]", "p [GPa]", "h [nm]", hc, hm,
                          float(s["X_Hm"]) * a * per_m, float(s["Y_Hm"]) * a * per_m, True, title, 1.0 / per_m)
-    moes_per_venner = float(s["Hc"]) / float(s["Hc_venner"])  # H (Moes) = H (Venner) x this
-    title = (f"{name + ': ' if name else ''}M = {s['M']:.4g}, L = {s['L']:.4g}, theta = {s['theta']:.3g}; "
-             f"Hc = {s['Hc']:.4g}, Hm = {s['Hm']:.4g} (Moes)")
-    return MapScales(X, Y, np.asarray(res["P"]).T, np.asarray(res["H"]).T * moes_per_venner,
+    title = (f"{prefix}M = {s['M']:.4g}, L = {s['L']:.4g}, theta = {s['theta']:.3g}; "
+             f"{film_text(s['Hc'], s['Hm'], False)}")
+    return MapScales(X, Y, np.asarray(res["P"]).T, np.asarray(res["H"]).T * moes_per_venner(s),
                      "X = x/a", "Y = y/a", "P = p/pmax", "H (Moes)", float(s["Hc"]), float(s["Hm"]),
                      float(s["X_Hm"]), float(s["Y_Hm"]), False, title, math.nan)
-
-
-#: Most points per axis a map draws: a map panel is about 340 pixels wide at the figures' dpi
-#: (docs/performance.md: what the figures cost)
-MAP_POINTS = 257
 
 
 def thinned(sc: MapScales, most: int = MAP_POINTS) -> MapScales:
@@ -202,12 +290,25 @@ def interference_figure(res: Result, name: str = "") -> Figure:
 
 def plot_result(res: Result, outdir: str | Path, name: str) -> list[Path]:
     """Write ``<name>_maps.png``, ``<name>_profiles.png``, ``<name>_interference.png``."""
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
+    Path(outdir).mkdir(parents=True, exist_ok=True)
     label = res.scene.name if res.scene is not None else ""
-    files = []
-    for suffix, make in (("maps", maps_figure), ("profiles", profiles_figure), ("interference", interference_figure)):
-        f = outdir / f"{name}_{suffix}.png"
-        atomic_savefig(make(res, label), f, dpi=100)
-        files.append(f)
-    return files
+    return save_figures(outdir, name, [(suffix, lambda make=make: make(res, label)) for suffix, make in (
+        ("maps", maps_figure), ("profiles", profiles_figure), ("interference", interference_figure))])
+
+
+# -- the figures of a contact --------------------------------------------------------------------
+def film_figures(kind: str, raw: Any, res: Result, folder: Path, stem: str, title: str) -> list[Path]:
+    """The figures of a solved film in ``folder``, named after ``stem``: a line contact's
+    (``kind`` ``"line"``) from the solver's result ``raw``, titled ``title``; a point or elliptic
+    contact's from the HDF5 result ``res``, titled by its scene."""
+    if kind == "line":
+        return plot_solution(raw, folder, stem, title)
+    return plot_result(res, folder, stem)
+
+
+def starved_figure(kind: str, raw: Any, folder: Path, stem: str, title: str) -> Path:
+    """The film content ``theta`` of a starved solve ``raw``: ``<folder>/<stem>_PHtheta.png``."""
+    from ..starved.plots import plot_starved, plot_starved_point
+
+    plot = plot_starved if kind == "line" else plot_starved_point
+    return Path(plot(raw, folder / stem, title))
