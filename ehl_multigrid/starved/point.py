@@ -576,6 +576,9 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
     number (uniform) or a profile across the track: one layer per row of the finest grid
     (``Y`` of the result; e.g. the side ridges left by the previous over-rolling).
 
+    Without ``options`` the residual tolerance is ``STARVED_TOL`` and the wedge order
+    ``STARVED_WEDGE_ORDER`` (keywords win); an options object is taken as given.
+
     No continuation in the supply (the flooded solution first, the supply halved from twice its
     central film, each solve cycling on the finest grid from the previous one): at (100, 5)
     257^2 and (179, 4.17) 129^2 it reaches the same or worse residuals at 3-6 times the cost.
@@ -594,8 +597,8 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
     if not callable(hoil) and np.ndim(hoil) == 0:
         hoil = check_hoil(hoil)
     explicit = set(kw)
-    kw.setdefault("tol", STARVED_TOL)
-    if options is None:
+    if options is None:  # the tighter default; an options object's tolerance is the caller's
+        kw.setdefault("tol", STARVED_TOL)
         kw.setdefault("wedge_order", STARVED_WEDGE_ORDER)
         kw.setdefault("max_cycles", STARVED_MAX_CYCLES if kw["wedge_order"] == 1 else STARVED_MAX_CYCLES_2)
     opt = PointOptions.build(options, **kw)

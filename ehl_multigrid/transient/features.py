@@ -472,6 +472,12 @@ class HeightMap:
         return 0.5 * (x_start + x_end)
 
     @property
+    def y_ref(self) -> float:
+        """The row the film change is followed on: the map's centre row."""
+        _, _, y_start, y_end = self.extent
+        return 0.5 * (y_start + y_end)
+
+    @property
     def length_scale(self) -> float:
         """Four sample spacings along X: the shortest wavelength the samples describe well."""
         return 4.0 * float(self.dx)

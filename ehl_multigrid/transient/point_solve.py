@@ -199,7 +199,7 @@ def solve_transient_point(
             theta0 = steady.extra["theta"]
         out = PointTransientResult(problem=problem, feature=feature, body=body, slide_roll=slide_roll,
                                    speed=speed, dt=float(dt), scheme=scheme, options=opts, steady=steady,
-                                   X=fine.X.copy(), Y=fine.Y.copy(), yf=float(getattr(feature, "y0", 0.0)),
+                                   X=fine.X.copy(), Y=fine.Y.copy(), yf=float(getattr(feature, "y_ref", getattr(feature, "y0", 0.0))),
                                    cavitation=cavitation, hoil=hz.hoil if mass_conserving else hoil,
                                    mass_tol=getattr(hz, "mass_tol", None))
         out.Hc_steady = float(steady.H[int(np.argmin(np.abs(fine.Y))), int(np.argmin(np.abs(fine.X)))])

@@ -111,3 +111,13 @@ def test_point_scene_supply_in_metres_gives_films_in_metres():
     assert sc["mass_balance_error"] < 1e-5
     with pytest.raises(InputError, match="supply.hoil"):
         solve_starved_point_scene(scene, hoil=-1e-9, points=129)
+
+
+def test_an_options_objects_tolerance_is_kept_and_keywords_default_to_the_starved_one(problem):
+    from ehl_multigrid.multigrid.options import PointOptions
+
+    given = solve_starved_point(problem, 1.0, PointOptions(points=33, half=True, tol=1e-10, max_cycles=2,
+                                                         raise_on_failure=False))
+    default = solve_starved_point(problem, 1.0, points=33, half=True, max_cycles=2, raise_on_failure=False)
+    assert given.options.tol == 1e-10
+    assert default.options.tol == STARVED_TOL

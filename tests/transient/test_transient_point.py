@@ -90,6 +90,7 @@ def test_height_map_of_a_dent_moves_like_the_dent(problem):
     b = solve_transient_point(problem, hm, dt=0.1, steps=20, points=65)
     assert np.max(a.Hc) > a.Hc_steady + 0.02  # the dent (0.1 deep) reaches the centre
     assert np.max(np.abs(a.Hc - b.Hc)) < 2e-3 * a.Hc_steady
+    assert b.yf == a.yf == 0.0  # the film change followed on the map's centre row, not its edge
 
 
 def test_point_features_too_large_or_bad_steps_are_named(problem):
