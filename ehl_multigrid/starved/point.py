@@ -1027,7 +1027,7 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
     fl = res.extra["fluxes"]
     Hoil_c = Hoil(0.0) if callable(Hoil) else Hoil  # the centre's layer
     res.scalars.update(hoil=h_m, hoil_venner=Hoil_c, hc=res.scalars["Hc_venner"] * scale,
-                       hm=res.scalars["Hm_venner"] * scale, rho_c_Hc_over_hoil=res.extra["rho_c"] * res.scalars["Hc_venner"] / Hoil_c,
+                       hm=res.scalars["Hm_venner"] * scale, rho_c_Hc_over_hoil=supply_ratio(res.extra["rho_c"], res.scalars["Hc_venner"], Hoil_c),
                        outlet_layer=res.extra["outlet_layer"],
                        side_flow=fl["side"] / fl["in"] if fl["in"] else math.nan,
                        wedge_order=int(res.options.wedge_order))

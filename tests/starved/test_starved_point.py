@@ -121,3 +121,11 @@ def test_an_options_objects_tolerance_is_kept_and_keywords_default_to_the_starve
     default = solve_starved_point(problem, 1.0, points=33, half=True, max_cycles=2, raise_on_failure=False)
     assert given.options.tol == 1e-10
     assert default.options.tol == STARVED_TOL
+
+
+def test_a_flooded_point_scene_has_no_supply_ratio_as_the_line():
+    from ehl_multigrid.model.scene import load_scene
+    from ehl_multigrid.starved import solve_starved_point_scene
+
+    sol = solve_starved_point_scene(load_scene("default"), hoil=math.inf, points=33, flooded=False, accuracy=None)
+    assert math.isnan(sol.scalars["rho_c_Hc_over_hoil"])  # rho_c Hc / inf is not a starvation measure
