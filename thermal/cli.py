@@ -141,7 +141,7 @@ def run_traction(args: argparse.Namespace) -> dict[str, Any]:
     if not args.no_plots:
         from .plots import plot_all
 
-        payload["png"] = plot_all(res, out, stem)
+        payload["plots"] = plot_all(res, out, stem)
     if not args.json:
         print(f"traction {scene.name}: {'thermal' if options.thermal else 'isothermal'}, input {args.input}, "
               f"load {points[0].load:.6g} N, pmax {points[0].hertz.pmax / 1e9:.4g} GPa, us {points[0].us:.4g} m/s")

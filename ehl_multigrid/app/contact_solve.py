@@ -10,9 +10,9 @@ plotting keeps the result (not the figures of the interrupted plotting call) and
 partial reaches the folder. Progress (each solve of the accuracy sequence, and the solver's
 cycles at most every few seconds) goes to stderr.
 
-What the geometry decides -- the options its solvers read, the problem, the lines printed, the
-payload's keys and the figures -- is :func:`_solve_line` or :func:`_solve_point` and its
-:class:`Layout`.
+What the geometry decides -- the options its solvers read, the problem, the lines printed and
+the figures -- is :func:`_solve_line` or :func:`_solve_point`. The payload names the result
+``hdf5`` and the figures ``plots`` for every contact, as the other commands do.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import argparse
 import math
 from dataclasses import fields
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import Any
 
 from .. import front
 from ..model.atomic import fault_point
@@ -42,16 +42,8 @@ POINT_OPTIONS = ("points", "levels", "cycle", "cycles", "max_cycles", "deformati
                  "threads", "tol", "tol_load")
 
 
-class Layout(NamedTuple):
-    """Where a geometry's payload names its files, and what its printed summary leaves out."""
-
-    file_key: str
-    plots_key: str
-    hidden: tuple[str, ...]
-
-
-LINE_LAYOUT = Layout("hdf5", "png", ("actions",))
-POINT_LAYOUT = Layout("file", "plots", ("actions", "plots"))
+#: payload keys the printed summary leaves out (the figure list; the actions follow it line by line)
+HIDDEN = ("actions", "plots")
 
 
 def run_contact_solve(args: argparse.Namespace, scene: Any, kind: str) -> dict[str, Any]:
@@ -92,8 +84,8 @@ def refuse_time_budget(opts: dict[str, Any], kind: str) -> None:
                          "refines its grid only (use --max-points to bound it)")
 
 
-def write_and_print(args: argparse.Namespace, out: Path, layout: Layout, kind: str, raw: Any, res: Any, name: str,
-                    payload: dict[str, Any], starved: bool) -> dict[str, Any]:
+def write_and_print(args: argparse.Namespace, out: Path, kind: str, raw: Any, res: Any, name: str,
+                    payload: dict[str, Any], starved: bool, hidden: tuple[str, ...] = HIDDEN) -> dict[str, Any]:
     """Write the result ``res`` as ``<stem>.h5``, the CSV profiles (``--csv``) and the figures
     (of the solver's result ``raw``; with the film content of a ``starved`` one) through a
     staging folder, name them in ``payload`` and print its summary (unless ``--json``)."""
@@ -101,7 +93,7 @@ def write_and_print(args: argparse.Namespace, out: Path, layout: Layout, kind: s
     # the finished files are moved into --out together when the block ends (a stop while
     # plotting keeps the result and the CSV, not the figures of the interrupted call)
     with StagedOutputs(out, stem) as staged:
-        payload[layout.file_key] = str(staged.done(res.save(staged.path(f"{stem}.h5"))))
+        payload["hdf5"] = str(staged.done(res.save(staged.path(f"{stem}.h5"))))
         if getattr(args, "csv", False):
             from .profiles import write_profiles_csv
 
@@ -111,11 +103,11 @@ def write_and_print(args: argparse.Namespace, out: Path, layout: Layout, kind: s
 
             fault_point("solve.plots")
             figures = film_figures(kind, raw, res, staged.dir, stem, name)
-            payload[layout.plots_key] = [str(staged.done(p)) for p in figures]
+            payload["plots"] = [str(staged.done(p)) for p in figures]
             if starved:
-                payload[layout.plots_key].append(str(staged.done(starved_figure(kind, raw, staged.dir, stem, name))))
+                payload["plots"].append(str(staged.done(starved_figure(kind, raw, staged.dir, stem, name))))
     if not args.json:
-        print_table({k: v for k, v in payload.items() if k not in layout.hidden})
+        print_table({k: v for k, v in payload.items() if k not in hidden})
         for a in payload["actions"]:
             print(f"  action: {a}")
     return payload
@@ -177,7 +169,7 @@ def _solve_line(args: argparse.Namespace, scene: Any, out: Path, prog: Progress)
     else:
         payload = raw.payload()
     prog.status("writing the result", force=True)
-    return write_and_print(args, out, LINE_LAYOUT, "line", raw, res, name, payload, starved)
+    return write_and_print(args, out, "line", raw, res, name, payload, starved)
 
 
 # -- point and elliptic ----------------------------------------------------------------------------
@@ -295,7 +287,7 @@ def _solve_point(args: argparse.Namespace, scene: Any, out: Path, prog: Progress
     payload["solver"] = solver
     prog.status("writing the result", force=True)
     name = scene.name if scene is not None else f"point_M{pb.M:g}_L{pb.L:g}_th{pb.theta:g}"
-    return write_and_print(args, out, POINT_LAYOUT, "point", raw, res, name, payload, False)
+    return write_and_print(args, out, "point", raw, res, name, payload, False)
 
 
 def _solve_starved_point(args: argparse.Namespace, scene: Any, pb: Any, fas: dict[str, Any],
@@ -316,5 +308,4 @@ def _solve_starved_point(args: argparse.Namespace, scene: Any, pb: Any, fas: dic
     res = package_result(fsol)
     payload = starved_point_payload(sol, res)
     payload["solver"] = "starved-fas"
-    layout = POINT_LAYOUT._replace(hidden=(*POINT_LAYOUT.hidden, "error_budget"))
-    return write_and_print(args, out, layout, "point", sol, res, scene.name, payload, True)
+    return write_and_print(args, out, "point", sol, res, scene.name, payload, True, (*HIDDEN, "error_budget"))

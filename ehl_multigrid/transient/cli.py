@@ -231,7 +231,7 @@ def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: 
         h5 = res.to_hdf5(h5)
     summary = res.summary()
     payload: dict[str, Any] = {"scene": scene.name, **({"contact": contact} if point else {}),
-                               "file": str(h5), "converged": failure is None and res.complete,
+                               "hdf5": str(h5), "converged": failure is None and res.complete,
                                "complete": res.complete}
     if not res.complete:
         payload["stop_reason"] = res.stop_reason

@@ -238,3 +238,13 @@ def test_only_files_a_run_recorded_are_ever_deleted(tmp_path):
         "r.h5", "r_my_annotated.png", "r_profiles.png"]
     manifest = json.loads((tmp_path / ".ehl-files-r.json").read_text())
     assert manifest["files"] == ["r.h5", "r_profiles.png"]
+
+
+@pytest.mark.parametrize("contact", ["line", "point"])
+def test_ehl_solve_names_its_result_hdf5_and_its_figures_plots_for_every_contact(contact, tmp_path, capsys):
+    main(["solve", "--contact", contact, "--M", "20", "--L", "10", "--points", "129" if contact == "line" else "33",
+          "--accuracy", "none", "--json", "--out", str(tmp_path)])
+    payload = json.loads(capsys.readouterr().out)
+    assert is_complete(payload["hdf5"]) and os.path.dirname(payload["hdf5"]) == str(tmp_path)
+    assert payload["plots"] and all(os.path.isfile(p) for p in payload["plots"])
+    assert not {"file", "png"} & set(payload)

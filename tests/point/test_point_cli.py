@@ -21,10 +21,10 @@ def test_cli_json_moes_only(tmp_path, capsys):
     assert KEYS <= set(payload)
     assert payload["converged"] is True
     assert payload["hc"] is None and payload["hm"] is None
-    res = Result.load(payload["file"])
+    res = Result.load(payload["hdf5"])
     assert res.kind == "ehl_point"
     assert res["P"].shape == (65, 65) and res.fields["P"].dims == ("X", "Y")
-    with h5py.File(payload["file"]) as f:
+    with h5py.File(payload["hdf5"]) as f:
         assert "residual" in f["history"]
 
 
@@ -47,7 +47,7 @@ def test_cli_scene_gives_physical_films(tmp_path, capsys):
     payload = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert rc == 0
     assert payload["hc"] > 0 and payload["hm"] > 0
-    res = Result.load(payload["file"])
+    res = Result.load(payload["hdf5"])
     assert res.fields["h"].units == "m" and res.fields["p"].units == "Pa"
 
 

@@ -153,7 +153,7 @@ def test_cli_traction_isothermal_plots_and_default_slips(tmp_path, capsys):
     assert code == 0
     out = json.loads(capsys.readouterr().out)
     assert len(out["slip"]) == 21 and out["max_temperature_rise"] == [0.0] * 21
-    assert all(p.endswith(".png") for p in out["png"].values())
+    assert all(p.endswith(".png") for p in out["plots"].values())
 
 
 def test_cli_traction_bad_input_exits_2(tmp_path, capsys):

@@ -48,7 +48,7 @@ def test_transient_command_writes_series_plots_and_summary(monkeypatch, tmp_path
     assert 0 < out["hm_min"] < out["hc_min"] <= out["hc_steady"] <= out["hc_max"]
     assert [p.rsplit(".", 1)[1] for p in out["plots"]] == ["png", "png", "gif"]
     assert len(out["fraction_below_threshold"]) > 2
-    back = load_series(out["file"])
+    back = load_series(out["hdf5"])
     assert back["summary"]["steps"] == out["steps"]
     json.dumps(out)
 
@@ -118,7 +118,7 @@ def test_transient_command_runs_a_dent_through_a_point_scene(monkeypatch, tmp_pa
     assert 0 < out["hm_min"] < out["hc_steady"]
     assert len(out["load_fraction_below_threshold"]) == 4
     assert [p.rsplit(".", 1)[1] for p in out["plots"]] == ["png", "png"]
-    back = load_series(out["file"])
+    back = load_series(out["hdf5"])
     assert back["kind"] == "ehl_transient_point" and back["summary"]["steps"] == 12
     json.dumps(out)
 

@@ -234,7 +234,7 @@ def _solve_mode(args: argparse.Namespace, scene: Scene, point: bool, slip: float
         if not getattr(args, "no_plots", False):
             from .plots import plot_tehl
 
-            payload["png"] = [str(plot_tehl(res, output_file(folder, safe_stem(f"{scene.name}_tehl"), ".png")))]
+            payload["plots"] = [str(plot_tehl(res, output_file(folder, safe_stem(f"{scene.name}_tehl"), ".png")))]
     if not getattr(args, "json", False):
         print_table({k: v for k, v in payload.items() if k not in ("outer", "properties", "error_budget", "refinements")})
     return payload

@@ -94,7 +94,7 @@ def test_ehl_solve_thermal_writes_the_solution_and_show_lists_the_thermal_proper
     assert res.kind == "tehl_line" and res["T"].shape == (129, 11)
     from pathlib import Path
 
-    assert len(out["png"]) == 1 and Path(out["png"][0]).stat().st_size > 10_000
+    assert len(out["plots"]) == 1 and Path(out["plots"][0]).stat().st_size > 10_000
     assert res.scalars["Hc"] == pytest.approx(out["Hc"])
     assert main(["show", "appendix_c_line_4240N", "--json"]) == 0
     shown = json.loads(capsys.readouterr().out)
