@@ -37,6 +37,20 @@ def add_common_options(p: argparse.ArgumentParser, out_default: str = "ehl_out")
 LINE_INTERVAL_S = 10.0
 
 
+def accuracy_argument(text: str) -> float | None:
+    """``--accuracy``: a relative error in [1e-5, 0.5], or ``none``."""
+    if text.strip().lower() == "none":
+        return None
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"accuracy = {text!r} is not a number or 'none'") from None
+    if not 1e-5 <= v <= 0.5:
+        raise argparse.ArgumentTypeError(f"accuracy = {v:g} is outside the allowed range [1e-05, 0.5] "
+                                         f"(relative error) or 'none'")
+    return v
+
+
 def progress_mode() -> str:
     """``"bar"`` (stderr is a terminal), ``"lines"`` (anything else) or ``"off"``; the
     environment variable ``EHL_PROGRESS`` (``off``/``0``, ``lines``, ``bar``) overrides."""

@@ -13,23 +13,10 @@ import argparse
 
 from ..model.constants import MOES_ONLY_DEFAULTS
 from ..model.errors import InputError
+from .console import accuracy_argument
 
 __all__ = ["MOES_ONLY_DEFAULTS", "add_solve_arguments", "refuse_unread_options", "resolve_contact", "run_solve",
            "seconds_argument"]
-
-
-def _accuracy(text: str) -> float | None:
-    """``--accuracy``: a relative error in [1e-5, 0.5], or ``none``."""
-    if text.strip().lower() == "none":
-        return None
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"accuracy = {text!r} is not a number or 'none'") from None
-    if not 1e-5 <= v <= 0.5:
-        raise argparse.ArgumentTypeError(f"accuracy = {v:g} is outside the allowed range [1e-05, 0.5] "
-                                         f"(relative error) or 'none'")
-    return v
 
 
 def seconds_argument(text: str) -> float:
@@ -56,7 +43,7 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--alpha", type=float, default=None, help=f"pressure-viscosity coefficient [1/Pa] (Moes-only; default {MOES_ONLY_DEFAULTS['alpha']:g})")
     p.add_argument("--eta0", type=float, default=None, help=f"ambient viscosity [Pa s] (Moes-only; default {MOES_ONLY_DEFAULTS['eta0']:g})")
     p.add_argument("--p0", type=float, default=None, help=f"Roelands reference pressure [Pa] (Moes-only; default {MOES_ONLY_DEFAULTS['p0']:g})")
-    p.add_argument("--accuracy", type=_accuracy, default=0.005,
+    p.add_argument("--accuracy", type=accuracy_argument, default=0.005,
                    help="relative accuracy wanted for Hc and Hm (default 0.005); without --points the "
                         "solver picks and refines grid and box until its error estimate meets it; "
                         "'none' only reports the estimate (the result is then judged on its "

@@ -93,6 +93,18 @@ def test_ehl_solve_hands_its_options_and_progress_to_the_front_door(calls, tmp_p
     assert callable(call["progress"]) and callable(call["callback"])
 
 
+@pytest.mark.parametrize("extra, accuracy, options", [
+    ([], 0.005, {}),  # refined towards the default accuracy, as 'ehl solve --thermal'
+    (["--points", "257", "--accuracy", "0.02"], 0.02, {"points": 257}),  # a given grid is judged
+    (["--accuracy", "none"], None, {}),
+])
+def test_ehl_tehl_at_one_slip_hands_its_accuracy_to_the_front_door(calls, capsys, extra, accuracy, options):
+    main(["tehl", "page63_line_2000N", "--slip", "0.5", *extra])
+    (call,) = calls
+    assert call["physics"] == "thermal" and call["accuracy"] == accuracy
+    assert call["options"] == {**options, "compressive_heating": True, "slip": 0.5}
+
+
 def test_the_newton_path_is_judged_on_its_iteration_alone(calls, tmp_path, capsys):
     main(["solve", "--contact", "point", "--M", "20", "--L", "10", "--solver", "newton", "--points", "65",
           "--no-plots", "--out", str(tmp_path)])

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ehl_multigrid.app.console import print_table
+from ehl_multigrid.app.console import accuracy_argument, print_table
 from ehl_multigrid.model.errors import ConvergenceError, InputError
 from ehl_multigrid.model.scene import Scene, load_scene
 
@@ -56,6 +56,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--nz", type=int, default=None, help="thermal intervals across the film (default 20)")
     p.add_argument("--no-compression", dest="compressive_heating", action="store_false",
                    help="leave the compressive heating out of the energy equation (the thesis's (3.5))")
+    p.add_argument("--accuracy", type=accuracy_argument, default=0.005,
+                   help="relative accuracy wanted for Hc and Hm (default 0.005): one slip without --points "
+                        "and --nz is refined until its estimate meets it (as 'ehl solve --thermal'); a given "
+                        "grid and a curve are judged against it; 'none' judges on the iteration alone")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument("--no-estimate", dest="estimate", action="store_false",
                    help="skip the error estimate (a curve estimates it at its first and last slip "
@@ -100,6 +104,7 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
     if scene.kind != "line":
         raise InputError(f"scene {scene.name!r} is a {scene.kind} contact; 'ehl tehl' solves line contacts")
     changes = {k: v for k, v in (("points", args.points), ("nz", args.nz)) if v is not None}
+    accuracy = getattr(args, "accuracy", None)
     opts = TEHLOptions(**changes, compressive_heating=getattr(args, "compressive_heating", True))
     slips = parse_slips(args.slip) if args.slip is not None else [scene.slip]
     if len(slips) == 1:
@@ -107,11 +112,13 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
             # the front door's thermal physics on this fixed grid: the solve and its estimate
             from ehl_multigrid import front
 
-            sol = front.solve(scene, physics="thermal", accuracy=None,
+            # refined towards --accuracy unless --points or --nz fixes the grid (then judged)
+            sol = front.solve(scene, physics="thermal", accuracy=accuracy,
                               options={**changes, "compressive_heating": opts.compressive_heating,
                                        "slip": slips[0]})
             done = require_computed(sol)
             r, estimate, status = done.result, done.estimate.payload(), sol.status.label
+            estimate.update(points=r.options.points, nz=r.options.nz, message=sol.message)
         else:
             # (the front door always estimates the error: --no-estimate solves the film alone;
             # a thermal solve that does not converge raises)
@@ -136,6 +143,12 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
         payload["hoil"] = curve[0].starved["hoil"]
     if getattr(args, "estimate", True):
         payload.update(curve_error(curve))
+        worst = max(payload["Hc_error"], payload["Hm_error"])
+        if accuracy is not None and payload["converged"] and not worst <= accuracy:
+            # a curve is solved on one given grid: judged, not refined
+            payload["status"] = "inaccurate"
+            payload["message"] = (f"the curve's largest estimated film error ({worst:.2g}) exceeds the accuracy "
+                                  f"{accuracy:g} on {opts.points} points: give a finer --points")
     if not args.json:
         print(f"  {'slip':>8} {'mu':>9} {'Hc':>8} {'Hm':>8} {'T_max':>8}")
         for r in curve:
