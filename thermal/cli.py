@@ -6,7 +6,12 @@ import argparse
 import math
 from typing import Any
 
-from ehl_multigrid.app.console import add_common_options, locked_command, print_table
+from ehl_multigrid.app.console import (
+    accuracy_argument,
+    add_common_options,
+    locked_command,
+    print_table,
+)
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.paths import output_file, safe_stem, writable_dir
 from ehl_multigrid.model.results import Result
@@ -48,6 +53,9 @@ def register(subparsers: Any) -> None:
     p.add_argument("--no-estimate", dest="estimate", action="store_false",
                    help="--coupled: skip the curve's error estimate (at its first and last slip and "
                         "its largest friction)")
+    p.add_argument("--accuracy", type=accuracy_argument, default=0.005,
+                   help="--coupled: relative accuracy the curve's largest estimated film error is judged "
+                        "against (default 0.005; 'none': not judged)")
     p.add_argument("--slip", default=None,
                    help="slip values S: comma list or min:max:n; write --slip=-1,0,1 when the list starts negative "
                    "(default: scene ranges.slip)")
@@ -83,6 +91,9 @@ def run_traction(args: argparse.Namespace) -> dict[str, Any]:
         return run_tehl(args)
     if args.points is not None:
         raise InputError("--points applies to --coupled traction curves only")
+    if args.accuracy != 0.005:
+        raise InputError("--accuracy applies to --coupled traction curves only (the thermal model's "
+                         "friction states its own error)")
     options = ThermalOptions.from_scene(
         scene, nx=args.nx, nz=args.nz, slices=args.slices, x_in=args.x_in, surface_kernel=args.surface_kernel,
         slice_pressure=args.slice_pressure, slice_rule=args.slice_rule, tol_T=args.tol, tol_tau=args.tol,
