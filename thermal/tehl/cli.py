@@ -102,7 +102,9 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
 
     scene = load_scene(args.scene)
     if scene.kind != "line":
-        raise InputError(f"scene {scene.name!r} is a {scene.kind} contact; 'ehl tehl' solves line contacts")
+        raise InputError(f"scene {scene.name!r} is a {scene.kind} contact; 'ehl tehl' solves line contacts "
+                         f"(a {scene.kind} contact's thermal EHL film at one slip: "
+                         f"ehl solve {scene.name} --thermal [--slip S])")
     changes = {k: v for k, v in (("points", args.points), ("nz", args.nz)) if v is not None}
     accuracy = getattr(args, "accuracy", None)
     opts = TEHLOptions(**changes, compressive_heating=getattr(args, "compressive_heating", True))

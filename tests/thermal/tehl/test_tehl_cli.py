@@ -48,8 +48,9 @@ def test_tehl_no_compression_flag_solves_the_thesis_energy_equation(capsys):
 
 def test_tehl_refuses_a_point_contact():
     a = _parse(["tehl", "appendix_d_point"])
-    with pytest.raises(InputError, match="line contacts"):
+    with pytest.raises(InputError, match="line contacts") as err:
         a.func(a)
+    assert "ehl solve appendix_d_point --thermal" in str(err.value)  # where the point film is
 
 
 def test_thermal_properties_of_T9_at_60C():
