@@ -359,13 +359,13 @@ def _starved(scene: Scene, contact: str, accuracy: float | None, options: Any, c
     if contact == "line":
         from .starved import solve_starved_scene as run
 
-        accepted = _field_names(LineOptions) | {"max_points", "xmin", "xmax", "elastic"} | set(MODEL_KEYS)
+        accepted = _field_names(LineOptions) | {"max_points", "time_budget", "xmin", "xmax", "elastic"} | set(MODEL_KEYS)
         dc, kw = solver_keywords(options, accepted, LineOptions, "the starved line solver")
         warn_unused_callback(callback, "the starved line solver (meniscus search)")
     else:
         from .starved import solve_starved_point_scene as run
 
-        accepted = _field_names(PointOptions) | {"max_points", "flooded"} | set(MODEL_KEYS)
+        accepted = _field_names(PointOptions) | {"max_points", "time_budget", "flooded"} | set(MODEL_KEYS)
         dc, kw = solver_keywords(options, accepted, PointOptions, "the starved point solver")
         warn_unused_callback(callback, "the starved point solver")
     try:

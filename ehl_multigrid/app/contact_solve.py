@@ -77,13 +77,6 @@ def solver_options(args: argparse.Namespace, names: tuple[str, ...], **fixed: An
     return opts
 
 
-def refuse_time_budget(opts: dict[str, Any], kind: str) -> None:
-    """The starved solvers refine their grid only: a ``--time-budget`` is refused."""
-    if "time_budget" in opts:
-        raise InputError(f"--time-budget applies to flooded contacts: the starved {kind} solver "
-                         "refines its grid only (use --max-points to bound it)")
-
-
 def write_and_print(args: argparse.Namespace, out: Path, kind: str, raw: Any, res: Any, name: str,
                     payload: dict[str, Any], starved: bool, hidden: tuple[str, ...] = HIDDEN) -> dict[str, Any]:
     """Write the result ``res`` as ``<stem>.h5``, the CSV profiles (``--csv``) and the figures
@@ -149,7 +142,6 @@ def _solve_line(args: argparse.Namespace, scene: Any, out: Path, prog: Progress)
                 raise InputError(f"--{k} applies to Moes-only mode (--M/--L); with a scene the "
                                  f"oil comes from the scene's [lubricant] table")
         if math.isfinite(scene.supply.hoil):
-            refuse_time_budget(opts, "line")
             sol = front.solve(scene, physics="starved", accuracy=accuracy, options={**opts, **model})
             raw = require_computed(sol)
             if raw.X is None:  # nothing to write: e.g. a supply below the solver's reach
@@ -297,7 +289,6 @@ def _solve_starved_point(args: argparse.Namespace, scene: Any, pb: Any, fas: dic
     written with ``theta``."""
     from ..starved.point import starved_point_payload
 
-    refuse_time_budget(fas, "point")
     if not args.json:
         print(f"# scene {scene.name}: M = {pb.M:.5g}, L = {pb.L:.5g}, theta = {pb.theta:.4g}, "
               f"pmax = {pb.pmax:.4g} Pa, a = {pb.a:.4g} m; starved inlet: oil layer "

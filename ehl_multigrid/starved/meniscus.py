@@ -220,7 +220,7 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
                        callback: Callable[[dict[str, Any]], None] | None = None,
                        scene: Any = None, max_points: int = MAX_ACCURACY_POINTS,
                        refine: bool | None = None, progress: Callable[[str], None] | None = None,
-                       **kw: Any) -> EHLResult:
+                       time_budget: float = math.inf, **kw: Any) -> EHLResult:
     """Solve the starved, mass-conserving isothermal EHL line contact for a supplied oil layer.
 
     Parameters
@@ -281,7 +281,7 @@ def solve_starved_line(problem: LineProblem, hoil: float, options: LineOptions |
         refine = "points" not in kw and options is None
     line = _StarvedLineControl(problem, hoil, opts, accuracy, estimate, callback, scene, max_points)
     out = control(line, Resolution(opts.points), accuracy, refine=refine and estimate,
-                  max_points=max_points, progress=progress)
+                  max_points=max_points, progress=progress, time_budget=time_budget)
     res = out.result
     if out.converged and out.why and res.status == 6:
         note_not_refined(res, out)
@@ -435,7 +435,7 @@ def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOpti
                         accuracy: float | None = None, *, estimate: bool = True,
                         viscosity: str | None = None, density: str | None = None,
                         xmin: float | None = None, xmax: float | None = None, elastic: bool = True,
-                        max_points: int = MAX_ACCURACY_POINTS,
+                        max_points: int = MAX_ACCURACY_POINTS, time_budget: float = math.inf,
                         progress: Callable[[str], None] | None = None, **kw: Any) -> EHLResult:
     """Starved line contact of a line-contact ``scene`` at its operating point, supplied with
     the scene's ``[supply] hoil`` [m] (or ``hoil`` [m]), converted with
@@ -458,7 +458,8 @@ def solve_starved_scene(scene: Any, hoil: float | None = None, options: LineOpti
     # the grid is refined towards the accuracy unless the caller or the scene fixed it
     refine = options is None and "points" not in kw and "points" not in table
     res = solve_starved_line(pb, hoil_venner(h_m, pb.b, pb.R), opts, accuracy, estimate=estimate,
-                             scene=scene, max_points=max_points, refine=refine, progress=progress)
+                             scene=scene, max_points=max_points, refine=refine, progress=progress,
+                             time_budget=time_budget)
     scale = pb.b**2 / pb.R
     res.scalars["hoil"] = h_m
     if "Hc_venner" in res.scalars:  # (not when the supply is out of reach)

@@ -971,6 +971,7 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
                               *, flooded: bool = True, viscosity: str = "roelands",
                               density: str = "dowson-higginson", accuracy: float | None = None,
                               estimate: bool = True, max_points: int = SCENE_MAX_POINTS,
+                              time_budget: float = math.inf,
                               progress: Callable[[str], None] | None = None, **kw: Any) -> EHLResult:
     """Starved point (circular) contact of a point-contact ``scene`` at its operating point,
     supplied with the scene's ``[supply] hoil`` [m] (or ``hoil`` [m]): ``Hoil = hoil Rx/a^2``.
@@ -1016,7 +1017,7 @@ def solve_starved_point_scene(scene: Any, hoil: float | None = None, options: Po
     n = int(kw.pop("points", options.points if options is not None else SCENE_POINTS))
     starved = _StarvedPointControl(pb, Hoil, options, kw, accuracy, estimate, max_points)
     out = control(starved, Resolution(n), accuracy, refine=estimate and not explicit,
-                  max_points=max_points, progress=progress)
+                  max_points=max_points, progress=progress, time_budget=time_budget)
     res = out.result
     if not out.converged and estimate:
         # a failed solve still states what its estimate would be (the coarse grid's difference)

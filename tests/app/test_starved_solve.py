@@ -46,12 +46,15 @@ def test_the_plan_names_the_starved_solver_for_a_starved_line_scene(tmp_path):
 
 
 @pytest.mark.solver
-def test_run_on_a_starved_scene_says_the_time_budget_is_not_applied(tmp_path, capsys):
-    # 513 points from the scene (the starved solver's default start is 1025): the film stage
-    # takes the same starved path with the budget given, on a grid that meets the target
-    scene = _starved_scene_file(tmp_path, points=513)
-    rc = main(["run", str(scene), "--time-budget", "5", "--no-plots", "--json", "--out", str(tmp_path / "o")])
+def test_a_time_budget_stops_the_refinement_of_a_starved_solve(tmp_path, capsys):
+    # 1025 points (the starved line's start) estimate Hm at 0.13 %: 0.1 % needs the next grid,
+    # predicted to take longer than what is left of 0.5 s
+    d = load_scene("page63_line_500N").to_dict()
+    d["supply"] = {"hoil": 1.5e-8}
+    path = tmp_path / "starved_500N.toml"
+    path.write_text(Scene.from_dict(d).to_toml())
+    rc = main(["solve", str(path), "--accuracy", "0.001", "--time-budget", "0.5", "--no-plots", "--json",
+               "--out", str(tmp_path / "o")])
     out = json.loads(capsys.readouterr().out)
-    assert rc in (0, 3) and "meniscus_x" in out["film"]
-    report = (tmp_path / "o" / "roller_bearing_inner_race_report.md").read_text()
-    assert "The time budget (5 s) is not applied: the starved solver refines its grid only." in report
+    assert rc == 3 and out["status"] == "inaccurate" and out["points"] == 1025
+    assert "the time budget of 0.5 s is spent" in out["message"]

@@ -76,10 +76,10 @@ def test_an_unknown_option_is_refused_naming_it_and_the_accepted_ones():
 
 
 def test_an_option_of_another_physics_is_refused():
-    # time_budget bounds the flooded refinement; the starved solver has none
+    # half (the symmetric half domain) is a point contact's; a starved line has none
     starved = scene_with("page63_line_500N", supply={"hoil": 1.5e-8})
-    with pytest.raises(InputError, match=r"unknown option \['time_budget'\] for the starved line solver"):
-        ehl.solve(starved, options={"time_budget": 5})
+    with pytest.raises(InputError, match=r"unknown option \['half'\] for the starved line solver"):
+        ehl.solve(starved, options={"half": True})
 
 
 def test_raise_on_failure_is_refused_as_the_front_door_never_raises_for_a_failure():
