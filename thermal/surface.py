@@ -59,11 +59,6 @@ def diffusivity(solid: Solid) -> float:
     return solid.k / (solid.rho * solid.cp)
 
 
-def peclet(u: float, half_width: float, solid: Solid) -> float:
-    """Peclet number ``u b / (2 kappa)`` of a surface moving at ``u`` under a contact of half-width ``b``."""
-    return abs(u) * half_width / (2.0 * diffusivity(solid))
-
-
 def moving_strip_kernel(xi: np.ndarray, u: float, solid: Solid, length: float) -> np.ndarray:
     """Influence kernel ``K(xi)`` [K m/W] of the moving finite strip (see module docstring).
 
