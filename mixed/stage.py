@@ -40,7 +40,7 @@ def film_calibration(ctx: RunContext) -> tuple[float, str]:
         k = hc / hc_fit
         return k, (f"fitted film calibrated on the solved film: hc_solved/hc_fit = {hc * 1e9:.4g}/{hc_fit * 1e9:.4g} nm "
                    f"= {k:.4g} at the operating point, applied over the speed range")
-    setting = ctx.plan.get("film").setting if ctx.plan is not None else "fit"
+    setting = ctx.setting("film") if ctx.plan is not None else "fit"
     return 1.0, f"fitted film ({setting}; hc_fit = {hc_fit * 1e9:.4g} nm at the operating point)"
 
 

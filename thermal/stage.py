@@ -151,8 +151,9 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
     choice = choose_model(scene, slips, base, plan.tolerance, **inputs)
     thermal = choice.thermal
     options = base.with_changes(thermal=thermal)
+    notes = []
     if thermal != plan.includes("thermal"):
-        plan.notes.append(
+        notes.append(
             f"traction curve: {'thermal' if thermal else 'isothermal'} model over its slips up to {choice.slip:g} "
             f"(the plan's thermal decision, made at the operating slip {scene.slip:g} for the film and the "
             f"Stribeck curve, is {'thermal' if plan.includes('thermal') else 'isothermal'}): {choice.reason}")
@@ -166,7 +167,7 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
         film_source = (f"solved EHL pressure and film of the film stage (hc = {film.scalars['hc'] * 1e9:.4g} nm; "
                        f"the {fitted} gives {hc_fit * 1e9:.4g} nm)")
     else:
-        film_source = f"Hertz pressure and the {fitted} hc = {hc_fit * 1e9:.4g} nm ({plan.get('film').setting})"
+        film_source = f"Hertz pressure and the {fitted} hc = {hc_fit * 1e9:.4g} nm ({ctx.setting('film')})"
     res.meta["film_source"] = film_source
     res.meta["thermal_model"] = choice.reason
     res.set_scalar("operating_slip", op.slip)
@@ -203,7 +204,7 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
                  f"Stribeck stage gives the mixed friction at the operating point.")
     if ctx.mark_film_failure(summary).get("status") == "film_estimate":
         text += f" NOT A SOLVED-FILM RESULT: {summary['message']}."
-    return StageOutput("traction", res, summary, figures, text)
+    return StageOutput("traction", res, summary, figures, text, notes=notes)
 
 
 traction_stage.order = 20

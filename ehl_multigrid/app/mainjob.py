@@ -179,15 +179,16 @@ def film_stage(ctx: RunContext) -> StageOutput:
             hm = scalars.get("hm")
             note = (f"multigrid solve{f' on {points} points' if points else ''} did not give a converged "
                     f"positive film ({label}: {why}{'' if hm is None else f'; hm = {hm:.3g} m'})")
-            plan.notes.append(note + "; the film is an estimate, not a solved film")
             out = _fit_film_output(ctx, failure=note)
+            out.notes.append(note + "; the film is an estimate, not a solved film")
             out.summary.update(converged=False, status=status, message=note, solver_fallback=True)
             return out
+        notes = []
         if fsol.status is Status.INACCURATE:
             # still far closer than the fit (whose deviation made the planner call the solver):
             # used, with its estimated error stated
-            plan.notes.append(f"film solve did not reach the {plan.tolerance:g} target: estimated "
-                              f"errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g}")
+            notes.append(f"film solve did not reach the {plan.tolerance:g} target: estimated "
+                         f"errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g}")
         summary = {k: res.scalars.get(k) for k in ("Hc", "Hm", "hc", "hm", "p_spike", "load_error", "points",
                                                      "converged", "Hc_error", "Hm_error")}
         summary["status"], summary["message"] = label, fsol.message
@@ -217,7 +218,7 @@ def film_stage(ctx: RunContext) -> StageOutput:
                 figures.append(starved_figure(contact, sol, ctx.outdir, f"{scene.name}_film", scene.name))
     else:
         return _fit_film_output(ctx)
-    return StageOutput("film", res, summary, figures, text)
+    return StageOutput("film", res, summary, figures, text, notes=notes)
 
 
 def _fit_film_output(ctx: RunContext, failure: str | None = None) -> StageOutput:
@@ -247,8 +248,9 @@ def _fit_film_output(ctx: RunContext, failure: str | None = None) -> StageOutput
     if failure is not None:
         res.meta["film_source"] = "estimate: the film solve failed"
         summary.setdefault("film_source", "fit estimate")
-        ctx.plan.get("film").setting = f"{'starved estimate' if starved else 'fit'} (solver fallback)"
         text = f"{failure}. NO SOLVED FILM: the film is an ESTIMATE. {text}"
+        return StageOutput("film", res, summary, figures, text,
+                           setting=f"{'starved estimate' if starved else 'fit'} (solver fallback)")
     return StageOutput("film", res, summary, figures, text)
 
 
@@ -281,6 +283,7 @@ def write_report(ctx: RunContext, path: Path, missing: list[str] | None = None) 
         lines.append(f"| {d.model} | {'yes' if d.include else 'no'} | {d.setting} | {d.estimate:.3g} | {d.threshold:.3g} | {d.reason} |")
     for name, out in ctx.outputs.items():
         lines += ["", f"## {name} ({out.wall_s:.2f} s)", "", out.text, ""]
+        lines += [f"Note: {n}" for n in out.notes] + ([""] if out.notes else [])
         for fig in out.figures:
             lines.append(f"![{fig.stem}]({Path(fig).name})")
     return write_text_atomic(path, "\n".join(lines) + "\n")
@@ -380,6 +383,10 @@ def _run_locked(scene: Scene, options: MainJobOptions, out: Path) -> dict[str, A
                 output.wall_s = time.perf_counter() - t0
                 if output.result is not None:
                     output.result.meta["plan"] = plan.to_dict()
+                    if output.notes:
+                        output.result.meta["notes"] = list(output.notes)
+                    if output.setting:
+                        output.result.meta["setting"] = output.setting
                 ctx.outputs[name] = output
             save(complete=len(ran) == len(planned))
             prog.advance(text=f"{name} took {time.perf_counter() - t0:.1f} s")
@@ -400,7 +407,8 @@ def _run_locked(scene: Scene, options: MainJobOptions, out: Path) -> dict[str, A
         for o in ctx.outputs.values():
             o.figures = [out / Path(f).name for f in o.figures]
     payload: dict[str, Any] = {"scene": scene.name, "hdf5": str(h5), "report": str(report),
-                               "plan": {d.model: d.setting if d.include else "off" for d in plan.decisions}}
+                               "plan": {d.model: ctx.setting(d.model) if d.include else "off"
+                                        for d in plan.decisions}}
     for name, o in ctx.outputs.items():
         payload[name] = o.summary
     if not options.quiet:

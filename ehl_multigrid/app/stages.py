@@ -4,6 +4,10 @@ A stage is a callable ``stage(ctx: RunContext) -> StageOutput | None`` registere
 ``ehl.stages`` entry-point group; the layers above the core (thermal, mixed) provide theirs and
 import only this module from the application. A leaf module: it imports nothing from the rest
 of the application (the plan is seen through the small :class:`PlanView` protocol).
+
+The plan is read-only to the stages: what a stage learns while it runs (a note, a setting that
+departs from its decision, such as a film fit after a failed solve) goes into its
+:class:`StageOutput`, and later stages read it there (:meth:`RunContext.setting`).
 """
 
 from __future__ import annotations
@@ -21,7 +25,6 @@ class PlanView(Protocol):
 
     fidelity: str
     tolerance: float
-    notes: list[str]
 
     def includes(self, model: str) -> bool:
         """Whether the plan includes ``model`` (``"thermal"``, ``"starvation"``, ...)."""
@@ -46,6 +49,11 @@ class StageOutput:
     figures: list[Path] = field(default_factory=list)
     text: str = ""
     wall_s: float = float("nan")
+    #: what the stage noted while it ran (in its section of the report and its result's meta)
+    notes: list[str] = field(default_factory=list)
+    #: the setting the stage used where it departs from its plan decision (e.g. "fit (solver
+    #: fallback)" after a failed film solve); None: the decision's
+    setting: str | None = None
 
 
 @dataclass
@@ -65,6 +73,12 @@ class RunContext:
         """The result of the earlier stage ``name``, or ``None`` if it did not run."""
         out = self.outputs.get(name)
         return out.result if out is not None else None
+
+    def setting(self, model: str) -> str:
+        """The setting ``model`` ran with: its stage's own where it departed from the plan,
+        else the plan's decision."""
+        out = self.outputs.get(model)
+        return out.setting if out is not None and out.setting else self.plan.get(model).setting
 
     def film_failure(self) -> str | None:
         """Why the film stage's film is an estimate (its solve failed), or ``None``: a stage
