@@ -250,7 +250,7 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     use_solver = dev > tol
     why = f"expected fit deviation {dev:.3g} {'>' if use_solver else '<='} tolerance {tol:g} ({src})"
     if use_solver:
-        why += f"; grid {film_grid(scene, tol).reason}"
+        why += f"; {film_grid(scene, tol).first_grid_reason(tol)}"
     plan.decisions.append(Decision("film", True, "multigrid solver" if use_solver else "fit", dev, tol, "-", why))
 
     # 2. asperity contact

@@ -37,6 +37,13 @@ class GridChoice:
         return (f"{self.points} points: predicted grid error of Hc {self.predicted_error:.2g} "
                 f"(C = {self.C:.3g}, {self.source})")
 
+    def first_grid_reason(self, tolerance: float) -> str:
+        """The reason as the accuracy loop's first grid for ``tolerance``: where the prediction
+        misses half the tolerance the grid is the planner's largest, refined from by the loop."""
+        capped = self.predicted_error > 0.5 * tolerance
+        return (f"first grid {self.reason}"
+                + ("; the largest first grid: the solver refines from it towards the tolerance" if capped else ""))
+
 
 @lru_cache(maxsize=4)
 def _table(contact: str) -> dict | None:
