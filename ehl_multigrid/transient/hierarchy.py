@@ -20,7 +20,7 @@ the finest grid (no FMG: :class:`StepGrids`):
 
 The grids' additions are :class:`TimeStepGrids` (line) and :class:`PointTimeStepGrids` (point),
 mixed into the steady hierarchies here and into the starved (mass-conserving) ones in
-:mod:`.cavitated` and :mod:`.cavitated`. The load (line ``h sum P = pi/2``, point
+:mod:`.cavitated`. The load (line ``h sum P = pi/2``, point
 ``int int P = 2 pi b/(3a)``) holds at every step (constant load); the film constant is free.
 The line's coarsest grid is relaxed (with the film-constant update) instead of the steady
 path's dense Newton, whose Jacobian has no squeeze term.
