@@ -446,6 +446,8 @@ def gather(outdir: str | os.PathLike) -> SweepTable:
         if rec["status"] == STATUS_OK:
             for k, v in rec["outputs"].items():
                 row[k] = v
+            if rec.get("hdf5"):
+                row["hdf5"] = str(Path("cases") / rec["hdf5"])  # the case's saved result, under outdir
         else:
             row["error"] = rec.get("error", "")
         rows.append(row)

@@ -248,3 +248,34 @@ def test_bad_sweep_command_lines_exit_2_naming_the_field(argv, message, tmp_path
     assert main(["sweep", "page63_line_500N", "--out", str(tmp_path), "--workers", "1", *argv]) == 2
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err
+
+
+def test_a_film_sweep_solves_each_case_through_the_front_door_and_keeps_its_fields(capsys, tmp_path):
+    import ehl_multigrid as ehl
+    from ehl_multigrid.app.cli import main
+    from ehl_multigrid.model.results import Result
+
+    assert main(["sweep", "page63_line_2000N", "--task", "film", "--param", "operating.load=1000,4000",
+                 "--option", "accuracy=0.02", "--workers", "1", "--out", str(tmp_path), "--json"]) == 0
+    rows = gather(tmp_path).rows
+    assert [r["solve_status"] for r in rows] == ["converged", "converged"] and all(r["converged"] for r in rows)
+    light, heavy = sorted(rows, key=lambda r: r["operating.load"])
+    assert heavy["hc"] < light["hc"] and heavy["Hc_error"] <= 0.02  # a heavier load thins the film
+    # the same film as the front door's own solve of the case's scene
+    d = load_scene("page63_line_2000N").to_dict()
+    d["operating"]["load"] = 1000.0
+    from ehl_multigrid.model.scene import Scene
+
+    assert light["hc"] == ehl.solve(Scene.from_dict(d), accuracy=0.02).hc
+    assert light["hc_over_fit"] == pytest.approx(light["hc"] / light["hc_fit"], rel=1e-12)
+    assert Result.load(tmp_path / light["hdf5"]).kind == "ehl_line"  # the row names its case's fields
+
+
+def test_a_film_sweep_whose_solves_miss_their_accuracy_exits_3_naming_how_many(capsys, tmp_path):
+    from ehl_multigrid.app.cli import main
+
+    rc = main(["sweep", "page63_line_2000N", "--task", "film", "--param", "operating.load=1000,4000",
+               "--option", "accuracy=0.0001", "--option", "max_points=1025", "--workers", "1",
+               "--out", str(tmp_path)])
+    assert rc == 3
+    assert "2 of 2 cases did not converge or missed their accuracy" in capsys.readouterr().err
