@@ -171,6 +171,23 @@ def max_threads() -> int:
         return os.cpu_count() or 1
 
 
+def task_options(items: list[str]) -> dict[str, Any]:
+    """``--option KEY=VALUE`` items as task options: a JSON value (number, ``true``, ``null``,
+    list, table) or, for a word that is not JSON, the string itself (``physics=thermal``)."""
+    options: dict[str, Any] = {}
+    for item in items:
+        if "=" not in item:
+            raise InputError(f"--option {item!r} must be KEY=VALUE")
+        k, v = item.split("=", 1)
+        try:
+            options[k.strip()] = json.loads(v)
+        except json.JSONDecodeError as exc:
+            if v.strip()[:1] in "[{0123456789-.":  # meant as a number, list or table
+                raise InputError(f"--option {k.strip()}: {v!r} is not a valid JSON value ({exc.msg})") from None
+            options[k.strip()] = v
+    return options
+
+
 def _cmd_sweep(args: argparse.Namespace) -> dict:
     from ..model.paths import writable_dir
     from ..model.scene import load_scene
@@ -191,15 +208,7 @@ def _cmd_sweep(args: argparse.Namespace) -> dict:
                          "(split it into several sweeps)")
     if args.workers is not None:
         require_range("--workers", args.workers, 1, MAX_WORKERS, "worker processes")
-    options: dict[str, Any] = {}
-    for item in args.option:
-        if "=" not in item:
-            raise InputError(f"--option {item!r} must be KEY=VALUE")
-        k, v = item.split("=", 1)
-        try:
-            options[k.strip()] = json.loads(v) if v.strip()[:1] in "[{0123456789-tfn" else v
-        except json.JSONDecodeError as exc:
-            raise InputError(f"--option {k.strip()}: {v!r} is not a valid JSON value ({exc.msg})") from None
+    options = task_options(args.option)
     get_task(args.task)  # an unknown task fails here, not in every case
     spec = SweepSpec(load_scene(args.scene), args.task, params, options)
     check_spec(spec)

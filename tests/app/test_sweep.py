@@ -240,6 +240,7 @@ def test_bad_sweep_values_name_the_parameter(spec, message):
     (["--param", "operating.us=0.1:10:1000", "--param", "operating.load=1:100:1000"], "1000000 cases"),
     (["--param", "operating.us=1", "--task", "teleport"], "teleport"),
     (["--param", "operating.us=1", "--option", "x=[1,"], "--option x"),
+    (["--param", "operating.us=1", "--option", "x=1e"], "--option x: '1e' is not a valid JSON value"),
     (["--param", "operating.us=1", "--option", "x=1"], "takes no options"),
 ])
 def test_bad_sweep_command_lines_exit_2_naming_the_field(argv, message, tmp_path, capsys):
@@ -279,3 +280,10 @@ def test_a_film_sweep_whose_solves_miss_their_accuracy_exits_3_naming_how_many(c
                "--out", str(tmp_path)])
     assert rc == 3
     assert "2 of 2 cases did not converge or missed their accuracy" in capsys.readouterr().err
+
+
+def test_a_word_option_is_a_string_and_json_literals_keep_their_type():
+    from ehl_multigrid.app.cli import task_options
+
+    assert task_options(["physics=thermal", "flag=true", "n=null", "tol=1e-3", "grid=[1, 2]"]) == {
+        "physics": "thermal", "flag": True, "n": None, "tol": 1e-3, "grid": [1, 2]}
