@@ -203,7 +203,7 @@ def solve_transient_point(
                                    cavitation=cavitation, hoil=hz.hoil if mass_conserving else hoil,
                                    mass_tol=getattr(hz, "mass_tol", None))
         out.Hc_steady = float(steady.H[int(np.argmin(np.abs(fine.Y))), int(np.argmin(np.abs(fine.X)))])
-        out.Hm_steady = float(np.min(steady.H[out._within(1.5) | (steady.P > 0)]))
+        out.Hm_steady = float(np.min(steady.H[out.within(1.5) | (steady.P > 0)]))
         hz.h00_step_max = 0.1 * max(out.Hc_steady, 1e-6)
         # the mass-conserving model starts from its own steady discretisation (the core's
         # solution is the projection's, with another outlet and wedge)

@@ -116,7 +116,7 @@ class TransientResult:
         the step's solve, None for the start) and keep a snapshot when ``keep``."""
         lv, st = self._fields(hz)
         X, P, H = lv.X, lv.P, st.H
-        zone = self._within(1.5) | (P > 0)
+        zone = self.within(1.5) | (P > 0)
         xf = x_ref(self.feature) + self.speed * T
         s = self.series
         s["step"].append(n)
@@ -165,7 +165,7 @@ class TransientResult:
         """The finest grid and its fluid state (``H``, ``rho``)."""
         return hz.fine, hz.fine.state()
 
-    def _within(self, r: float) -> np.ndarray:
+    def within(self, r: float) -> np.ndarray:
         """Nodes inside ``r`` Hertzian half-widths of the centre."""
         return np.abs(self.X) <= r
 
@@ -257,7 +257,7 @@ class TransientResult:
     def fraction_below(self, threshold: float) -> list[float]:
         """Per kept step: the fraction of the Hertzian contact (line ``|X| <= 1``, point the
         Hertzian ellipse) where ``H < threshold`` (Venner units)."""
-        inside = self._within(1.0)
+        inside = self.within(1.0)
         return [float(np.mean(self.snapshots[n]["H"][inside] < threshold)) for n in sorted(self.snapshots)]
 
     def summary(self) -> dict[str, Any]:
@@ -386,7 +386,8 @@ class PointTransientResult(TransientResult):
     def _fields(self, hz: Any) -> tuple[Any, Any]:
         return hz.fine, hz.fine
 
-    def _within(self, r: float) -> np.ndarray:
+    def within(self, r: float) -> np.ndarray:
+        """Nodes ``[j, i]`` inside ``r`` times the Hertzian ellipse."""
         return self._zone(self.X, self.Y, r)
 
     def _row(self, F: np.ndarray) -> np.ndarray:

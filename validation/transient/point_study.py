@@ -362,7 +362,7 @@ def part_rough(quick: bool) -> None:
         s = res.summary()
         scale = a**2 / Rx
         hc_smooth = s["Hc_steady"] * scale
-        inside = res._zone(res.X, res.Y)
+        inside = res.within(1.0)
         # kept steps with the patch's downstream (tapered) part inside the Hertzian circle
         half = 0.5 * Lx / a
         over = [k for k in sorted(res.snapshots) if k > 0 and res.xf[k] + half - 0.3 >= -0.5]
