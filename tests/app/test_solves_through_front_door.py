@@ -105,6 +105,18 @@ def test_ehl_tehl_at_one_slip_hands_its_accuracy_to_the_front_door(calls, capsys
     assert call["options"] == {**options, "compressive_heating": True, "slip": 0.5}
 
 
+def test_a_tehl_curve_takes_its_grid_from_the_accuracy_loop_at_its_largest_slip(calls, capsys):
+    assert main(["tehl", "page63_line_2000N", "--slip=-1.5,0.5,1", "--accuracy", "0.01"]) == 3  # (the stand-in fails)
+    (call,) = calls
+    assert call["physics"] == "thermal" and call["accuracy"] == 0.01
+    assert call["options"] == {"compressive_heating": True, "slip": -1.5}
+    calls.clear()
+    # a given grid is the curve's own: judged, no calibrating solve
+    assert main(["tehl", "page63_line_2000N", "--slip", "0.2,0.4", "--points", "129", "--nz", "8",
+                 "--no-estimate", "--json"]) == 0
+    assert calls == []
+
+
 def test_the_newton_path_is_judged_on_its_iteration_alone(calls, tmp_path, capsys):
     main(["solve", "--contact", "point", "--M", "20", "--L", "10", "--solver", "newton", "--points", "65",
           "--no-plots", "--out", str(tmp_path)])

@@ -4,6 +4,7 @@ and the thermal properties ``ehl show --json`` can list."""
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 from typing import Any
 
@@ -131,6 +132,18 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
         if not args.json:  # with --json the ehl command prints the returned payload
             print_table({k: v for k, v in payload.items() if k not in ("outer", "properties")})
         return payload
+    calibrated = None
+    if accuracy is not None and not changes and getattr(args, "estimate", True):
+        # the curve's grid: the one the accuracy loop refines the largest slip's solve to (the
+        # most heating), through the front door; the curve is then judged at its three slips
+        from ehl_multigrid import front
+
+        at = max(slips, key=abs)
+        sol = front.solve(scene, physics="thermal", accuracy=accuracy,
+                          options={"compressive_heating": opts.compressive_heating, "slip": at})
+        ro = require_computed(sol).result.options
+        opts = dataclasses.replace(opts, points=ro.points, nz=ro.nz, box=ro.box, xmin=ro.xmin)
+        calibrated = {"slip": at, "points": ro.points, "nz": ro.nz, "box": ro.box, "status": sol.status.label}
     curve = tehl_traction_curve(scene, np.asarray(slips), opts)
     payload = {"scene": scene.name, "slip": [r.slip for r in curve],
                "friction_coefficient": [r.friction_coefficient for r in curve],
@@ -139,6 +152,8 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
                "heat_balance_error": [r.heat_balance_error for r in curve],
                "converged": all(bool(r.report.converged) for r in curve),
                "wall_s": sum(r.wall_s for r in curve)}
+    if calibrated is not None:
+        payload["grid_from"] = calibrated
     if curve[0].starved is not None:
         # a finite [supply] hoil: each slip's film is starved at its own meniscus
         payload.update({k: [r.starved[k] for r in curve] for k in ("meniscus_x", "Hc_ratio", "mass_balance_error")})
