@@ -121,7 +121,8 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
                                        "slip": slips[0]})
             done = require_computed(sol)
             r, estimate, status = done.result, done.estimate.payload(), sol.status.label
-            estimate.update(points=r.options.points, nz=r.options.nz, message=sol.message)
+            estimate.update(points=r.options.points, nz=r.options.nz, message=sol.message,
+                            wall_total_s=sol.outcome.wall_s)
         else:
             # (the front door always estimates the error: --no-estimate solves the film alone;
             # a thermal solve that does not converge raises)
@@ -238,7 +239,9 @@ def _solve_mode(args: argparse.Namespace, scene: Scene, point: bool, slip: float
     payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),
                "outer": [dict(o) for o in r.outer], "properties": thermal_properties(scene),
                "points": r.options.points, "nz": r.options.nz, "box": r.options.box,
-               **done.estimate.payload(), "refinements": [vars(s) for s in done.refinements]}
+               **done.estimate.payload(), "refinements": [vars(s) for s in done.refinements],
+               # the whole accuracy sequence (wall_s is the returned solve's), as a steady solve says
+               "wall_total_s": sol.outcome.wall_s}
     if accuracy is not None:
         payload["accuracy"] = accuracy
     if payload["converged"] and not done.accurate:

@@ -112,6 +112,8 @@ def test_ehl_solve_thermal_point_is_converged_when_the_estimate_meets_the_target
     assert rc == 0 and out["converged"] and out["contact"] == "point"
     assert max(out["Hc_error"], out["Hm_error"]) <= 0.1
     assert {"grid_x", "grid_z", "domain", "iteration", "total"} <= set(out["error_budget"]["Hc"])
+    # the whole solve (the estimate's solves on half the grid and nz included) beside the returned one's
+    assert out["wall_total_s"] > out["wall_s"] > 0
 
 
 def _solve_stub(kind: str, Hc: float, Hm: float) -> SimpleNamespace:
