@@ -336,6 +336,9 @@ def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: Iterate 
         st = Iterate(guess.P.copy(), guess.H.copy(), guess.H0, guess.Hc, guess.Hm)
         sol = contact.thermal_layer(st)
         a, c = guess.a.copy(), guess.c.copy()
+    # the first outer iteration's thermal solve starts from this one's temperatures, as the
+    # point contact's rows start from their first solves
+    contact.last = sol
     done = coupled_solve(contact, st, sol, sol.T, a, c, opts, coarse)
     st, sol, a, c = done.state, done.thermal, done.a, done.c
     done.report.extra["momentum"] = contact.modes[-1] if contact.modes else "gradient"
