@@ -132,6 +132,13 @@ def run_stribeck(args: argparse.Namespace) -> dict:
                   f"{c.sharing.asperity_fraction[i]:9.3g} {c.sharing.gamma1[i]:10.4g} {c.sharing.hfr[i]:10.3e} "
                   f"{c.sharing.hss[i]:11.3e} {c.regime_names()[i]}")
         print_table({k: v for k, v in payload.items() if not isinstance(v, (list, dict))})
+        for cs, case in zip(curves[1:], payload.get("cases", []), strict=True):
+            # each starved curve in one line (its table is in the JSON and the HDF5 file)
+            f = cs.friction.coefficient
+            k = int(np.argmin(f))
+            print(f"  starved hoil/Rq = {case['hoil_over_sigma']:g} (hoil {case['hoil'] * 1e9:.4g} nm): f = "
+                  f"{f[0]:.4g} at the slowest speed, minimum {f[k]:.4g} at {cs.us[k]:.4g} m/s, {f[-1]:.4g} at the "
+                  f"fastest; regimes {' -> '.join(dict.fromkeys(cs.regime_names()))}")
         for f in files:
             print(f"  wrote {f}")
     return payload

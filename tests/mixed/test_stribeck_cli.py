@@ -73,3 +73,12 @@ def test_errors_exit_with_code_2(capsys, tmp_path):
     assert main(["stribeck", "page63_line_500N", "--json", "--us-min", "1", "--us-max", "0.1", "--out", str(tmp_path)]) == 2
     assert main(["stribeck", "page63_line_500N", "--json", "--ehl-fraction", "0.99", "--out", str(tmp_path)]) == 2
     assert main(["stribeck", "no_such_scene", "--json", "--out", str(tmp_path)]) == 2
+
+
+def test_human_output_names_each_starved_curve_by_its_supply(capsys, tmp_path):
+    assert main(["stribeck", "series_A_disc1_1GPa", "--n", "5", "--hoil", "0.5,2", "--out", str(tmp_path),
+                 "--no-plots"]) == 0
+    text = capsys.readouterr().out
+    lines = [ln for ln in text.splitlines() if ln.strip().startswith("starved hoil/Rq")]
+    assert [ln.split()[3] for ln in lines] == ["0.5", "2"] and all("minimum" in ln for ln in lines)
+    assert "hoil 21 nm" in lines[0]  # 0.5 Rq of the scene's Rq = 42 nm
