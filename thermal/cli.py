@@ -53,7 +53,7 @@ def register(subparsers: Any) -> None:
     p.add_argument("--no-estimate", dest="estimate", action="store_false",
                    help="--coupled: skip the curve's error estimate (at its first and last slip and "
                         "its largest friction)")
-    p.add_argument("--accuracy", type=accuracy_argument, default=0.005,
+    p.add_argument("--accuracy", type=accuracy_argument, default=argparse.SUPPRESS,
                    help="--coupled: relative accuracy the curve's largest estimated film error is judged "
                         "against (default 0.005; 'none': not judged)")
     p.add_argument("--slip", default=None,
@@ -88,10 +88,12 @@ def run_traction(args: argparse.Namespace) -> dict[str, Any]:
 
         if args.slip is None:
             args.slip = ",".join(f"{s:g}" for s in default_slips(scene))
+        if not hasattr(args, "accuracy"):  # (absent unless given, so that it is refused without --coupled)
+            args.accuracy = 0.005
         return run_tehl(args)
     if args.points is not None:
         raise InputError("--points applies to --coupled traction curves only")
-    if args.accuracy != 0.005:
+    if hasattr(args, "accuracy"):
         raise InputError("--accuracy applies to --coupled traction curves only (the thermal model's "
                          "friction states its own error)")
     options = ThermalOptions.from_scene(

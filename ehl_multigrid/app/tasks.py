@@ -32,7 +32,9 @@ def film_task(scene: Scene, *, physics: str | None = None, accuracy: float | Non
               **options: Any) -> dict[str, Any]:
     """The solved film of the scene through the front door :func:`ehl_multigrid.solve`: films
     (Moes-scaled and in metres), their stated errors and status, the grid, the cost, and the
-    fitted central film with the solve's deviation from it (the check a design tool's fit needs).
+    fitted central film for the scene's supply (:meth:`Scene.supplied_film_fit`: a starved
+    scene's is reduced by Chevalier's (6.1)) with the solve's deviation from it (the check a
+    design tool's fit needs).
 
     ``physics``: ``"steady"``, ``"starved"`` or ``"thermal"`` (None: starved for a finite
     ``[supply] hoil``, else steady); ``accuracy`` as for ``ehl_multigrid.solve`` (``null``:
@@ -46,7 +48,7 @@ def film_task(scene: Scene, *, physics: str | None = None, accuracy: float | Non
     if physics is not None and physics not in FILM_PHYSICS:
         raise InputError(f"task 'film': physics = {physics!r} is not one of {list(FILM_PHYSICS)}")
     sol = front.solve(scene, physics=physics, accuracy=accuracy, options=options or None)
-    Hc_fit, hc_fit = scene.central_film_fit()
+    Hc_fit, hc_fit = scene.supplied_film_fit()
     row: dict[str, Any] = {
         # (the sweep's own "status" column says whether the case ran: the solve's is its own)
         "physics": sol.physics, "solve_status": sol.status.label, "converged": bool(sol.success),
@@ -57,10 +59,7 @@ def film_task(scene: Scene, *, physics: str | None = None, accuracy: float | Non
         "hc_fit": hc_fit, "Hc_fit": Hc_fit, "hc_over_fit": sol.hc / hc_fit if hc_fit > 0 else float("nan"),
     }
     if sol.raw is not None and sol.fields:
-        try:
-            row["result"] = sol.to_result()
-        except TypeError:  # a physics without an HDF5 result
-            pass
+        row["result"] = sol.to_result()
     return row
 
 

@@ -278,9 +278,8 @@ def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: 
         grid = f"{summary['points']}x{summary['points_y']}" if point else f"{summary['points']}"
         done = (f"{summary['steps']} steps" if res.complete else
                 f"{summary['steps']} of {res.planned_steps} steps (stopped: {res.stop_reason})")
-        # a dent is a bump of negative amplitude: named as the scene's table names it
-        kind = "dent" if feature.kind == "bump" and getattr(feature, "amplitude", 0.0) < 0.0 else feature.kind
-        print(f"{scene.name}: {kind} on body {body}, S = {scene.slip:g}, {done} "
+        # named as the scene's table names it (a dent is solved as a bump of negative amplitude)
+        print(f"{scene.name}: {scene.feature.get('kind', feature.kind)} on body {body}, S = {scene.slip:g}, {done} "
               f"of dT = {summary['dt']:.4g} on {grid} points: hc {payload['hc_min']:.4g}"
               f"..{payload['hc_max']:.4g} m (smooth {payload['hc_steady']:.4g} m), hm min "
               f"{payload['hm_min']:.4g} m; written {h5}"

@@ -287,3 +287,15 @@ def test_a_word_option_is_a_string_and_json_literals_keep_their_type():
 
     assert task_options(["physics=thermal", "flag=true", "n=null", "tol=1e-3", "grid=[1, 2]"]) == {
         "physics": "thermal", "flag": True, "n": None, "tol": 1e-3, "grid": [1, 2]}
+
+
+def test_a_starved_film_case_is_compared_with_the_fit_for_its_supply():
+    from ehl_multigrid.app.tasks import film_task
+    from ehl_multigrid.model.scene import Scene
+
+    d = load_scene("page63_line_500N").to_dict()
+    d["supply"] = {"hoil": 1.5e-8}
+    scene = Scene.from_dict(d)
+    row = film_task(scene, accuracy=None, points=257)
+    assert row["physics"] == "starved" and row["result"].kind == "ehl_line"
+    assert row["hc_fit"] == scene.supplied_film_fit()[1] < scene.central_film_fit()[1]  # never the flooded fit

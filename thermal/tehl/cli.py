@@ -143,7 +143,7 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
         sol = front.solve(scene, physics="thermal", accuracy=accuracy,
                           options={"compressive_heating": opts.compressive_heating, "slip": at})
         ro = require_computed(sol).result.options
-        opts = dataclasses.replace(opts, points=ro.points, nz=ro.nz, box=ro.box, xmin=ro.xmin)
+        opts = dataclasses.replace(opts, points=ro.points, nz=ro.nz, box=ro.box)
         calibrated = {"slip": at, "points": ro.points, "nz": ro.nz, "box": ro.box, "status": sol.status.label}
     curve = tehl_traction_curve(scene, np.asarray(slips), opts)
     payload = {"scene": scene.name, "slip": [r.slip for r in curve],

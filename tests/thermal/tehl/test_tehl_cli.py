@@ -180,3 +180,10 @@ def test_a_tehl_traction_curve_states_its_error_at_its_first_last_and_peak_slips
     assert main(["traction", "appendix_c_line_4240N", "--coupled", "--slip", "0.1,0.3", "--points", "129",
                  "--nz", "10", "--no-estimate", "--json", "--out", str(tmp_path)]) == 0
     assert "Hc_error" not in json.loads(capsys.readouterr().out)
+
+
+def test_traction_refuses_an_accuracy_without_coupled_even_at_its_default_value(capsys):
+    from ehl_multigrid.app.cli import main
+
+    assert main(["traction", "appendix_c_line_4240N", "--accuracy", "0.005"]) == 2
+    assert "--accuracy applies to --coupled" in capsys.readouterr().err
