@@ -28,6 +28,8 @@ or ``EHL_STRICT=1`` refuses them instead (exit 2).
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import json
 import math
 import os
@@ -91,9 +93,13 @@ def _cmd_show(args: argparse.Namespace) -> dict:
         if sc.source:
             print(f"# source: {sc.source}")
         print(sc.to_toml())
+        # commented, so that `ehl show NAME > my.toml` is a scene file to edit
+        derived = io.StringIO()
+        with contextlib.redirect_stdout(derived):
+            print_table({k: v for k, v in summary.items()
+                         if not (k.startswith("hc_fit_deviation") and math.isnan(v))})
         print("# derived")
-        print_table({k: v for k, v in summary.items()
-                     if not (k.startswith("hc_fit_deviation") and math.isnan(v))})
+        print("\n".join(f"#{line}" for line in derived.getvalue().splitlines()))
     return summary
 
 

@@ -42,6 +42,16 @@ def test_fits_bad_input_exits_with_input_error(capsys):
     assert "M =" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("name", ["default", "page63_line_500N", "bearing_6205_inner_race"])
+def test_show_prints_a_scene_file_that_loads_as_the_same_scene(capsys, tmp_path, name):
+    """``ehl show NAME > my.toml`` is how a user starts a scene of their own: the derived
+    quantities must not break the TOML."""
+    assert main(["show", name]) == 0
+    path = tmp_path / "mine.toml"
+    path.write_text(capsys.readouterr().out)
+    assert load_scene(str(path)).to_dict() == load_scene(name).to_dict()
+
+
 def test_show_unknown_scene_exits_2(capsys):
     assert main(["show", "nope"]) == 2
     assert "built-in scenes" in capsys.readouterr().err
