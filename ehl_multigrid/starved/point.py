@@ -555,6 +555,19 @@ def _exact_resolve(problem: Any, hoil: float, opt: PointOptions, rule: int | Non
     return sol, hz, mb_new if keep else mb
 
 
+def _rule_tried(hz: StarvedPointHierarchy, rule: int | None, tried: set[int | None]) -> bool:
+    """Was the coarse-grid theta ``rule`` (or one that frees the same grids of ``hz``'s
+    hierarchy) solved already? The default rule (None) frees the two grids below the current
+    one and those whose mesh resolves the inlet (``StarvedPointHierarchy._free``): it is rule 1
+    where no grid three or more below the finest does."""
+    def key(r: int | None) -> int | None:
+        if r is None and (len(hz.levels) < 3 or hz.levels[-3].hx > hz.theta_mesh):
+            return 1
+        return r
+
+    return key(rule) in {key(r) for r in tried}
+
+
 def _kept(old: tuple[EHLResult, Any], new: tuple[EHLResult, Any], keep: bool,
           what: str) -> tuple[EHLResult, Any]:
     """``new`` (a re-solve and its hierarchy) after ``old``'s actions when ``keep``, else
@@ -625,6 +638,8 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
             (hz.coarse_theta,) + tuple(r for r in opt.exact_rules if r != hz.coarse_theta)
         mb = imbalance_of(hz)
         for rule in rules:
+            if _rule_tried(hz, rule, exact_rules):
+                continue
             exact_rules.add(rule)
             sol, hz, mb = _exact_resolve(problem, hoil, opt, rule, guess, sol, hz, mb,
                                          f"{sol.status_name} with imbalance {mb:.2g}", failed_counts=True)
@@ -638,8 +653,9 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
             # solved again with the exact solve of the Poiseuille-dominated zone, under the
             # coarse-grid theta rules of PointOptions.exact_rules in turn
             for rule in (hz.coarse_theta,) + tuple(r for r in opt.exact_rules if r != hz.coarse_theta):
-                if rule in exact_rules:
+                if _rule_tried(hz, rule, exact_rules):
                     continue
+                exact_rules.add(rule)
                 sol, hz, mb = _exact_resolve(problem, hoil, opt, rule, guess, sol, hz, mb,
                                              f"mass imbalance {mb:.2g}", failed_counts=False)
                 if mb <= MASS_TOL:
@@ -681,7 +697,8 @@ def solve_starved_point(problem: PointProblem, hoil: Any, options: PointOptions 
                      mass_balance_error=imbalance, fluxes=fl,
                      outlet_layer=fl["out"] / width if math.isfinite(hz.hoil) else math.nan,
                      rho_c=float(fine.rho[row, i0]), domain=(hz.xmin, hz.xmax, hz.ymax),
-                     coarse_theta=hz.coarse_theta, rescued=rescued, from_guess=guess is not None)
+                     coarse_theta=hz.coarse_theta, rescued=rescued, from_guess=guess is not None,
+                     exact_zone=hz.exact)
     sol.builder = build_result
     sol.scalars = dict(build_result(sol, None, fields=False).scalars)
     sol.scalars.update(meniscus_x=sol.extra["meniscus_x"],
@@ -890,6 +907,22 @@ def _scene_solve(pb: PointProblem, Hoil: float, options: PointOptions | None, po
                                guess=(start.X, start.Y, start.P, start.H0), **kw)
 
 
+def _hard_for_fmg(res: EHLResult) -> bool:
+    """Did ``res`` need more than the FMG of the default coarse-grid rule: the exact zone solve
+    (kept or rescuing) or a start from a neighbouring grid's film? Its neighbours then start
+    from its film (:meth:`_StarvedPointControl.solve`, ``coarse_of``)."""
+    return bool(res.extra.get("rescued") or res.extra.get("exact_zone") or res.extra.get("from_guess"))
+
+
+def _start_from(res: EHLResult) -> bool:
+    """Do ``res``'s neighbours start from its film? Where the FMG needed help for it
+    (:func:`_hard_for_fmg`) and its iteration got near a solution: converged, or stopped at its
+    residual floor or cycle limit with a finite pressure (the start is only a first iterate;
+    the neighbour is judged on its own iteration)."""
+    near = res.success or res.status_name in ("residual_floor", "max_cycles")
+    return near and _hard_for_fmg(res) and bool(np.all(np.isfinite(res.P))) and math.isfinite(res.H0)
+
+
 class _StarvedPointControl(StarvedControl):
     """A starved point scene solve under the accuracy controller: the grid is the one
     refinement (the meniscus lies inside the box), estimated by :func:`starved_point_error`
@@ -909,10 +942,11 @@ class _StarvedPointControl(StarvedControl):
 
     def solve(self, at: Resolution) -> EHLResult:
         prev, n = self.prev, at.points
+        if prev is None and self.with_estimate:
+            prev = self._below(n)
         # a refinement starts from the previous grid's film (see _scene_solve) when the FMG
         # needed the exact zone solve there, or when the FMG fails here
-        rescued = prev is not None and prev.extra.get("rescued", False)
-        res = self._solve(n, prev if rescued else None)
+        res = self._solve(n, prev if prev is not None and _hard_for_fmg(prev) else None)
         if prev is not None and not res.success and not res.extra.get("from_guess"):
             first = f"{res.status_name} from the FMG"
             res = self._solve(n, prev)
@@ -920,6 +954,26 @@ class _StarvedPointControl(StarvedControl):
                                   f"{prev.X.size}-point film")
         self.solved[n] = res  # a failed one too: the estimate of the next grid does not repeat it
         return res
+
+    def _below(self, n: int) -> EHLResult | None:
+        """The first grid's estimate grids, solved before it, coarsest first, each from the
+        film below where the FMG needed help there (appendix D with a 50 nm layer: the FMG
+        ladder of the first grid, 257 points, cost 8 s; its 65- and 129-point grids 0.5 s,
+        then 257 from the 129-point film). Returns the grid with half the intervals of ``n``
+        (None when ``n`` has no estimate grids)."""
+        grids = [m for m in ((n - 1) // 4 + 1, (n - 1) // 2 + 1) if m >= COARSEST_ESTIMATE_POINTS]
+        if len(grids) < 2:
+            return None
+        below = None
+        for m in grids:
+            if m not in self.solved:
+                start = below if below is not None and _start_from(below) else None
+                res = self._solve(m, start)
+                if start is not None and not res.success:
+                    res = self._solve(m)
+                self.solved[m] = res
+            below = self.solved[m]
+        return below if _start_from(below) else None
 
     def _solve(self, n: int, start: EHLResult | None = None) -> EHLResult:
         return _accept_floor(_scene_solve(self.pb, self.Hoil, self.options, n, self.kw, start), self.accuracy)
@@ -938,7 +992,14 @@ class _StarvedPointControl(StarvedControl):
         """The solve on the grid with half the intervals of ``points`` (made once)."""
         n = (points - 1) // 2 + 1
         if n not in self.solved:
-            self.solved[n] = self._solve(n)
+            # from the finer grid's film where the FMG needed help there, as a refinement
+            # does (appendix D, 50 nm: 129 points 1.6 -> 0.2 s); the FMG ladder if that fails
+            finer = self.solved.get(points)
+            start = finer if finer is not None and _start_from(finer) else None
+            res = self._solve(n, start)
+            if start is not None and not res.success:
+                res = self._solve(n)
+            self.solved[n] = res
             if record is not None:
                 record(Refinement(n, 1.0, 1.0, math.nan, math.nan, self.solved[n].wall_s, "levels"))
         return self.solved[n]

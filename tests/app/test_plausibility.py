@@ -87,7 +87,7 @@ def test_show_says_the_6205_fitted_film_is_outside_the_fits_range(capsys):
     assert main(["show", "bearing_6205_inner_race"]) == 0
     captured = capsys.readouterr()
     assert "hc_fit: the Nijenbanning fit is extrapolated" in captured.err
-    row = [x for x in captured.out.splitlines() if x.strip().startswith("hc_fit_in_range")]
+    row = [x for x in captured.out.splitlines() if x.lstrip("# ").startswith("hc_fit_in_range")]
     assert row and row[0].split()[-1] == "False"
     assert "M = 3620 outside [5, 1000]" in captured.out
     assert main(["show", "bearing_6205_inner_race", "--json"]) == 0
