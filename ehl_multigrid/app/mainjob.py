@@ -117,7 +117,7 @@ def hertz_result(scene: Scene, n: int = 201) -> Result:
 _UNITS = {
     "load": "N", "us": "m/s", "T_oil": "degC", "E_reduced": "Pa", "Rx": "m", "Ry": "m",
     "eta0": "Pa s", "alpha": "1/Pa", "pmax": "Pa", "mean_pressure": "Pa", "area": "m^2",
-    "hc_fit": "m", "a": "m", "b": "m", "length": "m",
+    "hc_fit": "m", "hc_fit_supplied": "m", "a": "m", "b": "m", "length": "m",
 }
 
 
@@ -194,12 +194,17 @@ def film_stage(ctx: RunContext) -> StageOutput:
         summary["status"], summary["message"] = label, fsol.message
         summary["Hc_fit"], summary["hc_fit"] = scene.central_film_fit()
         starved = "meniscus_x" in sol.scalars
+        fit = f"fit: hc = {summary['hc_fit'] * 1e9:.4g} nm"
         if starved:
             summary.update({k: sol.scalars.get(k) for k in (
                 "Hc_flooded", "Hm_flooded", "Hc_ratio", "meniscus_x", "mass_balance_error", "hoil")})
+            # the flooded fit alone, beside a starved film, reads as the film the oil would give
+            summary["Hc_fit_supplied"], summary["hc_fit_supplied"] = scene.supplied_film_fit()
+            fit = (f"fit: hc = {summary['hc_fit'] * 1e9:.4g} nm flooded, "
+                   f"{summary['hc_fit_supplied'] * 1e9:.4g} nm for the supply by Chevalier's (6.1)")
         along = "along X" if scene.kind == "line" else "per direction"
         text = (f"Film from the multigrid solver on {points} points {along}: hc = {res.scalars['hc'] * 1e9:.4g} nm, "
-                f"hm = {res.scalars['hm'] * 1e9:.4g} nm (fit: hc = {summary['hc_fit'] * 1e9:.4g} nm); "
+                f"hm = {res.scalars['hm'] * 1e9:.4g} nm ({fit}); "
                 f"estimated errors Hc {sol.Hc_error:.2g}, Hm {sol.Hm_error:.2g} (target {plan.tolerance:g}); "
                 f"load error {res.scalars['load_error']:.2g}, status: {label}.")
         why = sol.extra.get("not_refined_because") if fsol.status is Status.INACCURATE else None

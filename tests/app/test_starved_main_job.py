@@ -98,3 +98,14 @@ def test_run_on_the_line_scene_of_issue_41_at_1_nm_is_a_clear_failure(tmp_path, 
         assert "ESTIMATE" in _film_section((tmp_path / "o" / "roller_1nm_report.md").read_text())
     else:
         assert "meniscus_x" in film
+
+
+def test_a_solved_starved_film_is_set_beside_the_fit_for_its_supply(tmp_path, capsys, report_scene):
+    # the flooded fit alone (169 nm beside a 41 nm starved film) read as the film the oil gives
+    scene = str(report_scene("roller", tmp_path, "roller_starved", 2e-8))
+    main(["run", scene, "--no-plots", "--json", "--out", str(tmp_path / "o"), "--tolerance", "0.05"])
+    film = json.loads(capsys.readouterr().out)["film"]
+    assert "meniscus_x" in film  # solved starved, not the fallback estimate
+    assert film["hc_fit_supplied"] < 0.5 * film["hc_fit"]
+    text = _film_section((tmp_path / "o" / "roller_starved_report.md").read_text())
+    assert f"{film['hc_fit_supplied'] * 1e9:.4g} nm for the supply" in text
