@@ -161,9 +161,8 @@ def _bracket_near(fm: _FluxMap, hoil: float, xmin: float, near: float) -> tuple[
     towards the contact while the flux exceeds the supply, else outwards, by steps of 0.005,
     0.02, 0.08, then outwards over :data:`MENISCUS_SCAN`. Positions next to the Hertzian edge
     are solved only when the root lies there (their box solves end in the dense Newton last
-    resort: 6.4 s of a 10 s roller-bearing search at 1025 points went to X_m = -1.003, tried
-    first although the root lay at -1.015). None when nothing brackets it (the full scan then
-    runs)."""
+    resort: 6.4 s at X_m = -1.003 on 1025 points for a roller bearing whose root lies at
+    -1.015; docs/starvation.md). None when nothing brackets it (the full scan then runs)."""
     edge = EDGE_SCAN[-1] if near > MENISCUS_SCAN[0] else MENISCUS_SCAN[0]
     x0 = min(max(near, xmin), edge)
     F0 = fm.flux(x0)

@@ -920,7 +920,8 @@ def _start_from(res: EHLResult) -> bool:
     residual floor or cycle limit with a finite pressure (the start is only a first iterate;
     the neighbour is judged on its own iteration)."""
     near = res.success or res.status_name in ("residual_floor", "max_cycles")
-    return near and _hard_for_fmg(res) and bool(np.all(np.isfinite(res.P))) and math.isfinite(res.H0)
+    return (near and _hard_for_fmg(res) and res.P is not None and bool(np.all(np.isfinite(res.P)))
+            and math.isfinite(res.H0))
 
 
 class _StarvedPointControl(StarvedControl):
@@ -945,7 +946,7 @@ class _StarvedPointControl(StarvedControl):
         if prev is None and self.with_estimate:
             prev = self._below(n)
         # a refinement starts from the previous grid's film (see _scene_solve) when the FMG
-        # needed the exact zone solve there, or when the FMG fails here
+        # needed help there (_hard_for_fmg), or when the FMG fails here
         res = self._solve(n, prev if prev is not None and _hard_for_fmg(prev) else None)
         if prev is not None and not res.success and not res.extra.get("from_guess"):
             first = f"{res.status_name} from the FMG"
@@ -958,8 +959,8 @@ class _StarvedPointControl(StarvedControl):
     def _below(self, n: int) -> EHLResult | None:
         """The first grid's estimate grids, solved before it, coarsest first, each from the
         film below where the FMG needed help there (appendix D with a 50 nm layer: the FMG
-        ladder of the first grid, 257 points, cost 8 s; its 65- and 129-point grids 0.5 s,
-        then 257 from the 129-point film). Returns the grid with half the intervals of ``n``
+        ladder of its first grid, 257 points, costs 8 s; 65 and 129 points 0.5 s, then 257
+        from the 129-point film 0.6 s). Returns the grid with half the intervals of ``n``
         (None when ``n`` has no estimate grids)."""
         grids = [m for m in ((n - 1) // 4 + 1, (n - 1) // 2 + 1) if m >= COARSEST_ESTIMATE_POINTS]
         if len(grids) < 2:
@@ -993,7 +994,8 @@ class _StarvedPointControl(StarvedControl):
         n = (points - 1) // 2 + 1
         if n not in self.solved:
             # from the finer grid's film where the FMG needed help there, as a refinement
-            # does (appendix D, 50 nm: 129 points 1.6 -> 0.2 s); the FMG ladder if that fails
+            # does (appendix D, 50 nm, 129 points: 0.2 s, its FMG ladder 1.6 s); the FMG
+            # ladder if that fails
             finer = self.solved.get(points)
             start = finer if finer is not None and _start_from(finer) else None
             res = self._solve(n, start)

@@ -228,10 +228,9 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
         if growing and extrapolated:
             # an Anderson step that overshot: the history restarts and the next `anderson`
             # steps are plain damped ones at the same under-relaxation, so that the next
-            # extrapolation has that many secants. Restarted and extrapolated at once after
-            # each halving, the first extrapolated step (one secant of inner solves with
-            # algebraic noise) overshot again: page63 2000 N at 20 m/s, S = 0 alternated
-            # 2e-5 / 1e-3 in dP down to MIN_RELAX and stopped as diverged
+            # extrapolation has that many secants; one secant of inner solves with algebraic
+            # noise overshoots again (page63 2000 N at 20 m/s, S = 0: dP alternating 2e-5 /
+            # 1e-3 down to MIN_RELAX, docs/thermal.md)
             count, plain_until = 0, it + anderson
             actions.append(f"iteration {it}: changes grew ({raw[-2]:.3g} -> {raw[-1]:.3g} tolerances) "
                            f"after an Anderson step; {anderson} plain steps ({w:g}) before the next")
