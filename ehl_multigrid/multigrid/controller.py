@@ -250,7 +250,8 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
         last_ok = at
         ec, em = physics.estimate(res, at, steps.append)
         worst = max(ec, em) if not (math.isnan(ec) or math.isnan(em)) else math.nan
-        if best is None or not best[1] <= worst:  # NaN counts as worst
+        # NaN counts as worst; of two solves whose error is not bounded (inf) the finer one
+        if best is None or not best[1] <= worst or (math.isinf(worst) and math.isinf(best[1])):
             best = (res, worst)
         met = accuracy is None or worst <= accuracy
         say(f"estimated error Hc {ec:.2%}, Hm {em:.2%}", at)

@@ -46,9 +46,11 @@ def test_grids_above_the_coarsest_start_from_the_film_below_and_agree_with_their
                                        raise_on_failure=False)
     assert res.success and res.X.size == 257
     starved = [(n, from_film, sol) for n, finite, from_film, sol in calls if finite]
-    # the 65-point grid needs its FMG ladder; 129 and 257 start from the film below, once
+    # the 65-point grid needs its FMG ladder (and is solved again from the 129-point film when
+    # the ladder stops short); 129 and 257 start from the film below
     assert {n for n, from_film, _ in starved if not from_film} == {65}
-    assert {n for n, from_film, _ in starved if from_film} == {129, 257}
+    assert {n for n, from_film, _ in starved if from_film} >= {129, 257}
+    assert [n for n, from_film, _ in starved if from_film].count(257) == 1
     from_film = [sol for n, f, sol in starved if n == 129 and f and sol.success][-1]
     finer = [sol for n, f, sol in starved if n == 257 and f and sol.success][-1]
 
