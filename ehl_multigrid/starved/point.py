@@ -351,6 +351,14 @@ class StarvedPointHierarchy(PointHierarchy):
             return depth <= self.coarse_theta
         return depth <= 1 or self.levels[k].hx <= self.theta_mesh
 
+    def rule_key(self, rule: int | None) -> int | None:
+        """The coarse-grid theta rule that frees the same grids as ``rule`` (:meth:`_free`):
+        the default (None) is rule 1 where no grid three or more below the finest resolves the
+        inlet."""
+        if rule is None and (len(self.levels) < 3 or self.levels[-3].hx > self.theta_mesh):
+            return 1
+        return rule
+
     def measure(self, k: int) -> Any:
         m = super().measure(k)
         if k == len(self.levels) - 1:
@@ -556,16 +564,9 @@ def _exact_resolve(problem: Any, hoil: float, opt: PointOptions, rule: int | Non
 
 
 def _rule_tried(hz: StarvedPointHierarchy, rule: int | None, tried: set[int | None]) -> bool:
-    """Was the coarse-grid theta ``rule`` (or one that frees the same grids of ``hz``'s
-    hierarchy) solved already? The default rule (None) frees the two grids below the current
-    one and those whose mesh resolves the inlet (``StarvedPointHierarchy._free``): it is rule 1
-    where no grid three or more below the finest does."""
-    def key(r: int | None) -> int | None:
-        if r is None and (len(hz.levels) < 3 or hz.levels[-3].hx > hz.theta_mesh):
-            return 1
-        return r
-
-    return key(rule) in {key(r) for r in tried}
+    """Was the coarse-grid theta ``rule``, or one that frees the same grids of ``hz``'s
+    hierarchy (:meth:`StarvedPointHierarchy.rule_key`), solved already?"""
+    return hz.rule_key(rule) in {hz.rule_key(r) for r in tried}
 
 
 def _kept(old: tuple[EHLResult, Any], new: tuple[EHLResult, Any], keep: bool,
@@ -719,6 +720,9 @@ SCENE_POINTS = 257
 #: largest grid an accuracy target refines a starved point solve to (513^2 half domain: about
 #: 4x the 257^2 cost, 10-40 s on the shared 2-core machine; ``max_points`` raises it)
 SCENE_MAX_POINTS = 513
+#: statuses of a solve whose films enter an estimate: its iteration converged (its own accuracy
+#: verdict does not matter)
+ESTIMATE_STATUSES = ("converged", "inaccurate")
 #: the coarsest grid whose film enters the three-grid estimate (:func:`starved_point_error`)
 COARSEST_ESTIMATE_POINTS = 65
 #: an accuracy-driven solve that ends at its relaxation's residual floor (above
@@ -785,9 +789,10 @@ def _grid_term(f: float, c: float, cc: float | None, p: float) -> float:
     about a limit not yet in reach) the span of both swings, ``|d1| + |d2|``. No bound (inf)
     where two grids are all there is (``cc`` None) and where the differences do not fall. The
     default scene with a 200 nm layer, Hc on 65/129/257/513/1025 points 0.06445, 0.06610,
-    0.06525, 0.06428, 0.06362 (a sign change, then ratio 1.49): half the difference before, or
-    the two-grid first-order term, stated 1.96 % at 257 points for a true error above 2.5 %
-    (about 4.8 % at the observed ratio); the span states 3.9 % (5.8 % with the safety factor)."""
+    0.06525, 0.06428, 0.06362 (a sign change, then ratio 1.49): the 257-point film lies more than
+    2.5 % (about 4.8 % at the observed ratio) from its limit, where half the difference before,
+    or the two-grid first-order term, gives 1.96 % and the span 3.9 % (5.8 % with the safety
+    factor)."""
     d2 = f - c
     if cc is None:
         return math.inf
@@ -825,7 +830,7 @@ def starved_point_error(fine: EHLResult, coarse: EHLResult | None,
     notes = [order_note(order)]
     # the coarse solve's iteration must have converged; its own accuracy verdict does not
     # matter (a refinement step passes the previous, 'inaccurate' solve as the coarse one)
-    ok = ("converged", "inaccurate")
+    ok = ESTIMATE_STATUSES
     if coarse is not None and coarse.status_name in ok:
         pc, pm = GRID_ORDER[order]
         three = coarser is not None and coarser.status_name in ok
@@ -972,13 +977,17 @@ class _StarvedPointControl(StarvedControl):
         below = None
         for m in grids:
             if m not in self.solved:
-                start = below if below is not None and _start_from(below) else None
-                res = self._solve(m, start)
-                if start is not None and not res.success:
-                    res = self._solve(m)
-                self.solved[m] = res
+                self.solved[m] = self._solve_near(m, below)
             below = self.solved[m]
         return below if _start_from(below) else None
+
+    def _solve_near(self, n: int, neighbour: EHLResult | None) -> EHLResult:
+        """The grid of ``n`` points from ``neighbour``'s film where :func:`_start_from` says
+        so, the FMG ladder otherwise or when that start fails."""
+        if neighbour is None or not _start_from(neighbour):
+            return self._solve(n)
+        res = self._solve(n, neighbour)
+        return res if res.success else self._solve(n)
 
     def _solve(self, n: int, start: EHLResult | None = None) -> EHLResult:
         return _accept_floor(_scene_solve(self.pb, self.Hoil, self.options, n, self.kw, start), self.accuracy)
@@ -998,14 +1007,8 @@ class _StarvedPointControl(StarvedControl):
         n = (points - 1) // 2 + 1
         if n not in self.solved:
             # from the finer grid's film where the FMG needed help there, as a refinement
-            # does (appendix D, 50 nm, 129 points: 0.2 s, its FMG ladder 1.6 s); the FMG
-            # ladder if that fails
-            finer = self.solved.get(points)
-            start = finer if finer is not None and _start_from(finer) else None
-            res = self._solve(n, start)
-            if start is not None and not res.success:
-                res = self._solve(n)
-            self.solved[n] = res
+            # does (appendix D, 50 nm, 129 points: 0.2 s, its FMG ladder 1.6 s)
+            self.solved[n] = self._solve_near(n, self.solved.get(points))
             if record is not None:
                 record(Refinement(n, 1.0, 1.0, math.nan, math.nan, self.solved[n].wall_s, "levels"))
         return self.solved[n]
@@ -1024,13 +1027,13 @@ class _StarvedPointControl(StarvedControl):
             return math.nan, math.nan
         self.solved[at.points] = res  # the coarse solve of the next grid
         coarse, coarser = self.coarse_of(at.points, record), self.coarser_of(at.points, record)
-        if coarser is not None and coarser.status_name not in ("converged", "inaccurate") \
-                and coarse.status_name in ("converged", "inaccurate"):
+        if coarser is not None and coarser.status_name not in ESTIMATE_STATUSES \
+                and coarse.status_name in ESTIMATE_STATUSES:
             # without the third grid the grid error is unknown: the quarter grid again, from
             # the half grid's converged film
             n = (at.points - 1) // 4 + 1
             again = self._solve(n, coarse)
-            if again.status_name in ("converged", "inaccurate"):
+            if again.status_name in ESTIMATE_STATUSES:
                 self.solved[n] = coarser = again
         est = starved_point_error(res, coarse, coarser)
         attach_estimate(res, est, self.accuracy)

@@ -1,8 +1,8 @@
 """The meniscus search of a finer grid brackets the root around the coarser grid's root,
 stepping towards the contact only while the flux still exceeds the supply: a box next to the
-Hertzian edge (X_m = -1.003) ends in the dense Newton last resort, and was solved first on
-every grid although the root lay further out (roller bearing with 30 nm at 1025 points: 6.4 s
-of a 10 s search)."""
+Hertzian edge (X_m = -1.003) ends in the dense Newton last resort (roller bearing with 30 nm at
+1025 points: 6.4 s, where the whole search takes 2.6 s) and must not be solved when the root
+lies further out."""
 
 import math
 

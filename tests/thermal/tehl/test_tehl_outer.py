@@ -1,9 +1,9 @@
 """The TEHL outer iteration after an Anderson step that overshoots: it restarts the history
-and takes plain damped steps at the same under-relaxation before extrapolating again. Restarted
-and extrapolated at once (after halving the damping), the first extrapolated step, one secant
-made of inner solves with algebraic noise, overshot again, down to the smallest damping: the
-page 63 contact at 20 m/s in rolling (thermal loading 0.59) stopped as diverged on 1025 points
-with its films settled to 1e-7."""
+and takes plain damped steps at the same under-relaxation before extrapolating again. An
+extrapolation from a restarted history (one secant made of inner solves with algebraic noise)
+overshoots again: halving the damping each time, the page 63 contact at 20 m/s in rolling
+(thermal loading 0.59) reaches the smallest damping and stops as diverged on 1025 points with
+its films settled to 1e-7."""
 
 import pytest
 
