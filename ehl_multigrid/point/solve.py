@@ -418,7 +418,8 @@ def coarser_probe(problem: PointProblem, options: PointOptions, res: EHLResult) 
 def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLResult,
                         cache: dict[PointOptions, EHLResult] | None = None,
                         boxes: tuple[float, ...] = (1.0, 2.0), tight: float | None = None, coarser: int = 0,
-                        used: list[EHLResult] | None = None, hm_sub: bool = False
+                        used: list[EHLResult] | None = None, hm_sub: bool = False,
+                        look: float | None = None
                         ) -> tuple[float, float] | list[tuple[float, float]] | None:
     """Relative change of (Hc, Hm) when the box is doubled in X and Y at equal mesh size,
     measured by two converged solves on a coarse grid of the solve (two grids below the
@@ -433,7 +434,12 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     the probe solves; ``hm_sub`` measures Hm by its sub-grid minimum (:func:`film_change`).
 
     ``cache`` (options -> result) keeps the probe solves of one refinement sequence: the wide
-    solve of a box is the narrow solve of the next box's probe, on the same mesh."""
+    solve of a box is the narrow solve of the next box's probe, on the same mesh.
+
+    ``look`` (the target accuracy) lets a pair on a probe mesh of at least :data:`LOOK_FROM`
+    points per default box first look on the mesh twice as coarse: where that change, times
+    :data:`LOOK_MARGIN`, leaves a domain part of at most :data:`LOOK_FRACTION` of the target,
+    it is returned times the margin and the probe mesh is not solved."""
     top = sol.levels - 1
     n_f = sol.X.shape[0]
     xmin, xmax, ymax = sol.extra["domain"]
@@ -458,6 +464,14 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
     n_p = min(max((n_f - 1) // 4 + 1, n_min), n_f) if top >= 2 else n_f
     for _ in range(coarser):
         n_p = (n_p - 1) // 2 + 1
+    if (look is not None and len(boxes) == 2 and not coarser and tight is None
+            and domain_scale(problem) <= 1.0 and (n_p - 1) // scale + 1 >= LOOK_FROM):
+        seen = point_domain_change(problem, options, sol, cache, boxes, coarser=1, used=used, hm_sub=hm_sub)
+        if seen is not None and (domain_safety(options) * LOOK_MARGIN * max(abs(seen[0]), abs(seen[1]))
+                                 <= LOOK_FRACTION * look):
+            sol.extra["domain_note"] = (f"box change measured on {(n_p - 1) // 2 + 1} points per box "
+                                        f"(the probe mesh halved), times {LOOK_MARGIN:g}")
+            return LOOK_MARGIN * seen[0], LOOK_MARGIN * seen[1]
     while True:
         if len(boxes) > 2 and (n_p - 1) * boxes[-1] > n_f - 1:
             # the widest box would need more points than the solve itself: such a probe costs more
@@ -525,6 +539,18 @@ def point_domain_change(problem: PointProblem, options: PointOptions, sol: EHLRe
         n_p = 2 * (n_p - 1) + 1  # one grid finer when the coarse probe does not converge
 
 
+#: probe meshes (points per default box) from which a domain probe first looks on the mesh twice
+#: as coarse (:func:`point_domain_change`); below, the look would save under half a second
+LOOK_FROM = 257
+#: the look's change counts where its domain part (times :data:`LOOK_MARGIN`) is at most this
+#: fraction of the target: the coarse mesh's error then matters little beside the other parts
+LOOK_FRACTION = 0.25
+#: factor on the look's change: the mesh twice as coarse as the probe mesh read the box change
+#: 0.68-1.0 times the probe mesh's where it read less (Hm of (20, 10, theta 0.25), (50, 10, theta
+#: 0.3), (20, 10, theta 4); elsewhere it read up to 30 times more: docs/accuracy.md, "Domain error")
+LOOK_MARGIN = 2.0
+
+
 #: the default box is skipped when its domain part is predicted above this many times the
 #: target; below, a box correction on the default box often meets ((100, 20) at 1 %: 1.56 times,
 #: met on 513 points x1 in 7.9 s, against 16.4 s from 1025 points on x2)
@@ -587,7 +613,7 @@ def start_box(problem: PointProblem, options: PointOptions, accuracy: float,
     later estimates."""
     if not fast_box_decay(problem):
         return None
-    change = point_domain_change(problem, options, planned_solve(problem, options), cache)
+    change = point_domain_change(problem, options, planned_solve(problem, options), cache, look=accuracy)
     safety = domain_safety(options)
     if change is None or not safety * max(abs(change[0]), abs(change[1])) > START_WIDE * accuracy:
         return None
@@ -866,7 +892,7 @@ def solve_point(
         probes: dict[PointOptions, EHLResult] = {}
 
         def probe(res: EHLResult, box: float) -> tuple[float, float] | None:
-            return point_domain_change(pb, res.options, res, probes)
+            return point_domain_change(pb, res.options, res, probes, look=accuracy)
 
         def decay_probe(res: EHLResult, box: float, left: tuple[float, float] | None = None) -> BoxSeries | None:
             return point_box_series(pb, res.options, res, probes, left)

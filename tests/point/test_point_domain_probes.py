@@ -252,3 +252,27 @@ def test_a_probe_that_fails_from_half_its_coarse_grid_too_keeps_its_first_answer
                              wall_s=55.0, actions=[])
     r = point_solve.coarser_probe(None, PointOptions(points=1025), failed)
     assert r is failed and r.work_units == 1176.0 and "diverged" in r.actions[-1]
+
+
+@pytest.mark.solver
+def test_a_fine_probe_first_looks_on_the_mesh_twice_as_coarse_and_bounds_the_probe_mesh_change():
+    """A probe mesh of 257 points per box (a 1025-point solve) first looks on 129: where twice
+    that change leaves a domain part under a quarter of the target, it is the answer and the
+    257-point pair is not solved; the margined look bounds the probe mesh's own change."""
+    from ehl_multigrid.multigrid.options import PointOptions
+    from ehl_multigrid.point.problem import problem_from_moes
+    from ehl_multigrid.point.solve import LOOK_MARGIN, planned_solve, point_domain_change
+
+    pb = problem_from_moes(100.0, 10.0, 1.0, "roelands", "dowson-higginson", None, None, None)
+    opts = PointOptions(points=1025, half=True, raise_on_failure=False, film_tol=2.5e-4)
+    cache, used = {}, []
+    plan = planned_solve(pb, opts)
+    looked = point_domain_change(pb, opts, plan, cache, used=used, look=0.005)
+    assert sorted(int(r.options.points) for r in used) == [129, 257]  # the look's pair alone
+    assert "halved" in plan.extra["domain_note"]
+    coarse = point_domain_change(pb, opts, planned_solve(pb, opts), cache, coarser=1)
+    assert looked == pytest.approx(tuple(LOOK_MARGIN * c for c in coarse), rel=0, abs=0)
+    fine = point_domain_change(pb, opts, planned_solve(pb, opts), cache)
+    assert all(abs(f) <= abs(m) for f, m in zip(fine, looked, strict=True)), (fine, looked)
+    # a target the look cannot show met: the probe mesh's own change
+    assert point_domain_change(pb, opts, planned_solve(pb, opts), cache, look=1e-5) == fine
