@@ -14,10 +14,11 @@ two grids give no bound.
 import math
 from types import SimpleNamespace
 
+import numpy as np
 import pytest
 
 from ehl_multigrid.multigrid.accuracy import GRID_SAFETY
-from ehl_multigrid.starved.point import _grid_term, starved_point_error
+from ehl_multigrid.starved.point import _grid_term, _same_minimum, starved_point_error
 
 HM = {257: 1.0046815, 513: 1.0135957, 1025: 1.0111300, 2049: 1.0093835, 4097: 1.0081423}
 
@@ -67,6 +68,50 @@ def test_differences_falling_more_slowly_than_first_order_are_continued_at_their
 def test_differences_falling_at_the_assumed_order_or_faster_keep_the_richardson_term():
     f, c, cc = 1.0, 1.01, 1.05  # ratio 4 against first order
     assert _grid_term(f, c, cc, 1.0) == pytest.approx(0.01)
+
+
+#: the default scene with a 300 nm layer: Hm (Venner) on 65-1025 points
+HM_300 = {65: 0.029481135, 129: 0.033515668, 257: 0.033583126, 513: 0.033358746, 1025: 0.033083094}
+
+
+def test_differences_falling_faster_than_one_order_above_keep_half_the_one_before():
+    """Hm of the 300 nm case falls 60 times from 129 -> 257 against 65 -> 129: the first-order
+    term stated 0.30 % at 257 points, where the 513- and 1025-point films lie 0.67 % and 1.5 %
+    below (and still falling)."""
+    term = _grid_term(HM_300[257], HM_300[129], HM_300[65], 1.0)
+    assert term == pytest.approx(0.5 * abs(HM_300[129] - HM_300[65]))
+    assert GRID_SAFETY * abs(HM_300[257] - HM_300[129]) / HM_300[257] < abs(HM_300[257] / HM_300[1025] - 1.0)
+    assert GRID_SAFETY * term / HM_300[257] > abs(HM_300[257] / HM_300[1025] - 1.0)
+
+
+def test_a_minimum_that_moves_between_grids_keeps_the_richardson_term():
+    """The 6205 with a 50 nm layer (b/a 9.4): Hm at the side edge (Y = 9.2 a) on 129 and 257
+    points, at the centre on 513 (where it equals Hc and moves by 7e-6 relative to 1025). Its
+    coarser films are of another minimum: half their difference (12 %) says nothing of the
+    513-point film."""
+    def res(hm, x, y, n, ymax=28.08):  # the half domain's rows, Y in [0, ymax]
+        return SimpleNamespace(scalars={"Hm_venner": hm, "X_Hm": x, "Y_Hm": y},
+                               X=np.linspace(-4.5, 1.5, n), Y=np.linspace(0.0, ymax, (n + 1) // 2))
+    fine, coarse, coarser = res(0.019148675, 0.0, 0.0, 513), res(0.018897656, 0.141, -9.215, 257), \
+        res(0.015725116, 0.141, -9.215, 129)
+    assert not _same_minimum(fine, coarse, coarser)
+    moved = _grid_term(0.019148675, 0.018897656, 0.015725116, 1.0, same=False)
+    assert moved == pytest.approx(abs(0.019148675 - 0.018897656))
+    # the 300 nm default scene: the side lobe on every grid (the coarsest grid's cells 0.094 a)
+    side = res(0.033583126, 0.188, -0.914, 257, 3.0), res(0.033515668, 0.234, -0.891, 129, 3.0), \
+        res(0.029481135, 0.094, -0.938, 65, 3.0)
+    assert _same_minimum(*side)
+
+
+def test_differences_falling_a_few_times_faster_than_first_order_keep_the_richardson_term():
+    """The default scene with a 100 nm layer: Hm on 129/257/513/1025 points 0.023006597,
+    0.0248736, 0.025214994, 0.025136651 (ratio 5.5, then a sign change): the first-order term
+    at 513 points (2.0 %) covers the 1025-point film's 0.31 %; half the difference before (5.6 %)
+    would have called the 5 % answer inaccurate."""
+    hm = {129: 0.023006597, 257: 0.0248736, 513: 0.025214994, 1025: 0.025136651}
+    term = _grid_term(hm[513], hm[257], hm[129], 1.0)
+    assert term == pytest.approx(abs(hm[513] - hm[257]))
+    assert GRID_SAFETY * term / hm[513] > abs(hm[513] / hm[1025] - 1.0)
 
 
 def test_differences_that_do_not_fall_give_no_bound():
