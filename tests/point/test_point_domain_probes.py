@@ -276,3 +276,20 @@ def test_a_fine_probe_first_looks_on_the_mesh_twice_as_coarse_and_bounds_the_pro
     assert all(abs(f) <= abs(m) for f, m in zip(fine, looked, strict=True)), (fine, looked)
     # a target the look cannot show met: the probe mesh's own change
     assert point_domain_change(pb, opts, planned_solve(pb, opts), cache, look=1e-5) == fine
+
+
+def test_a_look_is_taken_only_on_a_mesh_that_holds_the_solves_film():
+    """The chapter-6 0.5 GPa ball's 1025-point solve holds Hc 7.9 % off on 129 points, where its
+    look's wide probe stopped at a residual floor; the 6205's 257 points are 2.5 % off."""
+    from types import SimpleNamespace
+
+    from ehl_multigrid.point.solve import PlannedSolve, resolved_on
+
+    def solve(films, top):
+        return SimpleNamespace(fmg=[{"points": n, "Hc": hc} for n, hc in films.items()],
+                               scalars={"Hc_venner": top})
+
+    assert not resolved_on(solve({129: 0.05308, 257: 0.05652}, 0.05761), 129)
+    assert resolved_on(solve({257: 0.05662, 513: 0.05778}, 0.05807), 257)
+    assert resolved_on(solve({513: 0.05778}, 0.05807), 257)  # no film there: not known
+    assert resolved_on(PlannedSolve(levels=3, X=[0.0, 1.0]), 129)  # not solved yet
