@@ -28,8 +28,6 @@ or ``EHL_STRICT=1`` refuses them instead (exit 2).
 from __future__ import annotations
 
 import argparse
-import contextlib
-import io
 import json
 import math
 import os
@@ -94,12 +92,9 @@ def _cmd_show(args: argparse.Namespace) -> dict:
             print(f"# source: {sc.source}")
         print(sc.to_toml())
         # commented, so that `ehl show NAME > my.toml` is a scene file to edit
-        derived = io.StringIO()
-        with contextlib.redirect_stdout(derived):
-            print_table({k: v for k, v in summary.items()
-                         if not (k.startswith("hc_fit_deviation") and math.isnan(v))})
         print("# derived")
-        print("\n".join(f"#{line}" for line in derived.getvalue().splitlines()))
+        print_table({k: v for k, v in summary.items()
+                     if not (k.startswith("hc_fit_deviation") and math.isnan(v))}, prefix="#")
     return summary
 
 

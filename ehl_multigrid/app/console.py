@@ -248,8 +248,9 @@ def print_payload(payload: dict[str, Any]) -> None:
     print(json.dumps(jsonable(payload), indent=None, sort_keys=False))
 
 
-def print_table(payload: dict[str, Any]) -> None:
-    """Print ``payload`` as aligned ``key  value`` lines; long sequences are summarised."""
+def print_table(payload: dict[str, Any], prefix: str = "") -> None:
+    """Print ``payload`` as aligned ``key  value`` lines, each after ``prefix`` (``"#"``: TOML
+    comments); long sequences are summarised."""
     width = max((len(k) for k in payload), default=0)
     for k, v in payload.items():
         if isinstance(v, float):
@@ -258,4 +259,4 @@ def print_table(payload: dict[str, Any]) -> None:
             s = f"[{len(v)} values: {v[0]:.4g} ... {v[-1]:.4g}]"
         else:
             s = str(v)
-        print(f"  {k:<{width}}  {s}")
+        print(f"{prefix}  {k:<{width}}  {s}")
