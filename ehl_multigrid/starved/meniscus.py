@@ -40,7 +40,7 @@ from ..multigrid.accuracy import (
     ErrorEstimate,
     attach_estimate,
     estimate_error,
-    hm_max_order,
+    line_hm_richardson,
     richardson,
 )
 from ..multigrid.controller import Resolution, control
@@ -236,7 +236,7 @@ def supply_estimate(res: EHLResult, ladder: list[tuple[int, float, EHLResult]]) 
     algebraic part from the supply mismatch and the load error."""
     Hc, Hm = float(res.scalars["Hc_venner"]), float(res.scalars["Hm_venner"])
     rc = richardson([r.scalars["Hc_venner"] for _, _, r in ladder])
-    rm = richardson([r.scalars["Hm_venner"] for _, _, r in ladder], max_order=hm_max_order("line"))
+    rm = line_hm_richardson([r.scalars["Hm_venner"] for _, _, r in ladder])
     grid = {"Hc": abs(rc.error / Hc), "Hm": abs(rm.error / Hm)}
     le = abs(float(res.load_error_history[-1])) if len(res.load_error_history) else math.inf
     alg = res.scalars.get("supply_mismatch", 0.0) + LOAD_SENSITIVITY * le

@@ -1149,3 +1149,37 @@ def test_the_line_domain_part_is_twice_the_box_change(monkeypatch):
     dom = sol.extra["error_budget"]["domain"]
     assert LINE_DOMAIN_SAFETY == 2.0
     assert dom["Hc"] == pytest.approx(2.0 * abs(d2c)) and dom["Hm"] == pytest.approx(2.0 * abs(d2m))
+
+
+def test_a_regular_looking_last_pair_after_an_irregular_one_is_bounded_by_the_envelope():
+    # isoviscous line (500, 0), Hm (Venner units) of the accuracy sequence at 5 %: converged
+    # films on 1025, 2049, 4097 and the FMG film on 8193 points. The last ratio is 4.0, the one
+    # before 65; the converged films go on 0.573000, 0.574207, 0.574426, 0.573459, 0.573348
+    # (Moes, 2049-32769 points), so the 8193-point film lies 0.19 % from the limit
+    films = [3.9401220e-04, 4.5003250e-04, 4.5089386e-04, 4.5110931e-04]
+    three = richardson(films[1:], max_order=1.0, earlier_half=True, look_back=True)
+    assert three.regular and three.error / films[-1] < 0.001  # the last three alone
+    r = richardson(films, max_order=1.0, earlier_half=True, look_back=True)
+    assert not r.regular
+    assert r.error == pytest.approx(GRID_SAFETY * 0.25 * (films[1] - films[0]))
+    # a regular pair before the last changes nothing
+    steady = [1.0 - 0.27, 1.0 - 0.09, 1.0 - 0.03, 1.0 - 0.01]
+    assert richardson(steady, max_order=1.0, look_back=True) == richardson(steady[1:], max_order=1.0)
+
+
+def test_a_line_hm_falling_faster_than_second_order_is_bounded_by_half_the_difference_before():
+    films = [1.0 - 0.012, 1.0 - 0.002, 1.0]  # ratio 5: order 2.3
+    assert richardson(films, max_order=1.0).error == pytest.approx(GRID_SAFETY * 0.002)
+    assert richardson(films, max_order=1.0, earlier_half=True).error == pytest.approx(GRID_SAFETY * 0.005)
+
+
+def test_isoviscous_line_at_five_percent_states_an_hm_error_that_covers_its_reference():
+    # (500, 0): tight solves (residual 1e-10) on 16385-131073 points give Hm 0.573459,
+    # 0.573348, 0.5733275, 0.5733175 (Moes) and Hc 0.720196, 0.720286, 0.720352, 0.720369
+    # (ratios 4.0): limits Hm 0.57331 +- 2e-5, Hc 0.720374
+    from ehl_multigrid import MoesProblem, solve
+
+    sol = solve(MoesProblem("line", M=500.0, L=0.0), accuracy=0.05)
+    assert sol.success
+    assert abs(sol.Hm / 0.57331 - 1.0) + 2e-5 / 0.57331 <= sol.error.Hm
+    assert abs(sol.Hc / 0.720374 - 1.0) <= sol.error.Hc
