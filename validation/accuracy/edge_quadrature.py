@@ -61,6 +61,7 @@ def film_shape_error(n: int, box: tuple[float, float], X: float) -> float:
 
 #: the rules compared: the central film's, the line minimum film's three-grid rule without and
 #: with its look one grid further back, and the first-order envelope of four grids
+#: ``max(|d_k|, |d_(k-1)|/2, |d_(k-2)|/4)``
 RULES = {
     "Hc rule (order cap 2)": lambda v: richardson(v[-3:]).error,
     "first order, three grids": lambda v: richardson(v[-3:], max_order=1.0, earlier_half=True).error,
