@@ -11,6 +11,7 @@ from ehl_multigrid.line import solve_line
 from ehl_multigrid.multigrid.accuracy import (
     GRID_SAFETY,
     ErrorEstimate,
+    line_hm_richardson,
     next_refinement,
     points_needed,
     refinement_candidates,
@@ -1157,21 +1158,15 @@ def test_a_regular_looking_last_pair_after_an_irregular_one_is_bounded_by_the_di
     # before 65; the converged films go on 0.573000, 0.574207, 0.574426, 0.573459, 0.573348
     # (Moes, 2049-32769 points), so the 8193-point film lies 0.19 % from the limit
     films = [3.9401220e-04, 4.5003250e-04, 4.5089386e-04, 4.5110931e-04]
-    three = richardson(films[1:], max_order=1.0, earlier_half=True, look_back=True)
+    three = line_hm_richardson(films[1:])
     assert three.regular and three.error / films[-1] < 0.001  # the last three alone
-    r = richardson(films, max_order=1.0, earlier_half=True, look_back=True)
+    r = line_hm_richardson(films)
     assert not r.regular
     assert r.error == pytest.approx(GRID_SAFETY * (films[2] - films[1]))
     assert r.error / films[-1] > 0.0019
     # a regular pair before the last changes nothing
     steady = [1.0 - 0.27, 1.0 - 0.09, 1.0 - 0.03, 1.0 - 0.01]
     assert richardson(steady, max_order=1.0, look_back=True) == richardson(steady[1:], max_order=1.0)
-
-
-def test_a_line_hm_falling_faster_than_second_order_is_bounded_by_half_the_difference_before():
-    films = [1.0 - 0.012, 1.0 - 0.002, 1.0]  # ratio 5: order 2.3
-    assert richardson(films, max_order=1.0).error == pytest.approx(GRID_SAFETY * 0.002)
-    assert richardson(films, max_order=1.0, earlier_half=True).error == pytest.approx(GRID_SAFETY * 0.005)
 
 
 def test_isoviscous_line_at_five_percent_states_an_hm_error_that_covers_its_reference():

@@ -31,7 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _paths import out_dir  # noqa: E402
 
 from ehl_multigrid.line.kernel import log_kernel  # noqa: E402
-from ehl_multigrid.multigrid.accuracy import GRID_SAFETY, richardson  # noqa: E402
+from ehl_multigrid.multigrid.accuracy import GRID_SAFETY, line_hm_richardson, richardson  # noqa: E402
 
 #: boxes: edges on nodes of every grid, and two placements that move them within their cells
 BOXES = {"edges on nodes": (-2.0, 2.0), "edges between nodes (shifted box)": (-2.1, 1.9),
@@ -64,9 +64,8 @@ def film_shape_error(n: int, box: tuple[float, float], X: float) -> float:
 #: ``max(|d_k|, |d_(k-1)|/2, |d_(k-2)|/4)``
 RULES = {
     "Hc rule (order cap 2)": lambda v: richardson(v[-3:]).error,
-    "first order, three grids": lambda v: richardson(v[-3:], max_order=1.0, earlier_half=True).error,
-    "line Hm rule (look back)": lambda v: richardson(v[-4:], max_order=1.0, earlier_half=True,
-                                                     look_back=True).error,
+    "first order, three grids": lambda v: richardson(v[-3:], max_order=1.0).error,
+    "line Hm rule (look back)": lambda v: line_hm_richardson(v[-4:]).error,
     "first-order envelope, four grids": lambda v: GRID_SAFETY * max(
         abs(v[-1] - v[-2]), abs(v[-2] - v[-3]) / 2, abs(v[-3] - v[-4]) / 4),
 }
