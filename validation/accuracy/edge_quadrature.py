@@ -4,7 +4,9 @@ The line film uses the pressure piecewise constant on cells centred on the nodes
 (``ehl_multigrid.line.kernel``): second order where the pressure is smooth. A Hertzian pressure
 ``P = sqrt(1 - X^2)`` ends in a square root; its film shape is known exactly (constant inside
 the contact, ``H(X) - H(0) = (|X| sqrt(X^2 - 1) - acosh|X|)/2`` outside, Venner units), so the
-error of the discrete film ``H(X) - H(0)`` can be measured on nested grids. An EHL pressure at
+error of the discrete film ``H(X) - H(0)`` can be measured on nested grids. The circular contact's
+deformation (``ehl_multigrid.point.deformation``) is checked the same way on its exact Hertzian
+deformation. An EHL pressure at
 high M looks like this on every grid that does not resolve its outlet (the drop from the spike
 to zero over a few cells), which is where the line's minimum film and the isoviscous central
 film converge irregularly (docs/accuracy.md, "Why line films converge irregularly").
@@ -32,6 +34,7 @@ from _paths import out_dir  # noqa: E402
 
 from ehl_multigrid.line.kernel import log_kernel  # noqa: E402
 from ehl_multigrid.multigrid.accuracy import GRID_SAFETY, line_hm_richardson, richardson  # noqa: E402
+from ehl_multigrid.point.deformation import make_deformation  # noqa: E402
 
 #: boxes: edges on nodes of every grid, and two placements that move them within their cells
 BOXES = {"edges on nodes": (-2.0, 2.0), "edges between nodes (shifted box)": (-2.1, 1.9),
@@ -89,6 +92,29 @@ def worst_ratios() -> dict[str, float]:
     return worst
 
 
+#: the circular contact's grids (points per side of a square box 4 long)
+POINT_GRIDS = [65, 129, 257, 513, 1025]
+
+
+def circular_deformation(r: float) -> float:
+    """Exact ``W(r) = int int P/|r - r'| dA'`` of the circular Hertzian pressure
+    ``P = sqrt(1 - r^2)`` (unit contact radius)."""
+    if r <= 1.0:
+        return 0.25 * math.pi**2 * (2.0 - r * r)
+    return 0.5 * math.pi * ((2.0 - r * r) * math.asin(1.0 / r) + math.sqrt(r * r - 1.0))
+
+
+def circular_error(n: int, x_lo: float, X: float) -> float:
+    """Discrete minus exact ``W(X, 0) - W(0, 0)`` on ``n x n`` nodes of
+    ``[x_lo, x_lo + 4] x [-2, 2]`` (``point.deformation``, cells centred on the nodes)."""
+    xs = np.linspace(x_lo, x_lo + 4.0, n)
+    ys = np.linspace(-2.0, 2.0, n)
+    P = np.sqrt(np.clip(1.0 - xs[None, :]**2 - ys[:, None]**2, 0.0, None))
+    W = make_deformation("fft", n, n, xs[1] - xs[0], ys[1] - ys[0])(P)[n // 2]
+    return float(np.interp(X, xs, W) - np.interp(0.0, xs, W)
+                 - (circular_deformation(abs(X)) - circular_deformation(0.0)))
+
+
 def main() -> None:
     rows = []
     for name, box in BOXES.items():
@@ -98,11 +124,20 @@ def main() -> None:
             rows.append({"box": name, "X": X, "points": GRIDS, "error": err, "ratios": ratios})
             print(f"{name:36s} X = {X:4.2f}: error on {GRIDS[-1]} points {err[-1]:.2e}; ratios "
                   + " ".join(f"{r:6.2f}" for r in ratios))
+    point_rows = []
+    for x_lo in (-2.0, -2.05, -2.1, -2.2):
+        for X in (0.5, 1.05):
+            err = [circular_error(n, x_lo, X) for n in POINT_GRIDS]
+            ratios = [a / b for a, b in zip(err[:-1], err[1:], strict=True)]
+            point_rows.append({"x_lo": x_lo, "X": X, "points": POINT_GRIDS, "error": err, "ratios": ratios})
+            print(f"circular, box from X = {x_lo:5.2f}, X = {X:4.2f}: ratios "
+                  + " ".join(f"{r:6.2f}" for r in ratios))
     worst = worst_ratios()
     for name, q in worst.items():
         print(f"{name:34s} largest true/stated error {q:.2f}")
     out = out_dir("accuracy") / "edge_quadrature.json"
-    out.write_text(json.dumps({"sequences": rows, "worst_true_over_stated": worst}, indent=1))
+    out.write_text(json.dumps({"sequences": rows, "circular": point_rows,
+                                "worst_true_over_stated": worst}, indent=1))
     print(f"wrote {out}")
 
 
