@@ -57,6 +57,8 @@ from .point import require_flooded_point
 #: orders, except 1.5 along X for point contacts, below the minimum film's (the core caps Hm's
 #: order at 1.5 too; docs/thermal.md, "Orders of the TEHL error estimate")
 ORDERS = {"line": (2.0, 2.0), "point": (1.5, 2.0)}
+#: the parts of a TEHL error budget
+PARTS = ("grid_x", "grid_z", "domain", "iteration")
 #: quantities of the budget; the accuracy target applies to the films
 QUANTITIES = ("Hc", "Hm", "friction_coefficient", "T_max")
 #: smallest grid along X a TEHL solve takes (TEHLOptions)
@@ -198,6 +200,15 @@ class TEHLErrorEstimate:
     @property
     def Hm(self) -> float:
         return self.budget["Hm"]["total"]
+
+    def unknown_parts(self) -> list[str]:
+        """The parts whose film errors could not be estimated (NaN or inf)."""
+        return [part for part in PARTS
+                if not all(math.isfinite(self.budget[k].get(part, 0.0)) for k in ("Hc", "Hm"))]
+
+    def known(self) -> bool:
+        """Whether both film errors are estimated."""
+        return math.isfinite(self.Hc) and math.isfinite(self.Hm)
 
     @property
     def worst(self) -> float:
@@ -428,12 +439,11 @@ def next_step(est: TEHLErrorEstimate, accuracy: float, points: int, nz: int, box
 
 
 def _dominant(est: TEHLErrorEstimate) -> str:
-    parts = ("grid_x", "grid_z", "domain", "iteration")
-    vals = {p: max(est.budget[k][p] for k in ("Hc", "Hm")) for p in parts}
-    unknown = [p for p, v in vals.items() if not math.isfinite(v)]
+    unknown = est.unknown_parts()
     if unknown:
         return f"the {' and '.join(unknown)} part{'s' if len(unknown) > 1 else ''} could not be measured"
-    p = max(parts, key=lambda n: vals[n])
+    vals = {p: max(est.budget[k][p] for k in ("Hc", "Hm")) for p in PARTS}
+    p = max(PARTS, key=lambda n: vals[n])
     return f"the {p} part dominates ({vals[p]:.2g})"
 
 
@@ -480,13 +490,19 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
     res = corrected_result(res, est.correction)
     if accurate:
         msg = "converged" if accuracy is None else f"converged; estimated error within {accuracy:g}"
-    elif not refine:
-        msg = (f"the estimated error (Hc {est.Hc:.2g}, Hm {est.Hm:.2g}) exceeds the requested accuracy "
-               f"{accuracy:g} ({_dominant(est)}): refine (more points, nz) or --accuracy none")
     else:
         o = res.options
-        msg = (f"the estimated error (Hc {est.Hc:.2g}, Hm {est.Hm:.2g}) at {o.points} points, nz = {o.nz}, "
-               f"box x{o.box:g} exceeds the requested accuracy {accuracy:g}; not refined further: {out.why}")
+        at = f" at {o.points} points, nz = {o.nz}, box x{o.box:g}" if refine else ""
+        if est.known():
+            msg = (f"the estimated error (Hc {est.Hc:.2g}, Hm {est.Hm:.2g}){at} exceeds the requested "
+                   f"accuracy {accuracy:g}")
+            why = f" ({_dominant(est)})"
+        else:  # a part could not be measured: no accuracy can be confirmed
+            msg = (f"the error{at} is not known ({_dominant(est)}), so the accuracy {accuracy:g} "
+                   f"cannot be confirmed")
+            why = ""
+        msg += f"; not refined further: {out.why}" if refine else \
+            f"{why}: refine (more points, nz) or --accuracy none"
     if est.correction:
         msg += (f"; {' and '.join(est.correction)} extrapolated over the grids (" + ", ".join(
             f"{k} {v:+.2%}" for k, v in est.correction.items()) + "; the isothermal films by the same "
