@@ -294,7 +294,10 @@ class FFTDeformation(Deformation):
 
         def block(a: int, b: int) -> None:
             F = tr.rfft(R[a:b], mx)
-            F *= S[a:b]
+            # a diverging iterate's pressure overflows here; the solver judges the non-finite
+            # film it gives (a rejected cycle), so numpy need not warn (per thread: errstate is)
+            with np.errstate(over="ignore", invalid="ignore"):
+                F *= S[a:b]
             R[a:b] = tr.irfft(F, mx)[:, :nx]
 
         self._rows(block, R.shape[0], w)
@@ -326,8 +329,9 @@ class FFTDeformation(Deformation):
             blk[:ny] = F[:, c0:c1]
             blk[ny:] = 0.0
             tr.fft_inplace(blk, False, w)
-            blk[:ny] *= S[:, c0:c1]
-            blk[ny:] *= S[ny - 2:0:-1, c0:c1]
+            with np.errstate(over="ignore", invalid="ignore"):  # as in _convolve_rows
+                blk[:ny] *= S[:, c0:c1]
+                blk[ny:] *= S[ny - 2:0:-1, c0:c1]
             tr.fft_inplace(blk, True, w)
             F[:, c0:c1] = blk[:ny]
         self._irfft_rows(ny, out, w)
