@@ -561,17 +561,14 @@ LOOK_FROM = 257
 #: the look's change counts where its domain part (times :data:`LOOK_MARGIN`) is at most this
 #: fraction of the target: the coarse mesh's error then matters little beside the other parts
 LOOK_FRACTION = 0.25
-#: factor on the look's change: the mesh twice as coarse as the probe mesh read the box change
-#: 0.68-1.0 times the probe mesh's where it read less (Hm of (20, 10, theta 0.25), (50, 10, theta
-#: 0.3), (20, 10, theta 4); elsewhere it read up to 30 times more: docs/accuracy.md, "Domain error")
+#: factor on the look's change: the mesh twice as coarse read the box change 0.68-1.0 times the
+#: probe mesh's where it read less (docs/accuracy.md, "What the estimator costs")
 LOOK_MARGIN = 2.0
 
 
 #: a look's mesh must hold the solve's FMG film within this fraction of its finest film
-#: (:func:`resolved_on`): on 1025-point solves, the WAM series-A disc 2 contact at 1 GPa (129
-#: points 37 % off) and the chapter-6 0.5 GPa ball (129 points 7.9 % off) measured looks whose
-#: wide probe stopped at a residual floor (1.5 and 0.5 s for nothing); the 6205's 257 points,
-#: 2.5 % off, measure its change
+#: (:func:`resolved_on`; looks on coarser-resolved meshes stopped at residual floors:
+#: docs/accuracy.md, "What the estimator costs")
 LOOK_RESOLVED = 0.05
 
 

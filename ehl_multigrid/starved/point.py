@@ -784,10 +784,8 @@ def order_note(order: int) -> str:
 
 
 #: how many times faster than the scheme's ``2^p`` the differences of three grids must fall for
-#: the last one to count as small by accident (:func:`_grid_term`): the default scene's Hm with a
-#: 100 nm layer falls 5.5 times from 129 -> 257 to 257 -> 513 points and its first-order term
-#: (2.0 % on 513 points) holds (1025 points: 0.31 % away, then a sign change); with 300 nm
-#: it falls 60 times and the term (0.30 % on 257 points) does not (at least 1.5 %)
+#: the last one to count as small by accident (:func:`_grid_term`; the default scene's 100 and
+#: 300 nm layers that set it: docs/starvation.md)
 ACCIDENT_RATIO = 4.0
 
 

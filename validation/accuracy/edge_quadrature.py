@@ -27,12 +27,11 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from scipy.signal import oaconvolve
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _paths import out_dir  # noqa: E402
 
-from ehl_multigrid.line.kernel import log_kernel  # noqa: E402
+from ehl_multigrid.line.deformation import make_deformation as line_deformation  # noqa: E402
 from ehl_multigrid.multigrid.accuracy import GRID_SAFETY, line_hm_richardson, richardson  # noqa: E402
 from ehl_multigrid.point.deformation import make_deformation  # noqa: E402
 
@@ -55,9 +54,7 @@ def film_shape_error(n: int, box: tuple[float, float], X: float) -> float:
     nodes = np.linspace(box[0], box[1], n)
     h = nodes[1] - nodes[0]
     P = np.sqrt(np.clip(1.0 - nodes**2, 0.0, None))
-    K = log_kernel(n, h)
-    W = oaconvolve(np.concatenate([K[::-1], K[1:]]), P, mode="full")[n - 1:2 * n - 1]
-    H = 0.5 * nodes**2 - W / math.pi
+    H = 0.5 * nodes**2 - line_deformation(n, h).apply(P) / math.pi
     H -= np.interp(0.0, nodes, H)
     return float(np.interp(X, nodes, H) - hertz_shape(X))
 
