@@ -262,6 +262,11 @@ class LineHierarchy:
         #: converged FMG start grids ``start_key -> (P, H0)`` shared by the solves of one
         #: accuracy sequence (None: not kept)
         self.start_cache: dict | None = None
+        #: a converged solve of the same discrete problem on one of this solve's coarser grids:
+        #: the FMG goes on from its solution there (:meth:`_resumed_start`)
+        self.resume: EHLResult | None = None
+        #: the FMG films of ``resume`` below the grid it starts on (the driver keeps them)
+        self.resumed_fmg: list[dict[str, float]] = []
 
     def grid_count(self) -> int:
         """Number of grids (:func:`line_levels`)."""
@@ -491,6 +496,10 @@ class LineHierarchy:
         is not positive (too coarse for this load). Returns the start level."""
         self.solver = solver
         top = len(self.levels) - 1
+        if self.resume is not None:
+            j = self._resumed_start(self.resume, solver)
+            if j is not None:
+                return j
         if self.start_on_guess and self.guess is not None:
             self._initial_guess(self.levels[top])
             solver.note(f"started on the {self.levels[top].n}-point grid from the given solution (no FMG)")
@@ -582,6 +591,27 @@ class LineHierarchy:
         if k > 0:
             solver.note(f"FMG started on the {lv.n}-point grid (cycles still coarsen to {self.levels[0].n})")
         return k
+
+    def _resumed_start(self, prev: EHLResult, solver: MultilevelSolver) -> int | None:
+        """Start the FMG on the grid ``prev`` (a converged solve of the same discrete problem on
+        one of this solve's coarser grids) was solved on, from its solution: the grids below
+        would repeat ``prev``'s FMG (the same start, cycles and films), so their FMG films are
+        taken from it. None where no grid of this solve is ``prev``'s."""
+        X = prev.X
+        j = next((k for k, lv in enumerate(self.levels[:-1]) if lv.n == X.size
+                  and lv.X[0] == X[0] and lv.X[-1] == X[-1]), None)
+        below = [d for d in prev.fmg if d.get("level", -1) < j] if j is not None else []
+        if j is None or not below or prev.P is None:
+            return None
+        lv = self.levels[j]
+        lv.P, lv.H0 = np.array(prev.P, dtype=float), float(prev.H0)
+        lv.f = np.zeros(lv.n)
+        lv.g = 0.5 * math.pi
+        self.resumed_fmg = [dict(d) for d in below]
+        first = min(d["level"] for d in below)  # where prev's own FMG started
+        self.film_floor = first if first > self._start_level() else 0
+        solver.note(f"FMG resumed on the {lv.n}-point grid from the converged solve there")
+        return j
 
     def _guess_start_above(self, k: int, solver: MultilevelSolver) -> int | None:
         """FMG from the grid above ``k`` (the largest dense start grid, found without a positive
@@ -784,7 +814,8 @@ def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = N
 def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
                        callback: Callable[[dict[str, Any]], None] | None = None,
                        scene: Any = None, guess: tuple[np.ndarray, np.ndarray, float] | None = None,
-                       from_guess: bool = False, start_cache: dict | None = None, **kw: Any) -> EHLResult:
+                       from_guess: bool = False, start_cache: dict | None = None,
+                       resume: EHLResult | None = None, **kw: Any) -> EHLResult:
     """Solve one :class:`LineProblem` as given (no error estimate); keywords override
     ``options``. ``guess = (X, P, H0)``, a solution of the same contact on another grid or box,
     starts the FMG start grid's Newton (the answer is the same; it takes fewer iterations);
@@ -793,6 +824,8 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     ``start_cache`` (a dict shared by the solves of one accuracy sequence) keeps the converged
     FMG start grids: a later solve of the sequence starts its Newton there from that solution
     ((3000, 6) at 0.5 %: one dense 2049-point Newton solve of 3-4 s instead of three).
+    ``resume``, a converged solve of the same discrete problem on a coarser grid of this one,
+    continues its FMG from there (the grids below keep its FMG films).
 
     A numerical failure is returned (``success`` False, its status and message), or raised as
     :class:`ConvergenceError` with ``raise_on_failure=True``."""
@@ -805,6 +838,7 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
         s.hierarchy.guess = guess
         s.hierarchy.start_on_guess = from_guess
         s.hierarchy.start_cache = start_cache
+        s.hierarchy.resume = resume
         return s, s.solve(callback=callback)
 
     solver, res = attempt(opts)
@@ -911,6 +945,21 @@ def line_domain_decay(problem: LineProblem, options: LineOptions, sol: EHLResult
     return changes[0], changes[1]
 
 
+#: option fields that change how a line problem is iterated, not the discrete problem solved
+ITERATION_FIELDS = ("points", "levels", "tol", "tol_load", "film_tol", "max_cycles", "omega",
+                    "omega_jd", "h00_gain", "cycle", "raise_on_failure")
+
+
+def resumable(grids: dict, n: int, box: float, options: LineOptions) -> EHLResult | None:
+    """Of ``grids`` (``(points, box) -> converged solve`` of one accuracy sequence), the solve
+    on the finest of ``n`` points' coarser grids on ``box`` with the same discretisation
+    options: an FMG to ``n`` points goes on from it (:meth:`LineHierarchy._resumed_start`)."""
+    same = {f: getattr(options, f) for f in options.__dataclass_fields__ if f not in ITERATION_FIELDS}
+    fits = [r for (m, b), r in grids.items() if b == box and m < n and (n - 1) % (m - 1) == 0
+            and all(getattr(r.options, f, None) == v for f, v in same.items())]
+    return max(fits, key=lambda r: r.X.size, default=None)
+
+
 def solve_line(
     M: float | None = None, L: float | None = None, *, scene: Any = None,
     viscosity: str | None = None, density: str | None = None,
@@ -1011,6 +1060,11 @@ def solve_line(
                                    callback=callback, scene=scene, guess=(prev.X, prev.P, prev.H0),
                                    from_guess=True)
             res = tightened(prev, t, o) if t.success and t.levels == prev.levels else None
+        resume = resumable(grids, n, box, o)
+        if res is None and resume is not None:
+            res = solve_line_problem(p, o, callback=callback, scene=scene, start_cache=starts, resume=resume)
+            if not res.success:
+                res = None  # the FMG from the start grids, as without the coarser solve
         if res is None:
             res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess, start_cache=starts)
         if res.status_name == "start_failed" and guess is None:

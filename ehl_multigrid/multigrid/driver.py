@@ -396,6 +396,8 @@ class MultilevelSolver:
             try:
                 k0 = hz.start(self)
                 self.start_level = k0
+                # a start from a converged coarser solve of the same problem keeps its FMG films
+                self.fmg.extend(getattr(hz, "resumed_fmg", ()))
                 m0 = hz.measure(k0)
                 Hc_prev = m0.Hc
                 self.fmg.append({"level": k0, "points": hz.levels[k0].shape[-1], "Hc": m0.Hc,
