@@ -69,9 +69,9 @@ MAX_START_POINTS = 2049
 START_CYCLES = 12
 START_CYCLE_HC = 1e-4
 START_CYCLE_RESIDUAL = 1e-3
-#: Largest grid an accuracy target may refine to: 4 s and 0.8 GB peak at M = 3000, L = 15
-#: (the whole 16385 -> 131073 sequence 18 s), which M >= 3000 needs for Hm at 0.5 %
-MAX_ACCURACY_POINTS = 131073
+#: Largest grid an accuracy target may refine to: Hm at 0.5 % needs 131073 points at M >= 3000
+#: and 262145 at L = 25, M 2000-4000 ((2000, 25): 4.8 s, 390 MB peak; docs/accuracy.md)
+MAX_ACCURACY_POINTS = 262145
 
 HINT = ("more levels or points (finer coarsest grid), W cycles (--cycle W), a smaller "
         "h00_gain, smaller under-relaxation (omega/omega_jd), or a longer inlet (--xmin)")
@@ -955,7 +955,9 @@ def resumable(grids: dict, n: int, box: float, options: LineOptions) -> EHLResul
     on the finest of ``n`` points' coarser grids on ``box`` with the same discretisation
     options: an FMG to ``n`` points goes on from it (:meth:`LineHierarchy._resumed_start`)."""
     same = {f: getattr(options, f) for f in options.__dataclass_fields__ if f not in ITERATION_FIELDS}
+    # (a solve started on its finest grid from a given solution has no FMG films to keep)
     fits = [r for (m, b), r in grids.items() if b == box and m < n and (n - 1) % (m - 1) == 0
+            and any(d.get("level", -1) < r.levels - 1 for d in r.fmg)
             and all(getattr(r.options, f, None) == v for f, v in same.items())]
     return max(fits, key=lambda r: r.X.size, default=None)
 
@@ -1060,9 +1062,12 @@ def solve_line(
                                    callback=callback, scene=scene, guess=(prev.X, prev.P, prev.H0),
                                    from_guess=True)
             res = tightened(prev, t, o) if t.success and t.levels == prev.levels else None
-        resume = resumable(grids, n, box, o)
+        # isoviscous: FMG through the fine grids rejects cycle after cycle (docs/accuracy.md,
+        # "Cycled start"); the resumed attempt failed and cost (3000, 0) 0.6 s
+        resume = resumable(grids, n, box, o) if pb.L > 0.0 else None
         if res is None and resume is not None:
-            res = solve_line_problem(p, o, callback=callback, scene=scene, start_cache=starts, resume=resume)
+            res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess,
+                                     start_cache=starts, resume=resume)
             if not res.success:
                 res = None  # the FMG from the start grids, as without the coarser solve
         if res is None:
