@@ -1,0 +1,52 @@
+"""The outer iteration's trend rules (thermal.tehl.outer): going on past max_outer while the
+changes converge, and halving the damping when they creep upwards under noise."""
+
+import math
+
+import numpy as np
+import pytest
+
+from thermal.tehl.outer import CREEP_WINDOW, TREND_WINDOW, creeping, iterations_to_converge
+
+
+def test_geometric_decay_predicts_the_iterations_left():
+    # changes falling by 0.9 per iteration from 10 tolerances: below 1 after ln(10)/-ln(0.9)
+    hist = [10.0 * 0.9 ** k for k in range(-TREND_WINDOW + 1, 1)]
+    assert math.isclose(iterations_to_converge(hist), math.log(10.0) / -math.log(0.9), rel_tol=1e-9)
+
+
+def test_a_plateau_or_a_short_history_predicts_no_convergence():
+    rng = np.random.default_rng(1)
+    flat = list(5.0 * np.exp(0.3 * rng.standard_normal(TREND_WINDOW)))
+    flat[-1] = 5.0
+    rising = [2.0 * 1.01 ** k for k in range(TREND_WINDOW)]
+    assert iterations_to_converge(rising) == math.inf
+    assert iterations_to_converge([10.0 * 0.5 ** k for k in range(TREND_WINDOW - 1)]) == math.inf
+    assert iterations_to_converge(flat) > 50.0 or iterations_to_converge(flat) == math.inf
+
+
+def test_changes_creeping_up_under_noise_count_as_growth():
+    # +10 % per iteration with +-30 % noise (the spur gear at S = 0.5, 1025 points)
+    rng = np.random.default_rng(2)
+    noisy_rise = list(1.5 * 1.1 ** np.arange(CREEP_WINDOW) * np.exp(0.15 * rng.standard_normal(CREEP_WINDOW)))
+    assert creeping(noisy_rise, steps=CREEP_WINDOW)
+    assert not creeping(noisy_rise, steps=CREEP_WINDOW - 1)  # the damping changed since
+    assert not creeping([3.0 * 0.97 ** k for k in range(CREEP_WINDOW)], steps=50)
+
+
+@pytest.mark.slow
+def test_sliding_roller_bearing_converges_to_half_a_percent():
+    """The roller bearing at S = 1 and the spur gear at S = 0.5 ended `inaccurate` on 513
+    points at 0.5 %: their 1025-point outer iterations crept up at a damping of 0.5 and then
+    converged too slowly for 60 iterations (docs/thermal.md). Both now converge on 2049 points,
+    and the 2 % answer lies within the stated errors of both answers from the 0.5 % one."""
+    import ehl_multigrid as ehl
+
+    for name, slip in (("roller_bearing_inner_race", 1.0), ("spur_gear_pitch_point", 0.5)):
+        scene = ehl.load_scene(name).with_operating(slip=slip)
+        fine = ehl.solve(scene, physics="thermal", accuracy=0.005)
+        coarse = ehl.solve(scene, physics="thermal", accuracy=0.02)
+        assert fine.success and coarse.success, (name, fine.message)
+        for f in ("Hc", "Hm"):
+            a, b = getattr(fine, f), getattr(coarse, f)
+            assert abs(a - b) <= (getattr(fine.error, f) + getattr(coarse.error, f)) * abs(a), (name, f, a, b)
