@@ -33,7 +33,7 @@ from ..traction import wall_speeds
 MIN_RELAX = 1.0 / 64.0
 #: an iteration still converging at ``max_outer`` goes on while the trend of its last
 #: :data:`TREND_WINDOW` iterations reaches the tolerances within this many times ``max_outer``
-#: in all (the roller bearing at S = 1 on 1025 points: 73 iterations; docs/thermal.md)
+#: in all (the roller bearing at S = 1 on 1025 points: 70 iterations; docs/thermal.md)
 EXTEND_OUTER = 2.5
 TREND_WINDOW = 20
 #: changes whose trend over the last :data:`CREEP_WINDOW` iterations at one damping rises by more
