@@ -50,7 +50,7 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
                         "iteration alone)")
     p.add_argument("--max-points", type=int, default=None,
                    help="largest grid (points along X) the accuracy target may refine to (default: "
-                        "4097 for point, 262145 for line contacts; --thermal: 1025 point, 4097 line)")
+                        "4097 for point, 262145 for line contacts; --thermal: 1025 point, 16385 line)")
     p.add_argument("--time-budget", type=seconds_argument, default=None,
                    help="seconds the accuracy target may spend (flooded contacts): no refinement "
                         "predicted to overrun it is started, and the most accurate answer so far "

@@ -69,7 +69,7 @@ POINT_PROBE_POINTS = 129
 #: largest number of intervals across the film the refinement goes to
 MAX_NZ = 80
 #: default largest grid along X of the refinement (line, point)
-MAX_POINTS = {"line": 4097, "point": 1025}
+MAX_POINTS = {"line": 16385, "point": 1025}
 
 
 def _is_point(result: Any) -> bool:
@@ -457,7 +457,7 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
     dominates (:func:`step_candidates`: points along X, nz, the box, the outer tolerances) with
     the package's one accuracy controller (:func:`~ehl_multigrid.multigrid.controller.control`)
     until the estimate meets the target or a budget runs out: ``max_points`` along X (default
-    4097 line, 1025 point), ``max_nz``, a box ``box_limit`` times the default, ``time_budget``
+    16385 line, 1025 point), ``max_nz``, a box ``box_limit`` times the default, ``time_budget``
     seconds (a refinement predicted to overrun it is not started). Solves already made for an
     estimate are reused. ``progress(text)`` receives one line per solve.
 

@@ -187,7 +187,7 @@ def solve_mode(args: argparse.Namespace, scene: Scene) -> dict[str, Any]:
     With an accuracy target (``args.accuracy``, relative error of Hc and Hm; ``ehl solve``'s
     default 0.005) and neither ``--points`` nor ``--nz`` given, the grid (from 513 points line,
     257 point, nz 20), nz and box are refined until the estimate meets the target or the budget
-    runs out (``args.max_points``, default 4097 line and 1025 point; nz 80; a box 4 times the
+    runs out (``args.max_points``, default 16385 line and 1025 point; nz 80; a box 4 times the
     default; ``args.time_budget``, default 600 s); explicit ``--points``/``--nz`` are only judged. ``converged`` is true only
     when the outer iteration converged and the estimate meets the target (status
     ``inaccurate`` otherwise). Returns the payload of :func:`solve_payload` with the error keys
