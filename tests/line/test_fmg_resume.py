@@ -49,3 +49,13 @@ def test_resumable_takes_the_finest_coarser_grid_of_the_same_discretisation(coar
     assert resumable(grids, 65537, 2.0, opts) is None  # another box
     assert resumable(grids, 16385, 1.0, opts) is coarse  # only coarser grids
     assert resumable(grids, 65537, 1.0, dataclasses.replace(opts, face="logarithmic")) is None
+
+
+def test_a_solve_whose_cycles_were_rejected_is_not_resumed(coarse_and_fine):
+    # its contact's cycles are fragile: page-63 500 N at 0.1 %, resumed on 8193 points from such
+    # a 4097-point solve, rejected cycles for 1.4 s where the whole FMG converged in 0.14 s
+    coarse, _, _ = coarse_and_fine
+    fragile = dataclasses.replace(coarse, actions=["cycle 1 on grid 6 rejected (residual 0.000356, ...)"])
+    opts = dataclasses.replace(coarse.options, points=16385)
+    assert resumable({(4097, 1.0): coarse}, 16385, 1.0, opts) is coarse
+    assert resumable({(4097, 1.0): fragile}, 16385, 1.0, opts) is None
