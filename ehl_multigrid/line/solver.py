@@ -954,14 +954,13 @@ def resumable(grids: dict, n: int, box: float, options: LineOptions) -> EHLResul
     """Of ``grids`` (``(points, box) -> converged solve`` of one accuracy sequence), the solve
     on the finest of ``n`` points' coarser grids on ``box`` with the same discretisation
     options: an FMG to ``n`` points goes on from it (:meth:`LineHierarchy._resumed_start`)."""
-    same = {f: getattr(options, f) for f in options.__dataclass_fields__ if f not in ITERATION_FIELDS}
     # (a solve started on its finest grid from a given solution has no FMG films to keep; one
     # whose cycles were rejected leaves a fragile start: resumed, page-63 500 N's 8193 points at
     # 0.1 % rejected cycles where the whole FMG did not, 1.4 s against 0.14 s)
     fits = [r for (m, b), r in grids.items() if b == box and m < n and (n - 1) % (m - 1) == 0
             and any(d.get("level", -1) < r.levels - 1 for d in r.fmg)
             and not any("rejected" in a for a in r.actions)
-            and all(getattr(r.options, f, None) == v for f, v in same.items())]
+            and dataclasses.replace(r.options, **{f: getattr(options, f) for f in ITERATION_FIELDS}) == options]
     return max(fits, key=lambda r: r.X.size, default=None)
 
 

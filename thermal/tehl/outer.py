@@ -102,6 +102,16 @@ def film_noise(history: list[Any], top: int) -> float:
     return float(max(abs(b.Hc - a.Hc) / abs(b.Hc), abs(b.Hm - a.Hm) / abs(b.Hm)))
 
 
+def log_trend(values: list[float]) -> tuple[float, float]:
+    """Least-squares slope of ``log(values)`` per iteration and its standard error."""
+    x = np.arange(len(values), dtype=float)
+    y = np.log(np.asarray(values, dtype=float))
+    slope, icept = np.polyfit(x, y, 1)
+    resid = y - (slope * x + icept)
+    se = math.sqrt(float(resid @ resid) / max(len(values) - 2, 1) / float(((x - x.mean()) ** 2).sum()))
+    return float(slope), se
+
+
 def iterations_to_converge(hist: list[float], window: int = TREND_WINDOW) -> float:
     """Outer iterations still needed for the convergence measure ``hist`` (changes over
     tolerances, divided by the damping; converged below 1) to fall below 1, from the
@@ -109,8 +119,7 @@ def iterations_to_converge(hist: list[float], window: int = TREND_WINDOW) -> flo
     trend does not fall or there are fewer than ``window`` values)."""
     if len(hist) < window:
         return math.inf
-    y = np.log(np.asarray(hist[-window:], dtype=float))
-    slope = float(np.polyfit(np.arange(window, dtype=float), y, 1)[0])
+    slope = log_trend(hist[-window:])[0]
     return math.log(hist[-1]) / -slope if slope < 0.0 else math.inf
 
 
@@ -121,12 +130,8 @@ def creeping(raw: list[float], steps: int) -> bool:
     standard error (a noisy plateau near the tolerances is no trend)."""
     if steps < CREEP_WINDOW or len(raw) < CREEP_WINDOW:
         return False
-    x = np.arange(CREEP_WINDOW, dtype=float)
-    y = np.log(np.asarray(raw[-CREEP_WINDOW:], dtype=float))
-    slope, icept = np.polyfit(x, y, 1)
-    resid = y - (slope * x + icept)
-    se = math.sqrt(float(resid @ resid) / (CREEP_WINDOW - 2) / float(((x - x.mean()) ** 2).sum()))
-    return bool(slope > math.log(CREEP_GROWTH) and slope > 2.0 * se)
+    slope, se = log_trend(raw[-CREEP_WINDOW:])
+    return slope > math.log(CREEP_GROWTH) and slope > 2.0 * se
 
 
 def multilevel_step(contact: Contact, a: np.ndarray, c: np.ndarray, state: Iterate, it: int,
