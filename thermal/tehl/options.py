@@ -24,7 +24,8 @@ class TEHLOptions:
     relax : starting under-relaxation of the factors' logarithms per outer iteration (0, 1];
         halved (down to ``MIN_RELAX``) when the changes double in one outer iteration or grow
         in two in a row.
-    max_outer : outer iterations allowed.
+    max_outer : outer iterations allowed; an iteration whose trend still reaches the tolerances
+        goes on up to 2.5 times as many (``thermal.tehl.outer.EXTEND_OUTER``).
     anderson : depth of the Anderson mixing (Walker & Ni 2011) of the damped factor update
         (the thermal layer's :func:`thermal.kernels._anderson_step`); 0 = plain damping.
     tol_P : |dP| / |P| (L2) between outer iterations; tol_H : relative change of Hc and Hm;
