@@ -51,6 +51,7 @@ from ehl_multigrid.point.postprocess import subgrid_min_film
 
 from ..traction import wall_speeds
 from .options import TEHLOptions
+from .outer import CoarseStartError
 from .point import require_flooded_point
 
 #: orders (along X, across the film) of the TEHL discretisation in the estimate: the observed
@@ -81,7 +82,8 @@ class SolveCache:
     clear error (no convergence, a grid too coarse) is kept as ``None``. The estimate and the
     refinement share one cache, so a solve is never repeated. A flooded solve starts from the
     cached solve with half its intervals (same nz and box) when there is one (``coarse`` of
-    :func:`~thermal.tehl.point.solve_tehl_point` and :func:`~thermal.tehl.line.solve_tehl_line`)."""
+    :func:`~thermal.tehl.point.solve_tehl_point` and :func:`~thermal.tehl.line.solve_tehl_line`),
+    and again from its own isothermal start when that start fails (:class:`CoarseStartError`)."""
 
     def __init__(self, scene: Scene, slip: float, options: TEHLOptions, point: bool) -> None:
         self.scene, self.slip, self.options, self.point = scene, float(slip), options, point
@@ -111,17 +113,30 @@ class SolveCache:
 
             opts = self.options.with_changes(points=key[0], nz=key[1], box=key[2])
             coarser = self.results.get(((key[0] - 1) // 2 + 1, key[1], key[2]))
-            try:
-                if self.point:
-                    res = solve_tehl_point(self.scene, self.slip, opts, coarse=coarser)
-                else:  # a starved solve searches its own meniscus: no coarse start
-                    res = solve_tehl_line(self.scene, self.slip, opts, meniscus=self.meniscus,
-                                          coarse=None if math.isfinite(self.scene.supply.hoil) else coarser)
+            if not self.point and math.isfinite(self.scene.supply.hoil):
+                coarser = None  # a starved solve searches its own meniscus: no coarse start
+            for start in ([coarser, None] if coarser is not None else [None]):
+                try:
+                    if self.point:
+                        res = solve_tehl_point(self.scene, self.slip, opts, coarse=start)
+                    else:
+                        res = solve_tehl_line(self.scene, self.slip, opts, meniscus=self.meniscus, coarse=start)
+                except (ConvergenceError, InputError) as exc:
+                    self.results[key] = None
+                    self.errors[key] = str(exc).splitlines()[0][:200]
+                    if isinstance(exc, CoarseStartError):
+                        # the coarser grid's factors can start the finer grid's multilevel solve
+                        # where it diverges (the spur gear at S = 0.5 on 2049 points): solved
+                        # again from its own isothermal start
+                        continue
+                    break
+                if start is None and coarser is not None:
+                    res.report.extra.setdefault("actions", []).append(
+                        f"the start from the factors of the {coarser.options.points}-point solve failed "
+                        f"({self.errors.pop(key)}): solved from the isothermal start")
                 self.results[key] = res
                 self.add(res)
-            except (ConvergenceError, InputError) as exc:
-                self.results[key] = None
-                self.errors[key] = str(exc).splitlines()[0][:200]
+                break
         return self.results[key]
 
 
@@ -338,6 +353,16 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
         notes.append(f"iteration part includes the meniscus search's supply mismatch {supply:.2g}")
     iteration = {"Hc": max(last["dHc"] / w, noise) + supply, "Hm": max(last["dHm"] / w, noise) + supply,
                  "friction_coefficient": last["dP"] / w + supply, "T_max": last["dT"] / w}
+    floor = result.report.extra.get("noise_floor") if result.report is not None else None
+    if floor:
+        # settled at the inner solves' noise floor: the last iterate lies within the window's
+        # spread of the others, and the drift bounds how far the window's mean is from the end
+        iteration = {"Hc": max(floor["Hc"] + floor["spread_Hc"], noise) + supply,
+                     "Hm": max(floor["Hm"] + floor["spread_Hm"], noise) + supply,
+                     "friction_coefficient": floor["P"] + floor["spread_P"] + supply,
+                     "T_max": floor["T_max"] + floor["spread_T_max"]}
+        notes.append("the outer iteration settled at the inner solves' noise floor: its iteration part "
+                     "is the drift and spread of its last iterations")
     fixes: dict[str, tuple[float, float]] = {}
     if extrapolate and coarse_x is not None and not starved:
         seq = grid_sequence(result, cache)

@@ -42,8 +42,21 @@ TREND_WINDOW = 20
 CREEP_GROWTH = 1.03
 CREEP_WINDOW = 10
 
+#: the outer iteration has settled at the inner solves' noise floor when, over the last
+#: :data:`NOISE_WINDOW` iterations at one damping, the changes stay within :data:`NOISE_RAW` times
+#: the tolerances and the drift they leave (trends and half-window means) meets them
+#: (the spur gear at S = 0.5 on 2049 points: the temperature at the outlet's free boundary
+#: jitters by 0.5-2 times tol_T; docs/thermal.md)
+NOISE_WINDOW = 10
+NOISE_RAW = 3.0
+
 OUTER_HINT = ("lower relax (under-relaxation of the across-film factors), raise max_outer, or "
               "check the thermal loading (oil temperature limits, slip, speed)")
+
+
+class CoarseStartError(ConvergenceError):
+    """The multilevel solve with a coarser grid's factors, which starts a nested outer
+    iteration, failed (the same grid may still converge from its own isothermal start)."""
 
 
 @dataclass
@@ -134,6 +147,37 @@ def creeping(raw: list[float], steps: int) -> bool:
     return slope > math.log(CREEP_GROWTH) and slope > 2.0 * se
 
 
+def settled(outer: list[dict[str, float]], fields: list[tuple[np.ndarray, np.ndarray]], raw: list[float],
+            w: float, tol_P: float, tol_H: float, tol_T: float) -> dict[str, float] | None:
+    """The noise floor the outer iteration settled at, or None: the iterates ``fields`` (P, T)
+    and ``outer`` records of the last :data:`NOISE_WINDOW` iterations at damping ``w``, their
+    changes ``raw`` over the tolerances all at most :data:`NOISE_RAW`, and the drift per
+    iteration divided by ``w`` (the distance to the fixed point it implies, as the changes'
+    test assumes) within the tolerances: half-window means of P (relative L2) and T (max,
+    kelvin), least-squares trends of Hc, Hm (relative) and T_max. Returns the drifts and the
+    window's spreads (Hc, Hm relative, T_max kelvin, P the largest relative change)."""
+    k = NOISE_WINDOW
+    if len(fields) < k or len(outer) < k or len(raw) < k or max(raw[-k:]) > NOISE_RAW:
+        return None
+    h = k // 2
+    P1, P2 = (np.mean([f[0] for f in part], axis=0) for part in (fields[-k:-h], fields[-h:]))
+    T1, T2 = (np.mean([f[1] for f in part], axis=0) for part in (fields[-k:-h], fields[-h:]))
+    steps = k - h  # iterations between the two half-windows' centres (k even)
+    out = {"P": float(np.linalg.norm(P2 - P1) / np.linalg.norm(P2)) / steps / w,
+           "T": float(np.max(np.abs(T2 - T1))) / steps / w}
+    x = np.arange(k, dtype=float)
+    for key in ("Hc", "Hm", "T_max"):
+        v = np.array([o[key] for o in outer[-k:]], dtype=float)
+        slope = float(np.polyfit(x, v, 1)[0])
+        scale = 1.0 if key == "T_max" else abs(v[-1])
+        out[key] = abs(slope) / scale / w
+        out[f"spread_{key}"] = float(v.max() - v.min()) / scale
+    out["spread_P"] = float(max(o["dP"] for o in outer[-k:]))
+    ok = (out["P"] < tol_P and out["T"] < tol_T and out["T_max"] < tol_T
+          and max(out["Hc"], out["Hm"]) < tol_H)
+    return out if ok else None
+
+
 def multilevel_step(contact: Contact, a: np.ndarray, c: np.ndarray, state: Iterate, it: int,
                     tol_H: float) -> Iterate:
     """Pressure and film of the factors ``a``, ``c``, the multilevel solve started from
@@ -185,7 +229,10 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
         # the coarse fixed point's factors with the film they give on this grid: a consistent
         # start (the interpolated coarse pressure itself is not: its spike is a grid off)
         a, c = (contact.finer_factor(f) for f in (coarse.a, coarse.c))
-        state = multilevel_step(contact, a, c, state, 0, tol_H)
+        try:
+            state = multilevel_step(contact, a, c, state, 0, tol_H)
+        except ConvergenceError as exc:
+            raise CoarseStartError(str(exc).split("\n  what to try:")[0], exc.report, exc.hint) from exc
         thermal, T = contact.thermal(state)
         contact.notes.append(f"outer iteration started from the factors of the solve on {coarse.X.size} points")
     t0 = time.perf_counter()
@@ -203,6 +250,8 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
     plain_until = 0  # outer iterations up to this one take plain damped steps
     since = 0  # the iteration after which the damping (and Anderson history) last changed
     extended = False
+    fields: list[tuple[np.ndarray, np.ndarray]] = []
+    floor: dict[str, float] | None = None
     for it in range(1, int(EXTEND_OUTER * max_outer) + 1):
         if it > max_outer:
             # past max_outer only while the trend still reaches the tolerances within the cap
@@ -275,6 +324,17 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
         if hist[-1] < 1.0:
             converged = True
             break
+        fields = (fields + [(state.P.copy(), np.array(T, copy=True))])[-NOISE_WINDOW:]
+        if it - since >= NOISE_WINDOW and w_used == w:
+            floor = settled(outer, fields, raw, w, tol_P, max(tol_H, 2.0 * noise), tol_T)
+            if floor is not None:
+                converged = True
+                actions.append(
+                    f"iteration {it}: settled at the inner solves' noise floor: over {NOISE_WINDOW} "
+                    f"iterations at {w:g} the changes stay within {max(raw[-NOISE_WINDOW:]):.2g} tolerances "
+                    f"and their drift meets the tolerances (P {floor['P']:.2g}, T {floor['T']:.2g} K, Hc "
+                    f"{floor['Hc']:.2g}, Hm {floor['Hm']:.2g}); the window's spread is the iteration error")
+                break
         # growth is judged on the changes themselves (divided by the damping they would grow
         # by themselves each time the damping halves); growth near the tolerance is the
         # algebraic noise of the inner solves, not divergence
@@ -311,6 +371,8 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
         iterations=len(outer), residual_history=np.array(hist),
         tolerances={"P": tol_P, "H": tol_H, "T_K": tol_T},
         wall_s=time.perf_counter() - t0, extra={"outer": outer, "actions": actions})
+    if floor is not None:
+        report.extra["noise_floor"] = floor
     if not converged:
         last = outer[-1]
         raise ConvergenceError(
