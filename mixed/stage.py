@@ -1,7 +1,8 @@
 """Main-job stage: the Stribeck curve of a rough scene (registered in ``ehl.stages``).
 
-Skipped for smooth scenes. Thermal film friction and starved curves as the plan decides. When
-the film stage solved the film (the planner rejected the fit), the fitted film of the load
+Skipped for smooth scenes. Thermal film friction and starved curves as the plan decides; the
+thermal grid is the fidelity's (:data:`~ehl_multigrid.model.fidelity.FIDELITIES`). When the film
+stage solved the film (the planner rejected the fit), the fitted film of the load
 sharing is calibrated on it: ``hc_solved/hc_fit`` at the operating point, applied over the
 speed range; the report says which film was used.
 """
@@ -12,11 +13,7 @@ import math
 from pathlib import Path
 
 from ehl_multigrid.app.stages import RunContext, StageOutput
-
-#: Thermal film-friction grid of the Stribeck stage per fidelity: the coarsest grid whose largest
-#: friction error stays below the fidelity's tolerance (fast 10 %, standard 2 %, reference 0.2 %)
-#: on the hardest curve measured, series C at up to 56 m/s (docs/mixed.md)
-THERMAL_GRID = {"fast": {"nx": 20, "nz": 5}, "standard": {"nx": 40, "nz": 10}, "reference": {"nx": 80, "nz": 20}}
+from ehl_multigrid.model.fidelity import FIDELITIES
 
 
 def film_calibration(ctx: RunContext) -> tuple[float, str]:
@@ -59,8 +56,10 @@ def stribeck_stage(ctx: RunContext) -> StageOutput | None:
     hoil = list(scene.supply.hoil_over_sigma) if plan.includes("starvation") else []
     us = default_us(scene)
     topts = None
-    if thermal and not {"nx", "nz"} & set(scene.solver.get("thermal", {})):
-        topts = THERMAL_GRID.get(plan.fidelity)
+    level = FIDELITIES.get(plan.fidelity)
+    if thermal and level is not None and not {"nx", "nz"} & set(scene.solver.get("thermal", {})):
+        # the fidelity's grid unless the scene sets one
+        topts = level.stribeck.as_options()
     factor, film_source = film_calibration(ctx)
     curves = stribeck_cases(scene, us, hoil_over_sigma=hoil, thermal=thermal, thermal_options=topts,
                             options=stribeck_options(scene), film_factor=factor)
