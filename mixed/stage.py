@@ -2,7 +2,7 @@
 
 Skipped for smooth scenes. Thermal film friction and starved curves as the plan decides; the
 thermal grid is the fidelity's (:data:`~ehl_multigrid.model.fidelity.FIDELITIES`). When the film
-stage solved the film (the planner rejected the fit), the fitted film of the load
+stage solved the film (the planner rejected the fit; ``ctx.film()``), the fitted film of the load
 sharing is calibrated on it: ``hc_solved/hc_fit`` at the operating point, applied over the
 speed range; the report says which film was used.
 """
@@ -20,15 +20,15 @@ def film_calibration(ctx: RunContext) -> tuple[float, str]:
     """``(film_factor, description)``: the solved central film over the fitted one at the
     operating point when the film stage ran the EHL solver, else ``(1, why the fit)``."""
     scene = ctx.scene
-    film = ctx.result("film")
+    film = ctx.film()
     hc_fit = scene.central_film_fit()[1]
-    if film is not None and film.kind in ("ehl_line", "ehl_point"):
-        hc = float(film.scalars["hc"])
-        ratio = film.scalars.get("Hc_ratio")
-        if ratio is not None and math.isfinite(float(ratio)) and float(ratio) > 0.0:
+    if film is not None:
+        hc = film.hc
+        ratio = film.Hc_ratio
+        if ratio is not None and math.isfinite(ratio) and ratio > 0.0:
             # a starved solve: the curves apply the starvation of each supply themselves (6.4),
             # so the calibration takes the flooded film of the same discretisation
-            hc_ff = hc / float(ratio)
+            hc_ff = hc / ratio
             k = hc_ff / hc_fit
             return k, (f"fitted film calibrated on the solved flooded film (the starved solve's "
                        f"flooded companion, hc = {hc * 1e9:.4g} nm starved): hc_flooded/hc_fit = "
