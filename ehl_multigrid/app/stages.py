@@ -9,10 +9,10 @@ The plan is read-only to the stages: what a stage learns while it runs (a note, 
 departs from its decision, such as a film fit after a failed solve) goes into its
 :class:`StageOutput`, and later stages read it there (:meth:`RunContext.setting`).
 
-Stages hand each other typed objects; the :class:`~ehl_multigrid.model.results.Result` of a
-stage is what goes to the HDF5 file. The film stage's solved film is a
-:class:`~ehl_multigrid.model.solved_film.SolvedFilm` (:meth:`RunContext.film`), or none when the
-film is the fit or an estimate after a failed solve.
+The later stages read the film stage's solved film as a typed
+:class:`~ehl_multigrid.model.solved_film.SolvedFilm` (:meth:`RunContext.film`; none when the film
+is the fit or an estimate after a failed solve); a stage's
+:class:`~ehl_multigrid.model.results.Result` is what goes to the HDF5 file.
 """
 
 from __future__ import annotations

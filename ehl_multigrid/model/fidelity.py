@@ -52,11 +52,11 @@ class Fidelity:
         return self.traction_line if contact == "line" else self.traction_point
 
 
+#: Every fidelity level by name. Tolerances: what each buys, docs/accuracy.md ("What an accuracy
+#: costs"); traction grids: the cheapest within the tolerance over slips 0.02-1, docs/thermal.md;
+#: Stribeck grids: the coarsest within it on series C, docs/mixed.md.
 FIDELITIES: Mapping[str, Fidelity] = MappingProxyType({
     f.name: f for f in (
-        # tolerance: the accuracy each level buys is measured in docs/accuracy.md ("What an
-        # accuracy costs"); traction grids: the cheapest within the tolerance over slips 0.02-1
-        # (docs/thermal.md); Stribeck grids: the coarsest within it on series C (docs/mixed.md)
         Fidelity("fast", 0.1, ThermalGrid(20, 5), ThermalGrid(20, 5, 5), ThermalGrid(20, 5)),
         Fidelity("standard", 0.02, ThermalGrid(40, 10), ThermalGrid(40, 10, 5), ThermalGrid(40, 10)),
         Fidelity("reference", 0.002, ThermalGrid(160, 40), ThermalGrid(80, 20, 10), ThermalGrid(80, 20)),
