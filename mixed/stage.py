@@ -1,7 +1,8 @@
 """Main-job stage: the Stribeck curve of a rough scene (registered in ``ehl.stages``).
 
-Skipped for smooth scenes. Thermal film friction and starved curves as the plan decides. When
-the film stage solved the film (the planner rejected the fit), the fitted film of the load
+Skipped for smooth scenes. Thermal film friction and starved curves as the plan decides; the
+thermal grid is the fidelity's (:data:`~ehl_multigrid.model.fidelity.FIDELITIES`). When the film
+stage solved the film (the planner rejected the fit; ``ctx.film()``), the fitted film of the load
 sharing is calibrated on it: ``hc_solved/hc_fit`` at the operating point, applied over the
 speed range; the report says which film was used.
 """
@@ -12,26 +13,22 @@ import math
 from pathlib import Path
 
 from ehl_multigrid.app.stages import RunContext, StageOutput
-
-#: Thermal film-friction grid of the Stribeck stage per fidelity: the coarsest grid whose largest
-#: friction error stays below the fidelity's tolerance (fast 10 %, standard 2 %, reference 0.2 %)
-#: on the hardest curve measured, series C at up to 56 m/s (docs/mixed.md)
-THERMAL_GRID = {"fast": {"nx": 20, "nz": 5}, "standard": {"nx": 40, "nz": 10}, "reference": {"nx": 80, "nz": 20}}
+from ehl_multigrid.model.fidelity import FIDELITIES
 
 
 def film_calibration(ctx: RunContext) -> tuple[float, str]:
     """``(film_factor, description)``: the solved central film over the fitted one at the
     operating point when the film stage ran the EHL solver, else ``(1, why the fit)``."""
     scene = ctx.scene
-    film = ctx.result("film")
+    film = ctx.film()
     hc_fit = scene.central_film_fit()[1]
-    if film is not None and film.kind in ("ehl_line", "ehl_point"):
-        hc = float(film.scalars["hc"])
-        ratio = film.scalars.get("Hc_ratio")
-        if ratio is not None and math.isfinite(float(ratio)) and float(ratio) > 0.0:
+    if film is not None:
+        hc = film.hc
+        ratio = film.Hc_ratio
+        if ratio is not None and math.isfinite(ratio) and ratio > 0.0:
             # a starved solve: the curves apply the starvation of each supply themselves (6.4),
             # so the calibration takes the flooded film of the same discretisation
-            hc_ff = hc / float(ratio)
+            hc_ff = hc / ratio
             k = hc_ff / hc_fit
             return k, (f"fitted film calibrated on the solved flooded film (the starved solve's "
                        f"flooded companion, hc = {hc * 1e9:.4g} nm starved): hc_flooded/hc_fit = "
@@ -59,8 +56,10 @@ def stribeck_stage(ctx: RunContext) -> StageOutput | None:
     hoil = list(scene.supply.hoil_over_sigma) if plan.includes("starvation") else []
     us = default_us(scene)
     topts = None
-    if thermal and not {"nx", "nz"} & set(scene.solver.get("thermal", {})):
-        topts = THERMAL_GRID.get(plan.fidelity)
+    level = FIDELITIES.get(plan.fidelity)
+    if thermal and level is not None and not {"nx", "nz"} & set(scene.solver.get("thermal", {})):
+        # the fidelity's grid unless the scene sets one
+        topts = level.stribeck.as_options()
     factor, film_source = film_calibration(ctx)
     curves = stribeck_cases(scene, us, hoil_over_sigma=hoil, thermal=thermal, thermal_options=topts,
                             options=stribeck_options(scene), film_factor=factor)

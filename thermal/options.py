@@ -13,6 +13,7 @@ from ehl_multigrid.model.errors import (
     require_choice,
     require_range,
 )
+from ehl_multigrid.model.fidelity import FIDELITIES
 
 SLICE_RULES = ("cosine", "midpoint")
 SLICE_PRESSURES = ("hertz", "thesis")
@@ -123,11 +124,13 @@ class ThermalOptions:
 
     @classmethod
     def for_fidelity(cls, scene: Any, fidelity: str, **overrides: Any) -> ThermalOptions:
-        """Options of :meth:`from_scene` with the grid of :data:`FIDELITY_GRID` for the scene's
-        contact, unless the scene's ``[solver.thermal]`` table sets it."""
+        """Options of :meth:`from_scene` with the traction grid of ``fidelity`` for the scene's
+        contact (:data:`~ehl_multigrid.model.fidelity.FIDELITIES`), unless the scene's
+        ``[solver.thermal]`` table sets it; an unknown ``fidelity`` sets no grid."""
         table = _normalise(dict(scene.solver.get("thermal", {})), "solver.thermal") if scene is not None else {}
         contact = "line" if getattr(scene, "kind", "line") == "line" else "point"
-        grid = FIDELITY_GRID[contact].get(fidelity, {})
+        level = FIDELITIES.get(fidelity)
+        grid = level.traction_grid(contact).as_options() if level is not None else {}
         chosen = {k: v for k, v in grid.items() if k not in table and overrides.get(k) is None}
         return cls.from_scene(scene, **{**overrides, **chosen})
 
@@ -136,16 +139,6 @@ class ThermalOptions:
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
-
-
-#: Thermal grid per fidelity: the cheapest setting whose largest friction error over slips
-#: 0.02, 0.3 and 1 stays within the fidelity's tolerance (10 %, 2 %, 0.2 %) in the
-#: accuracy-cost study (docs/thermal.md)
-FIDELITY_GRID: dict[str, dict[str, dict[str, int]]] = {
-    "line": {"fast": {"nx": 20, "nz": 5}, "standard": {"nx": 40, "nz": 10}, "reference": {"nx": 160, "nz": 40}},
-    "point": {"fast": {"nx": 20, "nz": 5, "slices": 5}, "standard": {"nx": 40, "nz": 10, "slices": 5},
-              "reference": {"nx": 80, "nz": 20, "slices": 10}},
-}
 
 
 def _normalise(d: dict[str, Any], section: str) -> dict[str, Any]:

@@ -7,7 +7,8 @@ Sources, one interface (:class:`LineProfile`):
 * an EHL solution as plain arrays (x, p, h): :func:`profile_from_arrays`;
 * an EHL :class:`~ehl_multigrid.model.results.Result` of kind ``ehl_line`` / ``ehl_point`` following the
   naming contract (coords ``x`` [m], fields ``p`` [Pa], ``h`` [m] on ("x",) or ("x", "y")):
-  :func:`profiles_from_result`;
+  :func:`profiles_from_result`, or the main job's typed film
+  (:class:`~ehl_multigrid.model.solved_film.SolvedFilm`): :func:`profiles_from_film`;
 * point contacts sliced in Y, each slice a line problem: :func:`hertz_slices` (true Hertz slice
   ``pmax sqrt(1 - X^2 - Y^2)`` or the thesis slice (3.20) ``pmax sqrt((1 - X^2)(1 - Y^2))``).
 """
@@ -17,10 +18,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from ehl_multigrid.model.errors import InputError, require_positive, require_range
+from ehl_multigrid.model.solved_film import SolvedFilm
 
 
 @dataclass(frozen=True)
@@ -293,24 +296,72 @@ def profiles_from_result(
             raise InputError(f"EHL result has no field {name!r} (needs p [Pa] and h [m]; naming contract)")
     if "x" not in result.coords:
         raise InputError("EHL result has no coordinate 'x' [m] (naming contract)")
-    scene = result.scene
+    y = result["y"] if kind == "ehl_point" and "y" in result.coords else None
+    return profiles_from_fields(
+        kind == "ehl_line", result["x"], y, result["p"], result["h"], result.scene, nx=nx, x_in=x_in,
+        x_out=x_out, slices=slices, rule=rule, b=b, b_y=b_y, length=length, viscosity=viscosity)
+
+
+def profiles_from_film(
+    film: SolvedFilm,
+    *,
+    nx: int,
+    x_in: float | None = -2.5,
+    x_out: float | None = None,
+    slices: int = 10,
+    rule: str = "midpoint",
+    b: float | None = None,
+    b_y: float | None = None,
+    length: float | None = None,
+    viscosity: Callable[[np.ndarray], np.ndarray] | None = None,
+) -> list[LineProfile]:
+    """Line profiles from a :class:`~ehl_multigrid.model.solved_film.SolvedFilm`, as
+    :func:`profiles_from_result` gives them from the film's Result (length scales from the
+    film's scene unless given)."""
+    return profiles_from_fields(
+        film.contact == "line", film.x, film.y, film.p, film.h, film.scene, nx=nx, x_in=x_in, x_out=x_out,
+        slices=slices, rule=rule, b=b, b_y=b_y, length=length, viscosity=viscosity)
+
+
+def profiles_from_fields(
+    line: bool,
+    x: np.ndarray,
+    y: np.ndarray | None,
+    p: np.ndarray,
+    h: np.ndarray,
+    scene: Any = None,
+    *,
+    nx: int,
+    x_in: float | None = -2.5,
+    x_out: float | None = None,
+    slices: int = 10,
+    rule: str = "midpoint",
+    b: float | None = None,
+    b_y: float | None = None,
+    length: float | None = None,
+    viscosity: Callable[[np.ndarray], np.ndarray] | None = None,
+) -> list[LineProfile]:
+    """Line profiles of an EHL film: x [m], p [Pa] and h [m] on ``(x,)`` for a ``line``
+    contact, on ``(x, y)`` with y [m] for a point contact (sliced as in
+    :func:`profiles_from_result`). Length scales default to the Hertz half-widths and the line
+    length of ``scene``."""
     if b is None:
         if scene is None:
             raise InputError("EHL result without a scene: give the half-width b [m]")
         b = scene.hertz.a
-    x = np.asarray(result["x"], dtype=float)
-    p = np.asarray(result["p"], dtype=float)
-    h = np.asarray(result["h"], dtype=float)
-    if kind == "ehl_line":
+    x = np.asarray(x, dtype=float)
+    p = np.asarray(p, dtype=float)
+    h = np.asarray(h, dtype=float)
+    if line:
         if length is None:
             if scene is None:
                 raise InputError("EHL line result without a scene: give the line length [m]")
             length = scene.length
         return [profile_from_arrays(x, p, h, b=b, nx=nx, width=length, x_in=x_in, x_out=x_out, source="ehl",
                                     viscosity=viscosity)]
-    if "y" not in result.coords:
+    if y is None:
         raise InputError("EHL point result has no coordinate 'y' [m] (naming contract)")
-    y = np.asarray(result["y"], dtype=float)
+    y = np.asarray(y, dtype=float)
     if p.shape != (x.size, y.size) or h.shape != p.shape:
         raise InputError(f"EHL point fields must have shape (x, y) = ({x.size}, {y.size}); got p {p.shape}, h {h.shape}")
     if b_y is None:

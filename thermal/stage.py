@@ -61,7 +61,8 @@ def choose_model(scene: Scene, slips: Any, options: ThermalOptions, tolerance: f
                  **inputs: Any) -> ModelChoice:
     """Thermal or isothermal friction for a sweep over ``slips``: decided at the largest |slip|,
     where the shear heating is largest, by the thermal and the isothermal friction there on
-    the sweep's grid (``options``; ``inputs``: ``input``/``ehl`` of :func:`solve_traction`).
+    the sweep's grid (``options``; ``inputs``: ``input``/``ehl`` of :func:`solve_traction`, the
+    film stage's :class:`~ehl_multigrid.model.solved_film.SolvedFilm` in the main job).
     The thermal model is used when ``|f_thermal/f_isothermal - 1| > tolerance``; a scene whose
     ``[solver.thermal]`` sets ``thermal`` keeps its choice."""
     s = np.asarray(slips, dtype=float)
@@ -143,9 +144,9 @@ def operating_friction(scene: Scene, options: ThermalOptions, choice: ModelChoic
 
 def traction_stage(ctx: RunContext) -> StageOutput | None:
     scene, plan = ctx.scene, ctx.plan
-    film = ctx.result("film")
-    use_ehl = film is not None and film.kind in ("ehl_line", "ehl_point")
-    inputs = {"input": "ehl" if use_ehl else "hertz", "ehl": film if use_ehl else None}
+    film = ctx.film()
+    use_ehl = film is not None
+    inputs = {"input": "ehl" if use_ehl else "hertz", "ehl": film}
     slips = [float(s) for s in default_slips(scene)]
     base = ThermalOptions.for_fidelity(scene, plan.fidelity)
     choice = choose_model(scene, slips, base, plan.tolerance, **inputs)
@@ -163,8 +164,8 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
     hc_fit = scene.supplied_film_fit()[1]
     fitted = ("fitted film" if math.isinf(scene.supply.hoil) else
               f"fitted film starved by Chevalier's (6.1) for hoil = {scene.supply.hoil * 1e9:.4g} nm")
-    if use_ehl:
-        film_source = (f"solved EHL pressure and film of the film stage (hc = {film.scalars['hc'] * 1e9:.4g} nm; "
+    if film is not None:
+        film_source = (f"solved EHL pressure and film of the film stage (hc = {film.hc * 1e9:.4g} nm; "
                        f"the {fitted} gives {hc_fit * 1e9:.4g} nm)")
     else:
         film_source = f"Hertz pressure and the {fitted} hc = {hc_fit * 1e9:.4g} nm ({ctx.setting('film')})"

@@ -22,11 +22,18 @@ from ehl_multigrid.model.hertz import HertzContact
 from ehl_multigrid.model.lubricant import T_MAX_C, Lubricant, lubricant_preset
 from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import Scene
+from ehl_multigrid.model.solved_film import SolvedFilm
 
 from .line import Surroundings, ThermalLineSolution
 from .options import ThermalOptions
 from .parallel import LineJob, solve_thermal_lines
-from .profiles import LineProfile, hertz_profile, hertz_slices, profiles_from_result
+from .profiles import (
+    LineProfile,
+    hertz_profile,
+    hertz_slices,
+    profiles_from_film,
+    profiles_from_result,
+)
 
 INPUTS = ("hertz", "ehl")
 
@@ -109,6 +116,13 @@ def build_profiles(
             rule=options.slice_rule, form=options.slice_pressure,
         )
     if input == "ehl":
+        if isinstance(ehl, SolvedFilm):
+            film = usable_film(ehl, scene)
+            return profiles_from_film(
+                film, nx=options.nx, x_in=options.x_in, x_out=options.x_out, slices=options.slices,
+                rule=options.slice_rule, b=hz.a, b_y=hz.b, length=scene.length if scene.kind == "line" else None,
+                viscosity=ehl_viscosity(film.scene),
+            )
         res = ehl_result_from(ehl, scene)
         return profiles_from_result(
             res, nx=options.nx, x_in=options.x_in, x_out=options.x_out, slices=options.slices,
@@ -184,6 +198,25 @@ def check_ehl_contact(film_scene: Scene, scene: Scene, source: str = "the EHL fi
 USABLE_EHL_STATUS = ("converged", "inaccurate")
 
 
+def require_usable_status(status: str | None, message: Any = None) -> None:
+    """Raise :class:`InputError` unless an EHL film's ``status`` is None (not stated) or one of
+    :data:`USABLE_EHL_STATUS`; ``message`` (the solve's) says why it failed."""
+    if status is not None and status not in USABLE_EHL_STATUS:
+        lines = str(message or "").splitlines()
+        why = f" ({lines[0][:160]})" if lines else ""
+        raise InputError(f"ehl: the EHL film's status is {status!r}{why}, allowed: "
+                         f"{', '.join(USABLE_EHL_STATUS)}; friction on a film that did not converge "
+                         f"would be wrong: solve the film again (e.g. more points)")
+
+
+def usable_film(film: SolvedFilm, scene: Scene) -> SolvedFilm:
+    """``film`` when friction on ``scene`` may be computed on it: a film of the same contact
+    (:func:`check_ehl_contact`) whose solve converged (:data:`USABLE_EHL_STATUS`)."""
+    require_usable_status(film.status)
+    check_ehl_contact(film.scene, scene)
+    return film
+
+
 def ehl_result_from(ehl: Any, scene: Scene) -> Result:
     """Accept an EHL :class:`Result` or plain arrays: ``(x, p, h)`` for a line contact,
     ``(x, y, p, h)`` for a point contact (x, y [m], p [Pa], h [m]), or a dict with those keys.
@@ -193,17 +226,12 @@ def ehl_result_from(ehl: Any, scene: Scene) -> Result:
     (:data:`USABLE_EHL_STATUS`): the solvers return a failed film rather than raising, and
     friction on it would be wrong. Plain arrays are taken as the scene's."""
     if ehl is None:
-        raise InputError("input = 'ehl' needs the EHL solution (ehl=Result or arrays x, p, h)")
+        raise InputError("input = 'ehl' needs the EHL solution (ehl=SolvedFilm, Result or arrays x, p, h)")
     if isinstance(ehl, Result):
         status = ehl.scalars.get("status")
         if isinstance(status, bytes):
             status = status.decode()
-        if status is not None and status not in USABLE_EHL_STATUS:
-            lines = str(ehl.scalars.get("message") or "").splitlines()
-            why = f" ({lines[0][:160]})" if lines else ""
-            raise InputError(f"ehl: the EHL film's status is {status!r}{why}, allowed: "
-                             f"{', '.join(USABLE_EHL_STATUS)}; friction on a film that did not converge "
-                             f"would be wrong: solve the film again (e.g. more points)")
+        require_usable_status(status, ehl.scalars.get("message"))
         if ehl.scene is not None:
             check_ehl_contact(ehl.scene, scene)
         return ehl
@@ -331,8 +359,9 @@ def solve_traction(
     us : sum velocity [m/s]; load : normal force [N].
     h : uniform film [m] for ``input='hertz'`` (default: Moes / Nijenbanning central film at
         us and load, reduced by Chevalier's (6.1) for a starved scene: ``scene.supplied_film_fit``).
-    input : ``hertz`` (Hertz pressure, uniform film) or ``ehl`` (``ehl`` = an ``ehl_line`` /
-        ``ehl_point`` Result or plain arrays).
+    input : ``hertz`` (Hertz pressure, uniform film) or ``ehl`` (``ehl`` = the main job's
+        :class:`~ehl_multigrid.model.solved_film.SolvedFilm`, an ``ehl_line`` / ``ehl_point``
+        Result or plain arrays).
     options : :class:`ThermalOptions`; ``overrides`` update it (or the scene's
         ``[solver.thermal]`` when ``options`` is None), e.g. ``nx=120, thermal=False``.
     lubricant : a Lubricant or preset name replacing the scene's oil.

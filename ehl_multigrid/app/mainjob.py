@@ -48,6 +48,7 @@ from ..model.output_folder import output_lock, staging_dir
 from ..model.paths import safe_stem, writable_dir
 from ..model.results import Result, save_results
 from ..model.scene import Scene
+from ..model.solved_film import FILM_KINDS, SolvedFilm
 from ..solution import Status
 from . import warmup
 from .console import Progress, print_table, report_leftovers
@@ -223,7 +224,9 @@ def film_stage(ctx: RunContext) -> StageOutput:
                 figures.append(starved_figure(contact, sol, ctx.outdir, f"{scene.name}_film", scene.name))
     else:
         return _fit_film_output(ctx)
-    return StageOutput("film", res, summary, figures, text, notes=notes)
+    # the later stages compute on this typed film; the Result goes to the HDF5 file
+    film = SolvedFilm.from_result(res) if res.kind in FILM_KINDS else None
+    return StageOutput("film", res, summary, figures, text, notes=notes, film=film)
 
 
 def _fit_film_output(ctx: RunContext, failure: str | None = None) -> StageOutput:

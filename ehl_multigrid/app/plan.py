@@ -28,12 +28,10 @@ import numpy as np
 from ..model import fits
 from ..model.constants import ETA_INF, P_R
 from ..model.errors import InputError, require_range
+from ..model.fidelity import FIDELITIES
 from ..model.lubricant import G_ELASTICITY_OFF, density_ratio_dh
 from ..model.scene import Scene
 from ..multigrid.gridchoice import GridChoice, solver_grid
-
-#: Relative accuracy targeted by each fidelity level.
-FIDELITY_TOLERANCE = {"fast": 0.1, "standard": 0.02, "reference": 0.002}
 
 #: Lambda = hc / Rq above which the film carries the whole load (thesis 4.3.1: "roughly more than
 #: three times as large as Rq").
@@ -88,12 +86,12 @@ class Plan:
 def resolve_tolerance(fidelity: str | None, tolerance: float | None) -> tuple[str, float]:
     if tolerance is not None:
         tol = require_range("tolerance", tolerance, 1e-6, 1.0, "-", lo_open=True)
-        fid = min(FIDELITY_TOLERANCE, key=lambda k: abs(math.log(FIDELITY_TOLERANCE[k] / tol)))
+        fid = min(FIDELITIES, key=lambda k: abs(math.log(FIDELITIES[k].tolerance / tol)))
         return fid, tol
     fid = fidelity or "standard"
-    if fid not in FIDELITY_TOLERANCE:
-        raise InputError(f"fidelity = {fid!r} is not one of {sorted(FIDELITY_TOLERANCE)}")
-    return fid, FIDELITY_TOLERANCE[fid]
+    if fid not in FIDELITIES:
+        raise InputError(f"fidelity = {fid!r} is not one of {sorted(FIDELITIES)}")
+    return fid, FIDELITIES[fid].tolerance
 
 
 def speed_range(scene: Scene) -> np.ndarray:

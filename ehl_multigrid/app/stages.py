@@ -8,6 +8,11 @@ of the application (the plan is seen through the small :class:`PlanView` protoco
 The plan is read-only to the stages: what a stage learns while it runs (a note, a setting that
 departs from its decision, such as a film fit after a failed solve) goes into its
 :class:`StageOutput`, and later stages read it there (:meth:`RunContext.setting`).
+
+The later stages read the film stage's solved film as a typed
+:class:`~ehl_multigrid.model.solved_film.SolvedFilm` (:meth:`RunContext.film`; none when the film
+is the fit or an estimate after a failed solve); a stage's
+:class:`~ehl_multigrid.model.results.Result` is what goes to the HDF5 file.
 """
 
 from __future__ import annotations
@@ -18,6 +23,7 @@ from typing import Any, Protocol
 
 from ..model.results import Result
 from ..model.scene import Scene
+from ..model.solved_film import SolvedFilm
 
 
 class PlanView(Protocol):
@@ -54,6 +60,9 @@ class StageOutput:
     #: the setting the stage used where it departs from its plan decision (e.g. "fit (solver
     #: fallback)" after a failed film solve); None: the decision's
     setting: str | None = None
+    #: the film stage's solved film, what later stages compute on (None: a fit or an estimate,
+    #: and for every other stage)
+    film: SolvedFilm | None = None
 
 
 @dataclass
@@ -73,6 +82,12 @@ class RunContext:
         """The result of the earlier stage ``name``, or ``None`` if it did not run."""
         out = self.outputs.get(name)
         return out.result if out is not None else None
+
+    def film(self) -> SolvedFilm | None:
+        """The film stage's solved film, or ``None`` when the stage did not run or its film is
+        the fit or an estimate (Hertz pressure with a fitted film)."""
+        out = self.outputs.get("film")
+        return out.film if out is not None else None
 
     def setting(self, model: str) -> str:
         """The setting ``model`` ran with: its stage's own where it departed from the plan,

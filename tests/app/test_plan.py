@@ -8,13 +8,13 @@ import pytest
 
 from ehl_multigrid.app.cli import main
 from ehl_multigrid.app.plan import (
-    FIDELITY_TOLERANCE,
     LAMBDA_FULL_FILM,
     THERMAL_DECISION_MARGIN,
     make_plan,
     temperature_rise_estimate,
 )
 from ehl_multigrid.model.errors import InputError
+from ehl_multigrid.model.fidelity import FIDELITIES
 from ehl_multigrid.model.scene import Scene, load_scene
 from ehl_multigrid.model.solids import reduced_modulus
 
@@ -95,7 +95,7 @@ def test_friction_sensitivity_matches_thermal_solver_in_linear_regime(name, us, 
 
 def test_thermal_decision_threshold_is_tolerance_over_margin():
     dec = make_plan(load_scene("series_D_disc3_1.93GPa"), fidelity="fast").get("thermal")
-    assert dec.threshold == pytest.approx(FIDELITY_TOLERANCE["fast"] / THERMAL_DECISION_MARGIN)
+    assert dec.threshold == pytest.approx(FIDELITIES["fast"].tolerance / THERMAL_DECISION_MARGIN)
     assert dec.include is (dec.estimate > dec.threshold)
 
 

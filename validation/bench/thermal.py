@@ -317,7 +317,7 @@ def plot(data: dict, ref: dict | None, path: Path) -> None:
 
 
 #: grids of the Stribeck grid study: the library default (appendix C/D grid), the Stribeck
-#: stage's (mixed.stage.THERMAL_GRID), the point "standard" fidelity and a finer reference
+#: stage's (ehl_multigrid.model.fidelity.FIDELITIES), the point "standard" fidelity and a finer reference
 GRID_STUDY = {
     "reference 160x40, 20 slices": {"nx": 160, "nz": 40, "slices": 20},
     "default 80x20, 10 slices": {},

@@ -37,13 +37,13 @@ import numpy as np
 
 from ehl_multigrid.app import plan as planner
 from ehl_multigrid.app.plan import (
-    FIDELITY_TOLERANCE,
     make_plan,
     slip_range,
     speed_range,
     temperature_rise_estimate,
 )
 from ehl_multigrid.model.errors import ConvergenceError, InputError
+from ehl_multigrid.model.fidelity import FIDELITIES
 from ehl_multigrid.model.scene import Scene, load_scene
 from ehl_multigrid.model.solids import reduced_modulus
 
@@ -242,8 +242,8 @@ def summarise(rows: list[dict]) -> dict:
         "ratio_sensitivity_over_friction_change_linear_regime": ratio_stats(
             g["sensitivity_est"][(rel > 1e-3) & (rel < 0.05)], rel[(rel > 1e-3) & (rel < 0.05)]),
         "decision_margin": decision_margin(),
-        "confusion": {fid: confusion(ok, tol, decision_margin()) for fid, tol in FIDELITY_TOLERANCE.items()},
-        "confusion_without_margin": {fid: confusion(ok, tol, 1.0) for fid, tol in FIDELITY_TOLERANCE.items()},
+        "confusion": {fid: confusion(ok, f.tolerance, decision_margin()) for fid, f in FIDELITIES.items()},
+        "confusion_without_margin": {fid: confusion(ok, f.tolerance, 1.0) for fid, f in FIDELITIES.items()},
         "wall_s": {"thermal_total": float(sum(r.get("wall_th", 0.0) for r in rows)),
                    "isothermal_total": float(sum(r.get("wall_iso", 0.0) for r in rows)),
                    "estimate_total": float(sum(r.get("wall_est", 0.0) for r in rows))},
@@ -284,7 +284,7 @@ def plot(rows: list[dict], path: Path, before: dict | None = None) -> None:
     lo, hi = 1e-6, 10.0
     axs[1].plot([lo, hi], [lo, hi], "k-", lw=0.8, label="1:1")
     m = decision_margin()
-    for tol in FIDELITY_TOLERANCE.values():
+    for tol in (f.tolerance for f in FIDELITIES.values()):
         axs[1].axvline(tol, color="r", lw=0.5, ls=":")
         axs[1].axhline(tol / m, color="r", lw=0.5, ls=":")
     axs[1].set(xscale="log", yscale="log", xlabel="thermal solver: |f_thermal / f_isothermal - 1|",
@@ -320,7 +320,7 @@ def scene_plan_rows(names: tuple[str, ...], cached: dict[str, dict]) -> list[dic
             row["key"] = ck
             seen[key] = row
         row = dict(row)
-        for fid in FIDELITY_TOLERANCE:
+        for fid in FIDELITIES:
             d = make_plan(sc, fidelity=fid).get("thermal")
             row[f"plan_{fid}"] = {"include": d.include, "estimate": d.estimate, "threshold": d.threshold}
         out.append(row)
@@ -392,7 +392,7 @@ def main(argv: list[str] | None = None) -> dict:
         plan_rows = scene_plan_rows(SCENES, cached)
         summary["scene_plans"] = [
             {"scene": r["scene"], "slip": r["slip"], "us": r["us"], "friction_change": r.get("friction_change"),
-             "converged": usable(r), **{f"plan_{f}": r[f"plan_{f}"] for f in FIDELITY_TOLERANCE}} for r in plan_rows]
+             "converged": usable(r), **{f"plan_{f}": r[f"plan_{f}"] for f in FIDELITIES}} for r in plan_rows]
         rows.extend(dict(r, scene_plan=True) for r in plan_rows if r["key"] not in {x.get("key") for x in rows})
     write(summary)
     if rows:
@@ -422,7 +422,7 @@ def print_summary(s: dict) -> None:
     for p in s.get("scene_plans", []):
         print(f"  plan {p['scene']:<26} S {p['slip']:<4g} us {p['us']:<6.3g} solver change {p['friction_change']:+.3g}  "
               + "  ".join(f"{f}: {'yes' if p['plan_' + f]['include'] else 'no'} ({p['plan_' + f]['estimate']:.3g})"
-                          for f in FIDELITY_TOLERANCE))
+                          for f in FIDELITIES))
     for f in s["failed_or_unconverged"]:
         print(f"  not usable: {f}")
     print(f"  wall: {s['wall_s']}")
