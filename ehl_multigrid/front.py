@@ -65,7 +65,7 @@ PART_NAMES = {"algebraic": "iteration"}
 #: options of a transient run besides the multigrid options of its time steps
 TRANSIENT_RUN_KEYS = ("dt", "steps", "t_end", "scheme", "snapshot_every", "accept_stall", "xmin",
                       "xmax", "time_error", "checkpoint", "resume", "cavitation", "time_tol",
-                      "mass_tol")
+                      "mass_tol", "time_budget")
 #: options of a scene's steady or starved solve that choose the model rather than the numerics
 #: (the scene's ``[solver.ehl]`` table applies below them; a MoesProblem carries its own)
 MODEL_KEYS = ("viscosity", "density")
@@ -389,6 +389,18 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
     dc, kw = solver_keywords(options, accepted, cls, f"the transient {'line' if line else 'point'} solver")
     runkw = {k: kw.pop(k) for k in TRANSIENT_RUN_KEYS if k in kw}
     want_time_error = bool(runkw.pop("time_error", False))
+    budget = runkw.pop("time_budget", None)
+    if budget is not None:
+        budget = require_range("time_budget", budget, 0.0, math.inf, "s")
+    # a target refines the time step when the time error is asked for, or a time budget implies
+    # the refinement (without either a run with a target is judged as before: its error unknown)
+    controlled = accuracy is not None and (want_time_error or budget is not None)
+    held = sorted(k for k in ("checkpoint", "resume") if runkw.get(k) is not None)
+    if controlled and held:
+        raise InputError(f"option{'s' if len(held) > 1 else ''} {held} with an accuracy target and "
+                         f"{'time_error' if want_time_error else 'time_budget'}: a checkpoint holds one "
+                         f"run, and the refinement makes several; give accuracy = None (the run judged on "
+                         f"its steps, time_error still measured) or leave out {' and '.join(held)}")
     require_slip("operating.slip", scene.slip)
     if dc is None:
         kw.setdefault("points", DEFAULT_POINTS["line" if line else "point"])
@@ -439,6 +451,10 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
         return solver(pb, feature, body=body, slide_roll=scene.slip, options=dc, callback=call,
                       **{**runkw, **step}, **kw)
 
+    if controlled:
+        points = int(kw["points"] if dc is None else dc.points)
+        return _transient_to_accuracy(run, points, line, runkw, pb, scale, accuracy, budget, callback,
+                                      t0, scene, notes)
     try:
         res = run()
     except ConvergenceError as exc:
@@ -475,9 +491,40 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
     return _transient_solution(res, pb, line, scale, accuracy, t0, scene, notes, terr, None)
 
 
+def _transient_to_accuracy(run: Callable[..., Any], points: int, line: bool, runkw: dict[str, Any], pb: Any,
+                           scale: float, accuracy: float, budget: float | None, callback: Any, t0: float,
+                           scene: Scene, notes: list[str]) -> Solution:
+    """A transient run refined in its time step by the accuracy controller
+    (:class:`~ehl_multigrid.transient.control.TransientControl`) until its time part meets
+    ``accuracy`` or ``budget`` seconds are spent; the grid is the run's own."""
+    from .multigrid.controller import Resolution, control
+    from .transient.control import TransientControl
+
+    ctl = TransientControl(run, dimensions=1 if line else 2, scheme=runkw.get("scheme", "bdf2"),
+                           time_tol=runkw.get("time_tol"), callback=callback)
+    out = control(ctl, Resolution(points), accuracy, time_budget=math.inf if budget is None else budget,
+                  max_points=points, started=t0)
+    r = out.result
+    if not out.converged:  # the first run failed: as without a target
+        exc = r.error
+        if isinstance(exc, ConvergenceError):
+            if r.result is None or not r.result.series["T"]:
+                return failed_solution("transient", scene.kind, exc, accuracy, t0, scene, r.result)
+            return _transient_solution(r.result, pb, line, scale, accuracy, t0, scene, notes, None,
+                                       (status_of_error(exc), str(exc)))
+        return _transient_solution(r.result, pb, line, scale, accuracy, t0, scene, notes, None, None)
+    notes = notes + ([ctl.notes[r.at]] if r.at in ctl.notes else [])
+    return _transient_solution(r.result, pb, line, scale, accuracy, t0, scene, notes, ctl.parts.get(r.at),
+                               None, (out, ctl))
+
+
 def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: float | None, t0: float,
                         scene: Any, notes: list[str], terr: dict[str, float] | None,
-                        failure: tuple[Status, str] | None) -> Solution:
+                        failure: tuple[Status, str] | None, controlled: tuple[Any, Any] | None = None
+                        ) -> Solution:
+    """The :class:`Solution` of a transient run ``res``; ``controlled``: the
+    :class:`~ehl_multigrid.multigrid.controller.ControlOutcome` and the
+    :class:`~ehl_multigrid.transient.control.TransientControl` of a run refined to a target."""
     import numpy as np
 
     def moes(H: Any) -> Any:
@@ -508,14 +555,22 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
              "time": PartError(terr["Hc"], terr["Hm"]) if measured else PartError(math.nan, math.nan)}
     local = s.get("time_error_max", math.nan)
     adaptive = math.isfinite(local)
-    enotes = ("the transient solver has no accuracy control: it estimates no grid (space) error, and "
-              "each time step is converged to its residual tolerance",)
+    if controlled is None:
+        enotes = ("the transient solver has no accuracy control: it estimates no grid (space) error, and "
+                  "each time step is converged to its residual tolerance",)
+    else:
+        enotes = ("the time step is refined to the target by the accuracy controller; the grid is the run's "
+                  "own: no grid (space) error is estimated, and each time step is converged to its "
+                  "residual tolerance",)
     if measured:
         enotes += ("time part: twice the largest film difference from a run at an eighth of the time "
                    "tolerance and half the output step (max over the run, relative to the smooth "
                    "steady film)" if adaptive else
                    "time part: Richardson in the time step from a run at twice the step (max over the "
                    "run, relative to the smooth steady film)",)
+    elif controlled is not None:
+        why = next((n for n in notes if "time error" in n), "")
+        enotes += (why if why.startswith("time error not measured") else f"time part not measured: {why}",)
     else:
         enotes += ("time part not measured (options time_error=True measures it: a second run at "
                    + ("an eighth of the time tolerance and half the output step, about three times the "
@@ -534,21 +589,45 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
         done = f"completed {res.steps} time steps of dT = {res.dt:.4g}"
         if accuracy is None:
             status, message = Status.CONVERGED, done
+        elif controlled is not None:
+            status, message = Status.INACCURATE, _time_judgement(done, controlled, terr, accuracy)
         else:
             tm = f"; time error measured: Hc {terr['Hc']:.2g}, Hm {terr['Hm']:.2g}" if measured else ""
             status = Status.INACCURATE
             message = (f"{done}, but the error is not known: the transient solver has no accuracy "
                        f"control and estimates no grid (space) error{tm}, so the accuracy {accuracy:g} "
                        f"cannot be confirmed (accuracy=None judges the run on its steps alone)")
+    actions = tuple(getattr(res.steady, "actions", ()))
+    if controlled is not None:
+        actions += controlled[1].actions(controlled[0], accuracy)
     outcome = Outcome(status == Status.CONVERGED, status, message, time.perf_counter() - t0,
-                      float(wu.sum()) if wu.size else math.nan, int(cyc.sum()),
-                      tuple(getattr(res.steady, "actions", ())))
+                      float(wu.sum()) if wu.size else math.nan, int(cyc.sum()), actions)
     grid = Grid(int(res.X.size), None if line else int(Y.size), None,
                 (float(res.X[0]), float(res.X[-1])) if line else
                 (float(res.X[0]), float(res.X[-1]), float(Y[0]), float(Y[-1])), False)
     return Solution(physics="transient", contact=scene.kind, outcome=outcome, Hc=float(Hc_s[-1]),
                     Hm=float(Hm_s[-1]), hc=float(Hc_v[-1]) * scale, hm=float(Hm_v[-1]) * scale, error=error,
                     fields=frozen_fields(arrays), grid=grid, details=details, raw=res, scene=scene)
+
+
+def _time_judgement(done: str, controlled: tuple[Any, Any], terr: dict[str, float] | None,
+                    accuracy: float) -> str:
+    """The message of a completed run refined to ``accuracy``: its time part against the target,
+    the refinements, and the grid part that keeps it from being confirmed."""
+    out, ctl = controlled
+    refined = len(ctl.answers) - 1
+    how = (f" after {refined} refinement{'s' if refined > 1 else ''} of the time step from dT = "
+           f"{ctl.first.dt:.4g}" if refined > 0 else "")
+    grid = ("the grid (space) error is not estimated, so the accuracy cannot be confirmed "
+            "(accuracy=None judges the run on its steps alone)")
+    if out.result is not out.last:
+        how += "; the most accurate run of the sequence"
+    if terr is None:
+        return f"{done}: the time error is not measured{how} ({out.why}); {grid}"
+    tm = f"time error Hc {terr['Hc']:.2g}, Hm {terr['Hm']:.2g}"
+    if out.met:
+        return f"{done}: {tm} within the accuracy {accuracy:g}{how}; but {grid}"
+    return f"{done}: {tm} above the accuracy {accuracy:g}{how}; not refined further: {out.why}; and {grid}"
 
 
 # -- the front door ----------------------------------------------------------------------------------
@@ -573,8 +652,10 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     accuracy : relative target of the estimated errors of Hc and Hm, in [1e-5, 0.5]; the
         solvers refine their grid (box, tolerances) towards it unless the options fix the grid,
         and a result that misses it has status ``INACCURATE``. None: judged on the iteration
-        alone. The transient solver has no accuracy control: with a target its result is
-        ``INACCURATE`` (its error is not known); use None.
+        alone. A transient run estimates no grid (space) error, so with a target its result
+        is ``INACCURATE`` (its error cannot be confirmed); with ``time_error`` or a
+        ``time_budget`` in its options the time step is refined until the measured time part
+        meets the target (docs/transient.md). None: judged on its steps.
     options : a mapping of the solver's options (e.g. ``{"points": 257, "max_points": 513,
         "time_budget": 30, "half": True}``), or the solver's own options object
         (:class:`~ehl_multigrid.multigrid.options.LineOptions`,
@@ -584,11 +665,13 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
         ``[solver.ehl]`` table; a MoesProblem carries its own), a steady point solve
         ``solver="newton"`` (the Newton/pyamg cross-check path: a fixed grid, the
         :class:`~ehl_multigrid.point.newton.NewtonOptions` fields, ``accuracy=None``), and a
-        transient run ``checkpoint`` and ``resume`` (:mod:`ehl_multigrid.transient.checkpoint`).
+        transient run ``time_error``, ``time_budget`` (seconds of the refinement to a target),
+        ``checkpoint`` and ``resume`` (:mod:`ehl_multigrid.transient.checkpoint`; refused
+        together with a refinement to a target: a checkpoint holds one run).
         An unknown key is refused, naming it and the accepted ones (see docs/api.md for each
         physics).
     callback : called with a small dict after every multilevel cycle (steady) or time step
-        (transient); raising StopIteration in it stops a steady solve (status ``STOPPED``).
+        (transient; the first run's steps when the time step is refined to a target); raising StopIteration in it stops a steady solve (status ``STOPPED``).
         The starved and thermal solvers and the Newton path take none (a UserWarning says so).
     progress : called with one line of text per solve of the accuracy sequence (grid, box,
         estimate, seconds), as ``ehl solve`` prints on stderr: steady FAS, starved and thermal

@@ -12,7 +12,8 @@ fallback to one grid finer than the last converged solve when a larger step dive
 record of every solve (:class:`Refinement`).
 
 Used by the steady line and point solvers (:func:`~ehl_multigrid.multigrid.accuracy.solve_to_accuracy`),
-the starved line and point solvers and the thermal (TEHL) solver.
+the starved line and point solvers, the thermal (TEHL) solver and the transient runs
+(:mod:`ehl_multigrid.transient.control`: the time step is their refinement).
 """
 
 from __future__ import annotations
@@ -28,12 +29,14 @@ from typing import Any, Protocol
 class Resolution:
     """What a solve is resolved with: ``points`` along X (``2^k m + 1``), the default box scaled
     by ``box``, the iteration tolerances scaled by ``tol``, ``nz`` layers across a thermal film
-    (0 without)."""
+    (0 without), and ``dt``, the time step of a transient run scaled from its first run's (1
+    for the steady physics)."""
 
     points: int
     box: float = 1.0
     tol: float = 1.0
     nz: int = 0
+    dt: float = 1.0
 
     def finer(self) -> Resolution:
         """One grid finer, all else equal."""
@@ -41,7 +44,8 @@ class Resolution:
 
     def describe(self) -> str:
         nz = f", nz = {self.nz}" if self.nz else ""
-        return f"{self.points} points{nz} (box x{self.box:g})"
+        dt = f", time step x{self.dt:g}" if self.dt != 1.0 else ""
+        return f"{self.points} points{nz}{dt} (box x{self.box:g})"
 
 
 @dataclass(frozen=True)
@@ -156,11 +160,14 @@ def choose(candidates: list[Candidate], accuracy: float, now: float, hope: float
     return min(near, key=lambda c: (hoped(c), c.rank)) if near else best
 
 
-def predicted_seconds(last_round: float, points: int, to: Resolution, dimensions: int) -> float:
+def predicted_seconds(last_round: float, points: int, to: Resolution, dimensions: int,
+                      dt: float = 1.0) -> float:
     """Wall time of a refinement to ``to`` from ``last_round``, the seconds the last solve and
-    its estimate took on ``points``: the multilevel work grows as the number of unknowns,
-    ``((n' - 1)/(n - 1))^dimensions``; a tolerance or nz step costs about as much again."""
-    return last_round * max(1.0, (to.points - 1) / max(points - 1, 1)) ** dimensions
+    its estimate took on ``points`` at the time step scale ``dt``: the multilevel work grows as
+    the number of unknowns, ``((n' - 1)/(n - 1))^dimensions``, and a transient run's as its
+    number of steps, ``dt/dt'``; a tolerance or nz step costs about as much again."""
+    return (last_round * max(1.0, (to.points - 1) / max(points - 1, 1)) ** dimensions
+            * max(1.0, dt / to.dt))
 
 
 @dataclass
@@ -273,14 +280,15 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
             why = physics.why_short(res, at)
             break
         now = time.perf_counter()
-        cost = predicted_seconds(now - round_t0, at.points, step.at, physics.dimensions)
+        cost = predicted_seconds(now - round_t0, at.points, step.at, physics.dimensions, at.dt)
         left = time_budget - (now - t0)
         if left <= 0.0:
             why = f"the time budget of {time_budget:g} s is spent"
             break
         if cost > left:
+            dt = f", time step x{step.at.dt:g}" if step.at.dt != 1.0 else ""
             why = (f"the refinement to {step.at.points} points (box x{step.at.box:g}, tolerance "
-                   f"x{step.at.tol:g}) is predicted to take about {cost:.0f} s, more than the "
+                   f"x{step.at.tol:g}{dt}) is predicted to take about {cost:.0f} s, more than the "
                    f"{left:.0f} s left of the time budget of {time_budget:g} s")
             break
         say(f"refining, predicted about {cost:.0f} s", step.at)

@@ -9,7 +9,8 @@ and with slip: profiles at several positions), ``cost`` (time per step against g
 cavitation), ``adaptive`` (adaptive time steps: the film error over a dent passage against a
 run at a 64 times smaller fixed step, and the time error the front door states for it),
 ``starved`` (a starved inlet in time: dents through a starved contact, and the film's response
-to a step in the supplied layer).
+to a step in the supplied layer), ``control`` (the front door's time step refined to a target:
+the runs made, wall time, stated time part against the true time error).
 Each part writes ``build/validation/transient/<part>.json`` and a PNG; ``--quick`` runs a smaller set into ``build/validation/transient/quick/``.
 
 Moes-only problems (default oil of the core), Roelands + Dowson-Higginson, domain
@@ -39,6 +40,7 @@ from ehl_multigrid.transient import (  # noqa: E402
     Waviness,
     adaptive_time_error,
     solve_transient_line,
+    time_error,
     transient_options,
 )
 from ehl_multigrid.transient.accuracy import tighter_run_options  # noqa: E402
@@ -445,9 +447,87 @@ def part_starved(quick: bool) -> None:
                                                    "Hm_starved": Hm0, "dents": dents, "supply_steps": steps})
 
 
+#: the control part: dents through page63_line_2000N (depth in metres, target), from dT = CONTROL_DT
+CONTROL_CASES = ((1e-8, 0.005), (2e-8, 0.01), (2e-8, 0.005))
+CONTROL_DT = 0.01171875
+
+
+def part_control(quick: bool) -> None:
+    """The front door with a target and ``time_error`` (the accuracy controller halving the
+    time step): page63_line_2000N, 129 points, a dent of width 100 um from X = -1.5 to T = 1,
+    first step CONTROL_DT. For each target: the runs made (points, dT), wall time, the stated
+    time part of the answer, and its true time error against a run at a quarter of its step and
+    against a run at 1/32 of CONTROL_DT (relative to the smooth film, as stated)."""
+    import ehl_multigrid as ehl
+    from ehl_multigrid import Scene, load_scene
+    from ehl_multigrid.transient import solve as line_solve
+
+    calls: list[tuple[int, float]] = []
+    original = line_solve.solve_transient_line
+
+    def spy(*args, **kw):
+        calls.append((kw.get("points"), kw.get("dt")))
+        return original(*args, **kw)
+
+    line_solve.solve_transient_line = spy
+    rows = []
+    refs: dict[float, object] = {}
+    for amp, acc in CONTROL_CASES[:1] if quick else CONTROL_CASES:
+        d = load_scene("page63_line_2000N").to_dict()
+        d["feature"] = {"kind": "dent", "amplitude": amp, "width": 1e-4, "x0": -1.5}
+        scene = Scene.from_dict(d)
+
+        def run(dt: float, steps: int, scene=scene):
+            return ehl.solve(scene, physics="transient", accuracy=None,
+                             options={"points": 129, "dt": dt, "steps": steps}).raw
+
+        calls.clear()
+        t = time.perf_counter()
+        sol = ehl.solve(scene, physics="transient", accuracy=acc,
+                        options={"points": 129, "dt": CONTROL_DT, "t_end": 1.0, "time_error": True})
+        wall = time.perf_counter() - t
+        runs = list(calls)
+        a = sol.raw
+        quarter = run(a.dt / 4, 4 * a.planned_steps)
+        if amp not in refs:
+            refs[amp] = run(CONTROL_DT / 32, 32 * 86)
+        fine = refs[amp]
+        k = round(a.dt / fine.dt)
+        true_q = {n: float(np.max(np.abs(getattr(a, n) - getattr(quarter, n)[::4])) / a.steady_film(n))
+                  for n in ("Hc", "Hm")}
+        true_f = {n: float(np.max(np.abs(getattr(a, n) - getattr(fine, n)[::k][:getattr(a, n).size]))
+                           / a.steady_film(n)) for n in ("Hc", "Hm")}
+        t_part = sol.error.parts["time"]
+        rows.append({"amplitude": amp, "accuracy": acc, "runs": runs, "wall_s": wall, "dt": a.dt,
+                     "steps": a.steps, "status": sol.status.label, "stated_Hc": t_part.Hc,
+                     "stated_Hm": t_part.Hm, "true_quarter_Hc": true_q["Hc"], "true_quarter_Hm": true_q["Hm"],
+                     "true_fine_Hc": true_f["Hc"], "true_fine_Hm": true_f["Hm"], "actions": list(sol.outcome.actions)})
+        print(rows[-1])
+    line_solve.solve_transient_line = original
+    # the stated time part against the true error at every step from CONTROL_DT to 1/16 of it
+    ladder = []
+    for amp, fine in refs.items():
+        d = load_scene("page63_line_2000N").to_dict()
+        d["feature"] = {"kind": "dent", "amplitude": amp, "width": 1e-4, "x0": -1.5}
+        scene = Scene.from_dict(d)
+        runs = {k: ehl.solve(scene, physics="transient", accuracy=None,
+                             options={"points": 129, "dt": CONTROL_DT * 2.0**-k, "steps": int(86 * 2.0**k)}).raw
+                for k in range(-1, 5)}
+        for k in range(5):
+            est = time_error(runs[k], runs[k - 1])
+            for n in ("Hc", "Hm"):
+                true = float(np.max(np.abs(getattr(runs[k], n) - getattr(fine, n)[::2 ** (5 - k)]))
+                             / fine.steady_film(n))
+                ladder.append({"amplitude": amp, "dt": runs[k].dt, "film": n, "stated": est[n], "true": true,
+                               "true_over_stated": true / est[n]})
+                print(ladder[-1])
+    save("control" + ("_quick" if quick else ""), {"scene": "page63_line_2000N", "points": 129, "rows": rows,
+                                                   "ladder": ladder})
+
+
 PARTS = {"steady": part_steady, "time": part_time, "grid": part_grid, "waviness": part_waviness,
          "bump": part_bump, "cost": part_cost, "cavitation": part_cavitation, "adaptive": part_adaptive,
-         "starved": part_starved}
+         "starved": part_starved, "control": part_control}
 
 if __name__ == "__main__":
     common.main(__doc__, PARTS, sys.modules[__name__])
