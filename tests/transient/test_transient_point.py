@@ -22,6 +22,7 @@ from ehl_multigrid.transient import (
     solve_transient_point,
     time_error,
 )
+from ehl_multigrid.transient.accuracy import TIME_SAFETY
 
 
 @pytest.fixture(scope="module")
@@ -53,7 +54,8 @@ def test_bdf2_time_step_order_is_two_on_a_coarse_grid(problem):
     assert 1.6 < math.log2(d1 / d2) < 2.4  # measured 1.88
     # Richardson estimate of the time error of the dT = 0.05 run against the dT = 0.025 run
     est = time_error(runs[1], runs[0])["Hc"] * runs[1].Hc_steady
-    assert 0.8 < est / d2 < 2.0
+    assert 0.8 < est / TIME_SAFETY / d2 < 2.0  # the Richardson term, without the safety factor
+    assert est >= d2
 
 
 @pytest.mark.solver
