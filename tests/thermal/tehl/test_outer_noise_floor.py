@@ -47,7 +47,7 @@ def test_a_drift_below_the_jitter_is_not_settled():
 
 
 def test_changes_above_the_noise_bound_or_a_short_window_are_not_settled():
-    outer, fields, raw, w = _window(np.random.default_rng(3), jitter_T=0.05)
+    outer, fields, raw, w = _window(np.random.default_rng(3), jitter_T=0.08)
     assert max(raw) > NOISE_RAW and settled(outer, fields, raw, w, **TOL) is None
     outer, fields, raw, w = _window(np.random.default_rng(3))
     assert settled(outer[1:], fields[1:], raw[1:], w, **TOL) is None
