@@ -7,8 +7,8 @@ Sources, one interface (:class:`LineProfile`):
 * an EHL solution as plain arrays (x, p, h): :func:`profile_from_arrays`;
 * an EHL :class:`~ehl_multigrid.model.results.Result` of kind ``ehl_line`` / ``ehl_point`` following the
   naming contract (coords ``x`` [m], fields ``p`` [Pa], ``h`` [m] on ("x",) or ("x", "y")):
-  :func:`profiles_from_result`, or the main job's typed film
-  (:class:`~ehl_multigrid.model.solved_film.SolvedFilm`): :func:`profiles_from_film`;
+  :func:`profiles_from_result`; its fields, or the main job's typed film
+  (:class:`~ehl_multigrid.model.solved_film.SolvedFilm`): :func:`profiles_from_fields`;
 * point contacts sliced in Y, each slice a line problem: :func:`hertz_slices` (true Hertz slice
   ``pmax sqrt(1 - X^2 - Y^2)`` or the thesis slice (3.20) ``pmax sqrt((1 - X^2)(1 - Y^2))``).
 """
@@ -23,7 +23,6 @@ from typing import Any
 import numpy as np
 
 from ehl_multigrid.model.errors import InputError, require_positive, require_range
-from ehl_multigrid.model.solved_film import SolvedFilm
 
 
 @dataclass(frozen=True)
@@ -300,27 +299,6 @@ def profiles_from_result(
     return profiles_from_fields(
         kind == "ehl_line", result["x"], y, result["p"], result["h"], result.scene, nx=nx, x_in=x_in,
         x_out=x_out, slices=slices, rule=rule, b=b, b_y=b_y, length=length, viscosity=viscosity)
-
-
-def profiles_from_film(
-    film: SolvedFilm,
-    *,
-    nx: int,
-    x_in: float | None = -2.5,
-    x_out: float | None = None,
-    slices: int = 10,
-    rule: str = "midpoint",
-    b: float | None = None,
-    b_y: float | None = None,
-    length: float | None = None,
-    viscosity: Callable[[np.ndarray], np.ndarray] | None = None,
-) -> list[LineProfile]:
-    """Line profiles from a :class:`~ehl_multigrid.model.solved_film.SolvedFilm`, as
-    :func:`profiles_from_result` gives them from the film's Result (length scales from the
-    film's scene unless given)."""
-    return profiles_from_fields(
-        film.contact == "line", film.x, film.y, film.p, film.h, film.scene, nx=nx, x_in=x_in, x_out=x_out,
-        slices=slices, rule=rule, b=b, b_y=b_y, length=length, viscosity=viscosity)
 
 
 def profiles_from_fields(

@@ -31,7 +31,7 @@ from .profiles import (
     LineProfile,
     hertz_profile,
     hertz_slices,
-    profiles_from_film,
+    profiles_from_fields,
     profiles_from_result,
 )
 
@@ -118,9 +118,9 @@ def build_profiles(
     if input == "ehl":
         if isinstance(ehl, SolvedFilm):
             film = usable_film(ehl, scene)
-            return profiles_from_film(
-                film, nx=options.nx, x_in=options.x_in, x_out=options.x_out, slices=options.slices,
-                rule=options.slice_rule, b=hz.a, b_y=hz.b, length=scene.length if scene.kind == "line" else None,
+            return profiles_from_fields(
+                film.contact == "line", film.x, film.y, film.p, film.h, film.scene, nx=options.nx,
+                x_in=options.x_in, x_out=options.x_out, slices=options.slices, rule=options.slice_rule, b=hz.a, b_y=hz.b, length=scene.length if scene.kind == "line" else None,
                 viscosity=ehl_viscosity(film.scene),
             )
         res = ehl_result_from(ehl, scene)
