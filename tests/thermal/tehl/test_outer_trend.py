@@ -43,17 +43,19 @@ def test_a_noisy_plateau_near_the_tolerances_is_no_creep():
 
 
 @pytest.mark.slow
-def test_sliding_roller_bearing_converges_to_half_a_percent():
+def test_sliding_roller_bearing_at_half_a_percent_states_an_error_its_coarser_answer_agrees_with():
     """The roller bearing at S = 1 ended `inaccurate` on 513 points at 0.5 %: its 1025-point
     outer iteration stalled at a damping of 1/16 for 60 iterations (docs/thermal.md). It now
-    converges on 2049 points, and the 2 % answer lies within the stated errors of both answers
-    from the 0.5 % one."""
+    converges on 2049 points; with the minimum film's grid part at order 1.5 (its Hm ratio is
+    2.5 there) it states Hm 0.55 % and its 4097-point refinement does not converge, so it is
+    `inaccurate`. The 2 % answer lies within both stated errors of the 0.5 % one."""
     import ehl_multigrid as ehl
 
     scene = ehl.load_scene("roller_bearing_inner_race").with_operating(slip=1.0)
     fine = ehl.solve(scene, physics="thermal", accuracy=0.005)
     coarse = ehl.solve(scene, physics="thermal", accuracy=0.02)
-    assert fine.success and coarse.success, fine.message
+    assert coarse.success and fine.grid.points == 2049, fine.message
+    assert fine.success or "4097 points" in fine.message
     for f in ("Hc", "Hm"):
         a, b = getattr(fine, f), getattr(coarse, f)
         assert abs(a - b) <= (getattr(fine.error, f) + getattr(coarse.error, f)) * abs(a), (f, a, b)
