@@ -393,7 +393,7 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
     if budget is not None:
         budget = require_range("time_budget", budget, 0.0, math.inf, "s")
     # a target refines the time step when the time error is asked for, or a time budget implies
-    # the refinement (without either a run with a target is judged as before: its error unknown)
+    # the refinement (without either, a run with a target is only judged: its error is unknown)
     controlled = accuracy is not None and (want_time_error or budget is not None)
     held = sorted(k for k in ("checkpoint", "resume") if runkw.get(k) is not None)
     if controlled and held:
