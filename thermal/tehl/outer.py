@@ -42,11 +42,9 @@ TREND_WINDOW = 20
 CREEP_GROWTH = 1.03
 CREEP_WINDOW = 10
 
-#: the outer iteration has settled at the inner solves' noise floor when, over the last
-#: :data:`NOISE_WINDOW` iterations at one damping, the changes stay within :data:`NOISE_RAW` times
-#: the tolerances and the drift they leave (trends and half-window means) meets them (the spur
-#: gear on 2049 points: outlet temperatures jitter by up to 2.3 (S = 0.5) and 4.2 (S = 1)
-#: times tol_T; docs/thermal.md)
+#: settled at the inner solves' noise floor (:func:`settled`): over this many iterations at one
+#: damping, changes within NOISE_RAW tolerances (the spur gear on 2049 points: outlet
+#: temperatures jitter by up to 4.2 tol_T) and a drift within them (docs/thermal.md)
 NOISE_WINDOW = 10
 NOISE_RAW = 5.0
 
