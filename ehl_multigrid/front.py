@@ -566,8 +566,8 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
         enotes += ("time part: twice the largest film difference from a run at an eighth of the time "
                    "tolerance and half the output step (max over the run, relative to the smooth "
                    "steady film)" if adaptive else
-                   "time part: Richardson in the time step from a run at twice the step (max over the "
-                   "run, relative to the smooth steady film)",)
+                   "time part: twice the Richardson term in the time step from a run at twice the "
+                   "step (max over the run, relative to the smooth steady film)",)
     elif controlled is not None:
         why = next((n for n in notes if "time error" in n), "")
         enotes += (why if why.startswith("time error not measured") else f"time part not measured: {why}",)

@@ -30,7 +30,8 @@ class TEHLOptions:
         (the thermal layer's :func:`thermal.kernels._anderson_step`); 0 = plain damping.
     tol_P : |dP| / |P| (L2) between outer iterations; tol_H : relative change of Hc and Hm;
     tol_T : max |dT| [K] between outer iterations; each change is divided by the iteration's
-        under-relaxation before it is compared with its tolerance.
+        under-relaxation before it is compared with its tolerance. An iteration settled at its
+        inner solves' noise floor converges too (``thermal.tehl.outer.settled``).
     tol_thermal : relative temperature tolerance of the thermal march (tol_T, tol_tau of
         :class:`~thermal.options.ThermalOptions`).
     thermal : False holds T = T_oil (Eyring shear thinning on the flow only).

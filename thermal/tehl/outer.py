@@ -5,7 +5,8 @@ logarithm and Anderson-mixed, go to the multilevel solve of the pressure and fil
 solve on the new pressure and film gives the next temperature field. It stops when the changes
 of P (relative L2 norm), of the films (Hc, Hm) and of T (max, kelvin) between two iterations,
 divided by the iteration's damping, are all below their tolerances (the film tolerance
-widened to twice the films' algebraic uncertainty when an inner solve reports one).
+widened to twice the films' algebraic uncertainty when an inner solve reports one), or when it
+has settled at the inner solves' noise floor (:func:`settled`).
 
 The geometry enters as a :class:`Contact` strategy (:class:`thermal.tehl.line.LineContact`,
 :class:`thermal.tehl.point.PointContact`): its factor hierarchy and multilevel solve, its films,
