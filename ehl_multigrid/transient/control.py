@@ -237,12 +237,3 @@ class TransientControl:
         if out.why:
             lines.append(f"not refined further: {out.why}")
         return tuple(lines)
-
-    def sequence(self) -> str:
-        """The runs made, in order: ``(points, dT)``, marked ``pair`` when made for the time
-        error of another run only."""
-        def one(at: Resolution, r: TimeRun) -> str:
-            dt = f"{r.result.dt:.4g}" if r.result is not None else f"x{at.dt:g} (not run: {self.failure(r)})"
-            return f"({at.points}, {dt}{'' if at in self.solved else ', pair'})"
-
-        return ", ".join(one(at, r) for at, r in self.runs.items())
