@@ -3,7 +3,7 @@ registered in the entry-point group ``ehl.physics`` so the core never imports th
 
 :func:`solve_thermal` wraps :func:`thermal.tehl.accuracy.solve_tehl_to_accuracy` (line and
 point contacts; a line scene with a finite ``[supply] hoil`` is solved starved, a point scene
-with one is refused) and returns its answer as a :class:`~ehl_multigrid.solution.Solution`:
+with one is refused), or with ``estimate=False`` the TEHL solve alone (:func:`film_alone`) and returns its answer as a :class:`~ehl_multigrid.solution.Solution`:
 the TEHL films, the budget of :func:`thermal.tehl.accuracy.estimate_error` as error parts
 (``grid`` along X, ``nz`` across the film, ``domain``, ``iteration``) and the thermal
 quantities in :class:`~ehl_multigrid.solution.ThermalDetails`.
@@ -15,11 +15,11 @@ import math
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import fields
+from dataclasses import fields, replace
 from typing import Any
 
 from ehl_multigrid.front import failed_solution, solver_keywords, warn_unused_callback
-from ehl_multigrid.model.errors import ConvergenceError, require_range
+from ehl_multigrid.model.errors import ConvergenceError, InputError, require_range
 from ehl_multigrid.model.scene import Scene
 from ehl_multigrid.solution import (
     ErrorEstimate,
@@ -36,7 +36,9 @@ from ehl_multigrid.solution import (
 
 #: keywords of :func:`~thermal.tehl.accuracy.solve_tehl_to_accuracy` accepted as options beside
 #: the :class:`~thermal.tehl.line.TEHLOptions` fields
-RUN_KEYS = ("slip", "max_points", "max_nz", "box_limit", "time_budget", "threads")
+RUN_KEYS = ("slip", "max_points", "max_nz", "box_limit", "time_budget", "threads", "estimate", "start")
+#: the budgets of the refinement towards a target, which needs the error estimate
+REFINE_KEYS = ("max_points", "max_nz", "box_limit", "time_budget")
 #: the estimate's part names -> the contract's
 PARTS = {"grid_x": "grid", "grid_z": "nz", "domain": "domain", "iteration": "iteration"}
 
@@ -56,14 +58,20 @@ def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
         solve, in [1, 1024]; the caller's setting is restored afterwards); or a
         ``TEHLOptions``. As ``ehl solve --thermal``: the grid starts at 513 points (line) or
         257 (point), nz 20, and is refined towards the target unless ``points`` or ``nz`` is
-        given (or a ``TEHLOptions``), which are only judged.
+        given (or a ``TEHLOptions``), which are only judged. ``estimate`` (default True):
+        False solves the film alone on its grid, without the error estimate (the error is
+        then unknown: with a target the solve is ``INACCURATE``, with ``accuracy=None``
+        judged on its outer iteration alone). ``start``: the :class:`Solution` of a thermal
+        solve of the same line scene at another slip on the same grid along X and box (a
+        traction curve's previous slip): the solve continues from it (its isothermal start
+        and solution, or a starved solve's meniscus; :func:`thermal.tehl.line.continuation`).
     progress : called with one line of text per solve of the refinement sequence.
     callback : not called (the TEHL solve takes none; a UserWarning says so). The TEHL solve
         reports no progress lines either (the front door's ``progress`` is not passed here).
 
     Returns a :class:`~ehl_multigrid.solution.Solution` (``physics="thermal"``); a solve that
     fails returns ``success`` False with its status, never raises. InputError for bad input
-    (options, slip, a starved point scene).
+    (options, slip, a starved point scene, a start of another contact or grid).
     """
     from .tehl.accuracy import solve_tehl_to_accuracy
     from .tehl.line import TEHLOptions
@@ -83,13 +91,74 @@ def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
     threads = run.pop("threads", None)
     if threads is not None:
         require_range("threads", threads, 1, 1024, "threads")
+    estimate = run.pop("estimate", True)
+    if not isinstance(estimate, bool):
+        raise InputError(f"option estimate = {estimate!r} must be true or false")
+    previous = start_result(run.pop("start", None), scene, dc)
+    if not estimate and run:
+        raise InputError(f"option{'s' if len(run) > 1 else ''} {sorted(run)} with estimate = False: "
+                         f"the refinement towards the accuracy needs the error estimate")
     try:
         with _threads(threads):
-            done = solve_tehl_to_accuracy(scene, slip, dc, accuracy, refine=refine, progress=progress,
-                                          **run)
+            if not estimate:
+                done = film_alone(scene, slip, dc, accuracy, previous)
+            else:
+                done = solve_tehl_to_accuracy(scene, slip, dc, accuracy, refine=refine, progress=progress,
+                                              start=previous, **run)
     except ConvergenceError as exc:
         return failed_solution("thermal", scene.kind, exc, accuracy, t0, scene)
     return thermal_solution(done, scene, accuracy, t0)
+
+
+def start_result(start: Any, scene: Scene, options: Any) -> Any:
+    """The TEHL line result a solve continues from (option ``start``; None: none): the
+    :class:`Solution` of a thermal solve with a film, of ``scene`` at another slip, on the grid
+    along X and the box of ``options``. InputError naming what differs otherwise."""
+    if start is None:
+        return None
+    if scene.kind != "line":
+        raise InputError(f"option start with a {scene.kind} contact: a TEHL point solve starts from its own "
+                         f"isothermal solve (start applies to line contacts)")
+    if not isinstance(start, Solution) or start.physics != "thermal" or start.raw is None:
+        what = (f"a {start.physics} Solution" if isinstance(start, Solution) and start.raw is not None else
+                "a Solution without a film" if isinstance(start, Solution) else type(start).__name__)
+        raise InputError(f"option start = {what}: it must be the Solution of a thermal solve that produced a "
+                         f"film (ehl_multigrid.solve(..., physics='thermal'))")
+    r = start.raw.result
+    if replace(r.scene, slip=scene.slip) != scene:
+        raise InputError(f"option start is a solve of scene {r.scene.name!r}, which differs from scene "
+                         f"{scene.name!r} in more than its slip: a solve continues one of the same contact")
+    o = options
+    theirs = (r.options.points, r.options.xmin, r.options.xmax, r.options.box)
+    if theirs != (o.points, o.xmin, o.xmax, o.box):
+        raise InputError(f"option start was solved on points = {theirs[0]}, xmin = {theirs[1]}, xmax = "
+                         f"{theirs[2]}, box = {theirs[3]:g}; this solve asks for points = {o.points}, xmin = "
+                         f"{o.xmin}, xmax = {o.xmax}, box = {o.box:g}: a solve continues one on its own "
+                         f"grid and box")
+    return r
+
+
+def film_alone(scene: Scene, slip: float | None, options: Any, accuracy: float | None,
+               previous: Any = None) -> Any:
+    """The TEHL film of ``scene`` on the grid of ``options`` without its error estimate
+    (option ``estimate=False``), continuing from ``previous`` (:func:`start_result`), as an
+    :class:`~thermal.tehl.accuracy.AccurateTEHL` whose ``estimate`` is None: accurate only
+    without a target (the error is not known). Raises the solver's ConvergenceError."""
+    from .tehl.accuracy import AccurateTEHL
+    from .tehl.line import continuation, solve_tehl_line
+    from .tehl.point import solve_tehl_point
+
+    t0 = time.perf_counter()
+    if scene.kind == "line":
+        r = solve_tehl_line(scene, slip, options, **continuation(previous, scene))
+    else:
+        r = solve_tehl_point(scene, slip, options)
+    if accuracy is None:
+        msg = "converged (the outer iteration; the error is not estimated: estimate = False)"
+    else:
+        msg = (f"the error is not estimated (estimate = False), so the accuracy {accuracy:g} cannot be "
+               f"confirmed (accuracy = None judges the solve on its outer iteration alone)")
+    return AccurateTEHL(r, None, accuracy, accuracy is None, [], msg, time.perf_counter() - t0)
 
 
 @contextmanager
@@ -121,8 +190,13 @@ def thermal_solution(done: Any, scene: Scene, accuracy: float | None, t0: float)
     actions = tuple((getattr(r.report, "extra", None) or {}).get("actions", ()))
     outcome = Outcome(status == Status.CONVERGED, status, message, time.perf_counter() - t0,
                       math.nan, len(r.outer), actions)
-    parts = {PARTS[p]: PartError(as_float(est.budget["Hc"][p]), as_float(est.budget["Hm"][p])) for p in PARTS}
-    error = ErrorEstimate(as_float(est.Hc), as_float(est.Hm), parts, accuracy, tuple(est.notes))
+    if est is None:  # (estimate = False)
+        error = ErrorEstimate(target=accuracy, notes=("not estimated: the film was solved alone (estimate = False)",))
+        budget: dict[str, Any] = {}
+    else:
+        parts = {PARTS[p]: PartError(as_float(est.budget["Hc"][p]), as_float(est.budget["Hm"][p])) for p in PARTS}
+        error = ErrorEstimate(as_float(est.Hc), as_float(est.Hm), parts, accuracy, tuple(est.notes))
+        budget = est.budget
     o = r.options
     starved = None
     if getattr(r, "starved", None):
@@ -140,8 +214,8 @@ def thermal_solution(done: Any, scene: Scene, accuracy: float | None, t0: float)
         heat_balance_error=float(r.heat_balance_error),
         heat_partition=tuple(float(x) for x in r.heat_partition), slip=float(r.slip), nz=int(o.nz),
         outer_iterations=len(r.outer),
-        friction_coefficient_error=as_float(est.budget["friction_coefficient"]["total"]),
-        T_max_error_K=as_float(est.budget["T_max"]["total"]), starved=starved)
+        friction_coefficient_error=as_float(budget.get("friction_coefficient", {}).get("total")),
+        T_max_error_K=as_float(budget.get("T_max", {}).get("total")), starved=starved)
     scale = r.problem.film_scale
     if point:
         arrays = {"X": r.X, "Y": r.Y, "P": r.P, "H": r.H, "T_mid": r.T_mid,

@@ -1,16 +1,12 @@
-"""Multilevel (FAS/FMG) solver for the steady isothermal EHL line contact.
+"""Multilevel (FAS/FMG) solver for the steady isothermal EHL line contact: the line
+discretisation (:class:`LineHierarchy`) on the shared cycles, FMG and robustness policy of
+:mod:`ehl_multigrid.multigrid`, and the deformation (``W = sum_j K_|i-j| P_j``,
+:func:`make_deformation`: mlmi, fft, direct).
 
-Public API::
-
-    from ehl_multigrid.line import solve_line, LineProblem
-    sol = solve_line(20, 10, points=1025)            # Moes groups, default oil
-    sol.Hc, sol.Hm, sol.success, sol.status_name     # Moes-scaled films, outcome
-    res = sol.to_result()                            # package Result, kind "ehl_line"
-
-    from ehl_multigrid.line import make_deformation  # W = sum_j K_|i-j| P_j (mlmi/fft/direct)
-
-The cycles, FMG and robustness policy are the shared ones of :mod:`ehl_multigrid.multigrid`;
-this package holds the line discretisation (:class:`LineHierarchy`).
+A film is solved through the front door :func:`ehl_multigrid.solve` (docs/api.md). The solver
+functions behind it, :func:`~.solver.solve_line`, :func:`~.solver.solve_line_problem` and
+:func:`~.solver.line_solver`, are internal: importable from here for the package itself, its
+tests and validation scripts, but not part of the public API (``__all__``).
 """
 
 from ..multigrid.options import LineOptions
@@ -18,11 +14,13 @@ from .deformation import DirectDeformation, FFTDeformation, MLMIDeformation, mak
 from .kernel import log_kernel
 from .problem import LineProblem
 from .solution import LineSolution
-from .solver import LineHierarchy, line_solver, solve_line, solve_line_problem
+from .solver import LineHierarchy
+from .solver import line_solver as line_solver
+from .solver import solve_line as solve_line
+from .solver import solve_line_problem as solve_line_problem
 
 __all__ = [
     "DirectDeformation", "FFTDeformation", "MLMIDeformation", "make_deformation", "log_kernel",
-    "LineHierarchy", "LineOptions", "LineProblem", "LineSolution", "line_solver", "solve_line",
-    "solve_line_problem",
+    "LineHierarchy", "LineOptions", "LineProblem", "LineSolution",
 ]
 

@@ -1,5 +1,12 @@
-"""Starved and mass-conserving EHL line contact: Elrod-Adams cavitation with a film content
-``theta`` and an inlet oil supply, on the shared multilevel core.
+"""Starved and mass-conserving EHL line and point contacts: Elrod-Adams cavitation with a film
+content ``theta`` and an inlet oil supply, on the shared multilevel core
+(:class:`StarvedLineHierarchy`, :class:`StarvedPointHierarchy`; the supply's units and checks:
+:func:`hoil_venner`, :func:`check_hoil`, :func:`check_profile`).
+
+A starved film is solved through the front door :func:`ehl_multigrid.solve` (``physics=
+"starved"``, chosen for a scene with a finite ``[supply] hoil``; docs/api.md). The solver
+functions behind it are internal -- importable from here for the package itself, its tests and
+validation scripts, but not part of the public API (``__all__``):
 
 * :func:`solve_starved_line` -- a :class:`~ehl_multigrid.line.problem.LineProblem` and the
   supplied layer ``Hoil = hoil R/b^2`` (Venner units): the meniscus is found by a root search
@@ -15,20 +22,15 @@
   a profile across the track); the meniscus is found inside the multilevel iteration
   (point.py); :func:`solve_starved_point_scene` for a point scene and its ``[supply] hoil``
   [m], with the flooded film of the same discretisation and an error estimate.
-
-Example::
-
-    from ehl_multigrid.line import LineProblem
-    from ehl_multigrid.starved import solve_starved_line
-    sol = solve_starved_line(LineProblem.from_moes(20, 10), 0.05, points=513)
-    sol.Hc, sol.Hc_flooded, sol.meniscus_x, sol.mass_balance_error, sol.extra["theta"]
 """
 
-from .line import StarvedLineHierarchy, solve_starved_problem
-from .meniscus import solve_starved_line, solve_starved_scene
-from .point import StarvedPointHierarchy, solve_starved_point, solve_starved_point_scene
+from .line import StarvedLineHierarchy
+from .line import solve_starved_problem as solve_starved_problem
+from .meniscus import solve_starved_line as solve_starved_line
+from .meniscus import solve_starved_scene as solve_starved_scene
+from .point import StarvedPointHierarchy
+from .point import solve_starved_point as solve_starved_point
+from .point import solve_starved_point_scene as solve_starved_point_scene
 from .supply import check_hoil, check_profile, hoil_venner
 
-__all__ = ["StarvedLineHierarchy", "solve_starved_line", "solve_starved_scene", "solve_starved_problem",
-           "StarvedPointHierarchy", "solve_starved_point", "solve_starved_point_scene",
-           "check_hoil", "check_profile", "hoil_venner"]
+__all__ = ["StarvedLineHierarchy", "StarvedPointHierarchy", "check_hoil", "check_profile", "hoil_venner"]

@@ -1,17 +1,22 @@
 """Time-dependent (transient) isothermal EHL: surface features passing through a line or a
 point (circular, elliptic) contact.
 
-Public API: line -- :func:`solve_transient_line`, the features :class:`Waviness`,
-:class:`Bump`, :class:`Profile`, :class:`TransientResult`; point --
-:func:`solve_transient_point`, the features :class:`Waviness2D` (any angle), :class:`Dent2D`,
-:class:`HeightMap`, :class:`PointTransientResult`. Venner's dimensionless time
+A run is solved through the front door :func:`ehl_multigrid.solve` (``physics="transient"``,
+the scene's ``[feature]``; docs/api.md). Public here: line -- the features :class:`Waviness`,
+:class:`Bump`, :class:`Profile`, :class:`TransientResult`; point -- the features
+:class:`Waviness2D` (any angle), :class:`Dent2D`, :class:`HeightMap`,
+:class:`PointTransientResult`; the time error of two runs (:func:`time_error`,
+:func:`adaptive_time_error`). The solvers behind the front door,
+:func:`~.solve.solve_transient_line` and :func:`~.point_solve.solve_transient_point`, are
+internal: importable from here for the package itself, its tests and validation scripts, but
+not part of the public API (``__all__``). Venner's dimensionless time
 ``T = t u_m / b`` (line, ``b`` the Hertzian half-width) or ``t u_m / a`` (point, ``a`` the Hertz
 semi-axis along the rolling direction), ``u_m = (u1 + u2)/2``.
 
 Runs keep what they computed: a :class:`Checkpoint` writes the completed steps while a run
 goes on and when it ends early (a failed step, an interrupt, a signal), marked
 ``complete = False``; :func:`read_checkpoint` reads such a file back for the ``resume``
-argument of the solvers. Cavitation is the projection ``P >= 0`` (a flooded inlet only:
+option of the front door. Cavitation is the projection ``P >= 0`` (a flooded inlet only:
 :func:`check_flooded_supply` refuses a scene whose oil supply starves the contact) or, with
 ``cavitation="mass-conserving"``, Elrod-Adams film content, which also takes a starved inlet
 (``hoil``).
@@ -24,7 +29,7 @@ from ..lazy import lazy_exports
 _LAZY = {
     "Checkpoint": "checkpoint", "read_checkpoint": "checkpoint",
     "check_flooded_supply": "supply",
-    "solve_with_time_error": "accuracy", "time_error": "accuracy", "adaptive_time_error": "accuracy",
+    "time_error": "accuracy", "adaptive_time_error": "accuracy",
     "Bump": "features", "Profile": "features", "Smooth": "features", "Waviness": "features",
     "feature_speed": "features",
     "Dent2D": "features", "HeightMap": "features", "Smooth2D": "features",
@@ -40,9 +45,7 @@ _LAZY = {
 
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())
 
-__all__ = ["Bump", "Checkpoint", "Dent2D", "HeightMap", "PointTransientResult", "Profile", "Smooth",
-           "Smooth2D", "TransientResult", "Waviness", "Waviness2D", "adaptive_time_error",
-           "check_flooded_supply", "feature_speed",
-           "load_series", "max_point_time_step", "max_time_step",
-           "point_mass_balance", "point_transient_options", "read_checkpoint", "solve_transient_line",
-           "solve_transient_point", "solve_with_time_error", "time_error", "transient_options"]
+#: the solvers behind the front door: importable from here, not public
+INTERNAL = ("solve_transient_line", "solve_transient_point")
+
+__all__ = sorted(set(_LAZY) - set(INTERNAL))

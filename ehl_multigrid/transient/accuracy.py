@@ -23,9 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from ..line.problem import LineProblem
 from .result import TransientResult
-from .solve import solve_transient_line
 
 #: the fixed-step time part over its Richardson term: the runs are not quite in BDF2's
 #: asymptotic range (true / Richardson 1.34-1.71 at the first step and up to 1.6 at an error
@@ -74,22 +72,3 @@ def tighter_run_options(run: TransientResult, time_tol: float) -> dict[str, Any]
     return {"dt": 0.5 * run.dt, "steps": 2 * run.planned_steps, "t_end": None,
             "time_tol": time_tol * TIGHTER_TOL}
 
-
-def solve_with_time_error(problem: Any, feature: Any, *, dt: float,
-                          steps: int, **kw: Any) -> tuple[TransientResult, dict[str, float]]:
-    """Run at ``dt`` and at ``2 dt`` (``steps // 2`` steps) and return the fine run with its
-    estimated relative time errors of Hc and Hm (costs about 1.5 runs). With a ``time_tol``
-    (adaptive steps) the second run is at :data:`TIGHTER_TOL` of that tolerance and half the
-    output step instead (:func:`adaptive_time_error`; it costs about 2 runs). ``problem`` is a
-    :class:`LineProblem` or a point problem (then :func:`~.point_solve.solve_transient_point`)."""
-    run = solve_transient_line
-    if not isinstance(problem, LineProblem):
-        from .point_solve import solve_transient_point as run
-    fine = run(problem, feature, dt=dt, steps=steps, **kw)
-    # the second run keeps no checkpoint: it must not overwrite the first run's
-    own = {k: v for k, v in kw.items() if k not in ("checkpoint", "resume")}
-    if kw.get("time_tol") is not None:
-        tight = run(problem, feature, **{**own, **tighter_run_options(fine, kw["time_tol"])})
-        return fine, adaptive_time_error(fine, tight)
-    coarse = run(problem, feature, dt=2.0 * dt, steps=max(steps // 2, 1), **own)
-    return fine, time_error(fine, coarse)

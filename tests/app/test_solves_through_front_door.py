@@ -64,6 +64,12 @@ CASES = {
     "solve-thermal": (lambda d: ["solve", "page63_line_2000N", "--thermal", "--points", "129", "--nz", "8"],
                       "thermal"),
     "tehl-one-slip": (lambda d: ["tehl", "page63_line_2000N", "--points", "129", "--nz", "8"], "thermal"),
+    "tehl-no-estimate": (lambda d: ["tehl", "page63_line_2000N", "--points", "129", "--nz", "8", "--no-estimate"],
+                         "thermal"),
+    "tehl-curve": (lambda d: ["tehl", "page63_line_2000N", "--slip", "0,0.5", "--points", "129", "--nz", "8"],
+                   "thermal"),
+    "traction-coupled": (lambda d: ["traction", "page63_line_2000N", "--coupled", "--slip", "0,0.5", "--points",
+                                    "129", "--nz", "8"], "thermal"),
     "run-film-stage": (lambda d: ["run", "default"], "steady"),
     "transient": (lambda d: ["transient", _dent_scene(d), "--points", "129", "--steps", "2"], "transient"),
 }
@@ -74,7 +80,7 @@ def test_each_film_solving_subcommand_calls_the_front_door_and_exits_3_on_its_fa
                                                                                        capsys):
     make, physics = CASES[case]
     argv = make(tmp_path)
-    if argv[0] != "tehl":  # ('ehl tehl' writes no file)
+    if argv[0] not in ("tehl", "traction"):  # (a TEHL curve writes no file)
         argv += ["--no-plots", "--out", str(tmp_path / "o")]
     rc = main(argv)
     err = capsys.readouterr().err
@@ -111,10 +117,22 @@ def test_a_tehl_curve_takes_its_grid_from_the_accuracy_loop_at_its_largest_slip(
     assert call["physics"] == "thermal" and call["accuracy"] == 0.01
     assert call["options"] == {"compressive_heating": True, "slip": -1.5}
     calls.clear()
-    # a given grid is the curve's own: judged, no calibrating solve
+    # a given grid is the curve's own: no calibrating solve; each slip solved alone on it, judged
+    # on its outer iteration (the curve is judged afterwards at three of its slips)
     assert main(["tehl", "page63_line_2000N", "--slip", "0.2,0.4", "--points", "129", "--nz", "8",
-                 "--no-estimate", "--json"]) == 0
-    assert calls == []
+                 "--json"]) == 3
+    (call,) = calls  # the stand-in fails the first slip: the curve ends there
+    assert call["physics"] == "thermal" and call["accuracy"] is None
+    assert call["options"] == {"points": 129, "nz": 8, "box": 1.0, "compressive_heating": True, "slip": 0.2,
+                               "estimate": False, "start": None}
+
+
+def test_ehl_tehl_without_its_estimate_asks_the_front_door_for_the_film_alone(calls, capsys):
+    main(["tehl", "page63_line_2000N", "--slip", "0.5", "--no-estimate"])
+    (call,) = calls
+    # no estimate, so no accuracy to confirm: judged on the outer iteration, as before
+    assert call["physics"] == "thermal" and call["accuracy"] is None
+    assert call["options"] == {"compressive_heating": True, "slip": 0.5, "estimate": False}
 
 
 def test_the_newton_path_is_judged_on_its_iteration_alone(calls, tmp_path, capsys):

@@ -62,12 +62,15 @@ def test_the_film_error_falls_with_the_time_tolerance():
     assert err[1e-3] < 10 * 1e-3
     # the stated time error (a second run at an eighth of the tolerance) covers the true one,
     # relative to the smooth film (measured true / stated 0.66 and 0.77 for Hm)
-    from ehl_multigrid.transient import solve_with_time_error
+    from ehl_multigrid.transient import adaptive_time_error
+    from ehl_multigrid.transient.accuracy import tighter_run_options
+    from ehl_multigrid.transient.solve import solve_transient_line
 
+    kw = dict(points=65, slide_roll=1.0, cavitation="mass-conserving", snapshot_every=100000, tol=1e-9,
+              tol_load=1e-10)
     for tt in (1e-2, 1e-3):
-        run, est = solve_with_time_error(PB, DENT, dt=0.04, steps=30, points=65, slide_roll=1.0,
-                                         cavitation="mass-conserving", time_tol=tt,
-                                         snapshot_every=100000, tol=1e-9, tol_load=1e-10)
+        run = solve_transient_line(PB, DENT, dt=0.04, steps=30, time_tol=tt, **kw)
+        est = adaptive_time_error(run, solve_transient_line(PB, DENT, **kw, **tighter_run_options(run, tt)))
         true = np.max(np.abs(run.Hm - Hm_ref)) / run.steady_film("Hm")
         assert true <= est["Hm"]
 
@@ -87,37 +90,25 @@ def test_a_point_contact_takes_adaptive_steps_within_the_tolerance():
     assert np.all(np.asarray(res.series["substeps"][2:]) > 1)
 
 
-def test_the_time_error_of_adaptive_steps_comes_from_a_run_at_an_eighth_of_the_tolerance(monkeypatch):
-    import ehl_multigrid.transient.accuracy as accuracy
-    from ehl_multigrid.transient import adaptive_time_error, solve_with_time_error
-    from ehl_multigrid.transient.accuracy import ADAPTIVE_FACTOR, TIGHTER_TOL
+def test_the_time_error_of_adaptive_steps_comes_from_a_run_at_an_eighth_of_the_tolerance():
+    from ehl_multigrid.transient import adaptive_time_error
+    from ehl_multigrid.transient.accuracy import ADAPTIVE_FACTOR, TIGHTER_TOL, tighter_run_options
+    from ehl_multigrid.transient.solve import solve_transient_line
 
-    # the runs solve_with_time_error makes, kept: its second run is checked here instead of
-    # being solved again
-    made = []
-    real = accuracy.solve_transient_line
-
-    def kept(problem, feature, **kw):
-        made.append((problem, feature, kw, real(problem, feature, **kw)))
-        return made[-1][-1]
-
-    monkeypatch.setattr(accuracy, "solve_transient_line", kept)
-    run, est = solve_with_time_error(PB, DENT, dt=0.04, steps=6, points=65, slide_roll=1.0,
-                                     cavitation="mass-conserving", time_tol=1e-2,
-                                     snapshot_every=100000)
-    assert len(made) == 2 and made[0][3] is run
-    problem, feature, kw, tight = made[1]
-    # the second run: the same contact, feature and grid at half the output step over the same
-    # time and an eighth of the tolerance (the run _run(DENT, 12, 1e-2 * TIGHTER_TOL, dt=0.02))
-    assert problem is PB and feature is DENT
-    assert kw == dict(points=65, slide_roll=1.0, cavitation="mass-conserving", snapshot_every=100000,
-                      dt=0.02, steps=12, t_end=None, time_tol=1e-2 * TIGHTER_TOL)
+    kw = dict(points=65, slide_roll=1.0, cavitation="mass-conserving", snapshot_every=100000)
+    run = solve_transient_line(PB, DENT, dt=0.04, steps=6, time_tol=1e-2, **kw)
+    # the second run (the front door's time_error): the same contact, feature and grid at half
+    # the output step over the same time and an eighth of the tolerance (the run
+    # _run(DENT, 12, 1e-2 * TIGHTER_TOL, dt=0.02))
+    second = tighter_run_options(run, 1e-2)
+    assert second == dict(dt=0.02, steps=12, t_end=None, time_tol=1e-2 * TIGHTER_TOL)
+    tight = solve_transient_line(PB, DENT, **kw, **second)
+    est = adaptive_time_error(run, tight)
     # ... with smaller inner steps
     assert np.sum(tight.series["substeps"][1:]) > np.sum(run.series["substeps"][1:])
     for k in ("Hc", "Hm"):
         diff = np.max(np.abs(getattr(run, k) - getattr(tight, k)[::2])) / run.steady_film(k)
         assert diff > 0.0 and est[k] == pytest.approx(ADAPTIVE_FACTOR * diff, rel=1e-12)
-    assert adaptive_time_error(run, tight) == est
     # a second run at the same output step (here the run itself) is refused
     with pytest.raises(ValueError, match="half the output step"):
         adaptive_time_error(run, run)

@@ -123,8 +123,9 @@ def test_a_time_budget_that_forbids_the_refinement_returns_the_first_run_marked_
 
 def test_without_a_target_the_run_and_its_time_part_are_those_of_today():
     from ehl_multigrid.line.problem import LineProblem
-    from ehl_multigrid.transient.accuracy import solve_with_time_error
+    from ehl_multigrid.transient.accuracy import time_error
     from ehl_multigrid.transient.scene_feature import feature_from_scene_table
+    from ehl_multigrid.transient.solve import solve_transient_line
 
     opts = {"points": 129, "dt": DT, "steps": 20, "time_error": True}
     plain = ehl.solve(dent_scene(), physics="transient", accuracy=None, options=opts)
@@ -134,8 +135,10 @@ def test_without_a_target_the_run_and_its_time_part_are_those_of_today():
     scene = dent_scene()
     pb = LineProblem.from_scene(scene, xmin=-4.5)
     feature, body = feature_from_scene_table(scene.feature, pb)
-    direct, terr = solve_with_time_error(pb, feature, body=body, slide_roll=scene.slip, dt=DT, steps=20,
-                                         points=129)
+    # the run, and its time part from the run at twice the step (half the steps)
+    run = {"body": body, "slide_roll": scene.slip, "points": 129}
+    direct = solve_transient_line(pb, feature, dt=DT, steps=20, **run)
+    terr = time_error(direct, solve_transient_line(pb, feature, dt=2 * DT, steps=10, **run))
     for sol in (plain, budget, met):
         assert np.array_equal(sol.details.Hc_series, plain.details.Hc_series)
         assert np.array_equal(sol.fields["H"], direct.snapshots[20]["H"])

@@ -88,14 +88,19 @@ class SolveCache:
     refinement share one cache, so a solve is never repeated. A flooded solve starts from the
     cached solve with half its intervals (same nz and box) when there is one (``coarse`` of
     :func:`~thermal.tehl.point.solve_tehl_point` and :func:`~thermal.tehl.line.solve_tehl_line`),
-    and again from its own isothermal start when that start fails (:class:`CoarseStartError`)."""
+    and again from its own isothermal start when that start fails (:class:`CoarseStartError`).
+    ``start``: a line solve of another slip on the grid and box of ``options``; the solve with
+    exactly those options continues from it (:func:`~thermal.tehl.line.continuation`), the
+    others (an estimate's coarser grids, a refinement) start on their own."""
 
-    def __init__(self, scene: Scene, slip: float, options: TEHLOptions, point: bool) -> None:
+    def __init__(self, scene: Scene, slip: float, options: TEHLOptions, point: bool,
+                 start: Any = None) -> None:
         self.scene, self.slip, self.options, self.point = scene, float(slip), options, point
         self.results: dict[tuple[int, int, float], Any] = {}
         self.errors: dict[tuple[int, int, float], str] = {}
         #: a starved solve's meniscus: where the searches of the other grids start
         self.meniscus: float | None = None
+        self.start = start
 
     @classmethod
     def of(cls, result: Any) -> SolveCache:
@@ -118,6 +123,13 @@ class SolveCache:
 
             opts = self.options.with_changes(points=key[0], nz=key[1], box=key[2])
             coarser = self.results.get(((key[0] - 1) // 2 + 1, key[1], key[2]))
+            warm: dict[str, Any] = {"meniscus": self.meniscus}
+            o = self.options
+            if self.start is not None and key == (int(o.points), int(o.nz), float(o.box)):
+                from .line import continuation
+
+                warm = {"meniscus": self.meniscus, **continuation(self.start, self.scene)}
+                coarser = None  # the start is the solve's own (it sets the factors)
             if not self.point and math.isfinite(self.scene.supply.hoil):
                 coarser = None  # a starved solve searches its own meniscus: no coarse start
             for start in ([coarser, None] if coarser is not None else [None]):
@@ -125,7 +137,7 @@ class SolveCache:
                     if self.point:
                         res = solve_tehl_point(self.scene, self.slip, opts, coarse=start)
                     else:
-                        res = solve_tehl_line(self.scene, self.slip, opts, meniscus=self.meniscus, coarse=start)
+                        res = solve_tehl_line(self.scene, self.slip, opts, coarse=start, **warm)
                 except (ConvergenceError, InputError) as exc:
                     self.results[key] = None
                     self.errors[key] = str(exc).splitlines()[0][:200]
@@ -415,10 +427,12 @@ def corrected_result(result: Any, correction: dict[str, float]) -> Any:
 class AccurateTEHL:
     """Outcome of :func:`solve_tehl_to_accuracy`: the returned ``result`` (the most accurate
     solve of the sequence), its ``estimate``, whether it is ``accurate`` (estimate within
-    ``accuracy``; True without a target), the ``refinements`` made and a ``message``."""
+    ``accuracy``; True without a target), the ``refinements`` made and a ``message``. A film
+    solved without its estimate (:func:`thermal.front.film_alone`) has ``estimate`` None and is
+    accurate only without a target."""
 
     result: Any
-    estimate: TEHLErrorEstimate
+    estimate: TEHLErrorEstimate | None
     accuracy: float | None
     accurate: bool
     refinements: list[Refinement]
@@ -491,8 +505,8 @@ def _dominant(est: TEHLErrorEstimate) -> str:
 def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEHLOptions | None = None,
                            accuracy: float | None = 0.005, *, refine: bool = True,
                            max_points: int | None = None, max_nz: int = MAX_NZ, box_limit: float = 4.0,
-                           time_budget: float = 600.0,
-                           progress: Callable[[str], None] | None = None) -> AccurateTEHL:
+                           time_budget: float = 600.0, progress: Callable[[str], None] | None = None,
+                           start: Any = None) -> AccurateTEHL:
     """Solve a TEHL line or point contact, estimate its error (:func:`estimate_error`) and,
     with ``refine`` and an ``accuracy`` (relative error of Hc and Hm), refine the part that
     dominates (:func:`step_candidates`: points along X, nz, the box, the outer tolerances) with
@@ -500,7 +514,9 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
     until the estimate meets the target or a budget runs out: ``max_points`` along X (default
     16385 line, 1025 point), ``max_nz``, a box ``box_limit`` times the default, ``time_budget``
     seconds (a refinement predicted to overrun it is not started). Solves already made for an
-    estimate are reused. ``progress(text)`` receives one line per solve.
+    estimate are reused. ``progress(text)`` receives one line per solve. ``start``: a line
+    solve of the same scene at another slip on the grid and box of ``options``, from which the
+    first solve continues (:class:`SolveCache`).
 
     Returns the most accurate converged solve of the sequence (smallest estimated film error)
     with its estimate; ``accurate`` is False when that estimate misses the target (or is
@@ -518,7 +534,10 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
     wall_speeds(scene.us, slip)
     if point:
         require_flooded_point(scene)
-    tehl = _TEHLControl(scene, slip, opts, point, limit, max_nz, box_limit, accuracy)
+    if point and start is not None:
+        raise InputError("start applies to line contacts: a TEHL point solve starts from its own "
+                         "isothermal solve")
+    tehl = _TEHLControl(scene, slip, opts, point, limit, max_nz, box_limit, accuracy, start)
     out = control(tehl, Resolution(opts.points, opts.box, 1.0, opts.nz), accuracy, refine=refine,
                   time_budget=time_budget, max_points=limit, progress=progress)
     if not out.converged:
@@ -558,7 +577,7 @@ class _TEHLControl:
     :func:`step_candidates`."""
 
     def __init__(self, scene: Scene, slip: float, opts: TEHLOptions, point: bool, limit: int,
-                 max_nz: int, box_limit: float, accuracy: float | None = None) -> None:
+                 max_nz: int, box_limit: float, accuracy: float | None = None, start: Any = None) -> None:
         self.scene, self.slip, self.opts, self.point = scene, slip, opts, point
         self.limit, self.max_nz, self.box_limit = limit, max_nz, box_limit
         self.accuracy = accuracy
@@ -566,7 +585,7 @@ class _TEHLControl:
         #: below DOMAIN_REUSE_BELOW of the target (the core's rule for the box change)
         self.z_changes: dict[tuple[int, float, float], dict[str, float]] = {}
         self.dimensions = 2 if point else 1
-        self.cache = SolveCache(scene, slip, opts, point)
+        self.cache = SolveCache(scene, slip, opts, point, start)
         self.cache_scale = 1.0
         self.domains: dict[float, dict[str, Any]] = {}
         self.estimates: dict[int, TEHLErrorEstimate] = {}

@@ -64,7 +64,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument("--no-estimate", dest="estimate", action="store_false",
                    help="skip the error estimate (a curve estimates it at its first and last slip "
-                        "and at its largest friction: about three more solves each)")
+                        "and at its largest friction: about three more solves each); the film is then "
+                        "judged on its outer iteration alone (--accuracy does not apply)")
 
 
 def curve_slips_to_estimate(curve: list[Any]) -> list[int]:
@@ -98,8 +99,37 @@ def curve_error(curve: list[Any]) -> dict[str, Any]:
     return {**worst, "error_at_slips": per}
 
 
+def traction_curve_films(scene: Scene, slips: list[float], options: Any) -> list[Any]:
+    """The TEHL films of a traction curve through the front door, on the grid of ``options``
+    (a :class:`~thermal.tehl.options.TEHLOptions`): each slip solved without its estimate
+    (``estimate=False``, judged on its outer iteration) and continuing from the previous
+    slip's solution (``start``: its isothermal start and film, or a starved inlet's meniscus),
+    as :func:`thermal.tehl.line.tehl_traction_curve` solves them. A slip that fails ends the
+    curve: :class:`ConvergenceError` with its message (exit 3)."""
+    from ehl_multigrid import front
+
+    grid = {"points": options.points, "nz": options.nz, "box": options.box,
+            "compressive_heating": options.compressive_heating}
+    sols: list[Any] = []
+    for s in slips:
+        sol = front.solve(scene, physics="thermal", accuracy=None,
+                          options={**grid, "slip": float(s), "estimate": False, "start": sols[-1] if sols else None})
+        require_computed(sol)
+        sols.append(sol)
+    return [sol.raw.result for sol in sols]
+
+
 def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
-    from .line import TEHLOptions, solve_tehl_line, tehl_traction_curve
+    """``ehl tehl``: every film through the front door :func:`ehl_multigrid.solve` (the
+    thermal physics). One slip: refined towards ``--accuracy`` unless ``--points`` or ``--nz``
+    fix the grid (then judged); ``--no-estimate``: the film alone, judged on its outer
+    iteration. Several slips: a traction curve on one grid (the one the accuracy loop refines
+    the largest slip to, unless given), each slip solved without its estimate and continuing
+    from the previous slip's film (option ``start``); the curve is then judged at its first
+    and last slip and its friction peak (:func:`curve_error`)."""
+    from ehl_multigrid import front
+
+    from .options import TEHLOptions
 
     scene = load_scene(args.scene)
     if scene.kind != "line":
@@ -108,44 +138,38 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
                          f"ehl solve {scene.name} --thermal [--slip S])")
     changes = {k: v for k, v in (("points", args.points), ("nz", args.nz)) if v is not None}
     accuracy = getattr(args, "accuracy", None)
+    estimate = getattr(args, "estimate", True)
     opts = TEHLOptions(**changes, compressive_heating=getattr(args, "compressive_heating", True))
     slips = parse_slips(args.slip) if args.slip is not None else [scene.slip]
     if len(slips) == 1:
-        if getattr(args, "estimate", True):
-            # the front door's thermal physics on this fixed grid: the solve and its estimate
-            from ehl_multigrid import front
-
+        options = {**changes, "compressive_heating": opts.compressive_heating, "slip": slips[0]}
+        if estimate:
             # refined towards --accuracy unless --points or --nz fixes the grid (then judged)
-            sol = front.solve(scene, physics="thermal", accuracy=accuracy,
-                              options={**changes, "compressive_heating": opts.compressive_heating,
-                                       "slip": slips[0]})
-            done = require_computed(sol)
-            r, estimate, status = done.result, done.estimate.payload(), sol.status.label
-            estimate.update(points=r.options.points, nz=r.options.nz, message=sol.message,
-                            wall_total_s=sol.outcome.wall_s)
+            sol = front.solve(scene, physics="thermal", accuracy=accuracy, options=options)
         else:
-            # (the front door always estimates the error: --no-estimate solves the film alone;
-            # a thermal solve that does not converge raises)
-            r, estimate, status = solve_tehl_line(scene, slips[0], opts), {}, "converged"
+            # the film alone: its error unknown, so judged on its outer iteration
+            sol = front.solve(scene, physics="thermal", accuracy=None, options={**options, "estimate": False})
+        done = require_computed(sol)
+        r = done.result
         payload = {"scene": scene.name, **solve_payload(r), **{"properties": thermal_properties(scene)}}
-        payload.update(estimate)
-        payload["status"] = status
+        if done.estimate is not None:
+            payload.update(done.estimate.payload(), points=r.options.points, nz=r.options.nz,
+                           wall_total_s=sol.outcome.wall_s)
+        payload.update(message=sol.message, status=sol.status.label)
         if not args.json:  # with --json the ehl command prints the returned payload
             print_table({k: v for k, v in payload.items() if k not in ("outer", "properties")})
         return payload
     calibrated = None
-    if accuracy is not None and not changes and getattr(args, "estimate", True):
+    if accuracy is not None and not changes and estimate:
         # the curve's grid: the one the accuracy loop refines the largest slip's solve to (the
         # most heating), through the front door; the curve is then judged at its three slips
-        from ehl_multigrid import front
-
         at = max(slips, key=abs)
         sol = front.solve(scene, physics="thermal", accuracy=accuracy,
                           options={"compressive_heating": opts.compressive_heating, "slip": at})
         ro = require_computed(sol).result.options
         opts = dataclasses.replace(opts, points=ro.points, nz=ro.nz, box=ro.box)
         calibrated = {"slip": at, "points": ro.points, "nz": ro.nz, "box": ro.box, "status": sol.status.label}
-    curve = tehl_traction_curve(scene, np.asarray(slips), opts)
+    curve = traction_curve_films(scene, slips, opts)
     payload = {"scene": scene.name, "slip": [r.slip for r in curve],
                "friction_coefficient": [r.friction_coefficient for r in curve],
                "friction": [r.friction for r in curve], "Hc": [r.Hc for r in curve], "Hm": [r.Hm for r in curve],
@@ -159,7 +183,7 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
         # a finite [supply] hoil: each slip's film is starved at its own meniscus
         payload.update({k: [r.starved[k] for r in curve] for k in ("meniscus_x", "Hc_ratio", "mass_balance_error")})
         payload["hoil"] = curve[0].starved["hoil"]
-    if getattr(args, "estimate", True):
+    if estimate:
         payload.update(curve_error(curve))
         worst = max(payload["Hc_error"], payload["Hm_error"])
         if accuracy is not None and payload["converged"] and not worst <= accuracy:

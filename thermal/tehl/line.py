@@ -74,6 +74,8 @@ class TEHLLineResult(TEHLResult):
     deviation from it over the faces up to the pressure maximum;
     starved : for a finite ``[supply] hoil`` (:func:`solve_tehl_line`), the starvation
         observables (meniscus, supply, flooded film, mass balance), else None.
+    isothermal : the isothermal start the outer iteration began from (flooded inlets; it does
+        not depend on the slip: :func:`continuation` hands it to a solve of another slip).
     """
 
     problem: LineProblem
@@ -87,6 +89,7 @@ class TEHLLineResult(TEHLResult):
     flux_in: float = math.nan
     flux_balance: float = math.nan
     starved: dict[str, Any] | None = None
+    isothermal: Iterate | None = field(default=None, repr=False)
 
     @property
     def x(self) -> np.ndarray:
@@ -380,7 +383,7 @@ def _solve_flooded(scene: Scene, slip: float, opts: TEHLOptions, start: Iterate 
         friction_decoupled=decoupled.force_per_length * scene.length, T_max=float(np.max(sol.T)),
         heat=heat, heat_partition=heat_partition(heat), heat_balance_error=abs(heat.get("balance", 0.0)),
         a=a, c=c, outer=done.outer, report=done.report, options=opts, thermal=sol,
-        wall_s=time.perf_counter() - t0, flux_in=flux_in, flux_balance=flux_balance,
+        wall_s=time.perf_counter() - t0, flux_in=flux_in, flux_balance=flux_balance, isothermal=iso,
     )
 
 
@@ -473,14 +476,31 @@ def solve_tehl_line_starved(scene: Scene, slip: float | None = None, options: TE
     return r
 
 
+def continuation(previous: TEHLLineResult | None, scene: Scene) -> dict[str, Any]:
+    """The keywords of :func:`solve_tehl_line` that continue ``previous``, a solve of the same
+    ``scene`` at another slip on the same grid and box (a traction curve's previous slip):
+    flooded -- its isothermal start (it does not depend on the slip) and its solution, where
+    the outer iteration starts; starved -- its meniscus, where the search starts. None: no
+    keywords (a solve of its own)."""
+    if previous is None:
+        return {}
+    if math.isfinite(scene.supply.hoil):
+        xm = (previous.starved or {}).get("meniscus_x")
+        return {"meniscus": xm} if xm is not None and math.isfinite(xm) else {}
+    if previous.grid_films is not None:
+        # extrapolated films (corrected_result): the outer iteration continues from the grid's own
+        previous = replace(previous, Hc=previous.grid_films[0], Hm=previous.grid_films[1])
+    return {"start": previous.isothermal, "guess": previous}
+
+
 def tehl_traction_curve(scene: Scene, slips: Any = None, options: TEHLOptions | None = None,
                         **changes: Any) -> list[TEHLLineResult]:
-    """TEHL solves over ``slips`` (default: the scene's slip range, else 21 slips over [0, 1]).
-
-    The isothermal start is solved once (it does not depend on the slip) and each slip's
-    outer iteration starts from the previous slip's solution. A starved scene (finite
-    ``[supply] hoil``) solves each slip starved, its meniscus search starting from the
-    previous slip's meniscus.
+    """TEHL solves over ``slips`` (default: the scene's slip range, else 21 slips over [0, 1]),
+    each slip continuing from the previous one (:func:`continuation`): a flooded inlet solves
+    the isothermal start once and starts each outer iteration from the previous slip's
+    solution; a starved one (finite ``[supply] hoil``) starts each meniscus search from the
+    previous slip's meniscus. ``ehl tehl --slip a,b,c`` solves the same sequence through the
+    front door (``options={"start": ...}``).
     """
     from ..traction import default_slips
 
@@ -489,14 +509,6 @@ def tehl_traction_curve(scene: Scene, slips: Any = None, options: TEHLOptions | 
     if S.size == 0:
         raise InputError("slip list is empty")
     out: list[TEHLLineResult] = []
-    if math.isfinite(scene.supply.hoil):
-        # starved: each slip searches its meniscus, from the previous slip's
-        for s in S:
-            prev = out[-1].starved["meniscus_x"] if out else None
-            out.append(solve_tehl_line(scene, float(s), opts,
-                                       meniscus=prev if prev is not None and math.isfinite(prev) else None))
-        return out
-    iso = isothermal_start(scene, opts)
     for s in S:
-        out.append(solve_tehl_line(scene, float(s), opts, start=iso, guess=out[-1] if out else None))
+        out.append(solve_tehl_line(scene, float(s), opts, **continuation(out[-1] if out else None, scene)))
     return out
