@@ -3,10 +3,11 @@ registered in the entry-point group ``ehl.physics`` so the core never imports th
 
 :func:`solve_thermal` wraps :func:`thermal.tehl.accuracy.solve_tehl_to_accuracy` (line and
 point contacts; a line scene with a finite ``[supply] hoil`` is solved starved, a point scene
-with one is refused), or with ``estimate=False`` the TEHL solve alone (:func:`film_alone`) and returns its answer as a :class:`~ehl_multigrid.solution.Solution`:
-the TEHL films, the budget of :func:`thermal.tehl.accuracy.estimate_error` as error parts
-(``grid`` along X, ``nz`` across the film, ``domain``, ``iteration``) and the thermal
-quantities in :class:`~ehl_multigrid.solution.ThermalDetails`.
+with one is refused), or with ``estimate=False`` the TEHL solve alone (:func:`film_alone`),
+and returns its answer as a :class:`~ehl_multigrid.solution.Solution`: the TEHL films, the
+budget of :func:`thermal.tehl.accuracy.estimate_error` as error parts (``grid`` along X,
+``nz`` across the film, ``domain``, ``iteration``) and the thermal quantities in
+:class:`~ehl_multigrid.solution.ThermalDetails`.
 """
 
 from __future__ import annotations
@@ -95,8 +96,9 @@ def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
     if not isinstance(estimate, bool):
         raise InputError(f"option estimate = {estimate!r} must be true or false")
     previous = start_result(run.pop("start", None), scene, dc)
-    if not estimate and run:
-        raise InputError(f"option{'s' if len(run) > 1 else ''} {sorted(run)} with estimate = False: "
+    refused = sorted(k for k in REFINE_KEYS if k in run)
+    if not estimate and refused:
+        raise InputError(f"option{'s' if len(refused) > 1 else ''} {refused} with estimate = False: "
                          f"the refinement towards the accuracy needs the error estimate")
     try:
         with _threads(threads):

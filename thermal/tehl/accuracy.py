@@ -128,7 +128,7 @@ class SolveCache:
             if self.start is not None and key == (int(o.points), int(o.nz), float(o.box)):
                 from .line import continuation
 
-                warm = {"meniscus": self.meniscus, **continuation(self.start, self.scene)}
+                warm.update(continuation(self.start, self.scene))
                 coarser = None  # the start is the solve's own (it sets the factors)
             if not self.point and math.isfinite(self.scene.supply.hoil):
                 coarser = None  # a starved solve searches its own meniscus: no coarse start
