@@ -35,7 +35,11 @@ def film_calibration(ctx: RunContext) -> tuple[float, str]:
                        f"{hc_ff * 1e9:.4g}/{hc_fit * 1e9:.4g} nm = {k:.4g} at the operating point, applied "
                        f"over the speed range; the starvation of each supply from (6.4)")
         k = hc / hc_fit
-        return k, (f"fitted film calibrated on the solved film: hc_solved/hc_fit = {hc * 1e9:.4g}/{hc_fit * 1e9:.4g} nm "
+        what = "solved film"
+        if film.thermal:
+            # its thermal reduction is the operating speed's; the heating grows with the speed squared
+            what = "coupled thermal film (its thermal reduction at the operating speed)"
+        return k, (f"fitted film calibrated on the {what}: hc_solved/hc_fit = {hc * 1e9:.4g}/{hc_fit * 1e9:.4g} nm "
                    f"= {k:.4g} at the operating point, applied over the speed range")
     setting = ctx.setting("film") if ctx.plan is not None else "fit"
     return 1.0, f"fitted film ({setting}; hc_fit = {hc_fit * 1e9:.4g} nm at the operating point)"

@@ -7,9 +7,10 @@ tolerance. The planner's thermal decision is made at the scene's operating slip(
 film and the Stribeck curve; when the two differ the stage says so in the plan's notes.
 
 The friction at the scene's own operating slip is computed at that slip with the chosen
-model, with an error estimate (:func:`operating_friction`). EHL pressure and film when the
-core film stage solved them (the planner rejected the fit), Hertz with the fitted film
-otherwise; the report says which.
+model, with an error estimate (:func:`operating_friction`). EHL pressure and film when a stage
+solved them (the core film stage where the planner rejected the fit; the thermal film stage's
+coupled film where the plan includes thermal EHL), Hertz with the fitted film otherwise; the
+report says which.
 """
 
 from __future__ import annotations
@@ -165,8 +166,9 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
     fitted = ("fitted film" if math.isinf(scene.supply.hoil) else
               f"fitted film starved by Chevalier's (6.1) for hoil = {scene.supply.hoil * 1e9:.4g} nm")
     if film is not None:
-        film_source = (f"solved EHL pressure and film of the film stage (hc = {film.hc * 1e9:.4g} nm; "
-                       f"the {fitted} gives {hc_fit * 1e9:.4g} nm)")
+        solved = ("coupled thermal EHL pressure and film of the thermal film stage" if film.thermal else
+                  "solved EHL pressure and film of the film stage")
+        film_source = f"{solved} (hc = {film.hc * 1e9:.4g} nm; the {fitted} gives {hc_fit * 1e9:.4g} nm)"
     else:
         film_source = f"Hertz pressure and the {fitted} hc = {hc_fit * 1e9:.4g} nm ({ctx.setting('film')})"
     res.meta["film_source"] = film_source

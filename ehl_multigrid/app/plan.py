@@ -296,22 +296,27 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
                                        f"no slip at the operating point: no shear stress; {EYRING_SCOPE}"))
 
     # 3b. thermal EHL: heat in the inlet thins the film (the decoupled method keeps its friction
-    # within 0.6 % on the thesis's line conditions, validation/tehl/REPORT.md, but not its film)
-    reductions = []
+    # within 0.6 % on the thesis's line conditions, validation/tehl/REPORT.md, but not its film).
+    # Decided at the operating point, where the film is solved; the scene's ranges only noted
     L_scene = scene.thermal_properties()["thermal_loading"]  # beta eta0 um^2/k: ~ us^2
-    for u in speeds:
-        L_T = L_scene * (float(u) / scene.us) ** 2
-        reductions.append((1.0 - float(fits.gupta_thermal_factor(L_T, s_worst, scene.hertz.pmax / scene.E_reduced)),
-                           L_T, float(u)))
-    red, L_T, u_red = max(reductions)
+    ph_E = scene.hertz.pmax / scene.E_reduced
+    red = 1.0 - float(fits.gupta_thermal_factor(L_scene, scene.slip, ph_E))
     need = red > tol
+    # a line contact's coupled solve costs seconds and runs as a stage of the thermal layer; a
+    # point contact's costs 10-60 s (docs/thermal.md) and is advised
+    solved = "coupled thermal EHL film (thermal film stage)" if scene.kind == "line" else \
+        "thermal EHL advised (ehl solve SCENE --thermal)"
+    why = (f"thermal film reduction {red:.2g} by Gupta et al. (1992) at the operating point (thermal "
+           f"loading {L_scene:.3g}, us {scene.us:.3g} m/s, slip {scene.slip:g})")
+    if len(speeds) > 1 or s_worst != abs(scene.slip):
+        worst = max((1.0 - float(fits.gupta_thermal_factor(L_scene * (float(u) / scene.us) ** 2, s_worst, ph_E)),
+                     float(u)) for u in speeds)
+        why += (f"; up to {worst[0]:.2g} over the scene's ranges (us {worst[1]:.3g} m/s, slip {s_worst:g}), "
+                f"where the curves keep the isothermal film")
     plan.decisions.append(Decision(
-        "tehl", need, "thermal EHL advised (ehl solve SCENE --thermal)" if need else "isothermal film",
-        red, tol, "-",
-        f"thermal film reduction {red:.2g} by Gupta et al. (1992) at thermal loading {L_T:.3g} "
-        f"(us {u_red:.3g} m/s), slip {s_worst:g}; the coupled solver measured 35-70 % of it on "
-        f"the central film but more on the minimum film at high load and slip (Hm 0.75 of "
-        f"isothermal at 1.6 GPa, S = 1)",
+        "tehl", need, solved if need else "isothermal film", red, tol, "-",
+        f"{why}; the coupled solver measured 35-70 % of it on the central film but more on the "
+        f"minimum film at high load and slip (Hm 0.75 of isothermal at 1.6 GPa, S = 1)",
     ))
 
     # 4. starvation

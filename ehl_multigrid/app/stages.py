@@ -9,7 +9,8 @@ The plan is read-only to the stages: what a stage learns while it runs (a note, 
 departs from its decision, such as a film fit after a failed solve) goes into its
 :class:`StageOutput`, and later stages read it there (:meth:`RunContext.setting`).
 
-The later stages read the film stage's solved film as a typed
+The later stages read the last solved film (the film stage's, or the thermal layer's coupled
+thermal film that follows it) as a typed
 :class:`~ehl_multigrid.model.solved_film.SolvedFilm` (:meth:`RunContext.film`; none when the film
 is the fit or an estimate after a failed solve); a stage's
 :class:`~ehl_multigrid.model.results.Result` is what goes to the HDF5 file.
@@ -60,8 +61,8 @@ class StageOutput:
     #: the setting the stage used where it departs from its plan decision (e.g. "fit (solver
     #: fallback)" after a failed film solve); None: the decision's
     setting: str | None = None
-    #: the film stage's solved film, what later stages compute on (None: a fit or an estimate,
-    #: and for every other stage)
+    #: the stage's solved film, what later stages compute on (None: a fit or an estimate, and for
+    #: stages that solve no film)
     film: SolvedFilm | None = None
 
 
@@ -84,10 +85,12 @@ class RunContext:
         return out.result if out is not None else None
 
     def film(self) -> SolvedFilm | None:
-        """The film stage's solved film, or ``None`` when the stage did not run or its film is
-        the fit or an estimate (Hertz pressure with a fitted film)."""
-        out = self.outputs.get("film")
-        return out.film if out is not None else None
+        """The solved film the later stages compute on: the last one a stage produced (the
+        thermal layer's coupled thermal film when that stage ran and succeeded, else the film
+        stage's), or ``None`` when no stage solved one (the film is the fit or an estimate:
+        Hertz pressure with a fitted film)."""
+        films = [out.film for out in self.outputs.values() if out.film is not None]
+        return films[-1] if films else None
 
     def setting(self, model: str) -> str:
         """The setting ``model`` ran with: its stage's own where it departed from the plan,

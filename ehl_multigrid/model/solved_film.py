@@ -15,8 +15,9 @@ import numpy as np
 from .errors import InputError
 from .scene import Scene
 
-#: result kinds of a solved EHL film (the naming contract of the line and point solvers)
-FILM_KINDS = {"ehl_line": "line", "ehl_point": "point"}
+#: result kinds of a solved EHL film (the naming contract of the line and point solvers; the
+#: thermal layer's coupled TEHL line film)
+FILM_KINDS = {"ehl_line": "line", "ehl_point": "point", "tehl_line": "line"}
 
 
 def _read_only(a: Any) -> np.ndarray:
@@ -43,6 +44,8 @@ class SolvedFilm:
     h : film thickness [m], the shape of ``p``.
     status : the solve's status label (``"converged"`` or ``"inaccurate"``; None when the
         result does not say).
+    thermal : the film of the coupled thermal EHL solve (result kind ``tehl_line``), whose
+        viscosity follows the temperature across the film; False: an isothermal film.
     """
 
     contact: str
@@ -54,15 +57,16 @@ class SolvedFilm:
     p: np.ndarray
     h: np.ndarray
     status: str | None
+    thermal: bool = False
 
     @property
     def kind(self) -> str:
-        """The result kind of the film (``"ehl_line"`` or ``"ehl_point"``)."""
-        return f"ehl_{self.contact}"
+        """The result kind of the film (``"ehl_line"``, ``"ehl_point"`` or ``"tehl_line"``)."""
+        return f"{'tehl' if self.thermal else 'ehl'}_{self.contact}"
 
     @classmethod
     def from_result(cls, res: Any) -> SolvedFilm:
-        """The film of an ``ehl_line`` or ``ehl_point`` :class:`~ehl_multigrid.model.results.Result`
+        """The film of an ``ehl_line``, ``ehl_point`` or ``tehl_line`` :class:`~ehl_multigrid.model.results.Result`
         that carries its scene and the dimensional fields ``x`` (``y``), ``p``, ``h``.
 
         Raises
@@ -87,4 +91,5 @@ class SolvedFilm:
             x=_read_only(res["x"]), y=_read_only(res["y"]) if contact == "point" else None,
             p=_read_only(res["p"]), h=_read_only(res["h"]),
             status=None if status is None else status.decode() if isinstance(status, bytes) else str(status),
+            thermal=res.kind.startswith("tehl_"),
         )

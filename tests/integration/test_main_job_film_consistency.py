@@ -14,8 +14,10 @@ from ehl_multigrid.model.scene import load_scene
 def rough_line_at_full_film():
     """Thesis page-63 rough line contact (Rq 70 nm) at us = 5 m/s: Lambda about 6.5 at the
     operating point, so the Stribeck curve there is full film and comparable with the smooth
-    film of the film stage. The expected Moes fit deviation (0.15) exceeds the fast tolerance."""
-    return load_scene("page63_line_2000N").with_operating(us=5.0)
+    film of the film stage. The expected Moes fit deviation (0.15) exceeds the fast tolerance.
+    In pure rolling: at its slip of 2 the inlet heating (Gupta's reduction 0.12 > 0.1) would
+    put the coupled thermal film in their place (tests/thermal/test_thermal_film_stage.py)."""
+    return load_scene("page63_line_2000N").with_operating(us=5.0, slip=0.0)
 
 
 def test_stages_use_the_solved_film_when_the_planner_rejects_the_fit(rough_line_at_full_film, tmp_path):

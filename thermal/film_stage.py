@@ -1,0 +1,77 @@
+"""Main-job stage: the coupled thermal EHL film of a line contact (registered in ``ehl.stages``).
+
+The planner's ``tehl`` decision weighs the thermal film reduction (Gupta et al. 1992) against
+the fidelity's tolerance. Where it is included and the contact is a line, this stage solves the
+film again with the temperature across it (thermal.tehl: Reynolds with Eyring flow factors,
+the energy equation (3.5) and the surface temperatures, coupled by an outer iteration) through
+the front door :func:`ehl_multigrid.solve` (``physics="thermal"``) at the plan's tolerance and
+the scene's operating slip. Its film is the one the later stages (traction, Stribeck) compute
+on (:meth:`~ehl_multigrid.app.stages.RunContext.film` takes the last solved film). A point
+contact's coupled solve costs 10-60 s (docs/thermal.md): the plan advises it instead
+(``ehl solve SCENE --thermal``), and this stage does not run.
+
+A solve that fails leaves the film stage's isothermal film to the later stages and says so:
+its summary's ``converged`` is false (exit 3), since the plan found the isothermal film off by
+more than the tolerance.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from ehl_multigrid.app.stages import RunContext, StageOutput
+from ehl_multigrid.model.solved_film import SolvedFilm
+
+#: the result keys of the coupled solve that the stage's summary carries
+SUMMARY_KEYS = ("Hc", "Hm", "hc", "hm", "Hc_isothermal", "Hm_isothermal", "film_reduction", "T_max",
+                "friction_coefficient", "outer_iterations", "slip")
+
+
+def thermal_film_stage(ctx: RunContext) -> StageOutput | None:
+    """The coupled thermal EHL film of a line scene whose plan includes ``tehl`` (None for
+    other scenes and plans)."""
+    from ehl_multigrid import front
+    from ehl_multigrid.solution import Status
+
+    scene, plan = ctx.scene, ctx.plan
+    if scene.kind != "line" or not plan.includes("tehl"):
+        return None
+    options: dict[str, Any] = {} if ctx.time_budget is None else {"time_budget": ctx.time_budget}
+    sol = front.solve(scene, physics="thermal", accuracy=plan.tolerance, options=options or None)
+    usable = sol.status in (Status.CONVERGED, Status.INACCURATE) and sol.fields
+    res = sol.to_result() if usable else None
+    if res is None or not (res.scalars.get("hm") or 0.0) > 0.0:
+        why = (sol.message or "no message").splitlines()[0]
+        note = (f"the coupled thermal EHL solve did not give a film ({sol.status.label}: {why}); the later "
+                f"stages compute on the film stage's isothermal film, which the plan finds off by more "
+                f"than the tolerance {plan.tolerance:g}")
+        summary = {"converged": False, "status": sol.status.label, "message": note}
+        return StageOutput("thermal_film", None, summary, [], f"NO THERMAL FILM: {note}.", notes=[note])
+    err = sol.error
+    summary = {k: res.scalars.get(k) for k in SUMMARY_KEYS}
+    summary.update(points=sol.grid.points if sol.grid is not None else None, nz=sol.details.nz,
+                   Hc_error=err.Hc, Hm_error=err.Hm, converged=True, status=sol.status.label,
+                   message=sol.message)
+    notes = []
+    if sol.status is Status.INACCURATE:
+        notes.append(f"thermal film solve did not reach the {plan.tolerance:g} target: estimated errors "
+                     f"Hc {err.Hc:.2g}, Hm {err.Hm:.2g}")
+    s = res.scalars
+    friction = f", friction coefficient {s['friction_coefficient']:.4g}" if s["slip"] != 0.0 else ""
+    text = (f"Coupled thermal EHL film at the operating slip {s['slip']:g} on {summary['points']} points "
+            f"along X, nz {summary['nz']}: hc = {s['hc'] * 1e9:.4g} nm, hm = {s['hm'] * 1e9:.4g} nm "
+            f"(Hc/Hc_isothermal {s['Hc'] / s['Hc_isothermal']:.4g}, Hm/Hm_isothermal "
+            f"{s['Hm'] / s['Hm_isothermal']:.4g} on the same grid); largest oil temperature "
+            f"{s['T_max']:.4g} degC{friction}; estimated errors Hc {err.Hc:.2g}, Hm {err.Hm:.2g} (target "
+            f"{plan.tolerance:g}); status: {sol.status.label}. The later stages compute on this film.")
+    figures: list[Path] = []
+    if ctx.plots:
+        from .tehl.plots import plot_tehl
+
+        figures.append(Path(plot_tehl(res, ctx.outdir / f"{scene.name}_thermal_film.png")))
+    return StageOutput("thermal_film", res, summary, figures, text, notes=notes, film=SolvedFilm.from_result(res))
+
+
+# after the core film stage, before the traction curve (order 20) that computes on its film
+thermal_film_stage.order = 10
