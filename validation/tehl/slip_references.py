@@ -45,6 +45,9 @@ SPEEDS = (6.5, 20.6, 65.0)     # sum speeds [m/s]: L about 0.01, 0.1, 1
 SLIPS = (0.0, 0.5, 1.0, 2.0)
 CHECK_SPEED = 20.6             # the mechanism check (alpha_T = 0) runs at this speed
 CHECK_SLIPS = (0.0, 1.0, 2.0)
+# ran over 20 min without an answer on the loaded 2-core machine (L = 1 with a stationary
+# surface); recorded as not run rather than left to block the study
+SKIP = {(65.0, 2.0)}
 
 
 def murch_wilson(L: float) -> float:
@@ -122,6 +125,9 @@ def main() -> None:
     slips = (0.0, 1.0) if a.quick else SLIPS
     for us in speeds:
         for S in slips:
+            if (us, S) in SKIP:
+                data.setdefault(f"tehl_{us:g}_{S:g}", {"status": "not run (over 20 min, see SKIP)"})
+                continue
             once(f"tehl_{us:g}_{S:g}", lambda us=us, S=S: run(us, S))
     for S in ((1.0,) if a.quick else CHECK_SLIPS):
         once(f"noexp_{CHECK_SPEED:g}_{S:g}", lambda S=S: run(CHECK_SPEED, S, expansion=False))
