@@ -26,9 +26,100 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 # `ehl` command sets them (multigrid.threads.passive_openmp_wait); before numba is imported
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
+_KERNEL_HELPERS = pytest.StashKey[tuple]()
+
 #: per-test timeout [s] of a `slow` study without its own @pytest.mark.timeout (the default run's
 #: is `timeout` in pyproject's [tool.pytest.ini_options])
 SLOW_TIMEOUT = 1800
+
+
+#: seconds a worker waits for the kernel-cache helpers before it compiles for itself
+KERNEL_CACHE_WAIT = 300.0
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_sessionstart(session: pytest.Session) -> None:
+    """On the xdist controller, before the workers start, when numba's cache is fresh (a new
+    clone, CI): one helper process per part of tests/kernel_cache.py fills it, each holding a
+    lock that the workers wait on before their first test (docs/testing.md, "Workers"), so that
+    the workers load the kernels instead of both compiling them. ``EHL_TEST_KERNEL_CACHE=0``
+    turns it off."""
+    config = session.config
+    if (hasattr(config, "workerinput") or config.pluginmanager.getplugin("dsession") is None
+            or config.option.collectonly or os.environ.get("EHL_TEST_KERNEL_CACHE") == "0"):
+        return
+    try:
+        import fcntl
+    except ImportError:  # no flock: the workers compile for themselves
+        return
+    import importlib.util
+    import subprocess
+    import tempfile
+    from pathlib import Path
+
+    here = Path(__file__).parent
+    spec = importlib.util.spec_from_file_location("_kernel_cache", here / "kernel_cache.py")
+    kernel_cache = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(kernel_cache)
+    if not kernel_cache.cold():
+        return
+    # the helpers import the package this process (and so each worker) finds
+    import ehl_multigrid
+
+    root = str(Path(ehl_multigrid.__file__).parent.parent)
+    env = {**os.environ, "NUMBA_NUM_THREADS": "1",
+           "PYTHONPATH": os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")]))}
+    folder = Path(tempfile.mkdtemp(prefix="ehl-kernel-cache-"))
+    helpers = []
+    for part in kernel_cache.PARTS:
+        fd = os.open(folder / f"{part}.lock", os.O_CREAT | os.O_RDWR)
+        fcntl.flock(fd, fcntl.LOCK_EX)  # held by the helper until it exits
+        with open(folder / f"{part}.err", "w") as err:
+            helpers.append((part, subprocess.Popen([sys.executable, str(here / "kernel_cache.py"), part],
+                                                   env=env, pass_fds=(fd,), stdin=subprocess.DEVNULL,
+                                                   stdout=subprocess.DEVNULL, stderr=err)))
+        os.close(fd)
+    os.environ["EHL_TEST_KERNEL_LOCKS"] = str(folder)
+    config.stash[_KERNEL_HELPERS] = (folder, helpers)
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtestloop(session: pytest.Session) -> None:
+    """An xdist worker waits for the kernel-cache helpers (:func:`pytest_sessionstart`) before
+    its first test, at most :data:`KERNEL_CACHE_WAIT` seconds."""
+    folder = os.environ.get("EHL_TEST_KERNEL_LOCKS")
+    if not folder or "PYTEST_XDIST_WORKER" not in os.environ:
+        return
+    import fcntl
+    import time
+    from pathlib import Path
+
+    end = time.monotonic() + KERNEL_CACHE_WAIT
+    for lock in Path(folder).glob("*.lock"):
+        with open(lock) as f:
+            while time.monotonic() < end:
+                try:
+                    fcntl.flock(f, fcntl.LOCK_SH | fcntl.LOCK_NB)
+                    break
+                except BlockingIOError:
+                    time.sleep(0.1)
+
+
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    """The controller ends its kernel-cache helpers (long done unless the run was short) and
+    says which failed: not a test failure, the workers compiled what was missing."""
+    folder, helpers = session.config.stash.get(_KERNEL_HELPERS, (None, []))
+    for part, p in helpers:
+        if p.poll() is None:
+            p.kill()
+            p.wait()
+        elif p.returncode:
+            last = ((folder / f"{part}.err").read_text().strip().splitlines() or [""])[-1]
+            sys.stderr.write(f"tests/kernel_cache.py {part} exited {p.returncode}: {last}\n")
+    if folder is not None:
+        import shutil
+
+        shutil.rmtree(folder, ignore_errors=True)
 
 
 def pytest_runtest_setup(item: pytest.Item) -> None:

@@ -61,7 +61,7 @@ def test_the_newton_path_refuses_an_accuracy_target_it_cannot_judge():
 
 
 def test_the_newton_path_refuses_the_options_of_the_fas_solver_naming_them():
-    with pytest.raises(InputError, match=r"unknown option \['cycle'\] for the Newton/pyamg point solver"):
+    with pytest.raises(InputError, match=r"\['cycle'\].*Newton"):
         ehl.solve(ehl.MoesProblem("point", 20, 10), accuracy=None, options={"solver": "newton", "cycle": "W"})
 
 
@@ -126,5 +126,5 @@ def test_a_moes_problem_names_the_load_range_of_its_contact(contact, allowed):
 
 
 def test_a_moes_problem_of_a_non_number_says_so_naming_the_group():
-    with pytest.raises(InputError, match=r"^L = 'ten' is not a number"):
+    with pytest.raises(InputError, match=r"^L = 'ten'.*number"):
         ehl.MoesProblem("point", 20, "ten")

@@ -36,7 +36,7 @@ def test_a_start_grid_solved_by_cycles_gives_the_dense_newton_solution(monkeypat
     cycled = solve_line_problem(pb, opts)
     assert cycled.success
     # 513 and 1025 points carry no positive film at M = 2000; 2049 is reached by cycles alone
-    assert any("FMG start on 2049 points solved by FAS cycles" in a for a in cycled.actions)
+    assert any("2049 points" in a and "FAS cycles" in a for a in cycled.actions)
     assert 2049 not in dense_grids
     monkeypatch.setattr(LineHierarchy, "_cycled_start", lambda self, k, solver: False)
     dense = solve_line_problem(pb, opts)
@@ -78,8 +78,7 @@ def test_a_later_solve_starts_fmg_above_the_filmless_start_grids_from_the_given_
     src = ls.continued_in_m(pb, dataclasses.replace(tight, points=4097), start_cache=starts)
     guess = (src.X, src.P, src.H0)
     fmg = solve_line_problem(pb, tight, guess=guess, start_cache=starts)
-    assert any("FMG start on 4097 points solved by FAS cycles from the given solution" in a
-               for a in fmg.actions)
+    assert any("4097 points" in a and "FAS cycles" in a and "given solution" in a for a in fmg.actions)
     assert [d["points"] for d in fmg.fmg] == [4097, 8193]  # an FMG sequence for the estimate
     finest = solve_line_problem(pb, tight, guess=guess, from_guess=True)
     assert fmg.success and finest.success
@@ -97,4 +96,4 @@ def test_an_isoviscous_later_solve_keeps_its_start_on_the_finest_grid():
     src = ls.continued_in_m(pb, opts, start_cache=starts)  # (its M = 1500 step fails on 8193)
     r = solve_line_problem(pb, opts, guess=(src.X, src.P, src.H0), start_cache=starts)
     assert r.success
-    assert any("started on the 16385-point grid from the given solution" in a for a in r.actions)
+    assert any("16385-point grid" in a and "given solution" in a for a in r.actions)

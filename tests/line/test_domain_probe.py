@@ -21,7 +21,7 @@ def test_a_solve_from_the_solution_starts_on_the_finest_grid_and_keeps_the_discr
     fmg = solve_line_problem(sol.problem, o)
     start = solve_line_problem(sol.problem, o, guess=(sol.X, sol.P, sol.H0), from_guess=True)
     assert fmg.success and start.success
-    assert any("from the given solution (no FMG)" in a for a in start.actions)
+    assert any("no FMG" in a for a in start.actions)
     assert start.cycles < fmg.cycles
     assert start.Hc == pytest.approx(fmg.Hc, rel=1e-7)
     assert start.Hm == pytest.approx(fmg.Hm, rel=1e-7)

@@ -124,6 +124,7 @@ def test_the_face_flag_is_for_line_contacts(tmp_path, capsys):
 
     assert main(["solve", "--contact", "point", "--M", "20", "--L", "10", "--face", "auto",
                  "--out", str(tmp_path), "--no-plots"]) == 2
-    assert "--face applies to line contacts" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "--face" in err and "line contacts" in err
     assert main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--face", "auto",
                  "--points", "257", "--accuracy", "none", "--out", str(tmp_path), "--no-plots"]) == 0

@@ -20,12 +20,12 @@ def test_a_later_solve_of_a_sequence_starts_from_the_start_grid_an_earlier_one_c
     starts: dict = {}
     first = solve_line_problem(PB, points=2049, start_cache=starts)
     # M = 1000: 257 and 513 points hold no positive film; the start is 1025
-    assert any("FMG start moved to 1025 points" in a for a in first.actions)
+    assert any("moved to 1025 points" in a for a in first.actions)
     assert sum(v is not None for v in starts.values()) == 1  # the grids without a start: None
     again = solve_line_problem(PB, points=4097, start_cache=starts)
     # straight to the 1025-point start, no failed coarser attempts, no Newton iteration there
     assert not any("non-positive film" in a for a in again.actions)
-    assert any("FMG started on the 1025-point grid" in a for a in again.actions)
+    assert any("FMG started" in a and "1025-point" in a for a in again.actions)
     fresh = solve_line_problem(PB, points=4097)
     assert again.work_units < fresh.work_units
     for key in ("Hc_venner", "Hm_venner"):

@@ -485,7 +485,7 @@ def test_converged_coarser_solves_replace_the_fmg_films_in_richardson():
         history=[SimpleNamespace(level=2, cycle=c, Hc=exact[2049], Hm=exact[2049]) for c in range(3)],
         load_error_history=[0.0])
     fmg_only = estimate_error(res, (0.0, 0.0))
-    assert "Hc converges irregularly over the last grids: first-order estimate" in fmg_only.notes
+    assert any(n.startswith("Hc ") and "first-order" in n for n in fmg_only.notes)
     both = estimate_error(res, (0.0, 0.0), {n: (exact[n], exact[n]) for n in (513, 1025)})
     assert both.order_Hc == pytest.approx(2.0)
     true = abs(exact[2049] - 1.0)
@@ -628,7 +628,7 @@ def test_a_refinement_predicted_to_overrun_the_time_budget_is_not_started(monkey
 
     out, asked = run(30.0)
     assert asked == [257] and out.status_name == "inaccurate"
-    assert "predicted to take about 40 s" in out.message and "time budget of 30 s" in out.message
+    assert "about 40 s" in out.message and "budget of 30 s" in out.message  # the prediction, the budget
     out, asked = run(60.0)
     assert asked == [257, 513] and out.success
     out, asked = run(30.0, dimensions=1)

@@ -3,6 +3,8 @@ coarser one (``retry_coarser_start``): the 6205 inner-race contact (M 3620, b/a 
 converges from 64 coarse intervals and diverges from 128, the count the coarse-grid rule gives
 on a box twice as long (the domain probe's wide solve)."""
 
+import re
+
 import pytest
 
 import ehl_multigrid.point.fas as fas
@@ -26,7 +28,7 @@ def test_diverged_fmg_start_is_solved_again_from_a_coarser_grid(bearing, monkeyp
     monkeypatch.setattr(fas, "coarse_intervals", lambda *a, **k: min(2 * rule(*a, **k), a[2] - 1))
     sol = solve_fas(bearing, points=513, half=True, tol_load=1e-4, raise_on_failure=False)
     assert sol.status_name == "converged"
-    assert any("64 coarse intervals instead of 128 (retry_coarser_start)" in a for a in sol.actions)
+    assert any(re.search(r"\b64 coarse intervals\b.*\b128\b.*retry_coarser_start", a) for a in sol.actions)
     assert sol.levels == 4
     # the same discrete problem as a solve started from 64 intervals directly
     ref = solve_fas(bearing, points=513, half=True, tol_load=1e-4, n_coarse=64)
@@ -86,8 +88,9 @@ def test_wide_contact_at_its_floor_from_the_capped_coarse_grid_is_solved_again_f
     wide = dict(points=1025, half=True, xmin=2 * x0, xmax=2 * x1, ymax=2 * y, film_tol=2e-4, tol_load=2e-4)
     sol = solve_fas(pb, **wide, raise_on_failure=False)
     assert sol.status_name == "converged"
-    assert any(a.startswith("ended residual_floor") and "128 coarse intervals instead of 64 "
-               "(retry_uncapped_start): converged" in a for a in sol.actions)
+    assert any(a.startswith("ended residual_floor")
+               and re.search(r"\b128 coarse intervals\b.*\b64\b.*retry_uncapped_start.*converged", a)
+               for a in sol.actions)
     # the box changes the film by far less than the floor's error: the default box on the same mesh
     narrow = solve_fas(pb, points=513, half=True, film_tol=2e-4, tol_load=2e-4)
     assert sol.scalars["Hc"] == pytest.approx(narrow.scalars["Hc"], rel=1e-3)

@@ -5,6 +5,8 @@ contact at high M that the grid cannot resolve says how many points it needs
 on square cells (``y_ratio`` given); the default cells, stretched with the ellipse, converge
 the same contact on the same X points."""
 
+import re
+
 import pytest
 
 from ehl_multigrid.point.problem import NARROW_BELOW, min_points, problem_from_moes
@@ -39,7 +41,7 @@ def test_diverged_narrow_contact_is_solved_again_from_a_finer_coarse_grid(narrow
     before = solve_fas(narrow, retry_finer_start=False, **kw)
     assert before.status_name == "diverged"
     sol = solve_fas(narrow, **kw)
-    assert any("256 coarse intervals instead of 64 (retry_finer_start)" in a for a in sol.actions)
+    assert any(re.search(r"\b256 coarse intervals\b.*\b64\b.*retry_finer_start", a) for a in sol.actions)
     # the iteration now converges, to a film the grid cannot make positive: said, with the grid
     assert sol.status_name == "film_not_positive"
     assert "use points >= 4097" in sol.message

@@ -34,11 +34,12 @@ def _rel(a: float, b: float) -> float:
     return abs(a - b) / abs(b)
 
 
+@pytest.mark.xdist_group("point_neighbour_start_coarse")
 def test_finer_grid_started_from_a_coarser_solution_reaches_the_fmg_answer(circular, coarse):
     fmg = solve_fas(circular, points=257, **TIGHT)
     warm = solve_fas(circular, points=257, guess=_guess(coarse), **TIGHT)
     assert fmg.success and warm.success
-    assert any("from the given solution (no FMG)" in a for a in warm.actions)
+    assert any("no FMG" in a for a in warm.actions)
     # no FMG grid below the finest: the Richardson films are missing (the sequence repairs them)
     assert all(d["level"] == warm.levels - 1 for d in warm.fmg)
     for key in ("Hc_venner", "Hm_venner"):
@@ -47,6 +48,7 @@ def test_finer_grid_started_from_a_coarser_solution_reaches_the_fmg_answer(circu
     assert _rel(coarse.scalars["Hc_venner"], fmg.scalars["Hc_venner"]) > 1e-4
 
 
+@pytest.mark.xdist_group("point_neighbour_start_coarse")
 def test_wider_box_started_from_the_default_box_reaches_the_fmg_answer(circular, coarse):
     x0, x1, y1 = resolve_domain(circular, None, None, None)
     wide = dict(xmin=2 * x0, xmax=2 * x1, ymax=2 * y1)
@@ -57,6 +59,7 @@ def test_wider_box_started_from_the_default_box_reaches_the_fmg_answer(circular,
         assert _rel(warm.scalars[key], fmg.scalars[key]) < 1e-5
 
 
+@pytest.mark.xdist_group("point_neighbour_start_coarse")
 def test_full_domain_started_from_a_half_domain_solution(circular, coarse):
     opts = dict(TIGHT, half=False)
     fmg = solve_fas(circular, points=129, **opts)

@@ -3,6 +3,7 @@ inlet length its film still depends on, and, where the box probes did not conver
 error matters there but could not be measured."""
 
 import math
+import re
 from types import SimpleNamespace
 
 from ehl_multigrid.point.problem import problem_from_moes
@@ -19,7 +20,7 @@ def test_thick_film_reason_names_the_inlet_needed_when_the_box_error_dominates()
     pb = problem_from_moes(5.0, 20.0, 4.0, viscosity="barus", density="incompressible")
     why = thick_film_reason(pb, _result(0.05), 0.01)
     # half of the 1 % target left to the box: 9 a x 5 % / 0.5 % = 90 a
-    assert "needs an inlet of about 90 a (this box: 9 a)" in why
+    assert re.search(r"\b90 a\b.*\bbox: 9 a\b", why), why  # the inlet needed, the box's
 
 
 def test_thick_film_reason_is_silent_when_the_box_error_is_small():
@@ -30,5 +31,5 @@ def test_thick_film_reason_is_silent_when_the_box_error_is_small():
 def test_thick_film_reason_says_the_box_error_was_not_measured_when_its_probes_failed():
     pb = problem_from_moes(5.0, 20.0, 4.0, viscosity="barus", density="incompressible")
     why = thick_film_reason(pb, _result(math.nan), 0.01)
-    assert "thick against the elastic deformation" in why
+    assert "M = 5" in why and "thick" in why
     assert "did not converge" in why and "needs an inlet" not in why

@@ -46,7 +46,7 @@ def test_the_second_coarse_grid_rule_finishes_what_the_first_cannot():
     s = solve_starved_point(problem_from_moes(20.0, 10.0), 0.25 * HC_FF_20, points=129, half=True,
                             raise_on_failure=False)
     assert s.status_name == "converged"
-    assert any("theta frozen on every coarse grid: converged" in a for a in s.actions)
+    assert any("theta frozen" in a and ": converged" in a for a in s.actions)
     assert s.extra["mass_balance_error"] < 1e-6
 
 

@@ -75,7 +75,7 @@ def test_time_error_flag_says_why_a_fixed_step_run_is_not_measured(monkeypatch, 
     out = args.func(args)
     assert out["converged"] and all(v != v for v in out["time_error"].values())  # NaN: not measured
     shown = capsys.readouterr().out
-    assert "time error not measured: the run at twice the time step is refused" in shown
+    assert "time error not measured" in shown and "twice the time step" in shown
     assert ": dent on body 1" in shown  # named as the scene's table names it (a negative bump)
 
 
@@ -114,7 +114,7 @@ def test_transient_command_runs_a_dent_through_a_point_scene(monkeypatch, tmp_pa
                                  "--out", str(tmp_path), "--threshold", "1e-7", "--snapshot-every", "4"])
     out = args.func(args)
     err = capsys.readouterr().err
-    assert "surface speeds u1 = " in err and "time error of this run is not measured" in err
+    assert "surface speeds u1 = " in err and "time error" in err and "not measured" in err
     assert out["contact"] == "point" and out["points"] == out["points_y"] == 65
     assert out["feature"]["amplitude"] == pytest.approx(-0.1) and out["feature"]["y0"] == 0.3
     assert 0 < out["hm_min"] < out["hc_steady"]

@@ -6,6 +6,7 @@ changes."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -60,13 +61,12 @@ def test_a_run_whose_first_step_misses_the_target_is_refined_in_dt_until_its_tim
     t = sol.error.parts["time"]
     assert sol.details.dt == DT / 4 and sol.details.steps == 4 * 86
     assert max(t.Hc, t.Hm) <= 0.005
-    assert any(a.startswith("time step halved: dT = 0.01172 -> dT = 0.005859 (time error Hc 0.015")
-               for a in sol.outcome.actions)
+    assert any(re.search(r"dT = 0\.01172 -> dT = 0\.005859\b.*\bHc 0\.015", a) for a in sol.outcome.actions)
     # the grid part is not estimated: the accuracy cannot be confirmed, whatever the time part
     assert sol.status == Status.INACCURATE and not sol.success and math.isnan(sol.error.Hc)
     assert math.isnan(sol.error.parts["grid"].Hc)
-    assert "within the accuracy 0.005 after 2 refinements" in sol.message
-    assert "grid (space) error is not estimated" in sol.message
+    assert "0.005" in sol.message and "2 refinements" in sol.message
+    assert "grid" in sol.message and "not estimated" in sol.message
     assert "refined to the target" in sol.error.notes[0]
 
     # the true time error, against a run at a quarter of the answer's step
@@ -101,7 +101,7 @@ def test_the_tighter_run_of_an_adaptive_pair_is_the_next_answer(monkeypatch):
     # time part 2.8e-4 at 1e-2, then 7.9e-5 at an eighth of it (the first run's pair)
     assert [(c[0], c[2]) for c in calls] == [(129, 1e-2), (129, 1e-2 / 8), (129, 1e-2 / 64)]
     assert sol.details.steps == 8 and max(sol.error.parts["time"].Hc, sol.error.parts["time"].Hm) <= 1e-4
-    assert sol.outcome.actions[0].startswith("time tolerance x0.125 and output step halved")
+    assert re.search(r"time tolerance x0\.125\b.*output step", sol.outcome.actions[0])
 
 
 def test_a_time_budget_that_forbids_the_refinement_returns_the_first_run_marked_inaccurate(monkeypatch):
@@ -151,11 +151,10 @@ def test_without_a_target_the_run_and_its_time_part_are_those_of_today():
 def test_a_checkpoint_with_a_refinement_target_is_refused(tmp_path):
     from ehl_multigrid.transient.checkpoint import Checkpoint
 
-    with pytest.raises(InputError, match=r"\['checkpoint'\] with an accuracy target and time_error: a "
-                                         r"checkpoint holds one run"):
+    with pytest.raises(InputError, match=r"\['checkpoint'\].*time_error"):
         ehl.solve(dent_scene(), physics="transient", accuracy=0.01,
                   options={**RUN, "time_error": True, "checkpoint": Checkpoint(tmp_path / "c.h5")})
-    with pytest.raises(InputError, match=r"time_budget = -1 s is outside"):
+    with pytest.raises(InputError, match=r"time_budget = -1 s .*\[0, inf\] s"):
         ehl.solve(dent_scene(), physics="transient", accuracy=0.01, options={**RUN, "time_budget": -1})
 
 

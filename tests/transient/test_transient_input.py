@@ -77,7 +77,7 @@ def test_a_layer_across_the_track_of_a_scene_feeds_a_mass_conserving_run(monkeyp
     # the flooded fit, mass error 3e-7 and 4e-10, at a quarter of the cost)
     out = _run(monkeypatch, tmp_path, sc, "--cavitation", "mass-conserving", "--steps", "1",
                "--no-plots", points=65)
-    assert "hoil_profile: the inlet is fed this layer across the track" in capsys.readouterr().err
+    assert "[supply] hoil_profile:" in capsys.readouterr().err
     assert out["converged"] and out["mass_error_max"] <= 1e-6
     # the centre track's layer governs: far below the flooded film (measured 0.21 of it)
     assert out["hc_min"] < 0.3 * sc.central_film_fit()[1]

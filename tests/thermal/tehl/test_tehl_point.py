@@ -80,7 +80,7 @@ def test_a_thermal_march_started_from_its_own_solution_settles_in_one_sweep():
     assert cold.report.iterations >= 2 and again.report.iterations == 1 and again.report.converged
     np.testing.assert_allclose(again.T, cold.T, rtol=0, atol=1e-3)
     assert again.force_per_length == pytest.approx(cold.force_per_length, rel=1e-5)
-    with pytest.raises(InputError, match="start has 129 stations x 10 intervals"):
+    with pytest.raises(InputError, match="129 stations x 10 intervals"):
         solve_thermal_line(prof, env, opts.with_changes(nz=5), kernel_length=sc.length, start=cold)
 
 
@@ -91,7 +91,7 @@ def test_a_solve_started_from_the_coarser_grids_factors_reaches_the_same_fixed_p
     coarse = pair[0]  # 65 points, nz = 10, S = 0.5
     cold = tehl_ball_5n_129  # 129 points, nz = 10, S = 0.5, from the isothermal start
     nested = solve_tehl_point(scene, 0.5, TEHLOptions(points=129, nz=10), coarse=coarse)
-    assert any("factors of the solve on 65 points" in a for a in nested.report.extra["actions"])
+    assert any("factors" in a and "65 points" in a for a in nested.report.extra["actions"])
     assert len(nested.outer) < len(cold.outer)
     # the same fixed point within the outer tolerances (tol_H = 1e-4, tol_T = 0.01 K)
     for key in ("Hc", "Hm", "friction"):

@@ -3,6 +3,7 @@ the same start with W cycles (thermal.tehl.line.LineContact.multilevel): the spu
 S = 0.5 on 4097 points, where V cycles drove the residual from 5e-7 to 8e-6 and W cycles
 converge in three."""
 
+import re
 from types import SimpleNamespace
 
 import numpy as np
@@ -33,7 +34,7 @@ def test_diverged_v_cycles_are_solved_again_with_w_cycles_and_said_once(monkeypa
     con, cycles = _contact(monkeypatch, ["diverged", "converged", "stalled", "converged"])
     assert con.multilevel()[0].success and cycles == ["V", "W"]
     assert con.multilevel()[0].success and cycles == ["V", "W", "V", "W"]
-    assert len(con.notes) == 1 and "W cycles: converged (2 such solves)" in con.notes[0]
+    assert len(con.notes) == 1 and re.search(r"W cycles: converged \(2\b", con.notes[0])
 
 
 def test_a_converged_or_floor_ended_solve_is_not_repeated(monkeypatch):
