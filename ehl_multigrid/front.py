@@ -178,8 +178,14 @@ def warn_unused_callback(callback: Any, what: str) -> None:
 def status_of_error(exc: ConvergenceError) -> Status:
     """The status of a :class:`ConvergenceError`: its report's status when it carries one (a
     multilevel solve's), else from its message: a film that closed -> ``FILM_NOT_POSITIVE``,
-    a failed start -> ``START_FAILED``, an iteration limit -> ``MAX_CYCLES``, otherwise
-    ``DIVERGED`` (as the solvers' own results say for a search or solve that failed)."""
+    a failed start -> ``START_FAILED``, an iteration limit -> ``MAX_CYCLES``, a solve stopped
+    by its time budget (:class:`~ehl_multigrid.multigrid.controller.TimeBudgetSpent`) ->
+    ``TIME_BUDGET``, otherwise ``DIVERGED`` (as the solvers' own results say for a search or
+    solve that failed)."""
+    from .multigrid.controller import TimeBudgetSpent
+
+    if isinstance(exc, TimeBudgetSpent):
+        return Status.TIME_BUDGET
     rep = getattr(exc, "report", None)
     label = (getattr(rep, "extra", None) or {}).get("status")
     # (a report that says converged belongs to a solve whose result was refused afterwards,

@@ -56,6 +56,7 @@ class Status(enum.IntEnum):
     FILM_NOT_POSITIVE = 7  # a film <= 0 (grid too coarse, or a feature cutting through it)
     RESIDUAL_FLOOR = 8  # the residual stopped falling at the policy's quiet level: tol too tight
     MASS_NOT_CONSERVED = 9  # a starved result whose film carries more oil than supplied
+    TIME_BUDGET = 10  # the time budget ran out during a solve, before it converged
 
     @property
     def label(self) -> str:

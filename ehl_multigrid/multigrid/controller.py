@@ -20,9 +20,47 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, replace
 from typing import Any, Protocol
+
+from ..model.errors import ConvergenceError
+
+#: the ``time.perf_counter()`` value at which the innermost :func:`control` sequence's time
+#: budget runs out (inf outside one); long solves read it through :func:`check_deadline`
+_DEADLINE: ContextVar[tuple[float, float]] = ContextVar("ehl_deadline", default=(math.inf, math.inf))
+
+
+class TimeBudgetSpent(ConvergenceError):
+    """A solve stopped because the time budget of the sequence it belongs to ran out."""
+
+
+@contextmanager
+def deadline(budget: float, started: float | None = None) -> Iterator[None]:
+    """Within the block, :func:`check_deadline` raises once ``budget`` seconds have passed
+    since ``started`` (default now); a deadline already set by an enclosing block is kept
+    when it is earlier."""
+    t0 = time.perf_counter() if started is None else started
+    at = t0 + budget
+    outer = _DEADLINE.get()
+    token = _DEADLINE.set((at, budget) if at < outer[0] else outer)
+    try:
+        yield
+    finally:
+        _DEADLINE.reset(token)
+
+
+def check_deadline(where: str) -> None:
+    """Raise :class:`TimeBudgetSpent` when the time budget of the running sequence (set by
+    :func:`deadline`, as :func:`control` does) has run out; ``where`` names the step that
+    stops (a solve's iteration), for the message. Called between the iterations of the
+    solves that can run for minutes (the outer iteration of a thermal EHL solve)."""
+    at, budget = _DEADLINE.get()
+    if time.perf_counter() >= at:
+        raise TimeBudgetSpent(f"the time budget of {budget:g} s ran out at {where}", None,
+                              "a larger time_budget, a looser accuracy or a coarser start grid")
 
 
 @dataclass(frozen=True)
@@ -189,6 +227,9 @@ class ControlOutcome:
     wall_s: float
     #: the last solve made (the returned one unless a finer solve failed or missed more)
     last: Any = None
+    #: whether the time budget ended the sequence (a solve stopped by it, or a refinement
+    #: not started for it)
+    budget_spent: bool = False
 
 
 def control(physics: Controlled, start: Resolution, accuracy: float | None, *, refine: bool = True,
@@ -207,8 +248,19 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
     value) is when the sequence began, if before this call (its budget and wall count from it).
     ``fallback``: where to go on when ``start`` (a chosen start, such as a wider box) fails
     before any solve converged (the plain start the choice replaced).
+
+    A solve that checks the budget between its iterations (:func:`check_deadline`) is stopped
+    when it runs out; the sequence then ends with the most accurate converged solve so far
+    (or, with none, as failed), its ``why`` naming the budget.
     """
     t0 = time.perf_counter() if started is None else started
+    with deadline(time_budget, t0):
+        return _control(physics, start, accuracy, refine, time_budget, max_points, progress, t0, fallback)
+
+
+def _control(physics: Controlled, start: Resolution, accuracy: float | None, refine: bool,
+             time_budget: float, max_points: int | None, progress: Callable[[str], None] | None,
+             t0: float, fallback: Resolution | None) -> ControlOutcome:
     round_t0 = t0
     steps: list[Refinement] = []
     limit = max_points if max_points is not None else 1 << 30
@@ -218,7 +270,7 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
             progress(f"{at.points} points, box x{at.box:g}: {what} ({time.perf_counter() - t0:.1f} s)")
 
     def done(result: Any, worst: float, met: bool, ok: bool, why: str = "") -> ControlOutcome:
-        return ControlOutcome(result, worst, met, ok, steps, why, time.perf_counter() - t0, last)
+        return ControlOutcome(result, worst, met, ok, steps, why, time.perf_counter() - t0, last, spent)
 
     best: tuple[Any, float] | None = None
     failed: set[Resolution] = set()
@@ -227,6 +279,7 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
     why = ""
     last: Any = None
     hoped = False
+    spent = False
     while True:
         ts = time.perf_counter()
         res = last = physics.solve(at)
@@ -235,6 +288,15 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
             say(reason.split(":")[0], at)
             steps.append(Refinement(at.points, at.box, at.tol, math.nan, math.nan,
                                     time.perf_counter() - ts, nz=at.nz))
+            if time.perf_counter() - t0 >= time_budget:
+                # no remedy or fallback can run: the budget is spent
+                spent = True
+                why = f"the time budget of {time_budget:g} s ran out during the solve on {at.describe()}"
+                stop = " ran out at "  # the step a solve stopped at (TimeBudgetSpent), else its failure
+                why += f", at {reason.split(stop, 1)[1]}" if stop in reason else f": {reason}"
+                if best is None:
+                    return done(res, math.nan, False, False, why)
+                break
             if best is None and fallback is not None and fallback != at and fallback not in failed:
                 failed.add(at)
                 at, fallback = fallback, None
@@ -283,9 +345,10 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
         cost = predicted_seconds(now - round_t0, at.points, step.at, physics.dimensions, at.dt)
         left = time_budget - (now - t0)
         if left <= 0.0:
-            why = f"the time budget of {time_budget:g} s is spent"
+            why, spent = f"the time budget of {time_budget:g} s is spent", True
             break
         if cost > left:
+            spent = True
             dt = f", time step x{step.at.dt:g}" if step.at.dt != 1.0 else ""
             why = (f"the refinement to {step.at.points} points (box x{step.at.box:g}, tolerance "
                    f"x{step.at.tol:g}{dt}) is predicted to take about {cost:.0f} s, more than the "

@@ -31,6 +31,7 @@ STATUS = {
     7: "film_not_positive",  # the iteration converged to a discrete film <= 0 (grid too coarse)
     8: "residual_floor",  # the residual stopped falling below the policy's quiet level: tol too tight
     9: "mass_not_conserved",  # a starved result whose film carries more oil than supplied
+    10: "time_budget",  # the time budget ran out during a solve, before it converged
 }
 
 

@@ -141,6 +141,69 @@ def test_a_refinement_predicted_to_overrun_the_time_budget_is_not_started(monkey
     assert "40 s" in out.why and "30 s" in out.why
 
 
+@dataclass
+class Stopping(Toy):
+    """A solve of ``iterations[points]`` iterations of 10 s each on a fake clock, checking the
+    budget between them as a thermal EHL outer iteration does; one that stops fails."""
+
+    iterations: dict = field(default_factory=lambda: {257: 3, 513: 10})
+    clock: list = field(default_factory=lambda: [0.0])
+
+    def solve(self, at):
+        from ehl_multigrid.multigrid.controller import TimeBudgetSpent, check_deadline
+
+        self.solved.append(at)
+        try:
+            for it in range(1, self.iterations[at.points] + 1):
+                check_deadline(f"iteration {it}")
+                self.clock[0] += 10.0
+        except TimeBudgetSpent as exc:
+            return {"at": at, "ok": False, "err": math.nan, "why": str(exc).splitlines()[0]}
+        return {"at": at, "ok": True, "err": 0.04 * 257 / at.points}
+
+    def failure(self, r):
+        return r["why"]
+
+
+def fake_clock(monkeypatch, clock):
+    import types
+
+    import ehl_multigrid.multigrid.controller as ctl
+
+    monkeypatch.setattr(ctl, "time", types.SimpleNamespace(perf_counter=lambda: clock[0]))
+
+
+def test_a_running_solve_that_checks_the_budget_stops_when_it_runs_out(monkeypatch):
+    # 257 points: 3 iterations (30 s); 513 points: 10 (100 s), predicted 60 s (twice the
+    # first), started within a budget of 100 s and stopped when it runs out
+    toy = Stopping()
+    fake_clock(monkeypatch, toy.clock)
+    toy.candidates = lambda r, at: [Candidate("points", at.finer(), 1, 0.001)]
+    out = control(toy, Resolution(257), 0.021, time_budget=1000.0)
+    assert out.met and not out.budget_spent  # 30 + 100 s
+    toy.clock[0] = 0.0
+    out = control(toy, Resolution(257), 0.021, time_budget=100.0)
+    # the 257-point solve is returned, with why the finer one did not finish
+    assert out.converged and not out.met and out.budget_spent
+    assert out.result["at"].points == 257 and out.last["at"].points == 513
+    assert toy.clock[0] == pytest.approx(100.0)
+    assert "100 s" in out.why and "513" in out.why
+    assert [s.points for s in out.steps] == [257, 513]
+
+
+def test_a_first_solve_stopped_by_the_budget_fails_without_its_remedy(monkeypatch):
+    toy = Stopping(remedy_to=Resolution(513))
+    fake_clock(monkeypatch, toy.clock)
+    out = control(toy, Resolution(257), 0.006, time_budget=15.0)
+    assert not out.converged and out.budget_spent and toy.solved == [Resolution(257)]
+    assert "15 s" in out.why and out.why.endswith("at iteration 3")  # the step it stopped at
+    # outside a controlled sequence no deadline applies
+    from ehl_multigrid.multigrid.controller import check_deadline
+
+    toy.clock[0] = 1e9
+    check_deadline("anywhere")
+
+
 def test_without_a_target_or_refinement_the_first_solve_is_only_judged():
     toy = Toy()
     assert control(toy, Resolution(257), None).met

@@ -181,7 +181,7 @@ def test_repr_lists_levels_points_and_mesh_sizes():
 
 
 def test_status_table_is_complete():
-    assert set(STATUS) == set(range(10))
+    assert set(STATUS) == set(range(11))
     assert len(set(STATUS.values())) == len(STATUS) and STATUS[9] == "mass_not_conserved"
 
 

@@ -47,7 +47,14 @@ from ehl_multigrid.multigrid.accuracy import (
     extrapolated,
     richardson,
 )
-from ehl_multigrid.multigrid.controller import Candidate, Refinement, Resolution, choose, control
+from ehl_multigrid.multigrid.controller import (
+    Candidate,
+    Refinement,
+    Resolution,
+    TimeBudgetSpent,
+    choose,
+    control,
+)
 from ehl_multigrid.point.postprocess import subgrid_min_film
 
 from ..traction import wall_speeds
@@ -542,9 +549,11 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
                   time_budget=time_budget, max_points=limit, progress=progress)
     if not out.converged:
         at = out.steps[-1]
-        raise ConvergenceError(f"TEHL: the solve on {at.points} points, nz = {at.nz} did not converge: "
-                               f"{out.why}", None, "more points (the contact may need a finer grid) "
-                               "or check the inputs")
+        error = TimeBudgetSpent if out.budget_spent else ConvergenceError
+        hint = ("a larger time_budget (or a looser accuracy)" if out.budget_spent else
+                "more points (the contact may need a finer grid) or check the inputs")
+        raise error(f"TEHL: the solve on {at.points} points, nz = {at.nz} did not converge: {out.why}",
+                    None, hint)
     res, est = out.result, tehl.estimates[id(out.result)]
     accurate = out.met
     res = corrected_result(res, est.correction)

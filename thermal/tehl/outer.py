@@ -25,6 +25,7 @@ import numpy as np
 
 from ehl_multigrid.model.convergence import ConvergenceReport
 from ehl_multigrid.model.errors import ConvergenceError
+from ehl_multigrid.multigrid.controller import check_deadline
 
 from ..kernels import _anderson_step
 from ..line import Surroundings
@@ -220,7 +221,9 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
     actions. Raises :class:`ConvergenceError` on non-finite values, divergence (changes
     growing at the smallest damping) or when ``max_outer`` iterations do not meet the tolerances
     (an iteration whose trend still reaches them goes on, up to :data:`EXTEND_OUTER` times
-    ``max_outer``: :func:`iterations_to_converge`).
+    ``max_outer``: :func:`iterations_to_converge`); raises
+    :class:`~ehl_multigrid.multigrid.controller.TimeBudgetSpent` before an iteration that would
+    start after the time budget of the accuracy-driven solve ran out.
     """
     relax, anderson, max_outer = options.relax, options.anderson, options.max_outer
     tol_P, tol_H, tol_T = options.tol_P, options.tol_H, options.tol_T
@@ -262,6 +265,8 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
                 extended = True
                 actions.append(f"iteration {it - 1}: not converged but converging (the changes' trend "
                                f"meets the tolerances in about {need:.0f} more): max_outer {max_outer} extended")
+        # a solve at a stationary surface can take many minutes (docs/thermal.md, "Limits")
+        check_deadline(f"{contact.label} outer iteration {it}")
         ti = time.perf_counter()
         a_new, c_new = contact.factors(thermal)
         if not (np.all(np.isfinite(a_new)) and np.all(a_new > 0) and np.all(np.isfinite(c_new)) and np.all(c_new > 0)):
