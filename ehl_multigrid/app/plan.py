@@ -112,18 +112,29 @@ def fit_deviation_estimate(scene: Scene) -> tuple[float, str]:
 
     Uses the table measured by the fit-check studies (:func:`~ehl_multigrid.model.fits.deviation_table`,
     nearest tabulated point), else the 10-25 % range the literature states for Barus-type fits
-    against Roelands + Dowson-Higginson solutions.
+    against Roelands + Dowson-Higginson solutions. A point contact long in the rolling direction
+    (theta > 1, where the table measured at theta = 1 does not hold) adds
+    :func:`~ehl_multigrid.model.fits.theta_deviation`.
     """
     M, L = scene.moes()
-    tab = fits.deviation_table("line" if scene.kind == "line" else "point")
+    kind = "line" if scene.kind == "line" else "point"
+    tab = fits.deviation_table(kind)
     Ms, Ls, dev = np.array(tab["M"]), np.array(tab["L"]), np.abs(tab["deviation"])
     # nearest tabulated point in log M and L (the fit error varies slowly)
     i = int(np.argmin(np.abs(np.log(Ms) - math.log(M))))
     j = int(np.argmin(np.abs(Ls - L)))
-    val = dev[i, j]
+    val = float(dev[i, j])
     if np.isfinite(val):
-        return float(val), f"measured fit check ({tab['source'] or 'fit_deviation table'}) at M={Ms[i]:g}, L={Ls[j]:g}"
-    return 0.25, "Barus-type, incompressible fits exceed Roelands + Dowson-Higginson solutions by 10-25 % (not yet measured here)"
+        why = f"measured fit check ({tab['source'] or 'fit_deviation table'}) at M={Ms[i]:g}, L={Ls[j]:g}"
+    else:
+        val, why = 0.25, ("Barus-type, incompressible fits exceed Roelands + Dowson-Higginson solutions by "
+                          "10-25 % (not yet measured here)")
+    extra = fits.theta_deviation(kind, 1.0 if kind == "line" else scene.theta)
+    if extra > 0.0:
+        val += extra
+        why += (f"; plus {extra:.2g} for theta = {scene.theta:.3g} > 1 (the solver's film above Nijenbanning's by "
+                f"{fits.THETA_DEVIATION_PER_DOUBLING:g} per doubling of theta, measured at theta 2-4)")
+    return val, why
 
 
 #: The thermal decision includes the model when ``THERMAL_DECISION_MARGIN * friction_sensitivity``

@@ -247,6 +247,17 @@ def extrapolation_note(contact: str, M: float, L: float, theta: float = 1.0) -> 
 #: L 0-10): the fit, demonstrated by Nijenbanning et al. (1994) for theta < 1, under-predicts
 #: contacts long in the rolling direction (docs/fits.md)
 THETA_ABOVE_ONE_DEVIATION = (0.10, 0.54)
+#: the solver's central film above Nijenbanning's per doubling of theta > 1: 0.11 at theta = 2,
+#: 0.23-0.28 at theta = 4 (Barus, L = 5-10; more at L = 0) (docs/fits.md)
+THETA_DEVIATION_PER_DOUBLING = 0.12
+
+
+def theta_deviation(contact: str, theta: float = 1.0) -> float:
+    """Expected extra deviation of the Nijenbanning central film at ``theta > 1`` (a contact
+    long in the rolling direction), beyond the one measured at theta = 1: :data:`THETA_DEVIATION_PER_DOUBLING` times ``log2(theta)``; 0 for line contacts and theta <= 1."""
+    if contact == "line" or not theta > 1.0:
+        return 0.0
+    return THETA_DEVIATION_PER_DOUBLING * math.log2(theta)
 
 
 def deviation_note(contact: str, theta: float = 1.0) -> str | None:

@@ -120,6 +120,27 @@ def test_film_from_fit_when_tolerance_exceeds_fit_deviation():
     assert make_plan(sc, tolerance=dev / 2).get("film").setting == "multigrid solver"
 
 
+def test_a_contact_long_in_the_rolling_direction_expects_the_fit_off_by_its_theta():
+    """At theta > 1 the point solver lies 11 % (theta 2) to 23-28 % (theta 4) above the
+    Nijenbanning fit, which was demonstrated for theta < 1 (docs/fits.md): the planner adds
+    that to the deviation measured at theta = 1 and solves the contact."""
+    from dataclasses import replace
+
+    circ = load_scene("appendix_d_point")
+    assert circ.theta == pytest.approx(1.0)
+    base = make_plan(circ).get("film").estimate
+    for theta, extra in ((2.0, 0.12), (4.0, 0.24)):
+        long_x = replace(circ, Ry=circ.Rx / theta)  # the same Rx: the same Moes M and L
+        assert long_x.moes() == pytest.approx(circ.moes())
+        film = make_plan(long_x, tolerance=0.1).get("film")
+        assert film.estimate == pytest.approx(base + extra)
+        assert f"theta = {theta:g} > 1" in film.reason
+        assert film.setting == "multigrid solver"
+    # theta < 1 (wide across the rolling direction): the table's measured deviation alone
+    wide = replace(circ, Ry=circ.Rx * 4.0)
+    assert "theta" not in make_plan(wide).get("film").reason
+
+
 def test_starvation_only_when_oil_supply_is_limited():
     assert make_plan(load_scene("chapter6_starved_0.5GPa")).includes("starvation")
     assert not make_plan(load_scene("default")).includes("starvation")
