@@ -381,12 +381,15 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
     if floor:
         # settled at the inner solves' noise floor: the last iterate lies within the window's
         # spread of the others, and the drift bounds how far the window's mean is from the end
+        friction = (floor["friction"] + floor["spread_friction"] if floor.get("films_only")
+                    else floor["P"] + floor["spread_P"])
         iteration = {"Hc": max(floor["Hc"] + floor["spread_Hc"], noise) + supply,
                      "Hm": max(floor["Hm"] + floor["spread_Hm"], noise) + supply,
-                     "friction_coefficient": floor["P"] + floor["spread_P"] + supply,
+                     "friction_coefficient": friction + supply,
                      "T_max": floor["T_max"] + floor["spread_T_max"]}
         notes.append("the outer iteration settled at the inner solves' noise floor: its iteration part "
-                     "is the drift and spread of its last iterations")
+                     "is the drift and spread of its last iterations" + (
+                         "; the temperature at some nodes did not settle" if floor.get("films_only") else ""))
     fixes: dict[str, tuple[float, float]] = {}
     if extrapolate and coarse_x is not None and not starved:
         seq = grid_sequence(result, cache)

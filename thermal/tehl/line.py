@@ -189,6 +189,9 @@ class LineContact:
                 self.notes[self.w_note] = note
         return res, res.P.copy(), res.H.copy(), float(res.H0)
 
+    def friction(self, thermal: ThermalLineSolution) -> float:
+        return float(thermal.force_per_length)
+
     def _cycles(self, lopts: LineOptions) -> Any:
         hz = self.hierarchy
         solver = MultilevelSolver(hz, lopts, line_settings(self.pb, lopts), RobustnessPolicy(LINE_POLICY, lopts.adapt),

@@ -81,7 +81,8 @@ class Contact(Protocol):
     ``(result, P, H, H0)``; ``films(P, H)`` : Moes ``(Hc, Hm)``; ``thermal(state)`` : the
     thermal solve, ``(solution, temperature array)``; ``factors(solution)`` : the flow and
     Couette factors ``(a, c)``; ``finer_factor(f)`` : a factor of the grid with half the
-    intervals interpolated to this one.
+    intervals interpolated to this one; ``friction(solution)`` : the friction force of a thermal
+    solution (any unit: its relative changes are compared).
     """
 
     label: str
@@ -96,6 +97,7 @@ class Contact(Protocol):
     def thermal(self, state: Iterate) -> tuple[Any, np.ndarray]: ...
     def factors(self, thermal: Any) -> tuple[np.ndarray, np.ndarray]: ...
     def finer_factor(self, f: np.ndarray) -> np.ndarray: ...
+    def friction(self, thermal: Any) -> float: ...
 
 
 def surroundings(scene: Any, slip: float) -> Surroundings:
@@ -178,6 +180,60 @@ def settled(outer: list[dict[str, float]], fields: list[tuple[np.ndarray, np.nda
     return out if ok else None
 
 
+def films_settled(outer: list[dict[str, float]], fields: list[tuple[np.ndarray, np.ndarray]],
+                  tol_P: float, tol_H: float, tol_T: float) -> dict[str, float] | None:
+    """Where the temperature field does not settle but what the solve reports does: over the
+    last :data:`NOISE_WINDOW` iterations (at any dampings) the changes of P and the films stay
+    within :data:`NOISE_RAW` tolerances, and the drift per iteration (the median step), divided
+    by the smallest damping of the window, of Hc, Hm, the friction (relative) and T_max (kelvin)
+    meets the tolerances; the
+    temperature at some nodes still moves (at a stationary surface: the far inlet's dividing
+    streamline, docs/thermal.md "Limits"). The drift and spread of each are its iteration
+    error (:func:`thermal.tehl.accuracy.estimate_error`). Returns them, the drift of P
+    (half-window means) and the largest temperature change of the window (``dT``) with where it
+    is (the node's indices, ``node``), or None."""
+    k = NOISE_WINDOW
+    if len(fields) < k or len(outer) < k:
+        return None
+    win = outer[-k:]
+    w = min(o["relax"] for o in win)
+    if max(max(o["dP"] / tol_P, max(o["dHc"], o["dHm"]) / max(tol_H, 2.0 * o.get("film_noise", 0.0)))
+           for o in win) > NOISE_RAW:
+        return None
+    h = k // 2
+    P1, P2 = (np.mean([f[0] for f in part], axis=0) for part in (fields[-k:-h], fields[-h:]))
+    out = {"P": float(np.linalg.norm(P2 - P1) / np.linalg.norm(P2)) / (k - h) / w}
+    for key in ("Hc", "Hm", "T_max", "friction"):
+        v = np.array([o[key] for o in win], dtype=float)
+        scale = 1.0 if key == "T_max" else abs(v[-1])
+        # the median step is the steady approach; a jump of an inner solve (one more cycle
+        # moves the temperature at the node by kelvins) lies in the spread
+        out[key] = abs(float(np.median(np.diff(v)))) / scale / w
+        out[f"spread_{key}"] = float(v.max() - v.min()) / scale
+    out["spread_P"] = float(max(o["dP"] for o in win))
+    dT = np.max([np.abs(b[1] - a[1]) for a, b in zip(fields[-k:-1], fields[-k + 1:], strict=True)], axis=0)
+    at = np.unravel_index(int(np.argmax(dT)), dT.shape)
+    out.update(dT=float(dT[at]), node=tuple(int(i) for i in at), films_only=True)
+    noise = max(o.get("film_noise", 0.0) for o in win)
+    ok = (out["T_max"] < tol_T and out["friction"] < tol_H and max(out["Hc"], out["Hm"]) < max(tol_H, 2.0 * noise))
+    return out if ok else None
+
+
+def grows(raw: list[float]) -> bool:
+    """Whether the changes ``raw`` (over their tolerances) grow: above 10 tolerances and doubled
+    in one iteration or risen in two in a row."""
+    return len(raw) >= 2 and raw[-1] > 10.0 and (raw[-1] > 2.0 * raw[-2] or (len(raw) >= 3 and raw[-1] > raw[-2] > raw[-3]))
+
+
+def films_settled_note(it: int, floor: dict[str, float]) -> str:
+    return (f"iteration {it}: the films, pressure, friction and largest temperature settled (drift per "
+            f"iteration over the damping: P {floor['P']:.2g}, Hc {floor['Hc']:.2g}, Hm {floor['Hm']:.2g}, "
+            f"friction {floor['friction']:.2g}, T_max {floor['T_max']:.2g} K) while the temperature at "
+            f"index {floor['node']} of the temperature array still changes by up to {floor['dT']:.2g} K per iteration: "
+            f"the temperature field there is not converged; the drift and spread of the last "
+            f"{NOISE_WINDOW} iterations are the iteration error of what is reported")
+
+
 def multilevel_step(contact: Contact, a: np.ndarray, c: np.ndarray, state: Iterate, it: int,
                     tol_H: float) -> Iterate:
     """Pressure and film of the factors ``a``, ``c``, the multilevel solve started from
@@ -243,7 +299,9 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
     outer: list[dict[str, float]] = []
     hist: list[float] = []
     raw: list[float] = []
+    raw_films: list[float] = []  # the changes of P and the films alone, over their tolerances
     actions: list[str] = []
+    t_only = False  # noted that only the temperature grows at the smallest damping
     converged = False
     w = relax
     AX = np.empty((anderson + 1, 2 * n))
@@ -313,7 +371,8 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
         dT = float(np.max(np.abs(T_new - T)))
         outer.append({"iteration": it, "dP": dP, "dHc": dHc, "dHm": dHm, "dT": dT, "factor_change": dfac,
                       "relax": w_used, "cycles": int(new.extra.get("cycles", 0)), "Hc": new.Hc, "Hm": new.Hm,
-                      "T_max": float(np.max(T_new)), "wall_s": time.perf_counter() - ti})
+                      "T_max": float(np.max(T_new)), "friction": float(contact.friction(thermal_new)),
+                      "wall_s": time.perf_counter() - ti})
         if not all(math.isfinite(v) for v in (dP, dHc, dHm, dT)):
             raise ConvergenceError(f"TEHL outer iteration {it}: NaN in the pressure, film or temperature",
                                    None, OUTER_HINT)
@@ -324,7 +383,8 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
         # the films cannot settle below the algebraic uncertainty of the inner solves
         noise = max(float(new.extra.get("film_noise", 0.0)), float(state_prev.extra.get("film_noise", 0.0)))
         outer[-1]["film_noise"] = noise
-        raw.append(max(dP / tol_P, max(dHc, dHm) / max(tol_H, 2.0 * noise), dT / tol_T))
+        raw_films.append(max(dP / tol_P, max(dHc, dHm) / max(tol_H, 2.0 * noise)))
+        raw.append(max(raw_films[-1], dT / tol_T))
         hist.append(raw[-1] / w_used)
         if hist[-1] < 1.0:
             converged = True
@@ -345,9 +405,7 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
         # algebraic noise of the inner solves, not divergence
         # (a trend rising over many iterations is growth near the tolerances too; it halves the
         # damping but never declares divergence)
-        growing = len(raw) >= 2 and ((raw[-1] > 10.0 and (
-            raw[-1] > 2.0 * raw[-2] or (len(raw) >= 3 and raw[-1] > raw[-2] > raw[-3])))
-            or (raw[-1] > 2.0 and w > MIN_RELAX and creeping(raw, it - since)))
+        growing = grows(raw) or (len(raw) >= 2 and raw[-1] > 2.0 and w > MIN_RELAX and creeping(raw, it - since))
         if growing and extrapolated:
             # an Anderson step that overshot: the history restarts and the next `anderson`
             # steps are plain damped ones at the same under-relaxation, so that the next
@@ -359,6 +417,19 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
                            f"after an Anderson step; {anderson} plain steps ({w:g}) before the next")
         elif growing:
             if w <= MIN_RELAX:
+                floor = films_settled(outer, fields, tol_P, tol_H, tol_T)
+                if floor is not None:
+                    converged = True
+                    actions.append(films_settled_note(it, floor))
+                    break
+                if not grows(raw_films):
+                    # only the temperature grows (a node the films do not feel, at a stationary
+                    # surface): iterate on, within max_outer, until the films settle
+                    if not t_only:
+                        t_only = True
+                        actions.append(f"iteration {it}: the temperature changes grow ({dT:.3g} K) at the "
+                                       f"smallest under-relaxation while P and the films do not; iterating on")
+                    continue
                 rep = ConvergenceReport(converged=False, message="diverged", iterations=len(outer),
                                         residual_history=np.array(hist), tolerances={"P": tol_P, "H": tol_H, "T_K": tol_T},
                                         wall_s=time.perf_counter() - t0, extra={"outer": outer, "actions": actions})
@@ -378,6 +449,13 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
         wall_s=time.perf_counter() - t0, extra={"outer": outer, "actions": actions})
     if floor is not None:
         report.extra["noise_floor"] = floor
+    if not converged:
+        floor = films_settled(outer, fields, tol_P, tol_H, tol_T)
+        if floor is not None:
+            converged = True
+            actions.append(films_settled_note(len(outer), floor))
+            report.converged, report.message = True, "converged"
+            report.extra["noise_floor"] = floor
     if not converged:
         last = outer[-1]
         raise ConvergenceError(

@@ -170,6 +170,9 @@ class PointContact:
         fine = hz.levels[-1]
         return res, fine.P.copy(), fine.H.copy(), float(hz.H00)
 
+    def friction(self, thermal: Any) -> float:
+        return float(thermal.friction())
+
     def films(self, P: np.ndarray, H: np.ndarray) -> tuple[float, float]:
         Yf, Pf, Hf = full_fields(self.X, self.Y, P, H, True)
         m = film_metrics(self.X, Yf, Pf, Hf)
