@@ -21,6 +21,7 @@ def _film_section(report: str) -> str:
     return report.split("## film", 1)[1].split("\n## ", 1)[0]
 
 
+@pytest.mark.solver
 def test_run_on_a_starved_scene_whose_film_solve_fails_exits_3_and_reports_no_fitted_film(
         tmp_path, capsys, monkeypatch, report_scene):
     # the starved point solver without its exact zone solve, on 65^2: it stops near the

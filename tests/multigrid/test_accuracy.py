@@ -858,6 +858,7 @@ def test_the_message_of_a_corrected_result_names_only_the_films_each_part_correc
     assert "Hm extrapolated" not in res.message
 
 
+@pytest.mark.solver
 def test_point_target_missed_only_by_the_domain_part_is_met_by_the_box_correction():
     """Circular (20, 10) on 513 points: a target the grid and iteration parts meet but the
     domain part misses is met by correcting the films for the box (two doublings measured on

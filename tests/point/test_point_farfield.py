@@ -114,6 +114,7 @@ def test_the_far_field_makes_an_elastic_circular_film_nearly_independent_of_the_
     assert abs(f2 / f1 - 1.0) < 0.001 and abs(f4 / f2 - 1.0) < 1e-4
 
 
+@pytest.mark.solver
 def test_a_thick_circular_film_converges_with_the_far_field_on_a_box_of_a_hundred_a():
     """Circular (1, 10): the pressure spreads over the inlet length s = 8 a and with P = 0 on
     the boundary the box error fell only as 1/box (0.5 % needed an inlet of about 16000 a; it
