@@ -87,11 +87,12 @@ def test_the_elastic_deformation_term_solves_the_far_field_equation_to_the_next_
 
 
 def test_load_outside_with_the_gap_terms_is_the_integral_of_the_far_pressure_there(load_around_box):
-    # trapezoid sums around the default box out to a square of 20, load_outside beyond it
+    # Simpson sums around the default box out to a square of 20, load_outside beyond it; on
+    # 0.02 within 3.6e-5 of the load (2.1e-5 on 0.01, at four times the evaluations)
     c2, k = -1.2, 0.4244
     xmin, xmax, ymax = -4.5, 1.5, 3.0
     big = 20.0
-    num = load_around_box(lambda x, y: far_pressure(LAM, x, y, c2, k), xmin, xmax, ymax, big)
+    num = load_around_box(lambda x, y: far_pressure(LAM, x, y, c2, k), xmin, xmax, ymax, big, h=0.02)
     tail = load_outside(LAM, -big, big, big, c2, k)
     assert num + tail == pytest.approx(load_outside(LAM, xmin, xmax, ymax, c2, k), rel=2e-4)
 
