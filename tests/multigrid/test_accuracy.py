@@ -858,6 +858,7 @@ def test_the_message_of_a_corrected_result_names_only_the_films_each_part_correc
     assert "Hm extrapolated" not in res.message
 
 
+@pytest.mark.solver
 def test_point_target_missed_only_by_the_domain_part_is_met_by_the_box_correction():
     """Circular (20, 10) on 513 points: a target the grid and iteration parts meet but the
     domain part misses is met by correcting the films for the box (two doublings measured on
@@ -1039,13 +1040,18 @@ def test_the_default_scene_extrapolated_from_converged_coarser_films_agrees_with
         assert abs(r.scalars[k] / fine.scalars[k] - 1.0) <= getattr(r, e) + getattr(fine, e)
 
 
-@pytest.mark.solver
+@pytest.mark.slow
 def test_a_box_corrected_film_converging_faster_than_second_order_is_estimated_on_converged_grids():
     """Circular (20, 10) at 0.5 % (513 points on twice the box): the domain part decides the
     miss and the box series corrects the films; Hm's FMG sequence converges at order 2.56, above
     FAST_ORDER, so the grids below are solved to convergence (0.3 s) and both films extrapolate.
     Against the far-field reference (Hc 0.436779, Hm 0.298389, within 0.02 %) the films lie
-    -0.05 %, -0.25 % off, stated at 0.09 %, 0.30 %."""
+    -0.05 %, -0.25 % off, stated at 0.09 %, 0.30 %. A study of the two together against a
+    reference; in the default run each part alone: the box correction
+    (test_point_target_missed_only_by_the_domain_part_is_met_by_the_box_correction), the repair
+    by converged coarser grids on a real solve
+    (test_a_point_film_not_extrapolated_is_tried_again_on_converged_coarser_films) and the
+    FAST_ORDER rule (test_films_converging_faster_than_second_order_are_checked_on_converged_coarser_grids)."""
     r = solve_point(20.0, 10.0, accuracy=0.005, far_field=False)
     assert r.success and r.X.shape[0] == 513
     assert "box" in r.error.correction and set(r.error.extrapolated) == {"Hc", "Hm"}

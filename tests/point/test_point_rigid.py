@@ -50,6 +50,7 @@ def test_a_box_inside_the_hertz_circle_is_accepted_for_rigid_surfaces_only():
         PointOptions(xmin=-4.5, xmax=0.2, ymax=0.6)
 
 
+@pytest.mark.solver
 def test_a_rigid_film_short_of_its_target_says_why_without_trying_wider_boxes():
     """An elliptic rigid contact without the far-field boundary: its box error falls about as
     1/box, so the loop keeps the rigid box and says so (it refined box and grid together for 15

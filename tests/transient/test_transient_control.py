@@ -69,7 +69,16 @@ def test_a_run_whose_first_step_misses_the_target_is_refined_in_dt_until_its_tim
     assert "grid" in sol.message and "not estimated" in sol.message
     assert "refined to the target" in sol.error.notes[0]
 
-    # the true time error, against a run at a quarter of the answer's step
+
+@pytest.mark.slow
+@pytest.mark.xdist_group("transient_control")
+def test_the_time_part_of_a_run_refined_to_a_target_covers_its_true_time_error(refined):
+    """The true time error, against a run at a quarter of the answer's step (1376 steps). A
+    study: the default run checks the time part's Richardson estimate against a finer step on
+    the line contact (test_transient_line.py, test_time_error_estimate_matches_the_error_
+    against_a_finer_step)."""
+    sol, _ = refined
+    t = sol.error.parts["time"]
     res = sol.raw
     ref = ehl.solve(dent_scene(), physics="transient", accuracy=None,
                     options={"points": 129, "dt": res.dt / 4, "steps": 4 * res.planned_steps}).raw

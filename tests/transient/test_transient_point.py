@@ -44,14 +44,15 @@ def test_zero_amplitude_point_feature_reproduces_the_steady_solution(problem):
 
 @pytest.mark.solver
 def test_bdf2_time_step_order_is_two_on_a_coarse_grid(problem):
-    # a Gaussian bump (0.24 Hc high) entering the contact, T in [0, 1.2], 65^2 points
+    # a Gaussian bump (0.24 Hc high) entering the contact, T in [0, 1.2], 33^2 points (the
+    # order and the estimate's ratio as on 65^2: 1.92 and 1.26 against 1.88 and 1.23, at 0.4 of the cost)
     bump = Dent2D(0.1, 0.8, x0=-2.4, shape="gaussian")
-    runs = [solve_transient_point(problem, bump, dt=dt, steps=round(1.2 / dt), points=65, tol=1e-7,
+    runs = [solve_transient_point(problem, bump, dt=dt, steps=round(1.2 / dt), points=33, tol=1e-7,
                                   tol_load=1e-9, snapshot_every=1000) for dt in (0.1, 0.05, 0.025)]
     d1 = np.max(np.abs(runs[0].Hc - runs[1].Hc[::2]))
     d2 = np.max(np.abs(runs[1].Hc - runs[2].Hc[::2]))
     assert d1 > 1e-4  # the bump changes the film: the differences are time errors, not noise
-    assert 1.6 < math.log2(d1 / d2) < 2.4  # measured 1.88
+    assert 1.6 < math.log2(d1 / d2) < 2.4  # measured 1.92
     # Richardson estimate of the time error of the dT = 0.05 run against the dT = 0.025 run
     est = time_error(runs[1], runs[0])["Hc"] * runs[1].Hc_steady
     assert 0.8 < est / TIME_SAFETY / d2 < 2.0  # the Richardson term, without the safety factor

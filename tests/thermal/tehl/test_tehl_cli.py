@@ -119,7 +119,7 @@ def test_traction_coupled_gives_a_curve_from_tehl_solves(capsys, tmp_path):
     from ehl_multigrid.app.cli import main
 
     rc = main(["traction", "appendix_c_line_4240N", "--coupled", "--slip", "0.1,0.3", "--points", "129",
-               "--nz", "10", "--json", "--out", str(tmp_path), "--accuracy", "0.5"])  # 129 points: Hm 33 %
+               "--nz", "10", "--json", "--no-plots", "--out", str(tmp_path), "--accuracy", "0.5"])  # 129 points: Hm 33 %
     out = json.loads(capsys.readouterr().out)
     assert rc == 0 and out["slip"] == [0.1, 0.3]
     assert 0.005 < max(out["Hc_error"], out["Hm_error"]) <= 0.5  # judged against the given accuracy
@@ -177,7 +177,7 @@ def test_a_tehl_traction_curve_states_its_error_at_its_first_last_and_peak_slips
     assert out["error_at_slips"][0]["friction_coefficient_error"] is None
     assert out["friction_coefficient_error"] == out["error_at_slips"][1]["friction_coefficient_error"]
     assert main(["traction", "appendix_c_line_4240N", "--coupled", "--slip", "0.1,0.3", "--points", "129",
-                 "--nz", "10", "--no-estimate", "--json", "--out", str(tmp_path)]) == 0
+                 "--nz", "10", "--no-estimate", "--json", "--no-plots", "--out", str(tmp_path)]) == 0
     assert "Hc_error" not in json.loads(capsys.readouterr().out)
 
 
