@@ -126,6 +126,22 @@ def coarse_points(M: float, box: float = 1.0) -> int:
     return (n - 1) * 2 ** max(0, round(math.log2(box))) + 1
 
 
+#: above this M the steady solver's cycles coarsen to :data:`CYCLE_FLOOR_POINTS` points only
+CYCLE_FLOOR_M = 2000.0
+#: ... solved there by Newton: at isoviscous (5000, 0) a 513-point coarsest grid leaves a slow
+#: film mode (a solve from a given solution on 32769 points: 14 cycles ending 0.1 % off the
+#: discrete solution, against 6 cycles; docs/performance.md, "Line contacts at high load")
+CYCLE_FLOOR_POINTS = 1025
+
+
+def cycle_floor_points(M: float) -> int:
+    """The coarsest grid the steady solver's cycles visit (0: no floor): at high load the
+    coarse grids' corrections of the film level are too poor below it. The same number of
+    points on a longer box (a box probe): a Newton solve on 2049 points at every cycle costs
+    more than the cycles it saves ((5000, 0), 8193 points on twice the box: 1.95 s against 0.96 s)."""
+    return CYCLE_FLOOR_POINTS if M > CYCLE_FLOOR_M else 0
+
+
 def default_switch_h(problem: LineProblem) -> float:
     """Fine-grid switch constant (Jacobi-distributive where ``eps/h^2 < switch_h/h``).
 
@@ -479,7 +495,8 @@ class LineHierarchy:
         return start_key(self.problem, self.options, lv.n, float(lv.X[0]), float(lv.X[-1]), lv.order)
 
     def _start_level(self) -> int:
-        want = self.options.fmg_start_points or coarse_points(self.problem.M, box_ratio(self.problem))
+        want = self.options.fmg_start_points or max(coarse_points(self.problem.M, box_ratio(self.problem)),
+                                                    cycle_floor_points(self.problem.M) if self.stall_steps else 0)
         for k, lv in enumerate(self.levels):
             if lv.n >= want:
                 return k
@@ -493,7 +510,21 @@ class LineHierarchy:
 
     def start(self, solver: MultilevelSolver) -> int:
         """Solve the FMG start grid by Newton; refine the start grid while the discrete film
-        is not positive (too coarse for this load). Returns the start level."""
+        is not positive (too coarse for this load). Returns the start level. The steady solver's
+        cycles then coarsen no further than :func:`cycle_floor_points`."""
+        k0 = self._start(solver)
+        self.floor = max(self.floor, self._cycle_floor(k0))
+        return k0
+
+    def _cycle_floor(self, k0: int) -> int:
+        """The coarsest grid of the steady solver's cycles from start level ``k0`` on
+        (:func:`cycle_floor_points`; never above the start)."""
+        if not self.stall_steps:
+            return 0
+        want = cycle_floor_points(self.problem.M)
+        return min(next((k for k, lv in enumerate(self.levels) if lv.n >= want), k0), k0)
+
+    def _start(self, solver: MultilevelSolver) -> int:
         self.solver = solver
         top = len(self.levels) - 1
         if self.resume is not None:
@@ -589,7 +620,8 @@ class LineHierarchy:
             # a stall step leaves them out of the cycles (raise_switch)
             self.film_floor = k
         if k > 0:
-            solver.note(f"FMG started on the {lv.n}-point grid (cycles still coarsen to {self.levels[0].n})")
+            solver.note(f"FMG started on the {lv.n}-point grid (cycles still coarsen to "
+                        f"{self.levels[self._cycle_floor(k)].n})")
         return k
 
     def _resumed_start(self, prev: EHLResult, solver: MultilevelSolver) -> int | None:
@@ -601,14 +633,14 @@ class LineHierarchy:
         j = next((k for k, lv in enumerate(self.levels[:-1]) if lv.n == X.size
                   and lv.X[0] == X[0] and lv.X[-1] == X[-1]), None)
         below = [d for d in prev.fmg if d.get("level", -1) < j] if j is not None else []
-        if j is None or not below or prev.P is None:
+        if j is None or not (below or cycle_floor_points(self.problem.M)) or prev.P is None:
             return None
         lv = self.levels[j]
         lv.P, lv.H0 = np.array(prev.P, dtype=float), float(prev.H0)
         lv.f = np.zeros(lv.n)
         lv.g = 0.5 * math.pi
         self.resumed_fmg = [dict(d) for d in below]
-        first = min(d["level"] for d in below)  # where prev's own FMG started
+        first = min((d["level"] for d in below), default=0)  # where prev's own FMG started
         self.film_floor = first if first > self._start_level() else 0
         solver.note(f"FMG resumed on the {lv.n}-point grid from the converged solve there")
         return j
@@ -958,7 +990,7 @@ def resumable(grids: dict, n: int, box: float, options: LineOptions) -> EHLResul
     # whose cycles were rejected leaves a fragile start: resumed, page-63 500 N's 8193 points at
     # 0.1 % rejected cycles where the whole FMG did not, 1.4 s against 0.14 s)
     fits = [r for (m, b), r in grids.items() if b == box and m < n and (n - 1) % (m - 1) == 0
-            and any(d.get("level", -1) < r.levels - 1 for d in r.fmg)
+            and (any(d.get("level", -1) < r.levels - 1 for d in r.fmg) or cycle_floor_points(r.problem.M))
             and not any("rejected" in a for a in r.actions)
             and dataclasses.replace(r.options, **{f: getattr(options, f) for f in ITERATION_FIELDS}) == options]
     return max(fits, key=lambda r: r.X.size, default=None)
@@ -1066,7 +1098,7 @@ def solve_line(
             res = tightened(prev, t, o) if t.success and t.levels == prev.levels else None
         # isoviscous: FMG through the fine grids rejects cycle after cycle (docs/accuracy.md,
         # "Cycled start"); the resumed attempt failed and cost (3000, 0) 0.6 s
-        resume = resumable(grids, n, box, o) if pb.L > 0.0 else None
+        resume = resumable(grids, n, box, o) if pb.L > 0.0 or cycle_floor_points(pb.M) else None
         if res is None and resume is not None:
             res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess,
                                      start_cache=starts, resume=resume)

@@ -484,6 +484,14 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
             below = [d for d in fmg if d.get("points", 0) <= n] if n in have else []
             fmg = sorted(below + extra, key=lambda d: d["points"])
             used += [d["points"] for d in extra]
+        if 0 < len(fmg) < 2:
+            # an FMG resumed from a solve that started on its own finest grid (the line's
+            # continuation in M) visited one coarser grid: the converged films below it
+            n = fmg[0]["points"]
+            while n > 3 and (n - 1) // 2 + 1 in converged:
+                n = (n - 1) // 2 + 1
+                fmg.insert(0, {"points": n, **_converged_films(converged[n])})
+                used.append(n)
         if used:
             notes.append(f"Richardson with the converged films of the solves on {used} points")
     rc = richardson([d["Hc"] for d in fmg] + [Hc])
