@@ -254,6 +254,8 @@ class LineHierarchy:
         #: ``film_floor``, the FMG start grid when the start moved up because the grids below
         #: cannot hold a positive film (or their Newton failed)
         self.floor = 0
+        #: the cycles start from a given solution above the dense start grids (:meth:`start`)
+        self.guess_start = False
         self.film_floor = 0
         #: the h-scaled switch on the current FMG grid only (a stall step, raise_switch)
         self.classic_coarse_switch = False
@@ -510,19 +512,20 @@ class LineHierarchy:
 
     def start(self, solver: MultilevelSolver) -> int:
         """Solve the FMG start grid by Newton; refine the start grid while the discrete film
-        is not positive (too coarse for this load). Returns the start level. The steady solver's
-        cycles then coarsen no further than :func:`cycle_floor_points`."""
-        k0 = self._start(solver)
-        self.floor = max(self.floor, self._cycle_floor(k0))
-        return k0
+        is not positive (too coarse for this load). Returns the start level. A steady solve whose
+        cycles start from a given solution above its dense start grids then coarsens no further
+        than :func:`cycle_floor_points`."""
+        self.guess_start = False
+        return self._start(solver)
 
-    def _cycle_floor(self, k0: int) -> int:
-        """The coarsest grid of the steady solver's cycles from start level ``k0`` on
-        (:func:`cycle_floor_points`; never above the start)."""
-        if not self.stall_steps:
-            return 0
-        want = cycle_floor_points(self.problem.M)
-        return min(next((k for k, lv in enumerate(self.levels) if lv.n >= want), k0), k0)
+    def _from_guess(self) -> None:
+        """The cycles start from a given solution above the dense start grids: the steady
+        solver's cycles coarsen no further than :func:`cycle_floor_points` from here on."""
+        self.guess_start = True
+        if self.stall_steps:
+            want = cycle_floor_points(self.problem.M)
+            top = len(self.levels) - 1
+            self.floor = max(self.floor, next((k for k, lv in enumerate(self.levels) if lv.n >= want), top))
 
     def _start(self, solver: MultilevelSolver) -> int:
         self.solver = solver
@@ -532,6 +535,7 @@ class LineHierarchy:
             if j is not None:
                 return j
         if self.start_on_guess and self.guess is not None:
+            self._from_guess()
             self._initial_guess(self.levels[top])
             solver.note(f"started on the {self.levels[top].n}-point grid from the given solution (no FMG)")
             return top
@@ -548,6 +552,7 @@ class LineHierarchy:
         while k in no_film and k < top and self.levels[k + 1].n <= MAX_START_POINTS:
             k += 1
         if k in no_film and self.guess is not None:
+            self._from_guess()
             j = self._guess_start_above(k, solver)
             if j is not None:
                 return j
@@ -601,6 +606,7 @@ class LineHierarchy:
         if not self._film_ok(lv):
             capped = k < top and self.levels[k + 1].n > MAX_START_POINTS
             if capped and self.guess is not None:
+                self._from_guess()
                 # the given solution replaces the direct start: cycles on the finest grid
                 # from it (the coarser grids still serve as coarse-grid corrections)
                 fin = self.levels[top]
@@ -621,7 +627,7 @@ class LineHierarchy:
             self.film_floor = k
         if k > 0:
             solver.note(f"FMG started on the {lv.n}-point grid (cycles still coarsen to "
-                        f"{self.levels[self._cycle_floor(k)].n})")
+                        f"{self.levels[0].n})")
         return k
 
     def _resumed_start(self, prev: EHLResult, solver: MultilevelSolver) -> int | None:
@@ -640,6 +646,9 @@ class LineHierarchy:
         lv.f = np.zeros(lv.n)
         lv.g = 0.5 * math.pi
         self.resumed_fmg = [dict(d) for d in below]
+        # prev started on its own finest grid from a given solution: so does this one, in effect
+        if not below:
+            self._from_guess()
         first = min((d["level"] for d in below), default=0)  # where prev's own FMG started
         self.film_floor = first if first > self._start_level() else 0
         solver.note(f"FMG resumed on the {lv.n}-point grid from the converged solve there")
