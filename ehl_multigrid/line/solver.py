@@ -126,6 +126,27 @@ def coarse_points(M: float, box: float = 1.0) -> int:
     return (n - 1) * 2 ** max(0, round(math.log2(box))) + 1
 
 
+#: above this M an isoviscous steady solve starts its FMG on at least :data:`CYCLE_FLOOR_POINTS`
+#: points (the 513-point grid holds no positive film there, and its failed Newton start cost
+#: 0.4 s at (5000, 0)), and its cycles from a given solution coarsen no further than that grid
+CYCLE_FLOOR_M = 2000.0
+#: ... solved there by Newton: at isoviscous (5000, 0) a 513-point coarsest grid leaves a slow
+#: film mode (a solve from a given solution on 32769 points: 14 cycles ending 0.1 % off the
+#: discrete solution, against 6 cycles; docs/performance.md, "Line contacts at high load")
+CYCLE_FLOOR_POINTS = 1025
+
+
+def cycle_floor_points(M: float, L: float) -> int:
+    """The coarsest grid the steady solver's cycles visit when they start from a given solution
+    above the dense start grids (0: no floor): for isoviscous contacts above
+    :data:`CYCLE_FLOOR_M` the coarser grids' corrections of the film level are too poor. With
+    a pressure viscosity the floor cost more than it saved ((5000, 5): 0.27 -> 0.53 s for its
+    16385-point solve; box probes of (5000, 25) 0.22 -> 0.35 s). The same number of points on a
+    longer box (a box probe): a Newton solve on 2049 points at every cycle costs more than the
+    cycles it saves ((5000, 0), 8193 points on twice the box: 1.95 s against 0.96 s)."""
+    return CYCLE_FLOOR_POINTS if M > CYCLE_FLOOR_M and L <= 0.0 else 0
+
+
 def default_switch_h(problem: LineProblem) -> float:
     """Fine-grid switch constant (Jacobi-distributive where ``eps/h^2 < switch_h/h``).
 
@@ -238,6 +259,8 @@ class LineHierarchy:
         #: ``film_floor``, the FMG start grid when the start moved up because the grids below
         #: cannot hold a positive film (or their Newton failed)
         self.floor = 0
+        #: the cycles start from a given solution above the dense start grids (:meth:`start`)
+        self.guess_start = False
         self.film_floor = 0
         #: the h-scaled switch on the current FMG grid only (a stall step, raise_switch)
         self.classic_coarse_switch = False
@@ -479,7 +502,8 @@ class LineHierarchy:
         return start_key(self.problem, self.options, lv.n, float(lv.X[0]), float(lv.X[-1]), lv.order)
 
     def _start_level(self) -> int:
-        want = self.options.fmg_start_points or coarse_points(self.problem.M, box_ratio(self.problem))
+        want = self.options.fmg_start_points or max(coarse_points(self.problem.M, box_ratio(self.problem)),
+                                                    cycle_floor_points(self.problem.M, self.problem.L) if self.stall_steps else 0)
         for k, lv in enumerate(self.levels):
             if lv.n >= want:
                 return k
@@ -493,7 +517,22 @@ class LineHierarchy:
 
     def start(self, solver: MultilevelSolver) -> int:
         """Solve the FMG start grid by Newton; refine the start grid while the discrete film
-        is not positive (too coarse for this load). Returns the start level."""
+        is not positive (too coarse for this load). Returns the start level. A steady solve whose
+        cycles start from a given solution above its dense start grids then coarsens no further
+        than :func:`cycle_floor_points`."""
+        self.guess_start = False
+        return self._start(solver)
+
+    def _from_guess(self) -> None:
+        """The cycles start from a given solution above the dense start grids: the steady
+        solver's cycles coarsen no further than :func:`cycle_floor_points` from here on."""
+        self.guess_start = True
+        if self.stall_steps:
+            want = cycle_floor_points(self.problem.M, self.problem.L)
+            top = len(self.levels) - 1
+            self.floor = max(self.floor, next((k for k, lv in enumerate(self.levels) if lv.n >= want), top))
+
+    def _start(self, solver: MultilevelSolver) -> int:
         self.solver = solver
         top = len(self.levels) - 1
         if self.resume is not None:
@@ -501,6 +540,7 @@ class LineHierarchy:
             if j is not None:
                 return j
         if self.start_on_guess and self.guess is not None:
+            self._from_guess()  # box probes and tolerance steps
             self._initial_guess(self.levels[top])
             solver.note(f"started on the {self.levels[top].n}-point grid from the given solution (no FMG)")
             return top
@@ -517,6 +557,7 @@ class LineHierarchy:
         while k in no_film and k < top and self.levels[k + 1].n <= MAX_START_POINTS:
             k += 1
         if k in no_film and self.guess is not None:
+            self._from_guess()
             j = self._guess_start_above(k, solver)
             if j is not None:
                 return j
@@ -570,6 +611,7 @@ class LineHierarchy:
         if not self._film_ok(lv):
             capped = k < top and self.levels[k + 1].n > MAX_START_POINTS
             if capped and self.guess is not None:
+                self._from_guess()
                 # the given solution replaces the direct start: cycles on the finest grid
                 # from it (the coarser grids still serve as coarse-grid corrections)
                 fin = self.levels[top]
@@ -589,7 +631,8 @@ class LineHierarchy:
             # a stall step leaves them out of the cycles (raise_switch)
             self.film_floor = k
         if k > 0:
-            solver.note(f"FMG started on the {lv.n}-point grid (cycles still coarsen to {self.levels[0].n})")
+            solver.note(f"FMG started on the {lv.n}-point grid (cycles still coarsen to "
+                        f"{self.levels[0].n})")
         return k
 
     def _resumed_start(self, prev: EHLResult, solver: MultilevelSolver) -> int | None:
@@ -601,14 +644,17 @@ class LineHierarchy:
         j = next((k for k, lv in enumerate(self.levels[:-1]) if lv.n == X.size
                   and lv.X[0] == X[0] and lv.X[-1] == X[-1]), None)
         below = [d for d in prev.fmg if d.get("level", -1) < j] if j is not None else []
-        if j is None or not below or prev.P is None:
+        if j is None or not (below or cycle_floor_points(self.problem.M, self.problem.L)) or prev.P is None:
             return None
         lv = self.levels[j]
         lv.P, lv.H0 = np.array(prev.P, dtype=float), float(prev.H0)
         lv.f = np.zeros(lv.n)
         lv.g = 0.5 * math.pi
         self.resumed_fmg = [dict(d) for d in below]
-        first = min(d["level"] for d in below)  # where prev's own FMG started
+        # prev started on its own finest grid from a given solution: so does this one, in effect
+        if not below:
+            self._from_guess()
+        first = min((d["level"] for d in below), default=0)  # where prev's own FMG started
         self.film_floor = first if first > self._start_level() else 0
         solver.note(f"FMG resumed on the {lv.n}-point grid from the converged solve there")
         return j
@@ -958,7 +1004,7 @@ def resumable(grids: dict, n: int, box: float, options: LineOptions) -> EHLResul
     # whose cycles were rejected leaves a fragile start: resumed, page-63 500 N's 8193 points at
     # 0.1 % rejected cycles where the whole FMG did not, 1.4 s against 0.14 s)
     fits = [r for (m, b), r in grids.items() if b == box and m < n and (n - 1) % (m - 1) == 0
-            and any(d.get("level", -1) < r.levels - 1 for d in r.fmg)
+            and (any(d.get("level", -1) < r.levels - 1 for d in r.fmg) or cycle_floor_points(r.problem.M, r.problem.L))
             and not any("rejected" in a for a in r.actions)
             and dataclasses.replace(r.options, **{f: getattr(options, f) for f in ITERATION_FIELDS}) == options]
     return max(fits, key=lambda r: r.X.size, default=None)
@@ -1066,7 +1112,7 @@ def solve_line(
             res = tightened(prev, t, o) if t.success and t.levels == prev.levels else None
         # isoviscous: FMG through the fine grids rejects cycle after cycle (docs/accuracy.md,
         # "Cycled start"); the resumed attempt failed and cost (3000, 0) 0.6 s
-        resume = resumable(grids, n, box, o) if pb.L > 0.0 else None
+        resume = resumable(grids, n, box, o) if pb.L > 0.0 or cycle_floor_points(pb.M, pb.L) else None
         if res is None and resume is not None:
             res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess,
                                      start_cache=starts, resume=resume)

@@ -46,6 +46,12 @@ HM_MAX_ORDER = 1.5
 #: the same cap for line contacts, whose Hm converges at about first order (own orders 0.7-3.3
 #: on the fit map's line results; docs/accuracy.md, "Extrapolated films")
 LINE_HM_MAX_ORDER = 1.0
+#: the pair of differences before the last counts as regular in the line Hm's look back from this
+#: order on (ratio 1.68): its first-order sequences fall by 1.8-3.7 per grid at L = 25 (converged
+#: films on 8193-262145 points, M 1000-5000), and the first-order bound 1.5 |d| covers the
+#: remainder |d|/(r - 1) of any later fall r >= 1.67 (docs/accuracy.md, "Why line films converge
+#: irregularly")
+LINE_HM_LOOK_BACK_ORDER = 0.75
 #: an observed order above this (twice the formal 2) marks a sequence as pre-asymptotic, its last
 #: difference small by accident; it takes the first-order bound (docs/accuracy.md, "Grid error")
 SUSPECT_ORDER = 4.0
@@ -98,7 +104,8 @@ def line_hm_richardson(values: list[float], log_face: bool = False) -> Richardso
     whose Hm is not monotone over the grids either (docs/accuracy.md, "Face coefficient of the
     Poiseuille flux"): also at least half the difference before a last pair falling faster
     than second order."""
-    return richardson(values, max_order=LINE_HM_MAX_ORDER, earlier_half=log_face, look_back=True)
+    return richardson(values, max_order=LINE_HM_MAX_ORDER, earlier_half=log_face, look_back=True,
+                      look_back_order=LINE_HM_LOOK_BACK_ORDER)
 
 
 def log_faces(result: Any) -> bool:
@@ -108,14 +115,16 @@ def log_faces(result: Any) -> bool:
 
 
 def richardson(values: list[float], safety: float = GRID_SAFETY, max_order: float = 2.0,
-               earlier_half: bool = False, look_back: bool = False) -> Richardson:
+               earlier_half: bool = False, look_back: bool = False,
+               look_back_order: float = 1.0) -> Richardson:
     """Grid-error estimate of ``values[-1]`` from films on grids refined by 2 each time; the
     observed order is capped at ``max_order``. ``earlier_half``: at least half the difference
     before the last, as for an irregular sequence, also where the sequence falls faster than
     second order (a first-order quantity whose last difference may be small by accident).
     ``look_back``: with four grids or more, a pair of differences before the last that is not
     regular marks the sequence as not yet asymptotic, whatever its last ratio says; the error is
-    then at least the larger of the last two differences (no decay assumed)."""
+    then at least the larger of the last two differences (no decay assumed); that pair is regular
+    from the order ``look_back_order`` on."""
     v = [float(x) for x in values if math.isfinite(x)]
     if len(v) < 2:
         return Richardson(math.inf, math.nan, math.nan, False)
@@ -135,7 +144,7 @@ def richardson(values: list[float], safety: float = GRID_SAFETY, max_order: floa
         # for a true 1.04 % (now 5.3 %); the honesty set goes from 69 to 70 of 70 covered,
         # median true/estimate 0.43 -> 0.42
         err = max(err, 0.5 * abs(d1))
-    if look_back and len(v) >= 4 and not 1.0 <= _pair_order(v[-3] - v[-4], d1) <= SUSPECT_ORDER:
+    if look_back and len(v) >= 4 and not look_back_order <= _pair_order(v[-3] - v[-4], d1) <= SUSPECT_ORDER:
         # isoviscous line (500, 0): converged Hm on 1025-8193 points with ratios 59, 5.5 (and
         # 4.0 over the FMG films), the 8193-point film as far from the limit as the difference
         # before it (docs/accuracy.md, "Why line films converge irregularly")
@@ -484,6 +493,14 @@ def estimate_error(result: Any, domain: tuple[float, float] | None = None,
             below = [d for d in fmg if d.get("points", 0) <= n] if n in have else []
             fmg = sorted(below + extra, key=lambda d: d["points"])
             used += [d["points"] for d in extra]
+        if 0 < len(fmg) < 2:
+            # an FMG resumed from a solve that started on its own finest grid (the line's
+            # continuation in M) visited one coarser grid: the converged films below it
+            n = fmg[0]["points"]
+            while n > 3 and (n - 1) // 2 + 1 in converged:
+                n = (n - 1) // 2 + 1
+                fmg.insert(0, {"points": n, **_converged_films(converged[n])})
+                used.append(n)
         if used:
             notes.append(f"Richardson with the converged films of the solves on {used} points")
     rc = richardson([d["Hc"] for d in fmg] + [Hc])

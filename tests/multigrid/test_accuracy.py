@@ -11,6 +11,7 @@ from ehl_multigrid.line import solve_line
 from ehl_multigrid.multigrid.accuracy import (
     GRID_SAFETY,
     ErrorEstimate,
+    estimate_error,
     line_hm_richardson,
     next_refinement,
     points_needed,
@@ -1173,6 +1174,35 @@ def test_a_regular_looking_last_pair_after_an_irregular_one_is_bounded_by_the_di
     # a regular pair before the last changes nothing
     steady = [1.0 - 0.27, 1.0 - 0.09, 1.0 - 0.03, 1.0 - 0.01]
     assert richardson(steady, max_order=1.0, look_back=True) == richardson(steady[1:], max_order=1.0)
+
+
+def test_a_first_order_line_hm_falling_by_1_9_one_pair_back_keeps_its_first_order_bound():
+    # (2000, 25): FMG/converged Hm (Venner units) on 16385-131073 points at 0.5 %; the pair one
+    # back falls by 1.92 (order 0.94), the last by 2.85. The converged films go on to 7.66162
+    # on 262145 points (ratio 2.19), a limit near 7.665e-4: the 131073-point film is 0.10 % off
+    films = [7.571926e-4, 7.622089e-4, 7.648254e-4, 7.657441e-4]
+    r = line_hm_richardson(films)
+    assert r.regular
+    assert r.error == pytest.approx(GRID_SAFETY * (films[3] - films[2]))  # first order, no look back
+    assert 0.0010 < r.error / films[-1] < 0.0019
+    # below order 0.75 one pair back (ratio 1.6) the look back still takes the difference before
+    slow = [1.0 - 0.016 - 0.01 - 0.0035, 1.0 - 0.01 - 0.0035, 1.0 - 0.0035, 1.0]
+    assert not line_hm_richardson(slow).regular
+    assert line_hm_richardson(slow).error == pytest.approx(GRID_SAFETY * 0.01)
+
+
+def test_a_two_film_sequence_extends_down_the_converged_films_of_coarser_grids():
+    # an FMG resumed from a solve that started on its finest grid visits one coarser grid: the
+    # repair solves' converged films below it complete the sequence
+    fin = SimpleNamespace(level=1, cycle=3, Hc=1.0, Hm=1.0)
+    res = SimpleNamespace(scalars={"Hc_venner": 1.0, "Hm_venner": 1.0}, levels=2, contact="",
+                          fmg=[{"level": 0, "points": 257, "Hc": 0.99, "Hm": 0.99}],
+                          history=[SimpleNamespace(level=1, cycle=2, Hc=1.0, Hm=1.0), fin],
+                          load_error_history=np.array([0.0]), X=np.zeros(513))
+    converged = {257: (0.99, 0.99), 129: (0.95, 0.95), 65: (0.79, 0.79)}
+    est = estimate_error(res, (0.0, 0.0), converged)
+    assert est.order_Hc == pytest.approx(2.0)  # 0.04 then 0.01: three films
+    assert "[257, 129, 65]" in " ".join(est.notes)
 
 
 def test_isoviscous_line_at_five_percent_states_an_hm_error_that_covers_its_reference():
