@@ -129,7 +129,7 @@ def fit_deviation_estimate(scene: Scene) -> tuple[float, str]:
     else:
         val, why = 0.25, ("Barus-type, incompressible fits exceed Roelands + Dowson-Higginson solutions by "
                           "10-25 % (not yet measured here)")
-    extra = fits.theta_deviation(kind, 1.0 if kind == "line" else scene.theta)
+    extra = fits.theta_deviation(kind, scene.theta)
     if extra > 0.0:
         val += extra
         why += (f"; plus {extra:.2g} for theta = {scene.theta:.3g} > 1 (the solver's film above Nijenbanning's by "

@@ -254,7 +254,9 @@ THETA_DEVIATION_PER_DOUBLING = 0.12
 
 def theta_deviation(contact: str, theta: float = 1.0) -> float:
     """Expected extra deviation of the Nijenbanning central film at ``theta > 1`` (a contact
-    long in the rolling direction), beyond the one measured at theta = 1: :data:`THETA_DEVIATION_PER_DOUBLING` times ``log2(theta)``; 0 for line contacts and theta <= 1."""
+    long in the rolling direction), beyond the one measured at theta = 1:
+    :data:`THETA_DEVIATION_PER_DOUBLING` times ``log2(theta)``; 0 for line contacts and
+    theta <= 1."""
     if contact == "line" or not theta > 1.0:
         return 0.0
     return THETA_DEVIATION_PER_DOUBLING * math.log2(theta)

@@ -186,9 +186,8 @@ def films_settled(outer: list[dict[str, float]], fields: list[tuple[np.ndarray, 
     last :data:`NOISE_WINDOW` iterations (at any dampings) the changes of P and the films stay
     within :data:`NOISE_RAW` tolerances, and the drift per iteration (the median step), divided
     by the smallest damping of the window, of Hc, Hm, the friction (relative) and T_max (kelvin)
-    meets the tolerances; the
-    temperature at some nodes still moves (at a stationary surface: the far inlet's dividing
-    streamline, docs/thermal.md "Limits"). The drift and spread of each are its iteration
+    meets the tolerances; the temperature at some nodes still moves (at a stationary surface:
+    the far inlet's dividing streamline, docs/thermal.md "Limits"). The drift and spread of each are its iteration
     error (:func:`thermal.tehl.accuracy.estimate_error`). Returns them, the drift of P
     (half-window means) and the largest temperature change of the window (``dT``) with where it
     is (the node's indices, ``node``), or None."""
