@@ -27,7 +27,7 @@ def test_run_on_a_starved_scene_whose_film_solve_fails_exits_3_and_reports_no_fi
     # the starved point solver without its exact zone solve, on 65^2: it stops near the
     # flooded film (0.85 of it, carrying 2.5 times the supply; 0.99 on 129^2), which the mass
     # gate fails (mass-balance error 0.9 of the inflow, where 1e-3 is allowed); no continuation
-    # in the supply is tried after it (it fails here too; the test 4.0 -> 2.8 s)
+    # in the supply is tried after it (it fails here too)
     real_once, real_scene = starved_point._solve_once, starved_pkg.solve_starved_point_scene
     monkeypatch.setattr(starved_point, "CONTINUATION_MAX_POINTS", 0)
     monkeypatch.setattr(starved_point, "_solve_once",

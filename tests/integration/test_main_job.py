@@ -12,7 +12,7 @@ from ehl_multigrid.model.scene import load_scene
 
 @pytest.mark.solver
 def test_main_job_on_a_rough_line_contact_runs_film_traction_and_stribeck(capsys, tmp_path):
-    # no figures: the stages' plots are tests/app/test_plots_backend.py's (1.5 -> 0.4 s of CPU)
+    # no figures: the stages' plots are tests/app/test_plots_backend.py's
     assert main(["run", "page63_line_2000N", "--fidelity", "fast", "--out", str(tmp_path), "--json", "--no-plots"]) == 0
     out = json.loads(capsys.readouterr().out)
     results = load_results(out["hdf5"])

@@ -38,7 +38,7 @@ def without_exact_zone_solve(monkeypatch):
     """The starved point solver without its exact zone solve and with no other coarse-grid rule
     for its re-solve (``exact_rules=()``, also under ``ehl solve``): on the issue's contact the
     cycles then stop at the flooded film. No continuation in the supply is tried after it (it
-    fails there too and returns the same result; the two tests below 4.6 -> 2.2 s and 3.6 -> 1.2 s)."""
+    fails there too and returns the same result)."""
     real, real_solve = starved_point._solve_once, starved_point.solve_starved_point
     monkeypatch.setattr(starved_point, "CONTINUATION_MAX_POINTS", 0)
 
