@@ -60,7 +60,7 @@ class ModelChoice:
 
 def choose_model(scene: Scene, slips: Any, options: ThermalOptions, tolerance: float,
                  **inputs: Any) -> ModelChoice:
-    """Thermal or isothermal friction for a sweep over ``slips``: decided at the largest |slip|,
+    """Thermal or isothermal friction for the slips ``slips``: decided at the largest |slip|,
     where the shear heating is largest, by the thermal and the isothermal friction there on
     the sweep's grid (``options``; ``inputs``: ``input``/``ehl`` of :func:`solve_traction`, the
     film stage's :class:`~ehl_multigrid.model.solved_film.SolvedFilm` in the main job).
@@ -79,7 +79,7 @@ def choose_model(scene: Scene, slips: Any, options: ThermalOptions, tolerance: f
     cold = solve_traction(scene, s_max, options=options.with_changes(thermal=False), **inputs)
     change = abs(hot.coefficient / cold.coefficient - 1.0) if cold.coefficient != 0.0 else math.inf
     need = bool(change > tolerance or not hot.converged)
-    why = (f"at the largest swept slip {s_max:g} the thermal model heats the film by "
+    why = (f"at the largest slip {s_max:g} the thermal model heats the film by "
            f"{hot.max_temperature_rise:.3g} K and changes the friction coefficient from {cold.coefficient:.4g} "
            f"(isothermal) to {hot.coefficient:.4g}, by {change:.2g} "
            f"({'>' if change > tolerance else '<='} the tolerance {tolerance:g})")
@@ -122,8 +122,8 @@ def operating_friction(scene: Scene, options: ThermalOptions, choice: ModelChoic
       with ``p`` = :data:`FRICTION_ORDER`;
     * ``iteration`` -- the thermal march's stress tolerance times ``|f|``;
     * ``model`` -- with the isothermal model at a non-zero slip, the thermal change measured
-      at the largest swept slip (where it is largest) times ``|f|``;
-    * ``roundoff`` -- :data:`ROUNDOFF` times the friction at the largest swept slip (at pure
+      at the largest of the swept and operating slips (where it is largest) times ``|f|``;
+    * ``roundoff`` -- :data:`ROUNDOFF` times the friction at that slip (at pure
       rolling the friction vanishes and what is computed is round-off).
     """
     fine_opts = finer(options)
@@ -150,7 +150,9 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
     inputs = {"input": "ehl" if use_ehl else "hertz", "ehl": film}
     slips = [float(s) for s in default_slips(scene)]
     base = ThermalOptions.for_fidelity(scene, plan.fidelity)
-    choice = choose_model(scene, slips, base, plan.tolerance, **inputs)
+    # the operating slip too: a range given in the scene may stop short of it, and the operating
+    # friction's model part is the change measured here
+    choice = choose_model(scene, [*slips, float(scene.slip)], base, plan.tolerance, **inputs)
     thermal = choice.thermal
     options = base.with_changes(thermal=thermal)
     notes = []

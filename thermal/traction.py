@@ -432,10 +432,15 @@ def combine(
 
 # -- traction curves ------------------------------------------------------------------------
 def default_slips(scene: Scene) -> np.ndarray:
-    """``scene.ranges['slip']`` if present, else 21 values over [0, 1]."""
+    """``scene.ranges['slip']`` if present, else 21 values from 0 to the operating slip's side
+    and at least 1 in size: ``[0, 1]`` for an operating slip in [0, 1], ``[0, -1]`` for one in
+    [-1, 0), ``[0, S]`` beyond (a ball on a flat at rest, S = 2), so the curve holds the
+    operating point."""
     if "slip" in scene.ranges:
         return scene.ranges["slip"].values()
-    return np.linspace(0.0, 1.0, 21)
+    s = float(scene.slip)
+    end = math.copysign(max(1.0, abs(s)), s) if s != 0.0 else 1.0
+    return np.linspace(0.0, end, 21)
 
 
 def traction_curve(

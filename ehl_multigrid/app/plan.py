@@ -144,7 +144,7 @@ THERMAL_DECISION_MARGIN = 1.25
 #: what the thermal decision covers: the traction stage sweeps slips beyond the operating ones
 #: and decides its own model there
 TRACTION_SCOPE = ("this decision holds at the operating slip (film, Stribeck curve); the traction "
-                  "curve chooses its model at the largest slip it sweeps")
+                  "curve chooses its model at the largest of its slips and the operating one")
 #: the friction models (traction and Stribeck curves) are Eyring models whatever this decision
 EYRING_SCOPE = "the friction curves always use the Eyring law (3.3), which is Newtonian at low stress"
 

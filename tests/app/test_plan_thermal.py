@@ -12,7 +12,7 @@ import pytest
 
 from ehl_multigrid.app.plan import make_plan
 from ehl_multigrid.app.stages import RunContext
-from ehl_multigrid.model.scene import load_scene
+from ehl_multigrid.model.scene import Scene, load_scene
 
 pytest.importorskip("thermal.stage")
 
@@ -40,7 +40,7 @@ def test_pure_rolling_6205_traction_stage_uses_the_thermal_model_for_its_high_sl
     s = out.summary
     assert s["thermal"] is True and out.result.scalars["thermal"]
     model = s["thermal_model"]
-    # decided at the largest swept slip, by the thermal model's own heating there
+    # decided at the largest slip (swept and operating), by the thermal model's own heating there
     assert model["slip"] == max(s["slip"]) == 1.0
     assert model["max_temperature_rise"] > 10.0 and model["relative_change"] > plan.tolerance
     assert s["max_temperature_rise"][-1] == pytest.approx(model["max_temperature_rise"], rel=1e-9)
@@ -73,3 +73,38 @@ def test_a_scene_that_sets_the_thermal_switch_keeps_it(tmp_path):
 
     _, out = run_stage(Scene.from_dict(raw), tmp_path)
     assert out.summary["thermal"] is False and "[solver.thermal]" in out.summary["thermal_model"]["reason"]
+
+
+def without_ranges(scene: Scene) -> Scene:
+    d = scene.to_dict()
+    d.pop("ranges", None)
+    return Scene.from_dict(d)
+
+
+@pytest.mark.parametrize(("slip", "end"), [(0.0, 1.0), (0.3, 1.0), (-0.5, -1.0), (2.0, 2.0), (-1.5, -1.5)])
+def test_the_default_traction_sweep_reaches_the_operating_slip(slip, end):
+    from thermal.traction import default_slips
+
+    s = default_slips(without_ranges(load_scene("appendix_c_line_4240N").with_operating(slip=slip)))
+    assert s[0] == 0.0 and s[-1] == pytest.approx(end) and len(s) == 21
+    assert min(s) <= slip <= max(s)
+
+
+def test_a_sliding_scene_beyond_the_default_sweep_decides_its_model_at_its_own_slip(tmp_path):
+    # a ball on a flat at rest (HFRR, SRV) slides purely: S = 2; the sweep used to stop at 1,
+    # and the operating friction took the model and its error from there
+    sc = without_ranges(load_scene("appendix_c_line_4240N").with_operating(slip=2.0))
+    _, out = run_stage(sc, tmp_path)
+    s = out.summary
+    assert max(s["slip"]) == pytest.approx(2.0) and s["thermal_model"]["slip"] == pytest.approx(2.0)
+    assert s["operating_slip"] == pytest.approx(2.0)
+
+
+def test_a_slip_range_short_of_the_operating_slip_still_decides_the_model_there(tmp_path):
+    d = load_scene("appendix_c_line_4240N").with_operating(slip=0.8).to_dict()
+    d["ranges"] = {"slip": [0.0, 0.1, 0.2]}
+    sc = Scene.from_dict(d)
+    _, out = run_stage(sc, tmp_path)
+    s = out.summary
+    assert max(s["slip"]) == pytest.approx(0.2)
+    assert s["thermal_model"]["slip"] == pytest.approx(0.8)
