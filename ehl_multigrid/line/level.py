@@ -7,17 +7,11 @@ import threading
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg
-from scipy.linalg.lapack import dgbsv
 
+from ..multigrid.flux import face_coefficients
+from .band import lapack_to_columns, solve_band_columns
 from .deformation import make_deformation
-from .discrete import (
-    distribute_changes,
-    fluid_state,
-    line_relaxation_system,
-    projected,
-    reynolds_residual,
-)
+from .discrete import fluid_state, projected, relaxation_sweep, residual_from_faces
 
 
 @dataclass
@@ -32,6 +26,8 @@ class State:
     eps: np.ndarray
     r: np.ndarray
     scale: float
+    #: Poiseuille face coefficients of ``eps`` (None: computed where needed)
+    faces: np.ndarray | None = None
 
 
 @dataclass
@@ -93,8 +89,9 @@ class LineLevel:
         H0 = self.H0 if H0 is None else H0
         W = self.deform(P)
         H, rho, drho, lne, dlne, eps = fluid_state(P, W, self.X, H0, self.par, self.lam, self.elastic)
-        r, scale = reynolds_residual(P, H, rho, eps, self.h, self.f, self.order, self.face)
-        return State(H, rho, drho, lne, dlne, eps, r, scale)
+        faces = face_coefficients(eps, self.face)
+        r, scale = residual_from_faces(P, H, rho, faces, self.h, self.f, self.order)
+        return State(H, rho, drho, lne, dlne, eps, r, scale, faces)
 
     def load(self, P: np.ndarray | None = None) -> float:
         """``h sum P`` (trapezoid; P = 0 at the ends)."""
@@ -109,56 +106,43 @@ class LineLevel:
     # -- relaxation -----------------------------------------------------------------------
     def relax(self, switch: float, omega: float, omega_jd: float, band: int = 4,
               st: State | None = None, switch_h: float = 0.0, switch_eps: float = 0.0) -> State:
-        """One collective line-relaxation sweep (discrete.line_relaxation_system) at fixed H0;
+        """One collective line-relaxation sweep (discrete.relaxation_sweep: the system of
+        discrete.line_relaxation_system, solved and applied in one kernel) at fixed H0;
         Jacobi-distributive also where ``eps < switch_eps``.
         Returns the state *before* the sweep (its residual is the one the sweep reduced)."""
         st = self.state() if st is None else st
-        ab, rhs, jac = line_relaxation_system(
-            self.P, st.H, st.rho, st.drho, st.eps, st.r, self.kernel, self.h, self.order,
-            self.elastic, switch, band, self.frozen, switch_h, True, switch_eps, self.face)
-        delta = solve_band(ab, rhs, band)
-        damp = np.ones(self.n)
-        self.P = distribute_changes(self.P, delta, jac, omega, omega_jd, damp, self.frozen)
+        faces = face_coefficients(st.eps, self.face) if st.faces is None else st.faces
+        self.P = relaxation_sweep(
+            self.P, st.H, st.rho, st.drho, st.eps, faces, st.r, self.kernel, self.h, self.order,
+            self.elastic, switch, band, self.frozen, switch_h, True, switch_eps,
+            omega, omega_jd, _band_work(band, self.n - 2))
         return st
 
 
 def solve_band(ab: np.ndarray, rhs: np.ndarray, band: int) -> np.ndarray:
     """Solve a collective line-relaxation system in LAPACK band storage (``band`` sub- and
-    super-diagonals); a singular system (a film collapsed to zero) falls back to point Jacobi.
+    super-diagonals) by banded LU with LAPACK's partial pivoting (:mod:`~ehl_multigrid.line.band`);
+    a singular system (a film collapsed to zero) falls back to point Jacobi.
 
-    LAPACK's ``gbsv`` is called directly, as ``scipy.linalg.solve_banded`` calls it (the same
-    answer, bit for bit), on a work array kept per thread and size: the fresh work array of
-    each call (page faults on 10 MB at 131073 points) cost as much as the solve
-    (docs/performance.md, "Line relaxation")."""
+    The factors go to a work array kept per thread and size: a fresh 10 MB array per call (page
+    faults at 131073 points) cost as much as the solve (docs/performance.md, "Line relaxation:
+    banded systems")."""
     n = ab.shape[1]
-    if band >= 2 and n > 1:
-        ext = _band_work(band, n)
-        ext[:band] = 0.0
-        ext[band:] = ab
-        _, _, x, info = dgbsv(band, band, ext, rhs, overwrite_ab=1, overwrite_b=0)
-        if info == 0:
-            return x
-        if info < 0:
-            raise ValueError(f"illegal value in argument {-info} of LAPACK gbsv")
-    else:
-        try:
-            return scipy.linalg.solve_banded((band, band), ab, rhs, check_finite=False)
-        except (np.linalg.LinAlgError, ValueError):
-            pass
-    # singular line system (e.g. a film collapsed to zero): point Jacobi this sweep
-    d = ab[band]
-    return np.where(np.abs(d) > 0.0, rhs / np.where(d == 0.0, 1.0, d), 0.0)
+    work = _band_work(band, n)
+    lapack_to_columns(ab, band, work)
+    return solve_band_columns(work, rhs, band)
 
 
 _WORK = threading.local()
 
 
 def _band_work(band: int, n: int) -> np.ndarray:
-    """The thread's work array for :func:`solve_band` (gbsv's storage, ``3 band + 1`` rows)."""
+    """The thread's work array of an ``n``-unknown banded system (:mod:`~ehl_multigrid.line.band`
+    column storage, ``3 band + 1`` entries per column)."""
     arrays = getattr(_WORK, "arrays", None)
     if arrays is None:
         arrays = _WORK.arrays = {}
     key = (band, n)
     if key not in arrays:
-        arrays[key] = np.empty((3 * band + 1, n))
+        arrays[key] = np.empty((n, 3 * band + 1))
     return arrays[key]
