@@ -24,7 +24,6 @@ import numpy as np
 from numba import njit
 
 from ..model.errors import require_choice
-from ..multigrid import transforms
 from .kernel import log_kernel
 
 METHODS = ("mlmi", "fft", "direct")
@@ -57,26 +56,45 @@ class DirectDeformation:
         return _toeplitz_sum(self.kernel, np.ascontiguousarray(P, dtype=float))
 
 
+def fast_real_length(n: int) -> int:
+    """The smallest ``2^a 3^b 5^c >= n``: pocketfft's fast real transform lengths
+    (``scipy.fft.next_fast_len(n, real=True)``)."""
+    best = 1 << max(n - 1, 0).bit_length()
+    p5 = 1
+    while p5 < best:
+        p35 = p5
+        while p35 < best:
+            m = p35
+            while m < n:
+                m *= 2
+            best = min(best, m)
+            p35 *= 3
+        p5 *= 5
+    return best
+
+
 class FFTDeformation:
     """Linear (not circular) convolution by FFT: the Toeplitz kernel is embedded in a
-    circulant of length ``>= 2N - 1`` and ``P`` is zero padded to that length."""
+    circulant of length ``>= 2N - 1`` and ``P`` is zero padded to that length.
+
+    numpy's FFTs (pocketfft, as scipy.fft's: the same results bit for bit on these lengths,
+    tests/multigrid/test_transforms.py): a line solve then imports neither ``scipy.fft`` nor
+    the ``scipy.special`` it loads (docs/performance.md)."""
 
     method = "fft"
 
     def __init__(self, n: int, h: float) -> None:
-        import scipy.fft  # here, not at import: a solve on MLMI never needs it
-
         self.n, self.h = n, h
         self.kernel = log_kernel(n, h)
-        self.size = scipy.fft.next_fast_len(2 * n - 1, real=True)
+        self.size = fast_real_length(2 * n - 1)
         c = np.zeros(self.size)
         c[:n] = self.kernel
         c[self.size - n + 1:] = self.kernel[1:][::-1]
-        self._kf = scipy.fft.rfft(c)
+        self._kf = np.fft.rfft(c)
 
     def apply(self, P: np.ndarray) -> np.ndarray:
-        pf = transforms.rfft(np.asarray(P, dtype=float), self.size)
-        return transforms.irfft(pf * self._kf, self.size)[: self.n]
+        pf = np.fft.rfft(np.asarray(P, dtype=float), self.size)
+        return np.fft.irfft(pf * self._kf, self.size)[: self.n]
 
 
 # -- multilevel multi-integration -----------------------------------------------------------

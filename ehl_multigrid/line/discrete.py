@@ -170,7 +170,7 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
     :mod:`~ehl_multigrid.line.band`).
     """
     m = P.shape[0] - 2
-    cols = np.empty((m, 3 * q + 1))
+    cols = np.zeros((m, 3 * q + 1))
     rhs, jac = relaxation_system_columns(P, H, rho, drho, eps, face_coefficients(eps, face), r, K,
                                          h, order, elastic, threshold, q, frozen, threshold_h,
                                          jd_free, threshold_eps, cols)
@@ -205,52 +205,60 @@ def relaxation_system_columns(P, H, rho, drho, eps, faces, r, K, h, order, elast
         jac[j] = e * ih2 < thr or e < threshold_eps
         if jd_free and (fix[j - 1] or fix[j + 1]):
             jac[j] = False
-    ab[:, :] = 0.0
+    # fixed unknowns (cavitated or frozen): their rows are the identity, their columns zero
+    fixed = np.empty(n, dtype=np.bool_)
+    for i in range(n):
+        fixed[i] = fix[i] or frozen[i]
     rhs = np.zeros(m)
+    inv_pi = 1.0 / np.pi
     # row i of the Jacobian of L with eps frozen, A[i, i + d] for |d| <= q + 1, built per row
-    # (a whole n x (2q + 3) matrix cost more in memory traffic than its arithmetic)
-    A = np.zeros((1, 2 * wq + 1))
+    # (a whole n x (2q + 3) matrix cost more in memory traffic than its arithmetic); the film
+    # of point i - mm responds to P_(i+d) by -K_|d+mm|/pi
+    A = np.zeros(2 * wq + 1)
     for i in range(1, n - 1):
         row = i - 1
-        fixed = (P[i] <= 0.0 and r[i] >= 0.0) or frozen[i]
-        if fixed:
-            ab[row, 2 * q] = 1.0
-            rhs[row] = 0.0
+        for t in range(q):  # fill-in entries of column `row` (band.py)
+            ab[row, t] = 0.0
+        if fixed[i]:
+            for d in range(-q, q + 1):
+                if 0 <= row + d < m:
+                    ab[row + d, 2 * q - d] = 1.0 if d == 0 else 0.0
             continue
-        A[0, :] = 0.0
+        A[:] = 0.0
         ep = faces[i]
         em = faces[i - 1]
-        A[0, wq - 1] += em * ih2
-        A[0, wq] += -(ep + em) * ih2
-        A[0, wq + 1] += ep * ih2
+        A[wq - 1] += em * ih2
+        A[wq] += -(ep + em) * ih2
+        A[wq + 1] += ep * ih2
         c0, c1, c2 = wedge_coefficients(i, order)
         for mm in range(3):
             c = c0 if mm == 0 else (c1 if mm == 1 else c2)
             if c == 0.0:
                 continue
-            add_wedge_band(A, i, i - mm, c, H, rho, drho, K, h, elastic, wq, 0)
+            k = i - mm
+            w = c / h
+            if elastic:
+                g = w * rho[k] * inv_pi
+                for d in range(max(-wq, 1 - i), min(wq, n - 2 - i) + 1):
+                    A[wq + d] += g * K[abs(d + mm)]
+            if k >= 1:  # the density's own response (j = k, an unknown)
+                A[wq - mm] -= w * drho[k] * H[k]
         rhs[row] = r[i]
         for d in range(-q, q + 1):
             j = i + d
             if j < 1 or j > n - 2:
                 continue
-            b = A[0, wq + d]
-            if jac[j]:
-                if j - 1 >= 1:
-                    b -= 0.5 * A[0, wq + d - 1]
-                if j + 1 <= n - 2:
-                    b -= 0.5 * A[0, wq + d + 1]
+            if fixed[j] and d != 0:
+                b = 0.0
+            else:
+                b = A[wq + d]
+                if jac[j]:
+                    if j - 1 >= 1:
+                        b -= 0.5 * A[wq + d - 1]
+                    if j + 1 <= n - 2:
+                        b -= 0.5 * A[wq + d + 1]
             # column storage (band.py): A[row, col] at ab[col, 2 q + row - col]
-            ab[j - 1, 2 * q + row - (j - 1)] = b
-    # fixed (cavitated) unknowns: zero their columns in other rows
-    for i in range(1, n - 1):
-        if (P[i] <= 0.0 and r[i] >= 0.0) or frozen[i]:
-            col = i - 1
-            for d in range(-q, q + 1):
-                row = col + d
-                if row < 0 or row >= m or row == col:
-                    continue
-                ab[col, 2 * q + row - col] = 0.0
+            ab[j - 1, 2 * q - d] = b
     return rhs, jac
 
 
