@@ -19,6 +19,7 @@ thousands of times on the same grids.
 from __future__ import annotations
 
 import functools
+import threading
 
 import numpy as np
 from numba import njit
@@ -73,13 +74,45 @@ def fast_real_length(n: int) -> int:
     return best
 
 
+def _numpy_pocketfft():
+    """numpy's pocketfft ufuncs ``(rfft_n_even, rfft_n_odd, irfft)``, called straight into
+    per-thread output arrays (``numpy.fft.rfft`` allocates its output each call: at 131073
+    points the fresh 2 MB arrays cost a fifth of the transform), when they give
+    ``numpy.fft``'s results bit for bit on a probe; None otherwise (another numpy whose private
+    module moved or changed: ``numpy.fft`` then)."""
+    global _PFU
+    if _PFU is None:
+        _PFU = False
+        try:
+            from numpy.fft import _pocketfft_umath as pfu
+
+            x = np.random.default_rng(3).random(7)
+            ok = True
+            for size in (12, 15):
+                F = np.empty(size // 2 + 1, dtype=complex)
+                (pfu.rfft_n_even if size % 2 == 0 else pfu.rfft_n_odd)(x, 1.0, out=F)
+                y = np.empty(size)
+                pfu.irfft(F, np.reciprocal(size, dtype=float), out=y)
+                ok = ok and np.array_equal(F, np.fft.rfft(x, size)) and \
+                    np.array_equal(y, np.fft.irfft(np.fft.rfft(x, size), size))
+            if ok:
+                _PFU = (pfu.rfft_n_even, pfu.rfft_n_odd, pfu.irfft)
+        except Exception:  # noqa: BLE001 - any change of the private API: numpy.fft
+            _PFU = False
+    return _PFU or None
+
+
+_PFU: tuple | bool | None = None
+
+
 class FFTDeformation:
     """Linear (not circular) convolution by FFT: the Toeplitz kernel is embedded in a
     circulant of length ``>= 2N - 1`` and ``P`` is zero padded to that length.
 
     numpy's FFTs (pocketfft, as scipy.fft's: the same results bit for bit on these lengths,
-    tests/multigrid/test_transforms.py): a line solve then imports neither ``scipy.fft`` nor
-    the ``scipy.special`` it loads (docs/performance.md)."""
+    tests/multigrid/test_transforms.py), so a line solve imports neither ``scipy.fft`` nor the
+    ``scipy.special`` it loads; the transforms write into arrays kept per thread
+    (:func:`_numpy_pocketfft`; docs/performance.md, "Line relaxation: banded systems")."""
 
     method = "fft"
 
@@ -91,10 +124,21 @@ class FFTDeformation:
         c[:n] = self.kernel
         c[self.size - n + 1:] = self.kernel[1:][::-1]
         self._kf = np.fft.rfft(c)
+        self._local = threading.local()
 
     def apply(self, P: np.ndarray) -> np.ndarray:
-        pf = np.fft.rfft(np.asarray(P, dtype=float), self.size)
-        return np.fft.irfft(pf * self._kf, self.size)[: self.n]
+        P = np.asarray(P, dtype=float)
+        ufuncs = _numpy_pocketfft()
+        if ufuncs is None:
+            return np.fft.irfft(np.fft.rfft(P, self.size) * self._kf, self.size)[: self.n]
+        bufs = getattr(self._local, "bufs", None)
+        if bufs is None:
+            bufs = self._local.bufs = (np.empty(self.size // 2 + 1, dtype=complex), np.empty(self.size))
+        F, out = bufs
+        ufuncs[self.size % 2](P, 1.0, out=F)
+        F *= self._kf
+        ufuncs[2](F, np.reciprocal(self.size, dtype=float), out=out)
+        return out[: self.n].copy()
 
 
 # -- multilevel multi-integration -----------------------------------------------------------

@@ -59,3 +59,14 @@ def test_the_line_deformation_on_numpy_fft_equals_scipy_fft_bit_for_bit(n):
 def test_the_fast_real_lengths_are_scipys():
     lengths = [fast_real_length(n) for n in range(1, 5000)]
     assert lengths == [sfft.next_fast_len(n, real=True) for n in range(1, 5000)]
+
+
+def test_the_line_deformation_is_the_same_through_numpy_fft(monkeypatch):
+    from ehl_multigrid.line import deformation
+
+    op = LineFFT(1025, 6.0 / 1024)
+    P = np.random.default_rng(6).random(1025)
+    direct = op.apply(P)
+    assert deformation._numpy_pocketfft() is not None  # the installed numpy's ufuncs
+    monkeypatch.setattr(deformation, "_PFU", False)
+    assert np.array_equal(op.apply(P), direct)
