@@ -28,6 +28,7 @@ def band_factor(ab, q, ipiv):
     kv = 2 * q
     info = 0
     ju = 0
+    mult = np.empty(q + 1)
     for j in range(m):
         km = min(q, m - 1 - j)
         # pivot: the first largest magnitude of column j on and below the diagonal
@@ -50,12 +51,13 @@ def band_factor(ab, q, ipiv):
                 rp = 1.0 / ab[j, kv]
                 for t in range(1, km + 1):
                     ab[j, kv + t] *= rp
+                    mult[t] = ab[j, kv + t]  # a copy the compiler need not reload
                 for c in range(j + 1, ju + 1):
                     y = ab[c, kv + j - c]
                     if y != 0.0:
                         off = kv + j - c
                         for t in range(1, km + 1):
-                            ab[c, off + t] -= ab[j, kv + t] * y
+                            ab[c, off + t] -= mult[t] * y
         elif info == 0:
             info = j + 1
     return info
