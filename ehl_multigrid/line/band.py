@@ -3,9 +3,9 @@
 LAPACK's ``gbsv`` (``gbtf2`` + ``gbtrs``: the unblocked factorisation LAPACK itself runs
 for half band widths up to 64) transcribed operation for operation, so the row interchanges
 are LAPACK's; the products may round differently (no fused multiply-add here). In numba the
-system is solved in the kernel that builds it, without a call into scipy per sweep and
-without importing ``scipy.linalg`` for a line solve (docs/performance.md, "Line relaxation:
-banded systems").
+steady line solver's system is solved in the kernel that builds it, without a call into
+scipy and a copy into LAPACK's storage per sweep (docs/performance.md, "Line relaxation: banded
+systems"). The starved and transient line solvers keep LAPACK (``line.level.solve_band``).
 
 Storage: a matrix of ``m`` unknowns with ``q`` sub- and super-diagonals is held by columns,
 ``ab[j, 2 q + i - j] = A[i, j]`` (``ab`` of shape ``(m, 3 q + 1)``, LAPACK's ``gbtrf``
@@ -102,15 +102,3 @@ def solve_band_columns(ab, rhs, q):
     for i in range(m):
         x[i] = rhs[i] / diag[i] if abs(diag[i]) > 0.0 else 0.0
     return x
-
-
-@njit(cache=True)
-def lapack_to_columns(ab, q, out):
-    """LAPACK band storage ``ab`` (``2 q + 1`` rows, ``ab[q + i - j, j] = A[i, j]``) into the
-    column storage ``out`` (fill-in entries zeroed)."""
-    m = ab.shape[1]
-    for j in range(m):
-        for t in range(q):
-            out[j, t] = 0.0
-        for t in range(2 * q + 1):
-            out[j, q + t] = ab[t, j]

@@ -7,9 +7,10 @@ import threading
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg
+from scipy.linalg.lapack import dgbsv
 
 from ..multigrid.flux import face_coefficients
-from .band import lapack_to_columns, solve_band_columns
 from .deformation import make_deformation
 from .discrete import fluid_state, projected, relaxation_sweep, residual_from_faces
 
@@ -135,16 +136,32 @@ class LineLevel:
 
 def solve_band(ab: np.ndarray, rhs: np.ndarray, band: int) -> np.ndarray:
     """Solve a collective line-relaxation system in LAPACK band storage (``band`` sub- and
-    super-diagonals) by banded LU with LAPACK's partial pivoting (:mod:`~ehl_multigrid.line.band`);
-    a singular system (a film collapsed to zero) falls back to point Jacobi.
+    super-diagonals); a singular system (a film collapsed to zero) falls back to point Jacobi.
 
-    The factors go to a work array kept per thread and size: a fresh 10 MB array per call (page
-    faults at 131073 points) cost as much as the solve (docs/performance.md, "Line relaxation:
-    banded systems")."""
+    LAPACK's ``gbsv`` is called directly, as ``scipy.linalg.solve_banded`` calls it (the same
+    answer, bit for bit), on a work array kept per thread and size: the fresh work array of
+    each call (page faults on 10 MB at 131073 points) cost as much as the solve
+    (docs/performance.md, "Line relaxation: banded systems"). The starved and transient
+    line solvers solve their systems here; the steady one in its sweep kernel
+    (:meth:`LineLevel.relax`)."""
     n = ab.shape[1]
-    work = _band_work(band, n)
-    lapack_to_columns(ab, band, work)
-    return solve_band_columns(work, rhs, band)
+    if band >= 2 and n > 1:
+        ext = _lapack_work(band, n)
+        ext[:band] = 0.0
+        ext[band:] = ab
+        _, _, x, info = dgbsv(band, band, ext, rhs, overwrite_ab=1, overwrite_b=0)
+        if info == 0:
+            return x
+        if info < 0:
+            raise ValueError(f"illegal value in argument {-info} of LAPACK gbsv")
+    else:
+        try:
+            return scipy.linalg.solve_banded((band, band), ab, rhs, check_finite=False)
+        except (np.linalg.LinAlgError, ValueError):
+            pass
+    # singular line system (e.g. a film collapsed to zero): point Jacobi this sweep
+    d = ab[band]
+    return np.where(np.abs(d) > 0.0, rhs / np.where(d == 0.0, 1.0, d), 0.0)
 
 
 _WORK = threading.local()
@@ -153,10 +170,18 @@ _WORK = threading.local()
 def _band_work(band: int, n: int) -> np.ndarray:
     """The thread's work array of an ``n``-unknown banded system (:mod:`~ehl_multigrid.line.band`
     column storage, ``3 band + 1`` entries per column)."""
+    return _work(("columns", band, n), (n, 3 * band + 1))
+
+
+def _lapack_work(band: int, n: int) -> np.ndarray:
+    """The thread's work array for :func:`solve_band` (gbsv's storage, ``3 band + 1`` rows)."""
+    return _work(("lapack", band, n), (3 * band + 1, n))
+
+
+def _work(key: tuple, shape: tuple[int, int]) -> np.ndarray:
     arrays = getattr(_WORK, "arrays", None)
     if arrays is None:
         arrays = _WORK.arrays = {}
-    key = (band, n)
     if key not in arrays:
-        arrays[key] = np.empty((n, 3 * band + 1))
+        arrays[key] = np.empty(shape)
     return arrays[key]
