@@ -27,8 +27,9 @@ class State:
     eps: np.ndarray
     r: np.ndarray
     scale: float
-    #: Poiseuille face coefficients of ``eps`` (None: computed where needed)
-    faces: np.ndarray | None = None
+    #: Poiseuille face coefficients of ``eps`` (None: computed where needed); keyword only, so
+    #: the positional fields of subclasses (the starved state's theta, q) keep their places
+    faces: np.ndarray | None = field(default=None, kw_only=True)
 
 
 @dataclass
@@ -104,7 +105,7 @@ class LineLevel:
         H, rho, drho, lne, dlne, eps = fluid_state(P, W, self.X, H0, self.par, self.lam, self.elastic)
         faces = face_coefficients(eps, self.face)
         r, scale = residual_from_faces(P, H, rho, faces, self.h, self.f, self.order)
-        st = State(H, rho, drho, lne, dlne, eps, r, scale, faces)
+        st = State(H, rho, drho, lne, dlne, eps, r, scale, faces=faces)
         self._last_state = (key, P.copy(), self.f.copy(), self.par.copy(), st)
         return st
 
