@@ -112,9 +112,9 @@ class FFTDeformation:
     The two end points carry no pressure on a line grid, so the sources ``j = 1 .. N-2`` reach
     the targets ``i = 0 .. N-1`` over distances up to ``N - 2`` and a circulant of length
     ``2 N - 3`` or more holds them without wrap-around: ``2 (N - 1)``, a power of two on the
-    solver's grids, where pocketfft is twice as fast as on the ``2 N - 1`` of a general
-    convolution (7.6 -> 3.6 ms a deformation at 131073 points; docs/performance.md). End
-    pressures that are not zero are added by the direct sum.
+    solver's grids, where pocketfft's transform pair is twice as fast as on the ``2 N - 1`` of
+    a general convolution (7.6 -> 3.6 ms at 131073 points; docs/performance.md). End pressures
+    that are not zero are added by the direct sum.
 
     numpy's FFTs (pocketfft, as scipy.fft's: the same results bit for bit,
     tests/multigrid/test_transforms.py), so a line solve imports neither ``scipy.fft`` nor the

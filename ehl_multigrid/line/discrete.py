@@ -185,9 +185,10 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
 def relaxation_system_columns(P, H, rho, drho, eps, faces, r, K, h, order, elastic, threshold, q,
                               frozen, threshold_h, jd_free, threshold_eps, ab):
     """The system of :func:`line_relaxation_system` written into ``ab``, the column storage of
-    :mod:`~ehl_multigrid.line.band` (shape ``(n - 2, 3 q + 1)``, zeroed here, fill-in
-    included), with the face coefficients ``faces`` of ``eps``
-    (:func:`~ehl_multigrid.multigrid.flux.face_coefficients`); returns ``(rhs, jac)``."""
+    :mod:`~ehl_multigrid.line.band` (shape ``(n - 2, 3 q + 1)``; every entry the LU reads is
+    written, the zero fill-in included, so ``ab`` need not be cleared), with the face
+    coefficients ``faces`` of ``eps`` (:func:`~ehl_multigrid.multigrid.flux.face_coefficients`);
+    returns ``(rhs, jac)``."""
     n = P.shape[0]
     m = n - 2  # interior unknowns 1 .. n-2
     wq = q + 1
