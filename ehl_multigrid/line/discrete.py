@@ -22,8 +22,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..multigrid.flux import eps_face
+from ..multigrid.flux import face_coefficients
 from ..multigrid.rheology import density, log_viscosity
+from .band import solve_band_columns
 
 #: grids finer than this use the h-scaled switch threshold (line_relaxation_system)
 FINE_H = 0.012
@@ -68,13 +69,20 @@ def reynolds_residual(P, H, rho, eps, h, f, order, face=0):
     """Residual ``r = f - L(P)`` (zero at the boundary points) and the sum of the absolute
     Poiseuille and wedge terms (the scale of :func:`relative_residual`); ``face`` the code of
     the Poiseuille face coefficient (:mod:`~ehl_multigrid.multigrid.flux`)."""
+    return residual_from_faces(P, H, rho, face_coefficients(eps, face), h, f, order)
+
+
+@njit(cache=True)
+def residual_from_faces(P, H, rho, faces, h, f, order):
+    """:func:`reynolds_residual` from the face coefficients ``faces``
+    (:func:`~ehl_multigrid.multigrid.flux.face_coefficients`)."""
     n = P.shape[0]
     r = np.zeros(n)
     scale = 0.0
     ih2 = 1.0 / (h * h)
     for i in range(1, n - 1):
-        ep = eps_face(eps[i], eps[i + 1], face)
-        em = eps_face(eps[i], eps[i - 1], face)
+        ep = faces[i]
+        em = faces[i - 1]
         pois = (ep * (P[i + 1] - P[i]) - em * (P[i] - P[i - 1])) * ih2
         c0, c1, c2 = wedge_coefficients(i, order)
         q = c0 * rho[i] * H[i] + c1 * rho[i - 1] * H[i - 1]
@@ -157,8 +165,30 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
     points).
 
     Returns ``(ab, rhs, jac)``: LAPACK band storage (``q`` sub- and super-diagonals) of the
-    matrix for the interior points, the right-hand side, and the Jacobi flags.
+    matrix for the interior points, the right-hand side, and the Jacobi flags
+    (:func:`relaxation_system_columns` builds it in the column storage of
+    :mod:`~ehl_multigrid.line.band`).
     """
+    m = P.shape[0] - 2
+    cols = np.zeros((m, 3 * q + 1))
+    rhs, jac = relaxation_system_columns(P, H, rho, drho, eps, face_coefficients(eps, face), r, K,
+                                         h, order, elastic, threshold, q, frozen, threshold_h,
+                                         jd_free, threshold_eps, cols)
+    ab = np.empty((2 * q + 1, m))
+    for j in range(m):
+        for t in range(2 * q + 1):
+            ab[t, j] = cols[j, q + t]
+    return ab, rhs, jac
+
+
+@njit(cache=True)
+def relaxation_system_columns(P, H, rho, drho, eps, faces, r, K, h, order, elastic, threshold, q,
+                              frozen, threshold_h, jd_free, threshold_eps, ab):
+    """The system of :func:`line_relaxation_system` written into ``ab``, the column storage of
+    :mod:`~ehl_multigrid.line.band` (shape ``(n - 2, 3 q + 1)``; every entry the LU reads is
+    written, the zero fill-in included, so ``ab`` need not be cleared), with the face
+    coefficients ``faces`` of ``eps`` (:func:`~ehl_multigrid.multigrid.flux.face_coefficients`);
+    returns ``(rhs, jac)``."""
     n = P.shape[0]
     m = n - 2  # interior unknowns 1 .. n-2
     wq = q + 1
@@ -176,53 +206,77 @@ def line_relaxation_system(P, H, rho, drho, eps, r, K, h, order, elastic, thresh
         jac[j] = e * ih2 < thr or e < threshold_eps
         if jd_free and (fix[j - 1] or fix[j + 1]):
             jac[j] = False
-    ab = np.zeros((2 * q + 1, m))
+    # fixed unknowns (cavitated or frozen): their rows are the identity, their columns zero
+    fixed = np.empty(n, dtype=np.bool_)
+    for i in range(n):
+        fixed[i] = fix[i] or frozen[i]
     rhs = np.zeros(m)
+    inv_pi = 1.0 / np.pi
     # row i of the Jacobian of L with eps frozen, A[i, i + d] for |d| <= q + 1, built per row
-    # (a whole n x (2q + 3) matrix cost more in memory traffic than its arithmetic)
-    A = np.zeros((1, 2 * wq + 1))
+    # (a whole n x (2q + 3) matrix cost more in memory traffic than its arithmetic); the film
+    # of point i - mm responds to P_(i+d) by -K_|d+mm|/pi
+    A = np.zeros(2 * wq + 1)
     for i in range(1, n - 1):
         row = i - 1
-        fixed = (P[i] <= 0.0 and r[i] >= 0.0) or frozen[i]
-        if fixed:
-            ab[q, row] = 1.0
-            rhs[row] = 0.0
+        for t in range(q):  # fill-in entries of column `row` (band.py)
+            ab[row, t] = 0.0
+        if fixed[i]:
+            for d in range(-q, q + 1):
+                if 0 <= row + d < m:
+                    ab[row + d, 2 * q - d] = 1.0 if d == 0 else 0.0
             continue
-        A[0, :] = 0.0
-        ep = eps_face(eps[i], eps[i + 1], face)
-        em = eps_face(eps[i], eps[i - 1], face)
-        A[0, wq - 1] += em * ih2
-        A[0, wq] += -(ep + em) * ih2
-        A[0, wq + 1] += ep * ih2
+        A[:] = 0.0
+        ep = faces[i]
+        em = faces[i - 1]
+        A[wq - 1] += em * ih2
+        A[wq] += -(ep + em) * ih2
+        A[wq + 1] += ep * ih2
         c0, c1, c2 = wedge_coefficients(i, order)
         for mm in range(3):
             c = c0 if mm == 0 else (c1 if mm == 1 else c2)
             if c == 0.0:
                 continue
-            add_wedge_band(A, i, i - mm, c, H, rho, drho, K, h, elastic, wq, 0)
+            k = i - mm
+            w = c / h
+            if elastic:
+                g = w * rho[k] * inv_pi
+                for d in range(max(-wq, 1 - i), min(wq, n - 2 - i) + 1):
+                    A[wq + d] += g * K[abs(d + mm)]
+            if k >= 1:  # the density's own response (j = k, an unknown)
+                A[wq - mm] -= w * drho[k] * H[k]
         rhs[row] = r[i]
         for d in range(-q, q + 1):
             j = i + d
             if j < 1 or j > n - 2:
                 continue
-            b = A[0, wq + d]
-            if jac[j]:
-                if j - 1 >= 1:
-                    b -= 0.5 * A[0, wq + d - 1]
-                if j + 1 <= n - 2:
-                    b -= 0.5 * A[0, wq + d + 1]
-            # LAPACK band storage: ab[q + row - col, col]
-            ab[q + row - (j - 1), j - 1] = b
-    # fixed (cavitated) unknowns: zero their columns in other rows
-    for i in range(1, n - 1):
-        if (P[i] <= 0.0 and r[i] >= 0.0) or frozen[i]:
-            col = i - 1
-            for d in range(-q, q + 1):
-                row = col + d
-                if row < 0 or row >= m or row == col:
-                    continue
-                ab[q + row - col, col] = 0.0
-    return ab, rhs, jac
+            if fixed[j] and d != 0:
+                b = 0.0
+            else:
+                b = A[wq + d]
+                if jac[j]:
+                    if j - 1 >= 1:
+                        b -= 0.5 * A[wq + d - 1]
+                    if j + 1 <= n - 2:
+                        b -= 0.5 * A[wq + d + 1]
+            # column storage (band.py): A[row, col] at ab[col, 2 q + row - col]
+            ab[j - 1, 2 * q - d] = b
+    return rhs, jac
+
+
+@njit(cache=True)
+def relaxation_sweep(P, H, rho, drho, eps, faces, r, K, h, order, elastic, threshold, q, frozen,
+                     threshold_h, jd_free, threshold_eps, omega, omega_jd, work):
+    """One collective line-relaxation sweep in one kernel: the system of
+    :func:`line_relaxation_system` built in ``work`` (column storage, ``(n - 2, 3 q + 1)``),
+    solved by banded LU (:func:`~ehl_multigrid.line.band.solve_band_columns`; point Jacobi
+    where singular) and applied by :func:`distribute_changes`; ``faces`` the face coefficients
+    of ``eps``. Returns the new pressures."""
+    n = P.shape[0]
+    rhs, jac = relaxation_system_columns(P, H, rho, drho, eps, faces, r, K, h, order, elastic,
+                                         threshold, q, frozen, threshold_h, jd_free, threshold_eps,
+                                         work)
+    delta = solve_band_columns(work, rhs, q)
+    return distribute_changes(P, delta, jac, omega, omega_jd, np.ones(n), frozen)
 
 
 @njit(cache=True)

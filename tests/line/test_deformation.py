@@ -29,6 +29,15 @@ def test_log_kernel_is_the_cell_integral_of_ln():
 @pytest.mark.parametrize("n", [129, 257, 1025])
 def test_fft_matches_direct_sum(n):
     h, P = pressure(n)
+    op = FFTDeformation(n, h)
+    assert op.size == 2 * (n - 1)  # a power of two: no wrap-around with P = 0 at the ends
+    assert rel_err(op.apply(P), DirectDeformation(n, h).apply(P)) < 1e-13
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 4, 9, 100, 257])
+def test_fft_matches_direct_sum_with_pressure_at_the_ends(n):
+    P = np.random.default_rng(n).random(n)  # P_0 and P_(n-1) not zero: added directly
+    h = 3.0 / max(n - 1, 1)
     assert rel_err(FFTDeformation(n, h).apply(P), DirectDeformation(n, h).apply(P)) < 1e-13
 
 

@@ -1,11 +1,13 @@
 """The deformation's transforms call pocketfft directly, with scipy.fft's results bit for bit
-(``multigrid.transforms``), and fall back to scipy.fft when the direct path is not available."""
+(``multigrid.transforms``), and fall back to scipy.fft when the direct path is not available;
+the line deformation's numpy FFTs give scipy.fft's results bit for bit."""
 
 import numpy as np
 import pytest
 import scipy.fft as sfft
 
 from ehl_multigrid.line.deformation import FFTDeformation as LineFFT
+from ehl_multigrid.line.deformation import fast_real_length
 from ehl_multigrid.multigrid import transforms
 from ehl_multigrid.point.deformation import FFTDeformation as PointFFT
 
@@ -42,9 +44,29 @@ def test_the_point_deformation_is_the_same_through_scipy_fft(monkeypatch, half):
     assert np.array_equal(op(P), direct)
 
 
-def test_the_line_deformation_is_the_same_through_scipy_fft(monkeypatch):
+@pytest.mark.parametrize("n", [257, 1025, 4097])
+def test_the_line_deformation_on_numpy_fft_equals_scipy_fft_bit_for_bit(n):
+    op = LineFFT(n, 6.0 / (n - 1))
+    c = np.zeros(op.size)
+    c[: n - 1] = op.kernel[: n - 1]
+    c[op.size - n + 2:] = op.kernel[1: n - 1][::-1]
+    P = np.random.default_rng(6).random(n)
+    P[0] = P[-1] = 0.0
+    ref = sfft.irfft(sfft.rfft(P, n=op.size) * sfft.rfft(c), n=op.size)[:n]
+    assert np.array_equal(op.apply(P), ref)
+
+
+def test_the_fast_real_lengths_are_scipys():
+    lengths = [fast_real_length(n) for n in range(1, 5000)]
+    assert lengths == [sfft.next_fast_len(n, real=True) for n in range(1, 5000)]
+
+
+def test_the_line_deformation_is_the_same_through_numpy_fft(monkeypatch):
+    from ehl_multigrid.line import deformation
+
     op = LineFFT(1025, 6.0 / 1024)
     P = np.random.default_rng(6).random(1025)
     direct = op.apply(P)
-    monkeypatch.setattr(transforms, "_DIRECT", False)
+    assert deformation._numpy_pocketfft() is not None  # the installed numpy's ufuncs
+    monkeypatch.setattr(deformation, "_PFU", False)
     assert np.array_equal(op.apply(P), direct)
