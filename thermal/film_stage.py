@@ -1,14 +1,15 @@
-"""Main-job stage: the coupled thermal EHL film of a line contact (registered in ``ehl.stages``).
+"""Main-job stage: the coupled thermal EHL film (registered in ``ehl.stages``).
 
 The planner's ``tehl`` decision weighs the thermal film reduction (Gupta et al. 1992) against
-the fidelity's tolerance. Where it is included and the contact is a line, this stage solves the
+the fidelity's tolerance. Where the plan stages it, this stage solves the
 film again with the temperature across it (thermal.tehl: Reynolds with Eyring flow factors,
 the energy equation (3.5) and the surface temperatures, coupled by an outer iteration) through
 the front door :func:`ehl_multigrid.solve` (``physics="thermal"``) at the plan's tolerance and
 the scene's operating slip. Its film is the one the later stages (traction, Stribeck) compute
 on (:meth:`~ehl_multigrid.app.stages.RunContext.film` takes the last solved film). A point
-contact's coupled solve costs 10-60 s (docs/thermal.md): the plan advises it instead
-(``ehl solve SCENE --thermal``), and this stage does not run.
+contact's coupled solve costs 10-80 s (docs/thermal.md): it runs where the plan stages it (a
+third of Gupta's reduction above the tolerance, ``plan.TEHL_POINT_FRACTION``); elsewhere the
+plan advises it (``ehl solve SCENE --thermal``) and this stage does not run.
 
 A solve that fails leaves the film stage's isothermal film to the later stages and says so:
 its summary's ``converged`` is false (exit 3), since the plan found the isothermal film off by
@@ -20,6 +21,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from ehl_multigrid.app.plan import TEHL_STAGED
 from ehl_multigrid.app.stages import RunContext, StageOutput
 from ehl_multigrid.model.solved_film import SolvedFilm
 
@@ -29,13 +31,13 @@ SUMMARY_KEYS = ("Hc", "Hm", "hc", "hm", "Hc_isothermal", "Hm_isothermal", "film_
 
 
 def thermal_film_stage(ctx: RunContext) -> StageOutput | None:
-    """The coupled thermal EHL film of a line scene whose plan includes ``tehl`` (None for
-    other scenes and plans)."""
+    """The coupled thermal EHL film of a scene whose plan stages ``tehl`` (None for other
+    scenes and plans)."""
     from ehl_multigrid import front
     from ehl_multigrid.solution import Status
 
     scene, plan = ctx.scene, ctx.plan
-    if scene.kind != "line" or not plan.includes("tehl"):
+    if not plan.includes("tehl") or plan.get("tehl").setting != TEHL_STAGED:
         return None
     options: dict[str, Any] = {} if ctx.time_budget is None else {"time_budget": ctx.time_budget}
     sol = front.solve(scene, physics="thermal", accuracy=plan.tolerance, options=options or None)

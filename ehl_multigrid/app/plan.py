@@ -145,6 +145,12 @@ THERMAL_DECISION_MARGIN = 1.25
 #: and decides its own model there
 TRACTION_SCOPE = ("this decision holds at the operating slip (film, Stribeck curve); the traction "
                   "curve chooses its model at the largest of its slips and the operating one")
+#: the coupled solver found a third to a half of Gupta's thermal film reduction on the built-in
+#: line scenes in rolling (docs/thermal.md): a point contact's coupled solve runs in the main job
+#: where this fraction of the reduction still exceeds the tolerance
+TEHL_POINT_FRACTION = 1.0 / 3.0
+#: the ``tehl`` setting under which the thermal layer's film stage solves the coupled film
+TEHL_STAGED = "coupled thermal EHL film (thermal film stage)"
 #: the friction models (traction and Stribeck curves) are Eyring models whatever this decision
 EYRING_SCOPE = "the friction curves always use the Eyring law (3.3), which is Newtonian at low stress"
 
@@ -314,9 +320,10 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     red = 1.0 - float(fits.gupta_thermal_factor(L_scene, scene.slip, ph_E))
     need = red > tol
     # a line contact's coupled solve costs seconds and runs as a stage of the thermal layer; a
-    # point contact's costs 10-60 s (docs/thermal.md) and is advised
-    solved = "coupled thermal EHL film (thermal film stage)" if scene.kind == "line" else \
-        "thermal EHL advised (ehl solve SCENE --thermal)"
+    # point contact's costs 10-80 s: it runs where even TEHL_POINT_FRACTION of the reduction
+    # exceeds the tolerance (a flooded inlet only), else it is advised
+    staged = scene.kind == "line" or (math.isinf(scene.supply.hoil) and TEHL_POINT_FRACTION * red > tol)
+    solved = TEHL_STAGED if staged else "thermal EHL advised (ehl solve SCENE --thermal)"
     why = (f"thermal film reduction {red:.2g} by Gupta et al. (1992) at the operating point (thermal "
            f"loading {L_scene:.3g}, us {scene.us:.3g} m/s, slip {scene.slip:g})")
     if len(speeds) > 1 or s_worst != abs(scene.slip):

@@ -17,7 +17,7 @@ from .scene import Scene
 
 #: result kinds of a solved EHL film (the naming contract of the line and point solvers; the
 #: thermal layer's coupled TEHL line film)
-FILM_KINDS = {"ehl_line": "line", "ehl_point": "point", "tehl_line": "line"}
+FILM_KINDS = {"ehl_line": "line", "ehl_point": "point", "tehl_line": "line", "tehl_point": "point"}
 
 
 def _read_only(a: Any) -> np.ndarray:
@@ -66,7 +66,8 @@ class SolvedFilm:
 
     @classmethod
     def from_result(cls, res: Any) -> SolvedFilm:
-        """The film of an ``ehl_line``, ``ehl_point`` or ``tehl_line`` :class:`~ehl_multigrid.model.results.Result`
+        """The film of an ``ehl_line``, ``ehl_point``, ``tehl_line`` or ``tehl_point``
+        :class:`~ehl_multigrid.model.results.Result`
         that carries its scene and the dimensional fields ``x`` (``y``), ``p``, ``h``.
 
         Raises

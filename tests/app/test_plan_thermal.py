@@ -108,3 +108,15 @@ def test_a_slip_range_short_of_the_operating_slip_still_decides_the_model_there(
     s = out.summary
     assert max(s["slip"]) == pytest.approx(0.2)
     assert s["thermal_model"]["slip"] == pytest.approx(0.8)
+
+
+def test_a_point_contact_with_a_large_thermal_film_reduction_is_solved_coupled_in_the_main_job():
+    from ehl_multigrid.app.plan import TEHL_POINT_FRACTION, TEHL_STAGED
+
+    fast = make_plan(load_scene("default").with_operating(us=24.0)).get("tehl")
+    assert fast.include and fast.setting == TEHL_STAGED and TEHL_POINT_FRACTION * fast.estimate > fast.threshold
+    # the built-in default scene: Gupta's reduction above the tolerance, a third of it below:
+    # advised only
+    slow = make_plan(load_scene("default")).get("tehl")
+    assert slow.include and slow.setting != TEHL_STAGED and "advised" in slow.setting
+    assert TEHL_POINT_FRACTION * slow.estimate <= slow.threshold

@@ -117,6 +117,12 @@ class TEHLPointResult(TEHLResult):
     T_surface2: np.ndarray
     extra: dict[str, Any] = field(default_factory=dict)
 
+    def _film_keys(self) -> dict[str, Any]:
+        if not self.problem.physical:
+            return {}
+        s = self.problem.film_scale
+        return {"hc": self.Hc * s, "hm": self.Hm * s, "film_reduction": self.Hc / self.Hc_isothermal}
+
 
 @dataclass
 class _Rows:

@@ -13,6 +13,7 @@ import numpy as np
 from ehl_multigrid.model.convergence import ConvergenceReport
 from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import Scene
+from ehl_multigrid.point.postprocess import full_fields
 
 if TYPE_CHECKING:
     from .options import TEHLOptions
@@ -132,4 +133,13 @@ def tehl_point_result(r: Any) -> Result:
             ("T_surface2", r.T_surface2, "degC", "surface 2 temperature"),
             ("flow_factor", r.a, "-", "Poiseuille factor"), ("couette_factor", r.c, "-", "Couette density factor")):
         res.add_field(name, data, units, ("Y", "X"), long)
+    pb = r.problem
+    if pb.physical:
+        # the dimensional film over the full domain, as the core's ``ehl_point`` result holds it
+        # (the main job's later stages compute on it)
+        Yf, Pf, Hf = full_fields(r.X, r.Y, r.P, r.H, True)
+        res.add_coord("x", r.X * pb.a, "m", "rolling direction")
+        res.add_coord("y", Yf * pb.a, "m", "transverse direction")
+        res.add_field("p", Pf.T * pb.pmax, "Pa", ("x", "y"), "pressure")
+        res.add_field("h", Hf.T * pb.a * pb.a / pb.Rx, "m", ("x", "y"), "film thickness")
     return _finish(res, r)

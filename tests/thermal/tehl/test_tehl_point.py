@@ -104,3 +104,22 @@ def test_a_coarse_start_of_the_wrong_grid_is_refused(scene):
 
     with pytest.raises(InputError, match="coarse has 100 points along X.*needs 65"):
         solve_tehl_point(scene, 0.5, TEHLOptions(points=129, nz=10), coarse=SimpleNamespace(X=np.zeros(100)))
+
+
+@pytest.mark.solver
+@pytest.mark.xdist_group("tehl_point_5n")
+def test_a_point_result_carries_the_dimensional_film_the_main_job_computes_on(pair):
+    from ehl_multigrid.model.solved_film import SolvedFilm
+    from thermal.tehl.results import tehl_point_result
+
+    pos, _ = pair
+    pb = pos.problem
+    film = SolvedFilm.from_result(tehl_point_result(pos))
+    assert film.contact == "point" and film.thermal
+    assert film.hc == pytest.approx(pos.Hc * pb.film_scale, rel=1e-12)
+    # the full domain, mirrored from the half one; the centre node holds the central film
+    assert film.y[0] == pytest.approx(-film.y[-1]) and film.h.shape == (film.x.size, film.y.size)
+    i, j = int(np.argmin(np.abs(film.x))), int(np.argmin(np.abs(film.y)))
+    assert film.h[i, j] == pytest.approx(pos.H[0, i] * pb.a**2 / pb.Rx, rel=1e-12)
+    assert film.h[i, j] == pytest.approx(film.hc, rel=1e-9)
+    assert film.p.max() == pytest.approx(pos.P.max() * pb.pmax, rel=1e-12)
