@@ -16,7 +16,9 @@ from ehl_multigrid.point.rigid import rigid_pressure
 def _rigid_against_direct(theta: float) -> None:
     # L = 0 and incompressible: the equations the direct solve is exact for
     pb = problem_from_moes(20.0, 0.0, theta, "barus", "incompressible")
-    out = solve_fas(pb, points=129, elastic=False, far_field=False, tol=1e-8, tol_load=1e-10)
+    # tol 1e-7: the FAS pressure within 3e-8 of the direct one and the load within 8e-9 at theta 1
+    # (asserted below: 1e-5, 1e-6), in half the cycles of tol 1e-8
+    out = solve_fas(pb, points=129, elastic=False, far_field=False, tol=1e-7, tol_load=1e-9)
     assert out.success and out.levels >= 2, out.message
     # the direct solution at the FAS film constant: the same pressure, and the load balanced
     # (d ln W / d ln H00 is about -1.5 here, so 1e-6 of the load is 1e-6 of H00)

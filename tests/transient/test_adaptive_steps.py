@@ -37,7 +37,9 @@ def test_a_smooth_run_grows_its_steps_to_the_output_step():
 
 
 def test_the_accepted_local_errors_stay_at_the_tolerance_with_rejected_steps():
-    res = _run(DENT, 15, 1e-3)
+    # eight output steps: 21 rejected steps, 11-20 inner steps each and the largest local
+    # error 9.94e-4, that of fifteen (48 rejected, at twice the cost)
+    res = _run(DENT, 8, 1e-3)
     s = res.summary()
     assert s["rejected_steps"] > 0 and s["time_error_max"] <= 1e-3 * (1 + 1e-9)
     assert np.all(np.asarray(res.series["substeps"][2:]) > 1)  # the dent needs smaller steps

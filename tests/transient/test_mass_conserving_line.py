@@ -42,8 +42,10 @@ def test_steady_limit_is_the_starved_solvers_flooded_inlet_solution():
 def test_a_deep_dent_under_sliding_conserves_oil_to_the_mass_tolerance():
     # a dent 3.5x the central film deep, moving at 1.5 u_m (SRR +0.5), through the contact
     dent = Bump(-0.3, 0.5, -1.6)
-    kw = {"slide_roll": 1.0, "steps": 55}
-    mc, pr = _run("mass-conserving", dent, **kw), _run("projection", dent, **kw)
+    mc = _run("mass-conserving", dent, slide_roll=1.0, steps=55)
+    # the projection up to the dent's arrival behind the contact, where the films part (from
+    # step 26; 5.9e-3 by step 30)
+    pr = _run("projection", dent, slide_roll=1.0, steps=30)
     assert mc.complete and pr.complete and not np.any(mc.stalled)
     err = np.asarray(mc.series["mass_error"][1:])
     # oil gained per step over the inflow within the default mass_tol = 1e-6 (measured:
@@ -51,7 +53,7 @@ def test_a_deep_dent_under_sliding_conserves_oil_to_the_mass_tolerance():
     assert abs(np.mean(err)) < 5e-7 and np.max(np.abs(err)) <= 1e-6
     assert np.all(np.isnan(pr.series["mass_error"]))  # not measured for the projection
     # the film behind the dent differs between the models
-    assert np.max(np.abs(mc.Hm - pr.Hm)) > 1e-4
+    assert np.max(np.abs(mc.Hm[:pr.Hm.size] - pr.Hm)) > 1e-4
 
 
 def test_without_a_rupture_in_the_contact_both_models_give_the_same_film():

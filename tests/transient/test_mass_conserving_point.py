@@ -67,10 +67,11 @@ def test_a_dent_four_film_units_deep_enters_the_contact_conserving_oil():
 
 
 def test_the_step_tolerances_alone_leave_the_oil_balance_to_the_load_tolerance():
-    # the same passage without the mass criterion: a film-constant offset within the load
-    # tolerance gains oil over the whole contact through the squeeze term (measured 1.3e-5)
+    # the same dent without the mass criterion, up to its entry into the Hertzian circle: a
+    # film-constant offset within the load tolerance gains oil over the whole contact through
+    # the squeeze term (measured 5.6e-6 over these 12 steps, 1.3e-5 over the whole passage)
     dent = Dent2D(-1.0, 1.0, x0=-1.8)
-    res = _run("mass-conserving", dent, 36, slide_roll=1.0, mass_tol=None)
+    res = _run("mass-conserving", dent, 12, slide_roll=1.0, mass_tol=None)
     assert res.complete
     assert np.max(np.abs(res.series["mass_error"][1:])) > 3e-6
 
