@@ -123,3 +123,21 @@ def test_a_point_result_carries_the_dimensional_film_the_main_job_computes_on(pa
     assert film.h[i, j] == pytest.approx(pos.H[0, i] * pb.a**2 / pb.Rx, rel=1e-12)
     assert film.h[i, j] == pytest.approx(film.hc, rel=1e-9)
     assert film.p.max() == pytest.approx(pos.P.max() * pb.pmax, rel=1e-12)
+
+
+@pytest.mark.solver
+def test_a_runaway_stress_slope_keeps_the_solves_poiseuille_flux():
+    # a 6205 inner race at 18000 rpm and 60 N radial (thermal loading 1.3): on 129 points the
+    # centre row's outlet spike drove h dp/dx into NaN temperatures; the line contact's remedy
+    import tomllib
+    from importlib import resources
+
+    from ehl_multigrid.model.scene import Scene
+
+    raw = tomllib.loads(resources.files("ehl_multigrid.scenes").joinpath("bearing_6205_inner_race.toml").read_text())
+    raw["element"].update(shaft_speed="18000 rpm", radial_load="60 N")
+    r = solve_tehl_point(Scene.from_dict(raw), 0.0, TEHLOptions(points=129, nz=10))
+    assert r.report.converged and np.all(np.isfinite(r.T_mid))
+    assert any("Poiseuille flux" in a for a in r.report.extra["actions"])
+    # heat in the inlet at this speed: a fifth off the isothermal film (Gupta's factor 0.75)
+    assert 0.7 < r.Hc / r.Hc_isothermal < 0.9
