@@ -21,8 +21,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from ehl_multigrid.app.plan import TEHL_STAGED
-from ehl_multigrid.app.stages import RunContext, StageOutput
+from ehl_multigrid.app.stages import TEHL_STAGED, RunContext, StageOutput
 from ehl_multigrid.model.solved_film import SolvedFilm
 
 #: the result keys of the coupled solve that the stage's summary carries

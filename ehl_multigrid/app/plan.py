@@ -32,6 +32,7 @@ from ..model.fidelity import FIDELITIES
 from ..model.lubricant import G_ELASTICITY_OFF, density_ratio_dh
 from ..model.scene import Scene
 from ..multigrid.gridchoice import GridChoice, solver_grid
+from .stages import TEHL_STAGED
 
 #: Lambda = hc / Rq above which the film carries the whole load (thesis 4.3.1: "roughly more than
 #: three times as large as Rq").
@@ -149,8 +150,6 @@ TRACTION_SCOPE = ("this decision holds at the operating slip (film, Stribeck cur
 #: line scenes in rolling (docs/thermal.md): a point contact's coupled solve runs in the main job
 #: where this fraction of the reduction still exceeds the tolerance
 TEHL_POINT_FRACTION = 1.0 / 3.0
-#: the ``tehl`` setting under which the thermal layer's film stage solves the coupled film
-TEHL_STAGED = "coupled thermal EHL film (thermal film stage)"
 #: the friction models (traction and Stribeck curves) are Eyring models whatever this decision
 EYRING_SCOPE = "the friction curves always use the Eyring law (3.3), which is Newtonian at low stress"
 

@@ -26,6 +26,10 @@ from ..model.results import Result
 from ..model.scene import Scene
 from ..model.solved_film import SolvedFilm
 
+#: the planner's ``tehl`` setting under which the thermal layer's film stage solves the coupled
+#: film (:mod:`ehl_multigrid.app.plan` writes it, the stage reads it)
+TEHL_STAGED = "coupled thermal EHL film (thermal film stage)"
+
 
 class PlanView(Protocol):
     """The planner's decisions as a stage reads them (``ehl_multigrid.app.plan.Plan``)."""

@@ -111,7 +111,8 @@ def test_a_slip_range_short_of_the_operating_slip_still_decides_the_model_there(
 
 
 def test_a_point_contact_with_a_large_thermal_film_reduction_is_solved_coupled_in_the_main_job():
-    from ehl_multigrid.app.plan import TEHL_POINT_FRACTION, TEHL_STAGED
+    from ehl_multigrid.app.plan import TEHL_POINT_FRACTION
+    from ehl_multigrid.app.stages import TEHL_STAGED
 
     fast = make_plan(load_scene("default").with_operating(us=24.0)).get("tehl")
     assert fast.include and fast.setting == TEHL_STAGED and TEHL_POINT_FRACTION * fast.estimate > fast.threshold

@@ -129,8 +129,9 @@ def test_a_point_result_carries_the_dimensional_film_the_main_job_computes_on(pa
 def test_a_runaway_stress_slope_keeps_the_solves_poiseuille_flux():
     # a 6205 inner race at 18000 rpm and 60 N radial (thermal loading 1.3): on 129 points the
     # centre row's outlet spike drove h dp/dx into NaN temperatures; the line contact's remedy
-    import tomllib
     from importlib import resources
+
+    import tomllib
 
     from ehl_multigrid.model.scene import Scene
 
