@@ -79,3 +79,17 @@ def _shown(path: Path) -> str:
         return str(path.resolve().relative_to(ROOT))
     except ValueError:
         return str(path)
+
+
+def package_hash() -> str:
+    """Hash of the package's sources (``ehl_multigrid``, ``thermal``, ``mixed``: code, scenes and
+    data tables): a resumed study keeps only the records computed with the same package."""
+    import hashlib
+
+    h = hashlib.sha1()
+    for pkg in ("ehl_multigrid", "thermal", "mixed"):
+        for f in sorted((ROOT / pkg).rglob("*")):
+            if f.is_file() and f.suffix in (".py", ".toml", ".json") and "__pycache__" not in f.parts:
+                h.update(str(f.relative_to(ROOT)).encode())
+                h.update(f.read_bytes())
+    return h.hexdigest()[:12]

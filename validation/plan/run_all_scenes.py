@@ -2,7 +2,8 @@
 stage reported.
 
 Usage: python validation/plan/run_all_scenes.py [--fidelity standard]
-Writes build/validation/plan/run_all_<fidelity>.json (resumes: finished scenes are kept).
+Writes build/validation/plan/run_all_<fidelity>.json (resumes: finished scenes are kept when the
+package sources are the same, `_paths.package_hash`).
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from pathlib import Path
 from scene_run import run_scene
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from _paths import out_dir  # noqa: E402
+from _paths import out_dir, package_hash  # noqa: E402
 
 OUT = out_dir("plan")
 
@@ -35,7 +36,10 @@ def main() -> None:
     a = ap.parse_args()
     OUT.mkdir(exist_ok=True)
     path = OUT / f"run_all_{a.fidelity}.json"
+    code = package_hash()
     done = json.loads(path.read_text()) if path.exists() else {}
+    # rows of another package version are computed again, not mixed in
+    done = {n: r for n, r in done.items() if r.get("code") == code}
     from tqdm import tqdm
 
     for name in tqdm(scenes(), desc=f"ehl run ({a.fidelity})"):
@@ -43,7 +47,7 @@ def main() -> None:
             continue
         with tempfile.TemporaryDirectory() as tmp:
             p, wall = run_scene(name, a.fidelity, tmp)
-        row = {"exit_code": p.returncode, "wall_s": wall}
+        row = {"exit_code": p.returncode, "wall_s": wall, "code": code}
         try:
             d = json.loads(p.stdout)
             row["plan"] = d.get("plan")
