@@ -259,8 +259,6 @@ class LineHierarchy:
         #: ``film_floor``, the FMG start grid when the start moved up because the grids below
         #: cannot hold a positive film (or their Newton failed)
         self.floor = 0
-        #: the cycles start from a given solution above the dense start grids (:meth:`start`)
-        self.guess_start = False
         self.film_floor = 0
         #: the h-scaled switch on the current FMG grid only (a stall step, raise_switch)
         self.classic_coarse_switch = False
@@ -515,24 +513,19 @@ class LineHierarchy:
         return bool(np.all(np.isfinite(st.H))) and self.central_film(lv, st) > 0 and \
             (not zone.any() or float(st.H[zone].min()) > 0)
 
-    def start(self, solver: MultilevelSolver) -> int:
-        """Solve the FMG start grid by Newton; refine the start grid while the discrete film
-        is not positive (too coarse for this load). Returns the start level. A steady solve whose
-        cycles start from a given solution above its dense start grids then coarsens no further
-        than :func:`cycle_floor_points`."""
-        self.guess_start = False
-        return self._start(solver)
-
     def _from_guess(self) -> None:
         """The cycles start from a given solution above the dense start grids: the steady
         solver's cycles coarsen no further than :func:`cycle_floor_points` from here on."""
-        self.guess_start = True
         if self.stall_steps:
             want = cycle_floor_points(self.problem.M, self.problem.L)
             top = len(self.levels) - 1
             self.floor = max(self.floor, next((k for k, lv in enumerate(self.levels) if lv.n >= want), top))
 
-    def _start(self, solver: MultilevelSolver) -> int:
+    def start(self, solver: MultilevelSolver) -> int:
+        """Solve the FMG start grid by Newton; refine the start grid while the discrete film
+        is not positive (too coarse for this load). Returns the start level. A steady solve whose
+        cycles start from a given solution above its dense start grids then coarsens no further
+        than :func:`cycle_floor_points`."""
         self.solver = solver
         top = len(self.levels) - 1
         if self.resume is not None:

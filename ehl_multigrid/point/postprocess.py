@@ -193,12 +193,19 @@ def _add_fields(res: Result, sol) -> None:
     res.add_coord("Y", Yf, "-", "y / a")
     res.add_field("P", Pf.T.copy(), "-", ("X", "Y"), "p / pmax")
     res.add_field("H", Hf.T.copy(), "-", ("X", "Y"), "h Rx / a^2 (Venner)")
+    add_dimensional_film(res, pb, sol.X, Yf, Pf, Hf)
+
+
+def add_dimensional_film(res: Result, pb, X: np.ndarray, Y: np.ndarray, P: np.ndarray, H: np.ndarray) -> None:
+    """Coordinates ``x``, ``y`` [m] and fields ``p`` [Pa], ``h`` [m] over ``(x, y)`` of the
+    full-domain Venner fields ``P``, ``H`` (rows ``[j, i]``) of problem ``pb``; nothing in
+    Moes-only mode."""
     if pb.physical:
         a = pb.a
-        res.add_coord("x", sol.X * a, "m", "rolling direction")
-        res.add_coord("y", Yf * a, "m", "transverse direction")
-        res.add_field("p", Pf.T * pb.pmax, "Pa", ("x", "y"), "pressure")
-        res.add_field("h", Hf.T * a * a / pb.Rx, "m", ("x", "y"), "film thickness")
+        res.add_coord("x", X * a, "m", "rolling direction")
+        res.add_coord("y", Y * a, "m", "transverse direction")
+        res.add_field("p", P.T * pb.pmax, "Pa", ("x", "y"), "pressure")
+        res.add_field("h", H.T * a * a / pb.Rx, "m", ("x", "y"), "film thickness")
 
 
 def summary_payload(res: Result) -> dict:

@@ -103,22 +103,6 @@ class TEHLLineResult(TEHLResult):
     def h(self) -> np.ndarray:
         return self.H * self.problem.b ** 2 / self.problem.R
 
-    @property
-    def hc(self) -> float:
-        return self.Hc * self.problem.film_scale
-
-    @property
-    def hm(self) -> float:
-        return self.Hm * self.problem.film_scale
-
-    @property
-    def film_reduction(self) -> float:
-        """Thermal reduction factor ``Hc / Hc_isothermal``."""
-        return self.Hc / self.Hc_isothermal
-
-    def _film_keys(self) -> dict[str, Any]:
-        return {"hc": self.hc, "hm": self.hm, "film_reduction": self.film_reduction}
-
     def _own_keys(self) -> dict[str, Any]:
         return {"momentum": self.report.extra.get("momentum", "gradient"),
                 "compressive_heating": self.options.compressive_heating,

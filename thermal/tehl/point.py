@@ -117,12 +117,6 @@ class TEHLPointResult(TEHLResult):
     T_surface2: np.ndarray
     extra: dict[str, Any] = field(default_factory=dict)
 
-    def _film_keys(self) -> dict[str, Any]:
-        if not self.problem.physical:
-            return {}
-        s = self.problem.film_scale
-        return {"hc": self.Hc * s, "hm": self.Hm * s, "film_reduction": self.Hc / self.Hc_isothermal}
-
 
 @dataclass
 class _Rows:
@@ -187,8 +181,8 @@ class PointContact:
     def thermal(self, st: Iterate) -> tuple[_Rows, np.ndarray]:
         """The thermal layer on every loaded row, with the flux of the generalised Reynolds
         solve where the stress slope ``h dp/dx`` runs away (as the line contact does: the
-        outlet spike's gradient drives an Eyring Poiseuille flow its own heat thins further;
-        measured: NaN temperatures on the centre row of a 6205 inner race at 18000 rpm)."""
+        outlet spike's gradient drives an Eyring Poiseuille flow its own heat thins further,
+        docs/thermal.md)."""
         try:
             return self._thermal(st, flux=False)
         except ConvergenceError as exc:

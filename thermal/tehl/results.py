@@ -13,7 +13,7 @@ import numpy as np
 from ehl_multigrid.model.convergence import ConvergenceReport
 from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import Scene
-from ehl_multigrid.point.postprocess import full_fields
+from ehl_multigrid.point.postprocess import add_dimensional_film, full_fields
 
 if TYPE_CHECKING:
     from .options import TEHLOptions
@@ -74,9 +74,24 @@ class TEHLResult:
             **({} if self.grid_films is None else {"Hc_field": self.grid_films[0], "Hm_field": self.grid_films[1]}),
         }
 
+    @property
+    def hc(self) -> float:
+        """Central film [m]."""
+        return self.Hc * self.problem.film_scale
+
+    @property
+    def hm(self) -> float:
+        """Minimum film [m]."""
+        return self.Hm * self.problem.film_scale
+
+    @property
+    def film_reduction(self) -> float:
+        """Thermal reduction factor ``Hc / Hc_isothermal``."""
+        return self.Hc / self.Hc_isothermal
+
     def _film_keys(self) -> dict[str, Any]:
-        """Summary keys of the contact that follow the isothermal films."""
-        return {}
+        """Summary keys that follow the isothermal films."""
+        return {"hc": self.hc, "hm": self.hm, "film_reduction": self.film_reduction}
 
     def _own_keys(self) -> dict[str, Any]:
         """Summary keys of the contact that follow the common ones."""
@@ -133,13 +148,7 @@ def tehl_point_result(r: Any) -> Result:
             ("T_surface2", r.T_surface2, "degC", "surface 2 temperature"),
             ("flow_factor", r.a, "-", "Poiseuille factor"), ("couette_factor", r.c, "-", "Couette density factor")):
         res.add_field(name, data, units, ("Y", "X"), long)
-    pb = r.problem
-    if pb.physical:
-        # the dimensional film over the full domain, as the core's ``ehl_point`` result holds it
-        # (the main job's later stages compute on it)
-        Yf, Pf, Hf = full_fields(r.X, r.Y, r.P, r.H, True)
-        res.add_coord("x", r.X * pb.a, "m", "rolling direction")
-        res.add_coord("y", Yf * pb.a, "m", "transverse direction")
-        res.add_field("p", Pf.T * pb.pmax, "Pa", ("x", "y"), "pressure")
-        res.add_field("h", Hf.T * pb.a * pb.a / pb.Rx, "m", ("x", "y"), "film thickness")
+    # the dimensional film over the full domain, as the core's ``ehl_point`` result holds it
+    # (the main job's later stages compute on it)
+    add_dimensional_film(res, r.problem, r.X, *full_fields(r.X, r.Y, r.P, r.H, True))
     return _finish(res, r)
