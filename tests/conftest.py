@@ -122,6 +122,24 @@ def pytest_sessionfinish(session: pytest.Session) -> None:
         shutil.rmtree(folder, ignore_errors=True)
 
 
+#: where the test run started: no test may leave the default output folder there
+_LAUNCH_OUT = os.path.join(os.getcwd(), "ehl_out")
+
+
+@pytest.fixture(autouse=True)
+def _no_output_in_the_launch_folder():
+    """Fail a test that writes the default ``./ehl_out`` where the run started (a command
+    without ``--out`` run outside a temporary folder): nothing is written outside the output
+    folders the tests choose."""
+    existed = os.path.exists(_LAUNCH_OUT)
+    yield
+    if not existed and os.path.exists(_LAUNCH_OUT):
+        import shutil
+
+        shutil.rmtree(_LAUNCH_OUT, ignore_errors=True)
+        pytest.fail(f"the test wrote {_LAUNCH_OUT}: give the command --out under tmp_path, or chdir there")
+
+
 def pytest_runtest_setup(item: pytest.Item) -> None:
     """An xdist worker's solves use its share of the cores (numba's ceiling stays the machine's,
     so tests that switch threads still can)."""

@@ -65,7 +65,11 @@ class LineProblem:
 
     def __post_init__(self) -> None:
         require_range("M", self.M, *M_RANGE, "-")
-        require_range("L", self.L, *L_RANGE, "-")
+        try:
+            require_range("L", self.L, *L_RANGE, "-")
+        except InputError as exc:
+            raise InputError(f"{exc}: the line solver is not checked beyond it (a cold, viscous oil or a "
+                             "high speed; such a contact is also far from isothermal)") from None
         require_choice("viscosity", self.viscosity, VISCOSITY)
         require_choice("density", self.density, DENSITY)
         require_range("alpha", self.alpha, 1e-10, 1e-7, "1/Pa")

@@ -110,7 +110,8 @@ def require_range(
                 raise TypeError
         except TypeError:
             raise InputError(
-                f"{field} = {_fmt(value)} is not a number; expected a number in {allowed} {units}"
+                f"{field} = {_fmt(value)} is not a number; expected a number in {allowed}"
+                + ("" if units in ("-", "") else f" {units}")
             ) from None
     v = float(value)
     bad = (
@@ -119,6 +120,8 @@ def require_range(
         or (v >= hi if hi_open else v > hi)
     )
     if bad:
+        if units in ("-", ""):  # dimensionless: no unit to repeat
+            raise InputError(f"{field} = {_fmt(v)} is outside the allowed range {allowed} (dimensionless)")
         raise InputError(f"{field} = {_fmt(v)} {units} is outside the allowed range {allowed} {units}")
     return v
 

@@ -149,7 +149,7 @@ def test_starvation_only_when_oil_supply_is_limited():
 def test_bad_fidelity_and_tolerance_are_named():
     with pytest.raises(InputError, match="fidelity = 'ultra'"):
         make_plan(load_scene("default"), fidelity="ultra")
-    with pytest.raises(InputError, match="tolerance = 0 -"):
+    with pytest.raises(InputError, match="tolerance = 0 is outside"):
         make_plan(load_scene("default"), tolerance=0.0)
 
 

@@ -19,8 +19,10 @@ MARK = "no film from the recording front door (marker 7731)"
 
 
 @pytest.fixture
-def calls(monkeypatch):
-    """The calls of the front door, which returns a failed solution without computing anything."""
+def calls(monkeypatch, tmp_path):
+    """The calls of the front door, which returns a failed solution without computing anything;
+    run in a temporary folder (a command without ``--out`` writes into ``./ehl_out``)."""
+    monkeypatch.chdir(tmp_path)
     seen: list[dict] = []
 
     def recording(problem, *, physics=None, accuracy=0.005, options=None, callback=None, progress=None):
