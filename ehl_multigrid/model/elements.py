@@ -501,5 +501,6 @@ def element_contact(table: dict[str, Any], section: str = "element", check: bool
     if check:
         for key, value in values.items():
             if key in ELEMENT_PLAUSIBLE and value is not None:
-                check_plausible(f"{section}.{key}", value, ELEMENT_PLAUSIBLE[key])
+                check_plausible(f"{section}.{key}", value, ELEMENT_PLAUSIBLE[key],
+                                units_given=isinstance(args.get(key), str) and any(c.isalpha() for c in args[key]))
     return contact

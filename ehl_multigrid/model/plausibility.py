@@ -163,9 +163,10 @@ def unit_hint(key: str, value: float) -> str:
     return ""
 
 
-def implausibility(field: str, value: float, key: str) -> str | None:
+def implausibility(field: str, value: float, key: str, units_given: bool = False) -> str | None:
     """Why ``value`` of ``field`` is implausible for a real contact (field, value, plausible
     range and the probable unit mistake or what to check), or ``None`` when it is plausible.
+    ``units_given``: the input named its unit, so no unit mistake is suggested.
 
     Non-finite values pass: NaN is refused where values are read, ``inf`` means flat or flooded.
     """
@@ -180,16 +181,18 @@ def implausibility(field: str, value: float, key: str) -> str | None:
     span = f"[{spec.lo:g}, {spec.hi:g}]{unit}"
     if spec.magnitude:
         span = f"|value| in {span}"
-    return f"{shown} is outside the plausible range {span} of {REAL_CONTACTS}: {unit_hint(key, v) or spec.note}"
+    hint = "" if units_given else unit_hint(key, v)
+    return f"{shown} is outside the plausible range {span} of {REAL_CONTACTS}: {hint or spec.note}"
 
 
-def check_plausible(field: str, value: float, key: str) -> bool:
+def check_plausible(field: str, value: float, key: str, units_given: bool = False) -> bool:
     """Warn (:class:`~ehl_multigrid.model.errors.PlausibilityWarning`; an :class:`InputError` in
-    strict mode) when ``value`` of ``field`` lies outside the plausible range of ``key``.
+    strict mode) when ``value`` of ``field`` lies outside the plausible range of ``key``
+    (``units_given``: see :func:`implausibility`).
 
     Returns whether the value is plausible.
     """
-    message = implausibility(field, value, key)
+    message = implausibility(field, value, key, units_given)
     if message is None:
         return True
     warn_implausible(message, stacklevel=2)

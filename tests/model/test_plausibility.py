@@ -69,6 +69,14 @@ def test_each_issue_example_warns_naming_the_field_and_the_probable_mistake(name
     assert "plausible range" in found
 
 
+def test_a_fast_spindle_given_in_rpm_is_not_told_it_gave_rpm():
+    # 20000 rpm is above the range that catches rpm written as rad/s, and the user named the unit
+    found = " | ".join(plausibility_warnings(changed("bearing_6205_inner_race", "element", "shaft_speed",
+                                                     "20000 rpm")))
+    assert "element.shaft_speed = 2094.4 rad/s (20000 rpm)" in found
+    assert "did you give" not in found and "spindle" in found
+
+
 @pytest.mark.parametrize("name", builtin_scene_names())
 def test_no_builtin_scene_triggers_a_plausibility_warning(name):
     assert plausibility_warnings(raw(name)) == []
