@@ -14,6 +14,7 @@ A leaf module: it imports nothing from the rest of the application.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import os
@@ -215,10 +216,17 @@ def locked_command(func: Callable[[argparse.Namespace], Any], command: str) -> C
     from ..model.paths import writable_dir
 
     def run(args: argparse.Namespace) -> Any:
+        created = not os.path.exists(args.out)
         out = writable_dir(args.out)
-        with output_lock(out, command) as removed:
-            report_leftovers(command, removed)
-            return func(args)
+        try:
+            with output_lock(out, command) as removed:
+                report_leftovers(command, removed)
+                return func(args)
+        finally:
+            if created:
+                # a command refused or failed before it wrote anything leaves no empty folder
+                with contextlib.suppress(OSError):
+                    os.rmdir(out)
 
     run.__name__ = getattr(func, "__name__", "run")
     run.__doc__ = func.__doc__

@@ -248,3 +248,12 @@ def test_ehl_solve_names_its_result_hdf5_and_its_figures_plots_for_every_contact
     assert is_complete(payload["hdf5"]) and os.path.dirname(payload["hdf5"]) == str(tmp_path)
     assert payload["plots"] and all(os.path.isfile(p) for p in payload["plots"])
     assert not {"file", "png"} & set(payload)
+
+
+def test_a_refused_command_leaves_no_output_folder_it_created(tmp_path):
+    new, kept = tmp_path / "new", tmp_path / "kept"
+    kept.mkdir()
+    for out in (new, kept):
+        assert main(["traction", "appendix_c_line_4240N", "--accuracy", "0.005", "--out", str(out)]) == 2
+    assert not new.exists()
+    assert kept.is_dir() and not any(kept.iterdir())
