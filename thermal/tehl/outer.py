@@ -242,10 +242,13 @@ def multilevel_step(contact: Contact, a: np.ndarray, c: np.ndarray, state: Itera
     hz.set_iterate(state.P, state.H0)
     res, P, H, H0 = contact.multilevel()
     noise = film_noise(res.history, len(hz.levels) - 1)
-    if not res.success and res.status == 1 and res.residual_history[-1] < contact.options.tol and noise < 10.0 * tol_H:
+    if (not res.success and res.status in (1, 8) and res.residual_history[-1] < contact.options.tol
+            and noise < 10.0 * tol_H):
         # the residual tolerance is met but the films alternate between two states (the
         # outlet free boundary flips between nodes; a line's Hm by up to 6e-4 at residual
-        # 2.5e-6): accepted, the alternation carried into the outer iteration as their uncertainty
+        # 2.5e-6), whether the cycles ran out or stopped at the relaxation's floor (status 8;
+        # a traction drive at 2.5 GPa, Hm by 3e-4 at 6e-6 on 257 points): accepted, the
+        # alternation carried into the outer iteration as their uncertainty
         contact.notes.append(f"outer iteration {it}: films alternate by {noise:.2g}{contact.alternation} at "
                              f"residual {res.residual_history[-1]:.3g}; accepted as their uncertainty")
     elif not res.success:

@@ -39,7 +39,7 @@ from ehl_multigrid.point.solve import solve_fas
 from ..line import Surroundings, ThermalLineSolution
 from ..parallel import LineJob, solve_thermal_lines
 from ..profiles import profile_from_arrays
-from .coefficients import solution_factors
+from .coefficients import solution_factors, viscosity_response
 from .hierarchy import GivenStart
 from .line import heat_partition, interior_heat_budget
 from .options import TEHLOptions
@@ -61,12 +61,35 @@ class FactorPointHierarchy(GivenStart, PointHierarchy):
         for lev in self.levels:
             lev.a = np.ones(lev.shape)
             lev.c = np.ones(lev.shape)
+            lev.w = None  # viscosity response (coefficients.viscosity_response), injected
+            lev.kref = None  # rho/(eta lambda) of the start iterate, injected
+
+    def set_response(self, w: np.ndarray | None) -> None:
+        """The flow's viscosity response ``w`` on the finest grid (None: the flow factor stays
+        frozen as it is); coarse grids inject it."""
+        if w is None or not np.any(w > 0.0):
+            for lev in self.levels:
+                lev.w = None
+            return
+        for k, lev in enumerate(self.levels):
+            step = 2 ** (len(self.levels) - 1 - k)
+            lev.w = np.ascontiguousarray(w[::step, ::step], dtype=float)
 
     def _apply(self, lev: Any) -> None:
         a = getattr(lev, "a", None)
-        if a is not None:
-            lev.rho *= lev.c
+        if a is None:
+            return
+        lev.rho *= lev.c
+        if lev.w is None or lev.kref is None:
             lev.eps *= a
+            return
+        # the flow factor holds the effective viscosity of the start iterate to the degree w it
+        # does not follow the pressure: eps = a (rho/eta)(P)^(1 - w) (rho/eta)(P_ref)^w H^3/lambda
+        H3 = lev.H * lev.H * lev.H
+        ok = (lev.eps > 0.0) & (H3 > 0.0) & np.isfinite(lev.kref)
+        ratio = np.ones_like(lev.eps)
+        np.divide(lev.kref * H3, lev.eps, out=ratio, where=ok)
+        lev.eps *= a * ratio ** lev.w
 
     def update_film(self, lev: Any) -> None:
         super().update_film(lev)
@@ -95,6 +118,16 @@ class FactorPointHierarchy(GivenStart, PointHierarchy):
         self.h00_step_max = 0.1 * nijenbanning_central(self.pb.M, self.pb.L, self.theta) / self.pb.moes_factor
         lev.f = np.zeros_like(lev.P)
         lev.g = self.g_target
+        for lv in self.levels:
+            lv.kref = None
+        if lev.w is not None:
+            PointHierarchy.update_film(self, lev)
+            H3 = lev.H * lev.H * lev.H
+            kref = np.full_like(lev.eps, np.nan)
+            np.divide(lev.eps, H3, out=kref, where=(lev.eps > 0.0) & (H3 > 0.0))
+            for k, lv in enumerate(self.levels):
+                step = 2 ** (top - k)
+                lv.kref = np.ascontiguousarray(kref[::step, ::step])
         self.update_film(lev)
         return top
 
@@ -228,8 +261,11 @@ class PointContact:
         shape = th.T.shape[:2]
         a = np.ones(shape)
         c = np.ones(shape)
+        w = np.zeros(shape)
         for jj, s in zip(th.rows, th.sols, strict=True):
             a[jj], c[jj] = solution_factors(s, self.env, self.opts.shear_thinning)
+            w[jj] = viscosity_response(s, self.env, self.opts.shear_thinning)
+        self.hierarchy.set_response(w)
         return a, c
 
     def finer_factor(self, f: np.ndarray) -> np.ndarray:
