@@ -31,13 +31,13 @@ def _fluid(level: LineLevel, P: np.ndarray, H0: float):
     # overflow/NaN in a trial step is detected by the caller (non-finite merit -> step halved)
     with np.errstate(all="ignore"):
         W = level.deform(P)
-        H, rho, drho, _, dlne, eps = fluid_state(P, W, level.X, H0, level.par, level.lam,
-                                                 level.elastic)
-        a = getattr(level, "a", None)
-        if a is not None:
+        H, rho, drho, lne, dlne, eps = fluid_state(P, W, level.X, H0, level.par, level.lam,
+                                                   level.elastic)
+        factored = getattr(level, "factored", None)
+        if factored is not None:
             # generalised Reynolds (thermal EHL): frozen flow and Couette density factors; the
-            # Jacobian follows from eps, rho and drho
-            eps, rho, drho = eps * a, rho * level.c, drho * level.c
+            # Jacobian follows from eps, rho, drho and dlne
+            eps, rho, drho, dlne = factored(eps, rho, drho, lne, dlne)
         r, _ = reynolds_residual(P, H, rho, eps, level.h, level.f, level.order, level.face)
     return r, (H, rho, drho, dlne, eps)
 
@@ -303,11 +303,11 @@ def local_newton(level: LineLevel, center: int, half: int = 48, max_iter: int = 
     def window_state(Ps: np.ndarray):
         with np.errstate(all="ignore"):
             W = W0 + Kw @ (Ps[rows] - P0[rows]) if level.elastic else W0
-            H, rho, drho, _, dlne, eps = fluid_state(Ps, W, level.X[s0:s1], level.H0,
-                                                     level.par, level.lam, level.elastic)
-            a = getattr(level, "a", None)
-            if a is not None:
-                eps, rho, drho = eps * a[s0:s1], rho * level.c[s0:s1], drho * level.c[s0:s1]
+            H, rho, drho, lne, dlne, eps = fluid_state(Ps, W, level.X[s0:s1], level.H0,
+                                                       level.par, level.lam, level.elastic)
+            factored = getattr(level, "factored", None)
+            if factored is not None:
+                eps, rho, drho, dlne = factored(eps, rho, drho, lne, dlne, slice(s0, s1))
             r, _ = reynolds_residual(Ps, H, rho, eps, level.h, level.f[s0:s1], level.order, level.face)
         return r[rows], (H, rho, drho, dlne, eps)
 

@@ -44,21 +44,38 @@ class FactorLevel(LineLevel):
 
     a: np.ndarray = field(init=False)
     c: np.ndarray = field(init=False)
+    #: the flow's viscosity response (coefficients.viscosity_response) and ln(rho/eta) of the
+    #: start iterate; None: the flow factor stays frozen as it is
+    w: np.ndarray | None = field(init=False, default=None)
+    lkref: np.ndarray | None = field(init=False, default=None)
 
     def __post_init__(self) -> None:
         super().__post_init__()
         self.a = np.ones(self.n)
         self.c = np.ones(self.n)
 
+    def factored(self, eps: np.ndarray, rho: np.ndarray, drho: np.ndarray, lne: np.ndarray,
+                 dlne: np.ndarray, part: slice = slice(None)
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """``eps``, ``rho``, ``drho/dP`` and ``d ln eta/dP`` of the generalised Reynolds
+        equation: the wedge carries ``c rho H``, the Poiseuille term ``a eps`` (factors frozen:
+        Picard), where the flow's viscosity responds to the pressure only to the degree
+        ``1 - w``: ``a eps (rho/eta)(P_ref)^w / (rho/eta)(P)^w`` (the point contact's rule,
+        thermal.tehl.point.FactorPointHierarchy). ``part``: the nodes the arrays hold."""
+        a, c = self.a[part], self.c[part]
+        if self.w is None or self.lkref is None:
+            return eps * a, rho * c, drho * c, dlne
+        w = self.w[part]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            shift = np.where(rho > 0.0, w * (self.lkref[part] - (np.log(rho) - lne)), 0.0)
+        return eps * a * np.exp(shift), rho * c, drho * c, dlne * (1.0 - w)
+
     def state(self, P: np.ndarray | None = None, H0: float | None = None) -> State:
         P = self.P if P is None else P
         H0 = self.H0 if H0 is None else H0
         W = self.deform(P)
         H, rho, drho, lne, dlne, eps = fluid_state(P, W, self.X, H0, self.par, self.lam, self.elastic)
-        # the wedge carries c rho H, the Poiseuille term a eps (factors frozen: Picard)
-        rho = rho * self.c
-        drho = drho * self.c
-        eps = eps * self.a
+        eps, rho, drho, dlne = self.factored(eps, rho, drho, lne, dlne)
         r, scale = reynolds_residual(P, H, rho, eps, self.h, self.f, self.order, self.face)
         return State(H, rho, drho, lne, dlne, eps, r, scale)
 
@@ -79,6 +96,14 @@ class GivenStart:
             every = (slice(None, None, 2 ** (len(self.levels) - 1 - k)),) * a.ndim
             lv.a = np.ascontiguousarray(a[every], dtype=float)
             lv.c = np.ascontiguousarray(c[every], dtype=float)
+
+    def set_response(self, w: np.ndarray | None) -> None:
+        """The flow's viscosity response ``w`` on the finest grid (None or all zero: the flow
+        factor stays frozen as it is); coarse grids inject it."""
+        active = w is not None and bool(np.any(w > 0.0))
+        for k, lv in enumerate(self.levels):
+            every = (slice(None, None, 2 ** (len(self.levels) - 1 - k)),) * (w.ndim if active else 1)
+            lv.w = np.ascontiguousarray(w[every], dtype=float) if active else None
 
     def set_iterate(self, P: np.ndarray, H0: float) -> None:
         """The finest-grid pressure and film constant a solve starts from."""
@@ -113,11 +138,29 @@ class FactorLineHierarchy(GivenStart, LineHierarchy):
         for lv in self.levels:
             lv.face = self.face
 
+    def flow_factor(self) -> np.ndarray:
+        """The flow factor the finest grid's Poiseuille term carries at its pressure: ``a``,
+        times the viscosity response's correction (:meth:`FactorLevel.factored`)."""
+        lv = self.levels[-1]
+        if lv.w is None or lv.lkref is None:
+            return lv.a
+        _, rho, drho, lne, dlne, eps = fluid_state(lv.P, np.zeros_like(lv.P), lv.X, lv.H0, lv.par, lv.lam, False)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            shift = np.where(rho > 0.0, lv.w * (lv.lkref - (np.log(rho) - lne)), 0.0)
+        return lv.a * np.exp(shift)
+
     def start(self, solver: MultilevelSolver) -> int:
         self.solver = solver
         P, H0 = self.given_start()
         top = len(self.levels) - 1
         lv = self.levels[top]
+        lkref = None
+        if lv.w is not None:
+            _, rho, _, lne, _, _ = fluid_state(P, np.zeros_like(P), lv.X, H0, lv.par, lv.lam, False)
+            with np.errstate(divide="ignore"):
+                lkref = np.log(rho) - lne
+        for k, lk in enumerate(self.levels):
+            lk.lkref = None if lkref is None else np.ascontiguousarray(lkref[:: 2 ** (top - k)])
         lv.P = P.copy()
         lv.H0 = H0
         lv.f = np.zeros(lv.n)

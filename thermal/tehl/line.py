@@ -46,7 +46,7 @@ from ehl_multigrid.multigrid.transfer import interpolate_cubic
 from ..line import Surroundings, ThermalLineSolution, solve_thermal_line
 from ..profiles import profile_from_arrays
 from ..traction import wall_speeds
-from .coefficients import solution_factors
+from .coefficients import flow_response, solution_factors, viscosity_response
 from .hierarchy import FactorLineHierarchy
 from .options import TEHLOptions
 from .outer import OUTER_HINT, Iterate, coupled_solve, surroundings
@@ -189,7 +189,10 @@ class LineContact:
         return _films(self.pb, self.X, P, H)
 
     def factors(self, th: ThermalLineSolution) -> tuple[np.ndarray, np.ndarray]:
-        return solution_factors(th, self.env, self.opts.shear_thinning)
+        a, c = solution_factors(th, self.env, self.opts.shear_thinning)
+        w = viscosity_response(th, self.env, self.opts.shear_thinning)
+        self.hierarchy.set_response(flow_response(a, w))
+        return a, c
 
     def finer_factor(self, f: np.ndarray) -> np.ndarray:
         return np.exp(interpolate_cubic(np.log(f)))
@@ -204,7 +207,7 @@ class LineContact:
             self.modes.append("gradient")
         except ConvergenceError as exc:
             # the fixed gradient ran away (NaN): the flux of the generalised Reynolds solve
-            th = self.thermal_layer(st, flux_factor=self.hierarchy.levels[-1].a, start=start)
+            th = self.thermal_layer(st, flux_factor=self.hierarchy.flow_factor(), start=start)
             self.modes.append("flux")
             if len(self.modes) == 1 or self.modes[-2] != "flux":
                 self.notes.append(f"thermal solve {len(self.modes)}: the stress slope h dp/dx ran away "

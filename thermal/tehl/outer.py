@@ -80,7 +80,8 @@ class Contact(Protocol):
     the report's first; ``multilevel()`` : the multilevel solve with the factors and start set,
     ``(result, P, H, H0)``; ``films(P, H)`` : Moes ``(Hc, Hm)``; ``thermal(state)`` : the
     thermal solve, ``(solution, temperature array)``; ``factors(solution)`` : the flow and
-    Couette factors ``(a, c)``; ``finer_factor(f)`` : a factor of the grid with half the
+    Couette factors ``(a, c)``, handing the hierarchy the flow's viscosity response of that
+    solution (``coefficients.viscosity_response``) as well; ``finer_factor(f)`` : a factor of the grid with half the
     intervals interpolated to this one; ``friction(solution)`` : the friction force of a thermal
     solution (any unit: its relative changes are compared).
     """
@@ -289,6 +290,7 @@ def coupled_solve(contact: Contact, state: Iterate, thermal: Any, T: np.ndarray,
         # the coarse fixed point's factors with the film they give on this grid: a consistent
         # start (the interpolated coarse pressure itself is not: its spike is a grid off)
         a, c = (contact.finer_factor(f) for f in (coarse.a, coarse.c))
+        contact.factors(thermal)  # (for the flow's viscosity response of this grid's start)
         try:
             state = multilevel_step(contact, a, c, state, 0, tol_H)
         except ConvergenceError as exc:

@@ -31,7 +31,7 @@ from ehl_multigrid.multigrid.options import PointOptions
 from ehl_multigrid.multigrid.policy import RobustnessPolicy
 from ehl_multigrid.multigrid.threads import preserved_threads
 from ehl_multigrid.point.fas import HINT, POINT_POLICY, PointHierarchy, point_settings
-from ehl_multigrid.point.numerics import interpolate_cubic
+from ehl_multigrid.point.numerics import fluid_properties, interpolate_cubic
 from ehl_multigrid.point.postprocess import film_metrics, full_fields
 from ehl_multigrid.point.problem import PointProblem, problem_from_scene, resolve_domain
 from ehl_multigrid.point.solve import solve_fas
@@ -39,7 +39,7 @@ from ehl_multigrid.point.solve import solve_fas
 from ..line import Surroundings, ThermalLineSolution
 from ..parallel import LineJob, solve_thermal_lines
 from ..profiles import profile_from_arrays
-from .coefficients import solution_factors, viscosity_response
+from .coefficients import flow_response, solution_factors, viscosity_response
 from .hierarchy import GivenStart
 from .line import heat_partition, interior_heat_budget
 from .options import TEHLOptions
@@ -74,6 +74,19 @@ class FactorPointHierarchy(GivenStart, PointHierarchy):
         for k, lev in enumerate(self.levels):
             step = 2 ** (len(self.levels) - 1 - k)
             lev.w = np.ascontiguousarray(w[::step, ::step], dtype=float)
+
+    def flow_factor(self) -> np.ndarray:
+        """The flow factor the finest grid's Poiseuille term carries at its pressure and film:
+        ``a``, times the viscosity response's correction (:meth:`_apply`)."""
+        lev = self.levels[-1]
+        if lev.w is None or lev.kref is None:
+            return lev.a
+        rho, eps = np.empty_like(lev.P), np.empty_like(lev.P)
+        fluid_properties(lev.P, lev.H, self.par, self.lam, rho, eps)
+        H3 = lev.H * lev.H * lev.H
+        ratio = np.ones_like(eps)
+        np.divide(lev.kref * H3, eps, out=ratio, where=(eps > 0.0) & (H3 > 0.0) & np.isfinite(lev.kref))
+        return lev.a * ratio ** lev.w
 
     def _apply(self, lev: Any) -> None:
         a = getattr(lev, "a", None)
@@ -231,13 +244,14 @@ class PointContact:
         topt = self.topt.with_changes(momentum="flux") if flux else self.topt
         hy = float(Y[1] - Y[0])
         rows = [j for j in range(st.P.shape[0]) if np.max(st.P[j]) > 0.0]
+        flow = self.hierarchy.flow_factor() if flux else None
         jobs = []
         widths = []
         for jj in rows:
             w = hy * a_len * (1.0 if jj == 0 else 2.0)
             visc = None
             if flux:
-                fac = np.asarray(self.hierarchy.levels[-1].a[jj], dtype=float)
+                fac = np.asarray(flow[jj], dtype=float)
 
                 def visc(p: np.ndarray, fac: np.ndarray = fac) -> np.ndarray:
                     # on the EHL nodes of the row: the effective viscosity of its flow factor
@@ -265,11 +279,13 @@ class PointContact:
         for jj, s in zip(th.rows, th.sols, strict=True):
             a[jj], c[jj] = solution_factors(s, self.env, self.opts.shear_thinning)
             w[jj] = viscosity_response(s, self.env, self.opts.shear_thinning)
-        self.hierarchy.set_response(w)
+        self.hierarchy.set_response(flow_response(a, w))
         return a, c
 
     def finer_factor(self, f: np.ndarray) -> np.ndarray:
-        return interpolate_cubic(np.ascontiguousarray(f), True)
+        # in the logarithm, as the line contact: the flow factor spans 1 to 1e24 under an
+        # Eyring stress, and cubic interpolation of the factor itself overshoots below zero
+        return np.exp(interpolate_cubic(np.ascontiguousarray(np.log(f)), True))
 
 def require_flooded_point(scene: Scene) -> None:
     """Refuse a point contact with a finite ``[supply] hoil`` (InputError naming it): the thermal
