@@ -54,7 +54,7 @@ def test_a_failed_first_multilevel_solve_with_the_coarse_factors_is_a_coarse_sta
     hz = SimpleNamespace(set_factors=lambda a, c: None, set_iterate=lambda P, H0: None, levels=[0, 1])
     contact = SimpleNamespace(hierarchy=hz, options=SimpleNamespace(tol=1e-5), label="TEHL", hint="",
                               notes=[], multilevel=lambda: (failed, None, None, None),
-                              finer_factor=lambda f: np.ones(5))
+                              finer_factor=lambda f: np.ones(5), factors=lambda th: (np.ones(5), np.ones(5)))
     one = np.ones(5)
     state = Iterate(one, one, 0.0, 1.0, 1.0)
     coarse = SimpleNamespace(a=np.ones(3), c=np.ones(3), X=np.zeros(3))
