@@ -80,6 +80,22 @@ def test_a_failed_coupled_solve_leaves_the_isothermal_film_and_fails_the_stage(t
     assert out["traction"]["film_source"].startswith("solved EHL pressure and film of the film stage")
 
 
+def test_beyond_the_coupled_solvers_thermal_loading_the_stage_fails_at_once_without_solving(tmp_path, monkeypatch):
+    # page 63 at 2000 N and 50 m/s: thermal loading 3.7, where the coupled line solve ends
+    # erratically (a spindle bearing at 6.7 spent the whole 600 s budget)
+    def no_solve(*a, **kw):
+        raise AssertionError("the coupled solve was tried")
+
+    monkeypatch.setattr(front, "solve", no_solve)
+    scene = load_scene("page63_line_2000N")
+    scene = scene.with_operating(us=50.0)
+    assert scene.thermal_properties()["thermal_loading"] > 3.0
+    plan = make_plan(scene, tolerance=0.02)
+    out = thermal_film_stage(RunContext(scene, plan, Path(tmp_path)))
+    assert out.summary["converged"] is False and out.summary["status"] == "not_tried"
+    assert "thermal loading 3.7" in out.summary["message"] and "--thermal" in out.summary["message"]
+
+
 @pytest.mark.slow
 def test_a_fast_point_contact_runs_on_its_coupled_thermal_film(tmp_path):
     # the default ball on flat at 24 m/s: Gupta's reduction 0.09, a third of it above 0.02; the

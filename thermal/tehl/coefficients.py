@@ -139,3 +139,16 @@ def flow_response(a: np.ndarray, w: np.ndarray) -> np.ndarray:
     clipped to [0, 1] (:func:`viscosity_response`, :data:`RESPONSE_FROM`)."""
     return w * np.clip(np.log(np.maximum(a, 1.0)) / math.log(RESPONSE_FROM), 0.0, 1.0)
 
+
+#: largest change of ``ln eps`` the viscosity response makes (a factor e^5 = 148): the response
+#: is the flow's slope at the pressure of the start; a coarse grid's FAS correction that lifts
+#: the outlet to ten times the Hertz pressure took it to e^578 and NaN (the traction drive on
+#: 513 points), where the flow's viscosity no longer follows that slope
+RESPONSE_SHIFT_MAX = 5.0
+
+
+def response_multiplier(w: np.ndarray, log_ratio: np.ndarray) -> np.ndarray:
+    """``exp(w ln(k_ref/k))``, the factor on ``eps`` of the viscosity response (``k = rho/eta``
+    at the current and the start pressure), its exponent clipped to :data:`RESPONSE_SHIFT_MAX`."""
+    return np.exp(np.clip(w * log_ratio, -RESPONSE_SHIFT_MAX, RESPONSE_SHIFT_MAX))
+

@@ -32,6 +32,8 @@ from ehl_multigrid.line.solver import LineHierarchy, line_levels
 from ehl_multigrid.multigrid.driver import MultilevelSolver
 from ehl_multigrid.multigrid.options import LineOptions
 
+from .coefficients import RESPONSE_SHIFT_MAX, response_multiplier
+
 #: coarsest grid of the outer iteration's multilevel solves (points; the core's default
 #: goes down to 65-129): from the converged iterate the cycles on 4097 points stalled
 #: and diverged with 7 grids, not with 5 (docs/thermal.md, "Coupled thermal EHL film")
@@ -67,8 +69,10 @@ class FactorLevel(LineLevel):
             return eps * a, rho * c, drho * c, dlne
         w = self.w[part]
         with np.errstate(divide="ignore", invalid="ignore"):
-            shift = np.where(rho > 0.0, w * (self.lkref[part] - (np.log(rho) - lne)), 0.0)
-        return eps * a * np.exp(shift), rho * c, drho * c, dlne * (1.0 - w)
+            log_ratio = np.where(rho > 0.0, self.lkref[part] - (np.log(rho) - lne), 0.0)
+        # where the response is clipped the viscosity's slope is the isothermal one again
+        slope = np.where(np.abs(w * log_ratio) < RESPONSE_SHIFT_MAX, 1.0 - w, 1.0)
+        return eps * a * response_multiplier(w, log_ratio), rho * c, drho * c, dlne * slope
 
     def state(self, P: np.ndarray | None = None, H0: float | None = None) -> State:
         P = self.P if P is None else P
@@ -146,8 +150,8 @@ class FactorLineHierarchy(GivenStart, LineHierarchy):
             return lv.a
         _, rho, drho, lne, dlne, eps = fluid_state(lv.P, np.zeros_like(lv.P), lv.X, lv.H0, lv.par, lv.lam, False)
         with np.errstate(divide="ignore", invalid="ignore"):
-            shift = np.where(rho > 0.0, lv.w * (lv.lkref - (np.log(rho) - lne)), 0.0)
-        return lv.a * np.exp(shift)
+            log_ratio = np.where(rho > 0.0, lv.lkref - (np.log(rho) - lne), 0.0)
+        return lv.a * response_multiplier(lv.w, log_ratio)
 
     def start(self, solver: MultilevelSolver) -> int:
         self.solver = solver

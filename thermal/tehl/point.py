@@ -39,7 +39,7 @@ from ehl_multigrid.point.solve import solve_fas
 from ..line import Surroundings, ThermalLineSolution
 from ..parallel import LineJob, solve_thermal_lines
 from ..profiles import profile_from_arrays
-from .coefficients import flow_response, solution_factors, viscosity_response
+from .coefficients import flow_response, response_multiplier, solution_factors, viscosity_response
 from .hierarchy import GivenStart
 from .line import heat_partition, interior_heat_budget
 from .options import TEHLOptions
@@ -83,10 +83,17 @@ class FactorPointHierarchy(GivenStart, PointHierarchy):
             return lev.a
         rho, eps = np.empty_like(lev.P), np.empty_like(lev.P)
         fluid_properties(lev.P, lev.H, self.par, self.lam, rho, eps)
+        return lev.a * response_multiplier(lev.w, self._log_ratio(lev, eps))
+
+    @staticmethod
+    def _log_ratio(lev: Any, eps: np.ndarray) -> np.ndarray:
+        """``ln((rho/eta)(P_ref)/(rho/eta)(P))`` from ``eps`` of the current pressure and film
+        (0 where either is not defined)."""
         H3 = lev.H * lev.H * lev.H
+        ok = (eps > 0.0) & (H3 > 0.0) & np.isfinite(lev.kref)
         ratio = np.ones_like(eps)
-        np.divide(lev.kref * H3, eps, out=ratio, where=(eps > 0.0) & (H3 > 0.0) & np.isfinite(lev.kref))
-        return lev.a * ratio ** lev.w
+        np.divide(lev.kref * H3, eps, out=ratio, where=ok)
+        return np.log(ratio)
 
     def _apply(self, lev: Any) -> None:
         a = getattr(lev, "a", None)
@@ -98,11 +105,7 @@ class FactorPointHierarchy(GivenStart, PointHierarchy):
             return
         # the flow factor holds the effective viscosity of the start iterate to the degree w it
         # does not follow the pressure: eps = a (rho/eta)(P)^(1 - w) (rho/eta)(P_ref)^w H^3/lambda
-        H3 = lev.H * lev.H * lev.H
-        ok = (lev.eps > 0.0) & (H3 > 0.0) & np.isfinite(lev.kref)
-        ratio = np.ones_like(lev.eps)
-        np.divide(lev.kref * H3, lev.eps, out=ratio, where=ok)
-        lev.eps *= a * ratio ** lev.w
+        lev.eps *= a * response_multiplier(lev.w, self._log_ratio(lev, lev.eps))
 
     def update_film(self, lev: Any) -> None:
         super().update_film(lev)
