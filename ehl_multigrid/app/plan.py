@@ -37,6 +37,11 @@ from .stages import TEHL_STAGED
 #: Lambda = hc / Rq above which the film carries the whole load (thesis 4.3.1: "roughly more than
 #: three times as large as Rq").
 LAMBDA_FULL_FILM = 3.0
+#: Composite roughness Rq of the smoothest machined steel pairs [m]: superfinished bearing
+#: raceways and rollers, Ra 0.02-0.05 um each (ISO 492 practice), so about 0.05 um together. A
+#: scene without ``[roughness]`` whose film lies below ``LAMBDA_FULL_FILM`` times this is told
+#: that real surfaces would touch there.
+SMOOTHEST_STEEL_RQ = 0.05e-6
 #: Inlet film above which starvation does not change the film (thesis chapter 6: hoil >= 6 sigma
 #: gives the flooded curve).
 HOIL_FLOODED_OVER_SIGMA = 6.0
@@ -270,8 +275,14 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     # 2. asperity contact
     hcs = np.array([scene.central_film_fit(us=u)[1] for u in speeds])
     if scene.roughness is None:
-        plan.decisions.append(Decision("asperities", False, "smooth", math.inf, LAMBDA_FULL_FILM, "-",
-                                       "scene has no [roughness]: smooth surfaces"))
+        why = "scene has no [roughness]: smooth surfaces"
+        hc_op = float(scene.central_film_fit()[1])
+        if hc_op < LAMBDA_FULL_FILM * SMOOTHEST_STEEL_RQ:
+            why += (f"; the fitted central film at the operating point, {hc_op * 1e9:.3g} nm, is below "
+                    f"{LAMBDA_FULL_FILM:g} x {SMOOTHEST_STEEL_RQ * 1e6:g} um, the composite roughness of "
+                    f"superfinished steel: real surfaces would touch (mixed lubrication); give [roughness] "
+                    f"to compute the load the asperities carry")
+        plan.decisions.append(Decision("asperities", False, "smooth", math.inf, LAMBDA_FULL_FILM, "-", why))
     else:
         lam_min = float(hcs.min() / scene.roughness.Rq)
         need = lam_min < LAMBDA_FULL_FILM

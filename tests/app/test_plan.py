@@ -24,6 +24,14 @@ def test_smooth_scene_needs_no_asperity_model():
     assert not plan.includes("asperities")
 
 
+def test_a_smooth_scene_whose_film_is_thinner_than_real_surfaces_are_rough_is_told_so():
+    # the built-in roller bearing at 10 rpm: a fitted film of a few nanometres
+    slow = load_scene("roller_bearing_inner_race").with_operating(us=0.032)
+    reason = make_plan(slow).get("asperities").reason
+    assert "real surfaces would touch" in reason and "[roughness]" in reason
+    assert "would touch" not in make_plan(load_scene("roller_bearing_inner_race")).get("asperities").reason
+
+
 def test_asperity_decision_follows_lambda_threshold():
     base = load_scene("page63_line_2000N").to_dict()
     base.pop("ranges")
