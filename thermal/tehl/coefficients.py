@@ -150,5 +150,8 @@ RESPONSE_SHIFT_MAX = 5.0
 def response_multiplier(w: np.ndarray, log_ratio: np.ndarray) -> np.ndarray:
     """``exp(w ln(k_ref/k))``, the factor on ``eps`` of the viscosity response (``k = rho/eta``
     at the current and the start pressure), its exponent clipped to :data:`RESPONSE_SHIFT_MAX`."""
-    return np.exp(np.clip(w * log_ratio, -RESPONSE_SHIFT_MAX, RESPONSE_SHIFT_MAX))
+    with np.errstate(invalid="ignore"):
+        x = np.where(w > 0.0, w * log_ratio, 0.0)  # (no response where w = 0, even at ln ratio = inf)
+    x = np.nan_to_num(x, nan=0.0, posinf=RESPONSE_SHIFT_MAX, neginf=-RESPONSE_SHIFT_MAX)
+    return np.exp(np.clip(x, -RESPONSE_SHIFT_MAX, RESPONSE_SHIFT_MAX))
 
