@@ -61,8 +61,8 @@ class FactorPointHierarchy(GivenStart, PointHierarchy):
         for lev in self.levels:
             lev.a = np.ones(lev.shape)
             lev.c = np.ones(lev.shape)
-            lev.w = None  # viscosity response (coefficients.viscosity_response), injected
-            lev.kref = None  # rho/(eta lambda) of the start iterate, injected
+            lev.w = None  # viscosity response (coefficients.viscosity_response): finest grid only
+            lev.kref = None  # rho/(eta lambda) of the start iterate, where w is set
 
     def set_response(self, w: np.ndarray | None) -> None:
         """The flow's viscosity response ``w`` on the finest grid (None: the flow factor stays
@@ -136,16 +136,12 @@ class FactorPointHierarchy(GivenStart, PointHierarchy):
         self.h00_step_max = 0.1 * nijenbanning_central(self.pb.M, self.pb.L, self.theta) / self.pb.moes_factor
         lev.f = np.zeros_like(lev.P)
         lev.g = self.g_target
-        for lv in self.levels:
-            lv.kref = None
+        lev.kref = None
         if lev.w is not None:
             PointHierarchy.update_film(self, lev)
             H3 = lev.H * lev.H * lev.H
-            kref = np.full_like(lev.eps, np.nan)
-            np.divide(lev.eps, H3, out=kref, where=(lev.eps > 0.0) & (H3 > 0.0))
-            for k, lv in enumerate(self.levels):
-                step = 2 ** (top - k)
-                lv.kref = np.ascontiguousarray(kref[::step, ::step])
+            lev.kref = np.full_like(lev.eps, np.nan)
+            np.divide(lev.eps, H3, out=lev.kref, where=(lev.eps > 0.0) & (H3 > 0.0))
         self.update_film(lev)
         return top
 
