@@ -83,6 +83,13 @@ def film_factors(p: np.ndarray, T: np.ndarray, tau: np.ndarray, lubricant: Lubri
     ``p`` [Pa] per station; ``T`` [degC] and ``tau`` [Pa] on (station, Z node).
     ``shear_thinning=False`` uses the Newtonian ``eta(p, T)`` (Eyring off in the flow).
     """
+    a, c, _ = _factors_and_fluidity(p, T, tau, lubricant, T_oil, u1, u2, shear_thinning)
+    return a, c
+
+
+def _factors_and_fluidity(p: np.ndarray, T: np.ndarray, tau: np.ndarray, lubricant: Lubricant, T_oil: float,
+                          u1: float, u2: float, shear_thinning: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`film_factors` and the fluidity ``1/eta*`` on (station, Z node) they integrate."""
     P2 = np.repeat(np.asarray(p, dtype=float)[:, None], T.shape[1], axis=1)
     eta = lubricant.viscosity(P2, T)
     rho = lubricant.density(P2, T)
@@ -91,13 +98,19 @@ def film_factors(p: np.ndarray, T: np.ndarray, tau: np.ndarray, lubricant: Lubri
     eta_i = lubricant.viscosity(P2, np.full_like(T, T_oil))
     rho_i = lubricant.density(P2, np.full_like(T, T_oil))
     K0, C0 = flux_integrals(1.0 / eta_i, rho_i, u1, u2)
-    return K / K0, C / C0
+    return K / K0, C / C0, inv
 
 
-def solution_factors(sol: Any, env: Any, shear_thinning: bool = True) -> tuple[np.ndarray, np.ndarray]:
+def solution_factors_and_response(sol: Any, env: Any, shear_thinning: bool = True
+                                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`film_factors` of a thermal solution ``sol`` (:class:`~thermal.line.ThermalLineSolution`)
-    in the surroundings ``env`` (:class:`~thermal.line.Surroundings`: oil, inlet temperature, speeds)."""
-    return film_factors(sol.profile.p, sol.T, sol.tau, env.lubricant, env.T_oil, env.u1, env.u2, shear_thinning)
+    in the surroundings ``env`` (:class:`~thermal.line.Surroundings`: oil, inlet temperature,
+    speeds), and the :func:`flow_response` a multilevel solve takes with them, from one
+    evaluation of the film's viscosity."""
+    a, c, inv = _factors_and_fluidity(sol.profile.p, sol.T, sol.tau, env.lubricant, env.T_oil, env.u1,
+                                      env.u2, shear_thinning)
+    w = _response(inv, sol.tau, env.lubricant.tau0) if shear_thinning else np.zeros(a.shape)
+    return a, c, flow_response(a, w)
 
 
 def viscosity_response(sol: Any, env: Any, shear_thinning: bool = True) -> np.ndarray:
@@ -121,10 +134,15 @@ def viscosity_response(sol: Any, env: Any, shear_thinning: bool = True) -> np.nd
         return np.zeros(sol.T.shape[0])
     p = np.repeat(np.asarray(sol.profile.p, dtype=float)[:, None], sol.T.shape[1], axis=1)
     lub = env.lubricant
-    inv = effective_inverse_viscosity(lub.viscosity(p, sol.T), sol.tau, lub.tau0)
-    t = np.abs(np.asarray(sol.tau, dtype=float)) / lub.tau0
+    return _response(effective_inverse_viscosity(lub.viscosity(p, sol.T), sol.tau, lub.tau0), sol.tau, lub.tau0)
+
+
+def _response(inv: np.ndarray, tau: np.ndarray, tau0: float) -> np.ndarray:
+    """:func:`viscosity_response` from the fluidity ``inv`` and the stress ``tau`` on (station,
+    Z node)."""
+    t = np.abs(np.asarray(tau, dtype=float)) / tau0
     resp = np.where(t < 1e-4, 1.0, np.tanh(t) / np.maximum(t, 1e-300))
-    dZ = 1.0 / (sol.T.shape[1] - 1)
+    dZ = 1.0 / (inv.shape[-1] - 1)
     return np.clip(1.0 - _trapz(resp * inv, dZ) / _trapz(inv, dZ), 0.0, 1.0)
 
 

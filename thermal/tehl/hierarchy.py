@@ -67,12 +67,16 @@ class FactorLevel(LineLevel):
         a, c = self.a[part], self.c[part]
         if self.w is None or self.lkref is None:
             return eps * a, rho * c, drho * c, dlne
-        w = self.w[part]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            log_ratio = np.where(rho > 0.0, self.lkref[part] - (np.log(rho) - lne), 0.0)
+        w, log_ratio = self.w[part], self.log_ratio(rho, lne, part)
         # where the response is clipped the viscosity's slope is the isothermal one again
         slope = np.where(np.abs(w * log_ratio) < RESPONSE_SHIFT_MAX, 1.0 - w, 1.0)
         return eps * a * response_multiplier(w, log_ratio), rho * c, drho * c, dlne * slope
+
+    def log_ratio(self, rho: np.ndarray, lne: np.ndarray, part: slice = slice(None)) -> np.ndarray:
+        """``ln((rho/eta)(P_ref)/(rho/eta)(P))`` from ``rho`` and ``ln eta`` at the current
+        pressure (0 where the density is not positive)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(rho > 0.0, self.lkref[part] - (np.log(rho) - lne), 0.0)
 
     def state(self, P: np.ndarray | None = None, H0: float | None = None) -> State:
         P = self.P if P is None else P
@@ -100,14 +104,6 @@ class GivenStart:
             every = (slice(None, None, 2 ** (len(self.levels) - 1 - k)),) * a.ndim
             lv.a = np.ascontiguousarray(a[every], dtype=float)
             lv.c = np.ascontiguousarray(c[every], dtype=float)
-
-    def set_response(self, w: np.ndarray | None) -> None:
-        """The flow's viscosity response ``w`` on the finest grid (None or all zero: the flow
-        factor stays frozen as it is); coarse grids inject it."""
-        active = w is not None and bool(np.any(w > 0.0))
-        for k, lv in enumerate(self.levels):
-            every = (slice(None, None, 2 ** (len(self.levels) - 1 - k)),) * (w.ndim if active else 1)
-            lv.w = np.ascontiguousarray(w[every], dtype=float) if active else None
 
     def set_iterate(self, P: np.ndarray, H0: float) -> None:
         """The finest-grid pressure and film constant a solve starts from."""
@@ -142,16 +138,21 @@ class FactorLineHierarchy(GivenStart, LineHierarchy):
         for lv in self.levels:
             lv.face = self.face
 
+    def set_response(self, w: np.ndarray | None) -> None:
+        """The flow's viscosity response ``w`` on the finest grid (None or all zero: the flow
+        factor stays frozen as it is); coarse grids inject it."""
+        active = w is not None and bool(np.any(w > 0.0))
+        for k, lv in enumerate(self.levels):
+            lv.w = np.ascontiguousarray(w[:: 2 ** (len(self.levels) - 1 - k)], dtype=float) if active else None
+
     def flow_factor(self) -> np.ndarray:
         """The flow factor the finest grid's Poiseuille term carries at its pressure: ``a``,
         times the viscosity response's correction (:meth:`FactorLevel.factored`)."""
         lv = self.levels[-1]
         if lv.w is None or lv.lkref is None:
             return lv.a
-        _, rho, drho, lne, dlne, eps = fluid_state(lv.P, np.zeros_like(lv.P), lv.X, lv.H0, lv.par, lv.lam, False)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            log_ratio = np.where(rho > 0.0, lv.lkref - (np.log(rho) - lne), 0.0)
-        return lv.a * response_multiplier(lv.w, log_ratio)
+        _, rho, _, lne, _, _ = fluid_state(lv.P, np.zeros_like(lv.P), lv.X, lv.H0, lv.par, lv.lam, False)
+        return lv.a * response_multiplier(lv.w, lv.log_ratio(rho, lne))
 
     def start(self, solver: MultilevelSolver) -> int:
         self.solver = solver

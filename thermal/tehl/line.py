@@ -46,7 +46,7 @@ from ehl_multigrid.multigrid.transfer import interpolate_cubic
 from ..line import Surroundings, ThermalLineSolution, solve_thermal_line
 from ..profiles import profile_from_arrays
 from ..traction import wall_speeds
-from .coefficients import flow_response, solution_factors, viscosity_response
+from .coefficients import solution_factors_and_response
 from .hierarchy import FactorLineHierarchy
 from .options import TEHLOptions
 from .outer import OUTER_HINT, Iterate, coupled_solve, surroundings
@@ -189,9 +189,8 @@ class LineContact:
         return _films(self.pb, self.X, P, H)
 
     def factors(self, th: ThermalLineSolution) -> tuple[np.ndarray, np.ndarray]:
-        a, c = solution_factors(th, self.env, self.opts.shear_thinning)
-        w = viscosity_response(th, self.env, self.opts.shear_thinning)
-        self.hierarchy.set_response(flow_response(a, w))
+        a, c, w = solution_factors_and_response(th, self.env, self.opts.shear_thinning)
+        self.hierarchy.set_response(w)
         return a, c
 
     def finer_factor(self, f: np.ndarray) -> np.ndarray:

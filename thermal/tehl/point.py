@@ -39,7 +39,7 @@ from ehl_multigrid.point.solve import solve_fas
 from ..line import Surroundings, ThermalLineSolution
 from ..parallel import LineJob, solve_thermal_lines
 from ..profiles import profile_from_arrays
-from .coefficients import flow_response, response_multiplier, solution_factors, viscosity_response
+from .coefficients import response_multiplier, solution_factors_and_response
 from .hierarchy import GivenStart
 from .line import heat_partition, interior_heat_budget
 from .options import TEHLOptions
@@ -278,9 +278,8 @@ class PointContact:
         c = np.ones(shape)
         w = np.zeros(shape)
         for jj, s in zip(th.rows, th.sols, strict=True):
-            a[jj], c[jj] = solution_factors(s, self.env, self.opts.shear_thinning)
-            w[jj] = viscosity_response(s, self.env, self.opts.shear_thinning)
-        self.hierarchy.set_response(flow_response(a, w))
+            a[jj], c[jj], w[jj] = solution_factors_and_response(s, self.env, self.opts.shear_thinning)
+        self.hierarchy.set_response(w)
         return a, c
 
     def finer_factor(self, f: np.ndarray) -> np.ndarray:
