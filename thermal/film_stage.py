@@ -24,10 +24,8 @@ from typing import Any
 from ehl_multigrid.app.stages import TEHL_STAGED, RunContext, StageOutput
 from ehl_multigrid.model.solved_film import SolvedFilm
 
-#: thermal loading ``beta eta0 um^2/k`` above which the stage does not try the coupled solve: the
-#: line solve ends erratically beyond about 3 (page 63 at 2000 N: 50, 70 and 80 m/s fail, 60 m/s
-#: converges), a spindle bearing at 6.7 (7008 at 20000 rpm) spent the whole 600 s time budget
-#: and failed (docs/thermal.md, "Limits: thermal loading above about 3")
+#: thermal loading ``beta eta0 um^2/k`` above which the stage does not try the coupled solve,
+#: which ends erratically beyond about 3 (docs/thermal.md, "Limits: thermal loading above about 3")
 COUPLED_LOADING_LIMIT = 3.0
 
 #: the result keys of the coupled solve that the stage's summary carries

@@ -127,9 +127,8 @@ def viscosity_response(sol: Any, env: Any, shear_thinning: bool = True) -> np.nd
     viscosity hardly depends on the pressure, a pressure change inside the solve does not
     scale the flow by ``exp(alpha dp)`` (thermal.tehl.point.FactorPointHierarchy). The
     outer iteration's fixed point is the same: there ``p = p_ref``. The solve takes it in full
-    where ``a`` reaches :data:`RESPONSE_FROM` and not at all at ``a = 1`` (:func:`flow_response`):
-    taken in full everywhere, the roller bearing's outer iteration at S = 1 (line, 1025
-    points) went from convergence in 66 iterations to none in 60."""
+    where ``a`` reaches :data:`RESPONSE_FROM` and not at all at ``a = 1`` (:func:`flow_response`;
+    why, measured: docs/thermal.md, "The flow's viscosity response")."""
     if not shear_thinning:
         return np.zeros(sol.T.shape[0])
     p = np.repeat(np.asarray(sol.profile.p, dtype=float)[:, None], sol.T.shape[1], axis=1)
@@ -147,8 +146,7 @@ def _response(inv: np.ndarray, tau: np.ndarray, tau0: float) -> np.ndarray:
 
 
 #: the flow factor from which a multilevel solve takes the flow's viscosity response in full
-#: (:func:`viscosity_response`); the Eyring films where the frozen factor failed reach 1e12-1e24.
-#: A step at 1e3 instead of the ramp: the traction drive's point solve failed on 257 points
+#: (:func:`viscosity_response`); the Eyring films where the frozen factor failed reach 1e12-1e24
 RESPONSE_FROM = 1e3
 
 
@@ -159,9 +157,7 @@ def flow_response(a: np.ndarray, w: np.ndarray) -> np.ndarray:
 
 
 #: largest change of ``ln eps`` the viscosity response makes (a factor e^5 = 148): the response
-#: is the flow's slope at the pressure of the start; a coarse grid's FAS correction that lifts
-#: the outlet to ten times the Hertz pressure took it to e^578 and NaN (the traction drive on
-#: 513 points), where the flow's viscosity no longer follows that slope
+#: is the flow's slope at the pressure of the start, which far from it no longer holds
 RESPONSE_SHIFT_MAX = 5.0
 
 

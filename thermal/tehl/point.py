@@ -66,9 +66,8 @@ class FactorPointHierarchy(GivenStart, PointHierarchy):
 
     def set_response(self, w: np.ndarray | None) -> None:
         """The flow's viscosity response ``w`` on the finest grid (None: the flow factor stays
-        frozen as it is); the coarse grids keep their factors frozen: with the response injected
-        there, the coarsest grid's film constant of the traction drive on 513 points (started
-        from the 257-point factors) ran to 1e139 and NaN."""
+        frozen as it is); the coarse grids keep their factors frozen (injected there, the
+        coarsest grid's film constant ran away: docs/thermal.md)."""
         if w is None or not np.any(w > 0.0):
             for lev in self.levels:
                 lev.w = None
