@@ -16,6 +16,13 @@ Mechanism check: the same solves with the oil's thermal expansion removed (``alp
 density independent of temperature). If the rise of the central film with slip is the
 expansion of the heated oil, it disappears there.
 
+``--mechanism``: at the middle speed, slip 0-2, the solves again with one assumption of the
+classic inlet analyses at a time and all together: surfaces held at the oil temperature
+(both solids given a conductivity of 1e5 W/(m K), 1500 times steel's, so that the heat leaves
+through them without warming them: "cold walls"), a Newtonian oil (``tau0`` = 1e12 Pa, the
+Eyring law then Newtonian at every stress), no thermal expansion (``alpha_T = 0``). Writes
+``slip_mechanism.json`` and ``.md``.
+
 References. No published TEHL solution with its full operating conditions could be reached
 (the queries are listed in docs/fits.md). The correlations are kept as data with their
 sources, in the form commonly quoted; their forms were not checked against the papers:
@@ -64,15 +71,41 @@ def gupta(L: float, S: float, ph_over_E: float) -> float:
     return float(gupta_thermal_factor(L, S, ph_over_E))
 
 
-def scene(expansion: bool):
+MECHANISM_SLIPS = (0.0, 0.5, 1.0, 1.5, 2.0)
+#: the classic inlet analyses' assumptions, one at a time and together (``--mechanism``)
+VARIANTS = {"steel": {}, "cold_walls": {"cold_walls": True}, "newtonian": {"newtonian": True},
+            "no_expansion": {"expansion": False},
+            "all_three": {"cold_walls": True, "newtonian": True, "expansion": False}}
+COLD_WALL_CONDUCTIVITY = 1e5   # W/(m K): the solids' surface temperature rise vanishes
+NEWTONIAN_TAU0 = 1e12          # Pa: the Eyring law Newtonian at every stress of the contact
+
+
+def _body(n: int) -> str:
+    return (f"\n[solids.body{n}]\nname = \"cold wall\"\nE = 210000000000.0\nnu = 0.3\nrho = 7875.0\n"
+            f"k = {COLD_WALL_CONDUCTIVITY!r}\ncp = 400.0\nhardness = 5000000000.0\n")
+
+
+def scene(expansion: bool = True, cold_walls: bool = False, newtonian: bool = False):
+    """The study's scene, with the oil's thermal expansion, the solids' heating or the Eyring
+    law taken out on request."""
+    import warnings
+
     from ehl_multigrid.model.scene import load_scene
 
-    if expansion:
+    if expansion and not cold_walls and not newtonian:
         return load_scene(SCENE)
-    text = SCENE.read_text().replace('tau0 = 3700000.0', 'tau0 = 3700000.0\nalpha_T = 0.0')
-    path = out_dir("tehl") / "slip_line_no_expansion.toml"
+    text = SCENE.read_text()
+    tau0 = NEWTONIAN_TAU0 if newtonian else 3700000.0
+    text = text.replace('tau0 = 3700000.0', f'tau0 = {tau0!r}' + ('' if expansion else '\nalpha_T = 0.0'))
+    if cold_walls:
+        text = text.replace('E_reduced = 230000000000.0', 'E_reduced = 230000000000.0\n' + _body(1) + _body(2))
+    tag = "_".join(k for k, on in (("no_expansion", not expansion), ("cold_walls", cold_walls),
+                                   ("newtonian", newtonian)) if on)
+    path = out_dir("tehl") / f"slip_line_{tag}.toml"
     path.write_text(text)
-    return load_scene(path)
+    with warnings.catch_warnings():   # the variants' conductivity and tau0 lie outside real contacts
+        warnings.simplefilter("ignore")
+        return load_scene(path)
 
 
 def _loading(sc) -> float:
@@ -82,13 +115,13 @@ def _loading(sc) -> float:
     return float(thermal_loading(sc.lubricant, sc.T_oil, sc.us / 2.0))
 
 
-def run(us: float, S: float, expansion: bool = True) -> dict:
+def run(us: float, S: float, expansion: bool = True, accuracy: float = 0.01, **variant) -> dict:
     import ehl_multigrid as ehl
 
-    sc = scene(expansion).with_operating(us=us)
+    sc = scene(expansion, **variant).with_operating(us=us)
     t0 = time.perf_counter()
     try:
-        s = ehl.solve(sc, physics="thermal", accuracy=0.01, options={"slip": S})
+        s = ehl.solve(sc, physics="thermal", accuracy=accuracy, options={"slip": S})
     except Exception as exc:  # an error is an outcome: recorded, the study goes on
         return {"status": "error", "message": f"{type(exc).__name__}: {exc}".splitlines()[0]}
     sm = s.summary()
@@ -109,8 +142,13 @@ def _save(path: Path, data: dict) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true", help="the middle speed, S = 0 and 1 only")
+    ap.add_argument("--mechanism", action="store_true",
+                    help="the middle speed, slip 0-2, with the inlet analyses' assumptions (at 2 %%)")
     a = ap.parse_args()
     out = out_dir("tehl")
+    if a.mechanism:
+        mechanism(out)
+        return
     path = out / ("slip_references_quick.json" if a.quick else "slip_references.json")
     data = json.loads(path.read_text()) if path.exists() else {}
 
@@ -132,6 +170,34 @@ def main() -> None:
     for S in ((1.0,) if a.quick else CHECK_SLIPS):
         once(f"noexp_{CHECK_SPEED:g}_{S:g}", lambda S=S: run(CHECK_SPEED, S, expansion=False))
     report(data, out / ("slip_references_quick.md" if a.quick else "slip_references.md"), speeds, slips)
+
+
+def mechanism(out: Path) -> None:
+    """Each assumption of the classic inlet analyses alone and all together, over slip 0-2."""
+    path = out / "slip_mechanism.json"
+    data = json.loads(path.read_text()) if path.exists() else {}
+    for name, variant in VARIANTS.items():
+        for S in MECHANISM_SLIPS:
+            key = f"{name}_{S:g}"
+            if key not in data:
+                data[key] = run(CHECK_SPEED, S, accuracy=0.02, **variant)
+                _save(path, data)
+                print(key, data[key], flush=True)
+    L = next((r["L"] for r in data.values() if "L" in r), float("nan"))
+    lines = [f"# Central film under slip at L = {L:.3g} (us = {CHECK_SPEED:g} m/s): Hc/Hc_iso (Hm/Hm_iso)", "",
+             "| S | " + " | ".join(VARIANTS) + " | Gupta | Wilson-Sheu |", "|---" * (len(VARIANTS) + 3) + "|"]
+    for S in MECHANISM_SLIPS:
+        cells = []
+        for name in VARIANTS:
+            r = data.get(f"{name}_{S:g}", {})
+            ok = r.get("status") == "converged"
+            cells.append(f"{r['Hc'] / r['Hc_iso']:.3f} ({r['Hm'] / r['Hm_iso']:.3f})" if ok else r.get("status", "-"))
+        ph = next((r["ph_over_E"] for r in data.values() if "ph_over_E" in r), 0.0)
+        lines.append(f"| {S:g} | " + " | ".join(cells) + f" | {gupta(L, S, ph):.3f} | {wilson_sheu(L, S):.3f} |")
+    tmp = out / "slip_mechanism.md.tmp"
+    tmp.write_text("\n".join(lines) + "\n")
+    os.replace(tmp, out / "slip_mechanism.md")
+    print("\n".join(lines))
 
 
 def report(data: dict, path: Path, speeds, slips) -> None:
