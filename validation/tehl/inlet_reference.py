@@ -61,6 +61,8 @@ class Inlet:
     rho_c: float      # oil volumetric heat capacity [J/(m^3 K)]
     um: float         # mean (entrainment) speed [m/s]
     S: float = 0.0    # slide-to-roll ratio 2 (u1 - u2)/(u1 + u2)
+    roelands: tuple[float, float, float, float] | None = None   # (eta at T_ref, T_ref, z, S0)
+    T_oil: float = 0.0  # oil temperature [degC] (Roelands only)
 
     @property
     def b(self) -> float:
@@ -73,6 +75,22 @@ class Inlet:
     @property
     def thermal_loading(self) -> float:
         return self.beta * self.eta0 * self.um**2 / self.k
+
+
+ETA_INF, P_ROELANDS = 6.31e-5, 1.96e8   # Roelands' constants [Pa s], [Pa] (thesis (2.6))
+
+
+def fluidity(c: Inlet, p: float, dT: np.ndarray) -> np.ndarray:
+    """``eta0 exp(alpha p) / eta(p, T)``: 1 for the isothermal Barus oil, ``exp(beta dT)`` for the
+    exponential temperature law; with ``c.roelands`` the Roelands law in pressure and temperature,
+    whose temperature coefficient grows with pressure."""
+    if c.roelands is None:
+        return np.exp(c.beta * dT)
+    eta_r, T_r, z, S0 = c.roelands
+    T = c.T_oil + dT
+    ln_eta = math.log(ETA_INF) + math.log(eta_r / ETA_INF) * (1.0 + p / P_ROELANDS) ** z * (
+        (T_r + 135.0) / (T + 135.0)) ** S0
+    return np.exp(math.log(c.eta0) + c.alpha * p - ln_eta)
 
 
 def hertz_gap(xi: np.ndarray, b: float, R: float) -> np.ndarray:
@@ -104,8 +122,11 @@ class InletSolver:
         self.exp_cap = math.exp(c.alpha * p_cap * c.pmax)
 
     # -- flow of one temperature field ---------------------------------------------------------
-    def _fluidity(self):
-        phi = np.exp(self.c.beta * self.dT)                 # eta0/eta*
+    def _fluidity(self, p: np.ndarray | None = None):
+        if self.c.roelands is None:
+            phi = np.exp(self.c.beta * self.dT)             # eta0/eta*
+        else:
+            phi = np.array([fluidity(self.c, pi, d) for pi, d in zip(p, self.dT, strict=True)])
         z = self.zeta
         f0 = _cumtrapz(phi, z)                              # int_0^zeta phi
         f1 = _cumtrapz(phi * z, z)                          # int_0^zeta zeta' phi
@@ -125,11 +146,47 @@ class InletSolver:
         q = np.concatenate(([0.0], np.cumsum(0.5 * (qp[1:] + qp[:-1]) * np.diff(self.x))))
         return q, qp, Q
 
+    def _march(self, hc: float) -> np.ndarray:
+        """Reduced pressure along the inlet for a pressure-dependent fluidity (rolling: the flux
+        is ``um hc``), by Heun's rule; NaN beyond the station where ``q`` reaches 1/alpha."""
+        c = self.c
+        h = hc + self.g
+        z = self.zeta
+        Q = c.um * hc
+
+        def slope(i, qi):
+            if c.alpha * qi >= 1.0:
+                return math.nan
+            phi = fluidity(c, -math.log1p(-c.alpha * qi) / c.alpha, self.dT[i])
+            f0 = _cumtrapz(phi[None, :], z)[0]
+            f1 = _cumtrapz((phi * z)[None, :], z)[0]
+            D = np.trapezoid(f1 - f1[-1] / f0[-1] * f0, z)
+            return c.eta0 * (Q - c.um * h[i]) / (h[i] ** 3 * D)
+
+        q = np.full(h.size, math.nan)
+        q[0] = 0.0
+        s0 = slope(0, 0.0)
+        for i in range(h.size - 1):
+            dx = self.x[i + 1] - self.x[i]
+            s1 = slope(i + 1, q[i] + s0 * dx)
+            if not math.isfinite(s1):
+                break
+            q[i + 1] = q[i] + 0.5 * (s0 + s1) * dx
+            s0 = slope(i + 1, q[i + 1]) if i + 1 < h.size - 1 else s1
+            if not math.isfinite(s0):
+                break
+        return q
+
     def film(self, fl) -> float:
         """The central film whose reduced pressure reaches 1/alpha at x = -b."""
         target = 1.0 / self.c.alpha
 
         def miss(hc):
+            if self.c.roelands is not None:
+                q = self._march(hc)
+                reached = np.isfinite(q)
+                # beyond 1/alpha before the entry: too thin, by how far short of it the march ended
+                return q[-1] - target if reached[-1] else target * (2.0 - reached.mean())
             return self._q_of(hc, fl)[0][-1] - target
 
         h0 = grubin_film(self.c)
@@ -139,8 +196,15 @@ class InletSolver:
     # -- energy equation -----------------------------------------------------------------------
     def _energy(self, hc: float, fl) -> np.ndarray:
         c = self.c
+        if c.roelands is not None:
+            q = self._march(hc)
+            p_cap = math.log(self.exp_cap) / c.alpha
+            p = np.where(c.alpha * q < 1.0, -np.log1p(-np.minimum(c.alpha * q, 1.0 - 1e-16)) / c.alpha, p_cap)
+            fl = self._fluidity(np.minimum(np.nan_to_num(p, nan=p_cap), p_cap))
+            qp = self._q_of(hc, fl)[1]
+        else:
+            q, qp, _ = self._q_of(hc, fl)
         phi, f0, C, J0, D = fl
-        q, qp, Q = self._q_of(hc, fl)
         h = hc + self.g
         nxp, nzp = self.dT.shape
         z = self.zeta
@@ -189,14 +253,14 @@ class InletSolver:
 
     def solve(self, thermal: bool = True, tol: float = 1e-8, max_iter: int = 200,
               relax: float = 0.5) -> dict:
-        fl = self._fluidity()
+        fl = self._fluidity() if self.c.roelands is None else None
         hc = self.film(fl)
         hist = [hc]
         if thermal:
             for _ in range(max_iter):
                 new = self._energy(hc, fl)
                 self.dT = self.dT + relax * (new - self.dT)
-                fl = self._fluidity()
+                fl = self._fluidity() if self.c.roelands is None else None
                 hc_new = self.film(fl)
                 hist.append(hc_new)
                 if abs(hc_new - hc) < tol * hc:
@@ -214,8 +278,9 @@ def _cumtrapz(f: np.ndarray, z: np.ndarray) -> np.ndarray:
     return np.concatenate((np.zeros((f.shape[0], 1)), np.cumsum(inc, axis=1)), axis=1)
 
 
-def inlet_from_scene(load: float, us: float, S: float) -> Inlet:
-    """The oil and contact data of the appendix C line contact (T9, 60 degC)."""
+def inlet_from_scene(load: float, us: float, S: float, roelands: bool = False) -> Inlet:
+    """The oil and contact data of the appendix C line contact (T9, 60 degC); ``roelands``
+    takes the oil's Roelands law in pressure and temperature instead of Barus with ``beta``."""
     from slip_references import SCENE
 
     from ehl_multigrid.model.scene import load_scene
@@ -224,7 +289,8 @@ def inlet_from_scene(load: float, us: float, S: float) -> Inlet:
     lub, T = sc.lubricant, sc.T_oil
     rho_c = float(lub.density(0.0, T)) * float(lub.specific_heat(T))
     return Inlet(R=sc.Rx, w=load / sc.length, E=sc.E_reduced, eta0=sc.eta0, alpha=sc.alpha,
-                 beta=lub.beta(T), k=float(lub.conductivity(0.0)), rho_c=rho_c, um=us / 2.0, S=S)
+                 beta=lub.beta(T), k=float(lub.conductivity(0.0)), rho_c=rho_c, um=us / 2.0, S=S,
+                 roelands=(lub.eta0, lub.T0, lub.z, lub.S0) if roelands else None, T_oil=T)
 
 
 def package_ratio(load: float, us: float, S: float, inlet_assumptions: bool) -> dict:
