@@ -40,6 +40,7 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from scipy.integrate import cumulative_trapezoid
 from scipy.optimize import brentq
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -273,9 +274,8 @@ class InletSolver:
 
 
 def _cumtrapz(f: np.ndarray, z: np.ndarray) -> np.ndarray:
-    dz = np.diff(z)
-    inc = 0.5 * (f[:, 1:] + f[:, :-1]) * dz
-    return np.concatenate((np.zeros((f.shape[0], 1)), np.cumsum(inc, axis=1)), axis=1)
+    """Running trapezoidal integral along the film (axis 1), from 0 at the lower wall."""
+    return cumulative_trapezoid(f, z, axis=1, initial=0.0)
 
 
 def inlet_from_scene(load: float, us: float, S: float, roelands: bool = False) -> Inlet:
