@@ -57,9 +57,10 @@ def test_a_deep_dent_under_sliding_conserves_oil_to_the_mass_tolerance():
 
 
 def test_without_a_rupture_in_the_contact_both_models_give_the_same_film():
-    # a shallow dent under pure rolling: the film only ruptures at the outlet
+    # a shallow dent under pure rolling: the film only ruptures at the outlet; the same scheme
+    # inside the contact on any grid (65 points: 4.9e-8 apart; 129: 3.1e-8 at twice the cost)
     dent = Bump(-0.02, 0.5, -2.5)
-    mc, pr = (_run(c, dent, 40, dt=0.05) for c in ("mass-conserving", "projection"))
+    mc, pr = (_run(c, dent, 40, points=65, dt=0.05) for c in ("mass-conserving", "projection"))
     inside = np.abs(mc.X) <= 1.0
     for n in sorted(mc.snapshots):
         assert np.max(np.abs(mc.snapshots[n]["H"] - pr.snapshots[n]["H"])[inside]) < 1e-6
