@@ -135,6 +135,14 @@ def _no_output_in_the_launch_folder():
     yield
     if not existed and os.path.exists(_LAUNCH_OUT):
         import shutil
+        import time
+
+        # a refused command on the other worker creates the folder and removes it at once
+        # (app.console.locked_command): only a folder that stays is a test's leftover
+        for _ in range(20):
+            time.sleep(0.05)
+            if not os.path.exists(_LAUNCH_OUT):
+                return
 
         shutil.rmtree(_LAUNCH_OUT, ignore_errors=True)
         pytest.fail(f"the test wrote {_LAUNCH_OUT}: give the command --out under tmp_path, or chdir there")
