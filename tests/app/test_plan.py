@@ -174,18 +174,22 @@ def test_thermal_ehl_is_included_where_the_thermal_film_reduction_exceeds_the_to
     # decided at the operating point, where the film is solved: 8 m/s, slip 1, L_T = 0.015
     sc = load_scene("appendix_c_line_4240N").with_operating(slip=1.0)
     tight = make_plan(sc, tolerance=0.01).get("tehl")
-    loose = make_plan(sc, tolerance=0.1).get("tehl")
+    loose = make_plan(sc, tolerance=0.25).get("tehl")
     # a line contact's coupled film is solved by the thermal layer's stage
     assert tight.include and not loose.include and "thermal film stage" in tight.setting
     L_T = sc.thermal_properties()["thermal_loading"]
-    assert tight.estimate == pytest.approx(1.0 - float(gupta_thermal_factor(L_T, 1.0, sc.hertz.pmax / sc.E_reduced)),
-                                           rel=1e-12)
+    # the larger of Gupta's inlet reduction and the contact heat's (CONTACT_HEATING_FILM beta dT)
+    assert tight.estimate >= 1.0 - float(gupta_thermal_factor(L_T, 1.0, sc.hertz.pmax / sc.E_reduced)) - 1e-12
     # a point contact's costs 10-60 s: advised (the default scene: reduction 0.05 at 2 %)
     point = make_plan(load_scene("default"), tolerance=0.02).get("tehl")
     assert point.include and "--thermal" in point.setting
-    # page 63 at 0.056 m/s: no heating at the operating point, though its Stribeck range
-    # reaches 100 m/s (thermal loading 15 there), which the reason notes
+    # page 63 at 0.056 m/s in pure sliding: Gupta's inlet heating is nil (thermal loading 5e-6),
+    # but the surface at rest carries the contact's heat into the inlet (the coupled film is 4 %
+    # thinner at 2000 N: tests/thermal/tehl/test_tehl_contact_heating.py); 500 N heats by 0.8 K
     slow = make_plan(load_scene("page63_line_2000N"), tolerance=0.02).get("tehl")
-    assert not slow.include and slow.estimate < 1e-3 and "over the scene's ranges" in slow.reason
+    assert slow.include and "thermal film stage" in slow.setting and slow.estimate > 0.02
+    assert "contact's heat" in slow.reason and "over the scene's ranges" in slow.reason
+    light = make_plan(load_scene("page63_line_500N"), tolerance=0.02).get("tehl")
+    assert not light.include and light.estimate < 0.01
     # no thermal loading, no reduction: the correlation's limit
     assert float(gupta_thermal_factor(0.0, 1.0, 0.004)) == 1.0
