@@ -95,7 +95,7 @@ def test_wide_contacts_keep_at_most_64_coarse_intervals():
 
 
 def test_unconverged_coarse_high_M_solve_names_the_grid_it_needs():
-    sol = solve_point(5000, 10, points=65, max_cycles=3, estimate=False)  # the message, not the estimate
+    sol = solve_point(5000, 10, points=65, max_cycles=3)
     assert not sol.converged
     assert "points >= 513" in sol.report.message
 
