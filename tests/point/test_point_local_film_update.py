@@ -55,35 +55,47 @@ def _count_local_updates(monkeypatch):
 
 
 #: 257 points alternating on every grid: the finest grid (LOCAL_UPDATE_FROM) refreshes locally,
-#: as 513 points do with the default alternation on the fine grids, at a third of the cost
-CHEAP = dict(points=257, half=True, alternating=True)
+#: as 513 points do with the default alternation on the fine grids, at a third of the cost; to
+#: the residual tolerance itself (grid_stop=None), without the error estimate's probes
+CHEAP = dict(points=257, half=True, alternating=True, estimate=False, threads=1, tol=1e-7,
+             tol_load=1e-7, max_cycles=40, grid_stop=None)
+
+
+@pytest.fixture(scope="module")
+def local():
+    """(20, 10) solved with the local refresh, and the number of local refreshes it made: the
+    solve both comparisons below start from."""
+    mp = pytest.MonkeyPatch()
+    try:
+        calls = _count_local_updates(mp)
+        return solve_point(20.0, 10.0, **CHEAP), len(calls)
+    finally:
+        mp.undo()
 
 
 @pytest.mark.solver
-def test_a_solve_with_the_local_refresh_reaches_the_same_films(monkeypatch):
-    kw = dict(CHEAP, estimate=False, tol=1e-7, max_cycles=40)
+@pytest.mark.xdist_group("point_local_film_update_local")
+def test_a_solve_with_the_local_refresh_reaches_the_same_films(monkeypatch, local):
+    local, refreshes = local
+    assert refreshes  # the path under test was taken
     calls = _count_local_updates(monkeypatch)
-    local = solve_point(20.0, 10.0, **kw)
-    assert calls  # the path under test was taken
-    calls.clear()
     monkeypatch.setattr(fas.PointHierarchy, "local_update", False)
-    full = solve_point(20.0, 10.0, **kw)
+    full = solve_point(20.0, 10.0, **CHEAP)
     assert not calls
     assert local.success and full.success
     assert abs(local.Hc / full.Hc - 1.0) < 1e-6 and abs(local.Hm / full.Hm - 1.0) < 1e-6
 
 
 @pytest.mark.solver
-def test_whole_refresh_option_gives_the_same_discrete_film(monkeypatch):
+@pytest.mark.xdist_group("point_local_film_update_local")
+def test_whole_refresh_option_gives_the_same_discrete_film(monkeypatch, local):
     """``local_film_update=False`` refreshes the film between the X and Y halves by a whole
     deformation evaluation: another iteration of the same discrete problem."""
 
-    kw = dict(CHEAP, threads=1, accuracy=None, tol=1e-6, tol_load=1e-7, grid_stop=None)
+    local, refreshes = local
+    assert refreshes
     calls = _count_local_updates(monkeypatch)
-    local = solve_point(20.0, 10.0, **kw)
-    assert calls
-    calls.clear()
-    whole = solve_point(20.0, 10.0, local_film_update=False, **kw)
+    whole = solve_point(20.0, 10.0, local_film_update=False, **CHEAP)
     assert not calls  # whole deformations between the halves
     assert local.success and whole.success
     for f in ("Hc_venner", "Hm_venner"):

@@ -69,14 +69,15 @@ def test_a_rigid_film_short_of_its_target_says_why_without_trying_wider_boxes():
 
 
 def test_the_far_field_boundary_makes_the_rigid_circular_film_independent_of_the_box():
-    """Circular (20, 0), rigid, incompressible, one mesh (a quarter of the rigid inlet length):
-    on half and on the whole rigid box Hc 0.0633 / 0.0726 with P = 0 on the boundary, 0.08415 /
-    0.08424 with the far-field pressure there and its load beyond the box counted."""
+    """Circular (20, 0), rigid, incompressible, one mesh (half the rigid inlet length): from half
+    the rigid box to the whole of it the film constant rises by 21 % with P = 0 on the boundary
+    and by 0.12 % with the far-field pressure there and its load beyond the box counted (on a
+    mesh of a quarter of the inlet length, at four times the cost: 15 % and 0.11 %)."""
     pb = problem_from_moes(20.0, 0.0, 1.0, "barus", "incompressible")
     xmin, xmax, ymax = default_domain(pb, elastic=False)
     films = {}
     for far in (False, True):
-        for f, n in ((0.5, 65), (1.0, 129)):
+        for f, n in ((0.5, 33), (1.0, 65)):
             out = solve_fas(pb, points=n, elastic=False, far_field=far, xmin=f * xmin, xmax=f * xmax,
                             ymax=f * ymax, tol=1e-7, tol_load=1e-9)
             assert out.success, out.message

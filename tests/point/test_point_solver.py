@@ -78,12 +78,14 @@ def test_rigid_isoviscous_limit_matches_independent_direct_solve():
 
 
 @pytest.mark.solver
-def test_newton_pyamg_path_reaches_the_fas_answer(sol65):
+def test_newton_pyamg_path_reaches_the_fas_answer():
     from ehl_multigrid.point.newton import solve_newton_amg
 
-    nw = solve_newton_amg(problem_from_moes(20.0, 10.0), points=65, max_iter=60)
+    # (10, 5): 4 Newton steps, where the (20, 10) of the other tests here takes 11 (0.6 against 2.2 s)
+    pb = problem_from_moes(10.0, 5.0)
+    nw = solve_newton_amg(pb, points=65, max_iter=60)
     assert nw.report.converged, nw.report.message
-    a, b = build_result(nw), build_result(sol65)
+    a, b = build_result(nw), build_result(solve_fas(pb, points=65, far_field=False))  # P = 0 as Newton
     # both stop at relative residual 1e-4; Hc and Hm agree to that algebraic level
     assert a.scalars["Hc_venner"] == pytest.approx(b.scalars["Hc_venner"], rel=3e-4)
     assert a.scalars["Hm_venner"] == pytest.approx(b.scalars["Hm_venner"], rel=3e-3)
