@@ -5,13 +5,9 @@ film it would otherwise report isothermal is off by more than the 2 % tolerance.
 
 import warnings
 
-import pytest
-
 import ehl_multigrid as ehl
 from ehl_multigrid.model.fits import gupta_thermal_factor
 from ehl_multigrid.model.scene import load_scene
-
-pytestmark = pytest.mark.solver
 
 
 def test_pure_sliding_at_low_speed_thins_the_film_beyond_the_tolerance_gupta_misses():
@@ -20,9 +16,10 @@ def test_pure_sliding_at_low_speed_thins_the_film_beyond_the_tolerance_gupta_mis
     assert 1.0 - float(gupta_thermal_factor(L_T, sc.slip, sc.hertz.pmax / sc.E_reduced)) < 1e-3
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        s = ehl.solve(sc, physics="thermal", accuracy=0.02, options={"slip": sc.slip})
+        s = ehl.solve(sc, physics="thermal", accuracy=None, options={"slip": sc.slip, "points": 513})
     assert s.success
     sm = s.summary()
-    # measured 0.962 / 0.959 (stated errors 0.2 / 1.5 %) at 1025 points
-    assert sm["Hc"] / s.details.Hc_isothermal < 1.0 - 0.02 - sm["Hc_error"]
-    assert sm["Hm"] / s.details.Hm_isothermal < 1.0 - 0.02 - sm["Hm_error"]
+    # the thermal and isothermal films of one grid: 0.961 / 0.959 on 513 points, 0.962 / 0.959 on
+    # 1025 (the front door at 2 %, stated errors 0.2 / 1.5 %): the ratio barely depends on the grid
+    assert sm["Hc"] / s.details.Hc_isothermal < 0.98
+    assert sm["Hm"] / s.details.Hm_isothermal < 0.98
