@@ -189,8 +189,10 @@ class LineContact:
         return _films(self.pb, self.X, P, H)
 
     def factors(self, th: ThermalLineSolution) -> tuple[np.ndarray, np.ndarray]:
-        a, c, w = solution_factors_and_response(th, self.env, self.opts.shear_thinning)
-        self.hierarchy.set_response(w)
+        # a line contact's flow factor stays frozen within a solve: with the viscosity response the
+        # sliding line contacts of the slow tier stalled at outer iteration 1 (docs/thermal.md)
+        a, c, _ = solution_factors_and_response(th, self.env, self.opts.shear_thinning)
+        self.hierarchy.set_response(None)
         return a, c
 
     def finer_factor(self, f: np.ndarray) -> np.ndarray:
