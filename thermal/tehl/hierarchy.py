@@ -32,8 +32,6 @@ from ehl_multigrid.line.solver import LineHierarchy, line_levels
 from ehl_multigrid.multigrid.driver import MultilevelSolver
 from ehl_multigrid.multigrid.options import LineOptions
 
-from .coefficients import RESPONSE_SHIFT_MAX, response_multiplier
-
 #: coarsest grid of the outer iteration's multilevel solves (points; the core's default
 #: goes down to 65-129): from the converged iterate the cycles on 4097 points stalled
 #: and diverged with 7 grids, not with 5 (docs/thermal.md, "Coupled thermal EHL film")
@@ -46,10 +44,6 @@ class FactorLevel(LineLevel):
 
     a: np.ndarray = field(init=False)
     c: np.ndarray = field(init=False)
-    #: the flow's viscosity response (coefficients.viscosity_response) and ln(rho/eta) of the
-    #: start iterate; None: the flow factor stays frozen as it is
-    w: np.ndarray | None = field(init=False, default=None)
-    lkref: np.ndarray | None = field(init=False, default=None)
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -60,23 +54,11 @@ class FactorLevel(LineLevel):
                  dlne: np.ndarray, part: slice = slice(None)
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """``eps``, ``rho``, ``drho/dP`` and ``d ln eta/dP`` of the generalised Reynolds
-        equation: the wedge carries ``c rho H``, the Poiseuille term ``a eps`` (factors frozen:
-        Picard), where the flow's viscosity responds to the pressure only to the degree
-        ``1 - w``: ``a eps (rho/eta)(P_ref)^w / (rho/eta)(P)^w`` (the point contact's rule,
-        thermal.tehl.point.FactorPointHierarchy). ``part``: the nodes the arrays hold."""
-        a, c = self.a[part], self.c[part]
-        if self.w is None or self.lkref is None:
-            return eps * a, rho * c, drho * c, dlne
-        w, log_ratio = self.w[part], self.log_ratio(rho, lne, part)
-        # where the response is clipped the viscosity's slope is the isothermal one again
-        slope = np.where(np.abs(w * log_ratio) < RESPONSE_SHIFT_MAX, 1.0 - w, 1.0)
-        return eps * a * response_multiplier(w, log_ratio), rho * c, drho * c, dlne * slope
-
-    def log_ratio(self, rho: np.ndarray, lne: np.ndarray, part: slice = slice(None)) -> np.ndarray:
-        """``ln((rho/eta)(P_ref)/(rho/eta)(P))`` from ``rho`` and ``ln eta`` at the current
-        pressure (0 where the density is not positive)."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(rho > 0.0, self.lkref[part] - (np.log(rho) - lne), 0.0)
+        equation: the wedge carries ``c rho H``, the Poiseuille term ``a eps`` (factors frozen
+        within a solve: Picard; a line contact takes no viscosity response, docs/thermal.md).
+        ``lne`` is unused (the point contact's rule takes it). ``part``: the nodes the arrays hold."""
+        c = self.c[part]
+        return eps * self.a[part], rho * c, drho * c, dlne
 
     def state(self, P: np.ndarray | None = None, H0: float | None = None) -> State:
         P = self.P if P is None else P
@@ -138,34 +120,11 @@ class FactorLineHierarchy(GivenStart, LineHierarchy):
         for lv in self.levels:
             lv.face = self.face
 
-    def set_response(self, w: np.ndarray | None) -> None:
-        """The flow's viscosity response ``w`` on the finest grid (None or all zero: the flow
-        factor stays frozen as it is); coarse grids inject it."""
-        active = w is not None and bool(np.any(w > 0.0))
-        for k, lv in enumerate(self.levels):
-            lv.w = np.ascontiguousarray(w[:: 2 ** (len(self.levels) - 1 - k)], dtype=float) if active else None
-
-    def flow_factor(self) -> np.ndarray:
-        """The flow factor the finest grid's Poiseuille term carries at its pressure: ``a``,
-        times the viscosity response's correction (:meth:`FactorLevel.factored`)."""
-        lv = self.levels[-1]
-        if lv.w is None or lv.lkref is None:
-            return lv.a
-        _, rho, _, lne, _, _ = fluid_state(lv.P, np.zeros_like(lv.P), lv.X, lv.H0, lv.par, lv.lam, False)
-        return lv.a * response_multiplier(lv.w, lv.log_ratio(rho, lne))
-
     def start(self, solver: MultilevelSolver) -> int:
         self.solver = solver
         P, H0 = self.given_start()
         top = len(self.levels) - 1
         lv = self.levels[top]
-        lkref = None
-        if lv.w is not None:
-            _, rho, _, lne, _, _ = fluid_state(P, np.zeros_like(P), lv.X, H0, lv.par, lv.lam, False)
-            with np.errstate(divide="ignore"):
-                lkref = np.log(rho) - lne
-        for k, lk in enumerate(self.levels):
-            lk.lkref = None if lkref is None else np.ascontiguousarray(lkref[:: 2 ** (top - k)])
         lv.P = P.copy()
         lv.H0 = H0
         lv.f = np.zeros(lv.n)

@@ -192,7 +192,6 @@ class LineContact:
         # a line contact's flow factor stays frozen within a solve: with the viscosity response the
         # sliding line contacts of the slow tier stalled at outer iteration 1 (docs/thermal.md)
         a, c, _ = solution_factors_and_response(th, self.env, self.opts.shear_thinning)
-        self.hierarchy.set_response(None)
         return a, c
 
     def finer_factor(self, f: np.ndarray) -> np.ndarray:
@@ -208,7 +207,7 @@ class LineContact:
             self.modes.append("gradient")
         except ConvergenceError as exc:
             # the fixed gradient ran away (NaN): the flux of the generalised Reynolds solve
-            th = self.thermal_layer(st, flux_factor=self.hierarchy.flow_factor(), start=start)
+            th = self.thermal_layer(st, flux_factor=self.hierarchy.levels[-1].a, start=start)
             self.modes.append("flux")
             if len(self.modes) == 1 or self.modes[-2] != "flux":
                 self.notes.append(f"thermal solve {len(self.modes)}: the stress slope h dp/dx ran away "
