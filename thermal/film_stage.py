@@ -7,9 +7,10 @@ the energy equation (3.5) and the surface temperatures, coupled by an outer iter
 the front door :func:`ehl_multigrid.solve` (``physics="thermal"``) at the plan's tolerance and
 the scene's operating slip. Its film is the one the later stages (traction, Stribeck) compute
 on (:meth:`~ehl_multigrid.app.stages.RunContext.film` takes the last solved film). A point
-contact's coupled solve costs 10-80 s (docs/thermal.md): it runs where the plan stages it (a
-third of Gupta's reduction above the tolerance, ``plan.TEHL_POINT_FRACTION``); elsewhere the
-plan advises it (``ehl solve SCENE --thermal``) and this stage does not run.
+contact's coupled solve costs 10-150 s (docs/thermal.md): it runs where the plan stages it (the
+contact's heat, ``plan.CONTACT_HEATING_FILM_POINT``, or a third of Gupta's reduction above the
+tolerance, ``plan.TEHL_POINT_FRACTION``); elsewhere the plan advises it (``ehl solve SCENE
+--thermal``) and this stage does not run.
 
 A solve that fails leaves the film stage's isothermal film to the later stages and says so:
 its summary's ``converged`` is false (exit 3), since the plan found the isothermal film off by

@@ -159,6 +159,9 @@ TEHL_POINT_FRACTION = 1.0 / 3.0
 #: (:func:`temperature_rise_estimate`, operating point): the largest measured Hm reduction over
 #: it on 15 line contacts at slip 0.5-2 is 0.26; line contacts only (docs/thermal.md, "Contact heating and the film")
 CONTACT_HEATING_FILM = 0.3
+#: the same for point and elliptic contacts, of either film and either sign: the largest measured
+#: change over ``beta dT`` is 0.142 on 14 point contacts (docs/thermal.md, "Contact heating and the film")
+CONTACT_HEATING_FILM_POINT = 0.15
 #: the friction models (traction and Stribeck curves) are Eyring models whatever this decision
 EYRING_SCOPE = "the friction curves always use the Eyring law (3.3), which is Newtonian at low stress"
 
@@ -332,25 +335,26 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     L_scene = scene.thermal_properties()["thermal_loading"]  # beta eta0 um^2/k: ~ us^2
     ph_E = scene.hertz.pmax / scene.E_reduced
     gupta = 1.0 - float(fits.gupta_thermal_factor(L_scene, scene.slip, ph_E))
-    # Gupta's inlet heating grows with us^2 and misses the heat of sliding carried into the inlet
-    # by a slow or resting surface (pure sliding at 0.06 m/s, 1.7 GPa: Hc 0.83 of isothermal);
-    # measured on line contacts: coupled point films at slip 0.5-1 stayed within 2.4 %
+    # Gupta's inlet heating grows with us^2 and misses the heat of sliding that a slow or resting
+    # surface conducts into the inlet (pure sliding at 0.06 m/s, 1.7 GPa line: Hc 0.83 of
+    # isothermal; a 1.6 GPa ball at 0.2 m/s: 0.75) and the hot outlet (1.93 GPa ball at S = 1: Hm 1.10)
     heating = 0.0
-    if scene.slip != 0.0 and scene.kind == "line":
+    if scene.slip != 0.0:
         dT_op = temperature_rise_estimate(scene, scene.us, scene.slip, float(scene.central_film_fit()[1]))["dT"]
-        heating = CONTACT_HEATING_FILM * scene.lubricant.beta(scene.T_oil) * dT_op
+        per_beta_dT = CONTACT_HEATING_FILM if scene.kind == "line" else CONTACT_HEATING_FILM_POINT
+        heating = per_beta_dT * scene.lubricant.beta(scene.T_oil) * dT_op
     red = max(gupta, heating)
     need = red > tol
     # a line contact's coupled solve costs seconds and runs as a stage of the thermal layer; a
-    # point contact's costs 10-80 s: it runs where even TEHL_POINT_FRACTION of the reduction
-    # exceeds the tolerance (a flooded inlet only), else it is advised
-    staged = scene.kind == "line" or (math.isinf(scene.supply.hoil) and TEHL_POINT_FRACTION * red > tol)
+    # point contact's costs 10-150 s: it runs where the contact's heat or TEHL_POINT_FRACTION of
+    # Gupta's reduction exceeds the tolerance (a flooded inlet only), else it is advised
+    staged = scene.kind == "line" or (math.isinf(scene.supply.hoil) and max(TEHL_POINT_FRACTION * gupta, heating) > tol)
     solved = TEHL_STAGED if staged else "thermal EHL advised (ehl solve SCENE --thermal)"
     why = (f"thermal film reduction {gupta:.2g} by Gupta et al. (1992) at the operating point (thermal "
            f"loading {L_scene:.3g}, us {scene.us:.3g} m/s, slip {scene.slip:g})")
     if heating > gupta:
         why += (f"; up to {heating:.2g} from the contact's heat (estimated temperature rise {dT_op:.3g} K: "
-                f"{CONTACT_HEATING_FILM:g} x beta dT)")
+                f"{per_beta_dT:g} x beta dT)")
     if len(speeds) > 1 or s_worst != abs(scene.slip):
         worst = max((1.0 - float(fits.gupta_thermal_factor(L_scene * (float(u) / scene.us) ** 2, s_worst, ph_E)),
                      float(u)) for u in speeds)

@@ -193,3 +193,20 @@ def test_thermal_ehl_is_included_where_the_thermal_film_reduction_exceeds_the_to
     assert not light.include and light.estimate < 0.01
     # no thermal loading, no reduction: the correlation's limit
     assert float(gupta_thermal_factor(0.0, 1.0, 0.004)) == 1.0
+
+
+def test_a_sliding_point_contact_stages_its_coupled_film_for_the_contacts_heat():
+    # the default ball at 0.2 m/s, slip 1: Gupta's reduction 0.001, but the slow surface conducts
+    # the contact's heat into the inlet (coupled Hc 0.948 of isothermal on 1025 points,
+    # validation/plan/tehl_heating.py --contact point; tests/thermal/tehl/test_tehl_contact_heating.py)
+    sc = load_scene("default")
+    slow = make_plan(sc.with_operating(us=0.2, slip=1.0), tolerance=0.02).get("tehl")
+    assert slow.include and "thermal film stage" in slow.setting and slow.estimate > 0.052
+    assert "contact's heat" in slow.reason
+    # WAM series C (1.93 GPa, slip 1): the hot outlet raises Hm by 10 % (1025 points)
+    hot = make_plan(load_scene("series_C_disc3_1.93GPa"), tolerance=0.02).get("tehl")
+    assert hot.include and "thermal film stage" in hot.setting and hot.estimate > 0.1
+    # the default scene rolls at 8 m/s with 5 % slip: the contact's heat (4.4 K) stays below 2 %
+    # and a coupled point solve is only advised for Gupta's reduction
+    default = make_plan(sc, tolerance=0.02).get("tehl")
+    assert "advised" in default.setting and "contact's heat" not in default.reason
