@@ -119,7 +119,8 @@ class ErrorEstimate:
     parts : mapping of part name -> :class:`PartError`, read-only. Names: ``grid`` (mesh along
         X, Richardson), ``domain`` (box truncation), ``iteration`` (algebraic: what the
         iteration and the load error leave; for starved solves also the supply mismatch),
-        ``nz`` (thermal: intervals across the film), ``time`` (transient: the time step).
+        ``nz`` (thermal: intervals across the film), ``isothermal`` (thermal point films anchored
+        on the core's isothermal films: that reference's error), ``time`` (transient: the time step).
     target : float or None -- the accuracy asked for.
     notes : tuple of str -- how the parts were measured.
     """

@@ -41,7 +41,7 @@ RUN_KEYS = ("slip", "max_points", "max_nz", "box_limit", "time_budget", "threads
 #: the budgets of the refinement towards a target, which needs the error estimate
 REFINE_KEYS = ("max_points", "max_nz", "box_limit", "time_budget")
 #: the estimate's part names -> the contract's
-PARTS = {"grid_x": "grid", "grid_z": "nz", "domain": "domain", "iteration": "iteration"}
+PARTS = {"grid_x": "grid", "grid_z": "nz", "domain": "domain", "iteration": "iteration", "isothermal": "isothermal"}
 
 
 def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
@@ -196,7 +196,8 @@ def thermal_solution(done: Any, scene: Scene, accuracy: float | None, t0: float)
         error = ErrorEstimate(target=accuracy, notes=("not estimated: the film was solved alone (estimate = False)",))
         budget: dict[str, Any] = {}
     else:
-        parts = {PARTS[p]: PartError(as_float(est.budget["Hc"][p]), as_float(est.budget["Hm"][p])) for p in PARTS}
+        parts = {PARTS[p]: PartError(as_float(est.budget["Hc"][p]), as_float(est.budget["Hm"][p]))
+                 for p in PARTS if p in est.budget["Hc"]}
         error = ErrorEstimate(as_float(est.Hc), as_float(est.Hm), parts, accuracy, tuple(est.notes))
         budget = est.budget
     o = r.options
