@@ -730,9 +730,12 @@ class _TEHLControl:
         if (self.accuracy is not None and est.z_change is not None and zkey not in self.z_changes
                 and max(est["Hc"]["grid_z"], est["Hm"]["grid_z"]) < DOMAIN_REUSE_BELOW * self.accuracy):
             self.z_changes[zkey] = est.z_change
-        if self.point and self.accuracy is not None and est.worst > self.accuracy:
+        coarse = self.cache.results.get(((at.points - 1) // 2 + 1, at.nz, float(at.box)))
+        if (self.point and self.accuracy is not None and est.worst > self.accuracy and coarse is not None
+                and est.domain is not None):
             # the point films converge slowly along X (the grid cap): anchored on the
-            # isothermal films where that states the smaller error
+            # isothermal films where that states the smaller error (the reference is solved
+            # only where the ratio's grid and box changes are measured)
             if not self.reference_tried:
                 self.reference_tried = True
                 self.reference = isothermal_reference(self.scene, ANCHOR_SHARE * self.accuracy,
