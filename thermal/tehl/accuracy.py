@@ -223,6 +223,9 @@ def domain_change(result: Any, cache: SolveCache | None = None) -> dict[str, Any
             continue
         out: dict[str, Any] = {k: _difference(k, _value(base, k), _value(wide, k)) for k in QUANTITIES}
         out["points"] = n
+        # the thermal/isothermal ratios' change too (an anchored estimate's box part)
+        rb, rw = film_ratios(base), film_ratios(wide)
+        out.update({f"ratio_{k}": _difference(k, rb[k], rw[k]) for k in ("Hc", "Hm")})
         return out
     return None
 
@@ -266,7 +269,7 @@ def anchored_estimate(est: TEHLErrorEstimate, result: Any, cache: SolveCache,
     """The error budget of the films anchored on the isothermal reference ``ref``:
     ``H = (H_h / H_iso,h) H_iso*`` (module docstring). The grid_x part is the ratio's change from
     the solve on every other node (``RATIO_ORDERS``), the domain part the ratio's change in the
-    box probe of ``est`` (the films' change when the probe is not in ``cache``), grid_z and
+    box probe of ``est`` (:func:`domain_change`; the films' change where it lacks it), grid_z and
     iteration those of ``est``, and ``isothermal`` the reference's error. None when the solve on
     every other node is not in ``cache``."""
     o = result.options
@@ -275,12 +278,8 @@ def anchored_estimate(est: TEHLErrorEstimate, result: Any, cache: SolveCache,
         return None
     ratio, ratio_coarse = film_ratios(result), film_ratios(coarse)
     box_change = est.domain
-    if est.domain is not None:
-        n = est.domain["points"]
-        base, wide = cache.results.get((n, o.nz, o.box)), cache.results.get((2 * (n - 1) + 1, o.nz, 2.0 * o.box))
-        if base is not None and wide is not None:
-            rb, rw = film_ratios(base), film_ratios(wide)
-            box_change = {k: _difference(k, rb[k], rw[k]) for k in ("Hc", "Hm")}
+    if est.domain is not None and "ratio_Hc" in est.domain:
+        box_change = {k: est.domain[f"ratio_{k}"] for k in ("Hc", "Hm")}
     budget = {k: dict(v) for k, v in est.budget.items()}
     correction = {}
     for key, iso, iso_error in (("Hc", ref.Hc, ref.error_Hc), ("Hm", ref.Hm, ref.error_Hm)):

@@ -34,11 +34,11 @@ def test_anchored_films_are_the_grid_ratio_times_the_converged_isothermal_film()
     # the isothermal films still move 4 % per grid, their thermal ratios 0.3 %
     fine = _solve(1025, 1.0, Hc=1.8446, Hm=0.5672, Hc_iso=1.9557, Hm_iso=0.5674)
     coarse = _solve(513, 1.0, Hc=1.7628, Hm=0.5186, Hc_iso=1.8749, Hm_iso=0.5158)
-    base = _solve(257, 1.0, Hc=1.4478, Hm=0.2971, Hc_iso=1.5636, Hm_iso=0.3080)
-    wide = _solve(513, 2.0, Hc=1.4495, Hm=0.2976, Hc_iso=1.5652, Hm_iso=0.3085)
-    cache = SimpleNamespace(results={(513, 20, 1.0): coarse, (257, 20, 1.0): base, (513, 20, 2.0): wide})
+    cache = SimpleNamespace(results={(513, 20, 1.0): coarse})
     ref = IsothermalReference(Hc=1.98326, Hm=0.58219, error_Hc=1e-4, error_Hm=0.0037, points=4097, wall_s=30.0)
-    est = anchored_estimate(_estimate({"points": 257, "Hc": 0.001, "Hm": 0.003}), fine, cache, ref)
+    # the box probe's changes of the films and of their ratios (domain_change)
+    box = {"points": 257, "Hc": 0.001, "Hm": 0.003, "ratio_Hc": 0.0002, "ratio_Hm": 0.0004}
+    est = anchored_estimate(_estimate(box), fine, cache, ref)
     assert est.anchor is ref
     for key, iso in (("Hc", 1.98326), ("Hm", 0.58219)):
         iso_h = getattr(fine, f"{key}_isothermal")
@@ -47,14 +47,23 @@ def test_anchored_films_are_the_grid_ratio_times_the_converged_isothermal_film()
         r, rc = getattr(fine, key) / iso_h, getattr(coarse, key) / getattr(coarse, f"{key}_isothermal")
         b = est[key]
         assert b["grid_x"] == pytest.approx(GRID_SAFETY * abs(r - rc) / r / (2.0 ** RATIO_ORDERS[key] - 1.0))
-        rb, rw = getattr(base, key) / getattr(base, f"{key}_isothermal"), getattr(wide, key) / getattr(wide, f"{key}_isothermal")
-        assert b["domain"] == pytest.approx(DOMAIN_SAFETY * abs(rb - rw) / rb)
+        assert b["domain"] == pytest.approx(DOMAIN_SAFETY * box[f"ratio_{key}"])
         assert b["isothermal"] == getattr(ref, f"error_{key}")
         assert b["grid_z"] == 0.001 and b["iteration"] == 0.0003
         assert b["total"] == pytest.approx(sum(v for p, v in b.items() if p != "total"))
     # far below the films' own grid part (0.05): the ratio's changes are 0.2-1 %
     assert est.Hc < 0.01 and est.Hm < 0.02
     assert not any("extrapolated" in n for n in est.notes) and any("anchored" in n for n in est.notes)
+
+
+def test_a_box_probe_without_the_ratios_counts_the_films_box_change():
+    fine = _solve(1025, 1.0, 1.8, 0.56, 1.9, 0.57)
+    coarse = _solve(513, 1.0, 1.75, 0.52, 1.86, 0.53)
+    ref = IsothermalReference(2.0, 0.58, 1e-4, 1e-3, 4097, 1.0)
+    est = anchored_estimate(_estimate({"points": 257, "Hc": 0.001, "Hm": 0.003}), fine,
+                            SimpleNamespace(results={(513, 20, 1.0): coarse}), ref)
+    assert est["Hc"]["domain"] == pytest.approx(DOMAIN_SAFETY * 0.001)
+    assert est["Hm"]["domain"] == pytest.approx(DOMAIN_SAFETY * 0.003)
 
 
 def test_without_the_solve_on_every_other_node_there_is_no_anchored_estimate():
