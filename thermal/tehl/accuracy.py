@@ -212,7 +212,9 @@ def domain_change(result: Any, cache: SolveCache | None = None) -> dict[str, Any
     """
     cache = cache or SolveCache.of(result)
     o = result.options
-    least = POINT_PROBE_POINTS if _is_point(result) else MIN_POINTS
+    # a point probe keeps at least POINT_PROBE_POINTS per default box: on a coarser mesh its
+    # change is the mesh's, not the box's
+    least = int(round((POINT_PROBE_POINTS - 1) * o.box)) + 1 if _is_point(result) else MIN_POINTS
     sizes = sorted({max((o.points - 1) // 4 + 1, least), max((o.points - 1) // 2 + 1, least)})
     for n in sizes:
         base = cache(n, o.nz, o.box)
