@@ -46,7 +46,7 @@ from ehl_multigrid.multigrid.transfer import interpolate_cubic
 from ..line import Surroundings, ThermalLineSolution, solve_thermal_line
 from ..profiles import profile_from_arrays
 from ..traction import wall_speeds
-from .coefficients import solution_factors_and_response
+from .coefficients import film_factors
 from .hierarchy import FactorLineHierarchy
 from .options import TEHLOptions
 from .outer import OUTER_HINT, Iterate, coupled_solve, surroundings
@@ -191,8 +191,8 @@ class LineContact:
     def factors(self, th: ThermalLineSolution) -> tuple[np.ndarray, np.ndarray]:
         # a line contact's flow factor stays frozen within a solve: with the viscosity response the
         # sliding line contacts of the slow tier stalled at outer iteration 1 (docs/thermal.md)
-        a, c, _ = solution_factors_and_response(th, self.env, self.opts.shear_thinning)
-        return a, c
+        e = self.env
+        return film_factors(th.profile.p, th.T, th.tau, e.lubricant, e.T_oil, e.u1, e.u2, self.opts.shear_thinning)
 
     def finer_factor(self, f: np.ndarray) -> np.ndarray:
         return np.exp(interpolate_cubic(np.log(f)))
