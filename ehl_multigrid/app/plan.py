@@ -32,7 +32,7 @@ from ..model.fidelity import FIDELITIES
 from ..model.lubricant import G_ELASTICITY_OFF, density_ratio_dh
 from ..model.scene import Scene
 from ..multigrid.gridchoice import GridChoice, solver_grid
-from .stages import TEHL_STAGED
+from .stages import TEHL_STAGED, TEHL_UNAVAILABLE
 
 #: Lambda = hc / Rq above which the film carries the whole load (thesis 4.3.1: "roughly more than
 #: three times as large as Rq").
@@ -348,8 +348,15 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     # a line contact's coupled solve costs seconds and runs as a stage of the thermal layer; a
     # point contact's costs 10-150 s: it runs where the contact's heat or TEHL_POINT_FRACTION of
     # Gupta's reduction exceeds the tolerance (a flooded inlet only), else it is advised
-    staged = scene.kind == "line" or (math.isinf(scene.supply.hoil) and max(TEHL_POINT_FRACTION * gupta, heating) > tol)
-    solved = TEHL_STAGED if staged else "thermal EHL advised (ehl solve SCENE --thermal)"
+    expected = max(TEHL_POINT_FRACTION * gupta, heating) > tol
+    staged = scene.kind == "line" or (math.isinf(scene.supply.hoil) and expected)
+    if staged:
+        solved = TEHL_STAGED
+    elif expected:
+        # a starved point inlet: the coupled solvers are flooded ones (point) or line ones
+        solved = TEHL_UNAVAILABLE
+    else:
+        solved = "thermal EHL advised (ehl solve SCENE --thermal)"
     why = (f"thermal film reduction {gupta:.2g} by Gupta et al. (1992) at the operating point (thermal "
            f"loading {L_scene:.3g}, us {scene.us:.3g} m/s, slip {scene.slip:g})")
     if heating > gupta:

@@ -29,6 +29,10 @@ from ..model.solved_film import SolvedFilm
 #: the planner's ``tehl`` setting under which the thermal layer's film stage solves the coupled
 #: film (:mod:`ehl_multigrid.app.plan` writes it, the stage reads it)
 TEHL_STAGED = "coupled thermal EHL film (thermal film stage)"
+#: the ``tehl`` setting of a starved point contact whose heat is expected to change the film by
+#: more than the tolerance: no coupled solver covers it, so the film stage's isothermal film is
+#: short of the target (status ``inaccurate``), never a success
+TEHL_UNAVAILABLE = "isothermal film, short of the tolerance: no coupled thermal EHL for starved point contacts"
 
 
 class PlanView(Protocol):
