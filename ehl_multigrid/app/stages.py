@@ -110,7 +110,8 @@ class RunContext:
         """Why the film stage's film is an estimate (its solve failed), or ``None``: a stage
         computed on that film is not a success either and says so (converged false, exit 3)."""
         out = self.outputs.get("film")
-        if out is None or not out.summary.get("solver_fallback"):
+        if out is None or not out.summary.get("solver_fallback") or self.film() is not None:
+            # (a later stage's solved film, the coupled thermal one, replaces the estimate)
             return None
         return (f"computed on an estimated film, not a solved one: the film stage's solve failed "
                 f"({out.summary.get('status')}: {out.summary.get('message')})")
