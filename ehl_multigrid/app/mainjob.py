@@ -223,7 +223,7 @@ def film_stage(ctx: RunContext) -> StageOutput:
             summary["not_refined_because"] = why
         if starved:
             text += (f" Starved inlet (oil layer {scene.supply.hoil * 1e9:.4g} nm, mass-conserving "
-                     f"Elrod-Adams solver): meniscus at X = {sol.scalars['meniscus_x']:.3g}, "
+                     f"Elrod-Adams solver): meniscus at X = {sol.scalars['meniscus_x']:.5g}, "
                      f"Hc/Hc_flooded = {sol.scalars['Hc_ratio']:.3g}.")
         if ctx.plots:
             from .film_plots import film_figures, starved_figure
