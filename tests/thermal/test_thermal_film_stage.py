@@ -49,6 +49,10 @@ def test_the_later_stages_compute_on_the_coupled_thermal_film(run):
     assert "coupled thermal EHL pressure and film" in out["traction"]["film_source"]
     assert f"hc = {th['hc'] * 1e9:.4g} nm" in out["traction"]["film_source"]
     np.testing.assert_allclose(results["traction"]["h"].min(), results["thermal_film"]["h"].min(), rtol=0.05)
+    # the operating friction's error counts its distance from the coupled solve's own friction
+    op = out["traction"]["operating_point"]
+    assert op["error_parts"]["coupled"] == abs(op["friction_coefficient"] - th["friction_coefficient"])
+    assert op["friction_coefficient_error"] >= op["error_parts"]["coupled"] + op["error_parts"]["grid"]
 
 
 def test_the_stage_runs_only_where_the_plan_stages_thermal_ehl(tmp_path):

@@ -5,6 +5,8 @@ solve failed."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -13,7 +15,13 @@ from ehl_multigrid.model.results import Result
 from ehl_multigrid.model.scene import load_scene
 from ehl_multigrid.model.solved_film import SolvedFilm
 from thermal.options import ThermalOptions
-from thermal.stage import ModelChoice, choose_model, operating_friction
+from thermal.stage import (
+    ModelChoice,
+    OperatingFriction,
+    choose_model,
+    operating_friction,
+    with_coupled_friction,
+)
 from thermal.traction import ehl_result_from, solve_traction, traction_curve
 
 
@@ -69,3 +77,11 @@ def test_a_typed_film_whose_solve_failed_is_refused():
     failed = SolvedFilm.from_result(solved_hertz_film(sc, status="diverged"))
     with pytest.raises(InputError, match="diverged"):
         solve_traction(sc, 0.1, input="ehl", ehl=failed, nx=20, nz=5)
+
+
+def test_the_coupled_solves_friction_widens_the_operating_frictions_error_by_their_difference():
+    op = OperatingFriction(0.6, 0.04443, 8.3e-5, {"grid": 8.0e-5, "iteration": 3e-7})
+    assert with_coupled_friction(op, None) is op and with_coupled_friction(op, math.nan) is op
+    both = with_coupled_friction(op, 0.04426)
+    assert both.parts["coupled"] == pytest.approx(1.7e-4) and both.parts["grid"] == 8.0e-5
+    assert both.error == pytest.approx(8.0e-5 + 3e-7 + 1.7e-4) and both.coefficient == op.coefficient
