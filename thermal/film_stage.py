@@ -52,7 +52,7 @@ def thermal_film_stage(ctx: RunContext) -> StageOutput | None:
                 f"(Gupta's reduction {plan.get('tehl').estimate:.2g})")
         summary = {"converged": False, "status": "not_tried", "message": note}
         return StageOutput("thermal_film", None, summary, [], f"NO THERMAL FILM: {note}.", notes=[note])
-    options: dict[str, Any] = {} if ctx.time_budget is None else {"time_budget": ctx.time_budget}
+    options: dict[str, Any] = ctx.solve_limits()
     sol = front.solve(scene, physics="thermal", accuracy=plan.tolerance, options=options or None)
     usable = sol.status in (Status.CONVERGED, Status.INACCURATE) and sol.fields
     res = sol.to_result() if usable else None

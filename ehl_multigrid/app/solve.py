@@ -30,6 +30,18 @@ def seconds_argument(text: str) -> float:
     return v
 
 
+def grid_points_argument(text: str) -> int:
+    """``--max-points``: a grid size ``2^k + 1`` of at least 65 points."""
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"max-points = {text!r} is not a whole number of points") from None
+    if n < 65 or (n - 1) & (n - 2):
+        raise argparse.ArgumentTypeError(f"max-points = {n} is not a grid size: 2^k + 1 points, at least 65 "
+                                         f"(65, 129, 257, 513, 1025, ...)")
+    return n
+
+
 def add_solve_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("scene", nargs="?", default=None, help="built-in scene name or TOML file (or use --M/--L)")
     p.add_argument("--contact", choices=["line", "point", "elliptic"], help="contact type in Moes-only mode")
@@ -48,7 +60,7 @@ def add_solve_arguments(p: argparse.ArgumentParser) -> None:
                         "solver picks and refines grid and box until its error estimate meets it; "
                         "'none' only reports the estimate (the result is then judged on its "
                         "iteration alone)")
-    p.add_argument("--max-points", type=int, default=None,
+    p.add_argument("--max-points", type=grid_points_argument, default=None,
                    help="largest grid (points along X) the accuracy target may refine to (default: "
                         "4097 for point, 262145 for line contacts; --thermal: 1025 point, 16385 line)")
     p.add_argument("--time-budget", type=seconds_argument, default=None,

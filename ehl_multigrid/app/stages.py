@@ -86,6 +86,14 @@ class RunContext:
     outputs: dict[str, StageOutput] = field(default_factory=dict)
     #: seconds for the film stage's accuracy sequence (``ehl run --time-budget``); None: no bound
     time_budget: float | None = None
+    #: largest grid the film stages may refine to (``ehl run --max-points``); None: the solver's
+    max_points: int | None = None
+
+    def solve_limits(self) -> dict[str, Any]:
+        """The options of a film stage's solve that ``ehl run`` sets: ``time_budget`` and
+        ``max_points`` where given."""
+        return {k: v for k, v in (("time_budget", self.time_budget), ("max_points", self.max_points))
+                if v is not None}
 
     def result(self, name: str) -> Result | None:
         """The result of the earlier stage ``name``, or ``None`` if it did not run."""

@@ -1001,7 +1001,7 @@ class _StarvedPointControl(StarvedControl):
     previous grid's film (:func:`_scene_solve`)."""
 
     dimensions = 2
-    raise_hint = " (ehl solve --max-points raises it)"
+    raise_hint = " (--max-points of ehl run or ehl solve raises it)"
     not_worth = "a finer grid is not predicted to lower the error by 10 %: the iteration part dominates"
 
     def __init__(self, pb: PointProblem, Hoil: Any, options: PointOptions | None, kw: dict[str, Any],

@@ -154,3 +154,20 @@ def test_ehl_transient_hands_its_checkpoint_to_the_front_door(calls, tmp_path, c
     assert call["accuracy"] is None
     assert isinstance(call["options"]["checkpoint"], Checkpoint) and call["options"]["resume"] is None
     assert call["options"]["points"] == 129 and call["options"]["steps"] == 2
+
+
+def test_ehl_run_hands_its_grid_cap_and_time_budget_to_the_film_stage(calls, tmp_path, capsys):
+    # a starved point scene (a grease-lubricated bearing) whose 513-point cap is too coarse
+    scene = _scene_file(tmp_path, "bearing_6205_inner_race", "grease", supply={"hoil": 3e-8})
+    assert main(["run", scene, "--max-points", "1025", "--time-budget", "300", "--no-plots",
+                 "--out", str(tmp_path / "o")]) == 3  # (the stand-in fails)
+    (call,) = calls
+    assert call["physics"] == "starved" and call["options"] == {"max_points": 1025, "time_budget": 300.0}
+
+
+@pytest.mark.parametrize("bad", ["1000", "33", "x"])
+def test_a_grid_cap_that_is_no_grid_size_is_refused_naming_it(bad, calls, tmp_path, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["run", "default", "--max-points", bad, "--no-plots", "--out", str(tmp_path / "o")])
+    assert stop.value.code == 2 and f"max-points = {bad if bad != 'x' else repr(bad)}" in capsys.readouterr().err
+    assert calls == []
