@@ -860,8 +860,8 @@ def _why_short(est: ErrorEstimate, accuracy: float, points: int, max_points: int
         # grid is the one to ask for (circular (5000, 0) at 2 %: 2.035 % stated on 4097 points)
         n = max(n, 2 * (points - 1) + 1)
         return (f"the grid error dominates: about {n} points along X are predicted to meet "
-                f"{accuracy:g} (max_points = {max_points}; a larger max_points, ehl solve "
-                f"--max-points, allows it)")
+                f"{accuracy:g} (max_points = {max_points}; a larger max_points, --max-points of "
+                f"ehl solve or ehl run, allows it)")
     if part == "domain":
         return (f"the domain (box truncation) error dominates at a box {box:g} times the default "
                 f"(limit {box_limit:g}); the film depends on the oil far upstream of the contact")
