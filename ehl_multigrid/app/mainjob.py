@@ -199,13 +199,15 @@ def film_stage(ctx: RunContext) -> StageOutput:
                                                      "converged", "Hc_error", "Hm_error")}
         summary["status"], summary["message"] = label, fsol.message
         if plan.includes("tehl") and plan.get("tehl").setting == TEHL_UNAVAILABLE:
-            # the solve met its target for the isothermal model, but the contact's heat is
-            # expected to move the film by more than the target, and nothing here solves it
+            # whatever the isothermal solve's own verdict, the contact's heat is expected to move
+            # the film by more than the target, and nothing here solves it
             heat = (f"the contact's heat is expected to change the film by up to {plan.get('tehl').estimate:.2g} "
                     f"(> the tolerance {plan.tolerance:g}; plan: tehl), and the coupled thermal EHL "
                     f"solvers do not cover a starved point inlet: the isothermal film is short of its accuracy")
             notes.append(heat)
-            summary.update(converged=False, status=Status.INACCURATE.label, message=heat)
+            # a solve already short of its target keeps its own reason beside this one
+            message = heat if fsol.status is Status.CONVERGED else f"{fsol.message}; {heat}"
+            summary.update(converged=False, status=Status.INACCURATE.label, message=message)
             label = Status.INACCURATE.label
         summary["Hc_fit"], summary["hc_fit"] = scene.central_film_fit()
         starved = "meniscus_x" in sol.scalars

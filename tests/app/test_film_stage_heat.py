@@ -43,3 +43,15 @@ def test_the_film_stage_reports_such_a_film_short_of_its_accuracy(tmp_path, monk
     assert out.summary["converged"] is False and out.summary["status"] == "inaccurate"
     assert "starved point inlet" in out.summary["message"] and "status: inaccurate" in out.text
     assert "starved point inlet" in (not_converged({"film": out.summary}) or "")
+
+
+@pytest.mark.solver
+def test_a_film_already_short_of_its_target_keeps_its_own_reason_beside_the_heat(tmp_path, monkeypatch):
+    sc = _slow_sliding_ball(hoil=5e-8)
+    short = front.solve(load_scene("appendix_d_point"), physics="steady", accuracy=1e-4,
+                        options={"max_points": 65})
+    assert short.status.label == "inaccurate"
+    monkeypatch.setattr(front, "solve", lambda *args, **kwargs: short)
+    out = film_stage(RunContext(sc, make_plan(sc, tolerance=0.02), tmp_path, plots=False, progress=False))
+    assert out.summary["status"] == "inaccurate" and out.summary["converged"] is False
+    assert out.summary["message"].startswith(short.message) and "starved point inlet" in out.summary["message"]
