@@ -38,6 +38,7 @@ from typing import Any
 
 from .model.errors import ConvergenceError, InputError, require_choice, require_range, require_slip
 from .model.scene import Scene, load_scene
+from .multigrid.threads import passive_openmp_wait
 from .solution import (
     ErrorEstimate,
     Grid,
@@ -696,8 +697,18 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     InputError
         Bad input only (problem, physics, accuracy, options, scene values), naming the field,
         the value and what is allowed. A numerical failure is returned, never raised.
+
+    Notes
+    -----
+    The first call defaults ``OMP_WAIT_POLICY`` to ``PASSIVE`` in the process's environment
+    (a value already set wins), as the ``ehl`` command does
+    (:func:`~ehl_multigrid.multigrid.threads.passive_openmp_wait`): OpenMP threads that spin
+    between parallel regions take the working thread's core when the machine is busy (a
+    129-point thermal point solve, other core busy: 31-141 s spinning, 11 s passive, 9 s on
+    one thread). It has no effect once numba's threads run (set it before then to choose).
     """
     t0 = time.perf_counter()
+    passive_openmp_wait()
     scene, moes = resolve_problem(problem)
     contact = scene.kind if scene is not None else moes.contact
     physics = decide_physics(physics, scene, moes)

@@ -9,9 +9,9 @@ threading layer) spin at the end of a parallel region unless ``OMP_WAIT_POLICY``
 otherwise, and a spinning thread takes the time slice of the thread doing the work when the
 other core is busy (on a loaded 2-core machine, circular (20, 10) at 513^2: 8.3 s with two
 spinning threads, 2.0 s with two passive ones, 4.0 s with one thread). The ``ehl`` command
-calls :func:`passive_openmp_wait` at its start; a library user who wants the same sets
-``OMP_WAIT_POLICY=PASSIVE`` before the first parallel kernel runs (the OpenMP runtime reads it
-once, when numba loads it).
+calls :func:`passive_openmp_wait` at its start and :func:`ehl_multigrid.solve` at each call;
+code that runs the kernels without them sets ``OMP_WAIT_POLICY=PASSIVE`` before the first
+parallel kernel runs (the OpenMP runtime reads it once, when numba loads it).
 
 numba is imported on first use, so that the command line can call
 :func:`passive_openmp_wait` without loading it.

@@ -85,3 +85,27 @@ def test_passive_openmp_wait_defaults_the_policy_and_keeps_an_explicit_one(monke
     monkeypatch.setenv("OMP_WAIT_POLICY", "ACTIVE")
     assert passive_openmp_wait() is False
     assert os.environ["OMP_WAIT_POLICY"] == "ACTIVE"
+
+
+SOLVE_PROBE = r"""
+import os, sys
+import ehl_multigrid
+from ehl_multigrid.solution import MoesProblem
+before = os.environ.get("OMP_WAIT_POLICY")
+ehl_multigrid.solve(MoesProblem("line", M=20, L=10), accuracy=None, options={"points": 129})
+print(before, os.environ.get("OMP_WAIT_POLICY"))
+"""
+
+
+@pytest.mark.parametrize("given, after", [(None, "PASSIVE"), ("ACTIVE", "ACTIVE")])
+def test_the_front_door_defaults_a_passive_openmp_wait_before_its_first_solve(given, after):
+    # a library user's solve waits passively, as the ehl command's (a spinning thread takes
+    # the working thread's core on a busy machine); an explicit policy wins
+    env = {k: v for k, v in os.environ.items() if k != "OMP_WAIT_POLICY"}
+    if given is not None:
+        env["OMP_WAIT_POLICY"] = given
+    env["PYTHONPATH"] = os.pathsep.join([str(ROOT), *filter(None, [env.get("PYTHONPATH")])])
+    run = subprocess.run([sys.executable, "-c", SOLVE_PROBE], cwd=ROOT, env=env, capture_output=True,
+                         text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split() == [str(given), after]
