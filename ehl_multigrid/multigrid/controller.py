@@ -150,6 +150,11 @@ class Controlled(Protocol):
     def why_short(self, result: Any, at: Resolution) -> str:
         """What the estimate says is missing when no candidate helps, in the user's terms."""
 
+    # Optional: ``recurring_seconds(at) -> float | None``, the seconds of the last round (the
+    # solve on ``at`` and its estimate) spent on work a refinement repeats at its finer
+    # resolution (the solves on ``at``'s grid), without the coarser grids and one-time
+    # references the next round reuses; None or absent: the whole round (predicted_seconds).
+
 
 #: a candidate predicted within this factor of the lowest prediction counts as equal to it:
 #: the predictions are not sharper, and the cheaper one is taken
@@ -342,7 +347,10 @@ def _control(physics: Controlled, start: Resolution, accuracy: float | None, ref
             why = physics.why_short(res, at)
             break
         now = time.perf_counter()
-        cost = predicted_seconds(now - round_t0, at.points, step.at, physics.dimensions, at.dt)
+        recurring = getattr(physics, "recurring_seconds", None)
+        base = recurring(at) if recurring is not None else None
+        base = now - round_t0 if base is None else min(base, now - round_t0)
+        cost = predicted_seconds(base, at.points, step.at, physics.dimensions, at.dt)
         left = time_budget - (now - t0)
         if left <= 0.0:
             why, spent = f"the time budget of {time_budget:g} s is spent", True

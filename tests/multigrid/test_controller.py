@@ -141,6 +141,41 @@ def test_a_refinement_predicted_to_overrun_the_time_budget_is_not_started(monkey
     assert "40 s" in out.why and "30 s" in out.why
 
 
+def test_the_cost_prediction_scales_only_the_work_a_refinement_repeats(monkeypatch):
+    import types
+
+    import ehl_multigrid.multigrid.controller as ctl
+
+    clock = [0.0]
+    monkeypatch.setattr(ctl, "time", types.SimpleNamespace(perf_counter=lambda: clock[0]))
+
+    class CoarseEstimate(Toy):
+        # each round: its own solve (10 s per 256^2 intervals) and a slow coarse-grid solve of
+        # the estimate (60 s) that the next round reuses
+        def solve(self, at):
+            clock[0] += 10.0 * ((at.points - 1) / 256) ** 2
+            return super().solve(at)
+
+        def estimate(self, r, at, record):
+            clock[0] += 60.0 if at.points == 257 else 0.0
+            return super().estimate(r, at, record)
+
+    # the whole round (70 s) times 4 overruns 200 s: not refined
+    out = control(CoarseEstimate(dimensions=2), Resolution(257), 0.021, time_budget=200.0)
+    assert [s.points for s in out.steps] == [257] and "280 s" in out.why
+
+    class Reported(CoarseEstimate):
+        def recurring_seconds(self, at):
+            return 10.0 * ((at.points - 1) / 256) ** 2
+
+    out = control(Reported(dimensions=2), Resolution(257), 0.021, time_budget=200.0)
+    assert out.met and [s.points for s in out.steps] == [257, 513]
+    # a physics that knows nothing of the round says None: the whole round, as before
+    out = control(type("Unknown", (CoarseEstimate,), {"recurring_seconds": lambda self, at: None})(
+        dimensions=2), Resolution(257), 0.021, time_budget=200.0)
+    assert [s.points for s in out.steps] == [257]
+
+
 @dataclass
 class Stopping(Toy):
     """A solve of ``iterations[points]`` iterations of 10 s each on a fake clock, checking the
