@@ -85,7 +85,7 @@ def thermal_film_stage(ctx: RunContext) -> StageOutput | None:
         from .tehl.plots import plot_tehl
 
         figures.append(Path(plot_tehl(res, ctx.outdir / f"{scene.name}_thermal_film.png")))
-    return StageOutput("thermal_film", res, summary, figures, text, notes=notes, film=SolvedFilm.from_result(res))
+    return StageOutput("thermal_film", res, summary, figures, text, notes=notes, film=SolvedFilm.from_result(res, sol.grid))
 
 
 # after the core film stage, before the traction curve (order 20) that computes on its film

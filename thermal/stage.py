@@ -26,6 +26,7 @@ from ehl_multigrid.app.stages import RunContext, StageOutput
 from ehl_multigrid.model.scene import Scene
 from ehl_multigrid.multigrid.accuracy import GRID_SAFETY
 
+from .film_error import FilmPart, film_friction_part
 from .options import ThermalOptions
 from .traction import default_slips, solve_traction, traction_curve, traction_result
 
@@ -101,12 +102,14 @@ class OperatingFriction:
     max_temperature_rise: float = 0.0
     converged: bool = True
     grid: str = ""
+    #: how the film part of the error was measured ("" without one)
+    film_part: str = ""
 
     def payload(self) -> dict[str, Any]:
         return {"slip": self.slip, "friction_coefficient": self.coefficient,
                 "friction_coefficient_error": self.error, "error_parts": dict(self.parts),
                 "max_temperature_rise": self.max_temperature_rise, "converged": self.converged,
-                "grid": self.grid}
+                "grid": self.grid, "film_part": self.film_part}
 
 
 def with_coupled_friction(op: OperatingFriction, coupled: float | None) -> OperatingFriction:
@@ -122,7 +125,17 @@ def with_coupled_friction(op: OperatingFriction, coupled: float | None) -> Opera
         return op
     parts = {**op.parts, "coupled": abs(op.coefficient - float(coupled))}
     return OperatingFriction(op.slip, op.coefficient, float(sum(parts.values())), parts, op.max_temperature_rise,
-                             op.converged, op.grid)
+                             op.converged, op.grid, op.film_part)
+
+
+def with_film_part(op: OperatingFriction, part: FilmPart) -> OperatingFriction:
+    """``op`` with the part ``film``: the friction's change with the grid of the film it is
+    computed on (:func:`~thermal.film_error.film_friction_part`). Not measured (NaN): the error
+    is unknown and ``op`` no longer counts as converged."""
+    parts = {**op.parts, "film": part.error}
+    ok = op.converged and math.isfinite(part.error)
+    return OperatingFriction(op.slip, op.coefficient, float(sum(parts.values())), parts, op.max_temperature_rise,
+                             ok, op.grid, part.how)
 
 
 def finer(options: ThermalOptions) -> ThermalOptions:
@@ -180,6 +193,8 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
     points = traction_curve(scene, slips, options=options, **inputs)
     res = traction_result(scene, points, options)
     op = operating_friction(scene, options, choice, **inputs)
+    if film is not None:
+        op = with_film_part(op, film_friction_part(scene, film, finer(options), op.coefficient, **inputs))
     coupled = ctx.outputs.get("thermal_film")
     f_coupled = None
     if film is not None and film.thermal and coupled is not None and coupled.summary.get("slip") == op.slip:
@@ -219,6 +234,8 @@ def traction_stage(ctx: RunContext) -> StageOutput | None:
             f"{max(p.max_temperature_rise for p in points):.3g} K. At the operating slip {op.slip:g}: "
             f"f = {op.coefficient:.4g} +- {op.error:.2g} (estimated; computed at that slip on {op.grid}, "
             f"temperature rise {op.max_temperature_rise:.3g} K"
+            + ("" if "film" not in op.parts else f"; the film's grid {op.parts['film']:.2g} of it"
+               if math.isfinite(op.parts["film"]) else f"; the film's grid part unknown ({op.film_part})")
             + (f"; the coupled thermal EHL solve's own friction, {f_coupled:.4g}, counted in the error"
                if "coupled" in op.parts else "")
             + f"); converged: {summary['converged']}. "

@@ -241,7 +241,7 @@ def film_stage(ctx: RunContext) -> StageOutput:
     else:
         return _fit_film_output(ctx)
     # the later stages compute on this typed film; the Result goes to the HDF5 file
-    film = SolvedFilm.from_result(res) if res.kind in FILM_KINDS else None
+    film = SolvedFilm.from_result(res, fsol.grid) if res.kind in FILM_KINDS else None
     return StageOutput("film", res, summary, figures, text, notes=notes, film=film)
 
 

@@ -46,6 +46,9 @@ class SolvedFilm:
         result does not say).
     thermal : the film of the coupled thermal EHL solve (result kind ``tehl_line``), whose
         viscosity follows the temperature across the film; False: an isothermal film.
+    grid : the solve's finest grid (:class:`~ehl_multigrid.solution.Grid`: points, box in
+        units of the Hertzian half-width, half domain), where the stage that solved the film
+        gives it; None otherwise. A later stage solves the same box on coarser grids with it.
     """
 
     contact: str
@@ -58,6 +61,7 @@ class SolvedFilm:
     h: np.ndarray
     status: str | None
     thermal: bool = False
+    grid: Any = None
 
     @property
     def kind(self) -> str:
@@ -65,10 +69,11 @@ class SolvedFilm:
         return f"{'tehl' if self.thermal else 'ehl'}_{self.contact}"
 
     @classmethod
-    def from_result(cls, res: Any) -> SolvedFilm:
+    def from_result(cls, res: Any, grid: Any = None) -> SolvedFilm:
         """The film of an ``ehl_line``, ``ehl_point``, ``tehl_line`` or ``tehl_point``
         :class:`~ehl_multigrid.model.results.Result`
-        that carries its scene and the dimensional fields ``x`` (``y``), ``p``, ``h``.
+        that carries its scene and the dimensional fields ``x`` (``y``), ``p``, ``h``; ``grid``
+        the solve's finest grid where known.
 
         Raises
         ------
@@ -92,5 +97,5 @@ class SolvedFilm:
             x=_read_only(res["x"]), y=_read_only(res["y"]) if contact == "point" else None,
             p=_read_only(res["p"]), h=_read_only(res["h"]),
             status=None if status is None else status.decode() if isinstance(status, bytes) else str(status),
-            thermal=res.kind.startswith("tehl_"),
+            thermal=res.kind.startswith("tehl_"), grid=grid,
         )
