@@ -14,7 +14,7 @@ from ehl_multigrid.app.console import (
 )
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.paths import output_file, safe_stem, writable_dir
-from ehl_multigrid.model.results import Result
+from ehl_multigrid.model.results import Result, result_names
 from ehl_multigrid.model.scene import load_scene
 
 from .options import SLICE_PRESSURES, SLICE_RULES, SURFACE_KERNELS, ThermalOptions
@@ -65,8 +65,9 @@ def register(subparsers: Any) -> None:
     p.add_argument("--input", choices=["hertz", "ehl"], default="hertz",
                    help="Hertz pressure + fitted uniform film, or an EHL solution (--ehl-file)")
     p.add_argument("--ehl-file", default=None,
-                   help="HDF5 result of kind ehl_line/ehl_point for --input ehl; the scene stored beside "
-                        "the film must be the same contact (load, radii, moduli, oil, speed, supply)")
+                   help="HDF5 result of kind ehl_line/ehl_point for --input ehl ('ehl solve'; of an 'ehl run' "
+                        "file its film stage's film); the scene stored beside the film must be the same "
+                        "contact (load, radii, moduli, oil, speed, supply)")
     p.add_argument("--unchecked-ehl-file", action="store_true",
                    help="accept an --ehl-file that stores no scene (its contact cannot be checked against "
                         "the scene's; the film is then taken as the scene's)")
@@ -107,7 +108,12 @@ def run_traction(args: argparse.Namespace) -> dict[str, Any]:
     if args.input == "ehl":
         if args.ehl_file is None:
             raise InputError("--input ehl needs --ehl-file PATH (an HDF5 result of kind ehl_line/ehl_point, e.g. from 'ehl solve')")
-        ehl = Result.load(args.ehl_file)
+        names = result_names(args.ehl_file)
+        if names is not None and "film" not in names:
+            raise InputError(f"--ehl-file {args.ehl_file!r} is an 'ehl run' file without a film stage result "
+                             f"(it holds {names})")
+        # an 'ehl run' file: the film stage's isothermal film (the one a traction curve reads)
+        ehl = Result.load(args.ehl_file, group=None if names is None else "film")
         want = "ehl_line" if scene.kind == "line" else "ehl_point"
         if ehl.kind != want:
             raise InputError(f"--ehl-file {args.ehl_file!r} holds a result of kind {ehl.kind!r}; the {scene.kind} "

@@ -280,6 +280,12 @@ def load_results(path: str | os.PathLike) -> dict[str, Result]:
         return {name: Result._read(f[name], path) for name in f.keys()}
 
 
+def result_names(path: str | os.PathLike) -> list[str] | None:
+    """The names of the results a collection (``ehl run``) stores, None for a single result."""
+    with _open_result_file(path) as f:
+        return sorted(f.keys()) if _str(f.attrs.get("kind", "")) == "collection" else None
+
+
 def is_complete(path: str | os.PathLike) -> bool:
     """Whether the result or collection at ``path`` holds everything its writer meant to store
     (files written before the ``complete`` attribute existed count as complete)."""

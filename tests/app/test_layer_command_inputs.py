@@ -1,6 +1,7 @@
 """Bad input to the layers' subcommands (traction, stribeck, surface) ends in exit 2 with one
 line naming the field, before any long computation; huge sizes are refused, not run."""
 
+import json
 import time
 
 import h5py
@@ -99,3 +100,30 @@ def test_a_smooth_but_real_surface_is_still_analysed():
     z = 1e-5 * x[None, :] / x[-1] + rng.normal(0.0, 1e-9, (64, 64))
     an = analyse_surface(HeightMap(z=z, dx=1e-6, dy=1e-6))
     assert an.stats.Rq == pytest.approx(1e-9, rel=0.1)
+
+
+def test_traction_reads_the_film_stage_film_of_an_ehl_run_file(tmp_path, capsys):
+    # the same friction as on that film saved alone (what 'ehl solve' writes)
+    from ehl_multigrid.model.results import Result
+
+    run = tmp_path / "run"
+    assert _exit(["run", "page63_line_500N", "--no-plots", "--out", str(run)]) == 0
+    h5 = run / "page63_line_500N.h5"
+    alone = tmp_path / "film.h5"
+    Result.load(h5, group="film").save(alone)
+    frictions = []
+    for path in (h5, alone):
+        capsys.readouterr()
+        assert _exit(["traction", "page63_line_500N", "--no-plots", "--json", "--out", str(tmp_path / "t"),
+                      "--input", "ehl", "--ehl-file", str(path), "--slip", "0.05"]) == 0
+        frictions.append(json.loads(capsys.readouterr().out)["friction_coefficient"])
+    assert frictions[0] == frictions[1] and frictions[0][0] > 0.0
+
+
+def test_traction_refuses_an_ehl_run_file_without_a_film_stage_result(tmp_path, capsys):
+    from ehl_multigrid.model.results import Result, save_results
+
+    path = tmp_path / "run.h5"
+    save_results(path, {"traction": Result(kind="traction")})
+    _check(capsys, ["traction", "appendix_c_line_42400N", "--no-plots", "--out", str(tmp_path / "o"), "--input", "ehl",
+                    "--ehl-file", str(path)], "without a film stage result")
