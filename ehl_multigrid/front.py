@@ -38,7 +38,6 @@ from typing import Any
 
 from .model.errors import ConvergenceError, InputError, require_choice, require_range, require_slip
 from .model.scene import Scene, load_scene
-from .multigrid.threads import passive_openmp_wait
 from .solution import (
     ErrorEstimate,
     Grid,
@@ -707,6 +706,8 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     129-point thermal point solve, other core busy: 31-141 s spinning, 11 s passive, 9 s on
     one thread). It has no effect once numba's threads run (set it before then to choose).
     """
+    from .multigrid.threads import passive_openmp_wait  # (the solvers load on first use)
+
     t0 = time.perf_counter()
     passive_openmp_wait()
     scene, moes = resolve_problem(problem)
