@@ -87,3 +87,16 @@ def test_a_film_without_its_grid_has_an_unknown_film_part(operating):
     assert math.isnan(film_friction_part(load_scene("default"), None, ThermalOptions(), 0.01).error)
     unknown = with_film_part(op, type(part)(math.nan, (), "not known"))
     assert not unknown.converged and math.isnan(unknown.error)
+
+
+def test_a_point_film_part_is_first_order_from_the_grid_with_half_the_intervals():
+    from ehl_multigrid.multigrid.accuracy import GRID_SAFETY
+
+    scene = load_scene("default")
+    sol = solve(scene, accuracy=None, options={"points": 129, "half": True})
+    film = SolvedFilm.from_result(sol.to_result(), sol.grid)
+    options = ThermalOptions(nx=40, nz=10, slices=5)
+    f = solve_traction(scene, scene.slip, options=options, input="ehl", ehl=film).coefficient
+    part = film_friction_part(scene, film, options, f, input="ehl", ehl=film)
+    coarse, fine = part.frictions
+    assert fine == f and part.error == pytest.approx(GRID_SAFETY * abs(fine - coarse), rel=1e-12)
