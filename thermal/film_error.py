@@ -50,7 +50,11 @@ class FilmPart:
 def solved_again(film: SolvedFilm) -> bool:
     """Is ``film`` measured on coarser solves of its own physics: an isothermal flooded film, or
     a starved line film (its meniscus search is cheap); otherwise on the core's proxy films."""
-    return not film.thermal and (film.Hc_ratio is None or film.contact == "line")
+    return not film.thermal and (not _starved(film) or film.contact == "line")
+
+
+def _starved(film: SolvedFilm) -> bool:
+    return film.Hc_ratio is not None or math.isfinite(film.scene.supply.hoil)
 
 
 def _core_film(scene: Scene, film: SolvedFilm, points: int) -> SolvedFilm | None:
@@ -61,7 +65,7 @@ def _core_film(scene: Scene, film: SolvedFilm, points: int) -> SolvedFilm | None
     from ehl_multigrid.solution import Status
 
     g = film.grid
-    if solved_again(film) and film.Hc_ratio is not None:  # a starved line: each grid its meniscus
+    if solved_again(film) and _starved(film):  # a starved line: each grid its meniscus
         sol = front.solve(scene, physics="starved", accuracy=None, options={"points": points})
         return SolvedFilm.from_result(sol.to_result(), sol.grid) if sol.status is Status.CONVERGED else None
     opts: dict[str, Any] = {"points": points, "xmin": g.box[0], "xmax": g.box[1]}
