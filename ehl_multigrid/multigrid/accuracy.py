@@ -35,7 +35,7 @@ import time
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from .controller import Candidate, Refinement, Resolution, choose, control
+from .controller import Candidate, Refinement, Resolution, control
 
 #: multiplies the Richardson grid-error estimate
 GRID_SAFETY = 1.5
@@ -814,16 +814,6 @@ def refinement_candidates(budget: dict[str, dict[str, float]], accuracy: float, 
     if tol_factor > 1e-4:
         out.append(Candidate("tolerance", replace(here, tol=0.1 * tol_factor), 0, total(1.0, 1.0, 0.1)))
     return out
-
-
-def next_refinement(budget: dict[str, dict[str, float]], accuracy: float, points: int, box: float,
-                    tol_factor: float, max_points: int, box_limit: float) -> tuple[int, float, float] | None:
-    """The refinement :func:`~ehl_multigrid.multigrid.controller.choose` takes among
-    :func:`refinement_candidates`, as ``(points, box, tol_factor)``; None when none helps."""
-    now = max(sum(v[k] for v in budget.values()) for k in ("Hc", "Hm"))
-    c = choose(refinement_candidates(budget, accuracy, points, box, tol_factor, max_points, box_limit),
-               accuracy, now)
-    return None if c is None else (c.at.points, c.at.box, c.at.tol)
 
 
 def points_needed(budget: dict[str, dict[str, float]], accuracy: float, points: int,

@@ -13,14 +13,21 @@ from ehl_multigrid.multigrid.accuracy import (
     ErrorEstimate,
     estimate_error,
     line_hm_richardson,
-    next_refinement,
     points_needed,
     refinement_candidates,
     richardson,
     solve_to_accuracy,
 )
-from ehl_multigrid.multigrid.controller import Candidate, Resolution
+from ehl_multigrid.multigrid.controller import Candidate, Resolution, choose
 from ehl_multigrid.point import solve_point
+
+
+def next_refinement(budget, accuracy, points, box, tol_factor, max_points, box_limit):
+    """The refinement the controller takes among refinement_candidates, as (points, box, tol)."""
+    now = max(sum(v[k] for v in budget.values()) for k in ("Hc", "Hm"))
+    c = choose(refinement_candidates(budget, accuracy, points, box, tol_factor, max_points, box_limit),
+               accuracy, now)
+    return None if c is None else (c.at.points, c.at.box, c.at.tol)
 
 
 def test_richardson_recovers_order_error_and_limit_of_a_second_order_sequence():

@@ -62,7 +62,6 @@ from ehl_multigrid.multigrid.controller import (
     Refinement,
     Resolution,
     TimeBudgetSpent,
-    choose,
     control,
 )
 from ehl_multigrid.point.postprocess import subgrid_min_film
@@ -589,16 +588,6 @@ def step_candidates(est: TEHLErrorEstimate, points: int, nz: int, box: float, to
             out.append(Candidate("box", replace(finer, box=2.0 * box), 1,
                                  _predicted(est, 1.0, 1.0, 1.0 / DOMAIN_DECAY, False)))
     return out
-
-
-def next_step(est: TEHLErrorEstimate, accuracy: float, points: int, nz: int, box: float,
-              tol_scale: float, max_points: int, max_nz: int = MAX_NZ,
-              box_limit: float = 4.0) -> tuple[str, int, int, float, float] | None:
-    """The refinement the controller (:func:`~ehl_multigrid.multigrid.controller.choose`) takes
-    among :func:`step_candidates`: ``(what, points, nz, box, tol_scale)``, None when none helps."""
-    c = choose(step_candidates(est, points, nz, box, tol_scale, max_points, max_nz, box_limit),
-               accuracy, est.worst)
-    return None if c is None else (c.what, c.at.points, c.at.nz, c.at.box, c.at.tol)
 
 
 def _dominant(est: TEHLErrorEstimate) -> str:

@@ -13,13 +13,15 @@ import numpy as np
 import pytest
 
 from ehl_multigrid.model.scene import load_scene
+from ehl_multigrid.multigrid.controller import choose
 from thermal.tehl import TEHLOptions, estimate_error, solve_tehl_line
 from thermal.tehl.accuracy import (
+    MAX_NZ,
     SolveCache,
     extrapolated_films,
     grid_sequence,
-    next_step,
     solve_tehl_to_accuracy,
+    step_candidates,
 )
 
 #: appendix D ball on flat (T9, 8 m/s, 60 degC) at 5 N: resolved from 65 points
@@ -30,6 +32,13 @@ POINT_FINE = {"Hc": 3.924134836115908, "Hm": 2.5763119913152797}
 
 
 pytestmark = pytest.mark.solver
+
+
+def next_step(est, accuracy, points, nz, box, tol_scale, max_points, max_nz=MAX_NZ, box_limit=4.0):
+    """The refinement the controller takes among step_candidates: (what, points, nz, box, tol)."""
+    c = choose(step_candidates(est, points, nz, box, tol_scale, max_points, max_nz, box_limit),
+               accuracy, est.worst)
+    return None if c is None else (c.what, c.at.points, c.at.nz, c.at.box, c.at.tol)
 
 
 @pytest.fixture(scope="module")
