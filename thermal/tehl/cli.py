@@ -80,18 +80,26 @@ def curve_error(curve: list[Any]) -> dict[str, Any]:
     at :func:`curve_slips_to_estimate`): per estimated slip, and the largest of each quantity
     over them (NaN when one of them could not be measured) as the curve's ``*_error`` keys; the
     friction's relative error leaves out slips whose friction is below 1 % of the curve's largest."""
-    from .accuracy import estimate_error
+    from .accuracy import QUANTITIES, estimate_error
 
     mu_max = max(abs(r.friction_coefficient) for r in curve)
     per = []
     for i in curve_slips_to_estimate(curve):
-        est = estimate_error(curve[i]).payload()
+        try:
+            est = estimate_error(curve[i]).payload()
+        except ConvergenceError as exc:
+            # a solve of the estimate failed: that slip's error is unknown, the curve is kept
+            # (appendix C at slips 0-2: the S = 2 estimate's outer iteration ran out after 175 s)
+            keys = [f"{k}_error" for k in QUANTITIES if k != "T_max"] + ["T_max_error_K"]
+            per.append({"slip": curve[i].slip, **dict.fromkeys(keys, math.nan),
+                        "estimate_failed": str(exc).splitlines()[0]})
+            continue
         row = {"slip": curve[i].slip, **{k: v for k, v in est.items() if k.endswith(("_error", "_K"))}}
         if abs(curve[i].friction_coefficient) < 0.01 * mu_max:
             # near zero slip the friction is ~0 and its relative error says nothing
             row["friction_coefficient_error"] = None
         per.append(row)
-    keys = [k for k in per[0] if k != "slip"]
+    keys = [k for k in per[0] if k not in ("slip", "estimate_failed")]
     worst = {}
     for k in keys:
         vals = [p[k] for p in per if p[k] is not None]
@@ -189,8 +197,12 @@ def run_tehl(args: argparse.Namespace) -> dict[str, Any]:
         if accuracy is not None and payload["converged"] and not worst <= accuracy:
             # a curve is solved on one given grid: judged, not refined
             payload["status"] = "inaccurate"
-            payload["message"] = (f"the curve's largest estimated film error ({worst:.2g}) exceeds the accuracy "
-                                  f"{accuracy:g} on {opts.points} points: give a finer --points")
+            failed = [f"slip {p['slip']:g}: {p['estimate_failed']}" for p in payload["error_at_slips"]
+                      if "estimate_failed" in p]
+            payload["message"] = (
+                f"the curve's error is not known: its estimate failed at {'; '.join(failed)}" if failed else
+                f"the curve's largest estimated film error ({worst:.2g}) exceeds the accuracy "
+                f"{accuracy:g} on {opts.points} points: give a finer --points")
     if not args.json:
         print(f"  {'slip':>8} {'mu':>9} {'Hc':>8} {'Hm':>8} {'T_max':>8}")
         for r in curve:

@@ -189,3 +189,26 @@ def test_traction_refuses_an_accuracy_without_coupled_even_at_its_default_value(
 
     assert main(["traction", "appendix_c_line_4240N", "--accuracy", "0.005"]) == 2
     assert "--accuracy applies to --coupled" in capsys.readouterr().err
+
+
+def test_a_tehl_curve_whose_estimate_fails_at_one_slip_keeps_its_films_and_names_that_slip(capsys, monkeypatch):
+    # appendix C at slips 0-2: the S = 2 estimate's outer iteration ran out after 175 s and the
+    # whole curve was lost (exit 3, nothing printed)
+    import thermal.tehl.accuracy as acc
+    from ehl_multigrid.app.cli import main
+    from ehl_multigrid.model.errors import ConvergenceError
+
+    real = acc.estimate_error
+
+    def failing_at_half(result, *a, **k):
+        if result.slip == 0.5:
+            raise ConvergenceError("TEHL: outer iteration did not converge in 60 iterations")
+        return real(result, *a, **k)
+
+    monkeypatch.setattr(acc, "estimate_error", failing_at_half)
+    rc = main(["tehl", "appendix_c_line_4240N", "--slip", "0,0.5", "--points", "129", "--nz", "10", "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 3 and out["converged"] and out["status"] == "inaccurate"
+    assert len(out["Hc"]) == 2 and all(h > 0 for h in out["Hc"])  # the films are kept
+    assert "slip 0.5" in out["message"] and "60 iterations" in out["message"]
+    assert out["Hc_error"] is None  # unknown (NaN, written as null)
