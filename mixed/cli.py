@@ -121,6 +121,13 @@ def run_stribeck(args: argparse.Namespace) -> dict:
         files += [str(f) for f in stribeck_figures(curves, out, stem)]
 
     payload = _payload(scene, curves, args.thermal, wall, files)
+    # the thesis's Stribeck model takes the fitted film at every speed (chapter 5): no film is
+    # solved and its error is not stated; the fit's bias at the operating point says how far off
+    # it may be (series B disc 1 at 1 GPa: 17-38 % above solved films over 0.37-12 m/s)
+    fit_note = scene.summary()["hc_fit_note"]
+    payload["film_source"] = ("Moes/Nijenbanning fitted film at each speed (chapter 5), not a solved film; "
+                              f"its error is not stated (at the operating point: {fit_note})")
+    print(f"ehl stribeck: note: the films are the fit's, not solved ones: {fit_note}", file=sys.stderr)
     if not args.json:
         c = curves[0]
         print(f"# {scene.name}: {scene.kind} contact, P = {c.sharing.load:.6g} N, pmax = {c.sharing.pmax / 1e9:.4g} GPa, "

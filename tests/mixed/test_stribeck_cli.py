@@ -82,3 +82,13 @@ def test_human_output_names_each_starved_curve_by_its_supply(capsys, tmp_path):
     lines = [ln for ln in text.splitlines() if ln.strip().startswith("starved hoil/Rq")]
     assert [ln.split()[3] for ln in lines] == ["0.5", "2"] and all("minimum" in ln for ln in lines)
     assert "hoil 21 nm" in lines[0]  # 0.5 Rq of the scene's Rq = 42 nm
+
+
+def test_the_curve_says_its_films_are_the_fits_with_the_fits_bias_here(capsys, tmp_path):
+    # series B disc 1 at 1 GPa: the fit lay 17-38 % above solved films over 0.37-12 m/s
+    assert main(["stribeck", "series_B_disc1_1GPa", "--json", "--n", "4", "--out", str(tmp_path), "--no-plots"]) == 0
+    shown = capsys.readouterr()
+    out = json.loads(shown.out)
+    note = load_scene("series_B_disc1_1GPa").summary()["hc_fit_note"]
+    assert "fitted film" in out["film_source"] and "not a solved film" in out["film_source"]
+    assert note in out["film_source"] and note in shown.err
