@@ -48,7 +48,7 @@ def time_error(fine: TransientResult, coarse: TransientResult) -> dict[str, floa
     ``p = 1`` where the coarse run moves a mesh size per step or more
     (:data:`PREASYMPTOTIC_COURANT`): a 0.5 um dent through the glass-disc tribometer at that
     step left the minimum film at its smooth value, and the second-order term stated 0.090 of
-    the film for a true 0.15 (the first-order term 0.29)."""
+    the film for a true 0.15 (the first-order term 0.27)."""
     if not math.isclose(coarse.dt, 2.0 * fine.dt, rel_tol=1e-9) or coarse.X.size != fine.X.size:
         raise ValueError("time_error needs the same grid and a coarse run at twice the step")
     p = 2 if fine.scheme == "bdf2" and courant(coarse) < PREASYMPTOTIC_COURANT else 1
