@@ -22,6 +22,7 @@ proxy overstates (a starved line measured both ways: 1.7e-4 by proxy, 3.7e-7 its
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 from typing import Any
 
@@ -85,8 +86,6 @@ def film_friction_part(scene: Scene, film: SolvedFilm | None, options: ThermalOp
     keywords of :func:`~thermal.traction.solve_traction`. NaN where ``film`` carries no grid
     (a film not solved by a stage of this run) or its coarser grid does not converge.
     """
-    import time
-
     t0 = time.perf_counter()
     if film is None or film.grid is None:
         return FilmPart(math.nan, (), "the film's grid is not known")
