@@ -33,7 +33,7 @@ import os
 import time
 import warnings
 from collections.abc import Callable, Collection, Mapping
-from dataclasses import fields, is_dataclass
+from dataclasses import fields, is_dataclass, replace
 from typing import Any
 
 from .model.errors import ConvergenceError, InputError, require_choice, require_range, require_slip
@@ -65,7 +65,13 @@ PART_NAMES = {"algebraic": "iteration"}
 #: options of a transient run besides the multigrid options of its time steps
 TRANSIENT_RUN_KEYS = ("dt", "steps", "t_end", "scheme", "snapshot_every", "accept_stall", "xmin",
                       "xmax", "time_error", "checkpoint", "resume", "cavitation", "time_tol",
-                      "mass_tol", "time_budget")
+                      "mass_tol", "time_budget", "max_points", "on_answer")
+#: seconds a transient run with an accuracy target may spend refining when no ``time_budget``
+#: is given: its refinements multiply the run's steps and grid points (a point run of 129^2
+#: points takes about 10 s, at 257^2 and half the step about 80 s)
+TRANSIENT_TIME_BUDGET = 600.0
+#: the finest grid a transient run's grid refinement takes when no ``max_points`` is given
+TRANSIENT_MAX_POINTS = {"line": 4097, "point": 257}
 #: options of a scene's steady or starved solve that choose the model rather than the numerics
 #: (the scene's ``[solver.ehl]`` table applies below them; a MoesProblem carries its own)
 MODEL_KEYS = ("viscosity", "density")
@@ -398,15 +404,23 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
     budget = runkw.pop("time_budget", None)
     if budget is not None:
         budget = require_range("time_budget", budget, 0.0, math.inf, "s")
-    # a target refines the time step when the time error is asked for, or a time budget implies
-    # the refinement (without either, a run with a target is only judged: its error is unknown)
-    controlled = accuracy is not None and (want_time_error or budget is not None)
+    on_answer = runkw.pop("on_answer", None)
+    if on_answer is not None and not callable(on_answer):
+        raise InputError(f"option on_answer = {on_answer!r} is not callable")
+    # a target is judged on a measured error: the time part and the grid part, each from its
+    # own runs, refined in the time step and (unless the options fix the grid) the grid
+    controlled = accuracy is not None
     held = sorted(k for k in ("checkpoint", "resume") if runkw.get(k) is not None)
     if controlled and held:
-        raise InputError(f"option{'s' if len(held) > 1 else ''} {held} with an accuracy target and "
-                         f"{'time_error' if want_time_error else 'time_budget'}: a checkpoint holds one "
-                         f"run, and the refinement makes several; give accuracy = None (the run judged on "
-                         f"its steps, time_error still measured) or leave out {' and '.join(held)}")
+        raise InputError(f"option{'s' if len(held) > 1 else ''} {held} with an accuracy target: a "
+                         f"checkpoint holds one run, and the error estimate makes several; give "
+                         f"accuracy = None (the run judged on its steps, time_error still measured) "
+                         f"or leave out {' and '.join(held)} (on_answer keeps each finished answer)")
+    fixed_grid = (dc is not None) or ("points" in kw)
+    max_points = runkw.pop("max_points", None)
+    if max_points is not None and fixed_grid:
+        raise InputError(f"option max_points = {max_points} with a fixed grid (points or an options "
+                         f"object): leave out points to let the grid be refined up to max_points")
     require_slip("operating.slip", scene.slip)
     if dc is None:
         kw.setdefault("points", DEFAULT_POINTS["line" if line else "point"])
@@ -454,13 +468,22 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
     notes = warn + supply_notes(scene, feature, scale, starved_ok)
 
     def run(call: Any = callback, **step: Any) -> Any:
-        return solver(pb, feature, body=body, slide_roll=scene.slip, options=dc, callback=call,
-                      **{**runkw, **step}, **kw)
+        opts = dc
+        if "points" in step and dc is not None:
+            opts = replace(dc, points=step.pop("points"))
+        return solver(pb, feature, body=body, slide_roll=scene.slip, options=opts, callback=call,
+                      **{**kw, **runkw, **step})
 
     if controlled:
         points = int(kw["points"] if dc is None else dc.points)
-        return _transient_to_accuracy(run, points, line, runkw, pb, scale, accuracy, budget, callback,
-                                      t0, scene, notes)
+        if fixed_grid:
+            most = points
+        else:
+            most = TRANSIENT_MAX_POINTS["line" if line else "point"] if max_points is None else int(
+                require_range("max_points", max_points, points, 2**20 + 1, "points"))
+        return _transient_to_accuracy(run, points, most, line, runkw, pb, scale, accuracy,
+                                      TRANSIENT_TIME_BUDGET if budget is None else budget, callback,
+                                      on_answer, t0, scene, notes)
     try:
         res = run()
     except ConvergenceError as exc:
@@ -469,6 +492,8 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
             return failed_solution("transient", contact, exc, accuracy, t0, scene, part)
         return _transient_solution(part, pb, line, scale, accuracy, t0, scene, notes, None,
                                    (status_of_error(exc), str(exc)))
+    if on_answer is not None and res.complete:
+        on_answer(res)
     terr = None
     if want_time_error:
         from .transient.accuracy import (
@@ -497,19 +522,21 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
     return _transient_solution(res, pb, line, scale, accuracy, t0, scene, notes, terr, None)
 
 
-def _transient_to_accuracy(run: Callable[..., Any], points: int, line: bool, runkw: dict[str, Any], pb: Any,
-                           scale: float, accuracy: float, budget: float | None, callback: Any, t0: float,
-                           scene: Scene, notes: list[str]) -> Solution:
-    """A transient run refined in its time step by the accuracy controller
-    (:class:`~ehl_multigrid.transient.control.TransientControl`) until its time part meets
-    ``accuracy`` or ``budget`` seconds are spent; the grid is the run's own."""
+def _transient_to_accuracy(run: Callable[..., Any], points: int, max_points: int, line: bool,
+                           runkw: dict[str, Any], pb: Any, scale: float, accuracy: float, budget: float,
+                           callback: Any, on_answer: Any, t0: float, scene: Scene,
+                           notes: list[str]) -> Solution:
+    """A transient run whose time part and grid part are measured
+    (:class:`~ehl_multigrid.transient.control.TransientControl`) and refined by the accuracy
+    controller, in the time step and up to ``max_points`` in the grid, until their sum meets
+    ``accuracy`` or ``budget`` seconds are spent."""
     from .multigrid.controller import Resolution, control
     from .transient.control import TransientControl
 
     ctl = TransientControl(run, dimensions=1 if line else 2, scheme=runkw.get("scheme", "bdf2"),
-                           time_tol=runkw.get("time_tol"), callback=callback)
-    out = control(ctl, Resolution(points), accuracy, time_budget=math.inf if budget is None else budget,
-                  max_points=points, started=t0)
+                           time_tol=runkw.get("time_tol"), callback=callback, points=points,
+                           max_points=max_points, on_answer=on_answer)
+    out = control(ctl, Resolution(points), accuracy, time_budget=budget, max_points=max_points, started=t0)
     r = out.result
     if not out.converged:  # the first run failed: as without a target
         exc = r.error
@@ -557,17 +584,21 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
         Hm_steady=float(moes(res.steady_film("Hm"))[0]), Hc_min=float(Hc_s.min()), Hc_max=float(Hc_s.max()),
         Hm_min=float(Hm_s.min()), stalled_steps=int(s["stalled_steps"]), notes=tuple(notes))
     measured = terr is not None
-    parts = {"grid": PartError(math.nan, math.nan),
-             "time": PartError(terr["Hc"], terr["Hm"]) if measured else PartError(math.nan, math.nan)}
+    gerr = controlled[1].grid_parts.get(controlled[0].result.at) if controlled is not None else None
+    nan = PartError(math.nan, math.nan)
+    parts = {"grid": PartError(gerr["Hc"], gerr["Hm"]) if gerr is not None else nan,
+             "time": PartError(terr["Hc"], terr["Hm"]) if measured else nan}
     local = s.get("time_error_max", math.nan)
     adaptive = math.isfinite(local)
     if controlled is None:
-        enotes = ("the transient solver has no accuracy control: it estimates no grid (space) error, and "
-                  "each time step is converged to its residual tolerance",)
+        enotes = ("no accuracy target: the grid (space) error is not estimated, and each time step is "
+                  "converged to its residual tolerance",)
     else:
-        enotes = ("the time step is refined to the target by the accuracy controller; the grid is the run's "
-                  "own: no grid (space) error is estimated, and each time step is converged to its "
-                  "residual tolerance",)
+        enotes = ("grid part: Richardson in the mesh size on the largest film differences over the run "
+                  "from the same steps on the grids with half and a quarter of the intervals (max over "
+                  "the run, relative to the smooth steady film); the box is the run's own (its "
+                  "truncation is not estimated), and each time step is converged to its residual "
+                  "tolerance",)
     if measured:
         enotes += ("time part: twice the largest film difference from a run at an eighth of the time "
                    "tolerance and half the output step (max over the run, relative to the smooth "
@@ -586,23 +617,21 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
         # the local error bounds one step, not the film's error over the run (docs/transient.md)
         enotes += (f"time steps sized by time_tol: largest local film error per step {local:.2g} "
                    f"({s['rejected_steps']} steps solved again smaller)",)
-    error = ErrorEstimate(math.nan, math.nan, parts, accuracy, enotes)
+    both = measured and gerr is not None
+    error = ErrorEstimate(terr["Hc"] + gerr["Hc"] if both else math.nan,
+                          terr["Hm"] + gerr["Hm"] if both else math.nan, parts, accuracy, enotes)
     if failure is not None:
         status, message = failure
     elif not res.complete:
         status, message = Status.FILM_NOT_POSITIVE, res.stop_reason
     else:
-        done = f"completed {res.steps} time steps of dT = {res.dt:.4g}"
+        done = f"completed {res.steps} time steps of dT = {res.dt:.4g} on {res.X.size} points"
         if accuracy is None:
             status, message = Status.CONVERGED, done
-        elif controlled is not None:
-            status, message = Status.INACCURATE, _time_judgement(done, controlled, terr, accuracy)
         else:
-            tm = f"; time error measured: Hc {terr['Hc']:.2g}, Hm {terr['Hm']:.2g}" if measured else ""
-            status = Status.INACCURATE
-            message = (f"{done}, but the error is not known: the transient solver has no accuracy "
-                       f"control and estimates no grid (space) error{tm}, so the accuracy {accuracy:g} "
-                       f"cannot be confirmed (accuracy=None judges the run on its steps alone)")
+            met = controlled[0].met and both
+            status = Status.CONVERGED if met else Status.INACCURATE
+            message = _transient_judgement(done, controlled, error, accuracy)
     actions = tuple(getattr(res.steady, "actions", ()))
     if controlled is not None:
         actions += controlled[1].actions(controlled[0], accuracy)
@@ -616,24 +645,23 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
                     fields=frozen_fields(arrays), grid=grid, details=details, raw=res, scene=scene)
 
 
-def _time_judgement(done: str, controlled: tuple[Any, Any], terr: dict[str, float] | None,
-                    accuracy: float) -> str:
-    """The message of a completed run refined to ``accuracy``: its time part against the target,
-    the refinements, and the grid part that keeps it from being confirmed."""
+def _transient_judgement(done: str, controlled: tuple[Any, Any], error: ErrorEstimate,
+                         accuracy: float) -> str:
+    """The message of a completed run judged against ``accuracy``: its parts, the refinements,
+    and why it stopped short."""
     out, ctl = controlled
-    refined = len(ctl.answers) - 1
-    how = (f" after {refined} refinement{'s' if refined > 1 else ''} of the time step from dT = "
-           f"{ctl.first.dt:.4g}" if refined > 0 else "")
-    grid = ("the grid (space) error is not estimated, so the accuracy cannot be confirmed "
-            "(accuracy=None judges the run on its steps alone)")
+    answers = ctl.answers
+    refined = len(answers) - 1
+    how = f" after {refined} refinement{'s' if refined > 1 else ''} from {answers[0].describe()}" if refined > 0 else ""
     if out.result is not out.last:
         how += "; the most accurate run of the sequence"
-    if terr is None:
-        return f"{done}: the time error is not measured{how} ({out.why}); {grid}"
-    tm = f"time error Hc {terr['Hc']:.2g}, Hm {terr['Hm']:.2g}"
-    if out.met:
-        return f"{done}: {tm} within the accuracy {accuracy:g}{how}; but {grid}"
-    return f"{done}: {tm} above the accuracy {accuracy:g}{how}; not refined further: {out.why}; and {grid}"
+    t, g = error.parts["time"], error.parts["grid"]
+    tm = (f"time part Hc {t.Hc:.2g}, Hm {t.Hm:.2g}" if math.isfinite(t.worst) else "time part not measured")
+    gm = (f"grid part Hc {g.Hc:.2g}, Hm {g.Hm:.2g}" if math.isfinite(g.worst) else "grid part not measured")
+    if out.met and math.isfinite(error.Hc):
+        return f"{done}: error Hc {error.Hc:.2g}, Hm {error.Hm:.2g} ({tm}; {gm}) within the accuracy {accuracy:g}{how}"
+    total = (f"error Hc {error.Hc:.2g}, Hm {error.Hm:.2g}" if math.isfinite(error.Hc) else "error not known")
+    return f"{done}: {total} ({tm}; {gm}) above the accuracy {accuracy:g}{how}; not refined further: {out.why}"
 
 
 # -- the front door ----------------------------------------------------------------------------------
