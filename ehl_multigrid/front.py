@@ -390,7 +390,7 @@ def _starved(scene: Scene, contact: str, accuracy: float | None, options: Any, c
 
 
 def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any, callback: Any,
-               t0: float) -> Solution:
+               t0: float, progress: Callable[[str], None] | None = None) -> Solution:
     from .multigrid.options import LineOptions, PointOptions
     from .transient.defaults import DEFAULT_POINTS, DEFAULT_XMIN
     from .transient.supply import supply_notes
@@ -483,7 +483,7 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
                 require_range("max_points", max_points, points, 2**20 + 1, "points"))
         return _transient_to_accuracy(run, points, most, line, runkw, pb, scale, accuracy,
                                       TRANSIENT_TIME_BUDGET if budget is None else budget, callback,
-                                      on_answer, t0, scene, notes)
+                                      on_answer, t0, scene, notes, progress)
     try:
         res = run()
     except ConvergenceError as exc:
@@ -525,7 +525,7 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
 def _transient_to_accuracy(run: Callable[..., Any], points: int, max_points: int, line: bool,
                            runkw: dict[str, Any], pb: Any, scale: float, accuracy: float, budget: float,
                            callback: Any, on_answer: Any, t0: float, scene: Scene,
-                           notes: list[str]) -> Solution:
+                           notes: list[str], progress: Callable[[str], None] | None = None) -> Solution:
     """A transient run whose time part and grid part are measured
     (:class:`~ehl_multigrid.transient.control.TransientControl`) and refined by the accuracy
     controller, in the time step and up to ``max_points`` in the grid, until their sum meets
@@ -535,8 +535,9 @@ def _transient_to_accuracy(run: Callable[..., Any], points: int, max_points: int
 
     ctl = TransientControl(run, dimensions=1 if line else 2, scheme=runkw.get("scheme", "bdf2"),
                            time_tol=runkw.get("time_tol"), callback=callback, points=points,
-                           max_points=max_points, on_answer=on_answer)
-    out = control(ctl, Resolution(points), accuracy, time_budget=budget, max_points=max_points, started=t0)
+                           max_points=max_points, on_answer=on_answer, progress=progress)
+    out = control(ctl, Resolution(points), accuracy, time_budget=budget, max_points=max_points, started=t0,
+                  progress=progress)
     r = out.result
     if not out.converged:  # the first run failed: as without a target
         exc = r.error
@@ -686,10 +687,12 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     accuracy : relative target of the estimated errors of Hc and Hm, in [1e-5, 0.5]; the
         solvers refine their grid (box, tolerances) towards it unless the options fix the grid,
         and a result that misses it has status ``INACCURATE``. None: judged on the iteration
-        alone. A transient run estimates no grid (space) error, so with a target its result
-        is ``INACCURATE`` (its error cannot be confirmed); with ``time_error`` or a
-        ``time_budget`` in its options the time step is refined until the measured time part
-        meets the target (docs/transient.md). None: judged on its steps.
+        alone. A transient run with a target measures its time part (a run at twice the step)
+        and grid part (the same steps on the grids with half and a quarter of the intervals),
+        relative to the smooth steady film over the run, and refines the time step and,
+        unless the options fix the grid, the grid (up to ``max_points``) until their sum meets
+        it, within ``time_budget`` (default 600 s) (docs/transient.md). None: one run judged
+        on its steps.
     options : a mapping of the solver's options (e.g. ``{"points": 257, "max_points": 513,
         "time_budget": 30, "half": True}``), or the solver's own options object
         (:class:`~ehl_multigrid.multigrid.options.LineOptions`,
@@ -700,17 +703,20 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
         ``solver="newton"`` (the Newton/pyamg cross-check path: a fixed grid, the
         :class:`~ehl_multigrid.point.newton.NewtonOptions` fields, ``accuracy=None``), and a
         transient run ``time_error``, ``time_budget`` (seconds of the refinement to a target),
+        ``max_points`` (the finest grid of that refinement; default 4097 line, 257 point),
+        ``on_answer`` (called with each completed answer of the refinement, as it completes),
         ``checkpoint`` and ``resume`` (:mod:`ehl_multigrid.transient.checkpoint`; refused
-        together with a refinement to a target: a checkpoint holds one run).
+        together with a target: a checkpoint holds one run).
         An unknown key is refused, naming it and the accepted ones (see docs/api.md for each
         physics).
     callback : called with a small dict after every multilevel cycle (steady) or time step
         (transient; the first run's steps when the time step is refined to a target); raising StopIteration in it stops a steady solve (status ``STOPPED``).
         The starved and thermal solvers and the Newton path take none (a UserWarning says so).
     progress : called with one line of text per solve of the accuracy sequence (grid, box,
-        estimate, seconds), as ``ehl solve`` prints on stderr: steady FAS, starved and thermal
-        solves. The transient run and the Newton path have no such sequence: a UserWarning
-        says ``progress`` is not called.
+        estimate, seconds), as ``ehl solve`` prints on stderr: steady FAS, starved, thermal and
+        transient (each run of the refinement to a target) solves. A transient run without a
+        target and the Newton path have no such sequence: a UserWarning says ``progress`` is
+        not called.
 
     Returns
     -------
@@ -751,10 +757,10 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     if physics == "starved":
         return _starved(scene, contact, accuracy, options, callback, progress, t0)
     if physics == "transient":
-        if progress is not None:
-            warnings.warn("progress is not called: the transient run reports per time step through "
-                          "callback", UserWarning, stacklevel=2)
-        return _transient(scene, contact, accuracy, options, callback, t0)
+        if progress is not None and accuracy is None:
+            warnings.warn("progress is not called: a transient run without a target is one run, reported "
+                          "per time step through callback", UserWarning, stacklevel=2)
+        return _transient(scene, contact, accuracy, options, callback, t0, progress)
     run = registered_physics()[physics].load()
     try:
         sol = run(scene, accuracy=accuracy, options=options, callback=callback, progress=progress)

@@ -1,11 +1,18 @@
 """``ehl transient SCENE``: a surface feature from the scene's ``[feature]`` table passing
 through the line, point or elliptic contact of the scene (time-dependent isothermal EHL).
 
-Every completed step is kept: the HDF5 is written as a checkpoint while the run goes on, and
-when a step fails (exit 3) or the run is stopped (Ctrl-C 130, SIGTERM 143) the steps computed
-so far are written, marked ``complete = False`` with the reason; ``--resume`` continues an
-incomplete file. The run goes through the front door :func:`ehl_multigrid.solve`
-(``physics="transient"``, with the checkpoint and the resumed state as options). Registered
+With an accuracy target (``--accuracy``, default :data:`DEFAULT_ACCURACY`) the films are
+verified: the run's time part and grid part are measured by runs at twice the step and on
+coarser grids, and the time step and (without ``--points``) the grid are refined until their
+sum meets the target or the time budget is spent (exit 3 then, the most accurate run written,
+its error stated). Each completed answer of the sequence is written as it completes, so a
+stopped sequence keeps its most accurate finished run.
+
+With ``--accuracy none`` the run is judged on its steps alone. Every completed step is kept:
+the HDF5 is written as a checkpoint while the run goes on, and when a step fails (exit 3) or
+the run is stopped (Ctrl-C 130, SIGTERM 143) the steps computed so far are written, marked
+``complete = False`` with the reason; ``--resume`` continues an incomplete file. The run goes
+through the front door :func:`ehl_multigrid.solve` (``physics="transient"``). Registered
 through the ``ehl.commands`` entry point (``register``)."""
 
 from __future__ import annotations
@@ -15,7 +22,7 @@ import math
 import sys
 from typing import Any
 
-from ..app.console import add_common_options, locked_command
+from ..app.console import Progress, accuracy_argument, add_common_options, locked_command
 from ..model.errors import ConvergenceError, InputError, require_range, require_slip, signal_cause
 from ..model.paths import output_file, record_outputs, safe_stem, writable_dir
 from ..model.scene import load_scene
@@ -30,6 +37,11 @@ MAX_POINTS = 4097
 #: largest point-contact grid (points along X) of the command line: a pass at 513^2 takes
 #: about an hour
 MAX_POINT_POINTS = 513
+#: the command's accuracy target (relative to the smooth steady film, max over the run): a dent
+#: or bump moves the film by tens of per cent, and the point runs that reach 1 % take hours
+DEFAULT_ACCURACY = 0.05
+#: seconds the refinement to the target may take (the front door's default)
+DEFAULT_TIME_BUDGET = 600.0
 
 
 def _mass_tol(text: str) -> float | None:
@@ -47,7 +59,21 @@ def register(subparsers: Any) -> None:
                     "them, marked incomplete.")
     p.add_argument("scene", help="built-in scene name or TOML file (a contact with [feature])")
     p.add_argument("--points", type=int, default=None,
-                   help="grid points along X (2^k + 1; default 513 line, 129 point)")
+                   help="grid points along X (2^k + 1; default 513 line, 129 point, refined to the "
+                        "accuracy target up to --max-points; given: the grid is fixed, its error "
+                        "still measured)")
+    p.add_argument("--accuracy", type=accuracy_argument, default=DEFAULT_ACCURACY,
+                   help=f"relative accuracy wanted for Hc(T) and Hm(T), over the smooth steady film "
+                        f"(default {DEFAULT_ACCURACY:g}): the time part (a run at twice the step) and "
+                        f"the grid part (the same steps on coarser grids) are measured and the step "
+                        f"and grid refined until their sum meets it; 'none': one run judged on its "
+                        f"steps alone (its films not verified)")
+    p.add_argument("--time-budget", type=float, default=DEFAULT_TIME_BUDGET, metavar="SECONDS",
+                   help="seconds the refinement to the accuracy may take: no refinement predicted "
+                        "to overrun it is started, and the most accurate run comes back, marked "
+                        "inaccurate when it misses the target (default %(default)g)")
+    p.add_argument("--max-points", type=int, default=None,
+                   help="finest grid the refinement may take (default 4097 line, 257 point)")
     p.add_argument("--dt", type=float, default=None,
                    help="time step in T = t u_m/b (point: t u_m/a) (default: one mesh size at the "
                         "faster speed)")
@@ -96,6 +122,14 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
     if args.points is not None:
         _require_points(args.points, MAX_POINTS)
     every = require_range("--checkpoint-every", args.checkpoint_every, 0.0, 1e6, "s")
+    if args.accuracy is not None:
+        require_range("--time-budget", args.time_budget, 0.0, 1e7, "s")
+        if args.resume:
+            raise InputError("--resume continues one run, and an accuracy target makes several: give "
+                             "--accuracy none to continue a run judged on its steps")
+        if args.max_points is not None and args.points is not None:
+            raise InputError(f"--max-points = {args.max_points} with --points = {args.points}: --points "
+                             f"fixes the grid; leave it out to let the grid be refined")
     scene = load_scene(args.scene)
     require_slip("operating.slip", scene.slip)
     line = scene.kind == "line"
@@ -114,6 +148,8 @@ def run_transient(args: argparse.Namespace) -> dict[str, Any]:
         from .scene_feature import point_feature_from_scene_table
 
         _require_points(points, MAX_POINT_POINTS, f" for a {scene.kind} contact")
+        if args.max_points is not None:
+            _require_points(args.max_points, MAX_POINT_POINTS, f" (--max-points) for a {scene.kind} contact")
         require_range("--xmin", args.xmin, -20000.0, -1.05, "- (x/a)")
         pb = problem_from_scene(scene)
         feature, body = point_feature_from_scene_table(
@@ -137,25 +173,48 @@ def speeds_note(u1: float, u2: float, body: int | None) -> str:
 
 
 def _front_door(scene: Any, args: argparse.Namespace, points: int, checkpoint: Checkpoint,
-                resume: dict[str, Any] | None) -> Any:
-    """The run through the front door :func:`ehl_multigrid.solve` (``physics="transient"``,
-    judged on its steps alone: the solver has no accuracy control), writing ``checkpoint`` and
-    continuing ``resume``."""
+                resume: dict[str, Any] | None, on_answer: Any) -> Any:
+    if getattr(args, "accuracy", None) is None:
+        return _solve(scene, args, points, checkpoint, resume, on_answer, None)
+    with Progress("ehl transient") as prog:
+        return _solve(scene, args, points, checkpoint, resume, on_answer, prog.say)
+
+
+def _solve(scene: Any, args: argparse.Namespace, points: int, checkpoint: Checkpoint,
+           resume: dict[str, Any] | None, on_answer: Any, progress: Any) -> Any:
+    """The run through the front door :func:`ehl_multigrid.solve` (``physics="transient"``):
+    with an accuracy target, refined to it (``on_answer`` called with each completed answer);
+    without, one run judged on its steps, writing ``checkpoint`` and continuing ``resume``."""
     from .. import front
 
-    return front.solve(scene, physics="transient", accuracy=None, options={
-        "points": points, "dt": args.dt, "steps": args.steps, "t_end": args.t_end, "scheme": args.scheme,
-        "snapshot_every": args.snapshot_every, "xmin": args.xmin, "checkpoint": checkpoint,
-        "resume": resume, "cavitation": args.cavitation, "mass_tol": args.mass_tol,
+    opts: dict[str, Any] = {
+        "dt": args.dt, "steps": args.steps, "t_end": args.t_end, "scheme": args.scheme,
+        "snapshot_every": args.snapshot_every, "xmin": args.xmin, "cavitation": args.cavitation,
+        "mass_tol": args.mass_tol,
         **({"time_tol": args.time_tol} if args.time_tol is not None else {}),
-        **({"time_error": True} if getattr(args, "time_error", False) else {})})
+        **({"time_error": True} if getattr(args, "time_error", False) else {})}
+    accuracy = getattr(args, "accuracy", None)
+    if accuracy is None:
+        opts.update({"points": points, "checkpoint": checkpoint, "resume": resume})
+    else:
+        opts.update({"time_budget": args.time_budget, "on_answer": on_answer})
+        if args.points is not None:
+            opts["points"] = args.points
+        elif args.max_points is not None:
+            opts["max_points"] = args.max_points
+    return front.solve(scene, physics="transient", accuracy=accuracy, options=opts, progress=progress)
 
 
 def _failure(sol: Any) -> str | None:
-    """The error of the step that ended the run of ``sol``, or None when the run completed or
-    stopped on its own (at a closed film: the reason is then ``stop_reason``)."""
+    """The error of the step that ended the run of ``sol``, or None when the run completed
+    (converged, or short of its accuracy target: reported with its error) or stopped on its own
+    (at a closed film: the reason is then ``stop_reason``)."""
+    from ..solution import Status
+
     res = sol.raw
     if sol.success or (res is not None and sol.details is not None and sol.message == res.stop_reason):
+        return None
+    if sol.status == Status.INACCURATE and res is not None and res.complete:
         return None
     return sol.message
 
@@ -183,15 +242,30 @@ def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes:
     for text in [speeds_note(scene.u1, scene.u2, body if feature is not None else None), *notes]:
         print(f"ehl transient: note: {text}", file=sys.stderr)
     checkpoint = Checkpoint(h5, every_s=every if every > 0 else math.inf, run=run)
+    answers: list[Any] = []
+
+    def keep_answer(res: Any) -> None:
+        # each finished answer of a refinement replaces the one before it (a stopped
+        # sequence keeps its most accurate finished run)
+        res.run = run
+        res.to_hdf5(h5)
+        answers.append(res)
+
     try:
-        sol = _front_door(scene, args, points, checkpoint, resume)
+        sol = _front_door(scene, args, points, checkpoint, resume, keep_answer)
     except BaseException as raised:
         # a signal inside a compiled kernel surfaces as a SystemError caused by it
         exc = signal_cause(raised)
         if exc is None:
             raise
         res = getattr(exc, "partial", None)
-        if res is not None and checkpoint.writes:
+        if answers:
+            last = answers[-1]
+            print(f"ehl transient: stopped during the refinement to the accuracy; the last finished "
+                  f"run ({last.X.size} points, dT = {last.dt:.4g}) is in {h5}, its error not confirmed",
+                  file=sys.stderr)
+            record_outputs(out, stem, [h5])
+        elif res is not None and checkpoint.writes:
             print(f"ehl transient: {res.stop_reason}; written to {h5} (complete = False; "
                   f"'ehl transient {args.scene} --resume' with the same options continues it)",
                   file=sys.stderr)
@@ -202,30 +276,38 @@ def _run(args: argparse.Namespace, scene: Any, points: int, every: float, notes:
     # a failed step comes back from the front door with the steps before it (``raw``)
     res, failure = sol.raw, _failure(sol)
     if failure is not None:
+        if res is not None and res.series["T"] and not checkpoint.writes:
+            # a run refined to a target writes no checkpoint: its failed run's steps are
+            # written here (marked incomplete), as a checkpoint would have kept them
+            res.run = run
+            res.to_hdf5(h5)
+            checkpoint.writes += 1
         if res is None or not checkpoint.writes:
             raise ConvergenceError(failure)
         return _report(args, scene, res, feature, body, scale, pmax, contact, out, stem, h5, notes,
                        warnings, failure=failure)
     res.run = run
-    if getattr(args, "time_error", False):
+    if getattr(args, "time_error", False) or args.accuracy is not None:
         t = sol.error.parts["time"]
         # relative to the smooth steady film; NaN when the second run failed (its note says why)
-        notes = [*notes, *(n for n in sol.details.notes if n not in notes and "time error" in n)]
+        notes = [*notes, *(n for n in sol.details.notes if n not in notes and "error" in n)]
         time_part = {"Hc": t.Hc, "Hm": t.Hm}
     else:
         time_part = None
     return _report(args, scene, res, feature, body, scale, pmax, contact, out, stem, h5, notes,
-                   warnings, time_part=time_part)
+                   warnings, time_part=time_part, solution=sol)
 
 
 def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: int, scale: float,
             pmax: float, contact: str | None, out: Any, stem: str, h5: Any, notes: list[str], warnings: list[str],
-            failure: str | None = None, time_part: dict[str, float] | None = None) -> dict[str, Any]:
+            failure: str | None = None, time_part: dict[str, float] | None = None,
+            solution: Any = None) -> dict[str, Any]:
     """Write the run (HDF5, figures) and return the payload of ``ehl transient`` (printing a
     line without ``--json``). ``scale``: metres per film unit; ``pmax``: Pa per pressure unit;
     ``contact``: the point or elliptic contact's kind (None for a line contact); ``failure``:
     the message of the step that failed (the run is reported as not converged, with the steps
-    before it); ``time_part``: the measured relative time errors of Hc and Hm (``--time-error``)."""
+    before it); ``time_part``: the measured relative time errors of Hc and Hm (``--time-error``
+    or a target); ``solution``: the front door's answer (its status and error estimate)."""
     point = contact is not None
     if failure is None:
         h5 = res.to_hdf5(h5)
@@ -259,11 +341,24 @@ def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: 
     payload.update({"wall_per_step_s": summary["wall_per_step_s"], "wall_s": summary["wall_s"]})
     if time_part is not None:
         payload["time_error"] = time_part
-    # "converged" is the steps': the films' own error is not estimated in space, and in time only
-    # with --time-error (docs/transient.md, "What a run's films are worth")
-    payload["films_verified"] = False
-    payload["films_error"] = {"time": "measured" if time_part is not None and all(
-        math.isfinite(v) for v in time_part.values()) else "not measured", "grid": "not estimated"}
+    target = getattr(args, "accuracy", None)
+    if failure is None and solution is not None and target is not None:
+        err = solution.error
+        payload["status"] = solution.status.label
+        payload["message"] = solution.message
+        payload["converged"] = bool(solution.success)
+        # converged with a target: the time and grid parts, each measured by its own runs, sum
+        # to within the target (relative to the smooth steady film, max over the run)
+        payload["films_verified"] = bool(solution.success)
+        payload["films_error"] = {
+            "accuracy": target, "Hc": err.Hc, "Hm": err.Hm,
+            **{name: {"Hc": part.Hc, "Hm": part.Hm} for name, part in err.parts.items()}}
+    else:
+        # "converged" is the steps': without a target the films' grid error is not estimated,
+        # and their time error only with --time-error (docs/transient.md)
+        payload["films_verified"] = False
+        payload["films_error"] = {"time": "measured" if time_part is not None and all(
+            math.isfinite(v) for v in time_part.values()) else "not measured", "grid": "not estimated"}
     if notes:
         payload["notes"] = notes
     if warnings:
@@ -295,13 +390,19 @@ def _report(args: argparse.Namespace, scene: Any, res: Any, feature: Any, body: 
         elif time_part is not None:
             why = [n for n in notes if "time error" in n]
             print(f"  {why[0] if why else 'time error not measured'}")
-    if failure is None and res.complete:
+    if failure is None and res.complete and target is None:
         # a 1 um dent through the spur gear at the default step: hm_min 19 % above its limit
         # in the step, and the 1025-point grid moves it by 9.5 % (docs/transient.md)
         measured = "measured by --time-error" if payload["films_error"]["time"] == "measured" else (
-            "not measured (--time-error measures it by a second run; --time-tol sizes the steps by it)")
-        print("ehl transient: note: the films of this run are not verified: 'converged' is its steps'; "
-              f"their time error is {measured}, their grid error is not estimated (a finer --points "
-              "shows it); at the default step a dent's minimum film can be off by tens of per cent",
+            "not measured (--time-error measures it by a second run)")
+        print("ehl transient: note: the films of this run are not verified (--accuracy none): "
+              f"'converged' is its steps'; their time error is {measured}, their grid error is not "
+              "estimated; at the default step a dent's minimum film can be off by tens of per cent",
               file=sys.stderr)
+    elif failure is None and solution is not None and target is not None and not args.json:
+        err = solution.error
+        known = math.isfinite(err.Hc) and math.isfinite(err.Hm)
+        print(f"  films within Hc {err.Hc:.2g}, Hm {err.Hm:.2g} of the smooth film (time and grid parts)"
+              if known else "  the films' error is not known (a part could not be measured)")
+        print(f"  {solution.message}")
     return payload

@@ -83,17 +83,20 @@ class TransientControl:
     on_answer : called with every completed run made as an answer (the first and each
         refinement), as it completes: a caller keeps the finished work of a sequence that is
         stopped.
+    progress : called with one line of text before and after every run (its grid, step and
+        purpose; the seconds it took).
     """
 
     def __init__(self, run: Callable[..., TransientResult], *, dimensions: int, scheme: str = "bdf2",
                  time_tol: float | None = None, callback: Any = None, points: int = 0,
                  max_points: int | None = None,
-                 on_answer: Callable[[TransientResult], None] | None = None) -> None:
+                 on_answer: Callable[[TransientResult], None] | None = None,
+                 progress: Callable[[str], None] | None = None) -> None:
         self.run, self.dimensions, self.scheme = run, dimensions, scheme
         self.time_tol, self.callback = time_tol, callback
         self.start = Resolution(points)
         self.max_points = points if max_points is None else max_points
-        self.on_answer = on_answer
+        self.on_answer, self.progress = on_answer, progress
         self.order = 2 if scheme == "bdf2" else 1
         self.runs: dict[Resolution, TimeRun] = {}
         #: the time part of each estimated run ({"Hc", "Hm"}; None when not measured)
@@ -162,6 +165,11 @@ class TransientControl:
         t0 = time.perf_counter()
         result: TransientResult | None = None
         error: Exception | None = None
+        what = {"solve": "run", "pair": "pair run"}.get(purpose, purpose)
+        if self.progress is not None:
+            b = self.first
+            step = f"dT = {b.dt * at.dt:.4g}" if b is not None else "the first step"
+            self.progress(f"{what} on {at.points} points, {step}")
         try:
             result = self.run(self.callback if at == self.start else None, **self.step_options(at))
         except ConvergenceError as exc:
@@ -171,6 +179,9 @@ class TransientControl:
                 raise  # the caller's input: refused as without a target
             error = exc
         r = self.runs[at] = TimeRun(at, result, error, time.perf_counter() - t0, purpose)
+        if self.progress is not None:
+            self.progress(f"{what} on {at.points} points {'done' if self.converged(r) else 'failed'} "
+                          f"in {r.wall_s:.1f} s")
         return r
 
     # -- Controlled ----------------------------------------------------------------------------------

@@ -172,7 +172,7 @@ def transient_scene(folder: Path) -> Path:
 
 
 def transient_args(scene: Path) -> list[str]:
-    return ["transient", str(scene), "--points", "129", "--steps", "4"]
+    return ["transient", str(scene), "--accuracy", "none", "--points", "129", "--steps", "4"]
 
 
 # -- ehl run -----------------------------------------------------------------------------------

@@ -148,7 +148,7 @@ def test_the_newton_path_is_judged_on_its_iteration_alone(calls, tmp_path, capsy
 def test_ehl_transient_hands_its_checkpoint_to_the_front_door(calls, tmp_path, capsys):
     from ehl_multigrid.transient.checkpoint import Checkpoint
 
-    main(["transient", _dent_scene(tmp_path), "--points", "129", "--steps", "2", "--no-plots",
+    main(["transient", _dent_scene(tmp_path), "--accuracy", "none", "--points", "129", "--steps", "2", "--no-plots",
           "--out", str(tmp_path / "o")])
     (call,) = calls
     assert call["accuracy"] is None

@@ -69,7 +69,7 @@ def test_a_failing_step_keeps_the_steps_before_it_marked_incomplete_with_exit_3(
         dent_scene, tmp_path, monkeypatch, capsys, how):
     _failing_after(monkeypatch, 4, how)
     out = tmp_path / "out"
-    rc = main(["transient", dent_scene, "--points", "129", "--steps", "10", "--snapshot-every", "3",
+    rc = main(["transient", dent_scene, "--accuracy", "none", "--points", "129", "--steps", "10", "--snapshot-every", "3",
                "--out", str(out), "--json"])
     assert rc == 3
     f = load_series(out / H5)
@@ -87,7 +87,7 @@ def test_a_failing_step_keeps_the_steps_before_it_marked_incomplete_with_exit_3(
                                                    ("mass-conserving", ["--time-tol", "1e-3"])])
 def test_an_interrupted_run_resumed_repeats_the_uninterrupted_run(dent_scene, tmp_path, monkeypatch,
                                                                   cavitation, extra):
-    args = ["transient", dent_scene, "--points", "129", "--steps", "12", "--snapshot-every", "5",
+    args = ["transient", dent_scene, "--accuracy", "none", "--points", "129", "--steps", "12", "--snapshot-every", "5",
             "--no-plots", "--cavitation", cavitation, *extra]
     with monkeypatch.context() as m:
         _failing_after(m, 7, "interrupt")
@@ -113,7 +113,7 @@ def test_a_signal_surfacing_from_a_compiled_kernel_stops_the_run_as_a_signal(
         dent_scene, tmp_path, monkeypatch, capsys):
     _failing_after(monkeypatch, 3, "signal in a kernel")
     out = tmp_path / "out"
-    assert main(["transient", dent_scene, "--points", "129", "--steps", "10", "--out", str(out)]) == 143
+    assert main(["transient", dent_scene, "--accuracy", "none", "--points", "129", "--steps", "10", "--out", str(out)]) == 143
     f = load_series(out / H5)
     assert not f["complete"] and f["stop_reason"].startswith("terminated (SIGTERM) during step 4")
     assert "Traceback" not in capsys.readouterr().err
@@ -132,7 +132,7 @@ def test_a_signal_while_a_step_is_recorded_keeps_the_series_and_the_state_togeth
 
     monkeypatch.setattr(TransientResult, "record", record)
     out = tmp_path / "out"
-    assert main(["transient", dent_scene, "--points", "129", "--steps", "10", "--no-plots",
+    assert main(["transient", dent_scene, "--accuracy", "none", "--points", "129", "--steps", "10", "--no-plots",
                  "--out", str(out)]) == 143
     f = load_series(out / H5)
     assert not f["complete"] and "terminated (SIGTERM)" in f["stop_reason"]
@@ -141,7 +141,7 @@ def test_a_signal_while_a_step_is_recorded_keeps_the_series_and_the_state_togeth
 
 
 def test_resume_refuses_a_complete_file_and_other_options(dent_scene, tmp_path, capsys):
-    args = ["transient", dent_scene, "--points", "129", "--steps", "2", "--no-plots", "--out", str(tmp_path)]
+    args = ["transient", dent_scene, "--accuracy", "none", "--points", "129", "--steps", "2", "--no-plots", "--out", str(tmp_path)]
     assert main([*args, "--resume"]) == 2
     assert "no checkpoint" in capsys.readouterr().err
     assert main(args) == 0
@@ -153,7 +153,7 @@ def _start(dent_scene, out, *extra):
     """``ehl transient`` in a subprocess on a run far too long to finish; returns it once its
     first checkpoint (the start) is on disk."""
     proc = subprocess.Popen([sys.executable, "-m", "ehl_multigrid", "transient", dent_scene,
-                             "--points", "129", "--steps", "100000", "--no-plots", "--out", str(out),
+                             "--accuracy", "none", "--points", "129", "--steps", "100000", "--no-plots", "--out", str(out),
                              *extra], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
     while not (out / H5).exists():

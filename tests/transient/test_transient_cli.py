@@ -5,9 +5,11 @@ from __future__ import annotations
 
 import argparse
 import json
+from pathlib import Path
 
 import pytest
 
+from ehl_multigrid.app.cli import main
 from ehl_multigrid.line.problem import LineProblem
 from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.scene import Scene, load_scene
@@ -40,7 +42,7 @@ def test_transient_command_writes_series_plots_and_summary(monkeypatch, tmp_path
     # dT = 0.03 (near the largest the dent allows, 0.031) instead of the default one mesh size
     # per step (0.0234 on 129 points): 75 steps instead of 96 for the dent's passage; 129 points
     # (257: 1.25x the cost) since the output, not the film, is checked
-    args = _parser().parse_args(["transient", "x", "--points", "129", "--dt", "0.03", "--json",
+    args = _parser().parse_args(["transient", "x", "--accuracy", "none", "--points", "129", "--dt", "0.03", "--json",
                                  "--out", str(tmp_path), "--threshold", "1e-8", "--animate",
                                  "--snapshot-every", "20"])
     out = args.func(args)
@@ -57,7 +59,7 @@ def test_transient_command_writes_series_plots_and_summary(monkeypatch, tmp_path
 def test_time_error_flag_reports_the_measured_time_part_of_an_adaptive_run(monkeypatch, tmp_path, capsys):
     sc = _scene_with({"kind": "dent", "amplitude": "20 nm", "width": 5e-5, "x0": -1.5e-4})
     monkeypatch.setattr(cli, "load_scene", lambda name: sc)
-    args = _parser().parse_args(["transient", "x", "--points", "129", "--steps", "4", "--time-tol", "1e-2",
+    args = _parser().parse_args(["transient", "x", "--accuracy", "none", "--points", "129", "--steps", "4", "--time-tol", "1e-2",
                                  "--time-error", "--no-plots", "--out", str(tmp_path),
                                  "--checkpoint-every", "0"])
     out = args.func(args)
@@ -71,7 +73,7 @@ def test_time_error_flag_says_why_a_fixed_step_run_is_not_measured(monkeypatch, 
     # the default step is the largest the dent allows: twice it is refused, and the line says so
     sc = _scene_with({"kind": "dent", "amplitude": "20 nm", "width": 5e-5, "x0": -3.0e-4})
     monkeypatch.setattr(cli, "load_scene", lambda name: sc)
-    args = _parser().parse_args(["transient", "x", "--points", "129", "--steps", "6", "--time-error",
+    args = _parser().parse_args(["transient", "x", "--accuracy", "none", "--points", "129", "--steps", "6", "--time-error",
                                  "--no-plots", "--out", str(tmp_path), "--checkpoint-every", "0"])
     out = args.func(args)
     assert out["converged"] and all(v != v for v in out["time_error"].values())  # NaN: not measured
@@ -111,7 +113,7 @@ def test_transient_command_runs_a_dent_through_a_point_scene(monkeypatch, tmp_pa
     d["feature"] = {"kind": "dent", "amplitude": depth, "width": 0.5 * pb.a, "x0": -2.0, "y0": 0.3}
     sc = Scene.from_dict(d)
     monkeypatch.setattr(cli, "load_scene", lambda name: sc)
-    args = _parser().parse_args(["transient", "x", "--points", "65", "--steps", "12", "--json",
+    args = _parser().parse_args(["transient", "x", "--accuracy", "none", "--points", "65", "--steps", "12", "--json",
                                  "--out", str(tmp_path), "--threshold", "1e-7", "--snapshot-every", "4"])
     out = args.func(args)
     err = capsys.readouterr().err
@@ -135,14 +137,48 @@ def test_transient_command_rejects_huge_grids(tmp_path):
         args.func(args)
 
 
-def test_a_completed_run_says_its_films_are_not_verified(monkeypatch, tmp_path, capsys):
+def test_a_run_without_a_target_says_its_films_are_not_verified(monkeypatch, tmp_path, capsys):
     # 'converged' is the steps': the films' grid error is never estimated and the time error only
     # with --time-error (a 1 um dent through a spur gear: hm_min 19 % off at the default step)
     sc = _scene_with({"kind": "dent", "amplitude": "20 nm", "width": 5e-5, "x0": -3.0e-4})
     monkeypatch.setattr(cli, "load_scene", lambda name: sc)
-    args = _parser().parse_args(["transient", "x", "--points", "129", "--steps", "4", "--no-plots",
-                                 "--out", str(tmp_path), "--checkpoint-every", "0"])
+    args = _parser().parse_args(["transient", "x", "--accuracy", "none", "--points", "129", "--steps", "4",
+                                 "--no-plots", "--out", str(tmp_path), "--checkpoint-every", "0"])
     out = args.func(args)
     assert out["converged"] and out["films_verified"] is False
     assert out["films_error"] == {"time": "not measured", "grid": "not estimated"}
     assert "not verified" in capsys.readouterr().err
+
+
+@pytest.mark.solver
+def test_a_run_with_a_target_states_its_time_and_grid_parts_and_exits_3_when_it_misses_it(monkeypatch, tmp_path,
+                                                                                        capsys):
+    # a 3 nm dent through page 63 at 500 N on 1025 points (the grid fixed): dT = 0.02 is halved
+    # once, and the parts then sum to 1.6 % (test_transient_control.py); 1 % is missed
+    d = load_scene("page63_line_500N").to_dict()
+    d["feature"] = {"kind": "dent", "amplitude": 3e-9, "width": 1e-4, "x0": -1.5}
+    path = tmp_path / "dent.toml"
+    path.write_text(Scene.from_dict(d).to_toml())
+    argv = ["transient", str(path), "--points", "1025", "--dt", "0.02", "--t-end", "1.0", "--no-plots", "--json"]
+    assert main([*argv, "--accuracy", "0.02", "--out", str(tmp_path / "a")]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["status"] == "converged" and out["converged"] and out["films_verified"] is True
+    fe = out["films_error"]
+    assert fe["accuracy"] == 0.02 and max(fe["Hc"], fe["Hm"]) <= 0.02
+    assert fe["Hc"] == pytest.approx(fe["time"]["Hc"] + fe["grid"]["Hc"]) and out["dt"] == 0.01
+    assert load_series(out["hdf5"])["summary"]["steps"] == out["steps"] == 100
+    assert main([*argv, "--accuracy", "0.01", "--out", str(tmp_path / "b")]) == 3
+    captured = capsys.readouterr()
+    out = json.loads(captured.out)
+    assert out["status"] == "inaccurate" and not out["converged"] and out["films_verified"] is False
+    assert max(out["films_error"]["Hc"], out["films_error"]["Hm"]) > 0.01
+    assert "above the accuracy 0.01" in out["message"] and Path(out["hdf5"]).exists()
+    assert "pair run on 513 points" in captured.err  # progress: every run of the sequence
+
+
+def test_resume_and_max_points_with_a_target_are_refused(tmp_path, capsys):
+    assert main(["transient", "page63_line_2000N", "--resume", "--out", str(tmp_path)]) == 2
+    assert "--accuracy none" in capsys.readouterr().err
+    assert main(["transient", "page63_line_2000N", "--points", "257", "--max-points", "1025",
+                 "--out", str(tmp_path)]) == 2
+    assert "--points fixes the grid" in capsys.readouterr().err

@@ -38,7 +38,8 @@ def _run(monkeypatch, tmp_path, scene, *extra, points=129):
     p = argparse.ArgumentParser()
     cli.register(p.add_subparsers(dest="command"))
     monkeypatch.setattr(cli, "load_scene", lambda name: scene)
-    args = p.parse_args(["transient", "x", "--out", str(tmp_path), "--points", str(points), *extra])
+    args = p.parse_args(["transient", "x", "--accuracy", "none", "--out", str(tmp_path), "--points", str(points),
+                         *extra])
     return args.func(args)
 
 
