@@ -11,6 +11,8 @@ import math
 import numpy as np
 import pytest
 
+import ehl_multigrid as ehl
+from ehl_multigrid import Scene, load_scene
 from ehl_multigrid.line.problem import LineProblem
 from ehl_multigrid.line.solver import solve_line_problem
 from ehl_multigrid.model.errors import ConvergenceError, InputError
@@ -260,3 +262,20 @@ def test_sampled_profile_of_a_bump_runs_like_the_bump(problem):
     assert np.max(np.abs(a.Hc - a.steady.Hc_venner)) > 0.03 * a.steady.Hc_venner  # 0.063 (129 points: 0.043)
     with pytest.raises(InputError, match="uniformly spaced"):
         Profile(np.array([0.0, 1.0, 3.0, 4.0]), np.zeros(4))
+
+
+@pytest.mark.solver
+@pytest.mark.parametrize("points, dt, t_end, slip", [(513, 0.005859375, 0.5, 2.0), (513, 0.0029296875, 0.05, 0.0),
+                                                     (4097, 0.0025, 0.0125, 0.0)])
+def test_steps_shorter_than_a_mesh_size_converge_on_the_coarse_grids(points, dt, t_end, slip):
+    """Page 63 at 500 N with a 3 nm dent: these steps diverged on a coarse grid (step 80, step
+    2 and step 2) while the relaxation's switch ignored the squeeze term's dense coupling there
+    (transient.hierarchy.squeeze_switch)."""
+    d = load_scene("page63_line_500N").to_dict()
+    d["feature"] = {"kind": "dent", "amplitude": 3e-9, "width": 1e-4, "x0": -1.5}
+    d["operating"]["slip"] = slip
+    steps: list[dict] = []
+    sol = ehl.solve(Scene.from_dict(d), physics="transient", accuracy=None,
+                    options={"points": points, "dt": dt, "t_end": t_end}, callback=steps.append)
+    assert sol.success and sol.details.complete and sol.details.stalled_steps == 0
+    assert np.mean([s["cycles"] for s in steps[1:]]) < 15
