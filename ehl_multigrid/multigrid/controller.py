@@ -345,6 +345,12 @@ def _control(physics: Controlled, start: Resolution, accuracy: float | None, ref
             break
         if step is None:
             why = physics.why_short(res, at)
+            if best[0] is not res:
+                # the answer is an earlier solve: say why this one is not it (a starved 6205
+                # outer race at 2 %: 513 points solved, its estimate no better than 257's, and
+                # only "1025 points exceed max_points" was said)
+                why = (f"the solve on {at.describe()} estimated {worst:.2g}, no better than the "
+                       f"{best[1]:.2g} of the solve returned; from it, {why}")
             break
         now = time.perf_counter()
         recurring = getattr(physics, "recurring_seconds", None)

@@ -265,3 +265,19 @@ def test_a_hopeful_step_that_misses_is_not_repeated():
     # in one dimension a rank is 2x the work, not 4x: no hopeful step
     out = control(Hopeful(dimensions=1), Resolution(257), 0.005)
     assert out.met and [s.points for s in out.steps] == [257, 1025, 4097]
+
+
+def test_when_the_last_solve_is_no_better_than_an_earlier_one_the_reason_says_so():
+    # a starved 6205 outer race at 2 %: 513 points solved, its estimate no better than 257's,
+    # and the message said only that the next grid exceeds max_points
+    class Worse(Toy):
+        def estimate(self, r, at, record):
+            return (0.04, 0.02) if at.points == 257 else (0.05, 0.02)
+
+        def candidates(self, r, at):
+            return [Candidate("points", at.finer(), 1, 0.03)] if at.points < 513 else []
+
+    out = control(Worse(), Resolution(257), 0.02)
+    assert out.result["at"].points == 257 and out.last["at"].points == 513
+    assert out.why.startswith("the solve on 513 points (box x1) estimated 0.05, no better than the 0.04 of "
+                              "the solve returned; from it, max points at 513")
