@@ -86,9 +86,10 @@ def register(subparsers: Any) -> None:
                         "e.g. 1e-3); --dt is then the output interval only (default: one step "
                         "per --dt)")
     p.add_argument("--time-error", action="store_true",
-                   help="measure the time error of Hc and Hm by a second run: at twice the step "
-                        "(about 1.5 times the cost), or with --time-tol at an eighth of the "
-                        "tolerance and half the step (about 3 times the cost)")
+                   help="with --accuracy none: measure the time error of Hc and Hm by a second run: "
+                        "at twice the step (about 1.5 times the cost), or with --time-tol at an "
+                        "eighth of the tolerance and half the step (about 3 times the cost); a "
+                        "target always measures it")
     p.add_argument("--cavitation", choices=["projection", "mass-conserving"], default="projection",
                    help="the projection P >= 0 (default), or mass-conserving Elrod-Adams "
                         "cavitation (oil conserved where the film ruptures and reforms, e.g. "
@@ -104,14 +105,14 @@ def register(subparsers: Any) -> None:
                         "(point contacts also: the fraction of the load carried there)")
     p.add_argument("--animate", action="store_true", help="also write a GIF of H and P")
     p.add_argument("--checkpoint-every", type=float, default=EVERY_S, metavar="SECONDS",
-                   help="while the run goes on, write the completed steps to the HDF5 (marked "
-                        "incomplete) every SECONDS, or less often when writing would take more than "
+                   help="with --accuracy none: while the run goes on, write the completed steps to "
+                        "the HDF5 (marked incomplete) every SECONDS, or less often when writing would take more than "
                         "5%% of the run (default %(default)g s; 0: only at the start and when the "
                         "run ends or stops)")
     p.add_argument("--resume", action="store_true",
-                   help="continue the incomplete run of this scene in --out (a checkpoint, or a run "
-                        "that failed or was stopped) after its last completed step; the scene and "
-                        "the other options must be those of that run")
+                   help="with --accuracy none: continue the incomplete run of this scene in --out (a "
+                        "checkpoint, or a run that failed or was stopped) after its last completed "
+                        "step; the scene and the other options must be those of that run")
     add_common_options(p)
     # one command at a time per output folder: a second run (or --resume) into it would
     # replace the checkpoints of the first
