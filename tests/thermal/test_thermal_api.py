@@ -144,6 +144,9 @@ def test_cli_traction_json(tmp_path, capsys):
     assert out["friction_coefficient"][3] == pytest.approx(f[3] / 4240.0)
     assert out["converged"] is True
     assert Result.load(out["hdf5"]).kind == "traction"
+    # the friction states no error, and the film is the fit's: both said
+    assert out["film_source"].startswith("Hertz pressure and the fitted film") and " nm" in out["film_source"]
+    assert out["friction_error"].startswith("not estimated")
 
 
 @pytest.mark.solver
