@@ -182,3 +182,22 @@ def test_resume_and_max_points_with_a_target_are_refused(tmp_path, capsys):
     assert main(["transient", "page63_line_2000N", "--points", "257", "--max-points", "1025",
                  "--out", str(tmp_path)]) == 2
     assert "--points fixes the grid" in capsys.readouterr().err
+
+
+def test_a_refinement_stopped_keeps_its_last_finished_answer(monkeypatch, tmp_path, capsys):
+    from ehl_multigrid.transient.control import TransientControl
+
+    def stop(self, result, at, record):
+        raise KeyboardInterrupt  # as Ctrl-C while the first answer's pairs run
+
+    monkeypatch.setattr(TransientControl, "estimate", stop)
+    d = load_scene("page63_line_500N").to_dict()
+    d["feature"] = {"kind": "dent", "amplitude": 3e-9, "width": 1e-4, "x0": -1.5}
+    path = tmp_path / "dent.toml"
+    path.write_text(Scene.from_dict(d).to_toml())
+    rc = main(["transient", str(path), "--points", "129", "--steps", "5", "--no-plots", "--out", str(tmp_path / "o")])
+    assert rc == 130
+    err = capsys.readouterr().err
+    assert "the last finished run (129 points" in err and "its error not confirmed" in err
+    back = load_series(tmp_path / "o" / "transient_page63_line_500N.h5")
+    assert back["summary"]["steps"] == 5 and back["summary"]["points"] == 129
