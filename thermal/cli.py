@@ -158,17 +158,27 @@ def run_traction(args: argparse.Namespace) -> dict[str, Any]:
         "wall_s": sum(p.report.wall_s for p in points),
         "hdf5": str(h5),
     }
-    # the curve's friction carries no error estimate (the main job's traction stage states one at
-    # the operating slip); with the Hertz input its film is the fit's: a user probe found the
-    # friction 3-5 % different on the solved 513-point film of the default scene
+    # the friction at the operating slip with its error, as the main job's traction stage states it
+    # (the curve's other slips share its grid); with the Hertz input the film is the fit's, whose
+    # own error is not in it: a user probe found the default scene's friction 3-5 % different on
+    # the solved 513-point film
+    from .stage import ModelChoice, operating_friction
+
+    op = operating_friction(scene, options, ModelChoice(options.thermal, float(scene.slip), "the command's model"),
+                            input=args.input, ehl=ehl)
     hc_fit = scene.supplied_film_fit()[1]
     payload["film_source"] = ("Hertz pressure and the fitted film (Moes/Nijenbanning), not a solved one: "
                               f"hc = {hc_fit * 1e9:.4g} nm" if args.input == "hertz" else
                               f"the EHL pressure and film of {args.ehl_file}")
-    payload["friction_error"] = ("not estimated: 'ehl run' states the operating slip's friction with its "
-                                 "error (grid, iteration, model and the film's grid)")
-    print(f"ehl traction: note: the friction's error is not estimated; the film is "
-          f"{payload['film_source']}", file=sys.stderr)
+    payload["operating_point"] = op.payload()
+    payload["friction_coefficient_at_operating_slip"] = op.coefficient
+    payload["friction_coefficient_at_operating_slip_error"] = op.error
+    payload["converged"] = payload["converged"] and op.converged
+    payload["friction_error"] = (f"at the operating slip {op.slip:g}: +- {op.error:.2g} (parts "
+                                 f"{', '.join(k for k, v in op.parts.items() if v)}; computed on {op.grid}); "
+                                 f"not counted: the film's own error ({payload['film_source']})")
+    print(f"ehl traction: note: f = {op.coefficient:.4g} +- {op.error:.2g} at the operating slip {op.slip:g}; "
+          f"the film's own error is not counted (the film is {payload['film_source']})", file=sys.stderr)
     if not args.no_plots:
         from .plots import plot_all
 

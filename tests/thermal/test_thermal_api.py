@@ -144,9 +144,13 @@ def test_cli_traction_json(tmp_path, capsys):
     assert out["friction_coefficient"][3] == pytest.approx(f[3] / 4240.0)
     assert out["converged"] is True
     assert Result.load(out["hdf5"]).kind == "traction"
-    # the friction states no error, and the film is the fit's: both said
+    # the operating slip's friction with its error, as the main job states it; the film is the
+    # fit's, and its own error is said not to be counted
     assert out["film_source"].startswith("Hertz pressure and the fitted film") and " nm" in out["film_source"]
-    assert out["friction_error"].startswith("not estimated")
+    op = out["operating_point"]
+    assert op["slip"] == 0.0 or op["friction_coefficient_error"] >= op["error_parts"]["grid"] > 0.0
+    assert out["friction_coefficient_at_operating_slip_error"] == op["friction_coefficient_error"]
+    assert out["friction_error"].startswith("at the operating slip") and "not counted: the film" in out["friction_error"]
 
 
 @pytest.mark.solver
