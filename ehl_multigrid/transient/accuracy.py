@@ -110,9 +110,7 @@ def grid_error(fine: TransientResult, coarser: list[TransientResult]) -> dict[st
     ``log2(d1/d2)`` where it lies in [1, 4] (capped at :data:`GRID_MAX_ORDER`), else first
     order; at least half of ``d1`` where the order is irregular or above 2 (a difference over
     the run may fall fast by accident: the minimum film is a nodal minimum); from two grids,
-    first order. A 1 um dent through a
-    spur gear (513 points) changed hm by 1.25 film units on both refinements before it: first
-    order, 47 % of the smooth minimum film (docs/transient.md)."""
+    first order (docs/transient.md, "What a run's films are worth")."""
     runs = [fine, *coarser]
     for r in coarser:
         if not math.isclose(r.dt, fine.dt, rel_tol=1e-9) or not (

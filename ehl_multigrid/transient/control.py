@@ -31,6 +31,7 @@ from ..model.errors import ConvergenceError, InputError
 from ..multigrid.controller import REQUIRED_GAIN, Candidate, ControlOutcome, Refinement, Resolution
 from .accuracy import (
     GRID_MAX_ORDER,
+    PREASYMPTOTIC_COURANT,
     TIGHTER_TOL,
     adaptive_time_error,
     courant,
@@ -296,7 +297,7 @@ class TransientControl:
         first where the run at ``at`` moves a mesh size per step or more (its pair then did, by
         more), the scheme's otherwise."""
         r = self.runs.get(at)
-        if r is not None and r.result is not None and courant(r.result) >= 1.0:
+        if r is not None and r.result is not None and courant(r.result) >= PREASYMPTOTIC_COURANT:
             return 1
         return self.order
 

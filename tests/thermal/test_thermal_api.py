@@ -148,9 +148,15 @@ def test_cli_traction_json(tmp_path, capsys):
     # fit's, and its own error is said not to be counted
     assert out["film_source"].startswith("Hertz pressure and the fitted film") and " nm" in out["film_source"]
     op = out["operating_point"]
-    assert op["slip"] == 0.0 or op["friction_coefficient_error"] >= op["error_parts"]["grid"] > 0.0
+    assert op["slip"] == 0.0  # the scene's (pure rolling: the friction there is round-off)
+    assert op["friction_coefficient_error"] == pytest.approx(sum(op["error_parts"].values()))
     assert out["friction_coefficient_at_operating_slip_error"] == op["friction_coefficient_error"]
     assert out["friction_error"].startswith("at the operating slip") and "not counted: the film" in out["friction_error"]
+    # at a sliding operating slip the grid part is measured on the grid twice as fine
+    assert main(["traction", "default", "--slip=0.05", "--nx", "40", "--json", "--out", str(tmp_path / "d"),
+                 "--no-plots"]) == 0
+    op = json.loads(capsys.readouterr().out)["operating_point"]
+    assert op["slip"] == 0.05 and op["error_parts"]["grid"] > 0.0 and op["grid"].startswith("nx 80,")
 
 
 @pytest.mark.solver
