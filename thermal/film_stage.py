@@ -19,6 +19,7 @@ more than the tolerance.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
@@ -73,12 +74,15 @@ def thermal_film_stage(ctx: RunContext) -> StageOutput | None:
         notes.append(f"thermal film solve did not reach the {plan.tolerance:g} target: estimated errors "
                      f"Hc {err.Hc:.2g}, Hm {err.Hm:.2g}")
     s = res.scalars
+    why = next((n for n in err.notes if n.startswith(("T_max is", "T_max's"))), "not measured")
+    t_error = (f"+- {sol.details.T_max_error_K:.2g} K" if math.isfinite(sol.details.T_max_error_K) else
+               f"error unknown: {why}")
     friction = f", friction coefficient {s['friction_coefficient']:.4g}" if s["slip"] != 0.0 else ""
     text = (f"Coupled thermal EHL film at the operating slip {s['slip']:g} on {summary['points']} points "
             f"along X, nz {summary['nz']}: hc = {s['hc'] * 1e9:.4g} nm, hm = {s['hm'] * 1e9:.4g} nm "
             f"(Hc/Hc_isothermal {s['Hc'] / s['Hc_isothermal']:.4g}, Hm/Hm_isothermal "
             f"{s['Hm'] / s['Hm_isothermal']:.4g} on the same grid); largest oil temperature "
-            f"{s['T_max']:.4g} degC{friction}; estimated errors Hc {err.Hc:.2g}, Hm {err.Hm:.2g} (target "
+            f"{s['T_max']:.4g} degC ({t_error}){friction}; estimated errors Hc {err.Hc:.2g}, Hm {err.Hm:.2g} (target "
             f"{plan.tolerance:g}); status: {sol.status.label}. The later stages compute on this film.")
     figures: list[Path] = []
     if ctx.plots:

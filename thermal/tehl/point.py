@@ -162,6 +162,9 @@ class TEHLPointResult(TEHLResult):
     T_surface1: np.ndarray
     T_surface2: np.ndarray
     extra: dict[str, Any] = field(default_factory=dict)
+    #: the largest temperature across the film at each node (Y, X) [degC], whose maximum is
+    #: ``T_max``; the grid part of T_max's error compares it between grids
+    T_peak: np.ndarray | None = None
 
 
 @dataclass
@@ -358,7 +361,7 @@ def solve_tehl_point(scene: Scene, slip: float | None = None, options: TEHLOptio
         scene=scene, slip=slip, problem=pb, X=iso.X, Y=iso.Y, P=done.state.P, H=done.state.H, Hc=done.state.Hc,
         Hm=done.state.Hm, Hc_isothermal=Hc_iso, Hm_isothermal=Hm_iso, T_mid=th.T[:, :, (opts.nz + 1) // 2],
         T_surface1=th.T[:, :, 0], T_surface2=th.T[:, :, -1], friction=F, friction_coefficient=F / scene.load,
-        friction_decoupled=decoupled, T_max=float(np.max(th.T)), heat=heat, heat_partition=heat_partition(heat),
+        friction_decoupled=decoupled, T_max=float(np.max(th.T)), T_peak=th.T.max(axis=2), heat=heat, heat_partition=heat_partition(heat),
         heat_balance_error=float(abs(heat["balance"])), a=done.a, c=done.c, outer=done.outer,
         report=done.report, wall_s=time.perf_counter() - t0, extra={"thermal_rows": len(th.rows)}, options=opts,
     )

@@ -52,8 +52,11 @@ def test_point_estimate_is_finite_and_covers_the_finer_solve(tehl_ball_5n_129):
     r = tehl_ball_5n_129  # S = 0.5 on 129 points, nz = 10
     cache = SolveCache.of(r)
     e = estimate_error(r, cache=cache)
-    for key in ("Hc", "Hm", "friction_coefficient", "T_max"):
+    for key in ("Hc", "Hm", "friction_coefficient"):
         assert all(math.isfinite(v) and v >= 0 for v in e[key].values()), key
+    # 129 points have no quarter grid (33 < 65) to follow the temperature field over three
+    # grids: T_max's grid part is unknown, said so, and the films do not depend on it
+    assert math.isinf(e["T_max"]["grid_x"]) and any("T_max's grid error unknown" in n for n in e.notes)
     # the estimate reused the solves on every other node, on nz/2 and the box probe (a point
     # contact's probe on no fewer than 129 points per default box)
     assert {(65, 10, 1.0), (129, 5, 1.0), (257, 10, 2.0)} <= set(cache.results)
