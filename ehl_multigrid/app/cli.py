@@ -19,6 +19,10 @@ Exit codes, the same for every subcommand (the layers' included):
 * 141 -- the reader of the output went away (``ehl show default | head -2``): output stops
   quietly, as for a process ended by SIGPIPE.
 
+With ``--json`` a failure that leaves no payload (exit 2, 3, 130, 143) still prints one JSON
+object on stdout: ``command``, ``exit_code``, ``error`` (``input``, ``convergence``,
+``interrupted``, ``terminated``), ``message`` and ``converged: false``.
+
 Implausible inputs and results (a ball radius of 10 m, a 343 degC oil: usually a unit mistake)
 are warned about once each on stderr, one line naming field, value, plausible range and the
 probable mistake (:class:`~ehl_multigrid.model.errors.PlausibilityWarning`); ``ehl --strict``
@@ -487,6 +491,19 @@ def _main(argv: Sequence[str] | None) -> int:
         return _run_command(args)
 
 
+def _failed(args: argparse.Namespace, code: int, error: str, message: str) -> int:
+    """``code``; with ``--json`` also one line of JSON on stdout saying why nothing else came
+    (``{"command", "exit_code", "error", "message", "converged": false}``), so that a script
+    reading stdout always gets an object."""
+    if getattr(args, "json", False):
+        try:
+            print_payload({"command": args.command, "exit_code": code, "error": error, "message": message,
+                           "converged": False})
+        except (BrokenPipeError, ValueError):  # the reader went away, or stdout is closed
+            pass
+    return code
+
+
 def _run_command(args: argparse.Namespace) -> int:
     previous = None
     try:
@@ -497,31 +514,33 @@ def _run_command(args: argparse.Namespace) -> int:
         payload = args.func(args)
     except InputError as exc:
         print(f"ehl {args.command}: error: {_one_line(exc)}", file=sys.stderr)
-        return EXIT_INPUT
+        return _failed(args, EXIT_INPUT, "input", _one_line(exc))
     except ConvergenceError as exc:
         print(f"ehl {args.command}: did not converge: {exc}", file=sys.stderr)
-        return EXIT_CONVERGENCE
+        return _failed(args, EXIT_CONVERGENCE, "convergence", str(exc).splitlines()[0])
     except KeyboardInterrupt:
         print(f"ehl {args.command}: interrupted; finished work was kept", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _failed(args, EXIT_INTERRUPTED, "interrupted", "interrupted; finished work was kept")
     except Terminated:
         print(f"ehl {args.command}: terminated; finished work was kept", file=sys.stderr)
-        return EXIT_TERMINATED
+        return _failed(args, EXIT_TERMINATED, "terminated", "terminated; finished work was kept")
     except SystemError as exc:
         # a signal that arrived while compiled code ran reaches us wrapped in a SystemError
         cause = signal_cause(exc)
         if cause is None:
             raise
         interrupted = isinstance(cause, KeyboardInterrupt)
-        print(f"ehl {args.command}: {'interrupted' if interrupted else 'terminated'}; finished work was kept",
-              file=sys.stderr)
-        return EXIT_INTERRUPTED if interrupted else EXIT_TERMINATED
+        what = "interrupted" if interrupted else "terminated"
+        print(f"ehl {args.command}: {what}; finished work was kept", file=sys.stderr)
+        return _failed(args, EXIT_INTERRUPTED if interrupted else EXIT_TERMINATED, what,
+                       f"{what}; finished work was kept")
     except OSError as exc:
         if exc.filename is None:
             raise
         # the disk filled up, a file vanished or permissions changed while writing
-        print(f"ehl {args.command}: error: cannot access {exc.filename!s}: {exc.strerror or exc}", file=sys.stderr)
-        return EXIT_INPUT
+        message = f"cannot access {exc.filename!s}: {exc.strerror or exc}"
+        print(f"ehl {args.command}: error: {message}", file=sys.stderr)
+        return _failed(args, EXIT_INPUT, "input", message)
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)

@@ -51,6 +51,19 @@ def test_solve_with_a_failed_start_exits_3_without_a_traceback_or_a_file(tmp_pat
     assert not list(tmp_path.iterdir())
 
 
+def test_json_failures_still_print_one_object_on_stdout(tmp_path, capsys):
+    # a script reading --json output gets an object with the exit code and the reason, for
+    # bad input (2) and a computation that raised (3) alike
+    rc = main(["solve", "--contact", "point", "--M", "-5", "--L", "10", "--json", "--no-plots",
+               "--out", str(tmp_path)])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 2 and out["exit_code"] == 2 and out["error"] == "input" and "M = -5" in out["message"]
+    rc = main(["solve", "--contact", "line", "--M", "5000", "--L", "0", "--points", "129", "--json",
+               "--out", str(tmp_path)])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 3 and out["exit_code"] == 3 and not out["converged"] and "positive" in out["message"]
+
+
 @pytest.mark.parametrize("flags, field", [
     (["--threads", "0"], "--threads"),
     (["--threads", "1000"], "--threads"),

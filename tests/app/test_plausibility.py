@@ -58,7 +58,9 @@ def test_strict_turns_a_plausibility_warning_into_exit_2(tmp_path, capsys, monke
         monkeypatch.setenv("EHL_STRICT", "1")
         rc = main(["show", path, "--json"])
     captured = capsys.readouterr()
-    assert rc == 2 and captured.out == ""
+    # stdout carries only the --json failure object, no result
+    out = json.loads(captured.out)
+    assert rc == 2 and out["error"] == "input" and out["message"].startswith("geometry.R1x = 10.32 m")
     assert captured.err.startswith("ehl show: error: geometry.R1x = 10.32 m")
     assert "millimetres" in captured.err and len(captured.err.strip().splitlines()) == 1
 
