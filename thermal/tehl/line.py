@@ -103,6 +103,17 @@ class TEHLLineResult(TEHLResult):
     def h(self) -> np.ndarray:
         return self.H * self.problem.b ** 2 / self.problem.R
 
+    @property
+    def film_reduction(self) -> float:
+        """Thermal reduction factor of the central film: ``Hc / Hc_isothermal``; for a starved
+        film ``Hc / Hc_isothermal_starved``, the isothermal starved film at the same supply and
+        grid (``Hc_isothermal`` is the isothermal film on the thermal solve's box, which ends at
+        another meniscus: it carries another supply). NaN when that solve failed."""
+        st = self.starved or {}
+        if not st or st.get("inlet_flooded", True):
+            return self.Hc / self.Hc_isothermal
+        return self.Hc / st.get("Hc_isothermal_starved", math.nan)
+
     def _own_keys(self) -> dict[str, Any]:
         return {"momentum": self.report.extra.get("momentum", "gradient"),
                 "compressive_heating": self.options.compressive_heating,
@@ -397,7 +408,8 @@ def solve_tehl_line_starved(scene: Scene, slip: float | None = None, options: TE
     ``Hc_ratio``, ``Hm_ratio`` (these five NaN, with ``flooded_failure`` saying why, when the
     flooded solve fails: the search then runs all the same), ``inlet_flooded``,
     ``meniscus_solves`` (TEHL solves made), ``meniscus_history`` (each box solve: meniscus,
-    flux, status) and, when the isothermal solver gave the seed, ``meniscus_x_isothermal``,
+    flux, status) and, when the isothermal starved solve at the same supply and grid converged
+    (its meniscus seeds the search), ``meniscus_x_isothermal``,
     ``Hc_isothermal_starved``, ``Hm_isothermal_starved`` and ``hc_isothermal_starved`` [m]
     (its films at the same supply and grid). ``scene`` of the result is the starved scene,
     ``options`` the options asked for (the box, from the meniscus, is ``problem``/``X``).
@@ -433,22 +445,23 @@ def solve_tehl_line_starved(scene: Scene, slip: float | None = None, options: TE
         full.scene, full.starved = scene, info
         full.wall_s = time.perf_counter() - t0
         return full
+    # the isothermal starved films at the same supply and grid: the thermal reduction of a
+    # starved film is at equal supply (film_reduction), and their meniscus seeds the search
+    try:
+        iso = solve_starved_line(pb, Hoil, None, None, estimate=False, points=opts.points,
+                                 raise_on_failure=False)
+    except ConvergenceError:
+        iso = None
     seed = meniscus
-    if seed is None:
-        try:
-            iso = solve_starved_line(pb, Hoil, None, None, estimate=False, points=opts.points,
-                                     raise_on_failure=False)
-        except ConvergenceError:
-            iso = None
-        if iso is not None and iso.success and math.isfinite(iso.scalars.get("meniscus_x", math.nan)):
-            seed = float(iso.scalars["meniscus_x"])
-            info.update(meniscus_x_isothermal=seed, Hc_isothermal_starved=float(iso.scalars["Hc"]),
-                        Hm_isothermal_starved=float(iso.scalars["Hm"]),
-                        hc_isothermal_starved=float(iso.scalars["Hc_venner"]) * pb.b**2 / pb.R)
-        else:
-            # no isothermal seed: the search starts at a meniscus a fifth of the contact
-            # half-width upstream and brackets outwards
-            seed = -1.2
+    if iso is not None and iso.success and math.isfinite(iso.scalars.get("meniscus_x", math.nan)):
+        info.update(meniscus_x_isothermal=float(iso.scalars["meniscus_x"]),
+                    Hc_isothermal_starved=float(iso.scalars["Hc"]), Hm_isothermal_starved=float(iso.scalars["Hm"]),
+                    hc_isothermal_starved=float(iso.scalars["Hc_venner"]) * pb.b**2 / pb.R)
+        seed = info["meniscus_x_isothermal"] if seed is None else seed
+    elif seed is None:
+        # no isothermal seed: the search starts at a meniscus a fifth of the contact
+        # half-width upstream and brackets outwards
+        seed = -1.2
 
     def solve_box(xm: float) -> TEHLLineResult:
         return _solve_flooded(flooded_scene, slip, opts.with_changes(xmin=min(xm, -1.0 - 1e-9), box=1.0))

@@ -53,6 +53,17 @@ def test_thermal_solve_of_a_starved_scene_carries_the_supplied_oil(starved_scene
     # isothermal starved film (the hotter oil is lighter, so the same mass needs more gap)
     assert r.hc == pytest.approx(s["hc_isothermal_starved"], rel=0.005)
     assert r.report.converged and r.scene.supply.hoil == 2e-8
+    # the thermal reduction of a starved film is at equal supply, not at equal meniscus
+    # (Hc_isothermal is the isothermal film on the thermal solve's box, another supply)
+    assert r.film_reduction == pytest.approx(r.Hc / s["Hc_isothermal_starved"])
+    assert r.summary()["film_reduction"] == r.film_reduction
+
+
+def test_a_refinement_started_at_a_given_meniscus_still_has_the_equal_supply_reduction(starved_scene):
+    # solves of an estimate or a refinement start from the meniscus found before
+    r = solve_tehl_line(starved_scene, None, TEHLOptions(points=257, nz=8), meniscus=-1.05)
+    assert math.isfinite(r.starved["Hc_isothermal_starved"])
+    assert r.film_reduction == pytest.approx(r.Hc / r.starved["Hc_isothermal_starved"])
 
 
 def test_a_supply_above_the_flooded_flux_floods_the_thermal_inlet(starved_scene):
