@@ -26,12 +26,12 @@ from typing import Any
 from .. import front
 from ..model.atomic import fault_point
 from ..model.constants import MOES_ONLY_DEFAULTS
-from ..model.errors import ConvergenceError, InputError, require_solution
+from ..model.errors import ConvergenceError, InputError
 from ..model.output_folder import StagedOutputs, output_lock
 from ..model.paths import safe_stem
 from ..solution import MoesProblem
 from .console import Progress, print_table, report_leftovers
-from .solved import package_result, require_computed
+from .solved import package_result, require_film
 
 #: grid of the Newton/pyamg point path when neither the scene nor ``--points`` gives one
 DEFAULT_POINTS = 257
@@ -127,7 +127,7 @@ def _solve_line(args: argparse.Namespace, scene: Any, out: Path, prog: Progress)
         problem = MoesProblem("line", args.M, args.L, **laws, **oil)
         sol = front.solve(problem, physics="steady", accuracy=accuracy, options={**opts, **model},
                           callback=prog.solver_callback, progress=prog.say)
-        raw = require_computed(sol)
+        raw = require_film(sol, "line solver")
         used = {k: (v if v is not None else MOES_ONLY_DEFAULTS[k]) for k, v in oil.items()}
         name = f"line_M{args.M:g}_L{args.L:g}"
         if not args.json:
@@ -143,15 +143,14 @@ def _solve_line(args: argparse.Namespace, scene: Any, out: Path, prog: Progress)
                                  f"oil comes from the scene's [lubricant] table")
         if math.isfinite(scene.supply.hoil):
             sol = front.solve(scene, physics="starved", accuracy=accuracy, options={**opts, **model})
-            raw = require_computed(sol)
+            raw = require_film(sol, "starved line solver")
             if raw.X is None:  # nothing to write: e.g. a supply below the solver's reach
                 raise ConvergenceError(f"starved line solver: {sol.message}")
         else:
             sol = front.solve(scene, physics="steady", accuracy=accuracy, options={**opts, **model},
                               callback=prog.solver_callback, progress=prog.say)
-            raw = require_computed(sol)
+            raw = require_film(sol, "line solver")
         name = scene.name
-    require_solution(raw, "line solver")
     res = package_result(sol)
     starved = "meniscus_x" in raw.scalars
     if starved:
@@ -270,8 +269,7 @@ def _solve_point(args: argparse.Namespace, scene: Any, out: Path, prog: Progress
     else:
         sol = front.solve(problem, physics="steady", accuracy=accuracy, options={**fas, **model},
                           callback=prog.solver_callback, progress=prog.say)
-    raw = require_computed(sol)
-    require_solution(raw, "point solver")
+    raw = require_film(sol, "point solver")
     res = package_result(sol)
     from ..point.postprocess import summary_payload
 
@@ -295,7 +293,7 @@ def _solve_starved_point(args: argparse.Namespace, scene: Any, pb: Any, fas: dic
               f"{scene.supply.hoil:.4g} m (mass-conserving Elrod-Adams solver)")
     fsol = front.solve(scene, physics="starved", accuracy=accuracy,
                        options={**fas, "viscosity": pb.viscosity, "density": pb.density})
-    sol = require_computed(fsol)
+    sol = require_film(fsol, "starved point solver")
     res = package_result(fsol)
     payload = starved_point_payload(sol, res)
     payload["solver"] = "starved-fas"

@@ -22,10 +22,25 @@ def require_computed(sol: Any) -> Any:
     return sol.raw
 
 
+def require_film(sol: Any, what: str) -> Any:
+    """:func:`require_computed`, and a :class:`ConvergenceError` as well when the solve ended
+    with no film (a failed start or a diverged iterate, :data:`~ehl_multigrid.front.NO_FILM`):
+    writing its iterate would present zeros or a blown-up field as a film (a point load of
+    0.04 N diverged on the second grid and was written with H = 0, ``Hc`` 0 in ``--json``)."""
+    from ..front import NO_FILM
+
+    raw = require_computed(sol)
+    if sol.status in NO_FILM:
+        raise ConvergenceError(f"{what} {sol.status.label}: {sol.message}", getattr(raw, "report", None),
+                               "check the inputs' magnitudes and units (load, speed, viscosity), or try "
+                               "--points or --cycle; no film was computed, so nothing was written")
+    return raw
+
+
 def package_result(sol: Any) -> Any:
     """The HDF5 :class:`~ehl_multigrid.model.results.Result` of ``sol`` to write:
-    ``sol.to_result()``, or for a solve whose iterate the contract leaves out (a diverged or
-    failed start) the solver's result as it is, whose status and message say it failed."""
+    ``sol.to_result()``, or for a solve that ended without fields the solver's result as it
+    is, whose status and message say it failed."""
     if sol.fields:  # a film: the contract's own view
         return sol.to_result()
     return sol.raw.to_result(sol.scene)

@@ -160,15 +160,6 @@ def reject_unknown_keys(section: str, given: dict, allowed: set[str] | list[str]
         )
 
 
-def require_solution(result: Any, what: str) -> None:
-    """Raise :class:`ConvergenceError` when ``result`` (a solver result with ``status_name``
-    and ``message``) holds no solution at all (its start failed): its fields are the initial
-    guess, and writing or plotting them would present zeros as a film."""
-    if getattr(result, "status_name", "") == "start_failed":
-        raise ConvergenceError(f"{what}: {result.message}", getattr(result, "report", None),
-                               "see the message; no solution was written")
-
-
 class Terminated(BaseException):
     """SIGTERM, turned into an exception by the command line so that ``finally`` blocks run
     (sweep workers are stopped, partial results are written and marked incomplete)."""

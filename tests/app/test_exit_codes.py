@@ -5,6 +5,7 @@ fit's extrapolation warned about, and ``ehl solve --csv``."""
 import csv
 import json
 import re
+from pathlib import Path
 
 import pytest
 
@@ -62,6 +63,19 @@ def test_json_failures_still_print_one_object_on_stdout(tmp_path, capsys):
                "--out", str(tmp_path)])
     out = json.loads(capsys.readouterr().out)
     assert rc == 3 and out["exit_code"] == 3 and not out["converged"] and "positive" in out["message"]
+
+
+def test_a_diverged_point_solve_writes_no_film_and_exits_3(tmp_path, capsys):
+    # the default ball at 0.0428 N (a load given in kN as N): diverged on the second grid; its
+    # iterate (H = 0) was written as a film with Hc = 0 in --json
+    path = tmp_path / "light.toml"
+    text = (Path(__file__).parents[2] / "ehl_multigrid" / "scenes" / "default.toml").read_text()
+    path.write_text(re.sub(r"(?m)^load = .*$", "load = 0.0428", text))
+    out_dir = tmp_path / "out"
+    rc = main(["solve", str(path), "--json", "--no-plots", "--out", str(out_dir)])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 3 and out["error"] == "convergence" and "diverged" in out["message"]
+    assert "Hc" not in out and not (out_dir.exists() and list(out_dir.iterdir()))
 
 
 @pytest.mark.parametrize("flags, field", [
