@@ -37,6 +37,7 @@ from dataclasses import fields, is_dataclass, replace
 from typing import Any
 
 from .model.errors import ConvergenceError, InputError, require_choice, require_range, require_slip
+from .model.plausibility import warn_model_range
 from .model.scene import Scene, load_scene
 from .solution import (
     ErrorEstimate,
@@ -752,14 +753,23 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     for name, fn in (("callback", callback), ("progress", progress)):
         if fn is not None and not callable(fn):
             raise InputError(f"{name} = {fn!r} is not callable")
+    if physics == "transient" and progress is not None and accuracy is None:
+        warnings.warn("progress is not called: a transient run without a target is one run, reported "
+                      "per time step through callback", UserWarning, stacklevel=2)
+    sol = _dispatch(physics, scene, moes, contact, accuracy, options, callback, progress, t0)
+    if scene is not None and sol.fields:
+        warn_model_range("film", sol.hm, f"the minimum film hm of {scene.name}")
+    return sol
+
+
+def _dispatch(physics: str, scene: Scene | None, moes: MoesProblem | None, contact: str,
+              accuracy: float | None, options: Any, callback: Any, progress: Any, t0: float) -> Solution:
+    """The solve of ``physics``: the core's own, or the layer registered for it."""
     if physics == "steady":
         return _steady(scene, moes, contact, accuracy, options, callback, progress, t0)
     if physics == "starved":
         return _starved(scene, contact, accuracy, options, callback, progress, t0)
     if physics == "transient":
-        if progress is not None and accuracy is None:
-            warnings.warn("progress is not called: a transient run without a target is one run, reported "
-                          "per time step through callback", UserWarning, stacklevel=2)
         return _transient(scene, contact, accuracy, options, callback, t0, progress)
     run = registered_physics()[physics].load()
     try:

@@ -46,6 +46,7 @@ from typing import Any
 from ..model.errors import (
     ConvergenceError,
     InputError,
+    ModelRangeWarning,
     PlausibilityWarning,
     Terminated,
     require_range,
@@ -455,13 +456,13 @@ def _stdout_to_devnull() -> None:
 
 
 def _plausibility_printer(command: str, fallback: Callable[..., None]) -> Callable[..., None]:
-    """A ``warnings.showwarning`` printing each distinct plausibility warning once, as one line
-    of stderr; other warnings go to ``fallback``."""
+    """A ``warnings.showwarning`` printing each distinct plausibility or model-range warning
+    once, as one line of stderr; other warnings go to ``fallback``."""
     seen: set[str] = set()
 
     def show(message: Warning | str, category: type[Warning], filename: str, lineno: int,
              file: Any = None, line: str | None = None) -> None:
-        if not issubclass(category, PlausibilityWarning):
+        if not issubclass(category, (PlausibilityWarning, ModelRangeWarning)):
             fallback(message, category, filename, lineno, file, line)
             return
         text = _one_line(message)
@@ -487,6 +488,7 @@ def _main(argv: Sequence[str] | None) -> int:
         # strict: warn_implausible turns the warning into an InputError (exit 2)
         warnings.simplefilter("error" if args.strict or strict_from_environment() else "always",
                               PlausibilityWarning)
+        warnings.simplefilter("always", ModelRangeWarning)  # not a unit mistake: never refused
         warnings.showwarning = _plausibility_printer(args.command, warnings.showwarning)
         return _run_command(args)
 

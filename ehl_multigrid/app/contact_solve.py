@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import warnings
 from dataclasses import fields
 from pathlib import Path
 from typing import Any
@@ -26,7 +27,7 @@ from typing import Any
 from .. import front
 from ..model.atomic import fault_point
 from ..model.constants import MOES_ONLY_DEFAULTS
-from ..model.errors import ConvergenceError, InputError
+from ..model.errors import ConvergenceError, InputError, ModelRangeWarning
 from ..model.output_folder import StagedOutputs, output_lock
 from ..model.paths import safe_stem
 from ..solution import MoesProblem
@@ -59,7 +60,34 @@ def run_contact_solve(args: argparse.Namespace, scene: Any, kind: str) -> dict[s
     with output_lock(out, "ehl solve") as removed:
         report_leftovers("ehl solve", removed)
         with Progress("ehl solve") as prog:
-            return (_solve_line if kind == "line" else _solve_point)(args, scene, out, prog)
+            payload = (_solve_line if kind == "line" else _solve_point)(args, scene, out, prog)
+    if scene is not None:
+        note = heat_note(scene, getattr(args, "accuracy", None))
+        if note:
+            payload["heat_note"] = note
+            warnings.warn(note, ModelRangeWarning, stacklevel=2)
+    return payload
+
+
+def heat_note(scene: Any, accuracy: float | None) -> str | None:
+    """Why the isothermal film of ``scene`` is short of ``accuracy`` because of the contact's
+    heat (the plan's estimate, :func:`~ehl_multigrid.app.plan.thermal_film_change`, above the
+    standard fidelity's tolerance too), or None. Its estimated error does not include that
+    change."""
+    from ..model.fidelity import FIDELITIES
+    from .plan import thermal_film_change
+
+    # below the main job's standard tolerance the heat's change is common (most built-in scenes
+    # are at 0.4-1.8 %) and the plan's estimate of it too rough to single a contact out
+    floor = FIDELITIES["standard"].tolerance
+    change = thermal_film_change(scene)
+    if accuracy is None or change.expected <= max(accuracy, floor):
+        return None
+    return (f"the contact's heat is expected to change the film by about {change.expected:.2g} (Gupta et al. "
+            f"1992 inlet heating {change.gupta:.2g} at thermal loading {change.loading:.3g}"
+            f"{f'; the contact heat {change.heating:.2g}' if change.heating else ''}), more than the accuracy "
+            f"{accuracy:g} and {floor:g}: this isothermal film's estimated error leaves that out; `ehl solve "
+            f"SCENE --thermal` solves it")
 
 
 # -- shared ----------------------------------------------------------------------------------------

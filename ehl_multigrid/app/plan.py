@@ -166,6 +166,43 @@ CONTACT_HEATING_FILM_POINT = 0.15
 EYRING_SCOPE = "the friction curves always use the Eyring law (3.3), which is Newtonian at low stress"
 
 
+@dataclass(frozen=True)
+class ThermalFilmChange:
+    """The heat's expected change of a scene's film at its operating point (fractions of the
+    isothermal central film): ``gupta`` (inlet shear heating, Gupta et al. 1992, from the thermal
+    loading ``loading`` and ``ph_E`` = pmax/E'), ``heating`` (the contact's own heat, conducted
+    into the inlet: ``per_beta_dT`` x beta dT for the estimated rise ``dT`` [K], 0 in rolling)
+    and ``expected``, what the coupled solver is expected to find: the larger of
+    ``TEHL_POINT_FRACTION`` x ``gupta`` and ``heating``."""
+
+    loading: float
+    ph_E: float
+    gupta: float
+    heating: float
+    dT: float
+    per_beta_dT: float
+
+    @property
+    def expected(self) -> float:
+        return max(TEHL_POINT_FRACTION * self.gupta, self.heating)
+
+
+def thermal_film_change(scene: Any) -> ThermalFilmChange:
+    """:class:`ThermalFilmChange` of ``scene`` at its operating point."""
+    L_scene = scene.thermal_properties()["thermal_loading"]  # beta eta0 um^2/k: ~ us^2
+    ph_E = scene.hertz.pmax / scene.E_reduced
+    gupta = 1.0 - float(fits.gupta_thermal_factor(L_scene, scene.slip, ph_E))
+    # Gupta's inlet heating grows with us^2 and misses the heat of sliding that a slow or resting
+    # surface conducts into the inlet (pure sliding at 0.06 m/s, 1.7 GPa line: Hc 0.83 of
+    # isothermal; a 1.6 GPa ball at 0.2 m/s: 0.75) and the hot outlet (1.93 GPa ball at S = 1: Hm 1.10)
+    per_beta_dT = CONTACT_HEATING_FILM if scene.kind == "line" else CONTACT_HEATING_FILM_POINT
+    dT = heating = 0.0
+    if scene.slip != 0.0:
+        dT = temperature_rise_estimate(scene, scene.us, scene.slip, float(scene.central_film_fit()[1]))["dT"]
+        heating = per_beta_dT * scene.lubricant.beta(scene.T_oil) * dT
+    return ThermalFilmChange(L_scene, ph_E, gupta, heating, dT, per_beta_dT)
+
+
 def temperature_rise_estimate(scene: Scene, us: float, slip: float, h: float) -> dict[str, float]:
     """Cheap estimate of the contact temperature rise [K] and of the friction's relative change.
 
@@ -332,23 +369,14 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     # 3b. thermal EHL: heat in the inlet thins the film (the decoupled method keeps its friction
     # within 0.6 % on the thesis's line conditions, validation/tehl/REPORT.md, but not its film).
     # Decided at the operating point, where the film is solved; the scene's ranges only noted
-    L_scene = scene.thermal_properties()["thermal_loading"]  # beta eta0 um^2/k: ~ us^2
-    ph_E = scene.hertz.pmax / scene.E_reduced
-    gupta = 1.0 - float(fits.gupta_thermal_factor(L_scene, scene.slip, ph_E))
-    # Gupta's inlet heating grows with us^2 and misses the heat of sliding that a slow or resting
-    # surface conducts into the inlet (pure sliding at 0.06 m/s, 1.7 GPa line: Hc 0.83 of
-    # isothermal; a 1.6 GPa ball at 0.2 m/s: 0.75) and the hot outlet (1.93 GPa ball at S = 1: Hm 1.10)
-    heating = 0.0
-    if scene.slip != 0.0:
-        dT_op = temperature_rise_estimate(scene, scene.us, scene.slip, float(scene.central_film_fit()[1]))["dT"]
-        per_beta_dT = CONTACT_HEATING_FILM if scene.kind == "line" else CONTACT_HEATING_FILM_POINT
-        heating = per_beta_dT * scene.lubricant.beta(scene.T_oil) * dT_op
+    change = thermal_film_change(scene)
+    L_scene, ph_E, gupta, heating = change.loading, change.ph_E, change.gupta, change.heating
     red = max(gupta, heating)
     need = red > tol
     # a line contact's coupled solve costs seconds and runs as a stage of the thermal layer; a
     # point contact's costs 10-150 s: it runs where the contact's heat or TEHL_POINT_FRACTION of
     # Gupta's reduction exceeds the tolerance (a flooded inlet only), else it is advised
-    expected = max(TEHL_POINT_FRACTION * gupta, heating) > tol
+    expected = change.expected > tol
     staged = scene.kind == "line" or (math.isinf(scene.supply.hoil) and expected)
     if staged:
         solved = TEHL_STAGED
@@ -360,8 +388,8 @@ def make_plan(scene: Scene, fidelity: str | None = None, tolerance: float | None
     why = (f"thermal film reduction {gupta:.2g} by Gupta et al. (1992) at the operating point (thermal "
            f"loading {L_scene:.3g}, us {scene.us:.3g} m/s, slip {scene.slip:g})")
     if heating > gupta:
-        why += (f"; up to {heating:.2g} from the contact's heat (estimated temperature rise {dT_op:.3g} K: "
-                f"{per_beta_dT:g} x beta dT)")
+        why += (f"; up to {heating:.2g} from the contact's heat (estimated temperature rise {change.dT:.3g} K: "
+                f"{change.per_beta_dT:g} x beta dT)")
     if len(speeds) > 1 or s_worst != abs(scene.slip):
         worst = max((1.0 - float(fits.gupta_thermal_factor(L_scene * (float(u) / scene.us) ** 2, s_worst, ph_E)),
                      float(u)) for u in speeds)

@@ -33,6 +33,14 @@ class PlausibilityWarning(UserWarning):
     field, the value, the plausible range and the probable mistake."""
 
 
+class ModelRangeWarning(UserWarning):
+    """A contact the model used describes only as an extrapolation (a film of a few molecular
+    layers, pressures beyond those the viscosity laws were measured at, an isothermal film of a
+    contact whose heat changes it by more than the target): the answer is the model's, which the
+    contact may not follow. Not a unit mistake, so ``--strict`` does not refuse it; the message
+    names the quantity, its value and why."""
+
+
 def strict_from_environment() -> bool:
     """Whether ``EHL_STRICT`` asks for strict plausibility (any value but "", 0, false, no, off)."""
     return os.environ.get(STRICT_ENV, "").strip().lower() not in ("", "0", "false", "no", "off")

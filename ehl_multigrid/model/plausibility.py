@@ -11,9 +11,10 @@ Strict mode turns the warnings into errors (:mod:`ehl_multigrid.model.errors`).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
-from ehl_multigrid.model.errors import warn_implausible
+from ehl_multigrid.model.errors import ModelRangeWarning, warn_implausible
 
 
 @dataclass(frozen=True)
@@ -144,6 +145,34 @@ PLAUSIBLE: dict[str, Plausible] = {
 
 REAL_CONTACTS = "real contacts (bearings, gears, cams, tribometers)"
 
+#: thinnest film [m] the continuum Reynolds equation describes: below a few molecular layers the
+#: oil's structure and the surfaces' forces set the film (Johnston, Wayte & Spikes 1991 measured
+#: EHL behaviour down to a few nanometres)
+CONTINUUM_FILM = 2e-9
+#: largest Hertz pressure [Pa] below which the viscosity laws (Roelands, Barus) rest on
+#: measurements; above it they are extrapolated and bearing steel approaches its yield
+MEASURED_VISCOSITY_PRESSURE = 3e9
+
+
+def model_range_warning(what: str, value: float, field: str) -> str | None:
+    """Why ``value`` of ``field``, a ``what`` (``"film"`` [m], ``"pmax"`` [Pa]), lies where the
+    models are an extrapolation, or None. The caller warns with a
+    :class:`~ehl_multigrid.model.errors.ModelRangeWarning`."""
+    v = float(value)
+    if not math.isfinite(v):
+        return None
+    if what == "film" and 0.0 < v < CONTINUUM_FILM:
+        return (f"{field} = {v * 1e9:.3g} nm is below about {CONTINUUM_FILM * 1e9:g} nm, a few molecular "
+                f"layers, where the continuum Reynolds equation of this package no longer describes "
+                f"the oil: the film is the model's, the contact's may differ (and is likely mixed "
+                f"or boundary lubricated)")
+    if what == "pmax" and v > MEASURED_VISCOSITY_PRESSURE:
+        return (f"{field} = {v / 1e9:.3g} GPa is above about {MEASURED_VISCOSITY_PRESSURE / 1e9:g} GPa: "
+                f"the viscosity laws are extrapolated beyond the pressures they were measured at and "
+                f"bearing steel approaches its yield, so the film and friction are the model's "
+                f"extrapolation")
+    return None
+
 
 def unit_hint(key: str, value: float) -> str:
     """The probable unit mistake behind ``value`` for the quantity ``key`` of :data:`PLAUSIBLE`
@@ -196,4 +225,14 @@ def check_plausible(field: str, value: float, key: str, units_given: bool = Fals
     if message is None:
         return True
     warn_implausible(message, stacklevel=2)
+    return False
+
+
+def warn_model_range(what: str, value: float, field: str) -> bool:
+    """Warn (:class:`~ehl_multigrid.model.errors.ModelRangeWarning`) when ``value`` lies where
+    the models are an extrapolation (:func:`model_range_warning`); returns whether it does not."""
+    message = model_range_warning(what, value, field)
+    if message is None:
+        return True
+    warnings.warn(message, ModelRangeWarning, stacklevel=2)
     return False

@@ -68,7 +68,7 @@ from .errors import (
 from .lubricant import T_MAX_C, T_MIN_C, Lubricant, lubricant_preset
 from .materials import Material, material, materials_from_tables
 from .oils import Oil, is_oil_table, oil_from_table
-from .plausibility import check_plausible, unit_hint
+from .plausibility import check_plausible, unit_hint, warn_model_range
 from .solids import Solid, reduced_modulus_of
 from .units import convert_table, to_canonical
 
@@ -819,7 +819,8 @@ def _check_plausibility(scene: Scene, inputs: list[tuple[str, float, str]]) -> N
         _, hc = scene.central_film_fit()
     except (InputError, ValueError, ArithmeticError):
         return  # a result the model cannot form: the solver refuses the inputs itself
-    check_plausible("Hertz pmax", pmax, "hertz_pmax")
+    if check_plausible("Hertz pmax", pmax, "hertz_pmax"):
+        warn_model_range("pmax", pmax, "Hertz pmax")
     check_plausible("fitted central film hc_fit", hc, "film")
     check_plausible("Moes M", M, "moes_M")
     check_plausible("Moes L", L, "moes_L")

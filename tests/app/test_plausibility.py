@@ -116,3 +116,43 @@ def test_fits_reports_the_same_bias_as_show(capsys):
     assert out["extrapolated"] is False
     assert out["deviation"] == pytest.approx(shown["hc_fit_deviation"], rel=1e-12)
     assert math.isfinite(out["deviation_min"]) and out["fit_note"] == shown["hc_fit_note"]
+
+
+def test_a_hertz_pressure_above_3_gpa_is_warned_as_outside_the_measured_viscosity_range(tmp_path, capsys):
+    # the default ball at 1000 times its load: pmax 10 x 1 GPa would be implausible; 30 x the
+    # load gives about 3.1 GPa: plausible, but the viscosity laws are extrapolated there
+    path = scene_file(tmp_path, "default", "operating", {"load": 42.8 * 30})
+    assert main(["--strict", "show", path, "--json"]) == 0  # not a unit mistake: never refused
+    err = capsys.readouterr().err
+    lines = [x for x in err.splitlines() if "Hertz pmax" in x]
+    assert len(lines) == 1 and "GPa is above about 3 GPa" in lines[0] and "extrapolat" in lines[0]
+    assert main(["show", "default", "--json"]) == 0
+    assert "above about 3 GPa" not in capsys.readouterr().err
+
+
+def test_a_solved_film_below_two_nanometres_is_warned_as_outside_the_continuum_model(monkeypatch):
+    import ehl_multigrid as ehl
+    from ehl_multigrid.model import plausibility
+    from ehl_multigrid.model.errors import ModelRangeWarning
+
+    assert plausibility.model_range_warning("film", 1.6e-9, "hm") is not None
+    assert plausibility.model_range_warning("film", 2.5e-9, "hm") is None
+    with pytest.warns(ModelRangeWarning) as caught:
+        # page 63 at 500 N has hm of about 15 nm: with the limit raised to 1 um every film is below
+        monkeypatch.setattr(plausibility, "CONTINUUM_FILM", 1e-6)
+        sol = ehl.solve("page63_line_500N", accuracy=0.05)
+    assert sol.success and any("minimum film hm of page63_line_500N" in str(w.message) for w in caught)
+
+
+def test_solve_of_a_contact_whose_heat_thins_the_film_says_so(tmp_path, capsys):
+    # page 63 at 2000 N, S = 2: the plan expects the contact's heat to thin the film by about
+    # 5 %, beyond the standard 2 %: the isothermal film's error leaves it out
+    assert main(["solve", "page63_line_2000N", "--json", "--no-plots", "--accuracy", "0.02",
+                 "--out", str(tmp_path)]) == 0
+    captured = capsys.readouterr()
+    out = json.loads(captured.out)
+    assert "--thermal" in out["heat_note"] and "--thermal" in captured.err
+    # at 500 N the expected change (0.9 %) is below 2 %: no note
+    assert main(["solve", "page63_line_500N", "--json", "--no-plots", "--accuracy", "0.02",
+                 "--out", str(tmp_path)]) == 0
+    assert "heat_note" not in json.loads(capsys.readouterr().out)
