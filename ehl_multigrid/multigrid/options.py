@@ -130,6 +130,10 @@ class MultigridOptions:
             require_range("grid_stop", self.grid_stop, 0.0, 1.0, "- (fraction of the grid error)",
                           lo_open=True)
         require_choice("confirm_early_stop", self.confirm_early_stop, (True, False))
+        for f in fields(self):
+            # a switch given as a word ("no") would count as true
+            if f.type in ("bool", "bool | None"):
+                require_choice(f.name, getattr(self, f.name), (True, False) if f.type == "bool" else (True, False, None))
 
     @classmethod
     def build(cls, options: MultigridOptions | None = None, **kw: Any):

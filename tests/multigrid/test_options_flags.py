@@ -50,6 +50,15 @@ def test_a_switch_that_is_not_a_boolean_is_refused_naming_it(name):
         PointOptions(**{name: "no"})
 
 
+@pytest.mark.parametrize("cls, name", [(PointOptions, "half"), (PointOptions, "elastic"), (PointOptions, "y_pre"),
+                                       (PointOptions, "far_field"), (PointOptions, "alternating"),
+                                       (LineOptions, "adapt"), (LineOptions, "fmg_match_film")])
+def test_every_true_false_option_refuses_a_word(cls, name):
+    # {"half": "no"} was taken as true: a non-empty string is truthy
+    with pytest.raises(InputError, match=rf"{name} = 'no'.*True, False"):
+        cls.build(**{name: "no"})
+
+
 @pytest.mark.parametrize("rules", [(None, -1), (21,), ("1",), (True,), 1, "01"])
 def test_bad_exact_rules_are_refused_with_the_allowed_values(rules):
     with pytest.raises(InputError, match=r"exact_rules = .*None.*\[0, 20\]"):

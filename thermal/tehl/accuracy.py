@@ -729,6 +729,7 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
     if accuracy is not None:
         require_range("accuracy", accuracy, 1e-5, 0.5, "- (relative error)")
     require_range("time_budget", time_budget, 0.0, 1e6, "s")
+    require_range("max_nz", max_nz, opts.nz, 640, "intervals across the film")  # at least the options' nz
     limit = max_points or MAX_POINTS["point" if point else "line"]
     slip = scene.slip if slip is None else float(slip)
     # bad input is refused here, not turned into a solve that "did not converge" by the cache

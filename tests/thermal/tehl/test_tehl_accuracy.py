@@ -12,6 +12,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from ehl_multigrid.model.errors import InputError
 from ehl_multigrid.model.scene import load_scene
 from ehl_multigrid.multigrid.controller import choose
 from thermal.tehl import TEHLOptions, estimate_error, solve_tehl_line
@@ -172,3 +173,10 @@ def test_accuracy_driven_line_reports_hc_extrapolated_within_its_stated_error(te
     assert true <= est["Hc"]["grid_x"]
     # the extrapolation is closer to the reference than the grid's own film
     assert true < abs(r.grid_films[0] / ref - 1.0) / 5.0
+
+
+def test_a_max_nz_below_the_solves_own_nz_is_refused_naming_it():
+    import ehl_multigrid as ehl
+
+    with pytest.raises(InputError, match=r"max_nz = 2 .*\[20, 640\]"):
+        ehl.solve("appendix_c_line_4240N", physics="thermal", accuracy=0.05, options={"max_nz": 2})
