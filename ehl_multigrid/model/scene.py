@@ -652,6 +652,11 @@ def _build_scene(data: dict[str, Any], origin: str, check: bool = True) -> Scene
             T_ref = oil_options["T0"]
         elif "T_oil" in op:
             T_ref = _temperature("operating.T_oil", op["T_oil"])
+            if not -30.0 <= T_ref <= 300.0:
+                # the data-sheet oil is built at the inlet temperature: name the field given
+                hint = unit_hint("temperature", T_ref)
+                raise InputError(f"operating.T_oil = {T_ref:g} degC is outside the range [-30, 300] degC of "
+                                 f"the data-sheet oil model{f': {hint}' if hint else ''}")
         else:
             T_ref = 40.0
         lub = oil.lubricant(T_ref, oil_options.get("T_fit"))

@@ -156,3 +156,11 @@ def test_solve_of_a_contact_whose_heat_thins_the_film_says_so(tmp_path, capsys):
     assert main(["solve", "page63_line_500N", "--json", "--no-plots", "--accuracy", "0.02",
                  "--out", str(tmp_path)]) == 0
     assert "heat_note" not in json.loads(capsys.readouterr().out)
+
+
+def test_an_inlet_temperature_in_kelvin_for_a_data_sheet_oil_names_the_field_given(tmp_path, capsys):
+    # the data-sheet oil is built at T_oil: the refusal named lubricant.T0, which the scene lacks
+    path = scene_file(tmp_path, "bearing_6205_inner_race", "operating", {"T_oil": 343.15})
+    assert main(["show", path, "--json"]) == 2
+    err = capsys.readouterr().err
+    assert "operating.T_oil = 343.15 degC" in err and "kelvin" in err and "lubricant.T0" not in err
