@@ -39,6 +39,7 @@ from ehl_multigrid.model.errors import (
     require_choice,
     require_positive,
     require_range,
+    warn_implausible,
 )
 from ehl_multigrid.model.plausibility import check_plausible
 from ehl_multigrid.model.units import convert_table
@@ -459,6 +460,10 @@ ELEMENT_KINDS: dict[str, tuple[Callable[..., ElementContact], dict[str, str]]] =
 }
 
 
+#: a speed of rotation [rad/s] given as a plain number at or above this is warned about: a
+#: user probe's shaft_speed = 1500 and disc_speed = 120 (meant as rpm) ran 9.5 times too fast
+PLAIN_RAD_S = 100.0
+
 #: Quantity of :data:`~ehl_multigrid.model.plausibility.PLAUSIBLE` of each ``[element]`` value.
 ELEMENT_PLAUSIBLE: dict[str, str] = {
     "ball_diameter": "rolling_element_diameter", "roller_diameter": "rolling_element_diameter",
@@ -501,6 +506,11 @@ def element_contact(table: dict[str, Any], section: str = "element", check: bool
     if check:
         for key, value in values.items():
             if key in ELEMENT_PLAUSIBLE and value is not None:
-                check_plausible(f"{section}.{key}", value, ELEMENT_PLAUSIBLE[key],
-                                units_given=isinstance(args.get(key), str) and any(c.isalpha() for c in args[key]))
+                given = isinstance(args.get(key), str) and any(c.isalpha() for c in args[key])
+                ok = check_plausible(f"{section}.{key}", value, ELEMENT_PLAUSIBLE[key], units_given=given)
+                if ok and not given and unit_kinds.get(key) == "angular_speed" and value >= PLAIN_RAD_S:
+                    warn_implausible(
+                        f"{section}.{key} = {value:g} is a plain number, taken as rad/s ({value * 30.0 / math.pi:.0f} "
+                        f"rpm); speeds of rotation are usually quoted in rpm: if you meant {value:g} rpm, write "
+                        f"'{value:g} rpm' (a value with its unit, '{value:g} rad/s', is taken as given)")
     return contact

@@ -265,6 +265,15 @@ class Scene:
             return groups.moes_line(load / self.length, us, self.eta0, self.alpha, self.E_reduced, self.Rx)
         return groups.moes_point(load, us, self.eta0, self.alpha, self.E_reduced, self.Rx)
 
+    def moes_refusal(self, exc: InputError) -> InputError:
+        """``exc`` (a solver's refusal of the Moes M or L) with the scene values that make them:
+        a load given in kN as N refused only as "M = 0.0875 is outside [0.1, 20000]"."""
+        per = f" on {self.length:g} m" if self.kind == "line" else ""
+        return InputError(f"{exc}; scene {self.name}: load {self.load:g} N{per}, us {self.us:g} m/s, eta0 "
+                          f"{self.eta0:.4g} Pa s, alpha {self.alpha:.4g} 1/Pa, E' {self.E_reduced:.4g} Pa, Rx "
+                          f"{self.Rx:.4g} m (M grows with the load and falls with speed and viscosity; L grows "
+                          f"with alpha and speed): check these values and their units")
+
     def film_scale(self, us: float | None = None) -> float:
         """Metres per unit Moes film H at sum velocity ``us`` [m]."""
         return groups.moes_film_scale(self.us if us is None else us, self.eta0, self.E_reduced, self.Rx)

@@ -164,3 +164,19 @@ def test_an_inlet_temperature_in_kelvin_for_a_data_sheet_oil_names_the_field_giv
     assert main(["show", path, "--json"]) == 2
     err = capsys.readouterr().err
     assert "operating.T_oil = 343.15 degC" in err and "kelvin" in err and "lubricant.T0" not in err
+
+
+@pytest.mark.parametrize("speed, warned", [(1500, True), ("1500 rad/s", False), ("1500 rpm", False), (50, False)])
+def test_a_plain_number_shaft_speed_is_warned_as_rad_per_second(tmp_path, capsys, speed, warned):
+    # 1500 meant as rpm ran a bearing 9.5 times too fast without a word
+    path = scene_file(tmp_path, "bearing_6205_inner_race", "element", {"shaft_speed": speed})
+    assert main(["show", path, "--json"]) == 0
+    err = capsys.readouterr().err
+    assert ("element.shaft_speed = 1500 is a plain number, taken as rad/s (14324 rpm)" in err) is warned
+
+
+def test_a_line_load_given_in_kn_is_refused_naming_the_load(tmp_path, capsys):
+    path = scene_file(tmp_path, "page63_line_2000N", "operating", {"load": 2.0})
+    assert main(["solve", path, "--no-plots", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "M = 0.0874" in err and "load 2 N" in err and "units" in err
