@@ -64,7 +64,8 @@ def classify_regime(asperity_fraction: np.ndarray, bl_fraction: float, ehl_fract
 
 def default_us(scene: Scene, n: int | None = None, us_min: float | None = None, us_max: float | None = None) -> np.ndarray:
     """Sum velocities: ``scene.ranges['us']`` (or 1e-3..1e2 m/s, 60 points), log-spaced; ``n``,
-    ``us_min``, ``us_max`` override the range's ends and count."""
+    ``us_min``, ``us_max`` override the range's ends and count (``n = 1`` with equal ends: that
+    one speed)."""
     rng = scene.ranges.get("us")
     if rng is not None and rng.explicit is None:
         lo, hi, cnt = rng.min, rng.max, rng.n
@@ -77,11 +78,13 @@ def default_us(scene: Scene, n: int | None = None, us_min: float | None = None, 
         lo, hi, cnt = DEFAULT_US
     lo = lo if us_min is None else require_range("us_min", us_min, 0.0, 1e3, "m/s", lo_open=True)
     hi = hi if us_max is None else require_range("us_max", us_max, 0.0, 1e3, "m/s", lo_open=True)
-    if not hi > lo:
-        raise InputError(f"us_max = {hi:.6g} m/s must exceed us_min = {lo:.6g} m/s")
     cnt = cnt if n is None else n
     if not isinstance(cnt, (int, np.integer)) or isinstance(cnt, bool) or not 1 <= cnt <= 100000:
         raise InputError(f"n = {cnt!r} must be an integer in [1, 100000] (number of sum velocities)")
+    if cnt == 1 and hi == lo:
+        return np.array([lo])  # one speed: us_min = us_max
+    if not hi > lo:
+        raise InputError(f"us_max = {hi:.6g} m/s must exceed us_min = {lo:.6g} m/s (or equal it with n = 1)")
     return np.geomspace(lo, hi, int(cnt))
 
 

@@ -41,6 +41,15 @@ def test_json_has_the_required_lists_and_matches_the_library(capsys, tmp_path):
     assert res.scalars["converged"] is True
 
 
+def test_one_speed_is_a_curve_of_one_point_equal_to_that_point_of_a_longer_curve(capsys, tmp_path):
+    one = run_json(capsys, ["stribeck", "page63_line_2000N", "--json", "--n", "1", "--us-min", "0.1",
+                            "--us-max", "0.1", "--out", str(tmp_path), "--no-plots"])
+    three = run_json(capsys, ["stribeck", "page63_line_2000N", "--json", "--n", "3", "--us-min", "0.01",
+                              "--us-max", "1", "--out", str(tmp_path / "b"), "--no-plots"])
+    assert one["us"] == [0.1] and one["gamma1"][0] == pytest.approx(three["gamma1"][1], rel=1e-12)
+    assert one["friction_coefficient"][0] == pytest.approx(three["friction_coefficient"][1], rel=1e-9)
+
+
 @pytest.mark.solver
 def test_hoil_list_adds_starved_cases_and_plots_are_written(capsys, tmp_path):
     out = run_json(capsys, ["stribeck", "chapter6_starved_0.5GPa", "--json", "--n", "6", "--hoil", "0.5,3",
