@@ -91,6 +91,9 @@ ANCHOR_SHARE = 0.5
 RATIO_ORDERS = {"Hc": 1.5, "Hm": 1.0}
 #: quantities of the budget; the accuracy target applies to the films
 QUANTITIES = ("Hc", "Hm", "friction_coefficient", "T_max")
+#: temperature changes between grids [K] below which T_max's grid part does not call a node's
+#: change growing (round-off and the thermal march's tolerance, far below any thermometer)
+T_SCATTER_K = 1e-3
 #: smallest grid along X a TEHL solve takes (TEHLOptions)
 MIN_POINTS = 65
 #: smallest mesh (points per default box) of a point contact's box probe: the appendix D
@@ -567,25 +570,19 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
 
 def _peak_temperature_part(result: Any, coarse: Any, cache: SolveCache, order: float, iteration: float,
                            notes: list[str], gx: float) -> float:
-    """T_max's grid part along X, from the whole temperature field and not only its maximum:
-    a peak that a finer grid resolves better can overtake the maximum (the appendix D ball at
-    30 m/s in rolling: T_max 65.53, 65.90 degC at the centre line's inlet on 129 and 257
-    points, 67.22 degC in the outlet lobe on 513).
+    """T_max's grid part along X, from the whole temperature field and not only its maximum: a
+    peak that finer grids resolve better can overtake the maximum (the outlet spike in rolling;
+    docs/thermal.md, "The largest oil temperature").
 
     Each node of the quarter grid (solved for it, a sixteenth of a point solve) carries the
     Richardson bound ``R`` of its across-film maximum by the core's rules
-    (:func:`~ehl_multigrid.multigrid.accuracy.richardson`: the ratio ``r`` of its last two
-    changes used up to ``2^p`` where ``r >= 2``, else first order and at least half the change
-    before, times ``GRID_SAFETY``); the part is at least ``gx`` (T_max's own change) and the
-    largest ``T_h + R`` above T_max. The appendix C line in rolling: its outlet spike's
-    temperature rose 0.07, 0.14, 0.20, 0.18, 0.10 K on 257-8193 points and overtook the inlet's
-    60.55 degC on 4097.
-    A node whose change grew from the grids before (beyond ten times the outer iteration's
-    scatter) is not converging and no bound holds for it: the part is inf, with a note, however
-    far below T_max it lies now (the spur gear in rolling: the outlet spike, 1.22 K below T_max
-    on 1025 points with changes 0.22 K then 0.30 K, rose 0.49 K on 2049 points and passed T_max
-    by 0.6 K on 4097). Without the quarter grid the part is inf unless the field changed
-    within that scatter only: two grids cannot tell a converging peak from a growing one."""
+    (:func:`~ehl_multigrid.multigrid.accuracy.richardson`: the ratio of its last two changes up
+    to ``2^p`` where it is at least 2, else first order and at least half the change before,
+    times ``GRID_SAFETY``); the part is at least ``gx`` (T_max's own) and the largest
+    ``T_h + R`` above T_max. A node whose change grew (beyond :data:`T_SCATTER_K` and ten times
+    the outer iteration's scatter) has no bound, however far below T_max it lies: the part is
+    inf, with a note. Without the quarter grid the part is inf unless every change is that
+    small: two grids cannot tell a converging peak from a growing one."""
     o = coarse.options
     qp = (o.points - 1) // 2 + 1
     quarter = cache(qp, o.nz, o.box) if qp >= MIN_POINTS else None
@@ -597,7 +594,7 @@ def _peak_temperature_part(result: Any, coarse: Any, cache: SolveCache, order: f
             return gx
         (Th, T2h), X = two
         d = np.abs(Th - T2h)
-        if np.max(d) <= 10.0 * iteration:
+        if np.max(d) <= max(10.0 * iteration, T_SCATTER_K):
             return max(gx, GRID_SAFETY * float(np.max(d)) / (2.0**order - 1.0))
         k = int(np.argmax(d))
         notes.append(f"T_max's grid error unknown: the temperature at X = {X.flat[k % X.size]:.3g} changed by "
@@ -611,7 +608,7 @@ def _peak_temperature_part(result: Any, coarse: Any, cache: SolveCache, order: f
     ratio = before / np.maximum(d, 1e-300)
     regular = ratio >= 2.0
     R = GRID_SAFETY * np.where(regular, d / (np.minimum(ratio, 2.0**order) - 1.0), np.maximum(d, 0.5 * before))
-    growing = (d > before) & (d > 10.0 * iteration)
+    growing = (d > before) & (d > max(10.0 * iteration, T_SCATTER_K))
     part = max(gx, float(np.max(np.where(growing, -np.inf, Th + R))) - top)
     if growing.any():
         k = int(np.argmax(np.where(growing, d, -1.0)))
