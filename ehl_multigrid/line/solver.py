@@ -649,7 +649,9 @@ class LineHierarchy:
                     if capped else "more points (--points), or lower M")
             raise ConvergenceError(
                 f"the discrete film is not positive on the {lv.n}-point start grid "
-                f"(M = {self.problem.M:.4g}, L = {self.problem.L:.4g} needs finer grids)", None, hint)
+                f"(M = {self.problem.M:.4g}, L = {self.problem.L:.4g} needs "
+                + (f"a start grid finer than the dense start's {MAX_START_POINTS} points)" if capped
+                   else "finer grids)"), None, hint)
         if k > k_want:
             # the grids below the start cannot carry a positive film (or their Newton failed):
             # a stall step leaves them out of the cycles (raise_switch)
@@ -853,13 +855,15 @@ def neighbour_problem(problem: LineProblem, factor: float) -> LineProblem:
 
 def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = None,
                    scene: Any = None, start_cache: dict | None = None,
-                   progress: Callable[[str], None] | None = None) -> EHLResult | None:
+                   progress: Callable[[str], None] | None = None,
+                   why: list[str] | None = None) -> EHLResult | None:
     """Solve ``problem`` from a converged solution at a smaller M (continuation in M, see
     :data:`CONTINUATION_HALVINGS`); None when no halving starts or a step back up fails, the
     failed step's result (status ``time_budget``) when the time budget ran out in a step.
     ``start_cache``: that of the failed solve (:func:`solve_line_problem`), so the steps do not
     solve again the start grids it found without a positive film (isoviscous (5000, 0): 6 s).
-    ``progress(text)`` receives one line per step."""
+    ``progress(text)`` receives one line per step; ``why`` (a list) receives what failed
+    when the continuation does not reach ``problem`` (the step, its grid and its failure)."""
     starts = {} if start_cache is None else start_cache
     # a failed step is this search's answer (None), not an error: its solves return failures
     options = dataclasses.replace(options, raise_on_failure=False)
@@ -876,6 +880,13 @@ def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = N
                          f"{what} M = {q.M:.4g}, after {time.perf_counter() - t0:.1f} s in it)")
         return r
 
+    def failed(r: EHLResult, what: str) -> None:
+        if why is not None:
+            last = r.history[-1].level if r.history else r.levels - 1
+            at = (n - 1) // 2 ** max(r.levels - 1 - last, 0) + 1
+            why.append(f"the continuation in M {what} ended {r.status_name} on the {at}-point grid "
+                       f"({r.message.split(';')[0]})")
+
     chain = [problem]
     start: EHLResult | None = None
     for _ in range(CONTINUATION_HALVINGS):
@@ -889,6 +900,7 @@ def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = N
         if r.status_name == "time_budget":
             return r
         if r.status_name != "start_failed":
+            failed(r, f"started at M = {q.M:.4g}:")
             return None
         chain.append(q)
     if start is None:
@@ -900,6 +912,7 @@ def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = N
         if r.status_name == "time_budget":
             return r
         if not r.success:
+            failed(r, f"from M = {' -> '.join(path)}, its step to M = {q.M:.4g}")
             return None
         start = r
         path.append(f"{q.M:.4g}")
@@ -1175,7 +1188,11 @@ def solve_line(
             res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess, start_cache=starts,
                                      progress=progress)
         if res.status_name == "start_failed" and guess is None:
-            res = continued_in_m(p, o, callback, scene, starts, progress) or res
+            why: list[str] = []
+            res = continued_in_m(p, o, callback, scene, starts, progress, why) or res
+            if why and not res.success:
+                # the start grids' film is not all that failed: say where the continuation did
+                res.message += f"; {why[0]}"
         if res.success or res.status_name == "inaccurate":
             last[:] = [res]  # only the latest: fine-grid results are large
         if res.success:
