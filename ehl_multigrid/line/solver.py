@@ -826,13 +826,15 @@ def line_settings(problem: LineProblem, options: LineOptions) -> Settings:
 
 
 def line_solver(problem: LineProblem, options: LineOptions,
-                progress: Callable[[str], None] | None = None) -> MultilevelSolver:
+                progress: Callable[[str], None] | None = None,
+                deadline_checks: bool = False) -> MultilevelSolver:
     """The multilevel solver of one line-contact problem (not yet run); ``progress(text)``
-    hears of a long dense Newton solve. It stops when the time budget of the sequence it runs
-    in (:func:`~ehl_multigrid.multigrid.controller.deadline`) runs out: status ``time_budget``."""
+    hears of a long dense Newton solve. With ``deadline_checks`` it stops when the time budget
+    of the sequence it runs in (:func:`~ehl_multigrid.multigrid.controller.deadline`) runs
+    out: status ``time_budget``."""
     hz = LineHierarchy(problem, options)
     hz.stall_steps = True
-    hz.deadline_checks = True
+    hz.deadline_checks = deadline_checks
     hz.progress = progress
     hz.local_newton = options.local_newton
     hz.local_newton_pre = problem.alpha_bar > LOCAL_NEWTON_PRE_ALPHA
@@ -841,7 +843,7 @@ def line_solver(problem: LineProblem, options: LineOptions,
     solver = MultilevelSolver(hz, options, line_settings(problem, options),
                               RobustnessPolicy(STEADY_LINE_POLICY, options.adapt), HINT)
     hz.solver = solver
-    solver.deadline_checks = True
+    solver.deadline_checks = deadline_checks
     return solver
 
 
@@ -878,7 +880,8 @@ def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = N
         if progress is not None:
             progress(f"{n} points: continuation in M to {problem.M:.4g}, {what} M = {q.M:.4g} "
                      f"({time.perf_counter() - t0:.1f} s in the continuation)")
-        r = solve_line_problem(q, options, callback=callback, progress=progress, start_cache=starts, **kw)
+        r = solve_line_problem(q, options, callback=callback, progress=progress, start_cache=starts,
+                               deadline_checks=True, **kw)
         if r.status_name == "time_budget":
             r.message = (f"{r.message} (in the continuation in M to {problem.M:.4g} on {n} points, "
                          f"{what} M = {q.M:.4g}, after {time.perf_counter() - t0:.1f} s in it)")
@@ -930,7 +933,8 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
                        scene: Any = None, guess: tuple[np.ndarray, np.ndarray, float] | None = None,
                        from_guess: bool = False, start_cache: dict | None = None,
                        resume: EHLResult | None = None,
-                       progress: Callable[[str], None] | None = None, **kw: Any) -> EHLResult:
+                       progress: Callable[[str], None] | None = None, deadline_checks: bool = False,
+                       **kw: Any) -> EHLResult:
     """Solve one :class:`LineProblem` as given (no error estimate); keywords override
     ``options``. ``guess = (X, P, H0)``, a solution of the same contact on another grid or box,
     starts the FMG start grid's Newton (the answer is the same; it takes fewer iterations);
@@ -941,7 +945,9 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     ((3000, 6) at 0.5 %: one dense 2049-point Newton solve of 3-4 s instead of three).
     ``resume``, a converged solve of the same discrete problem on a coarser grid of this one,
     continues its FMG from there (the grids below keep its FMG films). ``progress(text)``
-    hears of a long dense Newton solve (:meth:`LineHierarchy.newton_check`).
+    hears of a long dense Newton solve (:meth:`LineHierarchy.newton_check`); with
+    ``deadline_checks`` the solve ends with status ``time_budget`` when the time budget of its
+    sequence runs out (between dense Newton iterations and cycles).
 
     A numerical failure is returned (``success`` False, its status and message), or raised as
     :class:`ConvergenceError` with ``raise_on_failure=True``."""
@@ -950,7 +956,7 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     opts = LineOptions.build(options, **kw)
 
     def attempt(o: LineOptions) -> tuple[MultilevelSolver, EHLResult]:
-        s = line_solver(problem, o, progress)
+        s = line_solver(problem, o, progress, deadline_checks)
         s.hierarchy.guess = guess
         s.hierarchy.start_on_guess = from_guess
         s.hierarchy.start_cache = start_cache
@@ -1164,6 +1170,9 @@ def solve_line(
     last: list[EHLResult] = []  # the previous converged solve starts the next one's Newton
     starts: dict = {}  # the sequence's converged FMG start grids (solve_line_problem)
     grids: dict = {}  # the converged solve of each grid and box: a tolerance step continues it
+    # the time budget stops any solve but the sequence's first (what a budget of 0 returns) and
+    # the continuation in M (docs/accuracy.md, "The accuracy controller")
+    checks: list[bool] = [False]
 
     def solve(n: int, box: float, tol_factor: float) -> EHLResult:
         p = pb if box == 1.0 else dataclasses.replace(pb, xmin=pb.xmax - box * (pb.xmax - pb.xmin))
@@ -1178,25 +1187,27 @@ def solve_line(
             # with the relaxation it ended with
             t = solve_line_problem(p, dataclasses.replace(o, **ended_relaxation(prev)),
                                    callback=callback, scene=scene, guess=(prev.X, prev.P, prev.H0),
-                                   from_guess=True)
+                                   from_guess=True, deadline_checks=checks[0])
             res = tightened(prev, t, o) if t.success and t.levels == prev.levels else None
         # isoviscous: FMG through the fine grids rejects cycle after cycle (docs/accuracy.md,
         # "Cycled start"); the resumed attempt failed and cost (3000, 0) 0.6 s
         resume = resumable(grids, n, box, o) if pb.L > 0.0 or cycle_floor_points(pb.M, pb.L) else None
         if res is None and resume is not None:
             res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess,
-                                     start_cache=starts, resume=resume, progress=progress)
+                                     start_cache=starts, resume=resume, progress=progress,
+                                     deadline_checks=checks[0])
             if not res.success:
                 res = None  # the FMG from the start grids, as without the coarser solve
         if res is None:
             res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess, start_cache=starts,
-                                     progress=progress)
+                                     progress=progress, deadline_checks=checks[0])
         if res.status_name == "start_failed" and guess is None:
             why: list[str] = []
             res = continued_in_m(p, o, callback, scene, starts, progress, why) or res
             if why and not res.success:
                 # the start grids' film is not all that failed: say where the continuation did
                 res.message += f"; {why[0]}"
+        checks[0] = True
         if res.success or res.status_name == "inaccurate":
             last[:] = [res]  # only the latest: fine-grid results are large
         if res.success:
