@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import time
 from collections.abc import Callable
 from typing import Any
@@ -889,7 +890,10 @@ def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = N
 
     def failed(r: EHLResult, what: str) -> None:
         if why is not None:
-            last = r.history[-1].level if r.history else r.levels - 1
+            # the driver names the failed grid by its level ("diverged on grid 4"): in points
+            # here; else the last grid cycled on
+            lvl = re.search(r"on grid (\d+)", r.message)
+            last = int(lvl.group(1)) if lvl else (r.history[-1].level if r.history else r.levels - 1)
             at = (n - 1) // 2 ** max(r.levels - 1 - last, 0) + 1
             why.append(f"the continuation in M {what} ended {r.status_name} on the {at}-point grid "
                        f"({r.message.split(';')[0]})")
