@@ -11,6 +11,7 @@ an exact solve including the film constant H0.
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable
 
 import numpy as np
 import scipy.linalg
@@ -144,7 +145,7 @@ def _phi(level: LineLevel, P: np.ndarray, r: np.ndarray, s: np.ndarray, P_frozen
 
 
 def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10, keep: bool = False,
-                 single: bool = False) -> int:
+                 single: bool = False, check: Callable[[int], None] | None = None) -> int:
     """Solve the level's problem in place (``level.P``, ``level.H0``); return the number of
     Jacobian factorisations (Newton steps; the chord steps that reuse a factorisation while it
     contracts by :data:`CHORD_CONTRACTION` per step are not counted, ``max_iter`` counts all).
@@ -152,13 +153,15 @@ def newton_solve(level: LineLevel, max_iter: int = 80, tol: float = 1e-10, keep:
     left, and leave the last one for the next (the coarsest grid of the cycles, whose problem
     changes little from cycle to cycle; docs/accuracy.md). ``single``: factorise in single precision on
     grids of :data:`SINGLE_FROM` points and more (a start, which the cycles refine: its
-    chord steps converge linearly and stop near ``tol`` instead of far below it).
+    chord steps converge linearly and stop near ``tol`` instead of far below it). ``check(it)``
+    runs before each iteration ``it``: it may raise to stop the solve (a time budget spent) or
+    report progress (a dense solve on a fine grid can take a minute).
 
     Raises :class:`NewtonFailure` when the damped iteration stalls or the film collapses.
     The dense factorisations run on one BLAS thread (:func:`serial_blas`).
     """
     with serial_blas():
-        return _newton_solve(level, max_iter, tol, keep, single)
+        return _newton_solve(level, max_iter, tol, keep, single, check)
 
 
 #: a factorised Jacobian is reused (chord steps) while each step lowers the merit |phi| by at
@@ -188,7 +191,7 @@ def _jacobian(level: LineLevel, P: np.ndarray, r: np.ndarray, dL: np.ndarray, s:
 
 
 def _newton_solve(level: LineLevel, max_iter: int, tol: float, keep: bool = False,
-                  single: bool = False) -> int:
+                  single: bool = False, check: Callable[[int], None] | None = None) -> int:
     n = level.n
     P, H0 = level.P.copy(), float(level.H0)
     P_frozen = level.P.copy()
@@ -204,6 +207,8 @@ def _newton_solve(level: LineLevel, max_iter: int, tol: float, keep: bool = Fals
     factorised = 0
     single = single and n >= SINGLE_FROM
     for it in range(1, max_iter + 1):
+        if check is not None:
+            check(it)
         fresh = lu is None
         r, dL = _system(level, P, H0, fresh)
         if fresh:

@@ -29,6 +29,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
+import time
 from collections.abc import Callable
 from typing import Any
 
@@ -43,6 +45,7 @@ from ..multigrid.accuracy import (
     film_tol,
     solve_to_accuracy,
 )
+from ..multigrid.controller import check_deadline
 from ..multigrid.driver import Measurement, MultilevelSolver
 from ..multigrid.flux import FACE_MODES
 from ..multigrid.gridchoice import solver_grid
@@ -97,6 +100,9 @@ COARSE_PROBE_POINTS = 513
 
 #: most Newton steps of a coarse solve on a grid whose Newton failed before in the same solve
 NEWTON_AFTER_FAILURE = 20
+#: a dense Newton solve running longer than this many seconds reports each iteration to the
+#: progress callable, at most once per this interval (a 4097-point solve: about 1.5 s per step)
+NEWTON_PROGRESS_EVERY = 5.0
 
 #: local Newton (:meth:`LineHierarchy.relax`): where the largest complementarity residual
 #: exceeds this multiple of the mean, in a window of this half width
@@ -272,6 +278,11 @@ class LineHierarchy:
         #: where alpha_bar > LOCAL_NEWTON_PRE_ALPHA)
         self.local_newton_pre = False
         self.local_newton_solves = 0
+        #: the steady solver's solves stop between Newton iterations when the time budget of
+        #: their sequence runs out (check_deadline; line_solver sets it)
+        self.deadline_checks = False
+        #: ``progress(text)``: where a long dense Newton solve is (line_solver sets it)
+        self.progress: Callable[[str], None] | None = None
         #: film-scale switch: Jacobi-distributive where ``eps`` is below it on every grid
         #: (line_solver sets it, :func:`default_switch_eps`; 0: the ``eps/h^2`` rules only)
         self.switch_eps = 0.0
@@ -413,6 +424,25 @@ class LineHierarchy:
     def _floor_solve(self, k: int, s: Settings) -> None:
         self.solver.work_units += self.coarse_solve(k, s)
 
+    def newton_check(self, lv: LineLevel, what: str) -> Callable[[int], None] | None:
+        """The ``check`` of a dense Newton solve on ``lv`` (``what``: its role, for the
+        messages): the time budget between iterations (:attr:`deadline_checks`) and a progress
+        line at most every :data:`NEWTON_PROGRESS_EVERY` seconds."""
+        if not self.deadline_checks and self.progress is None:
+            return None
+        t0 = time.perf_counter()
+        said = [t0]
+
+        def check(it: int) -> None:
+            where = f"{what} Newton iteration {it} on the {lv.n}-point grid (M = {self.problem.M:.4g})"
+            if self.deadline_checks:
+                check_deadline(where)
+            now = time.perf_counter()
+            if self.progress is not None and now - said[0] >= NEWTON_PROGRESS_EVERY:
+                said[0] = now
+                self.progress(f"{where}: {now - t0:.0f} s in this dense solve")
+        return check
+
     def coarse_solve(self, k: int, s: Settings) -> float:
         if k < self.floor:
             return 0.0
@@ -423,7 +453,8 @@ class LineHierarchy:
             # given solution, its coarse film not positive), the later attempts that succeed
             # take few steps: a failing one stops early (docs/robustness.md)
             its = newton_solve(lv, keep=True,
-                               max_iter=NEWTON_AFTER_FAILURE if k in self.newton_failed else 80)
+                               max_iter=NEWTON_AFTER_FAILURE if k in self.newton_failed else 80,
+                               check=self.newton_check(lv, "coarse-grid"))
         except NewtonFailure as exc:
             lv.P, lv.H0 = saved
             if k not in self.newton_failed:
@@ -578,7 +609,8 @@ class LineHierarchy:
             its = 0
             try:
                 if not ((from_coarser or cached is not None) and k > 0 and self._cycled_start(k, solver)):
-                    its = newton_solve(lv, max_iter=120, single=True)
+                    its = newton_solve(lv, max_iter=120, single=True,
+                                       check=self.newton_check(lv, "FMG start"))
             except NewtonFailure as exc:
                 if from_coarser:  # the Hertzian start before giving up on this grid
                     from_coarser = False
@@ -618,7 +650,9 @@ class LineHierarchy:
                     if capped else "more points (--points), or lower M")
             raise ConvergenceError(
                 f"the discrete film is not positive on the {lv.n}-point start grid "
-                f"(M = {self.problem.M:.4g}, L = {self.problem.L:.4g} needs finer grids)", None, hint)
+                f"(M = {self.problem.M:.4g}, L = {self.problem.L:.4g} needs "
+                + (f"a start grid finer than the dense start's {MAX_START_POINTS} points)" if capped
+                   else "finer grids)"), None, hint)
         if k > k_want:
             # the grids below the start cannot carry a positive film (or their Newton failed):
             # a stall step leaves them out of the cycles (raise_switch)
@@ -667,7 +701,11 @@ class LineHierarchy:
         self._initial_guess(lv)
         if not (self._cycled_start(j, solver, "the given solution") and self._film_ok(lv)):
             return None
-        self.film_floor = j
+        if lv.n <= MAX_START_POINTS:
+            # a floor is solved by dense Newton in every cycle after a rejection: above the
+            # dense start's limit that cost 55 s per cycle (36 factorisations on 4097 points,
+            # M = 4904 in a continuation), so the grids below stay in the cycles there
+            self.film_floor = j
         solver.note(f"no positive film on the start grids up to {self.levels[k].n} points (an "
                     "earlier solve of this contact)")
         return j
@@ -720,7 +758,8 @@ class LineHierarchy:
             if s == steps[0]:
                 self._initial_guess(lv)
             try:
-                total += newton_solve(lv, max_iter=200)
+                total += newton_solve(lv, max_iter=200,
+                                      check=self.newton_check(lv, f"start continuation (M = {M:.4g})"))
             except NewtonFailure as exc:
                 lv.par, lv.lam = pb.rheology(), pb.lam
                 raise ConvergenceError(
@@ -739,7 +778,7 @@ class LineHierarchy:
         saved = (fin.P.copy(), fin.H0)
         fin.frozen[:] = False
         try:
-            its = newton_solve(fin, max_iter=60)
+            its = newton_solve(fin, max_iter=60, check=self.newton_check(fin, "finest-grid"))
         except NewtonFailure as exc:
             fin.P, fin.H0 = saved
             solver.note(f"finest-grid Newton after the multigrid stall failed: {exc}")
@@ -787,10 +826,17 @@ def line_settings(problem: LineProblem, options: LineOptions) -> Settings:
     return Settings.start(options, gain, options.switch if options.switch is not None else 0.3, switch_h)
 
 
-def line_solver(problem: LineProblem, options: LineOptions) -> MultilevelSolver:
-    """The multilevel solver of one line-contact problem (not yet run)."""
+def line_solver(problem: LineProblem, options: LineOptions,
+                progress: Callable[[str], None] | None = None,
+                deadline_checks: bool = False) -> MultilevelSolver:
+    """The multilevel solver of one line-contact problem (not yet run); ``progress(text)``
+    hears of a long dense Newton solve. With ``deadline_checks`` it stops when the time budget
+    of the sequence it runs in (:func:`~ehl_multigrid.multigrid.controller.deadline`) runs
+    out: status ``time_budget``."""
     hz = LineHierarchy(problem, options)
     hz.stall_steps = True
+    hz.deadline_checks = deadline_checks
+    hz.progress = progress
     hz.local_newton = options.local_newton
     hz.local_newton_pre = problem.alpha_bar > LOCAL_NEWTON_PRE_ALPHA
     hz.switch_eps = options.switch_eps if options.switch_eps is not None else \
@@ -798,6 +844,7 @@ def line_solver(problem: LineProblem, options: LineOptions) -> MultilevelSolver:
     solver = MultilevelSolver(hz, options, line_settings(problem, options),
                               RobustnessPolicy(STEADY_LINE_POLICY, options.adapt), HINT)
     hz.solver = solver
+    solver.deadline_checks = deadline_checks
     return solver
 
 
@@ -814,34 +861,69 @@ def neighbour_problem(problem: LineProblem, factor: float) -> LineProblem:
 
 
 def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = None,
-                   scene: Any = None, start_cache: dict | None = None) -> EHLResult | None:
+                   scene: Any = None, start_cache: dict | None = None,
+                   progress: Callable[[str], None] | None = None,
+                   why: list[str] | None = None) -> EHLResult | None:
     """Solve ``problem`` from a converged solution at a smaller M (continuation in M, see
-    :data:`CONTINUATION_HALVINGS`); None when no halving starts or a step back up fails.
+    :data:`CONTINUATION_HALVINGS`); None when no halving starts or a step back up fails, the
+    failed step's result (status ``time_budget``) when the time budget ran out in a step.
     ``start_cache``: that of the failed solve (:func:`solve_line_problem`), so the steps do not
-    solve again the start grids it found without a positive film (isoviscous (5000, 0): 6 s)."""
+    solve again the start grids it found without a positive film (isoviscous (5000, 0): 6 s).
+    ``progress(text)`` receives one line per step; ``why`` (a list) receives what failed
+    when the continuation does not reach ``problem`` (the step, its grid and its failure)."""
     starts = {} if start_cache is None else start_cache
     # a failed step is this search's answer (None), not an error: its solves return failures
     options = dataclasses.replace(options, raise_on_failure=False)
+    n = options.points
+    t0 = time.perf_counter()
+
+    def step(q: LineProblem, what: str, **kw: Any) -> EHLResult:
+        if progress is not None:
+            progress(f"{n} points: continuation in M to {problem.M:.4g}, {what} M = {q.M:.4g} "
+                     f"({time.perf_counter() - t0:.1f} s in the continuation)")
+        r = solve_line_problem(q, options, callback=callback, progress=progress, start_cache=starts,
+                               deadline_checks=True, **kw)
+        if r.status_name == "time_budget":
+            r.message = (f"{r.message} (in the continuation in M to {problem.M:.4g} on {n} points, "
+                         f"{what} M = {q.M:.4g}, after {time.perf_counter() - t0:.1f} s in it)")
+        return r
+
+    def failed(r: EHLResult, what: str) -> None:
+        if why is not None:
+            # the driver names the failed grid by its level ("diverged on grid 4"): in points
+            # here; else the last grid cycled on
+            lvl = re.search(r"on grid (\d+)", r.message)
+            last = int(lvl.group(1)) if lvl else (r.history[-1].level if r.history else r.levels - 1)
+            at = (n - 1) // 2 ** max(r.levels - 1 - last, 0) + 1
+            why.append(f"the continuation in M {what} ended {r.status_name} on the {at}-point grid "
+                       f"({r.message.split(';')[0]})")
+
     chain = [problem]
     start: EHLResult | None = None
     for _ in range(CONTINUATION_HALVINGS):
         if chain[-1].M / 2.0 < 0.1:
             return None
         q = neighbour_problem(chain[-1], 0.5)
-        r = solve_line_problem(q, options, callback=callback, scene=None, start_cache=starts)
+        r = step(q, "a start at", scene=None)
         if r.success:
             start = r
             break
+        if r.status_name == "time_budget":
+            return r
         if r.status_name != "start_failed":
+            failed(r, f"started at M = {q.M:.4g}:")
             return None
         chain.append(q)
     if start is None:
         return None
     path = [f"{start.problem.M:.4g}"]
     for q in reversed(chain):
-        r = solve_line_problem(q, options, callback=callback, scene=scene if q is problem else None,
-                               guess=(start.X, start.P, start.H0), start_cache=starts)
+        r = step(q, f"from M = {start.problem.M:.4g} up to", scene=scene if q is problem else None,
+                 guess=(start.X, start.P, start.H0))
+        if r.status_name == "time_budget":
+            return r
         if not r.success:
+            failed(r, f"from M = {' -> '.join(path)}, its step to M = {q.M:.4g}")
             return None
         start = r
         path.append(f"{q.M:.4g}")
@@ -854,7 +936,9 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
                        callback: Callable[[dict[str, Any]], None] | None = None,
                        scene: Any = None, guess: tuple[np.ndarray, np.ndarray, float] | None = None,
                        from_guess: bool = False, start_cache: dict | None = None,
-                       resume: EHLResult | None = None, **kw: Any) -> EHLResult:
+                       resume: EHLResult | None = None,
+                       progress: Callable[[str], None] | None = None, deadline_checks: bool = False,
+                       **kw: Any) -> EHLResult:
     """Solve one :class:`LineProblem` as given (no error estimate); keywords override
     ``options``. ``guess = (X, P, H0)``, a solution of the same contact on another grid or box,
     starts the FMG start grid's Newton (the answer is the same; it takes fewer iterations);
@@ -864,7 +948,10 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     FMG start grids: a later solve of the sequence starts its Newton there from that solution
     ((3000, 6) at 0.5 %: one dense 2049-point Newton solve of 3-4 s instead of three).
     ``resume``, a converged solve of the same discrete problem on a coarser grid of this one,
-    continues its FMG from there (the grids below keep its FMG films).
+    continues its FMG from there (the grids below keep its FMG films). ``progress(text)``
+    hears of a long dense Newton solve (:meth:`LineHierarchy.newton_check`); with
+    ``deadline_checks`` the solve ends with status ``time_budget`` when the time budget of its
+    sequence runs out (between dense Newton iterations and cycles).
 
     A numerical failure is returned (``success`` False, its status and message), or raised as
     :class:`ConvergenceError` with ``raise_on_failure=True``."""
@@ -873,7 +960,7 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     opts = LineOptions.build(options, **kw)
 
     def attempt(o: LineOptions) -> tuple[MultilevelSolver, EHLResult]:
-        s = line_solver(problem, o)
+        s = line_solver(problem, o, progress, deadline_checks)
         s.hierarchy.guess = guess
         s.hierarchy.start_on_guess = from_guess
         s.hierarchy.start_cache = start_cache
@@ -1087,6 +1174,9 @@ def solve_line(
     last: list[EHLResult] = []  # the previous converged solve starts the next one's Newton
     starts: dict = {}  # the sequence's converged FMG start grids (solve_line_problem)
     grids: dict = {}  # the converged solve of each grid and box: a tolerance step continues it
+    # the time budget stops any solve but the sequence's first (what a budget of 0 returns) and
+    # the continuation in M (docs/accuracy.md, "The accuracy controller")
+    checks: list[bool] = [False]
 
     def solve(n: int, box: float, tol_factor: float) -> EHLResult:
         p = pb if box == 1.0 else dataclasses.replace(pb, xmin=pb.xmax - box * (pb.xmax - pb.xmin))
@@ -1101,20 +1191,27 @@ def solve_line(
             # with the relaxation it ended with
             t = solve_line_problem(p, dataclasses.replace(o, **ended_relaxation(prev)),
                                    callback=callback, scene=scene, guess=(prev.X, prev.P, prev.H0),
-                                   from_guess=True)
+                                   from_guess=True, deadline_checks=checks[0])
             res = tightened(prev, t, o) if t.success and t.levels == prev.levels else None
         # isoviscous: FMG through the fine grids rejects cycle after cycle (docs/accuracy.md,
         # "Cycled start"); the resumed attempt failed and cost (3000, 0) 0.6 s
         resume = resumable(grids, n, box, o) if pb.L > 0.0 or cycle_floor_points(pb.M, pb.L) else None
         if res is None and resume is not None:
             res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess,
-                                     start_cache=starts, resume=resume)
+                                     start_cache=starts, resume=resume, progress=progress,
+                                     deadline_checks=checks[0])
             if not res.success:
                 res = None  # the FMG from the start grids, as without the coarser solve
         if res is None:
-            res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess, start_cache=starts)
+            res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess, start_cache=starts,
+                                     progress=progress, deadline_checks=checks[0])
         if res.status_name == "start_failed" and guess is None:
-            res = continued_in_m(p, o, callback, scene, starts) or res
+            why: list[str] = []
+            res = continued_in_m(p, o, callback, scene, starts, progress, why) or res
+            if why and not res.success:
+                # the start grids' film is not all that failed: say where the continuation did
+                res.message += f"; {why[0]}"
+        checks[0] = True
         if res.success or res.status_name == "inaccurate":
             last[:] = [res]  # only the latest: fine-grid results are large
         if res.success:

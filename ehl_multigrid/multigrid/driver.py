@@ -44,6 +44,7 @@ import numpy as np
 
 from ..model.errors import ConvergenceError
 from .accuracy import LOAD_SENSITIVITY, hm_max_order, iteration_error, last_film_change, richardson
+from .controller import TimeBudgetSpent, check_deadline
 from .options import MultigridOptions
 from .policy import NOTHING_CHANGED, RobustnessPolicy, Settings
 from .result import EHLResult
@@ -130,6 +131,9 @@ class MultilevelSolver:
         self._callback: Callable | None = None
         self._finest_phase = False
         self._confirmed_at = -1
+        #: check the time budget of the running sequence before each cycle (ends the solve
+        #: with status ``time_budget``; the steady line solver sets it)
+        self.deadline_checks = False
 
     # -- introspection --------------------------------------------------------------------
     @property
@@ -191,6 +195,8 @@ class MultilevelSolver:
         """One accepted cycle on grid ``k``: rejected attempts are undone and repeated with
         the policy's next step; raises ``_Stop`` when the retries run out."""
         hz, pol, s = self.hierarchy, self.policy, self.settings
+        if self.deadline_checks:
+            check_deadline(f"cycle {c} on the {hz.levels[k].shape[-1]}-point grid")
         saved = hz.snapshot(k)
         recent = [h.residual for h in self.history if h.level == k]
         last = self.history[-1] if self.history else None
@@ -453,6 +459,9 @@ class MultilevelSolver:
                                f"{self.load_errors[-1]:.3g} (tol {o.tol_load:.3g})")
             except _Stop as stop:
                 status, message = stop.status, stop.message
+            except TimeBudgetSpent as exc:
+                status, message = 10, str(exc).split("\n  what to try:")[0]
+                hint = exc.hint or self.hint
             except ConvergenceError as exc:
                 status, message = 5, str(exc).split("\n  what to try:")[0]
                 hint = exc.hint or self.hint
