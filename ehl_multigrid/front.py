@@ -38,6 +38,7 @@ from typing import Any
 
 from .model.errors import ConvergenceError, InputError, require_choice, require_range, require_slip
 from .model.plausibility import warn_model_range
+from .model.results import RENAMED_PARTS
 from .model.scene import Scene, load_scene
 from .solution import (
     ErrorEstimate,
@@ -61,8 +62,6 @@ BUILTIN = ("steady", "starved", "transient")
 #: the entry-point group of the physics of the layers above the core:
 #: ``solve_physics(scene, *, accuracy, options, callback, progress) -> Solution``
 PHYSICS_GROUP = "ehl.physics"
-#: names of the older error budgets -> the contract's part names
-PART_NAMES = {"algebraic": "iteration"}
 #: options of a transient run besides the multigrid options of its time steps
 TRANSIENT_RUN_KEYS = ("dt", "steps", "t_end", "scheme", "snapshot_every", "accept_stall", "xmin",
                       "xmax", "time_error", "checkpoint", "resume", "cavitation", "time_tol",
@@ -231,7 +230,7 @@ def ehl_error(est: Any, accuracy: float | None) -> ErrorEstimate:
     (budget ``grid``, ``domain``, ``algebraic`` -> parts ``grid``, ``domain``, ``iteration``)."""
     if est is None:
         return ErrorEstimate(target=accuracy, notes=("not estimated: the iteration did not converge",))
-    parts = {PART_NAMES.get(k, k): PartError(as_float(v.get("Hc")), as_float(v.get("Hm")))
+    parts = {RENAMED_PARTS.get(k, k): PartError(as_float(v.get("Hc")), as_float(v.get("Hm")))
              for k, v in est.budget.items()}
     return ErrorEstimate(as_float(est.Hc), as_float(est.Hm), parts, accuracy, tuple(est.notes))
 
@@ -642,9 +641,16 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
     grid = Grid(int(res.X.size), None if line else int(Y.size), None,
                 (float(res.X[0]), float(res.X[-1])) if line else
                 (float(res.X[0]), float(res.X[-1]), float(Y[0]), float(Y[-1])), False)
-    return Solution(physics="transient", contact=scene.kind, outcome=outcome, Hc=float(Hc_s[-1]),
-                    Hm=float(Hm_s[-1]), hc=float(Hc_v[-1]) * scale, hm=float(Hm_v[-1]) * scale, error=error,
-                    fields=frozen_fields(arrays), grid=grid, details=details, raw=res, scene=scene)
+    films = {"Hc": float(Hc_s[-1]), "Hm": float(Hm_s[-1]), "hc": float(Hc_v[-1]) * scale,
+             "hm": float(Hm_v[-1]) * scale}
+
+    def builder() -> Any:
+        from .transient.package_result import transient_result
+
+        return transient_result(scene.kind, scene, arrays, details, films)
+    return Solution(physics="transient", contact=scene.kind, outcome=outcome, **films, error=error,
+                    fields=frozen_fields(arrays), grid=grid, details=details, raw=res, scene=scene,
+                    _result_builder=builder)
 
 
 def _transient_judgement(done: str, controlled: tuple[Any, Any], error: ErrorEstimate,

@@ -342,19 +342,16 @@ class Solution:
     # -- views ----------------------------------------------------------------------------
     def to_result(self) -> Any:
         """The package's HDF5 :class:`~ehl_multigrid.model.results.Result` (``.save(path)``)
-        of the solution, where the solver's result can give one (steady, starved, thermal).
+        of the solution, with its outcome and error estimate (:func:`record_solution`).
 
         Raises
         ------
         TypeError
-            When it cannot: a transient run (write it with ``raw.to_hdf5(path)``) or a solve
-            that ended without fields.
+            When it cannot: a solve that ended without fields.
         """
         if self._result_builder is None:
-            raise TypeError(f"this {self.physics} solution has no package Result"
-                            + (" (a transient run writes its own file: raw.to_hdf5(path))"
-                               if self.physics == "transient" else " (the solve produced no fields)"))
-        return self._result_builder()
+            raise TypeError(f"this {self.physics} solution has no package Result (the solve produced no fields)")
+        return record_solution(self._result_builder(), self)
 
     def summary(self) -> dict[str, Any]:
         """Plain scalars (for JSON): physics, contact, outcome, films, errors, grid and the
@@ -373,6 +370,32 @@ class Solution:
         if self.details is not None:
             out.update(_scalars_of(self.details))
         return out
+
+
+def record_solution(result: Any, sol: Solution) -> Any:
+    """``result`` (a package :class:`~ehl_multigrid.model.results.Result` of ``sol``) with the
+    outcome and error estimate of ``sol``, written the same way for every physics.
+
+    Scalars ``status`` (``Status.label``), ``message``, ``success``, ``Hc_error``, ``Hm_error``
+    (NaN when not estimated) and the physics' own stated errors (thermal:
+    ``friction_coefficient_error``, relative, and ``T_max_error_K``); meta ``physics``,
+    ``error_budget`` (part name -> ``{"Hc", "Hm"}``, the names of ``sol.error.parts``),
+    ``error_notes`` and ``accuracy`` (the target, None without one). Returns ``result``.
+    """
+    e = sol.error
+    result.set_scalar("status", sol.status.label)
+    result.set_scalar("message", sol.message)
+    result.set_scalar("success", bool(sol.success))
+    result.set_scalar("Hc_error", as_float(e.Hc))
+    result.set_scalar("Hm_error", as_float(e.Hm))
+    if isinstance(sol.details, ThermalDetails):
+        result.set_scalar("friction_coefficient_error", as_float(sol.details.friction_coefficient_error))
+        result.set_scalar("T_max_error_K", as_float(sol.details.T_max_error_K), "K")
+    result.meta["physics"] = sol.physics
+    result.meta["error_budget"] = {name: {"Hc": p.Hc, "Hm": p.Hm} for name, p in e.parts.items()}
+    result.meta["error_notes"] = list(e.notes)
+    result.meta["accuracy"] = e.target
+    return result
 
 
 def _scalars_of(obj: Any, prefix: str = "") -> dict[str, Any]:

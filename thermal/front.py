@@ -6,7 +6,8 @@ point contacts; a line scene with a finite ``[supply] hoil`` is solved starved, 
 with one is refused), or with ``estimate=False`` the TEHL solve alone (:func:`film_alone`),
 and returns its answer as a :class:`~ehl_multigrid.solution.Solution`: the TEHL films, the
 budget of :func:`thermal.tehl.accuracy.estimate_error` as error parts (``grid`` along X,
-``nz`` across the film, ``domain``, ``iteration``) and the thermal quantities in
+``nz`` across the film, ``domain``, ``iteration``; point films anchored on the core's
+isothermal films also ``isothermal``) and the thermal quantities in
 :class:`~ehl_multigrid.solution.ThermalDetails`.
 """
 

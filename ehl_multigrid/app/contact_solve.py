@@ -110,6 +110,9 @@ def write_and_print(args: argparse.Namespace, out: Path, kind: str, raw: Any, re
     """Write the result ``res`` as ``<stem>.h5``, the CSV profiles (``--csv``) and the figures
     (of the solver's result ``raw``; with the film content of a ``starved`` one) through a
     staging folder, name them in ``payload`` and print its summary (unless ``--json``)."""
+    if "error_budget" in payload and "error_budget" in res.meta:
+        # the JSON states the budget as the file does: by the contract's part names
+        payload["error_budget"] = res.meta["error_budget"]
     stem = safe_stem(name)  # a scene name is a label: never a path out of --out
     # the finished files are moved into --out together when the block ends (a stop while
     # plotting keeps the result and the CSV, not the figures of the interrupted call)

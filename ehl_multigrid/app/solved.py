@@ -40,7 +40,10 @@ def require_film(sol: Any, what: str) -> Any:
 def package_result(sol: Any) -> Any:
     """The HDF5 :class:`~ehl_multigrid.model.results.Result` of ``sol`` to write:
     ``sol.to_result()``, or for a solve that ended without fields the solver's result as it
-    is, whose status and message say it failed."""
+    is, with the solution's outcome and error estimate
+    (:func:`~ehl_multigrid.solution.record_solution`)."""
+    from ..solution import record_solution
+
     if sol.fields:  # a film: the contract's own view
         return sol.to_result()
-    return sol.raw.to_result(sol.scene)
+    return record_solution(sol.raw.to_result(sol.scene), sol)

@@ -16,6 +16,12 @@ HDF5 layout (written by :meth:`Result.save`, read by :meth:`Result.load`)::
     /history/<name>      1-D datasets (residual per cycle, load error, ...)
     /meta                attrs: free text (solver options used, notes); JSON-encoded values
 
+A result of :meth:`ehl_multigrid.solution.Solution.to_result` holds the solution's outcome and
+error estimate the same way for every physics (scalars ``status``, ``message``, ``success``,
+``Hc_error``, ``Hm_error``; meta ``error_budget`` by part name, ``error_notes``, ``accuracy``).
+Older files named the ``iteration`` part of ``error_budget`` ``algebraic``: it is read under
+the current name.
+
 Files are written to a temporary file beside the target and renamed, so a crash never
 leaves a half-written result.
 """
@@ -36,6 +42,9 @@ from .atomic import atomic_path, fault_point
 from .errors import InputError
 
 FORMAT_VERSION = 1
+#: part names of the error budget (meta ``error_budget``) that older files wrote -> the names
+#: written now, those of :class:`~ehl_multigrid.solution.ErrorEstimate` ``parts``
+RENAMED_PARTS = {"algebraic": "iteration"}
 #: HDF5 filters of the larger fields: the byte shuffle before gzip level 1 (standard filters
 #: every HDF5 reader has). On the four 1025^2 float64 fields of a point film: 24.5 MB in 0.67 s,
 #: against 29.4 MB in 1.05 s with gzip level 4 alone and 34.8 MB uncompressed
@@ -229,7 +238,15 @@ class Result:
             res.history[name] = ds[()]
         for key, val in f["meta"].attrs.items():
             res.meta[key] = json.loads(_str(val))
+        if isinstance(res.meta.get("error_budget"), dict):
+            res.meta["error_budget"] = current_part_names(res.meta["error_budget"])
         return res
+
+
+def current_part_names(budget: dict[str, Any]) -> dict[str, Any]:
+    """An error budget (part name -> errors) with the part names of older files
+    (:data:`RENAMED_PARTS`) read as the current ones."""
+    return {RENAMED_PARTS.get(k, k): v for k, v in budget.items()}
 
 
 def save_results(path: str | os.PathLike, results: dict[str, Result], meta: dict[str, Any] | None = None,

@@ -229,12 +229,10 @@ def test_a_transient_run_is_inaccurate_under_a_target_whose_error_it_cannot_meas
     assert judged.Hc == transient_line.Hc
 
 
-def test_to_result_gives_the_package_result_where_the_solver_has_one(steady_line, thermal_line,
-                                                                       transient_line):
+def test_to_result_gives_the_package_result_of_every_physics(steady_line, thermal_line, transient_line):
     assert steady_line.to_result().kind == "ehl_line"
     assert thermal_line.to_result().kind == "tehl_line"
-    with pytest.raises(TypeError, match="to_hdf5"):
-        transient_line.to_result()
+    assert transient_line.to_result().kind == "transient_line"
 
 
 def test_transient_point_equals_solve_transient_point_called_directly():

@@ -45,9 +45,10 @@ def test_default_solve_meets_the_default_accuracy_and_states_its_error(capsys, t
     d = json.loads(capsys.readouterr().out)
     assert rc == 0 and d["status"] == "converged" and d["accuracy"] == 0.005
     assert d["Hc_error"] <= 0.005 and d["Hm_error"] <= 0.005
-    assert set(d["error_budget"]) == {"grid", "domain", "algebraic"}
+    assert set(d["error_budget"]) == {"grid", "domain", "iteration"}
     saved = Result.load(tmp_path / "line_M20_L10.h5")
     assert saved.scalars["Hc_error"] == d["Hc_error"]
+    assert saved.meta["error_budget"] == d["error_budget"]
 
 
 def test_explicit_coarse_grid_is_judged_against_the_accuracy_and_exits_3(capsys, tmp_path):
