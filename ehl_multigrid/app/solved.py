@@ -24,16 +24,15 @@ def require_computed(sol: Any) -> Any:
 
 def require_film(sol: Any, what: str) -> Any:
     """:func:`require_computed`, and a :class:`ConvergenceError` as well when the solve ended
-    with no film (a failed start or a diverged iterate, :data:`~ehl_multigrid.front.NO_FILM`):
+    with no film (a failed start, a diverged iterate, a start no cycle touched: no ``fields``):
     writing its iterate would present zeros or a blown-up field as a film (a point load of
     0.04 N diverged on the second grid and was written with H = 0, ``Hc`` 0 in ``--json``)."""
-    from ..front import NO_FILM
-
     raw = require_computed(sol)
-    if sol.status in NO_FILM:
+    if not sol.fields:
+        hint = ("a larger --time-budget" if sol.status.label == "time_budget" else
+                "check the inputs' magnitudes and units (load, speed, viscosity), or try --points or --cycle")
         raise ConvergenceError(f"{what} {sol.status.label}: {sol.message}", getattr(raw, "report", None),
-                               "check the inputs' magnitudes and units (load, speed, viscosity), or try "
-                               "--points or --cycle; no film was computed, so nothing was written")
+                               f"{hint}; no film was computed, so nothing was written")
     return raw
 
 

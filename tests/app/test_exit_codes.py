@@ -4,6 +4,7 @@ fit's extrapolation warned about, and ``ehl solve --csv``."""
 
 import csv
 import json
+import math
 import re
 from pathlib import Path
 
@@ -76,6 +77,20 @@ def test_a_diverged_point_solve_writes_no_film_and_exits_3(tmp_path, capsys):
     out = json.loads(capsys.readouterr().out)
     assert rc == 3 and out["error"] == "convergence" and "diverged" in out["message"]
     assert "Hc" not in out and not (out_dir.exists() and list(out_dir.iterdir()))
+
+
+def test_a_solve_stopped_by_its_time_budget_before_any_film_writes_nothing(tmp_path, capsys):
+    # (5000, 0) continues in M: 0.3 s run out in its first start's Newton solve, whose iterate
+    # (the start guess, Hc = Hm = 0) the front door gave as films of 0
+    import ehl_multigrid as ehl
+    from ehl_multigrid.solution import MoesProblem
+
+    sol = ehl.solve(MoesProblem("line", 5000, 0), accuracy=0.005, options={"time_budget": 0.3})
+    assert sol.status.label == "time_budget" and not sol.fields and math.isnan(sol.Hc)
+    rc = main(["solve", "--contact", "line", "--M", "5000", "--L", "0", "--time-budget", "0.3", "--json",
+               "--no-plots", "--out", str(tmp_path / "o")])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 3 and "time budget" in out["message"] and not (tmp_path / "o").exists()
 
 
 @pytest.mark.parametrize("flags, field", [
