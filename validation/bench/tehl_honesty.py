@@ -10,8 +10,11 @@ their differences lies in 2.5-6 (second order, as the answer's Hc is), else the 
 with its last difference as its uncertainty. A film is *within its estimate* when
 `|answer - reference| <= stated * answer + reference uncertainty`; the reference's own
 uncertainty is listed beside. The box and nz are the answer's: their parts are not checked here.
+T_max (degC) is checked the same way, in kelvin, against its stated `T_max_error_K`; a T_max whose
+error the answer states as unknown (not grid-converged) is counted apart.
 
     python validation/bench/tehl_honesty.py --label NAME [--accuracies 0.02 0.005] [--max-points 8193]
+        [--cases appendix_c_line_4240N:0 spur_gear_pitch_point]
 
 writes build/validation/bench/tehl_honesty_NAME.json (after every case).
 """
@@ -60,7 +63,8 @@ def chain(scene: Any, slip: float, points: int, nz: int, box: float, max_points:
         t = time.perf_counter()
         try:
             coarse = solve_tehl_line(scene, slip, points=n, nz=nz, box=box, coarse=coarse)
-            out.append({"points": n, "Hc": coarse.Hc, "Hm": coarse.Hm, "wall_s": time.perf_counter() - t})
+            out.append({"points": n, "Hc": coarse.Hc, "Hm": coarse.Hm, "T_max": coarse.T_max,
+                        "wall_s": time.perf_counter() - t})
         except ConvergenceError as exc:
             out.append({"points": n, "failed": str(exc).splitlines()[0][:160]})
             break
@@ -73,12 +77,16 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--label", required=True)
     ap.add_argument("--accuracies", type=float, nargs="+", default=[0.02, 0.005])
     ap.add_argument("--max-points", type=int, default=8193)
+    ap.add_argument("--cases", nargs="+", default=None,
+                    help="scene or scene:slip (default: the built-in list)")
     args = ap.parse_args(argv)
     import ehl_multigrid as ehl
 
     path = OUT / f"tehl_honesty_{args.label}.json"
     rows: list[dict[str, Any]] = []
-    for name, slip in CASES:
+    cases = CASES if args.cases is None else [
+        (c.split(":")[0], float(c.split(":")[1]) if ":" in c else None) for c in args.cases]
+    for name, slip in cases:
         scene = ehl.load_scene(name)
         if slip is not None:
             scene = scene.with_operating(slip=slip)
@@ -90,7 +98,8 @@ def main(argv: list[str] | None = None) -> int:
             if sol.grid is not None and sol.success:
                 o = sol.raw.result.options
                 row.update(points=o.points, nz=o.nz, box=o.box, Hc=sol.Hc, Hm=sol.Hm,
-                           stated_Hc=sol.error.Hc, stated_Hm=sol.error.Hm)
+                           stated_Hc=sol.error.Hc, stated_Hm=sol.error.Hm, T_max=sol.details.T_max,
+                           stated_T_max_K=sol.details.T_max_error_K)
                 films = chain(scene, float(scene.slip), o.points, o.nz, o.box, args.max_points)
                 row["chain"] = films
                 ok = [f for f in films if "failed" not in f]
@@ -101,6 +110,11 @@ def main(argv: list[str] | None = None) -> int:
                         row[f"ref_{key}"], row[f"ref_unc_{key}"], row[f"ref_how_{key}"] = ref, unc / ref, how
                         row[f"true_{key}"] = true
                         row[f"within_{key}"] = true <= row[f"stated_{key}"] + unc / ref
+                    ref, unc, how = reference([(f["points"], f["T_max"]) for f in ok])
+                    row.update(ref_T_max=ref, ref_unc_T_max_K=unc, ref_how_T_max=how,
+                               true_T_max_K=abs(row["T_max"] - ref))
+                    if math.isfinite(row["stated_T_max_K"]):
+                        row["within_T_max"] = row["true_T_max_K"] <= row["stated_T_max_K"] + unc
             rows.append(row)
             print(json.dumps({k: v for k, v in row.items() if k != "chain"}), flush=True)
             path.write_text(json.dumps(rows, indent=1))
@@ -109,6 +123,10 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{sum(r[f'within_{k}'] for r, k in checked)} of {len(checked)} films within their estimate; "
           f"true/stated median {ratios[len(ratios) // 2] if ratios else math.nan:.2f}, "
           f"largest {ratios[-1] if ratios else math.nan:.2f}; wrote {path}")
+    t_rows = [r for r in rows if "true_T_max_K" in r]
+    print(f"T_max: {sum(r.get('within_T_max', False) for r in t_rows)} of "
+          f"{sum('within_T_max' in r for r in t_rows)} stated errors hold; "
+          f"{sum('within_T_max' not in r for r in t_rows)} of {len(t_rows)} stated unknown")
     return 0
 
 
