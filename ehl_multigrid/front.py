@@ -260,10 +260,10 @@ def ehl_solution(res: Any, physics: str, contact: str, accuracy: float | None, t
     scal = res.scalars
     line = contact == "line"
     film = status not in NO_FILM and getattr(res, "X", None) is not None
-    if film and status is not Status.FILM_NOT_POSITIVE and not (as_float(scal.get("Hc")) > 0.0
-                                                                 and as_float(scal.get("Hm")) > 0.0):
-        # an iterate with no positive film that its status does not flag as such: a solve
-        # stopped by its time budget before a cycle touched the start (Hc = Hm = 0)
+    if film and status in (Status.TIME_BUDGET, Status.STOPPED) and not (
+            as_float(scal.get("Hc")) > 0.0 and as_float(scal.get("Hm")) > 0.0):
+        # a solve stopped (time budget, callback) before a cycle touched its start guess
+        # (Hc = Hm = 0): that iterate is no film
         film = False
     arrays: dict[str, Any] = {}
     if film:
