@@ -186,6 +186,11 @@ def thermal_solution(done: Any, scene: Scene, accuracy: float | None, t0: float)
 
     r, est = done.result, done.estimate
     point = scene.kind != "line"
+    if float(r.scene.slip) != float(r.slip):
+        # the result's scene is the contact solved: at the slip asked for (options["slip"]), so
+        # that a saved result solved again from its scene gives the same answer
+        r.scene = r.scene.with_operating(slip=float(r.slip))
+        scene = r.scene
     if done.accurate:
         status, message = Status.CONVERGED, done.message
     else:  # as 'ehl solve --thermal': converged means the estimate meets the target too

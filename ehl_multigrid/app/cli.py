@@ -318,7 +318,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_solve_arguments(p)
     add_common_options(p)
-    p.set_defaults(func=locked_command(_cmd_solve, "ehl solve"))
+    # a solve writes its result when the solve ends: a stop before then keeps nothing of it
+    p.set_defaults(func=locked_command(_cmd_solve, "ehl solve"),
+                   on_stop="a result is kept only if the solve had ended before the stop (it is written then)")
 
     p = sub.add_parser("plan", help="which physics a scene needs, and why (numbers behind each decision)")
     p.add_argument("scene", help="built-in scene name or TOML file")
@@ -507,6 +509,7 @@ def _failed(args: argparse.Namespace, code: int, error: str, message: str) -> in
 
 
 def _run_command(args: argparse.Namespace) -> int:
+    kept = getattr(args, "on_stop", "finished work was kept")  # what a stop leaves
     previous = None
     try:
         previous = signal.signal(signal.SIGTERM, _raise_terminated)
@@ -521,11 +524,11 @@ def _run_command(args: argparse.Namespace) -> int:
         print(f"ehl {args.command}: did not converge: {exc}", file=sys.stderr)
         return _failed(args, EXIT_CONVERGENCE, "convergence", str(exc).splitlines()[0])
     except KeyboardInterrupt:
-        print(f"ehl {args.command}: interrupted; finished work was kept", file=sys.stderr)
-        return _failed(args, EXIT_INTERRUPTED, "interrupted", "interrupted; finished work was kept")
+        print(f"ehl {args.command}: interrupted; {kept}", file=sys.stderr)
+        return _failed(args, EXIT_INTERRUPTED, "interrupted", f"interrupted; {kept}")
     except Terminated:
-        print(f"ehl {args.command}: terminated; finished work was kept", file=sys.stderr)
-        return _failed(args, EXIT_TERMINATED, "terminated", "terminated; finished work was kept")
+        print(f"ehl {args.command}: terminated; {kept}", file=sys.stderr)
+        return _failed(args, EXIT_TERMINATED, "terminated", f"terminated; {kept}")
     except SystemError as exc:
         # a signal that arrived while compiled code ran reaches us wrapped in a SystemError
         cause = signal_cause(exc)
@@ -533,9 +536,8 @@ def _run_command(args: argparse.Namespace) -> int:
             raise
         interrupted = isinstance(cause, KeyboardInterrupt)
         what = "interrupted" if interrupted else "terminated"
-        print(f"ehl {args.command}: {what}; finished work was kept", file=sys.stderr)
-        return _failed(args, EXIT_INTERRUPTED if interrupted else EXIT_TERMINATED, what,
-                       f"{what}; finished work was kept")
+        print(f"ehl {args.command}: {what}; {kept}", file=sys.stderr)
+        return _failed(args, EXIT_INTERRUPTED if interrupted else EXIT_TERMINATED, what, f"{what}; {kept}")
     except OSError as exc:
         if exc.filename is None:
             raise

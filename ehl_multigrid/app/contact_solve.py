@@ -83,11 +83,12 @@ def heat_note(scene: Any, accuracy: float | None) -> str | None:
     change = thermal_film_change(scene)
     if accuracy is None or change.expected <= max(accuracy, floor):
         return None
-    return (f"the contact's heat is expected to change the film by about {change.expected:.2g} (Gupta et al. "
-            f"1992 inlet heating {change.gupta:.2g} at thermal loading {change.loading:.3g}"
-            f"{f'; the contact heat {change.heating:.2g}' if change.heating else ''}), more than the accuracy "
-            f"{accuracy:g} and {floor:g}: this isothermal film's estimated error leaves that out; `ehl solve "
-            f"SCENE --thermal` solves it")
+    return (f"the plan estimates that the contact's heat changes the film by up to {change.expected:.2g}, "
+            f"more than the accuracy {accuracy:g} and {floor:g} (the larger of a third of Gupta et al.'s "
+            f"1992 inlet-heating reduction {change.gupta:.2g}, the share the coupled solver measured on "
+            f"the built-in scenes, and the contact-heat estimate {change.heating:.2g}; a rough upper "
+            f"estimate): this isothermal film's estimated error leaves that out; `ehl solve SCENE "
+            f"--thermal` solves it")
 
 
 # -- shared ----------------------------------------------------------------------------------------

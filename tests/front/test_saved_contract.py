@@ -87,3 +87,13 @@ def test_an_older_file_with_an_algebraic_part_loads_it_as_iteration(tmp_path):
     back = Result.load(old.save(tmp_path / "old.h5"))
     assert back.meta["error_budget"] == {"grid": {"Hc": 1e-3, "Hm": 2e-3}, "domain": {"Hc": 0.0, "Hm": 1e-4},
                                          "iteration": {"Hc": 3e-5, "Hm": 4e-5}}
+
+
+def test_a_thermal_result_saved_at_another_slip_than_its_scenes_records_that_slip(tmp_path):
+    # solved at options["slip"] 0.5, the file's scene said the scene's slip 0: solved again from
+    # it, the answer differed
+    sol = ehl.solve("appendix_c_line_4240N", physics="thermal", accuracy=0.05, options={"slip": 0.5})
+    path = tmp_path / "th.h5"
+    sol.to_result().save(path)
+    loaded = Result.load(path)
+    assert sol.scene.slip == 0.5 and loaded.scene.slip == 0.5 and loaded.scalars["slip"] == 0.5
