@@ -210,6 +210,10 @@ class Result:
     @classmethod
     def _read(cls, f: h5py.Group, path: Path) -> Result:
         if f.attrs.get("package") != "ehl-multigrid":
+            if "series" in f and "steady" in f:
+                # the run file `ehl transient` writes (raw.to_hdf5): another layout
+                raise InputError(f"{path} is an `ehl transient` run file, not a Result: read it with "
+                                 f"ehl_multigrid.transient.result.load_series")
             raise InputError(f"{path} is not an ehl-multigrid result file")
         if _str(f.attrs.get("kind", "")) == "collection":
             raise InputError(f"{path} holds several results {sorted(f.keys())} (ehl run); "

@@ -114,3 +114,12 @@ def test_a_partial_run_file_is_written_uncompressed_and_the_final_one_compressed
             ds = f["film/fields/p"]
             assert (ds.compression, ds.shuffle) == filters
         np.testing.assert_array_equal(load_results(path)["film"]["p"], r["p"])
+
+
+def test_loading_a_transient_run_file_names_its_reader(tmp_path):
+    path = tmp_path / "run.h5"
+    with h5py.File(path, "w") as f:  # the layout `ehl transient` writes
+        f.create_group("series")
+        f.create_group("steady")
+    with pytest.raises(InputError, match="ehl transient.*load_series"):
+        Result.load(path)
