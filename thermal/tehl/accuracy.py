@@ -764,7 +764,8 @@ def solve_tehl_to_accuracy(scene: Scene, slip: float | None = None, options: TEH
         at = out.steps[-1]
         error = TimeBudgetSpent if out.budget_spent else ConvergenceError
         hint = ("a larger time_budget (or a looser accuracy)" if out.budget_spent else
-                "more points (the contact may need a finer grid) or check the inputs")
+                "another grid (more points, or a coarser one: a finer grid's outer iteration or "
+                "meniscus search can fail where a coarser one converged), a lower relax, or check the inputs")
         raise error(f"TEHL: the solve on {at.points} points, nz = {at.nz} did not converge: {out.why}",
                     None, hint)
     res, est = out.result, tehl.estimates[id(out.result)]
