@@ -41,8 +41,6 @@ from ehl_multigrid.solution import (
 RUN_KEYS = ("slip", "max_points", "max_nz", "box_limit", "time_budget", "threads", "estimate", "start")
 #: the budgets of the refinement towards a target, which needs the error estimate
 REFINE_KEYS = ("max_points", "max_nz", "box_limit", "time_budget")
-#: the estimate's part names -> the contract's
-PARTS = {"grid_x": "grid", "grid_z": "nz", "domain": "domain", "iteration": "iteration", "isothermal": "isothermal"}
 
 
 def solve_thermal(scene: Scene, *, accuracy: float | None, options: Any = None,
@@ -182,6 +180,7 @@ def _threads(threads: int | None) -> Iterator[None]:
 
 def thermal_solution(done: Any, scene: Scene, accuracy: float | None, t0: float) -> Solution:
     """The :class:`Solution` of an :class:`~thermal.tehl.accuracy.AccurateTEHL`."""
+    from .tehl.accuracy import CONTRACT_PARTS
     from .tehl.results import tehl_line_result, tehl_point_result
 
     r, est = done.result, done.estimate
@@ -202,8 +201,8 @@ def thermal_solution(done: Any, scene: Scene, accuracy: float | None, t0: float)
         error = ErrorEstimate(target=accuracy, notes=("not estimated: the film was solved alone (estimate = False)",))
         budget: dict[str, Any] = {}
     else:
-        parts = {PARTS[p]: PartError(as_float(est.budget["Hc"][p]), as_float(est.budget["Hm"][p]))
-                 for p in PARTS if p in est.budget["Hc"]}
+        parts = {CONTRACT_PARTS[p]: PartError(as_float(est.budget["Hc"][p]), as_float(est.budget["Hm"][p]))
+                 for p in CONTRACT_PARTS if p in est.budget["Hc"]}
         error = ErrorEstimate(as_float(est.Hc), as_float(est.Hm), parts, accuracy, tuple(est.notes))
         budget = est.budget
     o = r.options

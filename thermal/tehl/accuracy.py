@@ -83,6 +83,9 @@ ORDERS = {"line": (2.0, 2.0), "point": (1.5, 2.0)}
 HM_ORDER_X = 1.5
 #: the parts of a TEHL error budget
 PARTS = ("grid_x", "grid_z", "domain", "iteration")
+#: the result contract's name of each part (``Solution.error.parts``, saved files, ``--json``)
+CONTRACT_PARTS = {"grid_x": "grid", "grid_z": "nz", "domain": "domain", "iteration": "iteration",
+                  "isothermal": "isothermal"}
 #: share of the target the isothermal reference of an anchored estimate is solved to
 ANCHOR_SHARE = 0.5
 #: orders along X of the thermal/isothermal film ratios in an anchored estimate: Hc's ratio
@@ -396,10 +399,14 @@ class TEHLErrorEstimate:
 
     def payload(self) -> dict[str, Any]:
         """The ``--json`` keys: ``Hc_error``, ``Hm_error``, ``friction_coefficient_error``,
-        ``T_max_error_K``, ``error_budget``, ``error_notes``."""
+        ``T_max_error_K`` (the totals), ``error_budget`` (part -> quantity -> value, under the
+        result contract's part names :data:`CONTRACT_PARTS`, as every physics states it) and
+        ``error_notes``."""
         out: dict[str, Any] = {f"{k}_error": self.budget[k]["total"] for k in QUANTITIES if k != "T_max"}
         out["T_max_error_K"] = self.budget["T_max"]["total"]
-        out["error_budget"] = self.budget
+        out["error_budget"] = {name: {q: self.budget[q][part] for q in QUANTITIES if part in self.budget[q]}
+                               for part, name in CONTRACT_PARTS.items()
+                               if any(part in self.budget[q] for q in QUANTITIES)}
         out["error_notes"] = list(self.notes)
         return out
 

@@ -126,7 +126,9 @@ def test_ehl_solve_thermal_point_is_converged_when_the_estimate_meets_the_target
     out = json.loads(capsys.readouterr().out)
     assert rc == 0 and out["converged"] and out["contact"] == "point"
     assert max(out["Hc_error"], out["Hm_error"]) <= 0.1
-    assert {"grid_x", "grid_z", "domain", "iteration", "total"} <= set(out["error_budget"]["Hc"])
+    # the budget by part under the result contract's names, each with every stated quantity
+    assert {"grid", "nz", "domain", "iteration"} <= set(out["error_budget"])
+    assert set(out["error_budget"]["grid"]) == {"Hc", "Hm", "friction_coefficient", "T_max"}
     # the whole solve (the estimate's solves on half the grid and nz included) beside the returned one's
     assert out["wall_total_s"] > out["wall_s"] > 0
 

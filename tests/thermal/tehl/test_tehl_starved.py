@@ -85,7 +85,7 @@ def test_ehl_solve_thermal_of_a_starved_scene_reports_the_meniscus_and_its_error
     assert code == 0 and out["converged"] is True
     assert out["inlet_flooded"] is False and -1.1 < out["meniscus_x"] < -1.0
     assert out["Hc_ratio"] < 0.5 and out["hc"] < 2e-8
-    assert 0.0 < out["Hc_error"] < 0.1 and out["error_budget"]["Hc"]["domain"] == 0.0
+    assert 0.0 < out["Hc_error"] < 0.1 and out["error_budget"]["domain"]["Hc"] == 0.0
     assert any("meniscus" in n for n in out["error_notes"])
     assert out["supply_mismatch"] <= out["mass_balance_error"] <= 1e-4
 
