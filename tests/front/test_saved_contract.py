@@ -11,24 +11,9 @@ import numpy as np
 import pytest
 
 import ehl_multigrid as ehl
-from ehl_multigrid import Result, Scene, load_scene
+from ehl_multigrid import Result, load_scene
 
-
-def same(a: float, b: float) -> bool:
-    return (math.isnan(a) and math.isnan(b)) or a == b
-
-
-def starved_line_scene() -> Scene:
-    d = load_scene("page63_line_500N").to_dict()
-    d["supply"] = {"hoil": 1.5e-8}
-    return Scene.from_dict(d)
-
-
-def bump_line_scene() -> Scene:
-    d = load_scene("page63_line_2000N").to_dict()
-    d["feature"] = {"kind": "bump", "amplitude": 1e-8, "width": 1e-5, "x0": -3.0}
-    return Scene.from_dict(d)
-
+from .test_front_contract import bump_line_scene, same, starved_line_scene
 
 #: one cheap solve per physics; ``estimated``: its error estimate is finite (checked, so that the
 #: round trip compares numbers, not NaN with NaN)
