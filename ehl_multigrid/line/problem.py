@@ -118,17 +118,13 @@ class LineProblem:
             **{k: v for k, v in (("us", us), ("load", load)) if v is not None})
         M, L = sc.moes()
         hz = sc.hertz
-        try:
+        with sc.naming_moes_inputs():
             return cls(
                 M=M, L=L, viscosity=viscosity, density=density, alpha=sc.alpha, eta0=sc.eta0,
                 p0=P_R, z=sc.lubricant.z, pmax=hz.pmax, xmin=math.nan if xmin is None else xmin,
                 xmax=xmax, elastic=elastic,
                 b=hz.b, R=sc.Rx, film_scale=sc.film_scale(), source=f"scene {sc.name}",
             )
-        except InputError as exc:
-            if str(exc).startswith(("M =", "L =")):
-                raise sc.moes_refusal(exc) from None
-            raise
 
     # -- derived --------------------------------------------------------------------------
     @property

@@ -48,6 +48,10 @@ from ehl_multigrid.model.errors import (
 from ehl_multigrid.model.lubricant import Lubricant, z_from_alpha
 from ehl_multigrid.model.units import convert_table
 
+#: the temperatures [degC] at which :meth:`Oil.lubricant` builds a data-sheet oil (its ``T0``,
+#: ``T_fit``; a scene's ``operating.T_oil`` when no ``T0`` is given)
+DATASHEET_T_MIN, DATASHEET_T_MAX = -30.0, 300.0
+
 CST = 1e-6  # m^2/s per mm^2/s (cSt)
 KELVIN = 273.15
 
@@ -282,10 +286,10 @@ class Oil:
         ``S0`` so that the Roelands temperature term gives the Walther viscosity at ``T_fit``
         (default 100 degC, or 40 degC when T0 is 100 degC).
         """
-        T0 = require_range("lubricant.T0", T0, -30.0, 300.0, "degC")
+        T0 = require_range("lubricant.T0", T0, DATASHEET_T_MIN, DATASHEET_T_MAX, "degC")
         if T_fit is None:
             T_fit = 100.0 if abs(T0 - 100.0) > 5.0 else 40.0
-        T_fit = require_range("lubricant.T_fit", T_fit, -30.0, 300.0, "degC")
+        T_fit = require_range("lubricant.T_fit", T_fit, DATASHEET_T_MIN, DATASHEET_T_MAX, "degC")
         if abs(T_fit - T0) < 1.0:
             raise InputError(f"lubricant.T_fit = {T_fit:g} degC must differ from T0 = {T0:g} degC")
         eta0 = self.dynamic_viscosity(T0)

@@ -45,6 +45,8 @@ from __future__ import annotations
 import copy
 import math
 import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from functools import cached_property
 from importlib import resources
@@ -67,7 +69,7 @@ from .errors import (
 )
 from .lubricant import T_MAX_C, T_MIN_C, Lubricant, lubricant_preset
 from .materials import Material, material, materials_from_tables
-from .oils import Oil, is_oil_table, oil_from_table
+from .oils import DATASHEET_T_MAX, DATASHEET_T_MIN, Oil, is_oil_table, oil_from_table
 from .plausibility import check_plausible, unit_hint, warn_model_range
 from .solids import Solid, reduced_modulus_of
 from .units import convert_table, to_canonical
@@ -265,14 +267,21 @@ class Scene:
             return groups.moes_line(load / self.length, us, self.eta0, self.alpha, self.E_reduced, self.Rx)
         return groups.moes_point(load, us, self.eta0, self.alpha, self.E_reduced, self.Rx)
 
-    def moes_refusal(self, exc: InputError) -> InputError:
-        """``exc`` (a solver's refusal of the Moes M or L) with the scene values that make them:
-        a load given in kN as N refused only as "M = 0.0875 is outside [0.1, 20000]"."""
-        per = f" on {self.length:g} m" if self.kind == "line" else ""
-        return InputError(f"{exc}; scene {self.name}: load {self.load:g} N{per}, us {self.us:g} m/s, eta0 "
-                          f"{self.eta0:.4g} Pa s, alpha {self.alpha:.4g} 1/Pa, E' {self.E_reduced:.4g} Pa, Rx "
-                          f"{self.Rx:.4g} m (M grows with the load and falls with speed and viscosity; L grows "
-                          f"with alpha and speed): check these values and their units")
+    @contextmanager
+    def naming_moes_inputs(self) -> Iterator[None]:
+        """Re-raise a solver's refusal of the Moes M or L (an :class:`InputError` starting
+        ``"M ="`` or ``"L ="``) with the scene values that make them: a load given in kN as N
+        was refused only as "M = 0.0875 is outside [0.1, 20000]"."""
+        try:
+            yield
+        except InputError as exc:
+            if not str(exc).startswith(("M =", "L =")):
+                raise
+            per = f" on {self.length:g} m" if self.kind == "line" else ""
+            raise InputError(f"{exc}; scene {self.name}: load {self.load:g} N{per}, us {self.us:g} m/s, eta0 "
+                             f"{self.eta0:.4g} Pa s, alpha {self.alpha:.4g} 1/Pa, E' {self.E_reduced:.4g} Pa, "
+                             f"Rx {self.Rx:.4g} m (M grows with the load and falls with speed and viscosity; "
+                             f"L grows with alpha and speed): check these values and their units") from None
 
     def film_scale(self, us: float | None = None) -> float:
         """Metres per unit Moes film H at sum velocity ``us`` [m]."""
@@ -661,11 +670,11 @@ def _build_scene(data: dict[str, Any], origin: str, check: bool = True) -> Scene
             T_ref = oil_options["T0"]
         elif "T_oil" in op:
             T_ref = _temperature("operating.T_oil", op["T_oil"])
-            if not -30.0 <= T_ref <= 300.0:
+            if not DATASHEET_T_MIN <= T_ref <= DATASHEET_T_MAX:
                 # the data-sheet oil is built at the inlet temperature: name the field given
                 hint = unit_hint("temperature", T_ref)
-                raise InputError(f"operating.T_oil = {T_ref:g} degC is outside the range [-30, 300] degC of "
-                                 f"the data-sheet oil model{f': {hint}' if hint else ''}")
+                raise InputError(f"operating.T_oil = {T_ref:g} degC is outside the range [{DATASHEET_T_MIN:g}, "
+                                 f"{DATASHEET_T_MAX:g}] degC of the data-sheet oil model{f': {hint}' if hint else ''}")
         else:
             T_ref = 40.0
         lub = oil.lubricant(T_ref, oil_options.get("T_fit"))

@@ -175,16 +175,12 @@ def problem_from_scene(scene, viscosity: str = "roelands", density: str = "dowso
     # Roelands' z of the scene's oil: p_r chosen so that alpha(T_oil) = z ln(eta0/eta_inf)/p_r.
     eta0 = scene.eta0
     p_r = lub.z * math.log(eta0 / ETA_INF) / scene.alpha if scene.alpha > 0 else P_R
-    try:
+    with scene.naming_moes_inputs():
         return PointProblem(
             M=M, L=L, theta=scene.theta, viscosity=viscosity, density=density,
             alpha=scene.alpha, eta0=eta0, p_r=p_r, a=hz.a, b=hz.b, Rx=scene.Rx,
             film_scale=scene.film_scale(), pmax_physical=hz.pmax,
         )
-    except InputError as exc:
-        if str(exc).startswith(("M =", "L =")):
-            raise scene.moes_refusal(exc) from None
-        raise
 
 
 def rigid_length(problem: PointProblem) -> float:
