@@ -160,8 +160,8 @@ def run_traction(args: argparse.Namespace) -> dict[str, Any]:
     }
     # the friction at the operating slip with its error, as the main job's traction stage states it
     # (the curve's other slips share its grid); with the Hertz input the film is the fit's, whose
-    # own error is not in it: a user probe found the default scene's friction 3-5 % different on
-    # the solved 513-point film
+    # own error is not in it (the default scene's friction differs by 3-5 % on the solved
+    # 513-point film)
     from .stage import ModelChoice, operating_friction
 
     op = operating_friction(scene, options, ModelChoice(options.thermal, float(scene.slip), "the command's model"),

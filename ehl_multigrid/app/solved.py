@@ -25,8 +25,7 @@ def require_computed(sol: Any) -> Any:
 def require_film(sol: Any, what: str) -> Any:
     """:func:`require_computed`, and a :class:`ConvergenceError` as well when the solve ended
     with no film (a failed start, a diverged iterate, a start no cycle touched: no ``fields``):
-    writing its iterate would present zeros or a blown-up field as a film (a point load of
-    0.04 N diverged on the second grid and was written with H = 0, ``Hc`` 0 in ``--json``)."""
+    writing its iterate would present zeros (a start guess) or a blown-up field as a film."""
     raw = require_computed(sol)
     if not sol.fields:
         hint = ("a larger --time-budget" if sol.status.label == "time_budget" else

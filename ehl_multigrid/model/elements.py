@@ -460,8 +460,8 @@ ELEMENT_KINDS: dict[str, tuple[Callable[..., ElementContact], dict[str, str]]] =
 }
 
 
-#: a speed of rotation [rad/s] given as a plain number at or above this is warned about: a
-#: user probe's shaft_speed = 1500 and disc_speed = 120 (meant as rpm) ran 9.5 times too fast
+#: a speed of rotation [rad/s] given as a plain number at or above this is warned about: such
+#: speeds are usually quoted in rpm, and 1500 rpm read as rad/s runs 9.5 times too fast
 PLAIN_RAD_S = 100.0
 
 #: Quantity of :data:`~ehl_multigrid.model.plausibility.PLAUSIBLE` of each ``[element]`` value.

@@ -270,8 +270,8 @@ class Scene:
     @contextmanager
     def naming_moes_inputs(self) -> Iterator[None]:
         """Re-raise a solver's refusal of the Moes M or L (an :class:`InputError` starting
-        ``"M ="`` or ``"L ="``) with the scene values that make them: a load given in kN as N
-        was refused only as "M = 0.0875 is outside [0.1, 20000]"."""
+        ``"M ="`` or ``"L ="``) with the scene values that make them, so that a load given in kN
+        as N is named, not only "M = 0.0875 is outside [0.1, 20000]"."""
         try:
             yield
         except InputError as exc:

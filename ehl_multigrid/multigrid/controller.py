@@ -346,9 +346,8 @@ def _control(physics: Controlled, start: Resolution, accuracy: float | None, ref
         if step is None:
             why = physics.why_short(res, at)
             if best[0] is not res:
-                # the answer is an earlier solve: say why this one is not it (a starved 6205
-                # outer race at 2 %: 513 points solved, its estimate no better than 257's, and
-                # only "1025 points exceed max_points" was said)
+                # the answer is an earlier solve: say why this one is not it, not only why the
+                # refinement stopped
                 why = (f"the solve on {at.describe()} estimated {worst:.2g}, no better than the "
                        f"{best[1]:.2g} of the solve returned; from it, {why}")
             break

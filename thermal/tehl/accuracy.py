@@ -553,9 +553,9 @@ def estimate_error(result: Any, *, cache: SolveCache | None = None,
             # the core's rules for a sequence: first order from the difference before where the
             # last one is small by accident (page-63 500 N at S = 2: Hm ratios 17, 1.2 on
             # 257-2049 points). A line contact solves the quarter grid for it when it is not
-            # made already: a starved roller-bearing film (hoil 0.2 um) had Hm 3.40367, 3.41782,
-            # 3.41644, 3.41844, 3.41903 on 129-2049 points, and the 513-point film stated 0.033 %
-            # from its last difference alone against a true 0.083 % (now 0.31 %)
+            # made already: a starved roller-bearing film (hoil 0.2 um) has Hm 3.40367, 3.41782,
+            # 3.41644, 3.41844, 3.41903 on 129-2049 points; its last difference alone would state
+            # 0.033 % on 513 points for a true 0.083 %
             qp = (coarse_x.options.points - 1) // 2 + 1
             quarter = cache.results.get((qp, o.nz, o.box))
             if quarter is None and not _is_point(result) and qp >= MIN_POINTS:
