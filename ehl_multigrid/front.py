@@ -476,7 +476,10 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
         opts = dc
         if "points" in step and dc is not None:
             opts = replace(dc, points=step.pop("points"))
-        return solver(pb, feature, body=body, slide_roll=scene.slip, options=opts, callback=call,
+        box = step.pop("box", 1.0)
+        # the controller's longer box (line): the inlet moved upstream, the outlet kept
+        problem = pb if box == 1.0 else replace(pb, xmin=pb.xmax - box * (pb.xmax - pb.xmin))
+        return solver(problem, feature, body=body, slide_roll=scene.slip, options=opts, callback=call,
                       **{**kw, **runkw, **step})
 
     if controlled:
@@ -488,7 +491,7 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
                 require_range("max_points", max_points, points, 2**20 + 1, "points"))
         return _transient_to_accuracy(run, points, most, line, runkw, pb, scale, accuracy,
                                       TRANSIENT_TIME_BUDGET if budget is None else budget, callback,
-                                      on_answer, t0, scene, notes, progress)
+                                      on_answer, t0, scene, notes, progress, line and not box_keys)
     try:
         res = run()
     except ConvergenceError as exc:
@@ -530,17 +533,19 @@ def _transient(scene: Scene, contact: str, accuracy: float | None, options: Any,
 def _transient_to_accuracy(run: Callable[..., Any], points: int, max_points: int, line: bool,
                            runkw: dict[str, Any], pb: Any, scale: float, accuracy: float, budget: float,
                            callback: Any, on_answer: Any, t0: float, scene: Scene,
-                           notes: list[str], progress: Callable[[str], None] | None = None) -> Solution:
-    """A transient run whose time part and grid part are measured
+                           notes: list[str], progress: Callable[[str], None] | None = None,
+                           box_refinable: bool = False) -> Solution:
+    """A transient run whose time, grid and box parts are measured
     (:class:`~ehl_multigrid.transient.control.TransientControl`) and refined by the accuracy
-    controller, in the time step and up to ``max_points`` in the grid, until their sum meets
-    ``accuracy`` or ``budget`` seconds are spent."""
+    controller, in the time step, up to ``max_points`` in the grid and (``box_refinable``) in
+    the inlet length, until their sum meets ``accuracy`` or ``budget`` seconds are spent."""
     from .multigrid.controller import Resolution, control
     from .transient.control import TransientControl
 
     ctl = TransientControl(run, dimensions=1 if line else 2, scheme=runkw.get("scheme", "bdf2"),
                            time_tol=runkw.get("time_tol"), callback=callback, points=points,
-                           max_points=max_points, on_answer=on_answer, progress=progress)
+                           max_points=max_points, on_answer=on_answer, progress=progress,
+                           box_refinable=box_refinable, accuracy=accuracy)
     out = control(ctl, Resolution(points), accuracy, time_budget=budget, max_points=max_points, started=t0,
                   progress=progress)
     r = out.result
@@ -590,10 +595,14 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
         Hm_steady=float(moes(res.steady_film("Hm"))[0]), Hc_min=float(Hc_s.min()), Hc_max=float(Hc_s.max()),
         Hm_min=float(Hm_s.min()), stalled_steps=int(s["stalled_steps"]), notes=tuple(notes))
     measured = terr is not None
-    gerr = controlled[1].grid_parts.get(controlled[0].result.at) if controlled is not None else None
+    gerr = derr = None
+    if controlled is not None:
+        at = controlled[0].result.at
+        gerr, derr = controlled[1].grid_parts.get(at), controlled[1].box_parts.get(at.box)
     nan = PartError(math.nan, math.nan)
     parts = {"grid": PartError(gerr["Hc"], gerr["Hm"]) if gerr is not None else nan,
-             "time": PartError(terr["Hc"], terr["Hm"]) if measured else nan}
+             "time": PartError(terr["Hc"], terr["Hm"]) if measured else nan,
+             "domain": PartError(derr["Hc"], derr["Hm"]) if derr is not None else nan}
     local = s.get("time_error_max", math.nan)
     adaptive = math.isfinite(local)
     if controlled is None:
@@ -602,9 +611,9 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
     else:
         enotes = ("grid part: Richardson in the mesh size on the largest film differences over the run "
                   "from the same steps on the grids with half and a quarter of the intervals (max over "
-                  "the run, relative to the smooth steady film); the box is the run's own (its "
-                  "truncation is not estimated), and each time step is converged to its residual "
-                  "tolerance",)
+                  "the run, relative to the smooth steady film); each time step is converged to its "
+                  "residual tolerance",
+                  controlled[1].box_notes.get(controlled[0].result.at.box, "box part not measured"))
     if measured:
         enotes += ("time part: twice the largest film difference from a run at an eighth of the time "
                    "tolerance and half the output step (max over the run, relative to the smooth "
@@ -623,9 +632,9 @@ def _transient_solution(res: Any, pb: Any, line: bool, scale: float, accuracy: f
         # the local error bounds one step, not the film's error over the run (docs/transient.md)
         enotes += (f"time steps sized by time_tol: largest local film error per step {local:.2g} "
                    f"({s['rejected_steps']} steps solved again smaller)",)
-    both = measured and gerr is not None
-    error = ErrorEstimate(terr["Hc"] + gerr["Hc"] if both else math.nan,
-                          terr["Hm"] + gerr["Hm"] if both else math.nan, parts, accuracy, enotes)
+    both = measured and gerr is not None and derr is not None
+    error = ErrorEstimate(terr["Hc"] + gerr["Hc"] + derr["Hc"] if both else math.nan,
+                          terr["Hm"] + gerr["Hm"] + derr["Hm"] if both else math.nan, parts, accuracy, enotes)
     if failure is not None:
         status, message = failure
     elif not res.complete:
@@ -668,13 +677,15 @@ def _transient_judgement(done: str, controlled: tuple[Any, Any], error: ErrorEst
     how = f" after {refined} refinement{'s' if refined > 1 else ''} from {answers[0].describe()}" if refined > 0 else ""
     if out.result is not out.last:
         how += "; the most accurate run of the sequence"
-    t, g = error.parts["time"], error.parts["grid"]
+    t, g, d = error.parts["time"], error.parts["grid"], error.parts["domain"]
     tm = (f"time part Hc {t.Hc:.2g}, Hm {t.Hm:.2g}" if math.isfinite(t.worst) else "time part not measured")
     gm = (f"grid part Hc {g.Hc:.2g}, Hm {g.Hm:.2g}" if math.isfinite(g.worst) else "grid part not measured")
+    dm = (f"box part Hc {d.Hc:.2g}, Hm {d.Hm:.2g}" if math.isfinite(d.worst) else "box part not measured")
     if out.met and math.isfinite(error.Hc):
-        return f"{done}: error Hc {error.Hc:.2g}, Hm {error.Hm:.2g} ({tm}; {gm}) within the accuracy {accuracy:g}{how}"
+        return (f"{done}: error Hc {error.Hc:.2g}, Hm {error.Hm:.2g} ({tm}; {gm}; {dm}) within the accuracy "
+                f"{accuracy:g}{how}")
     total = (f"error Hc {error.Hc:.2g}, Hm {error.Hm:.2g}" if math.isfinite(error.Hc) else "error not known")
-    return f"{done}: {total} ({tm}; {gm}) above the accuracy {accuracy:g}{how}; not refined further: {out.why}"
+    return f"{done}: {total} ({tm}; {gm}; {dm}) above the accuracy {accuracy:g}{how}; not refined further: {out.why}"
 
 
 # -- the front door ----------------------------------------------------------------------------------

@@ -9,12 +9,14 @@ the first run; a run whose steps are sized by a local error tolerance (``time_to
 than the first takes the first run's time step (scaled), so runs on different grids share
 their time levels.
 
-Each answer's error has two parts. The time part comes from its pair, the run at twice the
+Each answer's error has three parts. The time part comes from its pair, the run at twice the
 step (fixed steps, :func:`~.accuracy.time_error`) or at half the step and
 :data:`~.accuracy.TIGHTER_TOL` of the tolerance (:func:`~.accuracy.adaptive_time_error`). The
 grid part comes from the same steps on the grids with half and a quarter of the intervals
-(:func:`~.accuracy.grid_error`; the quarter only where it has :data:`MIN_PAIR_POINTS`). Runs
-are kept by resolution, so no run is made twice: the run at ``dt`` that measured the time
+(:func:`~.accuracy.grid_error`; the quarter only where it has :data:`MIN_PAIR_POINTS`). The
+box part comes from the steady start of the run on that box (:func:`~.domain.box_part`); a line
+run whose box the caller did not fix may double its inlet length at equal mesh
+(``Resolution.box``, the step option ``box``). Runs are kept by resolution, so no run is made twice: the run at ``dt`` that measured the time
 error of the answer at ``2 dt`` is the next time refinement's answer, an answer's grid pairs
 are the grid refinement's, and the tighter run of an adaptive pair the next answer.
 """
@@ -28,6 +30,7 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from ..model.errors import ConvergenceError, InputError
+from ..multigrid.accuracy import DOMAIN_DECAY
 from ..multigrid.controller import REQUIRED_GAIN, Candidate, ControlOutcome, Refinement, Resolution
 from .accuracy import (
     GRID_MAX_ORDER,
@@ -38,6 +41,7 @@ from .accuracy import (
     grid_error,
     time_error,
 )
+from .domain import box_part
 from .result import TransientResult
 from .stepping import MAX_STEPS
 
@@ -86,14 +90,24 @@ class TransientControl:
         stopped.
     progress : called with one line of text before and after every run (its grid, step and
         purpose; the seconds it took).
+    box_refinable : whether the inlet may be moved upstream (the step option ``box``: the inlet
+        length scaled, at equal mesh); False where the caller fixed the box.
+    accuracy : the target; where the box part alone reaches it and the box cannot be refined,
+        no other refinement is made (none could meet it).
+    box_measure : ``box_measure(run, line) -> (part or None, note)``, the box part of a
+        completed run (:func:`~.domain.box_part`).
     """
 
     def __init__(self, run: Callable[..., TransientResult], *, dimensions: int, scheme: str = "bdf2",
                  time_tol: float | None = None, callback: Any = None, points: int = 0,
                  max_points: int | None = None,
                  on_answer: Callable[[TransientResult], None] | None = None,
-                 progress: Callable[[str], None] | None = None) -> None:
+                 progress: Callable[[str], None] | None = None, box_refinable: bool = False,
+                 accuracy: float | None = None,
+                 box_measure: Callable[[Any, bool], tuple[dict[str, float] | None, str]] = box_part) -> None:
         self.run, self.dimensions, self.scheme = run, dimensions, scheme
+        self.box_measure = box_measure
+        self.box_refinable, self.accuracy = box_refinable, accuracy
         self.time_tol, self.callback = time_tol, callback
         self.start = Resolution(points)
         self.max_points = points if max_points is None else max_points
@@ -105,6 +119,10 @@ class TransientControl:
         #: the grid part of each estimated run ({"Hc", "Hm", "order_Hc", "order_Hm"}; None when
         #: not measured)
         self.grid_parts: dict[Resolution, dict[str, float] | None] = {}
+        #: the box part of each box scale ({"Hc", "Hm"}; None when not measured) and how it was
+        #: found
+        self.box_parts: dict[float, dict[str, float] | None] = {}
+        self.box_notes: dict[float, str] = {}
         #: why a run's time part was not measured
         self.notes: dict[Resolution, str] = {}
         #: the runs asked for as answers, and those estimated, in order
@@ -137,9 +155,16 @@ class TransientControl:
                                 "t_end": None, "checkpoint": None, "resume": None}
         if at.points != self.start.points:
             opts["points"] = at.points
+        if at.box != self.start.box:
+            opts["box"] = at.box
         if self.adaptive:
             opts["time_tol"] = self.time_tol * TIGHTER_TOL ** self._halvings(at)
         return opts
+
+    @staticmethod
+    def wider(at: Resolution) -> Resolution:
+        """The inlet length doubled at equal mesh (line: twice the intervals)."""
+        return replace(at, points=2 * (at.points - 1) + 1, box=2.0 * at.box)
 
     @staticmethod
     def coarser(at: Resolution) -> Resolution:
@@ -215,9 +240,20 @@ class TransientControl:
         self.answers.append(at)
         t = self.time_part(result, at, record)
         g = self.grid_part(result, at, record)
-        if t is None or g is None:
+        d = self.box_of(result, at)
+        if t is None or g is None or d is None:
             return math.nan, math.nan
-        return t["Hc"] + g["Hc"], t["Hm"] + g["Hm"]
+        return t["Hc"] + g["Hc"] + d["Hc"], t["Hm"] + g["Hm"] + d["Hm"]
+
+    def box_of(self, result: TimeRun, at: Resolution) -> dict[str, float] | None:
+        """The box part of the runs on ``at``'s box, measured once per box on the steady start
+        of ``result`` (:func:`~.domain.box_part`); None (with a note) when its probes fail."""
+        if at.box not in self.box_parts:
+            part, note = self.box_measure(result.result, self.dimensions == 1)
+            self.box_parts[at.box], self.box_notes[at.box] = part, note
+        if self.box_parts[at.box] is None:
+            self._note(at, self.box_notes[at.box])
+        return self.box_parts[at.box]
 
     def time_part(self, result: TimeRun, at: Resolution,
                   record: Callable[[Refinement], None]) -> dict[str, float] | None:
@@ -306,11 +342,12 @@ class TransientControl:
         parts measured at ``at`` (NaN where the part that would fall is unknown: the finer run
         measures it)."""
         t, g = self.parts.get(at), self.grid_parts.get(at)
+        d = self.box_parts.get(at.box)
 
-        def left(time_factor: float, grid_factor: float) -> float:
-            if t is None or g is None:
+        def left(time_factor: float, grid_factor: float, box_factor: float = 1.0) -> float:
+            if t is None or g is None or d is None:
                 return math.nan
-            return max(t[k] * time_factor + g[k] * grid_factor for k in ("Hc", "Hm"))
+            return max(t[k] * time_factor + g[k] * grid_factor + d[k] * box_factor for k in ("Hc", "Hm"))
 
         def grid_factor() -> float:
             if g is None:
@@ -319,6 +356,10 @@ class TransientControl:
             p = min(orders) if all(math.isfinite(o) for o in orders) else 1.0
             return 0.5 ** min(p, GRID_MAX_ORDER)
 
+        wide = self.wider(at)
+        box_ok = self.box_refinable and self.dimensions == 1 and not self.limit(wide)
+        if d is not None and not box_ok and self.accuracy is not None and max(d.values()) >= self.accuracy:
+            return []  # the box part alone misses the target and stays (why_short says so)
         out = []
         dt_finer = replace(at, dt=0.5 * at.dt)
         time_ok = not (dt_finer.dt < MIN_DT_SCALE or self.limit(dt_finer) or self._stalled(at) is not None)
@@ -333,6 +374,10 @@ class TransientControl:
             both = replace(grid_finer, dt=0.5 * at.dt)
             if time_ok and not self.limit(both):
                 out.append(Candidate("points+dt", both, self.dimensions, left(tf, grid_factor())))
+        if box_ok and None not in (t, g, d):
+            # the same mesh, steps and time step on the longer box: the grid and time parts are
+            # assumed unchanged (measured again by its own pairs)
+            out.append(Candidate("box", wide, 0, left(1.0, 1.0, 1.0 / DOMAIN_DECAY)))
         # a part not measured (its pair refused or failed): only a refinement of its own kind
         # measures it (the finer run's pair is this run)
         return [c for c in out if not (t is None and c.what == "points") and not (g is None and c.what == "dt")]
@@ -351,6 +396,14 @@ class TransientControl:
             why.append(self.limit(finer))
         if self.limit(at.finer()):
             why.append(self.limit(at.finer()))
+        d, t, g = self.box_parts.get(at.box), self.parts.get(at), self.grid_parts.get(at)
+        if d is not None and t is not None and g is not None and \
+                max(d.values()) >= max(t[k] + g[k] for k in d) / 2.0:
+            run = self.runs[at].result
+            fixed = ("the box is fixed (xmin given)" if self.dimensions == 1 else
+                     "a point run's box is not refined")
+            why.append(f"the box's truncation leaves Hc {d['Hc']:.2g}, Hm {d['Hm']:.2g} (inlet at X = "
+                       f"{float(run.X[0]):g}) and {fixed}: a longer box (xmin further upstream) lowers it")
         return "; ".join(why) or "no refinement is predicted to help"
 
     # -- what the sequence did ---------------------------------------------------------------------------
@@ -361,18 +414,22 @@ class TransientControl:
 
         def where(at: Resolution) -> str:
             res = runs.get(at)
-            return (f"{at.points} points, dT = {res.dt:.4g}" if res is not None
+            box = f", inlet at X = {float(res.X[0]):g}" if res is not None and at.box != 1.0 else ""
+            return (f"{at.points} points, dT = {res.dt:.4g}{box}" if res is not None
                     else f"{at.points} points, time step x{at.dt:g}")
 
         def parts(at: Resolution) -> str:
-            t, g = self.parts.get(at), self.grid_parts.get(at)
+            t, g, d = self.parts.get(at), self.grid_parts.get(at), self.box_parts.get(at.box)
             tt = f"time Hc {t['Hc']:.2g}, Hm {t['Hm']:.2g}" if t is not None else "time not measured"
             gg = f"grid Hc {g['Hc']:.2g}, Hm {g['Hm']:.2g}" if g is not None else "grid not measured"
-            return f"{tt}; {gg}"
+            dd = f"box Hc {d['Hc']:.2g}, Hm {d['Hm']:.2g}" if d is not None else "box not measured"
+            return f"{tt}; {gg}; {dd}"
 
         for a, b in zip(self.answers, self.answers[1:], strict=False):
             what = []
-            if b.points != a.points:
+            if b.box != a.box:
+                what.append("inlet length doubled")
+            elif b.points != a.points:
                 what.append("grid doubled")
             if b.dt != a.dt:
                 what.append(f"time tolerance x{TIGHTER_TOL:g} and output step halved" if self.adaptive

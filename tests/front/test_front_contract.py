@@ -222,7 +222,7 @@ def test_a_transient_run_is_inaccurate_under_a_target_whose_error_it_cannot_meas
     assert transient_line.status == Status.INACCURATE and not transient_line.success
     assert "grid part not measured" in transient_line.message and "0.005" in transient_line.message
     assert math.isnan(transient_line.error.Hc) and not transient_line.error.meets_target
-    assert set(transient_line.error.parts) == {"grid", "time"}
+    assert set(transient_line.error.parts) == {"grid", "time", "domain"}
     judged = ehl.solve(bump_line_scene(), physics="transient", accuracy=None,
                        options={"points": 129, "steps": 5})
     assert judged.success and judged.status == Status.CONVERGED

@@ -146,7 +146,7 @@ def test_a_run_without_a_target_says_its_films_are_not_verified(monkeypatch, tmp
                                  "--no-plots", "--out", str(tmp_path), "--checkpoint-every", "0"])
     out = args.func(args)
     assert out["converged"] and out["films_verified"] is False
-    assert out["films_error"] == {"time": "not measured", "grid": "not estimated"}
+    assert out["films_error"] == {"time": "not measured", "grid": "not estimated", "domain": "not estimated"}
     assert "not verified" in capsys.readouterr().err
 
 
@@ -164,7 +164,7 @@ def test_a_run_with_a_target_states_its_time_and_grid_parts_and_exits_3_when_it_
     assert out["status"] == "converged" and out["converged"] and out["films_verified"] is True
     fe = out["films_error"]
     assert fe["accuracy"] == 0.05 and max(fe["Hc"], fe["Hm"]) <= 0.05
-    assert fe["Hc"] == pytest.approx(fe["time"]["Hc"] + fe["grid"]["Hc"]) and out["dt"] == 0.025
+    assert fe["Hc"] == pytest.approx(fe["time"]["Hc"] + fe["grid"]["Hc"] + fe["domain"]["Hc"]) and out["dt"] == 0.025
     assert load_series(out["hdf5"])["summary"]["steps"] == out["steps"] == 40
     assert main([*argv, "--accuracy", "0.015", "--out", str(tmp_path / "b")]) == 3
     captured = capsys.readouterr()

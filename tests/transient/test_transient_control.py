@@ -48,14 +48,20 @@ def spy_runs(monkeypatch: pytest.MonkeyPatch) -> list[tuple[int, float | None, f
 
 @pytest.fixture
 def no_grid_part(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The time-step logic alone: every run's grid part is zero (its grid pairs are not run)."""
+    """The time-step logic alone: every run's grid and box parts are zero (its grid pairs and
+    box probes are not run)."""
     from ehl_multigrid.transient.control import TransientControl
 
     def zero(self, result, at, record):
         g = self.grid_parts[at] = {"Hc": 0.0, "Hm": 0.0, "order_Hc": math.nan, "order_Hm": math.nan}
         return g
 
+    def no_box(self, result, at):
+        d = self.box_parts[at.box] = {"Hc": 0.0, "Hm": 0.0}
+        return d
+
     monkeypatch.setattr(TransientControl, "grid_part", zero)
+    monkeypatch.setattr(TransientControl, "box_of", no_box)
 
 
 @pytest.mark.solver
@@ -70,9 +76,9 @@ def test_a_run_whose_time_part_dominates_is_refined_in_dt_until_both_parts_meet_
                     options={"points": 1025, "dt": 0.02, "t_end": 1.0})
     assert [(n, d) for n, d, _ in calls] == [(1025, 0.02), (1025, 0.04), (513, 0.02), (257, 0.02),
                                              (1025, 0.01), (513, 0.01), (257, 0.01)]
-    t, g = sol.error.parts["time"], sol.error.parts["grid"]
+    t, g, d = sol.error.parts["time"], sol.error.parts["grid"], sol.error.parts["domain"]
     assert sol.status == Status.CONVERGED and sol.details.dt == 0.01 and sol.grid.points == 1025
-    assert sol.error.Hc == pytest.approx(t.Hc + g.Hc) and sol.error.Hm == pytest.approx(t.Hm + g.Hm)
+    assert sol.error.Hc == pytest.approx(t.Hc + g.Hc + d.Hc) and sol.error.Hm == pytest.approx(t.Hm + g.Hm + d.Hm)
     assert max(sol.error.Hc, sol.error.Hm) <= 0.02
     (action,) = sol.outcome.actions
     assert re.match(r"time step halved: 1025 points, dT = 0\.02 -> 1025 points, dT = 0\.01 \(time Hc", action)
