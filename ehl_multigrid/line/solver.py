@@ -122,6 +122,14 @@ def start_key(problem: LineProblem, options: LineOptions, n: int, x0: float, x1:
             options.mlmi_radius)
 
 
+def filmless_start_key(problem: LineProblem, options: LineOptions) -> tuple:
+    """The key of the discrete solution of the largest dense start grid
+    (:data:`MAX_START_POINTS`) of ``problem`` when its film is not positive (the solve ended
+    ``start_failed``; :attr:`LineHierarchy.filmless_starts`)."""
+    return (repr(problem), options.deformation, options.mlmi_order, options.mlmi_radius,
+            options.wedge_order)
+
+
 def coarse_points(M: float, box: float = 1.0) -> int:
     """Default coarsest grid: at high load a coarse grid cannot carry a positive film
     (Venner & Lubrecht), so the coarsest grid is refined with M. ``box``: the box length over
@@ -294,6 +302,10 @@ class LineHierarchy:
         #: converged FMG start grids ``start_key -> (P, H0)`` shared by the solves of one
         #: accuracy sequence (None: not kept)
         self.start_cache: dict | None = None
+        #: where a solve that ends ``start_failed`` leaves its largest start grid's discrete
+        #: solution ``(X, P, H0)`` (film not positive) under :func:`filmless_start_key` (None:
+        #: not kept; :func:`from_start_grid`)
+        self.filmless_starts: dict | None = None
         #: a converged solve of the same discrete problem on one of this solve's coarser grids:
         #: the FMG goes on from its solution there (:meth:`_resumed_start`)
         self.resume: EHLResult | None = None
@@ -645,6 +657,11 @@ class LineHierarchy:
                             f"start is limited to {MAX_START_POINTS} points): started on the "
                             f"{fin.n}-point grid from the given solution")
                 return top
+            if capped and self.filmless_starts is not None:
+                # the largest start grid's discrete solution, film not positive: a start for
+                # cycles on the finest grid (from_start_grid), closer than the continuation in M
+                self.filmless_starts[filmless_start_key(self.problem, self.options)] = (
+                    lv.X.copy(), lv.P.copy(), float(lv.H0))
             hint = (f"the dense Newton start is limited to {MAX_START_POINTS} points, so more points do "
                     f"not help: this (M, L) is beyond the line solver's range (use the Moes fit)"
                     if capped else "more points (--points), or lower M")
@@ -932,13 +949,53 @@ def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = N
     return start
 
 
+#: :func:`from_start_grid` stops on this fraction of the film tolerance: its start is farther
+#: from the discrete solution than the continuation's, and at the full tolerance the films it
+#: stopped on (Hm of (4000, 0) 1.4e-4 off the discrete solution on 16385 points, the
+#: continuation's 1e-5) moved the accuracy loop's grid choice (131073 points instead of 65537)
+FROM_START_GRID_FILM_TOL = 0.25
+
+
+def from_start_grid(problem: LineProblem, options: LineOptions, filmless: dict,
+                    callback: Any = None, scene: Any = None, start_cache: dict | None = None,
+                    progress: Callable[[str], None] | None = None) -> EHLResult | None:
+    """Solve ``problem``, whose solve ended ``start_failed`` and left its largest start grid's
+    discrete solution (film not positive) in ``filmless`` (:func:`filmless_start_key`), by
+    cycles on its finest grid from that solution: the pressure is close, and the cycles on the
+    fine grid give the film its sign. None where ``filmless`` holds no such solution or the
+    cycles fail (the continuation in M, :func:`continued_in_m`, is then tried); the failed
+    result where the time budget ran out.
+
+    Isoviscous (3000-5000, 0) and (5000, 5) on 16385 points: 5-8 cycles, about as many as from
+    the continuation's converged solution at M/2, without that solve (docs/performance.md, "Line
+    contacts at high load")."""
+    settled = filmless.get(filmless_start_key(problem, options))
+    if settled is None:
+        return None
+    X = settled[0]
+    if progress is not None:
+        progress(f"{options.points} points: cycles from the {X.size}-point start grid's solution "
+                 f"(its film not positive)")
+    tight = {} if options.film_tol is None else {"film_tol": options.film_tol * FROM_START_GRID_FILM_TOL}
+    r = solve_line_problem(problem, dataclasses.replace(options, raise_on_failure=False, **tight),
+                           callback=callback, scene=scene, guess=settled, start_cache=start_cache,
+                           progress=progress, deadline_checks=True)
+    if r.status_name == "time_budget":
+        return r
+    if not r.success:
+        return None
+    r.actions.append(f"the start grids hold no positive film at this M: cycles on the "
+                     f"{options.points}-point grid from the {X.size}-point start grid's solution")
+    return r
+
+
 def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
                        callback: Callable[[dict[str, Any]], None] | None = None,
                        scene: Any = None, guess: tuple[np.ndarray, np.ndarray, float] | None = None,
                        from_guess: bool = False, start_cache: dict | None = None,
                        resume: EHLResult | None = None,
                        progress: Callable[[str], None] | None = None, deadline_checks: bool = False,
-                       **kw: Any) -> EHLResult:
+                       filmless_starts: dict | None = None, **kw: Any) -> EHLResult:
     """Solve one :class:`LineProblem` as given (no error estimate); keywords override
     ``options``. ``guess = (X, P, H0)``, a solution of the same contact on another grid or box,
     starts the FMG start grid's Newton (the answer is the same; it takes fewer iterations);
@@ -951,7 +1008,9 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
     continues its FMG from there (the grids below keep its FMG films). ``progress(text)``
     hears of a long dense Newton solve (:meth:`LineHierarchy.newton_check`); with
     ``deadline_checks`` the solve ends with status ``time_budget`` when the time budget of its
-    sequence runs out (between dense Newton iterations and cycles).
+    sequence runs out (between dense Newton iterations and cycles). ``filmless_starts`` (a
+    dict) receives the largest start grid's discrete solution when the solve ends
+    ``start_failed`` with it (:func:`from_start_grid`).
 
     A numerical failure is returned (``success`` False, its status and message), or raised as
     :class:`ConvergenceError` with ``raise_on_failure=True``."""
@@ -965,6 +1024,7 @@ def solve_line_problem(problem: LineProblem, options: LineOptions | None = None,
         s.hierarchy.start_on_guess = from_guess
         s.hierarchy.start_cache = start_cache
         s.hierarchy.resume = resume
+        s.hierarchy.filmless_starts = filmless_starts
         return s, s.solve(callback=callback)
 
     solver, res = attempt(opts)
@@ -1173,6 +1233,7 @@ def solve_line(
 
     last: list[EHLResult] = []  # the previous converged solve starts the next one's Newton
     starts: dict = {}  # the sequence's converged FMG start grids (solve_line_problem)
+    filmless: dict = {}  # start grid solutions without a positive film (from_start_grid)
     grids: dict = {}  # the converged solve of each grid and box: a tolerance step continues it
     # the time budget stops any solve but the sequence's first (what a budget of 0 returns) and
     # the continuation in M (docs/accuracy.md, "The accuracy controller")
@@ -1204,7 +1265,9 @@ def solve_line(
                 res = None  # the FMG from the start grids, as without the coarser solve
         if res is None:
             res = solve_line_problem(p, o, callback=callback, scene=scene, guess=guess, start_cache=starts,
-                                     progress=progress, deadline_checks=checks[0])
+                                     progress=progress, deadline_checks=checks[0], filmless_starts=filmless)
+        if res.status_name == "start_failed" and guess is None:
+            res = from_start_grid(p, o, filmless, callback, scene, starts, progress) or res
         if res.status_name == "start_failed" and guess is None:
             why: list[str] = []
             res = continued_in_m(p, o, callback, scene, starts, progress, why) or res
