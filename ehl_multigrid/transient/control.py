@@ -16,9 +16,10 @@ grid part comes from the same steps on the grids with half and a quarter of the 
 (:func:`~.accuracy.grid_error`; the quarter only where it has :data:`MIN_PAIR_POINTS`). The
 box part comes from the steady start of the run on that box (:func:`~.domain.box_part`); a line
 run whose box the caller did not fix may double its inlet length at equal mesh
-(``Resolution.box``, the step option ``box``). Runs are kept by resolution, so no run is made twice: the run at ``dt`` that measured the time
-error of the answer at ``2 dt`` is the next time refinement's answer, an answer's grid pairs
-are the grid refinement's, and the tighter run of an adaptive pair the next answer.
+(``Resolution.box``, the step option ``box``). Runs are kept by resolution, so no run is made
+twice: the run at ``dt`` that measured the time error of the answer at ``2 dt`` is the next time
+refinement's answer, an answer's grid pairs are the grid refinement's, and the tighter run of
+an adaptive pair the next answer.
 """
 
 from __future__ import annotations
@@ -358,7 +359,11 @@ class TransientControl:
 
         wide = self.wider(at)
         box_ok = self.box_refinable and self.dimensions == 1 and not self.limit(wide)
-        if d is not None and not box_ok and self.accuracy is not None and max(d.values()) >= self.accuracy:
+        if d is None:
+            # its probes failed: only a run on another box measures the box part again (tried
+            # once)
+            return [Candidate("box", wide, 0, math.nan)] if box_ok and at.box == self.start.box else []
+        if not box_ok and self.accuracy is not None and max(d.values()) >= self.accuracy:
             return []  # the box part alone misses the target and stays (why_short says so)
         out = []
         dt_finer = replace(at, dt=0.5 * at.dt)
@@ -374,7 +379,7 @@ class TransientControl:
             both = replace(grid_finer, dt=0.5 * at.dt)
             if time_ok and not self.limit(both):
                 out.append(Candidate("points+dt", both, self.dimensions, left(tf, grid_factor())))
-        if box_ok and None not in (t, g, d):
+        if box_ok and t is not None and g is not None:
             # the same mesh, steps and time step on the longer box: the grid and time parts are
             # assumed unchanged (measured again by its own pairs)
             out.append(Candidate("box", wide, 0, left(1.0, 1.0, 1.0 / DOMAIN_DECAY)))
@@ -397,6 +402,8 @@ class TransientControl:
         if self.limit(at.finer()):
             why.append(self.limit(at.finer()))
         d, t, g = self.box_parts.get(at.box), self.parts.get(at), self.grid_parts.get(at)
+        if at.box in self.box_parts and d is None:
+            why.append(self.box_notes[at.box])
         if d is not None and t is not None and g is not None and \
                 max(d.values()) >= max(t[k] + g[k] for k in d) / 2.0:
             run = self.runs[at].result

@@ -46,7 +46,7 @@ class BoxRun:
         return 1.0
 
 
-def box_controlled(refinable: bool, accuracy: float):
+def box_controlled(refinable: bool, accuracy: float, probes_fail: bool = False):
     calls: list[tuple[int, float, float]] = []
 
     def run(callback=None, **step):
@@ -55,6 +55,8 @@ def box_controlled(refinable: bool, accuracy: float):
         return BoxRun(n, d, box)
 
     def measure(r: BoxRun, line: bool):
+        if probes_fail:
+            return None, "box part not measured: the steady probes did not converge"
         # the steady start's change when the inlet is doubled, times the line factor
         return ({k: LINE_DOMAIN_SAFETY * (r.box_error() - r.box_error() / 16.0) for k in ("Hc", "Hm")},
                 "synthetic box part")
@@ -84,6 +86,18 @@ def test_a_fixed_box_whose_part_alone_misses_the_target_is_not_refined_at_all():
     assert "the box is fixed (xmin given)" in out.why and "a longer box" in out.why
     # the first run, its time pair and its grid pairs: no refinement
     assert {c[0] for c in calls} == {257, 129, 65} and all(c[2] == 1.0 for c in calls)
+
+
+@pytest.mark.parametrize("refinable", [True, False])
+def test_a_box_part_that_cannot_be_measured_is_not_refined_around(refinable):
+    # no grid or time refinement measures the box part again: a free box is doubled once (its
+    # probes fail too), a fixed one is not refined at all; the answer is never judged met
+    ctl, calls = box_controlled(refinable, 0.01, probes_fail=True)
+    out = control(ctl, Resolution(257), 0.01)
+    assert not out.met and math.isnan(out.worst)
+    assert {c[0] for c in calls if c[1] == 0.01 and c[2] == 1.0} == {257, 129, 65}
+    assert {c[2] for c in calls} == ({1.0, 2.0} if refinable else {1.0})
+    assert "box part not measured" in out.why
 
 
 def test_a_starved_inlet_has_no_box_part():
