@@ -128,7 +128,6 @@ def test_the_box_part_of_a_run_is_twice_its_steady_films_change_with_the_inlet_m
     part, note = box_part(sol.raw, True)
     # independently: the steady line problem on the run's box and on the box with the inlet
     # moved upstream by its length, at the same mesh (1025 and 2049 points)
-    pb = LineProblem.from_scene(sc, xmin=-4.5)
     films = []
     for xmin, n in ((-4.5, 1025), (-10.5, 2049)):
         r = solve_line_problem(LineProblem.from_scene(sc, xmin=xmin), LineOptions(points=n))
@@ -137,7 +136,7 @@ def test_the_box_part_of_a_run_is_twice_its_steady_films_change_with_the_inlet_m
         change = films[1][k] / films[0][k] - 1.0
         assert change > 0.004  # the classic box thins the film of this light load
         assert part[name] == pytest.approx(LINE_DOMAIN_SAFETY * change, rel=0.15)
-    assert "inlet at X = -4.5" in note and pb.xmin == -4.5
+    assert "inlet at X = -4.5" in note
 
 
 @pytest.mark.solver
