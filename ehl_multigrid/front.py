@@ -36,7 +36,14 @@ from collections.abc import Callable, Collection, Mapping
 from dataclasses import fields, is_dataclass, replace
 from typing import Any
 
-from .model.errors import ConvergenceError, InputError, require_choice, require_range, require_slip
+from .model.errors import (
+    ConvergenceError,
+    InputError,
+    require_choice,
+    require_range,
+    require_slip,
+    signal_cause,
+)
 from .model.plausibility import warn_model_range
 from .model.results import RENAMED_PARTS
 from .model.scene import Scene, load_scene
@@ -753,6 +760,12 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     InputError
         Bad input only (problem, physics, accuracy, options, scene values), naming the field,
         the value and what is allowed. A numerical failure is returned, never raised.
+    KeyboardInterrupt
+        Ctrl-C (or the command line's SIGTERM, ``Terminated``) stops the solve. When it stops a
+        steady, starved or thermal accuracy sequence that has finished (converged and
+        estimated) a solve, the exception's ``solution`` is the most accurate of them, status
+        ``INACCURATE``, its message naming the stop: ``except KeyboardInterrupt as e:
+        getattr(e, "solution", None)``.
 
     Notes
     -----
@@ -763,6 +776,7 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     129-point thermal point solve, other core busy: 31-141 s spinning, 11 s passive, 9 s on
     one thread). It has no effect once numba's threads run (set it before then to choose).
     """
+    from .multigrid.controller import keep_on_stop
     from .multigrid.threads import passive_openmp_wait  # (the solvers load on first use)
 
     t0 = time.perf_counter()
@@ -778,10 +792,50 @@ def solve(problem: Scene | MoesProblem | str | os.PathLike, *, physics: str | No
     if physics == "transient" and progress is not None and accuracy is None:
         warnings.warn("progress is not called: a transient run without a target is one run, reported "
                       "per time step through callback", UserWarning, stacklevel=2)
-    sol = _dispatch(physics, scene, moes, contact, accuracy, options, callback, progress, t0)
+    if physics == "transient":  # a stopped run keeps its steps through its checkpoint instead
+        sol = _dispatch(physics, scene, moes, contact, accuracy, options, callback, progress, t0)
+    else:
+        with keep_on_stop() as scope:
+            sol = _dispatch(physics, scene, moes, contact, accuracy, options, callback, progress, t0)
+        if scope is not None and scope.stop is not None:
+            scope.stop.solution = sol  # type: ignore[attr-defined]
+            raise scope.stop
     if scene is not None and sol.fields:
         warn_model_range("film", sol.hm, f"the minimum film hm of {scene.name}")
     return sol
+
+
+class StopKeeper:
+    """Solves through :func:`solve` for a command that writes its answer: a stop (Ctrl-C,
+    SIGTERM) that kept the most accurate finished solve of an accuracy sequence returns that
+    solution from :meth:`solve`, so the command writes it, and :meth:`raise_stop` raises the
+    stop afterwards with ``kept`` saying what was written (the command line prints it)."""
+
+    def __init__(self) -> None:
+        self.stop: BaseException | None = None
+
+    def solve(self, problem: Any, **kw: Any) -> Solution:
+        try:
+            return solve(problem, **kw)
+        except BaseException as exc:
+            stop = signal_cause(exc)
+            sol = getattr(stop, "solution", None)
+            if sol is None:
+                raise
+            self.stop = stop
+            return sol
+
+    def raise_stop(self, written: str) -> None:
+        """Raise the kept stop, if any; ``written`` names the file the kept answer went to."""
+        if self.stop is None:
+            return
+        sol = self.stop.solution  # type: ignore[attr-defined]
+        grid = f"{sol.grid.points} points, " if sol.grid is not None else ""
+        err = (f"stated error Hc {sol.error.Hc:.2g}, Hm {sol.error.Hm:.2g}"
+               if math.isfinite(sol.error.Hc) and math.isfinite(sol.error.Hm) else "error not known")
+        self.stop.kept = (f"the most accurate finished solve ({grid}{err}, status {sol.status.label}) "  # type: ignore[attr-defined]
+                          f"was written to {written}")
+        raise self.stop
 
 
 def _dispatch(physics: str, scene: Scene | None, moes: MoesProblem | None, contact: str,

@@ -38,7 +38,6 @@ SUMMARY_KEYS = ("Hc", "Hm", "hc", "hm", "Hc_isothermal", "Hm_isothermal", "film_
 def thermal_film_stage(ctx: RunContext) -> StageOutput | None:
     """The coupled thermal EHL film of a scene whose plan stages ``tehl`` (None for other
     scenes and plans)."""
-    from ehl_multigrid import front
     from ehl_multigrid.solution import Status
 
     scene, plan = ctx.scene, ctx.plan
@@ -54,7 +53,7 @@ def thermal_film_stage(ctx: RunContext) -> StageOutput | None:
         summary = {"converged": False, "status": "not_tried", "message": note}
         return StageOutput("thermal_film", None, summary, [], f"NO THERMAL FILM: {note}.", notes=[note])
     options: dict[str, Any] = ctx.solve_limits()
-    sol = front.solve(scene, physics="thermal", accuracy=plan.tolerance, options=options or None)
+    sol = ctx.solve(scene, physics="thermal", accuracy=plan.tolerance, options=options or None)
     usable = sol.status in (Status.CONVERGED, Status.INACCURATE) and sol.fields
     res = sol.to_result() if usable else None
     if res is None or not (res.scalars.get("hm") or 0.0) > 0.0:

@@ -318,9 +318,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_solve_arguments(p)
     add_common_options(p)
-    # a solve writes its result when the solve ends: a stop before then keeps nothing of it
+    # a solve writes its result when the solve ends, or on a stop the most accurate finished
+    # solve of its accuracy sequence (the stop then says so); a stop before one keeps nothing
     p.set_defaults(func=locked_command(_cmd_solve, "ehl solve"),
-                   on_stop="a result is kept only if the solve had ended before the stop (it is written then)")
+                   on_stop="a result was written only if a solve had finished before the stop")
 
     p = sub.add_parser("plan", help="which physics a scene needs, and why (numbers behind each decision)")
     p.add_argument("scene", help="built-in scene name or TOML file")
@@ -523,10 +524,12 @@ def _run_command(args: argparse.Namespace) -> int:
     except ConvergenceError as exc:
         print(f"ehl {args.command}: did not converge: {exc}", file=sys.stderr)
         return _failed(args, EXIT_CONVERGENCE, "convergence", str(exc).splitlines()[0])
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:
+        kept = getattr(exc, "kept", kept)  # what the command wrote before the stop reached here
         print(f"ehl {args.command}: interrupted; {kept}", file=sys.stderr)
         return _failed(args, EXIT_INTERRUPTED, "interrupted", f"interrupted; {kept}")
-    except Terminated:
+    except Terminated as exc:
+        kept = getattr(exc, "kept", kept)
         print(f"ehl {args.command}: terminated; {kept}", file=sys.stderr)
         return _failed(args, EXIT_TERMINATED, "terminated", f"terminated; {kept}")
     except SystemError as exc:
@@ -534,6 +537,7 @@ def _run_command(args: argparse.Namespace) -> int:
         cause = signal_cause(exc)
         if cause is None:
             raise
+        kept = getattr(cause, "kept", kept)
         interrupted = isinstance(cause, KeyboardInterrupt)
         what = "interrupted" if interrupted else "terminated"
         print(f"ehl {args.command}: {what}; {kept}", file=sys.stderr)

@@ -60,7 +60,9 @@ def run_contact_solve(args: argparse.Namespace, scene: Any, kind: str) -> dict[s
     with output_lock(out, "ehl solve") as removed:
         report_leftovers("ehl solve", removed)
         with Progress("ehl solve") as prog:
-            payload = (_solve_line if kind == "line" else _solve_point)(args, scene, out, prog)
+            keeper = front.StopKeeper()
+            payload = (_solve_line if kind == "line" else _solve_point)(args, scene, out, prog, keeper)
+            keeper.raise_stop(payload.get("hdf5", "?"))
     if scene is not None:
         note = heat_note(scene, getattr(args, "accuracy", None))
         if note:
@@ -139,7 +141,8 @@ def write_and_print(args: argparse.Namespace, out: Path, kind: str, raw: Any, re
 
 
 # -- line ------------------------------------------------------------------------------------------
-def _solve_line(args: argparse.Namespace, scene: Any, out: Path, prog: Progress) -> dict[str, Any]:
+def _solve_line(args: argparse.Namespace, scene: Any, out: Path, prog: Progress,
+                keeper: front.StopKeeper) -> dict[str, Any]:
     for opt in ("ymax", "ellipticity"):
         if getattr(args, opt, None) is not None:
             raise InputError(f"--{opt} applies to point contacts, not to a line contact")
@@ -157,8 +160,8 @@ def _solve_line(args: argparse.Namespace, scene: Any, out: Path, prog: Progress)
         oil = {k: getattr(args, k, None) for k in ("alpha", "eta0", "p0")}
         laws = {k: model.pop(k) for k in ("viscosity", "density") if k in model}
         problem = MoesProblem("line", args.M, args.L, **laws, **oil)
-        sol = front.solve(problem, physics="steady", accuracy=accuracy, options={**opts, **model},
-                          callback=prog.solver_callback, progress=prog.say)
+        sol = keeper.solve(problem, physics="steady", accuracy=accuracy, options={**opts, **model},
+                           callback=prog.solver_callback, progress=prog.say)
         raw = require_film(sol, "line solver")
         used = {k: (v if v is not None else MOES_ONLY_DEFAULTS[k]) for k, v in oil.items()}
         name = f"line_M{args.M:g}_L{args.L:g}"
@@ -174,13 +177,13 @@ def _solve_line(args: argparse.Namespace, scene: Any, out: Path, prog: Progress)
                 raise InputError(f"--{k} applies to Moes-only mode (--M/--L); with a scene the "
                                  f"oil comes from the scene's [lubricant] table")
         if math.isfinite(scene.supply.hoil):
-            sol = front.solve(scene, physics="starved", accuracy=accuracy, options={**opts, **model})
+            sol = keeper.solve(scene, physics="starved", accuracy=accuracy, options={**opts, **model})
             raw = require_film(sol, "starved line solver")
             if raw.X is None:  # nothing to write: e.g. a supply below the solver's reach
                 raise ConvergenceError(f"starved line solver: {sol.message}")
         else:
-            sol = front.solve(scene, physics="steady", accuracy=accuracy, options={**opts, **model},
-                              callback=prog.solver_callback, progress=prog.say)
+            sol = keeper.solve(scene, physics="steady", accuracy=accuracy, options={**opts, **model},
+                               callback=prog.solver_callback, progress=prog.say)
             raw = require_film(sol, "line solver")
         name = scene.name
     res = package_result(sol)
@@ -252,7 +255,8 @@ def _fas_half(args: argparse.Namespace) -> dict[str, bool]:
     return {"half": True} if args.half else {"half": False} if full else {}
 
 
-def _solve_point(args: argparse.Namespace, scene: Any, out: Path, prog: Progress) -> dict[str, Any]:
+def _solve_point(args: argparse.Namespace, scene: Any, out: Path, prog: Progress,
+                 keeper: front.StopKeeper) -> dict[str, Any]:
     from ..multigrid.options import PointOptions
 
     pb = point_problem(args, scene)
@@ -271,7 +275,7 @@ def _solve_point(args: argparse.Namespace, scene: Any, out: Path, prog: Progress
         if solver == "newton":
             raise InputError(f"the scene supplies a finite oil layer (supply.hoil = {scene.supply.hoil:g} m): "
                              f"the starved point solver is FAS only, so --solver newton does not apply")
-        return _solve_starved_point(args, scene, pb, fas, accuracy, out)
+        return _solve_starved_point(args, scene, pb, fas, accuracy, out, keeper)
     if not args.json:
         if scene is None:
             print(f"# Moes-only point contact: M = {pb.M:g}, L = {pb.L:g}, theta = {pb.theta:g}; "
@@ -297,10 +301,10 @@ def _solve_point(args: argparse.Namespace, scene: Any, out: Path, prog: Progress
     if solver == "newton":
         # the cross-check path has no accuracy control: judged on its iteration alone
         newton = {k: v for k, v in vars(opt).items() if k != "raise_on_failure"}
-        sol = front.solve(problem, physics="steady", accuracy=None, options={"solver": "newton", **newton, **model})
+        sol = keeper.solve(problem, physics="steady", accuracy=None, options={"solver": "newton", **newton, **model})
     else:
-        sol = front.solve(problem, physics="steady", accuracy=accuracy, options={**fas, **model},
-                          callback=prog.solver_callback, progress=prog.say)
+        sol = keeper.solve(problem, physics="steady", accuracy=accuracy, options={**fas, **model},
+                           callback=prog.solver_callback, progress=prog.say)
     raw = require_film(sol, "point solver")
     res = package_result(sol)
     from ..point.postprocess import summary_payload
@@ -313,7 +317,7 @@ def _solve_point(args: argparse.Namespace, scene: Any, out: Path, prog: Progress
 
 
 def _solve_starved_point(args: argparse.Namespace, scene: Any, pb: Any, fas: dict[str, Any],
-                         accuracy: float | None, out: Path) -> dict[str, Any]:
+                         accuracy: float | None, out: Path, keeper: front.StopKeeper) -> dict[str, Any]:
     """A point scene with a finite ``[supply] hoil``: the starved (mass-conserving) point
     solver, its error estimate, the flooded film of the same discretisation; the result is
     written with ``theta``."""
@@ -323,8 +327,8 @@ def _solve_starved_point(args: argparse.Namespace, scene: Any, pb: Any, fas: dic
         print(f"# scene {scene.name}: M = {pb.M:.5g}, L = {pb.L:.5g}, theta = {pb.theta:.4g}, "
               f"pmax = {pb.pmax:.4g} Pa, a = {pb.a:.4g} m; starved inlet: oil layer "
               f"{scene.supply.hoil:.4g} m (mass-conserving Elrod-Adams solver)")
-    fsol = front.solve(scene, physics="starved", accuracy=accuracy,
-                       options={**fas, "viscosity": pb.viscosity, "density": pb.density})
+    fsol = keeper.solve(scene, physics="starved", accuracy=accuracy,
+                        options={**fas, "viscosity": pb.viscosity, "density": pb.density})
     sol = require_film(fsol, "starved point solver")
     res = package_result(fsol)
     payload = starved_point_payload(sol, res)

@@ -158,15 +158,13 @@ def film_stage(ctx: RunContext) -> StageOutput:
         # the fidelity's tolerance is the solver's accuracy target: it picks and refines grid and
         # box until its error estimate meets it (a [solver.ehl] grid in the scene is kept and judged)
         budget = ctx.solve_limits()
-        from .. import front
-
         if math.isfinite(scene.supply.hoil):
             # a finite inlet oil layer: the mass-conserving starved solver finds the meniscus
-            fsol = front.solve(scene, physics="starved", accuracy=plan.tolerance, options=budget or None)
+            fsol = ctx.solve(scene, physics="starved", accuracy=plan.tolerance, options=budget or None)
         else:
             # smooth point and elliptic contacts are symmetric in Y: the half domain gives the same
             # films (tested to 1e-5, measured 4e-8) in about half the time
-            fsol = front.solve(scene, physics="steady", accuracy=plan.tolerance,
+            fsol = ctx.solve(scene, physics="steady", accuracy=plan.tolerance,
                                options={**budget, **({"half": True} if contact == "point" else {})} or None)
         sol = require_computed(fsol)  # the solver's result: what the payload and the figures read
         # a solve that ended without fields (a starved line supply below the meniscus search's
@@ -414,6 +412,8 @@ def _run_locked(scene: Scene, options: MainJobOptions, out: Path) -> dict[str, A
                 ctx.outputs[name] = output
             save(complete=len(ran) == len(planned))
             prog.advance(text=f"{name} took {time.perf_counter() - t0:.1f} s")
+            if ctx.keeper is not None:  # a stop kept this stage's film: the later stages do not run
+                ctx.keeper.raise_stop(f"{h5} as the {name} stage's film; the stages after it did not run")
     finally:
         warmup.stop(helpers)
         prog.close()

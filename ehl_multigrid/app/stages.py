@@ -88,6 +88,18 @@ class RunContext:
     time_budget: float | None = None
     #: largest grid the film stages may refine to (``ehl run --max-points``); None: the solver's
     max_points: int | None = None
+    #: the film solves' keeper of a stop (:meth:`solve`)
+    keeper: Any = field(default=None, repr=False)
+
+    def solve(self, problem: Any, **kw: Any) -> Any:
+        """A film stage's solve through the front door :func:`ehl_multigrid.solve`: a stop
+        (Ctrl-C, SIGTERM) during its accuracy sequence returns the most accurate finished solve,
+        and the main job raises the stop once the stage's output is kept."""
+        from ..front import StopKeeper
+
+        if self.keeper is None:
+            self.keeper = StopKeeper()
+        return self.keeper.solve(problem, **kw)
 
     def solve_limits(self) -> dict[str, Any]:
         """The options of a film stage's solve that ``ehl run`` sets: ``time_budget`` and

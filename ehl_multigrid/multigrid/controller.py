@@ -26,11 +26,47 @@ from contextvars import ContextVar
 from dataclasses import dataclass, replace
 from typing import Any, Protocol
 
-from ..model.errors import ConvergenceError
+from ..model.errors import ConvergenceError, signal_cause
 
 #: the ``time.perf_counter()`` value at which the innermost :func:`control` sequence's time
 #: budget runs out (inf outside one); long solves read it through :func:`check_deadline`
 _DEADLINE: ContextVar[tuple[float, float]] = ContextVar("ehl_deadline", default=(math.inf, math.inf))
+
+
+class StopScope:
+    """Where a stop (Ctrl-C, the command line's SIGTERM) of an accuracy sequence is kept: the
+    outermost :func:`control` inside :func:`keep_on_stop` returns its most accurate finished
+    solve instead of raising, and records the stop in ``stop`` for the caller to raise after
+    the answer is built."""
+
+    def __init__(self) -> None:
+        self.stop: BaseException | None = None
+        self.depth = 0
+
+
+_STOP_SCOPE: ContextVar[StopScope | None] = ContextVar("ehl_stop_scope", default=None)
+
+
+@contextmanager
+def keep_on_stop() -> Iterator[StopScope | None]:
+    """Within the block, a stop during an accuracy sequence that has a finished (converged and
+    estimated) solve ends the sequence with that solve, its ``why`` naming the stop; the stop
+    is in the yielded scope's ``stop``, and the caller raises it once the answer is kept. A
+    block inside another one yields None: the outermost caller raises."""
+    if _STOP_SCOPE.get() is not None:
+        yield None
+        return
+    scope = StopScope()
+    token = _STOP_SCOPE.set(scope)
+    try:
+        yield scope
+    finally:
+        _STOP_SCOPE.reset(token)
+
+
+def stop_name(stop: BaseException) -> str:
+    """``"interrupted (Ctrl-C)"`` or ``"terminated (SIGTERM)"``."""
+    return "interrupted (Ctrl-C)" if isinstance(stop, KeyboardInterrupt) else "terminated (SIGTERM)"
 
 
 class TimeBudgetSpent(ConvergenceError):
@@ -83,7 +119,8 @@ class Resolution:
     def describe(self) -> str:
         nz = f", nz = {self.nz}" if self.nz else ""
         dt = f", time step x{self.dt:g}" if self.dt != 1.0 else ""
-        return f"{self.points} points{nz}{dt} (box x{self.box:g})"
+        tol = f", tolerances x{self.tol:g}" if self.tol != 1.0 else ""
+        return f"{self.points} points{nz}{dt}{tol} (box x{self.box:g})"
 
 
 @dataclass(frozen=True)
@@ -259,15 +296,53 @@ def control(physics: Controlled, start: Resolution, accuracy: float | None, *, r
     (or, with none, as failed), its ``why`` naming the budget.
     """
     t0 = time.perf_counter() if started is None else started
-    with deadline(time_budget, t0):
-        return _control(physics, start, accuracy, refine, time_budget, max_points, progress, t0, fallback)
+    scope = _STOP_SCOPE.get()
+    # only the outermost sequence keeps its answer on a stop: an inner one (a probe's, a
+    # thermal solve's isothermal start) lets the stop reach it
+    keeps = scope is not None and scope.depth == 0 and scope.stop is None
+    if scope is not None:
+        scope.depth += 1
+    try:
+        with deadline(time_budget, t0):
+            return _control(physics, start, accuracy, refine, time_budget, max_points, progress, t0,
+                            fallback, scope if keeps else None)
+    finally:
+        if scope is not None:
+            scope.depth -= 1
 
 
 def _control(physics: Controlled, start: Resolution, accuracy: float | None, refine: bool,
              time_budget: float, max_points: int | None, progress: Callable[[str], None] | None,
-             t0: float, fallback: Resolution | None) -> ControlOutcome:
+             t0: float, fallback: Resolution | None, scope: StopScope | None = None) -> ControlOutcome:
+    if scope is None:
+        return _sequence(physics, start, accuracy, refine, time_budget, max_points, progress, t0, fallback)
+    kept: dict[str, Any] = {}
+    try:
+        return _sequence(physics, start, accuracy, refine, time_budget, max_points, progress, t0,
+                         fallback, kept)
+    except BaseException as exc:
+        stop = signal_cause(exc)
+        if stop is None or "best" not in kept:
+            raise
+        scope.stop = stop
+        why = f"{stop_name(stop)} during {kept['doing']}"
+        if progress is not None:
+            progress(f"{why}: keeping the most accurate finished solve ({time.perf_counter() - t0:.1f} s)")
+        res, worst = kept["best"]
+        return ControlOutcome(res, worst, False, True, kept["steps"], why, time.perf_counter() - t0,
+                              kept.get("last"), False)
+
+
+def _sequence(physics: Controlled, start: Resolution, accuracy: float | None, refine: bool,
+              time_budget: float, max_points: int | None, progress: Callable[[str], None] | None,
+              t0: float, fallback: Resolution | None, kept: dict[str, Any] | None = None) -> ControlOutcome:
+    """The loop of :func:`control`; ``kept`` (when given) follows the most accurate finished
+    solve, the resolution being solved and the record, for a stop to return."""
+    if kept is None:
+        kept = {}
     round_t0 = t0
     steps: list[Refinement] = []
+    kept["steps"] = steps
     limit = max_points if max_points is not None else 1 << 30
 
     def say(what: str, at: Resolution) -> None:
@@ -287,7 +362,9 @@ def _control(physics: Controlled, start: Resolution, accuracy: float | None, ref
     spent = False
     while True:
         ts = time.perf_counter()
+        kept["doing"] = f"the solve on {at.describe()}"
         res = last = physics.solve(at)
+        kept["last"] = last
         if not physics.converged(res):
             reason = physics.failure(res)
             say(reason.split(":")[0], at)
@@ -322,11 +399,12 @@ def _control(physics: Controlled, start: Resolution, accuracy: float | None, ref
             why = f"the refinement to {at.describe()} did not converge ({reason})"
             break
         last_ok = at
+        kept["doing"] = f"the error estimate of the solve on {at.describe()}"
         ec, em = physics.estimate(res, at, steps.append)
         worst = max(ec, em) if not (math.isnan(ec) or math.isnan(em)) else math.nan
         # NaN counts as worst; of two solves whose error is not bounded (inf) the finer one
         if best is None or not best[1] <= worst or (math.isinf(worst) and math.isinf(best[1])):
-            best = (res, worst)
+            best = kept["best"] = (res, worst)
         met = accuracy is None or worst <= accuracy
         say(f"estimated error Hc {ec:.2%}, Hm {em:.2%}", at)
         if met or not refine:
@@ -367,6 +445,7 @@ def _control(physics: Controlled, start: Resolution, accuracy: float | None, ref
                    f"x{step.at.tol:g}{dt}) is predicted to take about {cost:.0f} s, more than the "
                    f"{left:.0f} s left of the time budget of {time_budget:g} s")
             break
+        kept["doing"] = f"the refinement to {step.at.describe()}"
         say(f"refining, predicted about {cost:.0f} s", step.at)
         at = step.at
         round_t0 = time.perf_counter()
