@@ -45,7 +45,11 @@ def _fluid(level: LineLevel, P: np.ndarray, H0: float):
 
 def _system(level: LineLevel, P: np.ndarray, H0: float, jacobian: bool):
     """Residual ``r`` and, with ``jacobian``, the rows ``dr/d(P_1..P_{n-2}, H0)`` of the inner
-    points (negated: ``dL``)."""
+    points (negated: ``dL``). A level with terms of its own (the squeeze term of a time step)
+    gives both by its ``newton_system(P, H0, jacobian)``."""
+    own = getattr(level, "newton_system", None)
+    if own is not None:
+        return own(P, H0, jacobian)
     r, (H, rho, drho, dlne, eps) = _fluid(level, P, H0)
     if not jacobian:
         return r, None

@@ -67,6 +67,25 @@ def add_squeeze_band(ab, P, H, rho, drho, r, K, ct, q, jac, frozen, elastic):
             ab[q + row - (j - 1), j - 1] += b
 
 
+def squeeze_jacobian(H: np.ndarray, rho: np.ndarray, drho: np.ndarray, K: np.ndarray,
+                     elastic: bool = True) -> np.ndarray:
+    """``d(rho H)_i/dx_j`` for the inner points ``i = 1 .. n-2`` and the unknowns
+    ``x = (P_1 .. P_{n-2}, H0)`` of the coarse Newton iteration (``line.newton``): an
+    ``(n-2, n-1)`` array. Times ``c_t`` it is the squeeze term's part of the dense Jacobian.
+
+    ``d(rho H)_i/dP_j = -rho_i K_|i-j|/pi + drho_i H_i delta_ij`` (film equation, as in
+    :func:`add_squeeze_band`), ``d(rho H)_i/dH0 = rho_i``.
+    """
+    n = H.shape[0]
+    idx = np.arange(1, n - 1)
+    out = np.zeros((n - 2, n - 1))
+    if elastic:
+        out[:, :-1] = -rho[idx, None] * K[np.abs(idx[:, None] - idx[None, :])] / np.pi
+    out[np.arange(n - 2), np.arange(n - 2)] += drho[idx] * H[idx]
+    out[:, -1] = rho[idx]
+    return out
+
+
 @njit(cache=True)
 def flux_balance(P, H, rho, eps, h, dq_dt, i0, i1, face=0):
     """Discrete mass balance of the control volume of nodes ``i0 .. i1``:

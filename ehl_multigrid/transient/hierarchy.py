@@ -22,8 +22,9 @@ The grids' additions are :class:`TimeStepGrids` (line) and :class:`PointTimeStep
 mixed into the steady hierarchies here and into the starved (mass-conserving) ones in
 :mod:`.cavitated`. The load (line ``h sum P = pi/2``, point
 ``int int P = 2 pi b/(3a)``) holds at every step (constant load); the film constant is free.
-The line's coarsest grid is relaxed (with the film-constant update) instead of the steady
-path's dense Newton, whose Jacobian has no squeeze term.
+The projection's coarsest grid is solved by the steady path's dense Newton iteration with the
+squeeze term added to its residual and Jacobian (:meth:`TransientLineLevel.newton_system`); the
+mass-conserving line steps (:mod:`.cavitated`) relax theirs (with the film-constant update).
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ from ..line.discrete import (
     reynolds_residual,
 )
 from ..line.level import LineLevel, State, solve_band
+from ..line.newton import reynolds_jacobian
 from ..line.problem import LineProblem
 from ..line.solver import LineHierarchy
 from ..multigrid.driver import MultilevelSolver
@@ -49,7 +51,7 @@ from ..multigrid.policy import Settings
 from ..point import numerics as nm
 from ..point.fas import Level, PointHierarchy
 from ..point.problem import PointProblem
-from .discrete import add_squeeze_band
+from .discrete import add_squeeze_band, squeeze_jacobian
 
 #: relaxation sweeps of one coarsest-grid visit
 COARSE_SWEEPS = 20
@@ -81,6 +83,25 @@ class TransientLineLevel(LineLevel):
     def squeeze(self, st: State) -> np.ndarray:
         """``d(rho H)/dT`` of the state (the BDF difference)."""
         return self.ct * st.rho * st.H - self.hist
+
+    def newton_system(self, P: np.ndarray, H0: float, jacobian: bool
+                      ) -> tuple[np.ndarray, np.ndarray | None]:
+        """The residual of ``(P, H0)`` and, with ``jacobian``, its negated derivative ``dL``
+        (rows ``1 .. n-2``, columns ``P_1 .. P_{n-2}, H0``) for the dense coarse Newton
+        iteration (``line.newton``): the steady system with the step's geometry in the film,
+        the squeeze term ``ct rho H - hist`` in the residual and ``ct d(rho H)/dx`` in ``dL``."""
+        with np.errstate(all="ignore"):  # a trial step's overflow: the line search halves it
+            W = self.deform(P) + math.pi * self.R
+            H, rho, drho, lne, dlne, eps = fluid_state(P, W, self.X, H0, self.par, self.lam, True)
+            r, _ = reynolds_residual(P, H, rho, eps, self.h, self.f + self.ct * rho * H - self.hist,
+                                     self.order, self.face)
+        if not jacobian:
+            return r, None
+        dL = reynolds_jacobian(P, H, rho, drho, dlne, eps, self.kernel, self.h, self.order, True,
+                               self.face)
+        if self.ct != 0.0:
+            dL -= self.ct * squeeze_jacobian(H, rho, drho, self.kernel)
+        return r, dL
 
     def relax(self, switch: float, omega: float, omega_jd: float, band: int = 4,
               st: State | None = None, switch_h: float = 0.0, switch_eps: float = 0.0) -> State:
@@ -144,8 +165,9 @@ class StepGrids:
 class TimeStepGrids(StepGrids):
     """What a time step's hierarchy adds to a steady line hierarchy (mixed in before it):
     the moving geometry and the squeeze term on every grid (:meth:`set_step`), the start on
-    the finest grid (no FMG), the coarsest grid relaxed, no dense-Newton last resort. The
-    grids' levels carry ``R``, ``ct`` and ``hist``."""
+    the finest grid (no FMG), the coarsest grid relaxed (the projection's hierarchy solves it by
+    Newton instead), no dense-Newton last resort. The grids' levels carry ``R``, ``ct`` and
+    ``hist``."""
 
     geometry: Callable[[np.ndarray], np.ndarray]
 
@@ -166,7 +188,8 @@ class TimeStepGrids(StepGrids):
         return self.relax(k, COARSE_SWEEPS, s, True)
 
     def last_resort(self, k: int, solver: MultilevelSolver) -> bool:
-        # the dense Newton finish of the steady path has no squeeze term
+        # a failed step is halved by the time loop (stepping._advance) instead of finished by a
+        # dense solve of its finest grid
         return False
 
 
@@ -181,6 +204,26 @@ class TransientLineHierarchy(TimeStepGrids, LineHierarchy):
                  geometry: Callable[[np.ndarray], np.ndarray]) -> None:
         super().__init__(problem, options)
         self.geometry = geometry
+
+    def set_step(self, shift: float, ct: float, hist: np.ndarray) -> None:
+        super().set_step(shift, ct, hist)
+        # a step's solve depends on its inputs only (a run continued from a checkpoint repeats
+        # the uninterrupted one): no coarse Newton factor or failure carried from the last step
+        self.levels[0].kept_factor = None
+        self.newton_failed = set()
+
+    def coarse_solve(self, k: int, s: Settings) -> float:
+        """The coarsest grid solved for ``(P, H0)`` by the steady solver's dense semismooth
+        Newton iteration with the step's squeeze term (:meth:`TransientLineLevel.newton_system`),
+        relaxed by :data:`COARSE_SWEEPS` sweeps where it fails.
+
+        Relaxed instead, with ``H0`` moved by the load error after every sweep, the coarsest
+        grid diverged on a long box at short steps: page 63 at 100 N on [-10.5, 1.5], 1025
+        points, BDF2 at dT = 0.00293 (``ct`` = 512), its 65-point grid's load response to a
+        fixed change of ``H0`` grew without bound over the sweeps (3, 17, 144, 11300 after 1,
+        5, 20, 80), where the classic box's settles (3.3, 13, 28, 33): the ``H0`` loop fed a
+        growing mode, the step stalled at step 2 (docs/transient.md, "Limits")."""
+        return LineHierarchy.coarse_solve(self, k, s)
 
 
 class PointTimeStepGrids(StepGrids):

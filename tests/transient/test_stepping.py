@@ -86,3 +86,35 @@ def test_a_step_whose_solve_fails_is_solved_again_in_halves_on_the_same_output_t
     np.testing.assert_allclose(res.series["T"], np.arange(9) * 0.05)
     assert sorted(res.series["substeps"]) == [1.0] * 8 + [2.0]
     assert np.max(np.abs(res.Hc / plain.Hc - 1.0)) < 2e-3
+
+
+@pytest.mark.parametrize("depth, blamed", [(-0.005, False), (-0.5, True)])
+def test_a_step_that_diverges_to_a_closed_film_blames_the_feature_only_when_it_is_deep(monkeypatch, depth,
+                                                                                        blamed):
+    """A step whose iteration diverges to a film that is not positive: a dent far shallower than
+    the film (5e-3 against a film of about 0.1) cannot have closed it, so the failure says the
+    iteration diverged and names no mixed lubrication; a dent five times the film may have."""
+    from ehl_multigrid.line.problem import LineProblem
+    from ehl_multigrid.model.errors import ConvergenceError
+    from ehl_multigrid.transient import solve_transient_line, stepping
+
+    real = stepping.Stepper.solve_step
+    calls = {"n": 0}
+
+    def diverging(self):
+        calls["n"] += 1
+        res = real(self)
+        if calls["n"] > 2:  # after the start and step 1: every solve ends on a closed film
+            self.hz.fine.H0 -= 1.0
+            res.success, res.status, res.message = False, 3, "diverged on grid 2: cycle 5 rejected"
+        return res
+
+    monkeypatch.setattr(stepping.Stepper, "solve_step", diverging)
+    problem = LineProblem.from_moes(20, 10, xmin=-4.5)
+    with pytest.raises(ConvergenceError) as err:
+        solve_transient_line(problem, Bump(depth, 0.5, x0=-2.0), dt=0.05, steps=4, points=129)
+    msg = str(err.value)
+    assert "time step 2" in msg
+    assert ("mixed-lubrication" in msg and "cuts through the film" in msg) is blamed
+    assert ("did not converge" in msg and "diverged" in msg and "deep" in msg) is not blamed
+    assert err.value.partial.steps == 1 and not err.value.partial.complete
