@@ -825,8 +825,9 @@ class StopKeeper:
             self.stop = stop
             return sol
 
-    def raise_stop(self, written: str) -> None:
-        """Raise the kept stop, if any; ``written`` names the file the kept answer went to."""
+    def raise_stop(self, written: str, note: str = "") -> None:
+        """Raise the kept stop, if any; ``written`` names the file the kept answer went to
+        (the stop's ``written``; "": none), ``note`` what else the command says about it."""
         if self.stop is None:
             return
         sol = self.stop.solution  # type: ignore[attr-defined]
@@ -834,7 +835,8 @@ class StopKeeper:
         err = (f"stated error Hc {sol.error.Hc:.2g}, Hm {sol.error.Hm:.2g}"
                if math.isfinite(sol.error.Hc) and math.isfinite(sol.error.Hm) else "error not known")
         self.stop.kept = (f"the most accurate finished solve ({grid}{err}, status {sol.status.label}) "  # type: ignore[attr-defined]
-                          f"was written to {written}")
+                          + (f"was written to {written}{note}" if written else f"was not written (no output folder){note}"))
+        self.stop.written = written or None  # type: ignore[attr-defined]
         raise self.stop
 
 

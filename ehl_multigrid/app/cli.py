@@ -496,14 +496,14 @@ def _main(argv: Sequence[str] | None) -> int:
         return _run_command(args)
 
 
-def _failed(args: argparse.Namespace, code: int, error: str, message: str) -> int:
+def _failed(args: argparse.Namespace, code: int, error: str, message: str, written: Any = None) -> int:
     """``code``; with ``--json`` also one line of JSON on stdout saying why nothing else came
-    (``{"command", "exit_code", "error", "message", "converged": false}``), so that a script
-    reading stdout always gets an object."""
+    (``{"command", "exit_code", "error", "message", "converged": false}``, and ``hdf5``, the
+    file a stop kept, when ``written``), so that a script reading stdout always gets an object."""
     if getattr(args, "json", False):
         try:
             print_payload({"command": args.command, "exit_code": code, "error": error, "message": message,
-                           "converged": False})
+                           "converged": False, **({"hdf5": str(written)} if written else {})})
         except (BrokenPipeError, ValueError):  # the reader went away, or stdout is closed
             pass
     return code
@@ -527,11 +527,11 @@ def _run_command(args: argparse.Namespace) -> int:
     except KeyboardInterrupt as exc:
         kept = getattr(exc, "kept", kept)  # what the command wrote before the stop reached here
         print(f"ehl {args.command}: interrupted; {kept}", file=sys.stderr)
-        return _failed(args, EXIT_INTERRUPTED, "interrupted", f"interrupted; {kept}")
+        return _failed(args, EXIT_INTERRUPTED, "interrupted", f"interrupted; {kept}", getattr(exc, "written", None))
     except Terminated as exc:
         kept = getattr(exc, "kept", kept)
         print(f"ehl {args.command}: terminated; {kept}", file=sys.stderr)
-        return _failed(args, EXIT_TERMINATED, "terminated", f"terminated; {kept}")
+        return _failed(args, EXIT_TERMINATED, "terminated", f"terminated; {kept}", getattr(exc, "written", None))
     except SystemError as exc:
         # a signal that arrived while compiled code ran reaches us wrapped in a SystemError
         cause = signal_cause(exc)
@@ -541,7 +541,8 @@ def _run_command(args: argparse.Namespace) -> int:
         interrupted = isinstance(cause, KeyboardInterrupt)
         what = "interrupted" if interrupted else "terminated"
         print(f"ehl {args.command}: {what}; {kept}", file=sys.stderr)
-        return _failed(args, EXIT_INTERRUPTED if interrupted else EXIT_TERMINATED, what, f"{what}; {kept}")
+        return _failed(args, EXIT_INTERRUPTED if interrupted else EXIT_TERMINATED, what, f"{what}; {kept}",
+                       getattr(cause, "written", None))
     except OSError as exc:
         if exc.filename is None:
             raise

@@ -27,7 +27,7 @@ from typing import Any
 from .. import front
 from ..model.atomic import fault_point
 from ..model.constants import MOES_ONLY_DEFAULTS
-from ..model.errors import ConvergenceError, InputError, ModelRangeWarning
+from ..model.errors import ConvergenceError, InputError, ModelRangeWarning, signal_cause
 from ..model.output_folder import StagedOutputs, output_lock
 from ..model.paths import safe_stem
 from ..solution import MoesProblem
@@ -61,8 +61,16 @@ def run_contact_solve(args: argparse.Namespace, scene: Any, kind: str) -> dict[s
         report_leftovers("ehl solve", removed)
         with Progress("ehl solve") as prog:
             keeper = front.StopKeeper()
-            payload = (_solve_line if kind == "line" else _solve_point)(args, scene, out, prog, keeper)
-            keeper.raise_stop(payload.get("hdf5", "?"))
+            args.writing = False
+            try:
+                payload = (_solve_line if kind == "line" else _solve_point)(args, scene, out, prog, keeper)
+            except BaseException as exc:
+                stop = signal_cause(exc)
+                if stop is not None and not args.writing and not hasattr(stop, "kept"):
+                    stop.kept = ("no solve had finished, so nothing was written (files of an earlier run in "  # type: ignore[attr-defined]
+                                 f"{out} are as they were)")
+                raise
+            keeper.raise_stop(payload.get("hdf5", ""))
     if scene is not None:
         note = heat_note(scene, getattr(args, "accuracy", None))
         if note:
@@ -116,6 +124,7 @@ def write_and_print(args: argparse.Namespace, out: Path, kind: str, raw: Any, re
     if "error_budget" in payload and "error_budget" in res.meta:
         # the JSON states the budget as the file does: by the contract's part names
         payload["error_budget"] = res.meta["error_budget"]
+    args.writing = True  # a stop from here on may keep the result (StagedOutputs)
     stem = safe_stem(name)  # a scene name is a label: never a path out of --out
     # the finished files are moved into --out together when the block ends (a stop while
     # plotting keeps the result and the CSV, not the figures of the interrupted call)

@@ -43,6 +43,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..model.atomic import atomic_savefig, deferred_signals, fault_point, write_text_atomic
+from ..model.errors import signal_cause
 from ..model.hertz import hertz_pressure_line, hertz_pressure_point
 from ..model.output_folder import output_lock, staging_dir
 from ..model.paths import safe_stem, writable_dir
@@ -413,7 +414,16 @@ def _run_locked(scene: Scene, options: MainJobOptions, out: Path) -> dict[str, A
             save(complete=len(ran) == len(planned))
             prog.advance(text=f"{name} took {time.perf_counter() - t0:.1f} s")
             if ctx.keeper is not None:  # a stop kept this stage's film: the later stages do not run
-                ctx.keeper.raise_stop(f"{h5} as the {name} stage's film; the stages after it did not run")
+                ctx.keeper.raise_stop(str(h5), f" as the {name} stage's film; the stages after it did not run")
+    except BaseException as exc:
+        stop = signal_cause(exc)
+        if stop is not None and not hasattr(stop, "kept"):
+            stop.kept = (f"the finished stages ({', '.join(ctx.outputs)}) were written to {h5}, marked incomplete"  # type: ignore[attr-defined]
+                         if ctx.outputs else f"no stage had finished, so nothing was written (files of an "
+                         f"earlier run of {scene.name} in {out} are as they were)")
+            if ctx.outputs:
+                stop.written = str(h5)  # type: ignore[attr-defined]
+        raise
     finally:
         warmup.stop(helpers)
         prog.close()

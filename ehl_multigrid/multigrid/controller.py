@@ -240,6 +240,20 @@ def choose(candidates: list[Candidate], accuracy: float, now: float, hope: float
     return min(near, key=lambda c: (hoped(c), c.rank)) if near else best
 
 
+def fallback_gains(physics: Controlled, last: tuple[Any, float], at: Resolution, safe: Resolution) -> bool:
+    """Whether ``safe``, one grid finer than the last converged solve ``at`` (``last``: its
+    result and estimated error), is worth solving after a larger refinement failed: unless the
+    physics offers it as a candidate predicted to lower the error by less than
+    :data:`REQUIRED_GAIN` (a transient run whose time part dominates gains nothing from a finer
+    grid at the same step; measured: a roller at 300 N doubled its grid twice, 85 s, after its
+    time step could not be halved)."""
+    res, worst = last
+    if res is None or math.isnan(worst):
+        return True
+    same = [c for c in physics.candidates(res, at) if c.at == safe and math.isfinite(c.predicted)]
+    return not same or min(c.predicted for c in same) < REQUIRED_GAIN * worst
+
+
 def predicted_seconds(last_round: float, points: int, to: Resolution, dimensions: int,
                       dt: float = 1.0) -> float:
     """Wall time of a refinement to ``to`` from ``last_round``, the seconds the last solve and
@@ -355,6 +369,7 @@ def _sequence(physics: Controlled, start: Resolution, accuracy: float | None, re
     best: tuple[Any, float] | None = None
     failed: set[Resolution] = set()
     last_ok: Resolution | None = None
+    last_ok_out: tuple[Any, float] = (None, math.nan)
     at = start
     why = ""
     last: Any = None
@@ -392,7 +407,8 @@ def _sequence(physics: Controlled, start: Resolution, accuracy: float | None, re
                 return done(res, math.nan, False, False, reason)
             failed.add(at)
             safe = last_ok.finer() if last_ok is not None else None
-            if safe is not None and safe not in failed and safe.points <= limit and safe != at:
+            if (safe is not None and safe not in failed and safe.points <= limit and safe != at
+                    and fallback_gains(physics, last_ok_out, last_ok, safe)):
                 # a larger step failed: the smallest one, from the last converged solve
                 at = safe
                 continue
@@ -402,6 +418,7 @@ def _sequence(physics: Controlled, start: Resolution, accuracy: float | None, re
         kept["doing"] = f"the error estimate of the solve on {at.describe()}"
         ec, em = physics.estimate(res, at, steps.append)
         worst = max(ec, em) if not (math.isnan(ec) or math.isnan(em)) else math.nan
+        last_ok_out = (res, worst)
         # NaN counts as worst; of two solves whose error is not bounded (inf) the finer one
         if best is None or not best[1] <= worst or (math.isinf(worst) and math.isinf(best[1])):
             best = kept["best"] = (res, worst)

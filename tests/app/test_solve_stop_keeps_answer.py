@@ -61,7 +61,7 @@ def test_ehl_solve_writes_the_kept_solve_and_exits_with_the_stop(tmp_path, capsy
     assert rc == code
     h5 = tmp_path / "line_M20_L10.h5"
     failed = json.loads(cap.out.strip().splitlines()[-1])
-    assert failed["error"] == word and str(h5) in failed["message"]
+    assert failed["error"] == word and str(h5) in failed["message"] and failed["hdf5"] == str(h5)
     assert f"ehl solve: {word}; the most accurate finished solve (" in cap.err
     saved = Result.load(h5)
     assert saved.scalars["status"] == "inaccurate"
@@ -88,3 +88,35 @@ def test_ehl_run_keeps_the_film_stage_a_stop_ended_and_runs_no_later_stage(tmp_p
         assert not f.attrs["complete"] and json.loads(f.attrs["stages_run"]) == ["film"]
     film = Result.load(tmp_path / "appendix_c_line_4240N.h5", "film")
     assert film.scalars["status"] == "inaccurate" and "interrupted (Ctrl-C)" in film.scalars["message"]
+
+
+def test_ehl_solve_stopped_before_any_solve_finished_says_nothing_was_written(tmp_path, capsys, monkeypatch):
+    said = console.Progress.say
+
+    def say(self, text, *a, **k):
+        said(self, text, *a, **k)
+        raise KeyboardInterrupt  # at the first solve's line, before its estimate
+
+    monkeypatch.setattr(console.Progress, "say", say)
+    rc = main(["solve", "--contact", "line", "--M", "20", "--L", "10", "--accuracy", "0.001", "--no-plots",
+               "--out", str(tmp_path), "--json"])
+    cap = capsys.readouterr()
+    failed = json.loads(cap.out.strip().splitlines()[-1])
+    assert rc == 130 and "hdf5" not in failed
+    assert "no solve had finished, so nothing was written" in failed["message"]
+    assert not list(tmp_path.glob("*.h5"))
+
+
+def test_ehl_run_stopped_before_any_stage_finished_says_nothing_was_written(tmp_path, capsys, monkeypatch):
+    from ehl_multigrid.app.stages import RunContext
+
+    def stop(self, *a, **k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(RunContext, "solve", stop)
+    monkeypatch.setenv("EHL_WARMUP", "0")
+    rc = main(["run", "appendix_c_line_4240N", "--tolerance", "0.001", "--out", str(tmp_path), "--json",
+               "--no-plots"])
+    err = capsys.readouterr().err
+    assert rc == 130 and "no stage had finished, so nothing was written" in err
+    assert not list(tmp_path.glob("*.h5"))

@@ -281,3 +281,29 @@ def test_when_the_last_solve_is_no_better_than_an_earlier_one_the_reason_says_so
     assert out.result["at"].points == 257 and out.last["at"].points == 513
     assert out.why.startswith("the solve on 513 points (box x1) estimated 0.05, no better than the 0.04 of "
                               "the solve returned; from it, max points at 513")
+
+
+def test_a_failed_refinement_falls_back_to_a_finer_grid_only_where_that_is_predicted_to_gain():
+    # a time-step refinement fails; the finer grid at the same step is predicted to leave the
+    # time part (0.04 -> 0.039): no fallback solve, the sequence ends with why
+    @dataclass
+    class TimeBound(Toy):
+        def candidates(self, r, at):
+            return [Candidate("dt", Resolution(at.points, dt=0.5), 0, 0.001),
+                    Candidate("points", at.finer(), 1, 0.039)]
+
+    toy = TimeBound(fail={Resolution(257, dt=0.5)})
+    out = control(toy, Resolution(257), 0.005, max_points=4097)
+    assert toy.solved == [Resolution(257), Resolution(257, dt=0.5)]
+    assert out.result["at"] == Resolution(257) and "did not converge" in out.why
+
+    # a two-grid jump fails; one grid finer is predicted to halve the error: it is tried
+    @dataclass
+    class Jumping(Toy):
+        def candidates(self, r, at):
+            return [Candidate("2 points", at.finer().finer(), 1, r["err"] / 4),
+                    Candidate("points", at.finer(), 1, r["err"] / 2)]
+
+    toy = Jumping(fail={Resolution(1025)})
+    out = control(toy, Resolution(257), 0.005, max_points=4097)
+    assert toy.solved[:3] == [Resolution(257), Resolution(1025), Resolution(513)]

@@ -269,8 +269,11 @@ def _solve_mode(args: argparse.Namespace, scene: Scene, point: bool, slip: float
     if slip is not None:
         options["slip"] = slip
     accuracy = getattr(args, "accuracy", None)
+    from ehl_multigrid.app.console import Progress
+
     keeper = front.StopKeeper()  # a stop writes the sequence's most accurate finished film
-    sol = keeper.solve(scene, physics="thermal", accuracy=accuracy, options=options)
+    with Progress("ehl solve") as prog:  # each solve of the accuracy sequence, on stderr
+        sol = keeper.solve(scene, physics="thermal", accuracy=accuracy, options=options, progress=prog.say)
     done = require_computed(sol)
     r = done.result
     payload = {"scene": scene.name, "contact": scene.kind, **r.summary(),
@@ -305,7 +308,7 @@ def _solve_mode(args: argparse.Namespace, scene: Scene, point: bool, slip: float
             from .plots import plot_tehl
 
             payload["plots"] = [str(plot_tehl(res, output_file(folder, safe_stem(f"{scene.name}_tehl"), ".png")))]
-    keeper.raise_stop(payload.get("hdf5", "no file (no --out)"))
+    keeper.raise_stop(payload.get("hdf5", ""))
     if not getattr(args, "json", False):
         print_table({k: v for k, v in payload.items() if k not in ("outer", "properties", "error_budget", "refinements")})
     return payload
