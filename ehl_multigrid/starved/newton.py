@@ -10,6 +10,7 @@ import warnings
 
 import numpy as np
 import scipy.linalg
+from numba import njit
 
 from ..multigrid.flux import eps_faces
 from ..multigrid.threads import serial_blas
@@ -63,22 +64,35 @@ def _jacobian(lv: StarvedLevel, P: np.ndarray, theta: np.ndarray, H0: float, Kma
         dL[1] += ih2 * dem[0] * (P[1] - P[0])
         dL[1, 1] += ih2 * em[0]
         dL[1, 0] -= ih2 * em[0]
-    q = rho * H
-    for k in range(1, n - 1):
-        e = wedge_share_terms(k, th, q, lv.order, starved)
-        for mm in range(3 if k >= 2 else 2):
-            dT[k, k - mm] -= e[mm] / h
-        c = wedge_row(k, th, lv.order, starved)
-        for mm in range(3):
-            if c[mm] == 0.0:
-                continue
-            dL[k] -= c[mm] * dq[k - mm] / h
-            dT[k, k - mm] -= c[mm] * rho[k - mm] * H[k - mm] / h
+    add_wedge_rows(dL, dT, dq, th, rho, H, h, lv.order, starved)
     ct, _ = lv.content_rate()
     if ct != 0.0:  # a time step's rows carry + ct theta rho H - hist
         dL[i] -= ct * dq[i]
         dT[i, i] -= ct * rho[i] * H[i]
     return r, dL, dT, th
+
+
+@njit(cache=True)
+def add_wedge_rows(dL, dT, dq, theta, rho, H, h, order, starved):
+    """Add the wedge term's derivatives to the rows ``1 .. n-2`` of ``dL`` (pressures and
+    ``H0``, through ``dq = d(theta rho H)/dx``) and ``dT`` (film contents), in place: the
+    upwind weights of :func:`wedge_row` and the second-order shares of
+    :func:`wedge_share_terms`. A compiled loop: on a 65-point coarsest grid
+    the Python loop was most of a Newton iteration (0.9 ms of it)."""
+    n = H.shape[0]
+    m = dq.shape[1]
+    q = rho * H
+    for k in range(1, n - 1):
+        e = wedge_share_terms(k, theta, q, order, starved)
+        for mm in range(3 if k >= 2 else 2):
+            dT[k, k - mm] -= e[mm] / h
+        c = wedge_row(k, theta, order, starved)
+        for mm in range(3):
+            if c[mm] == 0.0:
+                continue
+            for j in range(m):
+                dL[k, j] -= c[mm] * dq[k - mm, j] / h
+            dT[k, k - mm] -= c[mm] * rho[k - mm] * H[k - mm] / h
 
 
 def _fb(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -89,6 +103,23 @@ def _fb(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarra
     da = np.where(rt > 0.0, 1.0 - a / safe, 1.0 - 1.0 / np.sqrt(2.0))
     db = np.where(rt > 0.0, 1.0 - b / safe, 1.0 - 1.0 / np.sqrt(2.0))
     return a + b - rt, da, db
+
+
+def _pinned_step(J: np.ndarray, phi: np.ndarray, pinned_rows: np.ndarray,
+                 pinned_cols: np.ndarray) -> np.ndarray:
+    """The Newton step ``J^-1 (-phi)`` where row ``pinned_rows[k]`` of ``J`` is zero except at
+    column ``pinned_cols[k]`` and ``phi`` is zero there: those unknowns do not move, and the
+    others solve the system of the remaining rows and columns (the same step, a smaller
+    factorisation). Pinned are the frozen points of a coarse grid and, by the
+    Fischer-Burmeister rows of a strictly complementary point, ``theta = 1`` where ``P > 0``
+    and ``P = 0`` where ``theta < 1``: about half the unknowns, an eighth of the work."""
+    if pinned_rows.size == 0:
+        return scipy.linalg.solve(J, -phi, check_finite=False)
+    rows = np.setdiff1d(np.arange(phi.size), pinned_rows)
+    cols = np.setdiff1d(np.arange(phi.size), pinned_cols)
+    step = np.zeros_like(phi)
+    step[cols] = scipy.linalg.solve(J[np.ix_(rows, cols)], -phi[rows], check_finite=False)
+    return step
 
 
 def newton_solve(lv: StarvedLevel, max_iter: int = 80, tol: float = 1e-10) -> int:
@@ -117,32 +148,40 @@ def _newton_solve(lv: StarvedLevel, max_iter: int, tol: float) -> int:
     P_fr, T_fr = P.copy(), theta.copy()
 
     def system(P, theta, H0, s):
-        r = _residual(lv, P, theta, H0)
+        """``phi`` of the iterate and its inlet content (set by the supply)."""
+        with np.errstate(all="ignore"):
+            st = lv.state(P, H0, theta)
         phi = np.empty(2 * m + 1)
-        phi[:m] = s * r[inner]
+        phi[:m] = s * st.r[inner]
         phi[m:2 * m], _, _ = _fb(P[inner], 1.0 - theta[inner])
         phi[:m][fr] = (P - P_fr)[inner][fr]
         phi[m:2 * m][fr] = (theta - T_fr)[inner][fr]
         phi[-1] = lv.h * np.sum(P) - lv.g
-        return phi
+        return phi, st.theta[0]
 
-    s = None
+    s = phi = None
     for it in range(1, max_iter + 1):
-        with np.errstate(all="ignore"):
-            r, dL, dT, th = _jacobian(lv, P, theta, H0, Kmat)
-        theta[0] = th[0]
-        if s is None:
+        fresh = s is None
+        if fresh:
+            with np.errstate(all="ignore"):
+                r, dL, dT, th = _jacobian(lv, P, theta, H0, Kmat)
+            theta[0] = th[0]
             # row scales from the first iterate (fixed, so the merit is one function)
             d = np.where(P[inner] > 0.0, np.abs(dL[inner, inner]), np.abs(dT[inner, inner]))
             s = 1.0 / np.maximum(d, 1e-300)
-        phi = system(P, theta, H0, s)
+            phi, _ = system(P, theta, H0, s)
         norm0 = float(np.linalg.norm(phi))
         if not np.isfinite(norm0):
             raise StarvedNewtonFailure("non-finite residual in the dense Newton iteration")
         if np.max(np.abs(phi)) < tol:
+            # (phi of an accepted trial is the next iterate's: a converged one needs no Jacobian)
             lv.P, lv.theta, lv.H0 = np.maximum(P, 0.0), np.minimum(theta, 1.0), H0
             exact_cavitation(lv)
             return it - 1
+        if not fresh:
+            with np.errstate(all="ignore"):
+                r, dL, dT, th = _jacobian(lv, P, theta, H0, Kmat)
+            theta[0] = th[0]
         J = np.zeros((2 * m + 1, 2 * m + 1))
         J[:m, :m] = -s[:, None] * dL[np.ix_(inner, inner)]
         J[:m, m:2 * m] = -s[:, None] * dT[np.ix_(inner, inner)]
@@ -155,10 +194,16 @@ def _newton_solve(lv: StarvedLevel, max_iter: int, tol: float) -> int:
             rows = off + np.flatnonzero(fr)
             J[rows] = 0.0
             J[rows, rows] = 1.0
+        # unknowns that do not move: frozen, or fixed by their complementarity row
+        settled = (phi[m:2 * m] == 0.0) & ~fr
+        fixed_P, fixed_T = np.flatnonzero(settled & (db == 0.0)), np.flatnonzero(settled & (da == 0.0))
+        frozen = np.flatnonzero(fr)
+        pinned_rows = np.concatenate([frozen, m + frozen, m + fixed_P, m + fixed_T])
+        pinned_cols = np.concatenate([frozen, m + frozen, fixed_P, m + fixed_T])
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-                step = scipy.linalg.solve(J, -phi, check_finite=False)
+                step = _pinned_step(J, phi, pinned_rows, pinned_cols)
         except (np.linalg.LinAlgError, scipy.linalg.LinAlgError, ValueError) as exc:
             raise StarvedNewtonFailure(f"singular Jacobian: {exc}") from None
         dPs, dTs = step[:m], step[m:2 * m]
@@ -169,8 +214,9 @@ def _newton_solve(lv: StarvedLevel, max_iter: int, tol: float) -> int:
             # theta stays positive: projected to at least a fifth of its value
             Tt[inner] = np.maximum(theta[inner] + t * dTs, 0.2 * theta[inner])
             H0t = H0 + t * step[-1]
+            phi_t, inlet_t = system(Pt, Tt, H0t, s)
             with np.errstate(all="ignore"):
-                norm = float(np.linalg.norm(system(Pt, Tt, H0t, s)))
+                norm = float(np.linalg.norm(phi_t))
             if np.isfinite(norm) and norm <= (1.0 - 1e-4 * t) * norm0:
                 break
             t *= 0.5
@@ -180,7 +226,8 @@ def _newton_solve(lv: StarvedLevel, max_iter: int, tol: float) -> int:
                     exact_cavitation(lv)
                     return it - 1
                 raise StarvedNewtonFailure(f"line search failed at iteration {it} (|phi| = {norm0:.3g})")
-        P, theta, H0 = Pt, Tt, H0t
+        P, theta, H0, phi = Pt, Tt, H0t, phi_t
+        theta[0] = inlet_t
     raise StarvedNewtonFailure(f"dense Newton did not converge in {max_iter} iterations")
 
 

@@ -24,7 +24,9 @@ mixed into the steady hierarchies here and into the starved (mass-conserving) on
 ``int int P = 2 pi b/(3a)``) holds at every step (constant load); the film constant is free.
 The projection's coarsest grid is solved by the steady path's dense Newton iteration with the
 squeeze term added to its residual and Jacobian (:meth:`TransientLineLevel.newton_system`); the
-mass-conserving line steps (:mod:`.cavitated`) relax theirs (with the film-constant update).
+mass-conserving line steps (:mod:`.cavitated`) solve theirs, with a flooded inlet, by the
+starved solver's dense Newton iteration, whose rows carry the squeeze term. Either is relaxed
+(with the film-constant update) where its Newton iteration fails, and so is a starved inlet's.
 """
 
 from __future__ import annotations
@@ -165,8 +167,8 @@ class StepGrids:
 class TimeStepGrids(StepGrids):
     """What a time step's hierarchy adds to a steady line hierarchy (mixed in before it):
     the moving geometry and the squeeze term on every grid (:meth:`set_step`), the start on
-    the finest grid (no FMG), the coarsest grid relaxed (the projection's hierarchy solves it by
-    Newton instead), no dense-Newton last resort. The grids' levels carry ``R``, ``ct`` and
+    the finest grid (no FMG), the coarsest grid relaxed (both line hierarchies solve it by
+    Newton instead, relaxed where that fails), no dense-Newton last resort. The grids' levels carry ``R``, ``ct`` and
     ``hist``."""
 
     geometry: Callable[[np.ndarray], np.ndarray]
