@@ -186,7 +186,8 @@ class StarvedLineHierarchy(LineHierarchy):
 
     def coarse_solve(self, k: int, s: Settings) -> float:
         """Flooded inlet: the flooded solver's dense Newton for ``(P, H0)`` (the coarse points
-        that are not pressurised are frozen, so the film content does not enter); starved
+        that are not pressurised are frozen; its rows are the flooded residual, also next to
+        points whose film content is below 1); starved
         inlet: relaxation sweeps with the film constant following the load. Newton failing,
         relaxation too."""
         lv = self.levels[k]

@@ -168,7 +168,8 @@ class TimeStepGrids(StepGrids):
     """What a time step's hierarchy adds to a steady line hierarchy (mixed in before it):
     the moving geometry and the squeeze term on every grid (:meth:`set_step`), the start on
     the finest grid (no FMG), the coarsest grid relaxed (both line hierarchies solve it by
-    Newton instead, relaxed where that fails), no dense-Newton last resort. The grids' levels carry ``R``, ``ct`` and
+    Newton instead, relaxed where that fails), no dense-Newton last resort (the mass-conserving
+    hierarchy has its own, :mod:`.cavitated`). The grids' levels carry ``R``, ``ct`` and
     ``hist``."""
 
     geometry: Callable[[np.ndarray], np.ndarray]
