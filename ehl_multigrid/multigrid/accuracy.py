@@ -1150,9 +1150,7 @@ class _SteadyControl:
         positive film: the FMG film of the grid below the three the Richardson estimate reads
         is not positive, while the grid below the solve's is not yet solved to convergence. The
         FMG films next to that grid carry large algebraic errors (interpolated from a solution
-        that is no film). Measured: series C (M 6114) at 10 % on 1025 points, FMG Hc at 129
-        points negative, 513-point FMG film 7 % off its grid's solution: stated Hc 4.6 % for a
-        true 5.0 % (tight 1025-4097-point solves); docs/accuracy.md, "Grid error")."""
+        that is no film; docs/accuracy.md, "Grid error")."""
         if self.dimensions == 1 or ((points - 1) // 2 + 1) in self.finals.get(key, {}):
             return False
         top = int(getattr(res, "levels", 0) or 0) - 1

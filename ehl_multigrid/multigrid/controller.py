@@ -245,8 +245,7 @@ def fallback_gains(physics: Controlled, last: tuple[Any, float], at: Resolution,
     result and estimated error), is worth solving after a larger refinement failed: unless the
     physics offers it as a candidate predicted to lower the error by less than
     :data:`REQUIRED_GAIN` (a transient run whose time part dominates gains nothing from a finer
-    grid at the same step; measured: a roller at 300 N doubled its grid twice, 85 s, after its
-    time step could not be halved)."""
+    grid at the same step)."""
     res, worst = last
     if res is None or math.isnan(worst):
         return True

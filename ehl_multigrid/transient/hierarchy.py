@@ -186,6 +186,9 @@ class TimeStepGrids(StepGrids):
         self.fine.f = np.zeros(self.fine.n)
         self.fine.g = 0.5 * math.pi
         self.fine.frozen[:] = False
+        # a step's solve depends on its inputs only (a run continued from a checkpoint repeats
+        # the uninterrupted one): no coarse Newton failure carried from the last step
+        self.newton_failed = set()
 
     def coarse_solve(self, k: int, s: Settings) -> float:
         return self.relax(k, COARSE_SWEEPS, s, True)
@@ -210,22 +213,14 @@ class TransientLineHierarchy(TimeStepGrids, LineHierarchy):
 
     def set_step(self, shift: float, ct: float, hist: np.ndarray) -> None:
         super().set_step(shift, ct, hist)
-        # a step's solve depends on its inputs only (a run continued from a checkpoint repeats
-        # the uninterrupted one): no coarse Newton factor or failure carried from the last step
-        self.levels[0].kept_factor = None
-        self.newton_failed = set()
+        self.levels[0].kept_factor = None  # nor a coarse Newton factor of the last step
 
     def coarse_solve(self, k: int, s: Settings) -> float:
         """The coarsest grid solved for ``(P, H0)`` by the steady solver's dense semismooth
         Newton iteration with the step's squeeze term (:meth:`TransientLineLevel.newton_system`),
-        relaxed by :data:`COARSE_SWEEPS` sweeps where it fails.
-
-        Relaxed instead, with ``H0`` moved by the load error after every sweep, the coarsest
-        grid diverged on a long box at short steps: page 63 at 100 N on [-10.5, 1.5], 1025
-        points, BDF2 at dT = 0.00293 (``ct`` = 512), its 65-point grid's load response to a
-        fixed change of ``H0`` grew without bound over the sweeps (3, 17, 144, 11300 after 1,
-        5, 20, 80), where the classic box's settles (3.3, 13, 28, 33): the ``H0`` loop fed a
-        growing mode, the step stalled at step 2 (docs/transient.md, "Limits")."""
+        relaxed by :data:`COARSE_SWEEPS` sweeps where it fails. Relaxed alone, with ``H0``
+        moved by the load error after every sweep, it diverged on a long box at short steps
+        (docs/transient.md, "Limits")."""
         return LineHierarchy.coarse_solve(self, k, s)
 
 
