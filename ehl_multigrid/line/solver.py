@@ -950,9 +950,8 @@ def continued_in_m(problem: LineProblem, options: LineOptions, callback: Any = N
 
 
 #: :func:`from_start_grid` stops on this fraction of the film tolerance: its start is farther
-#: from the discrete solution than the continuation's, and at the full tolerance the films it
-#: stopped on (Hm of (4000, 0) 1.4e-4 off the discrete solution on 16385 points, the
-#: continuation's 1e-5) moved the accuracy loop's grid choice (131073 points instead of 65537)
+#: from the discrete solution than the continuation's, and at the full tolerance the accuracy
+#: loop's grid choice moved (docs/performance.md, "Line contacts at high load")
 FROM_START_GRID_FILM_TOL = 0.25
 
 

@@ -55,9 +55,8 @@ TRANSIENT_DEFAULTS = {"points": 257, "deformation": "fft", "tol": 1e-6, "tol_loa
 
 
 #: The projection's steps: a solve whose V cycles contract by less than 0.3 over 8 cycles
-#: (slower than 0.84 a cycle) takes the stall ladder's first step, W cycles. Page 63 at 100 N on
-#: [-10.5, 1.5], 2049 points, BDF2 at dT = 0.00146: V cycles contracting by 0.9 a cycle ran to
-#: the cycle limit and 21 steps were halved (26.7 cycles a step); with it 10.3, none halved.
+#: (slower than 0.84 a cycle) takes the stall ladder's first step, W cycles (long boxes at
+#: short steps; docs/transient.md, "Limits")
 PROJECTION_STEP_POLICY = dataclasses.replace(LINE_POLICY, stall_factor=0.3)
 
 
